@@ -1,0 +1,114 @@
+"""Results of a simulation: located events, knots and dense output."""
+
+import dataclasses
+from typing import Callable
+
+import numpy as np
+
+from .model import Mode
+
+
+@dataclasses.dataclass(frozen=True)
+class Event:
+    """A located mode change.
+
+    Attributes:
+        t: time [s].
+        mode_before, mode_after: the modes on either side.
+        u: relative displacement at ``t`` [m].
+        v: relative velocity at ``t`` [m/s] (0 at a stop, by definition).
+    """
+
+    t: float
+    mode_before: Mode
+    mode_after: Mode
+    u: float
+    v: float
+
+    def __str__(self):
+        return (f"t = {self.t:.6f} s  {self.mode_before.name:>8} -> {self.mode_after.name:<8}"
+                f"  u = {self.u:+.6f} m")
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Solution:
+    """The motion of the block relative to its base.
+
+    Attributes:
+        t: knot times [s], shape (n,): the start, every event, the pieces'
+            breakpoints and the end, in time order.
+        u, v: relative displacement [m] and velocity [m/s] at the knots, shape (n,).
+        mode: mode right after each knot, shape (n,) of int (see :class:`Mode`).
+        events: located mode changes, in time order.
+        backend: name of the backend that produced it.
+        stats: counters, e.g. ``max_events_at_one_instant`` and solver statistics.
+    """
+
+    t: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+    mode: np.ndarray
+    events: tuple[Event, ...]
+    backend: str
+    dense: Callable = dataclasses.field(repr=False)
+    stats: dict = dataclasses.field(default_factory=dict)
+
+    @property
+    def t_end(self) -> float:
+        """Final time [s]."""
+        return float(self.t[-1])
+
+    @property
+    def displacement(self) -> float:
+        """Permanent relative displacement u(t_end) [m]."""
+        return float(self.u[-1])
+
+    @property
+    def max_abs_displacement(self) -> float:
+        """max |u(t)| over the whole run [m] (u has its extrema at knots)."""
+        return float(np.max(np.abs(self.u)))
+
+    @property
+    def t_events(self) -> np.ndarray:
+        """Event times [s], shape (n_events,)."""
+        return np.array([e.t for e in self.events])
+
+    def __call__(self, t):
+        """(u(t) [m], v(t) [m/s]) at any times within [0, t_end], exactly."""
+        t = np.asarray(t, dtype=float)
+        if np.any((t < self.t[0]) | (t > self.t[-1])):
+            raise ValueError(f"t must lie in [{self.t[0]}, {self.t[-1]}] s")
+        return self.dense(t)
+
+    def event_table(self) -> str:
+        """The events as an aligned text table with units."""
+        lines = [f"{'t [s]':>12}  {'from':>8}  {'to':<8}  {'u [m]':>12}"]
+        lines += [f"{e.t:12.6f}  {e.mode_before.name:>8}  {e.mode_after.name:<8}  {e.u:12.6f}"
+                  for e in self.events]
+        return "\n".join(lines)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class BatchSolution:
+    """Results for a batch of parameter sets over one excitation.
+
+    Attributes:
+        displacement: u(t_end) per parameter set [m], shape (n,).
+        max_abs_displacement: max |u| per parameter set [m], shape (n,).
+        n_events: number of events per parameter set, shape (n,).
+        t_end: final time per parameter set [s], shape (n,).
+    """
+
+    displacement: np.ndarray
+    max_abs_displacement: np.ndarray
+    n_events: np.ndarray
+    t_end: np.ndarray
+    backend: str
+    solve_one: Callable = dataclasses.field(repr=False)
+
+    def __len__(self):
+        return self.displacement.shape[0]
+
+    def __getitem__(self, index: int) -> Solution:
+        """The full :class:`Solution` (events, dense output) of one parameter set."""
+        return self.solve_one(index)

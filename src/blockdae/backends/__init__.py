@@ -1,0 +1,30 @@
+"""Solver backends behind one contract; see :class:`AbstractBackend`."""
+
+import importlib
+
+from ._base import AbstractBackend, Horizon
+
+# name -> "module:class", imported on first use so that unused solvers cost nothing
+_REGISTRY = {
+    "exact": "blockdae.backends._exact:ExactBackend",
+}
+
+
+def available() -> tuple[str, ...]:
+    """Names accepted by ``simulate(..., backend=...)``."""
+    return tuple(_REGISTRY)
+
+
+def make_backend(name: str, **options) -> AbstractBackend:
+    """The backend called ``name``, configured with ``options``."""
+    if name not in _REGISTRY:
+        raise ValueError(f"backend={name!r} is unknown; choose one of {available()}")
+    module, cls = _REGISTRY[name].split(":")
+    backend_cls = getattr(importlib.import_module(module), cls)
+    try:
+        return backend_cls(**options)
+    except TypeError as err:
+        raise TypeError(f"backend {name!r}: {err}") from None
+
+
+__all__ = ["AbstractBackend", "Horizon", "available", "make_backend"]

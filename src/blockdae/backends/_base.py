@@ -1,0 +1,65 @@
+"""The contract every backend fulfils."""
+
+import abc
+import dataclasses
+
+import numpy as np
+
+from .._solution import BatchSolution, Solution
+from ..excitation import AbstractExcitation
+from ..model import SlidingBlock
+
+
+@dataclasses.dataclass(frozen=True)
+class Horizon:
+    """Where a run ends: at ``t_end`` [s], or (``t_end`` None) when the block has come
+    to rest after the excitation ends."""
+
+    t_end: float | None
+
+    @classmethod
+    def resolve(cls, excitation: AbstractExcitation, t_end) -> "Horizon":
+        if t_end is None:
+            if not np.isfinite(excitation.duration):
+                raise ValueError(f"{type(excitation).__name__} never ends: give t_end [s]")
+            return cls(None)
+        t_end = float(t_end)
+        if not (np.isfinite(t_end) and t_end > 0):
+            raise ValueError(f"t_end must be a positive finite time [s], got {t_end!r}")
+        return cls(t_end)
+
+    @property
+    def until_rest(self) -> bool:
+        return self.t_end is None
+
+    def integration_end(self, excitation: AbstractExcitation) -> float:
+        """End of the part driven by a(t) [s]; a rest-seeking tail may follow."""
+        return excitation.duration if self.t_end is None else self.t_end
+
+
+class AbstractBackend(abc.ABC):
+    """Integrates a :class:`SlidingBlock` under an excitation to a :class:`Solution`.
+
+    Backends are immutable settings objects; ``solve`` takes one parameter set,
+    ``solve_batch`` a batch (by default one ``solve`` per set).
+    """
+
+    name: str
+
+    @abc.abstractmethod
+    def solve(self, block: SlidingBlock, excitation: AbstractExcitation, horizon: Horizon) -> Solution:
+        """One parameter set."""
+
+    def solve_batch(self, block: SlidingBlock, excitation: AbstractExcitation,
+                    horizon: Horizon) -> BatchSolution:
+        """A batch of parameter sets (``block.batch_shape == (n,)``)."""
+        n = block.batch_shape[0]
+        sols = [self.solve(block.item(i), excitation, horizon) for i in range(n)]
+        return BatchSolution(
+            displacement=np.array([s.displacement for s in sols]),
+            max_abs_displacement=np.array([s.max_abs_displacement for s in sols]),
+            n_events=np.array([len(s.events) for s in sols]),
+            t_end=np.array([s.t_end for s in sols]),
+            backend=self.name,
+            solve_one=lambda i: sols[i],
+        )

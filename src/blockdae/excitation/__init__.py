@@ -1,0 +1,10 @@
+"""Base excitations a(t), v(t), x(t), their breakpoints and file readers."""
+
+from ._analytic import Harmonic, RectangularPulse, SinePulse, TriangularPulse
+from ._base import AbstractExcitation
+from ._pieces import Pieces
+from ._readers import STANDARD_GRAVITY, read_record
+from ._record import Record
+
+__all__ = ["AbstractExcitation", "Harmonic", "Pieces", "Record", "RectangularPulse",
+           "STANDARD_GRAVITY", "SinePulse", "TriangularPulse", "read_record"]

@@ -1,0 +1,66 @@
+"""Recorded accelerograms: samples joined by straight lines."""
+
+import dataclasses
+
+import numpy as np
+
+from ._base import AbstractExcitation, check_positive
+from ._pieces import Pieces
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Record(AbstractExcitation):
+    """Accelerogram sampled at t = k dt, linear between samples, zero after the last.
+
+    Args:
+        acceleration: samples [m/s²], shape (n,), n >= 2.
+        dt: sample step [s].
+        name: label used in tables and plots.
+
+    The base is at rest at t = 0. Use :func:`blockdae.read_record` to load files.
+    """
+
+    acceleration_samples: np.ndarray
+    dt: float
+    name: str = ""
+
+    def __init__(self, acceleration, dt, name=""):
+        samples = np.array(acceleration, dtype=float)
+        if samples.ndim != 1:
+            raise ValueError(f"acceleration must be a 1-D array of samples, got shape {samples.shape}")
+        if samples.size < 2:
+            raise ValueError(f"acceleration needs at least 2 samples, got {samples.size}")
+        bad = np.flatnonzero(~np.isfinite(samples))
+        if bad.size:
+            raise ValueError(f"acceleration sample {bad[0]} is {samples[bad[0]]!r}; samples must be finite")
+        samples.setflags(write=False)
+        object.__setattr__(self, "acceleration_samples", samples)
+        object.__setattr__(self, "dt", check_positive("dt", dt, "s"))
+        object.__setattr__(self, "name", str(name))
+
+    @property
+    def duration(self) -> float:
+        return self.dt * (self.acceleration_samples.size - 1)
+
+    @property
+    def times(self) -> np.ndarray:
+        """Sample times [s], shape (n,)."""
+        return self.dt * np.arange(self.acceleration_samples.size)
+
+    @property
+    def peak_acceleration(self) -> float:
+        return float(np.max(np.abs(self.acceleration_samples)))
+
+    def scaled(self, factor):
+        return Record(self.acceleration_samples * float(factor), self.dt, self.name)
+
+    def _pieces_until(self, t_end):
+        a = self.acceleration_samples
+        n = min(a.size - 1, int(np.ceil(t_end / self.dt - 1e-9)))
+        t0 = self.dt * np.arange(n)
+        h = np.minimum(self.dt, t_end - t0)
+        return Pieces.linear(t0, h, a[:n], np.diff(a[: n + 1]) / self.dt)
+
+    def __repr__(self):
+        return (f"Record(name={self.name!r}, n={self.acceleration_samples.size}, dt={self.dt} s, "
+                f"peak={self.peak_acceleration:.4g} m/s²)")

@@ -1,0 +1,7 @@
+"""Pure physics: modes, flows, guards and transition rules."""
+
+from ._base import AbstractHybridModel
+from ._block import SlidingBlock, demand, rest_mode, slip_constant
+from ._modes import Mode
+
+__all__ = ["AbstractHybridModel", "Mode", "SlidingBlock", "demand", "rest_mode", "slip_constant"]

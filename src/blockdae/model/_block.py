@@ -1,0 +1,180 @@
+"""The 1-D rigid block on an accelerating base (seed 000), as a hybrid automaton.
+
+State y = (u, v): displacement and velocity of the block relative to its base
+[m, m/s]. With the base acceleration a(t) [m/s²] and the bias R/Q (a constant force
+on the block in +x as a fraction of its weight), the friction force per unit mass the
+base must supply to carry the block along is the *demand*
+
+    sigma(t) = a(t) - (R/Q) g            [m/s²].
+
+Stick holds while |sigma| <= mu g. In slip+ / slip- the kinetic friction f g opposes
+the relative velocity, so dv/dt = (R/Q -/+ f) g - a(t).
+"""
+
+import dataclasses
+
+import numpy as np
+
+from ._base import AbstractHybridModel
+from ._modes import Mode
+
+_DIRECTIONS = ("both", "positive", "negative")
+
+
+def demand(a, bias, g):
+    """Friction force per unit mass needed to carry the block with the base [m/s²]."""
+    return a - bias * g
+
+
+def slip_constant(mode, bias, mu_kinetic, g):
+    """The part of dv/dt that does not depend on a(t) in a slip mode [m/s²]."""
+    return (bias - mode * mu_kinetic) * g
+
+
+def rest_mode(sigma, sigma_rate, mu, g, allow_neg, allow_pos, xp):
+    """Mode of a block at rest (v = 0) under friction demand ``sigma`` [m/s²].
+
+    Static friction holds while |sigma| <= mu g. On the threshold itself the rate
+    ``sigma_rate`` [m/s³] decides: the block slides only if the demand is moving
+    outwards, so a demand that touches the threshold and turns back never slides.
+    """
+    limit = mu * g
+    neg = (sigma > limit) | ((sigma == limit) & (sigma_rate > 0))
+    pos = (sigma < -limit) | ((sigma == -limit) & (sigma_rate < 0))
+    return xp.where(neg & allow_neg, -1, xp.where(pos & allow_pos, 1, 0))
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class SlidingBlock(AbstractHybridModel):
+    """Rigid block on a base that accelerates along x (seed 000).
+
+    Args:
+        mu: static friction coefficient [-]; decides onset and re-sticking.
+        mu_kinetic: kinetic friction coefficient f [-], acting while sliding;
+            defaults to ``mu``. Must satisfy 0 <= f <= mu.
+        bias: R/Q, a constant force on the block in +x as a fraction of its
+            weight [-]. Must satisfy |bias| < mu (else it slides with the base at rest).
+        g: gravitational acceleration [m/s²].
+        direction: "both", or "positive"/"negative" to allow sliding only with u
+            increasing / decreasing ("negative" with bias 0 is one-way Newmark).
+
+    ``mu``, ``mu_kinetic`` and ``bias`` may be 1-D arrays (broadcast together): the
+    block is then a batch of parameter sets, solved in one vectorised call.
+    """
+
+    mu: float | np.ndarray
+    mu_kinetic: float | np.ndarray | None = None
+    bias: float | np.ndarray = 0.0
+    g: float = 9.81
+    direction: str = "both"
+
+    state_names = ("u", "v")
+
+    def __post_init__(self):
+        for name in ("mu", "mu_kinetic", "bias"):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            array = np.asarray(value, dtype=float)
+            if array.ndim > 1:
+                raise ValueError(f"{name} must be a scalar or a 1-D array, got shape {array.shape}")
+            if not np.all(np.isfinite(array)):
+                raise ValueError(f"{name} must be finite, got {value!r}")
+            object.__setattr__(self, name, float(array) if array.ndim == 0 else array)
+        try:
+            mu, f, bias = np.broadcast_arrays(self.mu, self.friction_kinetic, self.bias)
+        except ValueError as err:
+            raise ValueError(
+                f"mu, mu_kinetic and bias must broadcast together: {err}") from None
+        if not (np.isfinite(self.g) and self.g > 0):
+            raise ValueError(f"g must be a positive acceleration [m/s²], got {self.g!r}")
+        if self.direction not in _DIRECTIONS:
+            raise ValueError(f"direction must be one of {_DIRECTIONS}, got {self.direction!r}")
+        _check(mu < 0, "mu", mu, "must be >= 0")
+        _check(f < 0, "mu_kinetic", f, "must be >= 0")
+        _check(f > mu, "mu_kinetic", f,
+               f"must not exceed mu={_first(mu, f > mu)} (kinetic above static friction chatters)")
+        _check(np.abs(bias) >= mu, "bias", bias,
+               f"must satisfy |bias| < mu={_first(mu, np.abs(bias) >= mu)} "
+               "(else the block slides with the base at rest)")
+
+    # ---- parameters --------------------------------------------------------
+    @property
+    def friction_kinetic(self):
+        """Kinetic friction coefficient f [-] (``mu_kinetic``, or ``mu`` if None)."""
+        return self.mu if self.mu_kinetic is None else self.mu_kinetic
+
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """() for one parameter set, (n,) for a batch of n."""
+        return np.broadcast_shapes(*(np.shape(p) for p in (self.mu, self.friction_kinetic, self.bias)))
+
+    @property
+    def allow_negative(self) -> bool:
+        """Whether slip- (u decreasing) is allowed."""
+        return self.direction in ("both", "negative")
+
+    @property
+    def allow_positive(self) -> bool:
+        """Whether slip+ (u increasing) is allowed."""
+        return self.direction in ("both", "positive")
+
+    def item(self, index: int) -> "SlidingBlock":
+        """The ``index``-th parameter set of a batch, as a scalar block."""
+        mu, f, bias = (np.broadcast_to(p, self.batch_shape)[index]
+                       for p in (self.mu, self.friction_kinetic, self.bias))
+        return dataclasses.replace(self, mu=float(mu), mu_kinetic=float(f), bias=float(bias))
+
+    def replace(self, **changes) -> "SlidingBlock":
+        """A copy with some parameters changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    # ---- hybrid automaton --------------------------------------------------
+    def demand(self, t, excitation, xp=np):
+        """Friction demand sigma(t) = a(t) - bias g [m/s²]."""
+        return demand(excitation.acceleration(t), self.bias, self.g)
+
+    def flow(self, mode, t, y, excitation, xp=np):
+        """dy/dt = (v, dv/dt) in ``mode``; dv/dt = 0 in stick [m/s, m/s²]."""
+        dv = slip_constant(mode, self.bias, self.friction_kinetic, self.g) - excitation.acceleration(t)
+        return xp.stack([y[1], xp.where(mode == 0, 0.0 * dv, dv)])
+
+    def guards(self, mode, t, y, excitation, xp=np):
+        """Guards of ``mode``; each leaves the mode when it crosses zero downwards.
+
+        Stick: (mu g - sigma) -> slip-, (mu g + sigma) -> slip+ (a guard of a
+        disallowed direction is the constant 1). Slip+/-: (mode * v) -> stop.
+        """
+        if mode == Mode.STICK:
+            sigma = self.demand(t, excitation, xp)
+            limit = self.mu * self.g
+            return xp.stack([
+                xp.where(self.allow_negative, limit - sigma, 1.0),
+                xp.where(self.allow_positive, limit + sigma, 1.0),
+            ])
+        return xp.stack([mode * y[1]])
+
+    def mode_at_rest(self, t, excitation, xp=np):
+        """Mode of the block at rest at ``t``, from the right-hand limits of a(t)."""
+        return rest_mode(self.demand(t, excitation, xp), excitation.acceleration_rate(t),
+                         self.mu, self.g, self.allow_negative, self.allow_positive, xp)
+
+    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np):
+        """Stick guard 0 -> slip-, guard 1 -> slip+; a slip stop -> ``mode_at_rest``.
+
+        At a stop the relative acceleration cannot point away from rest, so the
+        demand is at most f g on the stopping side; a reversal needs it beyond the
+        other threshold.
+        """
+        if mode == Mode.STICK:
+            return Mode.SLIP_NEG if guard_index == 0 else Mode.SLIP_POS
+        return Mode(int(self.mode_at_rest(t, excitation, xp)))
+
+
+def _first(values, mask):
+    return np.asarray(values)[np.asarray(mask)].flat[0] if np.any(mask) else values
+
+
+def _check(bad, name, values, message):
+    if np.any(bad):
+        raise ValueError(f"{name}={_first(values, bad)!r} {message}")
