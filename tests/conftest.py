@@ -1,0 +1,29 @@
+"""Shared test data: the 18 accelerograms that pySLAMMER ships (a test-only extra)."""
+
+import importlib.resources
+
+import pytest
+
+import blockdae as bd
+
+
+def sample_record_paths():
+    """Paths of pySLAMMER's sample records (CSV: time [s], acceleration [g])."""
+    folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
+    return sorted(p for p in folder.iterdir() if p.name.endswith(".csv"))
+
+
+def load_sample_record(stem: str) -> bd.Record:
+    """One sample record by file stem, e.g. "Kobe_1995_TAK-090"."""
+    folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
+    return bd.read_record(folder / f"{stem}.csv", units="g")
+
+
+@pytest.fixture(scope="session")
+def kobe() -> bd.Record:
+    return load_sample_record("Kobe_1995_TAK-090")
+
+
+@pytest.fixture(scope="session")
+def sample_records() -> list[bd.Record]:
+    return [bd.read_record(p, units="g") for p in sample_record_paths()]
