@@ -7,6 +7,7 @@ from ._base import AbstractBackend, Horizon
 # name -> "module:class", imported on first use so that unused solvers cost nothing
 _REGISTRY = {
     "exact": "blockdae.backends._exact:ExactBackend",
+    "jax": "blockdae.backends._jax:JaxBackend",
 }
 
 

@@ -1,0 +1,97 @@
+"""The JAX twin: the hybrid automaton integrated with diffrax, events by root finding."""
+
+import dataclasses
+
+import jax
+import numpy as np
+
+from .._solution import BatchSolution
+from . import _jax_kernel as kernel
+from ._base import AbstractBackend
+from ._exact import _device, _params, _solution
+
+
+@dataclasses.dataclass(frozen=True)
+class JaxBackend(AbstractBackend):
+    """diffrax twin of the hybrid automaton, compiled with JAX (float64).
+
+    Integrates each mode with an explicit Runge-Kutta solver under a PID controller,
+    piece by piece of a(t); guards are ``diffrax.Event`` roots (bisection on the dense
+    output, then one Newton step). Independent of the closed forms of the exact
+    backend except for the transition rules both take from the model.
+
+    Args:
+        rtol, atol: tolerances of the step-size controller [-, m and m/s].
+        solver: "tsit5", "dopri5" or "dopri8".
+        max_segments: most segments (events + 1) one piece of a(t) may hold; more
+            raises an error instead of looping.
+        max_steps: most solver steps per segment.
+    """
+
+    rtol: float = 1e-10
+    atol: float = 1e-12
+    solver: str = "tsit5"
+    max_segments: int = 8
+    max_steps: int = 4096
+    name = "jax"
+
+    def __post_init__(self):
+        for field in ("rtol", "atol"):
+            value = getattr(self, field)
+            if not (isinstance(value, (int, float)) and np.isfinite(value) and 0 < value < 1):
+                raise ValueError(f"{field} must be a number in (0, 1), got {value!r}")
+        if self.solver not in kernel.SOLVERS:
+            raise ValueError(f"solver must be one of {tuple(kernel.SOLVERS)}, got {self.solver!r}")
+        for field, least in (("max_segments", 2), ("max_steps", 1)):
+            value = getattr(self, field)
+            if not (isinstance(value, int) and value >= least):
+                raise ValueError(f"{field} must be an integer >= {least}, got {value!r}")
+
+    def config(self, block, pieces):
+        """The kernel's static settings for ``block`` under ``pieces``."""
+        return kernel.Config(block.allow_negative, block.allow_positive, pieces.has_sine, self.solver,
+                             float(self.rtol),
+                             float(self.atol), self.max_segments, self.max_steps)
+
+    def solve(self, block, excitation, horizon):
+        pieces = excitation.pieces(horizon.integration_end(excitation))
+        with jax.enable_x64(True):
+            out = kernel.run(_params(block), _device(pieces), cfg=self.config(block, pieces),
+                             until_rest=horizon.until_rest, full_output=True)
+            final, t_final, rests, flags, knots = jax.device_get(out)
+        self.check(block, rests, flags)
+        sol = _solution(block, pieces, knots, final, self.name)
+        sol.stats.update(n_steps=int(flags.n_steps), t_final=float(t_final))
+        return sol
+
+    def solve_batch(self, block, excitation, horizon):
+        pieces = excitation.pieces(horizon.integration_end(excitation))
+        shape = block.batch_shape
+        params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
+                       for p in (block.mu, block.friction_kinetic, block.bias))
+        params += (np.full(shape, float(block.g)), np.ones(shape))
+        with jax.enable_x64(True):
+            out = kernel.run_batch(params, _device(pieces), cfg=self.config(block, pieces),
+                                   until_rest=horizon.until_rest, full_output=False)
+            final, t_final, rests, flags, _ = jax.device_get(out)
+        for i in range(shape[0]):
+            self.check(block.item(i), rests[i], jax.tree.map(lambda x: x[i], flags), f" (parameter set {i})")
+        return BatchSolution(
+            displacement=np.asarray(final.u), max_abs_displacement=np.asarray(final.max_abs_u),
+            n_events=np.asarray(final.n_events), t_end=np.asarray(t_final), backend=self.name,
+            solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
+
+    def check(self, block, rests, flags, where=""):
+        """Raise if the run hit a bound or never came to rest."""
+        if int(flags.n_overflow) > 0:
+            raise RuntimeError(
+                f"{int(flags.n_overflow)} piece(s) of the excitation needed more than "
+                f"max_segments={self.max_segments} segments{where}: chatter; raise max_segments")
+        if int(flags.n_failed) > 0:
+            raise RuntimeError(
+                f"{int(flags.n_failed)} segment(s) failed in diffrax{where} (e.g. more than "
+                f"max_steps={self.max_steps} steps); raise max_steps or loosen rtol={self.rtol}")
+        if not bool(rests):
+            raise ValueError(
+                f"the block never comes to rest after the excitation{where}: kinetic friction "
+                f"mu_kinetic={block.friction_kinetic} does not exceed |bias|={abs(block.bias)}; give t_end [s]")
