@@ -24,6 +24,9 @@ from ..model import demand, slip_constant
 from ._closed_form import onset_delta
 from ._exact_kernel import Knot, Params, State, _knot, _mode_after_stop, _Rules
 
+# guards decrease through their roots (flip=True): no bracket check, which under vmap
+# would also run on members without an event
+_ROOT_FINDER = optx.Bisection(rtol=1e-14, atol=1e-12, flip=True)
 SOLVERS = {"tsit5": diffrax.Tsit5, "dopri5": diffrax.Dopri5, "dopri8": diffrax.Dopri8}
 
 
@@ -94,7 +97,7 @@ def _solve_segment(cfg, args, tau, h, y0):
         diffrax.ODETerm(_rhs), solver, t0=tau, t1=h, dt0=jnp.maximum(h - tau, 1e-12), y0=y0, args=args,
         saveat=diffrax.SaveAt(t1=True),
         stepsize_controller=diffrax.PIDController(rtol=cfg.rtol, atol=cfg.atol),
-        event=diffrax.Event(_guard, root_finder=optx.Bisection(rtol=1e-14, atol=1e-12), direction=False),
+        event=diffrax.Event(_guard, root_finder=_ROOT_FINDER, direction=False),
         adjoint=diffrax.ForwardMode(), max_steps=cfg.max_steps, throw=False)
 
 
@@ -129,7 +132,9 @@ def _segment(cfg, rules, cf, t0, h, tau, u, v, mode):
     t_stop = _segment_end(cfg, args, tau, h)
     sol = _solve_segment(cfg, args, tau, t_stop, (u, v))
     tau_e, u_e, v_e = sol.ts[-1], sol.ys[0][-1], sol.ys[1][-1]
-    hit = sol.event_mask
+    # a threshold merely reached at the segment's end is no onset: the rest rule at
+    # the next piece's start decides, from the right-hand rate of a
+    hit = sol.event_mask & ((mode != 0) | (_guard(t_stop, (u, v), args) < 0))
     ok = (sol.result == diffrax.RESULTS.successful) | (sol.result == diffrax.RESULTS.event_occurred)
     # keep only the derivative at fixed time: d/dp y(tau_root), then the IFT step
     tau_root = jax.lax.stop_gradient(tau_e)

@@ -1,0 +1,120 @@
+"""Derivatives of the permanent displacement with respect to the parameters.
+
+Forward-mode differentiation (``jax.jacfwd``) of a compiled kernel: the exact
+backend's closed forms or the diffrax twin. Derivatives pass through the event
+times by the implicit function theorem at each guard, not through a smoothed model.
+
+Where u is not differentiable (a sliding episode starts exactly at the threshold,
+|sigma| = mu g, and the demand turns back there), the result is the derivative of
+the branch the transition rule takes: a demand that touches the threshold and
+turns back does not slide, so the new episode is absent and the value is the
+one-sided derivative from the side without it (A below, mu above the threshold).
+With f < mu the displacement itself jumps there.
+"""
+
+import functools
+
+import jax
+import numpy as np
+
+from .backends import Horizon, make_backend
+from .backends import _exact_kernel, _jax_kernel
+from .backends._exact import ExactBackend, _device, _check
+from .backends._jax import JaxBackend
+from .excitation import AbstractExcitation
+from .model import SlidingBlock
+
+#: parameter name -> unit of d u / d parameter
+UNITS = {"mu": "m", "mu_kinetic": "m", "bias": "m", "A": "m/g"}
+
+
+def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float | None = None,
+                  wrt=("mu", "mu_kinetic", "bias", "A"), backend: str = "exact", **options) -> dict:
+    """d u(t_end) / d p for each parameter p in ``wrt``.
+
+    Args:
+        block: the block; a batch of parameter sets if its parameters are 1-D arrays.
+        motion: base excitation.
+        t_end: final time [s]; None: when the block rests after the excitation ends.
+        wrt: any of "mu" (static friction; when ``block.mu_kinetic`` is None the
+            kinetic coefficient follows it, so it moves both), "mu_kinetic" (kinetic
+            alone), "bias" (R/Q) and "A" (peak base acceleration in units of
+            ``block.g``, the excitation scaled so that its peak is A g).
+        backend: "exact" (closed forms) or "jax" (the diffrax twin).
+        **options: settings of the backend.
+
+    Returns:
+        name -> derivative [m per unit of the parameter; m/g for "A"]: a float, or an
+        array of shape (n,) for a batch of n parameter sets.
+    """
+    wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
+    unknown = [name for name in wrt if name not in UNITS]
+    if unknown or not wrt:
+        raise ValueError(f"wrt={wrt!r}: choose among {tuple(UNITS)}")
+    if backend not in ("exact", "jax"):
+        raise ValueError(f"backend={backend!r} has no derivatives; use 'exact' or 'jax'")
+    if not isinstance(block, SlidingBlock):
+        raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
+    if "A" in wrt and not motion.peak_acceleration > 0:
+        raise ValueError(f"'A' needs a motion with a nonzero peak acceleration, got {motion.peak_acceleration} m/s²")
+    horizon = Horizon.resolve(motion, t_end)
+    solver = make_backend(backend, **options)
+    pieces = motion.pieces(horizon.integration_end(motion))
+    kernel, static = _kernel(solver, block, pieces)
+
+    shape = block.batch_shape
+    params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
+                   for p in (block.mu, block.friction_kinetic, block.bias))
+    params += (np.full(shape, float(block.g)), np.ones(shape))
+    with jax.enable_x64(True):
+        jac, aux = _jacobian(params, _device(pieces), kernel=kernel, static=static,
+                             until_rest=horizon.until_rest, batched=bool(shape))
+        jac, aux = jax.device_get((jac, aux))
+    for i in range(shape[0]) if shape else [None]:
+        one = aux if i is None else jax.tree.map(lambda x: x[i], aux)
+        _raise_if_bad(solver, block if i is None else block.item(i), one,
+                      "" if i is None else f" (parameter set {i})")
+
+    d_mu, d_f, d_bias, _, d_scale = (np.asarray(d) for d in jac)
+    derivatives = {
+        "mu": d_mu + d_f if block.mu_kinetic is None else d_mu,
+        "mu_kinetic": d_f,
+        "bias": d_bias,
+        "A": d_scale * block.g / motion.peak_acceleration,  # scale = A g / peak
+    }
+    return {name: (float(derivatives[name]) if not shape else derivatives[name]) for name in wrt}
+
+
+def _kernel(solver, block, pieces):
+    if isinstance(solver, ExactBackend):
+        return "exact", (block.allow_negative, block.allow_positive, solver.max_events_per_piece, pieces.has_sine)
+    assert isinstance(solver, JaxBackend)
+    return "jax", solver.config(block, pieces)
+
+
+def _final_u(params, pieces, *, kernel, static, until_rest):
+    """u(t_end) [m], and what tells whether the run was sound."""
+    if kernel == "exact":
+        allow_neg, allow_pos, max_events, is_sine = static
+        final, _, rests, _ = _exact_kernel._run(params, pieces, until_rest, allow_neg=allow_neg, allow_pos=allow_pos,
+                                                max_events=max_events, is_sine=is_sine, full_output=False)
+        return final.u, (final, rests)
+    final, _, rests, flags, _ = _jax_kernel._run(params, pieces, cfg=static, until_rest=until_rest, full_output=False)
+    return final.u, (final, rests, flags)
+
+
+@functools.partial(jax.jit, static_argnames=("kernel", "static", "until_rest", "batched"))
+def _jacobian(params, pieces, *, kernel, static, until_rest, batched):
+    """d u / d (mu, f, bias, g, scale), for one parameter set or vectorised over a batch."""
+    fun = jax.jacfwd(functools.partial(_final_u, pieces=pieces, kernel=kernel, static=static, until_rest=until_rest),
+                     has_aux=True)
+    return jax.vmap(fun)(params) if batched else fun(params)
+
+
+def _raise_if_bad(solver, block, aux, where):
+    if isinstance(solver, ExactBackend):
+        final, rests = aux
+        _check(block, final, rests, solver.max_events_per_piece, where)
+    else:
+        _, rests, flags = aux
+        solver.check(block, rests, flags, where)
