@@ -60,15 +60,15 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
     horizon = Horizon.resolve(motion, t_end)
     solver = make_backend(backend, **options)
     pieces = motion.pieces(horizon.integration_end(motion))
-    kernel, static = _kernel(solver, block, pieces)
+    kernel, static, device = _kernel(solver, block, pieces)
 
     shape = block.batch_shape
     params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
                    for p in (block.mu, block.friction_kinetic, block.bias))
     params += (np.full(shape, float(block.g)), np.ones(shape))
     with jax.enable_x64(True):
-        jac, aux = _jacobian(params, _device(pieces), kernel=kernel, static=static,
-                             until_rest=horizon.until_rest, batched=bool(shape))
+        jac, aux = _jacobian(params, device, len(pieces.t0), (block.allow_negative, block.allow_positive),
+                             kernel=kernel, static=static, until_rest=horizon.until_rest, batched=bool(shape))
         jac, aux = jax.device_get((jac, aux))
     for i in range(shape[0]) if shape else [None]:
         one = aux if i is None else jax.tree.map(lambda x: x[i], aux)
@@ -86,35 +86,34 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
 
 
 def _kernel(solver, block, pieces):
+    """(kernel name, its static settings, the pieces padded for it)."""
     if isinstance(solver, ExactBackend):
-        return "exact", (block.allow_negative, block.allow_positive, solver.max_events_per_piece, pieces.has_sine)
+        return "exact", (solver.window, pieces.has_sine), _device(pieces, solver.window)
     assert isinstance(solver, JaxBackend)
-    return "jax", solver.config(block, pieces)
+    return "jax", solver.config(block, pieces), _device(pieces, 1)
 
 
-def _final_u(params, pieces, *, kernel, static, until_rest):
+def _final_u(params, pieces, n_pieces, allowed, *, kernel, static, until_rest):
     """u(t_end) [m], and what tells whether the run was sound."""
     if kernel == "exact":
-        allow_neg, allow_pos, max_events, is_sine = static
-        final, _, rests, _ = _exact_kernel._run(params, pieces, until_rest, allow_neg=allow_neg, allow_pos=allow_pos,
-                                                max_events=max_events, is_sine=is_sine, full_output=False)
-        return final.u, (final, rests)
+        window, is_sine = static
+        _, _, rests, finished = out = _exact_kernel._run(params, allowed, pieces, n_pieces, until_rest,
+                                                         window=window, log_capacity=0, is_sine=is_sine)
+        return out[0].u, (rests, finished)
     final, _, rests, flags, _ = _jax_kernel._run(params, pieces, cfg=static, until_rest=until_rest, full_output=False)
-    return final.u, (final, rests, flags)
+    return final.u, (rests, flags)
 
 
 @functools.partial(jax.jit, static_argnames=("kernel", "static", "until_rest", "batched"))
-def _jacobian(params, pieces, *, kernel, static, until_rest, batched):
+def _jacobian(params, pieces, n_pieces, allowed, *, kernel, static, until_rest, batched):
     """d u / d (mu, f, bias, g, scale), for one parameter set or vectorised over a batch."""
-    fun = jax.jacfwd(functools.partial(_final_u, pieces=pieces, kernel=kernel, static=static, until_rest=until_rest),
-                     has_aux=True)
+    fun = jax.jacfwd(functools.partial(_final_u, pieces=pieces, n_pieces=n_pieces, allowed=allowed, kernel=kernel,
+                                       static=static, until_rest=until_rest), has_aux=True)
     return jax.vmap(fun)(params) if batched else fun(params)
 
 
 def _raise_if_bad(solver, block, aux, where):
     if isinstance(solver, ExactBackend):
-        final, rests = aux
-        _check(block, final, rests, solver.max_events_per_piece, where)
+        _check(block, *aux, where)
     else:
-        _, rests, flags = aux
-        solver.check(block, rests, flags, where)
+        solver.check(block, *aux, where)

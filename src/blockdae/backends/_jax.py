@@ -5,10 +5,11 @@ import dataclasses
 import jax
 import numpy as np
 
-from .._solution import BatchSolution
+from .._solution import BatchSolution, Event, Solution
+from ..model import Mode
 from . import _jax_kernel as kernel
 from ._base import AbstractBackend
-from ._exact import _device, _params, _solution
+from ._exact import _DenseOutput, _device, _max_run, _params
 
 
 @dataclasses.dataclass(frozen=True)
@@ -56,13 +57,11 @@ class JaxBackend(AbstractBackend):
     def solve(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
         with jax.enable_x64(True):
-            out = kernel.run(_params(block), _device(pieces), cfg=self.config(block, pieces),
+            out = kernel.run(_params(block), _device(pieces, 1), cfg=self.config(block, pieces),
                              until_rest=horizon.until_rest, full_output=True)
             final, t_final, rests, flags, knots = jax.device_get(out)
         self.check(block, rests, flags)
-        sol = _solution(block, pieces, knots, final, self.name)
-        sol.stats.update(n_steps=int(flags.n_steps), t_final=float(t_final))
-        return sol
+        return _solution(block, pieces, knots, float(t_final), int(flags.n_steps), self.name)
 
     def solve_batch(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
@@ -71,7 +70,7 @@ class JaxBackend(AbstractBackend):
                        for p in (block.mu, block.friction_kinetic, block.bias))
         params += (np.full(shape, float(block.g)), np.ones(shape))
         with jax.enable_x64(True):
-            out = kernel.run_batch(params, _device(pieces), cfg=self.config(block, pieces),
+            out = kernel.run_batch(params, _device(pieces, 1), cfg=self.config(block, pieces),
                                    until_rest=horizon.until_rest, full_output=False)
             final, t_final, rests, flags, _ = jax.device_get(out)
         for i in range(shape[0]):
@@ -95,3 +94,20 @@ class JaxBackend(AbstractBackend):
             raise ValueError(
                 f"the block never comes to rest after the excitation{where}: kinetic friction "
                 f"mu_kinetic={block.friction_kinetic} does not exceed |bias|={abs(block.bias)}; give t_end [s]")
+
+
+def _solution(block, pieces, knots, t_final, n_steps, backend):
+    """Knots at the start, every event, every piece end and the end; dense output in
+    closed form from the last event (as the exact backend's)."""
+    valid = knots.valid.ravel() & (knots.t.ravel() <= t_final)
+    take = lambda x: np.asarray(x).ravel()[valid]
+    t, u, v, before, after, is_event = (take(x) for x in (knots.t, knots.u, knots.v, knots.mode_before,
+                                                          knots.mode_after, knots.is_event))
+    events = tuple(Event(float(t[i]), Mode(int(before[i])), Mode(int(after[i])), float(u[i]), float(v[i]))
+                   for i in np.flatnonzero(is_event))
+    ev = np.flatnonzero(is_event)
+    dense = _DenseOutput(block, pieces, t[ev], u[ev], after[ev].astype(int))
+    stats = {"max_events_at_one_instant": _max_run(t[ev]), "n_events": len(events), "n_steps": n_steps}
+    return Solution(t=np.concatenate([[0.0], t]), u=np.concatenate([[0.0], u]), v=np.concatenate([[0.0], v]),
+                    mode=np.concatenate([[0], after]).astype(int), events=events, backend=backend,
+                    dense=dense, stats=stats)

@@ -22,12 +22,32 @@ import optimistix as optx
 from ..excitation._pieces import accel, accel_rate, rebase
 from ..model import demand, slip_constant
 from ._closed_form import onset_delta
-from ._exact_kernel import Knot, Params, State, _knot, _mode_after_stop, _Rules
+from ._exact_kernel import Params, _mode_after_stop, _Rules
 
 # guards decrease through their roots (flip=True): no bracket check, which under vmap
 # would also run on members without an event
 _ROOT_FINDER = optx.Bisection(rtol=1e-14, atol=1e-12, flip=True)
 SOLVERS = {"tsit5": diffrax.Tsit5, "dopri5": diffrax.Dopri5, "dopri8": diffrax.Dopri8}
+
+
+class State(NamedTuple):
+    u: jax.Array  # [m]
+    v: jax.Array  # [m/s]
+    mode: jax.Array  # int: -1, 0, +1
+    max_abs_u: jax.Array  # [m]
+    n_events: jax.Array
+
+
+class Knot(NamedTuple):
+    """Rows emitted per piece: a mode change at its start, its segments, its end."""
+
+    valid: jax.Array
+    is_event: jax.Array
+    t: jax.Array  # [s]
+    mode_before: jax.Array
+    mode_after: jax.Array
+    u: jax.Array  # [m]
+    v: jax.Array  # [m/s]
 
 
 class Config(NamedTuple):
@@ -164,7 +184,7 @@ def _advance_piece(cfg, rules, carry, piece, emit_end=True):
     at_rest = (state.mode == 0) | (state.v == 0)
     mode = jnp.where(at_rest, rules.at_rest(sigma0, rate0), state.mode)
     changed = mode != state.mode
-    start = _knot(changed, changed, t0, state.mode, mode, state.u, state.v)
+    start = Knot(changed, changed, t0, state.mode, mode, state.u, state.v)
 
     k = cfg.max_segments
     empty = Knot(jnp.zeros(k, bool), jnp.zeros(k, bool), *(jnp.zeros(k, x.dtype) for x in
@@ -178,7 +198,7 @@ def _advance_piece(cfg, rules, carry, piece, emit_end=True):
         i, tau, u, v, mode, _, knots, failed, steps = loop
         hit, tau, u, v, mode_new, ok, n = _segment(cfg, rules, cf, t0, h, tau, u, v, mode)
         logged = hit & (mode_new != mode)
-        row = _knot(logged, logged, t0 + tau, mode, mode_new, u, v)
+        row = Knot(logged, logged, t0 + tau, mode, mode_new, u, v)
         knots = Knot(*(buf.at[i].set(x) for buf, x in zip(knots, row)))
         return i + 1, tau, u, v, mode_new, ~hit & (tau >= h), knots, failed + ~ok, steps + n
 
@@ -186,11 +206,11 @@ def _advance_piece(cfg, rules, carry, piece, emit_end=True):
     loop = (zero, jnp.zeros_like(h), state.u, state.v, mode, jnp.zeros((), bool), empty, zero, zero)
     _, _, u, v, mode, done, knots, failed, steps = jax.lax.while_loop(cond, body, loop)
 
-    end = _knot(jnp.asarray(emit_end), jnp.zeros((), bool), t0 + h, mode, mode, u, v)
+    end = Knot(jnp.asarray(emit_end), jnp.zeros((), bool), t0 + h, mode, mode, u, v)
     knots = Knot(*(jnp.concatenate([a[None], b, c[None]]) for a, b, c in zip(start, knots, end)))
     n_events = state.n_events + jnp.sum(knots.is_event)
     max_abs_u = jnp.maximum(state.max_abs_u, jnp.max(jnp.where(knots.valid, jnp.abs(knots.u), 0.0)))
-    new_state = State(u, v, mode, max_abs_u, n_events, state.n_overflow + ~done)
+    new_state = State(u, v, mode, max_abs_u, n_events)
     new_flags = Flags(flags.n_overflow + ~done, flags.n_failed + failed, flags.n_steps + steps)
     return (new_state, new_flags), knots
 
@@ -226,7 +246,7 @@ def _run(params, pieces, *, cfg, until_rest, full_output):
     rules = _Rules(Params(*params), cfg.allow_neg, cfg.allow_pos)
     zero = jnp.zeros_like(params[0])
     izero = jnp.zeros((), int)
-    init = (State(zero, zero, izero, zero, izero, izero), Flags(izero, izero, izero))
+    init = (State(zero, zero, izero, zero, izero), Flags(izero, izero, izero))
 
     def body(carry, piece):
         carry, knots = _advance_piece(cfg, rules, carry, piece)
