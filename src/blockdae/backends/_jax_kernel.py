@@ -172,6 +172,16 @@ def _segment(cfg, rules, cf, t0, h, tau, u, v, mode):
             ok, sol.stats["num_accepted_steps"])
 
 
+def _onset_on_threshold(p, sigma, rate, onset, mode):
+    """Time [s] of an onset at a piece start: 0, with the derivative of the guard's
+    root when the demand starts exactly on the threshold (a sample equal to mu g)."""
+    guard = p.mu * p.g + mode * sigma  # the reached stick guard: mode -1 -> mu g - sigma
+    slope = mode * rate  # its right-hand rate [m/s³]
+    shift = guard / jnp.where(slope != 0, slope, 1.0)
+    on_threshold = onset & (guard == 0) & (slope < 0)
+    return jnp.where(on_threshold, jax.lax.stop_gradient(shift) - shift, 0.0)
+
+
 def _advance_piece(cfg, rules, carry, piece, emit_end=True):
     """Advance through one piece; returns the new (State, Flags) and its knots."""
     state, flags = carry
@@ -184,7 +194,8 @@ def _advance_piece(cfg, rules, carry, piece, emit_end=True):
     at_rest = (state.mode == 0) | (state.v == 0)
     mode = jnp.where(at_rest, rules.at_rest(sigma0, rate0), state.mode)
     changed = mode != state.mode
-    start = Knot(changed, changed, t0, state.mode, mode, state.u, state.v)
+    tau_start = _onset_on_threshold(p, sigma0, rate0, changed & (state.mode == 0), mode)
+    start = Knot(changed, changed, t0 + tau_start, state.mode, mode, state.u, state.v)
 
     k = cfg.max_segments
     empty = Knot(jnp.zeros(k, bool), jnp.zeros(k, bool), *(jnp.zeros(k, x.dtype) for x in
@@ -203,7 +214,7 @@ def _advance_piece(cfg, rules, carry, piece, emit_end=True):
         return i + 1, tau, u, v, mode_new, ~hit & (tau >= h), knots, failed + ~ok, steps + n
 
     zero = jnp.zeros((), int)
-    loop = (zero, jnp.zeros_like(h), state.u, state.v, mode, jnp.zeros((), bool), empty, zero, zero)
+    loop = (zero, tau_start, state.u, state.v, mode, jnp.zeros((), bool), empty, zero, zero)
     _, _, u, v, mode, done, knots, failed, steps = jax.lax.while_loop(cond, body, loop)
 
     end = Knot(jnp.asarray(emit_end), jnp.zeros((), bool), t0 + h, mode, mode, u, v)
