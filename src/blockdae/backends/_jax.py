@@ -23,7 +23,8 @@ class JaxBackend(AbstractBackend):
 
     Args:
         rtol, atol: tolerances of the step-size controller [-, m and m/s].
-        solver: "tsit5", "dopri5" or "dopri8".
+        solver: "tsit5", "dopri5", "dopri8" (explicit) or "kvaerno5" (implicit; its
+            third-order dense output locates events on sine pieces only to ~1e-9 s).
         max_segments: most segments (events + 1) one piece of a(t) may hold; more
             raises an error instead of looping.
         max_steps: most solver steps per segment.

@@ -27,7 +27,7 @@ from ._exact_kernel import Params, _mode_after_stop, _Rules
 # guards decrease through their roots (flip=True): no bracket check, which under vmap
 # would also run on members without an event
 _ROOT_FINDER = optx.Bisection(rtol=1e-14, atol=1e-12, flip=True)
-SOLVERS = {"tsit5": diffrax.Tsit5, "dopri5": diffrax.Dopri5, "dopri8": diffrax.Dopri8}
+SOLVERS = {"tsit5": diffrax.Tsit5, "dopri5": diffrax.Dopri5, "dopri8": diffrax.Dopri8, "kvaerno5": diffrax.Kvaerno5}
 
 
 class State(NamedTuple):
