@@ -4,6 +4,8 @@ Exact event times, solver backends that check each other, and derivatives of the
 answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
+from ._examples import SeedExample, seed_examples
+from ._plot import plot
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, Solution
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
@@ -14,4 +16,5 @@ __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "read_record", "simulate",
+    "SeedExample", "plot", "seed_examples",
 ]
