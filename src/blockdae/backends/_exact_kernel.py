@@ -1,10 +1,16 @@
-"""The exact backend's compiled kernel: a scan over the monotone pieces of a(t).
+"""The exact backend's compiled kernel.
 
-Within a piece every guard root is closed form (linear pieces: linear or quadratic
-equations) or bracketed on a monotone function (sine pieces), so each event is located
-to machine precision. A piece holds at most ``max_events`` events; more is reported as
-overflow. Everything is ``jax.numpy`` so that the kernel compiles, vectorises over
-parameter sets and differentiates through the event times.
+The excitation is a sequence of monotone closed-form pieces. Each loop iteration looks
+at a window of ``window`` pieces at once: in stick it finds the first piece where the
+demand leaves [-mu g, mu g], in slip it accumulates the closed-form velocity over the
+window and finds the first piece where v returns to zero. The first such event is
+located in closed form (linear pieces: linear or quadratic equations) or by bracketing
+a monotone function (sine pieces), to machine precision; without one the whole window
+is skipped. The loop thus runs about (events + pieces / window) times, vectorised over
+the window.
+
+Everything is ``jax.numpy``: the kernel compiles, vectorises over parameter sets and
+differentiates (forward mode) through the event times.
 """
 
 import functools
@@ -13,7 +19,7 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
-from ..excitation._pieces import accel, accel_rate, rebase
+from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, rebase
 from ..model import demand, rest_mode, slip_constant
 from ._closed_form import onset_delta, slip_motion, stop_delta
 
@@ -28,29 +34,25 @@ class Params(NamedTuple):
     scale: jax.Array  # factor on a(t) [-]
 
 
+class EventLog(NamedTuple):
+    """Fixed-capacity log of events, shape (capacity,) each."""
+
+    t: jax.Array
+    mode_before: jax.Array
+    mode_after: jax.Array
+    u: jax.Array
+
+
 class State(NamedTuple):
+    k: jax.Array  # index of the current piece
+    tau: jax.Array  # time into the current piece [s]
     u: jax.Array  # [m]
     v: jax.Array  # [m/s]
     mode: jax.Array  # int: -1, 0, +1
     max_abs_u: jax.Array  # [m]
     n_events: jax.Array
-    n_overflow: jax.Array  # pieces that needed more than max_events events
-
-
-class Knot(NamedTuple):
-    """Rows the scan emits per piece: events, then the piece end."""
-
-    valid: jax.Array
-    is_event: jax.Array
-    t: jax.Array
-    mode_before: jax.Array
-    mode_after: jax.Array
-    u: jax.Array
-    v: jax.Array
-
-
-def _knot(valid, is_event, t, before, after, u, v):
-    return Knot(valid, is_event, t, before, after, u, v)
+    n_iterations: jax.Array
+    log: EventLog
 
 
 class _Rules(NamedTuple):
@@ -63,58 +65,79 @@ class _Rules(NamedTuple):
         return rest_mode(sigma, rate, p.mu, p.g, self.allow_neg, self.allow_pos, jnp)
 
 
-def _advance_piece(rules, state, piece, max_events, is_sine):
-    """Advance through one piece; returns the new state and its knots."""
+def _window(pieces, k, tau, scale, window, is_sine):
+    """The ``window`` pieces from piece k, the first one starting at ``tau``."""
+    take = lambda x: jax.lax.dynamic_slice_in_dim(x, k, window)
+    t0, h = take(pieces[0]), take(pieces[1])
+    cf = (take(pieces[2]) * scale, take(pieces[3]) * scale)
+    cf += (take(pieces[4]) * scale, take(pieces[5]), take(pieces[6])) if is_sine else (None, None, None)
+    offset = jnp.where(jnp.arange(window) == 0, tau, 0.0)
+    return t0 + offset, h - offset, rebase(*cf, offset)
+
+
+def _pick(cf, i):
+    return tuple(None if c is None else c[i] for c in cf)
+
+
+def _step(rules, pieces, state, *, window, is_sine, log_events):
+    """One iteration: the first event in the window, or the whole window."""
     p = rules.params
-    t0, h = piece[0], piece[1]
-    cf0 = tuple(x * p.scale for x in piece[2:5]) + tuple(piece[5:7])
-    knots = []
+    t_start, rem, cf = _window(pieces, state.k, state.tau, p.scale, window, is_sine)
+    limit = p.mu * p.g
+    mode = state.mode
 
-    # At the piece start a block at rest takes the mode the right-hand limits of a give.
-    sigma0 = demand(accel(*cf0, 0.0, jnp), p.bias, p.g)
-    at_rest = (state.mode == 0) | (state.v == 0)
-    mode = jnp.where(at_rest, rules.at_rest(sigma0, accel_rate(*cf0, 0.0, jnp)), state.mode)
-    changed = mode != state.mode
-    knots.append(_knot(changed, changed, t0, state.mode, mode, state.u, state.v))
-    tau, u, v, done = jnp.zeros_like(h), state.u, state.v, jnp.zeros((), bool)
-    n_events = state.n_events + changed
+    # stick: the first piece whose demand leaves [-mu g, mu g] (a is monotone on a piece)
+    sigma_start = demand(accel(*cf, 0.0, jnp), p.bias, p.g)
+    sigma_end = demand(accel(*cf, rem, jnp), p.bias, p.g)
+    up = rules.allow_neg & ((sigma_end > limit) | (sigma_start > limit))
+    down = rules.allow_pos & ((sigma_end < -limit) | (sigma_start < -limit))
+    onset = (mode == 0) & (up | down)
 
-    for _ in range(max_events + 1):  # the last pass must find no further event
-        cf = rebase(*cf0, tau)
-        rem = h - tau
-        # stick: onset where the demand reaches a threshold (a is monotone on the piece)
-        sigma_end = demand(accel(*cf, rem, jnp), p.bias, p.g)
-        limit = p.mu * p.g
-        up = rules.allow_neg & (mode == 0) & (sigma_end > limit)
-        down = rules.allow_pos & (mode == 0) & (sigma_end < -limit)
-        target = p.bias * p.g + jnp.where(up, limit, -limit)
-        d_on = jnp.clip(onset_delta(cf, rem, target, is_sine), 0.0, rem)
-        # slip: stop where v returns to zero
-        c = slip_constant(mode, p.bias, p.f, p.g)
-        d_stop, stops = stop_delta(cf, rem, v, c, mode, is_sine)
-        stops = stops & (mode != 0)
+    # slip: v at every piece start of the window, and the first piece where v returns to 0
+    c = slip_constant(mode, p.bias, p.f, p.g)
+    dv = c * rem - accel_int1(*cf, rem, jnp)
+    v_start = state.v + jnp.cumsum(dv) - dv
+    du = v_start * rem + 0.5 * c * rem**2 - accel_int2(*cf, rem, jnp)
+    u_start = state.u + jnp.cumsum(du) - du
+    d_stop, stop = stop_delta(cf, rem, v_start, c, mode, is_sine)
+    stop = (mode != 0) & stop
 
-        d = jnp.where(up | down, d_on, jnp.where(stops, d_stop, rem))
-        u_new, v_new = slip_motion(cf, d, u, v, c)
-        u_new, v_new = jnp.where(mode == 0, u, u_new), jnp.where(mode == 0, 0.0, v_new)
-        t_event = t0 + tau + d
-        after_stop = _mode_after_stop(rules, cf, d, c, mode, t_event)
-        mode_new = jnp.where(up, -1, jnp.where(down, 1, jnp.where(stops, after_stop, mode)))
-        hit = (up | down | stops) & ~done
-        logged = hit & (mode_new != mode)
-        knots.append(_knot(logged, logged, t_event, mode, mode_new, u_new, jnp.where(hit, 0.0, v_new)))
+    hit = onset | stop
+    found = jnp.any(hit)
+    i = jnp.argmax(hit)
+    cf_i, rem_i = _pick(cf, i), rem[i]
+    going_up = up[i]
+    target = p.bias * p.g + jnp.where(going_up, limit, -limit)
+    starts_beyond = jnp.where(going_up, sigma_start[i] > limit, sigma_start[i] < -limit)
+    d_on = jnp.where(starts_beyond, 0.0, jnp.clip(onset_delta(cf_i, rem_i, target, is_sine), 0.0, rem_i))
+    d = jnp.where(mode == 0, d_on, d_stop[i])
+    t_event = t_start[i] + d
+    u_event, _ = slip_motion(cf_i, d, u_start[i], v_start[i], c)
+    u_event = jnp.where(mode == 0, state.u, u_event)
+    after = jnp.where(mode == 0, jnp.where(going_up, -1, 1),
+                      _mode_after_stop(rules, cf_i, d, c, mode, t_event))
+    logged = found & (after != mode)
 
-        keep = done
-        u, v = jnp.where(keep, u, u_new), jnp.where(keep, v, jnp.where(hit, 0.0, v_new))
-        tau = jnp.where(keep, tau, jnp.where(hit, tau + d, h))
-        n_events = n_events + logged
-        mode = jnp.where(keep, mode, mode_new)
-        done = done | ~hit
-
-    knots.append(_knot(jnp.ones((), bool), jnp.zeros((), bool), t0 + h, mode, mode, u, v))
-    max_abs_u = jnp.maximum(state.max_abs_u, jnp.max(jnp.abs(jnp.stack([k.u for k in knots]))))
-    new_state = State(u, v, mode, max_abs_u, n_events, state.n_overflow + ~done)
-    return new_state, Knot(*(jnp.stack(field) for field in zip(*knots)))
+    u_end = jnp.where(mode == 0, state.u, u_start[-1] + du[-1])
+    v_end = jnp.where(mode == 0, 0.0, v_start[-1] + dv[-1])
+    log = state.log
+    if log_events:
+        slot = jnp.where(logged, state.n_events, log.t.shape[0])  # out of range: dropped
+        log = EventLog(log.t.at[slot].set(t_event, mode="drop"),
+                       log.mode_before.at[slot].set(mode, mode="drop"),
+                       log.mode_after.at[slot].set(after, mode="drop"),
+                       log.u.at[slot].set(u_event, mode="drop"))
+    return State(
+        k=jnp.where(found, state.k + i, state.k + window),
+        tau=jnp.where(found, jnp.where(i == 0, state.tau, 0.0) + d, 0.0),
+        u=jnp.where(found, u_event, u_end),
+        v=jnp.where(found, 0.0, v_end),
+        mode=jnp.where(found, after, mode),
+        max_abs_u=jnp.maximum(state.max_abs_u, jnp.abs(jnp.where(found, u_event, u_end))),
+        n_events=state.n_events + logged,
+        n_iterations=state.n_iterations + 1,
+        log=log,
+    )
 
 
 def _mode_after_stop(rules, cf, d, c, mode, t_stop):
@@ -139,10 +162,10 @@ def _mode_after_stop(rules, cf, d, c, mode, t_stop):
     return jnp.where(graze, mode, after)
 
 
-def _tail_to_rest(rules, state, t_start):
+def _tail_to_rest(rules, state, t_start, log_events):
     """After the excitation (a = 0): slide until v = 0, then stick for good.
 
-    Returns the final state, the stop knot and whether the block ever comes to rest.
+    Returns the final state, its time [s] and whether the block comes to rest.
     """
     p = rules.params
     sliding = state.v != 0
@@ -151,44 +174,47 @@ def _tail_to_rest(rules, state, t_start):
     d = jnp.where(sliding & rests, -state.v / jnp.where(c != 0, c, 1.0), 0.0)
     u = state.u + 0.5 * state.v * d
     after = rules.at_rest(-p.bias * p.g, 0.0)
-    changed = rests & (after != state.mode)
-    knot = _knot(changed, changed, t_start + d, state.mode, after, u, 0.0)
+    logged = rests & (after != state.mode)
+    log = state.log
+    if log_events:
+        slot = jnp.where(logged, state.n_events, log.t.shape[0])
+        log = EventLog(*(x.at[slot].set(y, mode="drop") for x, y in
+                         zip(log, (t_start + d, state.mode, after, u))))
     final = state._replace(u=u, v=jnp.where(rests, 0.0, state.v), mode=jnp.where(rests, after, state.mode),
                            max_abs_u=jnp.maximum(state.max_abs_u, jnp.abs(u)),
-                           n_events=state.n_events + changed)
-    return final, knot, rests
+                           n_events=state.n_events + logged, log=log)
+    return final, t_start + d, rests
 
 
-_STATIC = ("allow_neg", "allow_pos", "max_events", "is_sine", "full_output")
+_STATIC = ("allow_neg", "allow_pos", "window", "log_capacity", "is_sine")
 
 
-def _run(params, pieces, until_rest, *, allow_neg, allow_pos, max_events, is_sine, full_output):
-    """Integrate the block through ``pieces`` (a tuple of (n,) arrays).
+def _run(params, pieces, n_pieces, until_rest, *, allow_neg, allow_pos, window, log_capacity, is_sine):
+    """Integrate the block through the first ``n_pieces`` of ``pieces``.
 
-    Returns (final State, t_final [s], rests (bool), knots or None) where knots is a
-    Knot of arrays of shape (n_pieces + 1, max_events + 3) when ``full_output``.
+    ``pieces``: tuple of (n,) arrays (see :class:`blockdae.excitation.Pieces`), with at
+    least ``window`` empty pieces after the first ``n_pieces``. Returns
+    (final State, t_final [s], rests (bool), finished (bool)). ``log_capacity`` events
+    are logged (0: none, for batches).
     """
     rules = _Rules(Params(*params), allow_neg, allow_pos)
     zero = jnp.zeros_like(params[0])
-    init = State(zero, zero, jnp.zeros((), int), zero, jnp.zeros((), int), jnp.zeros((), int))
+    zero_int = jnp.zeros((), int)
+    capacity = max(log_capacity, 1)
+    log = EventLog(jnp.zeros(capacity), jnp.zeros(capacity, int), jnp.zeros(capacity, int), jnp.zeros(capacity))
+    init = State(zero_int, zero, zero, zero, zero_int, zero, zero_int, zero_int, log)
+    max_iterations = n_pieces // window + 2 + 4 * pieces[0].shape[0]
 
-    def body(state, piece):
-        new, knots = _advance_piece(rules, state, piece, max_events, is_sine)
-        return new, (knots if full_output else None)
+    def running(state):
+        return (state.k < n_pieces) & (state.n_iterations < max_iterations)
 
-    state, knots = jax.lax.scan(body, init, pieces)
-    t_excitation_end = pieces[0][-1] + pieces[1][-1]
-    final, tail_knot, rests = _tail_to_rest(rules, state, t_excitation_end)
+    step = functools.partial(_step, rules, pieces, window=window, is_sine=is_sine, log_events=log_capacity > 0)
+    state = jax.lax.while_loop(running, step, init)
+    finished = state.k >= n_pieces
+    t_excitation_end = pieces[0][n_pieces - 1] + pieces[1][n_pieces - 1]
+    final, t_rest, rests = _tail_to_rest(rules, state, t_excitation_end, log_capacity > 0)
     final = jax.tree.map(lambda a, b: jnp.where(until_rest, a, b), final, state)
-    t_final = jnp.where(until_rest, tail_knot.t, t_excitation_end)
-    rests = rests | ~until_rest
-    if full_output:
-        tail = tail_knot._replace(valid=tail_knot.valid & until_rest,
-                                  is_event=tail_knot.is_event & until_rest)
-        first_only = jnp.arange(max_events + 3) == 0
-        row = Knot(*(jnp.where(first_only, x, jnp.zeros_like(x)) for x in tail))
-        knots = jax.tree.map(lambda x, y: jnp.concatenate([x, y[None]]), knots, row)
-    return final, t_final, rests, knots
+    return final, jnp.where(until_rest, t_rest, t_excitation_end), rests | ~until_rest, finished
 
 
 #: one parameter set
@@ -196,6 +222,7 @@ run = jax.jit(_run, static_argnames=_STATIC)
 
 
 @functools.partial(jax.jit, static_argnames=_STATIC)
-def run_batch(params, pieces, until_rest, **static):
+def run_batch(params, pieces, n_pieces, until_rest, **static):
     """``run`` vectorised over the leading axis of every entry of ``params``."""
-    return jax.vmap(functools.partial(_run, **static), in_axes=(0, None, None))(params, pieces, until_rest)
+    return jax.vmap(functools.partial(_run, **static), in_axes=(0, None, None, None))(
+        params, pieces, n_pieces, until_rest)
