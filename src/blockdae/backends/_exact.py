@@ -32,13 +32,13 @@ class ExactBackend(AbstractBackend):
     def solve(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
         device = _device(pieces, self.window)
-        capacity = _bucket(len(pieces.t0))
+        capacity = _bucket(len(pieces.t0))  # one event per piece; grows if ever needed
         while True:
             final, t_final, rests, finished = self._run(kernel.run, _params(block), device, len(pieces.t0),
                                                         horizon, block, pieces, capacity)
             if int(final.n_events) <= capacity:
                 break
-            capacity = _bucket(int(final.n_events))
+            capacity *= 2
         _check(block, rests, finished)
         return _solution(block, pieces, final, float(t_final), self.name)
 
@@ -59,9 +59,8 @@ class ExactBackend(AbstractBackend):
 
     def _run(self, fn, params, device, n_pieces, horizon, block, pieces, capacity):
         with jax.enable_x64(True):
-            out = fn(params, device, n_pieces, horizon.until_rest, allow_neg=block.allow_negative,
-                     allow_pos=block.allow_positive, window=self.window, log_capacity=capacity,
-                     is_sine=pieces.has_sine)
+            out = fn(params, (block.allow_negative, block.allow_positive), device, n_pieces,
+                     horizon.until_rest, window=self.window, log_capacity=capacity, is_sine=pieces.has_sine)
             return jax.device_get(out)
 
 
@@ -96,17 +95,18 @@ def _check(block, rests, finished, where=""):
 
 
 def _solution(block, pieces, final, t_final, backend):
+    """Knots at the start, every event and the end, straight from the kernel."""
     n = int(final.n_events)
     log = jax.tree.map(lambda x: np.asarray(x)[:n], final.log)
     events = tuple(Event(float(t), Mode(int(b)), Mode(int(a)), float(u), 0.0)
                    for t, b, a, u in zip(log.t, log.mode_before, log.mode_after, log.u))
-    dense = _DenseOutput(block, pieces, log.t, log.u, log.mode_after)
-    t = np.concatenate([[0.0], pieces.t0[1:], [pieces.t_end], log.t, [t_final]])
-    t = np.unique(t[t <= t_final])
-    u, v = dense(t)
-    mode = dense.mode_at(t)
+    t = np.concatenate([[0.0], log.t, [t_final]])
+    u = np.concatenate([[0.0], log.u, [final.u]])
+    v = np.concatenate([np.zeros(n + 1), [final.v]])
+    mode = np.concatenate([[0], log.mode_after, [final.mode]]).astype(int)
     stats = {"max_events_at_one_instant": _max_run(log.t), "n_events": n}
-    return Solution(t=t, u=u, v=v, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
+    return Solution(t=t, u=u, v=v, mode=mode, events=events, backend=backend,
+                    dense=_DenseOutput(block, pieces, log.t, log.u, log.mode_after), stats=stats)
 
 
 def _max_run(times):

@@ -57,8 +57,8 @@ class State(NamedTuple):
 
 class _Rules(NamedTuple):
     params: Params
-    allow_neg: bool
-    allow_pos: bool
+    allow_neg: jax.Array  # bool: slip- allowed
+    allow_pos: jax.Array  # bool: slip+ allowed
 
     def at_rest(self, sigma, rate):
         p = self.params
@@ -186,18 +186,19 @@ def _tail_to_rest(rules, state, t_start, log_events):
     return final, t_start + d, rests
 
 
-_STATIC = ("allow_neg", "allow_pos", "window", "log_capacity", "is_sine")
+_STATIC = ("window", "log_capacity", "is_sine")
 
 
-def _run(params, pieces, n_pieces, until_rest, *, allow_neg, allow_pos, window, log_capacity, is_sine):
+def _run(params, allowed, pieces, n_pieces, until_rest, *, window, log_capacity, is_sine):
     """Integrate the block through the first ``n_pieces`` of ``pieces``.
 
+    ``params``: (mu, f, bias, g, scale); ``allowed``: (slip- allowed, slip+ allowed).
     ``pieces``: tuple of (n,) arrays (see :class:`blockdae.excitation.Pieces`), with at
     least ``window`` empty pieces after the first ``n_pieces``. Returns
     (final State, t_final [s], rests (bool), finished (bool)). ``log_capacity`` events
     are logged (0: none, for batches).
     """
-    rules = _Rules(Params(*params), allow_neg, allow_pos)
+    rules = _Rules(Params(*params), *allowed)
     zero = jnp.zeros_like(params[0])
     zero_int = jnp.zeros((), int)
     capacity = max(log_capacity, 1)
@@ -222,7 +223,7 @@ run = jax.jit(_run, static_argnames=_STATIC)
 
 
 @functools.partial(jax.jit, static_argnames=_STATIC)
-def run_batch(params, pieces, n_pieces, until_rest, **static):
+def run_batch(params, allowed, pieces, n_pieces, until_rest, **static):
     """``run`` vectorised over the leading axis of every entry of ``params``."""
-    return jax.vmap(functools.partial(_run, **static), in_axes=(0, None, None, None))(
-        params, pieces, n_pieces, until_rest)
+    return jax.vmap(functools.partial(_run, **static), in_axes=(0, None, None, None, None))(
+        params, allowed, pieces, n_pieces, until_rest)
