@@ -22,7 +22,7 @@ class ExactBackend(AbstractBackend):
             changes speed, never results.
     """
 
-    window: int = 128
+    window: int = 64
     name = "exact"
 
     def __post_init__(self):

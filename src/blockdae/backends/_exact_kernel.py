@@ -1,13 +1,12 @@
 """The exact backend's compiled kernel.
 
-The excitation is a sequence of monotone closed-form pieces. Each loop iteration looks
-at a window of ``window`` pieces at once: in stick it finds the first piece where the
-demand leaves [-mu g, mu g], in slip it accumulates the closed-form velocity over the
-window and finds the first piece where v returns to zero. The first such event is
-located in closed form (linear pieces: linear or quadratic equations) or by bracketing
-a monotone function (sine pieces), to machine precision; without one the whole window
-is skipped. The loop thus runs about (events + pieces / window) times, vectorised over
-the window.
+The excitation is a sequence of monotone closed-form pieces. Before the loop, every
+piece is marked where its demand leaves [-mu g, mu g], so that from stick the loop jumps
+to the next possible onset at once. In slip an iteration accumulates the closed-form
+velocity over a window of ``window`` pieces and finds the first piece where v returns to
+zero, or skips the window. Each event is located in closed form (linear pieces: linear
+or quadratic equations) or by bracketing a monotone function (sine pieces), to machine
+precision. The loop thus runs about (events + sliding pieces / window) times.
 
 Everything is ``jax.numpy``: the kernel compiles, vectorises over parameter sets and
 differentiates (forward mode) through the event times.
@@ -65,79 +64,117 @@ class _Rules(NamedTuple):
         return rest_mode(sigma, rate, p.mu, p.g, self.allow_neg, self.allow_pos, jnp)
 
 
-def _window(pieces, k, tau, scale, window, is_sine):
-    """The ``window`` pieces from piece k, the first one starting at ``tau``."""
-    take = lambda x: jax.lax.dynamic_slice_in_dim(x, k, window)
-    t0, h = take(pieces[0]), take(pieces[1])
-    cf = (take(pieces[2]) * scale, take(pieces[3]) * scale)
-    cf += (take(pieces[4]) * scale, take(pieces[5]), take(pieces[6])) if is_sine else (None, None, None)
-    offset = jnp.where(jnp.arange(window) == 0, tau, 0.0)
-    return t0 + offset, h - offset, rebase(*cf, offset)
+class _Excitation(NamedTuple):
+    """The pieces with a(t) scaled, and where in stick the block may start to slide."""
+
+    t0: jax.Array  # (n,) [s]
+    h: jax.Array  # (n,) [s]
+    cf: tuple  # coefficients, each (n,) (sine terms None for linear pieces)
+    next_onset: jax.Array  # (n + 1,) first piece >= k whose demand leaves [-mu g, mu g]
 
 
-def _pick(cf, i):
-    return tuple(None if c is None else c[i] for c in cf)
-
-
-def _step(rules, pieces, state, *, window, is_sine, log_events):
-    """One iteration: the first event in the window, or the whole window."""
+def _prepare(rules, pieces, is_sine):
     p = rules.params
-    t_start, rem, cf = _window(pieces, state.k, state.tau, p.scale, window, is_sine)
+    cf = (pieces[2] * p.scale, pieces[3] * p.scale)
+    cf += (pieces[4] * p.scale, pieces[5], pieces[6]) if is_sine else (None, None, None)
+    up, down = _leaves_stick(rules, cf, pieces[1])
+    n = pieces[0].shape[0]
+    index = jnp.where(up | down, jnp.arange(n), n)
+    next_onset = jnp.append(jax.lax.cummin(index, reverse=True), n)
+    return _Excitation(pieces[0], pieces[1], cf, next_onset)
+
+
+def _leaves_stick(rules, cf, rem):
+    """Whether the demand exceeds +mu g (-> slip-) / -mu g (-> slip+) on [0, rem]."""
+    p = rules.params
     limit = p.mu * p.g
-    mode = state.mode
+    start = demand(accel(*cf, 0.0, jnp), p.bias, p.g)
+    end = demand(accel(*cf, rem, jnp), p.bias, p.g)
+    up = rules.allow_neg & ((end > limit) | (start > limit))
+    down = rules.allow_pos & ((end < -limit) | (start < -limit))
+    return up, down
 
-    # stick: the first piece whose demand leaves [-mu g, mu g] (a is monotone on a piece)
-    sigma_start = demand(accel(*cf, 0.0, jnp), p.bias, p.g)
-    sigma_end = demand(accel(*cf, rem, jnp), p.bias, p.g)
-    up = rules.allow_neg & ((sigma_end > limit) | (sigma_start > limit))
-    down = rules.allow_pos & ((sigma_end < -limit) | (sigma_start < -limit))
-    onset = (mode == 0) & (up | down)
 
-    # slip: v at every piece start of the window, and the first piece where v returns to 0
-    c = slip_constant(mode, p.bias, p.f, p.g)
+def _piece(exc, j, tau):
+    """Piece j from time ``tau`` into it: (start time [s], remaining length [s], coefficients)."""
+    cf = rebase(*(None if c is None else c[j] for c in exc.cf), tau)
+    return exc.t0[j] + tau, exc.h[j] - tau, cf
+
+
+class _Candidate(NamedTuple):
+    """The next event (if ``found``) or the state where the search stopped."""
+
+    found: jax.Array
+    k: jax.Array  # piece of the event, or where the search continues
+    tau: jax.Array  # time into piece k [s]
+    t: jax.Array  # event time [s]
+    u: jax.Array  # [m]
+    v: jax.Array  # [m/s], 0 at an event
+    after: jax.Array  # mode after the event
+
+
+def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
+    """Stick: the onset in the rest of piece k, else in the first piece that allows one."""
+    p = rules.params
+    limit = p.mu * p.g
+    t_k, rem_k, cf_k = _piece(exc, state.k, state.tau)
+    up_k, down_k = _leaves_stick(rules, cf_k, rem_k)
+    here = up_k | down_k
+    j = jnp.where(here, state.k, exc.next_onset[jnp.minimum(state.k + 1, n_pieces)])
+    found = here | (j < n_pieces)
+    j = jnp.minimum(j, n_pieces - 1)
+    tau = jnp.where(here, state.tau, 0.0)
+    t_j, rem_j, cf_j = _piece(exc, j, tau)
+    up_j, _ = _leaves_stick(rules, cf_j, rem_j)
+    going_up = jnp.where(here, up_k, up_j)
+    target = p.bias * p.g + jnp.where(going_up, limit, -limit)
+    sigma_j = demand(accel(*cf_j, 0.0, jnp), p.bias, p.g)
+    starts_beyond = jnp.where(going_up, sigma_j > limit, sigma_j < -limit)
+    d = jnp.where(starts_beyond, 0.0, jnp.clip(onset_delta(cf_j, rem_j, target, is_sine), 0.0, rem_j))
+    return _Candidate(found, jnp.where(found, j, n_pieces), jnp.where(found, tau + d, 0.0), t_j + d,
+                      state.u, 0.0 * state.v, jnp.where(found, jnp.where(going_up, -1, 1), state.mode))
+
+
+def _next_stop(rules, exc, state, n_pieces, *, window, is_sine):
+    """Slip: v accumulated over a window of pieces; the first piece where it returns to 0."""
+    p = rules.params
+    take = lambda x: jax.lax.dynamic_slice_in_dim(x, state.k, window)
+    offset = jnp.where(jnp.arange(window) == 0, state.tau, 0.0)
+    cf = rebase(*(None if c is None else take(c) for c in exc.cf), offset)
+    rem = take(exc.h) - offset
+    c = slip_constant(state.mode, p.bias, p.f, p.g)
     dv = c * rem - accel_int1(*cf, rem, jnp)
     v_start = state.v + jnp.cumsum(dv) - dv
     du = v_start * rem + 0.5 * c * rem**2 - accel_int2(*cf, rem, jnp)
     u_start = state.u + jnp.cumsum(du) - du
-    d_stop, stop = stop_delta(cf, rem, v_start, c, mode, is_sine)
-    stop = (mode != 0) & stop
-
-    hit = onset | stop
-    found = jnp.any(hit)
-    i = jnp.argmax(hit)
-    cf_i, rem_i = _pick(cf, i), rem[i]
-    going_up = up[i]
-    target = p.bias * p.g + jnp.where(going_up, limit, -limit)
-    starts_beyond = jnp.where(going_up, sigma_start[i] > limit, sigma_start[i] < -limit)
-    d_on = jnp.where(starts_beyond, 0.0, jnp.clip(onset_delta(cf_i, rem_i, target, is_sine), 0.0, rem_i))
-    d = jnp.where(mode == 0, d_on, d_stop[i])
-    t_event = t_start[i] + d
+    d_stop, stop = stop_delta(cf, rem, v_start, c, state.mode, is_sine)
+    found = jnp.any(stop)
+    i = jnp.argmax(stop)
+    cf_i = tuple(None if x is None else x[i] for x in cf)
+    d = d_stop[i]
+    t_event = take(exc.t0)[i] + offset[i] + d
     u_event, _ = slip_motion(cf_i, d, u_start[i], v_start[i], c)
-    u_event = jnp.where(mode == 0, state.u, u_event)
-    after = jnp.where(mode == 0, jnp.where(going_up, -1, 1),
-                      _mode_after_stop(rules, cf_i, d, c, mode, t_event))
-    logged = found & (after != mode)
+    after = _mode_after_stop(rules, cf_i, d, c, state.mode, t_event)
+    return _Candidate(found, jnp.where(found, state.k + i, state.k + window),
+                      jnp.where(found, offset[i] + d, 0.0), t_event,
+                      jnp.where(found, u_event, u_start[-1] + du[-1]),
+                      jnp.where(found, 0.0, v_start[-1] + dv[-1]), jnp.where(found, after, state.mode))
 
-    u_end = jnp.where(mode == 0, state.u, u_start[-1] + du[-1])
-    v_end = jnp.where(mode == 0, 0.0, v_start[-1] + dv[-1])
+
+def _step(rules, exc, n_pieces, state, *, window, is_sine, log_events):
+    """One iteration: to the next event, or as far as the search went without one."""
+    static = dict(window=window, is_sine=is_sine)
+    nxt = jax.lax.cond(state.mode == 0, functools.partial(_next_onset, **static),
+                       functools.partial(_next_stop, **static), rules, exc, state, n_pieces)
+    logged = nxt.found & (nxt.after != state.mode)
     log = state.log
     if log_events:
         slot = jnp.where(logged, state.n_events, log.t.shape[0])  # out of range: dropped
-        log = EventLog(log.t.at[slot].set(t_event, mode="drop"),
-                       log.mode_before.at[slot].set(mode, mode="drop"),
-                       log.mode_after.at[slot].set(after, mode="drop"),
-                       log.u.at[slot].set(u_event, mode="drop"))
-    return State(
-        k=jnp.where(found, state.k + i, state.k + window),
-        tau=jnp.where(found, jnp.where(i == 0, state.tau, 0.0) + d, 0.0),
-        u=jnp.where(found, u_event, u_end),
-        v=jnp.where(found, 0.0, v_end),
-        mode=jnp.where(found, after, mode),
-        max_abs_u=jnp.maximum(state.max_abs_u, jnp.abs(jnp.where(found, u_event, u_end))),
-        n_events=state.n_events + logged,
-        n_iterations=state.n_iterations + 1,
-        log=log,
-    )
+        log = EventLog(*(x.at[slot].set(y, mode="drop") for x, y in
+                         zip(log, (nxt.t, state.mode, nxt.after, nxt.u))))
+    return State(k=nxt.k, tau=nxt.tau, u=nxt.u, v=nxt.v, mode=nxt.after,
+                 max_abs_u=jnp.maximum(state.max_abs_u, jnp.abs(nxt.u)),
+                 n_events=state.n_events + logged, n_iterations=state.n_iterations + 1, log=log)
 
 
 def _mode_after_stop(rules, cf, d, c, mode, t_stop):
@@ -209,7 +246,9 @@ def _run(params, allowed, pieces, n_pieces, until_rest, *, window, log_capacity,
     def running(state):
         return (state.k < n_pieces) & (state.n_iterations < max_iterations)
 
-    step = functools.partial(_step, rules, pieces, window=window, is_sine=is_sine, log_events=log_capacity > 0)
+    exc = _prepare(rules, pieces, is_sine)
+    step = functools.partial(_step, rules, exc, n_pieces, window=window, is_sine=is_sine,
+                             log_events=log_capacity > 0)
     state = jax.lax.while_loop(running, step, init)
     finished = state.k >= n_pieces
     t_excitation_end = pieces[0][n_pieces - 1] + pieces[1][n_pieces - 1]

@@ -172,7 +172,8 @@ class SlidingBlock(AbstractHybridModel):
 
 
 def _first(values, mask):
-    return np.asarray(values)[np.asarray(mask)].flat[0] if np.any(mask) else values
+    """The first value where ``mask`` holds, as a float."""
+    return float(np.asarray(values)[np.asarray(mask)].flat[0]) if np.any(mask) else values
 
 
 def _check(bad, name, values, message):
