@@ -9,7 +9,6 @@ import sys
 import numpy as np
 import pytest
 
-import blockdae as bd
 from blockdae._cli import main
 
 # seed 000, Example 5: triangular pulse A = 9 m/s², t0 = 0.5 s, sampled exactly by 3 samples
