@@ -57,7 +57,8 @@ def plot(solution: Solution, excitation: AbstractExcitation | None = None,
 
     if with_base:
         acc, vel, disp = axes[:, 0]
-        a_base, v_base, x_base = _base_motion(excitation, t)
+        a_base, v_base, x_base = (excitation.acceleration(t), excitation.velocity(t),
+                                  excitation.displacement(t))
         at_ev = np.searchsorted(t, t_ev)
         _curve(acc, t, a_base, t_ev, a_base[at_ev], "acceleration [m/s²]", style=_BASE)
         if block is not None:
@@ -70,21 +71,10 @@ def plot(solution: Solution, excitation: AbstractExcitation | None = None,
         _curve(disp, t, x_base + u, t_ev, x_base[at_ev] + u_ev, None, style=_BLOCK)
         disp.set_xlabel("t [s]")
         acc.legend(loc="upper right", fontsize="small")
-    rel_v.legend(loc="upper right", fontsize="small")
+    rel_v.legend(loc="best", fontsize="small")
     if title:
         fig.suptitle(title)
     return fig
-
-
-def _base_motion(excitation, t):
-    """Base a [m/s²], v [m/s], x [m] at the sorted times ``t`` [s].
-
-    One time past the last is added: an unending excitation is cut at the latest
-    time asked for, and its a(t) would read 0 there.
-    """
-    t_ext = np.append(t, t[-1] + 1.0)
-    return tuple(f(t_ext)[:-1] for f in (excitation.acceleration, excitation.velocity,
-                                          excitation.displacement))
 
 
 def _curve(ax, t, y, t_ev, y_ev, ylabel, style=None):
