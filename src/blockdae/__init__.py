@@ -4,6 +4,8 @@ Exact event times, solver backends that check each other, and derivatives of the
 answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
+from ._examples import SeedExample, seed_examples
+from ._plot import plot
 from ._sensitivities import sensitivities
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, Solution
@@ -14,5 +16,7 @@ from .model import AbstractHybridModel, Mode, SlidingBlock
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
-    "read_record", "sensitivities", "simulate",
+    "read_record", "simulate",
+    "SeedExample", "plot", "seed_examples",
+    "sensitivities",
 ]
