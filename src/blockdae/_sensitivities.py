@@ -25,7 +25,7 @@ from .excitation import AbstractExcitation
 from .model import SlidingBlock
 
 #: parameter name -> unit of d u / d parameter
-UNITS = {"mu": "m", "mu_kinetic": "m", "bias": "m", "A": "m/g"}
+UNITS = {"mu": "m", "mu_kinetic": "m", "bias": "m", "A": "m/g", "scale": "m"}
 
 
 def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float | None = None,
@@ -38,8 +38,9 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
         t_end: final time [s]; None: when the block rests after the excitation ends.
         wrt: any of "mu" (static friction; when ``block.mu_kinetic`` is None the
             kinetic coefficient follows it, so it moves both), "mu_kinetic" (kinetic
-            alone), "bias" (R/Q) and "A" (peak base acceleration in units of
-            ``block.g``, the excitation scaled so that its peak is A g).
+            alone), "bias" (R/Q), "A" (peak base acceleration in units of
+            ``block.g``, the excitation scaled so that its peak is A g) and "scale"
+            (a factor k on a(t), at k = 1).
         backend: "exact" (closed forms) or "jax" (the diffrax twin).
         **options: settings of the backend.
 
@@ -81,6 +82,7 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
         "mu_kinetic": d_f,
         "bias": d_bias,
         "A": d_scale * block.g / motion.peak_acceleration,  # scale = A g / peak
+        "scale": d_scale,
     }
     return {name: (float(derivatives[name]) if not shape else derivatives[name]) for name in wrt}
 
