@@ -16,10 +16,12 @@ from ._exact import _DenseOutput, _device, _max_run, _params
 class JaxBackend(AbstractBackend):
     """diffrax twin of the hybrid automaton, compiled with JAX (float64).
 
-    Integrates each mode with an explicit Runge-Kutta solver under a PID controller,
+    Integrates each mode with a diffrax Runge-Kutta solver under a PID controller,
     piece by piece of a(t); guards are ``diffrax.Event`` roots (bisection on the dense
-    output, then one Newton step). Independent of the closed forms of the exact
-    backend except for the transition rules both take from the model.
+    output, then one Newton step). Independent of the exact backend's closed-form
+    motion; both take the flow, guards and transition rules from the model.
+    Differentiable in forward mode only (``jax.jvp``/``jacfwd``; see
+    :func:`blockdae.sensitivities`).
 
     Args:
         rtol, atol: tolerances of the step-size controller [-, m and m/s].
@@ -52,8 +54,7 @@ class JaxBackend(AbstractBackend):
     def config(self, block, pieces):
         """The kernel's static settings for ``block`` under ``pieces``."""
         return kernel.Config(block.allow_negative, block.allow_positive, pieces.has_sine, self.solver,
-                             float(self.rtol),
-                             float(self.atol), self.max_segments, self.max_steps)
+                             float(self.rtol), float(self.atol), self.max_segments, self.max_steps)
 
     def solve(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
