@@ -117,7 +117,7 @@ def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
     """Stick: the onset in the rest of piece k, else in the first piece that allows one."""
     p = rules.params
     limit = p.mu * p.g
-    t_k, rem_k, cf_k = _piece(exc, state.k, state.tau)
+    _, rem_k, cf_k = _piece(exc, state.k, state.tau)
     up_k, down_k = _leaves_stick(rules, cf_k, rem_k)
     here = up_k | down_k
     j = jnp.where(here, state.k, exc.next_onset[jnp.minimum(state.k + 1, n_pieces)])
@@ -126,11 +126,14 @@ def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
     tau = jnp.where(here, state.tau, 0.0)
     t_j, rem_j, cf_j = _piece(exc, j, tau)
     up_j, _ = _leaves_stick(rules, cf_j, rem_j)
-    going_up = jnp.where(here, up_k, up_j)
-    target = p.bias * p.g + jnp.where(going_up, limit, -limit)
     sigma_j = demand(accel(*cf_j, 0.0, jnp), p.bias, p.g)
-    starts_beyond = jnp.where(going_up, sigma_j > limit, sigma_j < -limit)
-    d = jnp.where(starts_beyond, 0.0, jnp.clip(onset_delta(cf_j, rem_j, target, is_sine), 0.0, rem_j))
+    starts_up = rules.allow_neg & (sigma_j > limit)
+    starts_down = rules.allow_pos & (sigma_j < -limit)
+    # beyond a threshold at the start: onset there; else a (monotone) crosses one of them
+    going_up = starts_up | (~starts_down & up_j)
+    target = p.bias * p.g + jnp.where(going_up, limit, -limit)
+    d = jnp.where(starts_up | starts_down, 0.0,
+                  jnp.clip(onset_delta(cf_j, rem_j, target, is_sine), 0.0, rem_j))
     return _Candidate(found, jnp.where(found, j, n_pieces), jnp.where(found, tau + d, 0.0), t_j + d,
                       state.u, 0.0 * state.v, jnp.where(found, jnp.where(going_up, -1, 1), state.mode))
 
