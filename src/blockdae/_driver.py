@@ -136,6 +136,10 @@ class _Run:
         self.advance_to(float(end))
 
     def advance_to(self, end, until_stick=False):
+        if self.mode == Mode.STICK and not self.guard_changes_sign(end):
+            self.t, self.restarted = end, True  # the state is constant in stick
+            self.knots.add(end, self.y, self.mode, 0.0, 0.0)
+            return
         turn = self.turning_point(end)
         while self.t < end and not (until_stick and self.mode == Mode.STICK):
             if self.restarted:
@@ -150,6 +154,13 @@ class _Run:
             else:
                 self.on_guard(root)
                 turn = self.turning_point(end)
+
+    def guard_changes_sign(self, end):
+        """Whether a guard of the mode may reach zero before ``end`` [s]. Stick guards
+        are monotone on a piece, so positive values at both ends exclude a root and the
+        integrator need not run (it restarts, exactly, where the state is constant)."""
+        guards = lambda t: self.block.guards(self.mode, t, self.y, self.piece_excitation, SCALAR)
+        return min(guards(end)) <= 0 or min(guards(self.t)) <= 0
 
     def turning_point(self, end):
         """In slip: the time in (t, end) [s] where dv/dt changes sign (dv/dt is monotone

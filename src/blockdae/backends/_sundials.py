@@ -35,7 +35,7 @@ class SundialsBackend(AbstractBackend):
     """
 
     rtol: float = 1e-10
-    atol: float = 1e-12
+    atol: float = 1e-14
     max_step: float | None = None
     max_num_steps: int = 5000
     max_events_at_one_instant: int = 5
@@ -131,7 +131,7 @@ class SundialsIntegrator(AbstractIntegrator):
         self.counts["n_restarts"] += 1
 
     def step(self, t_stop):
-        result = self.solvers[self.mode].step(t_stop, method="onestep", tstop=t_stop)
+        result = self.solvers[self.mode].step(t_stop, method="normal", tstop=t_stop)
         self._check(result)
         self.counts["n_steps"] += 1
         t, y = float(result.t), result.y
