@@ -62,6 +62,10 @@ class AbstractIntegrator(abc.ABC):
     :class:`PieceExcitation`, whose coefficients change between calls.
     """
 
+    #: modes in which to restart at every piece of a(t): a DAE whose algebraic
+    #: variable follows a(t), only continuous at piece ends, needs a consistent (y, y')
+    restart_at_pieces: tuple[Mode, ...] = ()
+
     @abc.abstractmethod
     def restart(self, mode: Mode, t: float, y: np.ndarray) -> None:
         """Start afresh in ``mode`` at ``t`` [s] from y = (u [m], v [m/s])."""
@@ -124,6 +128,7 @@ class _Run:
         the right-hand limits of a(t) give."""
         self.piece_excitation.set(t0, coefficients)
         self.knots.set_right_rate(self.slip_rate(self.mode, self.t, self.y))
+        self.restarted |= self.mode in self.integrator.restart_at_pieces
         if self.mode == Mode.STICK or self.y[1] == 0:
             rest = Mode(int(self.block.mode_at_rest(t0, self.piece_excitation, SCALAR)))
             if rest != self.mode:
