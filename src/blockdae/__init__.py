@@ -4,6 +4,7 @@ Exact event times, solver backends that check each other, and derivatives of the
 answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
+from ._crosscheck import CrossCheck, crosscheck
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, Solution
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
@@ -14,4 +15,5 @@ __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "read_record", "simulate",
+    "CrossCheck", "crosscheck",
 ]

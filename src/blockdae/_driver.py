@@ -29,6 +29,7 @@ SCALAR = types.SimpleNamespace(stack=tuple, where=lambda cond, a, b: a if cond e
 
 _EPS = np.finfo(float).eps
 _TURN_BISECTIONS = 60  # halves a piece below 1e-18 of its length
+_ULPS = 8  # intervals shorter than this many ulps are not integrated
 
 
 class PieceExcitation:
@@ -84,17 +85,21 @@ class AbstractIntegrator(abc.ABC):
         """Solver counters (steps, right-hand-side calls, ...)."""
 
 
-def drive(block, excitation, horizon, integrator_factory, backend_name, max_events_at_one_instant):
+def drive(block, excitation, horizon, integrator_factory, backend_name, max_events_at_one_instant,
+          event_resolution):
     """Run ``block`` under ``excitation`` to ``horizon`` with one integrator.
 
     Args:
         integrator_factory: ``(block, piece) -> AbstractIntegrator``.
         backend_name: recorded in the :class:`Solution`.
-        max_events_at_one_instant: most consecutive events at one time [-]; more
+        max_events_at_one_instant: most consecutive events at one instant [-]; more
             (chatter) raises an error instead of looping.
+        event_resolution: events closer than this [s] are one instant: a stop where
+            a threshold is crossed within it grazes or reverses (the model's
+            ``stop_mode``), and chatter is counted over it.
     """
     pieces = excitation.pieces(horizon.integration_end(excitation))
-    run = _Run(block, integrator_factory, max_events_at_one_instant)
+    run = _Run(block, integrator_factory, max_events_at_one_instant, event_resolution)
     starts = np.append(pieces.t0[1:], pieces.t_end)
     for k in range(len(pieces.t0)):
         run.piece(pieces.t0[k], starts[k], tuple(c[k] for c in pieces[2:]))
@@ -106,8 +111,8 @@ def drive(block, excitation, horizon, integrator_factory, backend_name, max_even
 class _Run:
     """State of one run: time, state, mode, knots and events."""
 
-    def __init__(self, block, integrator_factory, max_events_at_one_instant):
-        self.block = block
+    def __init__(self, block, integrator_factory, max_events_at_one_instant, event_resolution):
+        self.block, self.resolution = block, event_resolution
         self.piece_excitation = PieceExcitation()
         self.integrator = integrator_factory(block, self.piece_excitation)
         self.cap = max_events_at_one_instant
@@ -151,6 +156,10 @@ class _Run:
                 self.integrator.restart(self.mode, self.t, self.y)
                 self.restarted = False
             target = end if turn is None or turn <= self.t else turn
+            if target - self.t <= _ULPS * _EPS * max(1.0, abs(target)):
+                # too short for a solver step (SUNDIALS refuses it): nothing can happen
+                self.t, self.restarted = target, True
+                continue
             t, y, root, reached = self.integrator.step(target)
             self.t, self.y = (target if reached else float(t)), np.array(y[:2], dtype=float)
             if root is None:
@@ -190,18 +199,14 @@ class _Run:
         if before != Mode.STICK:
             self.y = np.array([self.y[0], 0.0])  # a stop: v = 0 by definition
         after = Mode(int(self.block.mode_after_guard(before, index, self.t, self.y, self.piece_excitation,
-                                                     SCALAR, self.graze_tolerance())))
+                                                     SCALAR, self.resolution)))
         rate = self.slip_rate(before, self.t, self.y)
         self.knots.add(self.t, self.y, before, rate, rate)
         if after != before:
             self.log_event(self.t, after)
 
-    def graze_tolerance(self):
-        """Time resolution of located roots [s]: a graze closer than this keeps sliding."""
-        return 1e3 * _EPS * max(1.0, abs(self.t))
-
     def log_event(self, t, after):
-        same_instant = bool(self.events) and abs(t - self.events[-1].t) <= self.graze_tolerance()
+        same_instant = bool(self.events) and abs(t - self.events[-1].t) <= self.resolution
         self.run_length = self.run_length + 1 if same_instant else 1
         self.max_run = max(self.max_run, self.run_length)
         self.events.append(Event(float(t), self.mode, after, float(self.y[0]), float(self.y[1])))

@@ -30,8 +30,12 @@ class SundialsBackend(AbstractBackend):
         max_step: largest internal step [s]; None: no bound besides the hard stops at
             every piece end of a(t) and at every turning point of v.
         max_num_steps: most internal steps between two stops [-].
-        max_events_at_one_instant: most consecutive events at one time [-]; more
+        max_events_at_one_instant: most consecutive events at one instant [-]; more
             (chatter) raises an error.
+        event_resolution: events closer than this are one instant [s]: a slip that
+            stops within it of a threshold crossing grazes on or reverses at once
+            instead of sticking for a moment (at rtol 1e-10 a stop is located to
+            ~1e-10 s, so stop and re-start would otherwise be two events).
     """
 
     rtol: float = 1e-10
@@ -39,10 +43,12 @@ class SundialsBackend(AbstractBackend):
     max_step: float | None = None
     max_num_steps: int = 5000
     max_events_at_one_instant: int = 5
+    event_resolution: float = 1e-9
 
     def __post_init__(self):
         _check_real("rtol", self.rtol, lambda x: 1e-14 <= x <= 1e-2, "must lie in [1e-14, 1e-2]")
         _check_real("atol", self.atol, lambda x: x > 0, "must be > 0")
+        _check_real("event_resolution", self.event_resolution, lambda x: x >= 0, "must be >= 0 [s]")
         if self.max_step is not None:
             _check_real("max_step", self.max_step, lambda x: x > 0, "must be > 0 [s] or None")
         for name in ("max_num_steps", "max_events_at_one_instant"):
@@ -52,7 +58,7 @@ class SundialsBackend(AbstractBackend):
 
     def solve(self, block, excitation, horizon):
         return drive(block, excitation, horizon, self._integrator, self.name,
-                     self.max_events_at_one_instant)
+                     self.max_events_at_one_instant, self.event_resolution)
 
     def solver_options(self) -> dict:
         """Keyword arguments for the scikit-sundae solvers."""

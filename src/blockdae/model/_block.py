@@ -57,19 +57,23 @@ def stop_mode(mode, slip_rate, sigma_rate, t_stop, mu, f, g, allow_neg, allow_po
 
     ``slip_rate`` is dv/dt there [m/s²]; it cannot point away from rest, so the
     demand is sigma = -mode f g - slip_rate with rounding projected out. The block
-    then takes :func:`rest_mode`, except at a graze: if it would stick but the same
-    threshold is crossed outwards within ``time_tol`` [s] of the stop (f = mu and v
-    touches zero at the threshold; ``time_tol`` = 0 means within rounding of
-    ``t_stop``), it keeps sliding.
+    then takes :func:`rest_mode`, except where it would stick but the demand
+    (rate ``sigma_rate`` [m/s³]) crosses a threshold outwards within ``time_tol`` [s]
+    of the stop (``time_tol`` = 0: within rounding of ``t_stop``), as :func:`rest_mode`
+    does for a demand exactly at a threshold: the same threshold is a graze (f = mu,
+    v touches zero there) and the block keeps sliding; the other one is a reversal.
     """
     r = xp.where(mode * slip_rate > 0, 0.0, slip_rate)
     sigma = -mode * f * g - r
     after = rest_mode(sigma, sigma_rate, mu, g, allow_neg, allow_pos, xp)
-    outward = -mode * sigma_rate > 0
-    wait = (-mode * mu * g - sigma) / xp.where(outward, sigma_rate, 1.0)
-    graze = (after == 0) & outward & ((t_stop + wait) - t_stop <= time_tol)
-    graze = graze & xp.where(mode < 0, allow_neg, allow_pos)
-    return xp.where(graze, mode, after)
+
+    def crossed_soon(side):  # the threshold on ``side`` is reached outwards in time_tol
+        outward = side * sigma_rate > 0
+        wait = (side * mu * g - sigma) / xp.where(outward, sigma_rate, 1.0)
+        allowed = xp.where(side > 0, allow_neg, allow_pos)
+        return (after == 0) & outward & ((t_stop + wait) - t_stop <= time_tol) & allowed
+
+    return xp.where(crossed_soon(-mode), mode, xp.where(crossed_soon(mode), -mode, after))
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
