@@ -30,6 +30,8 @@ SCALAR = types.SimpleNamespace(stack=tuple, where=lambda cond, a, b: a if cond e
 _EPS = np.finfo(float).eps
 _TURN_BISECTIONS = 60  # halves a piece below 1e-18 of its length
 _ULPS = 8  # intervals shorter than this many ulps are not integrated
+# global error of v in local tolerances (the worst seen on the sample records is ~20)
+_V_ERROR_FACTOR = 10.0
 
 
 class PieceExcitation:
@@ -86,7 +88,7 @@ class AbstractIntegrator(abc.ABC):
 
 
 def drive(block, excitation, horizon, integrator_factory, backend_name, max_events_at_one_instant,
-          event_resolution):
+          event_resolution, velocity_tolerance):
     """Run ``block`` under ``excitation`` to ``horizon`` with one integrator.
 
     Args:
@@ -97,9 +99,12 @@ def drive(block, excitation, horizon, integrator_factory, backend_name, max_even
         event_resolution: events closer than this [s] are one instant: a stop where
             a threshold is crossed within it grazes or reverses (the model's
             ``stop_mode``), and chatter is counted over it.
+        velocity_tolerance: (rtol [-], atol [m/s]) of the integrator; a stop is
+            uncertain by the time v needs to change by a few of these (see
+            ``_Run.stop_uncertainty``), which widens ``event_resolution`` at grazes.
     """
     pieces = excitation.pieces(horizon.integration_end(excitation))
-    run = _Run(block, integrator_factory, max_events_at_one_instant, event_resolution)
+    run = _Run(block, integrator_factory, max_events_at_one_instant, event_resolution, velocity_tolerance)
     starts = np.append(pieces.t0[1:], pieces.t_end)
     for k in range(len(pieces.t0)):
         run.piece(pieces.t0[k], starts[k], tuple(c[k] for c in pieces[2:]))
@@ -111,8 +116,10 @@ def drive(block, excitation, horizon, integrator_factory, backend_name, max_even
 class _Run:
     """State of one run: time, state, mode, knots and events."""
 
-    def __init__(self, block, integrator_factory, max_events_at_one_instant, event_resolution):
+    def __init__(self, block, integrator_factory, max_events_at_one_instant, event_resolution,
+                 velocity_tolerance):
         self.block, self.resolution = block, event_resolution
+        self.velocity_tolerance, self.v_max = velocity_tolerance, 0.0
         self.piece_excitation = PieceExcitation()
         self.integrator = integrator_factory(block, self.piece_excitation)
         self.cap = max_events_at_one_instant
@@ -162,6 +169,7 @@ class _Run:
                 continue
             t, y, root, reached = self.integrator.step(target)
             self.t, self.y = (target if reached else float(t)), np.array(y[:2], dtype=float)
+            self.v_max = max(self.v_max, abs(self.y[1]))
             if root is None:
                 rate = self.slip_rate(self.mode, self.t, self.y)
                 self.knots.add(self.t, self.y, self.mode, rate, rate)
@@ -199,11 +207,22 @@ class _Run:
         if before != Mode.STICK:
             self.y = np.array([self.y[0], 0.0])  # a stop: v = 0 by definition
         after = Mode(int(self.block.mode_after_guard(before, index, self.t, self.y, self.piece_excitation,
-                                                     SCALAR, self.resolution)))
+                                                     SCALAR, self.stop_uncertainty())))
         rate = self.slip_rate(before, self.t, self.y)
         self.knots.add(self.t, self.y, before, rate, rate)
         if after != before:
             self.log_event(self.t, after)
+
+    def stop_uncertainty(self):
+        """How far [s] the located stop may lie from the true one, at least the event
+        resolution. With the velocity error e (``_V_ERROR_FACTOR`` local tolerances),
+        v' at the stop and v'' = -da/dt, the root of v moves by the d that solves
+        |v'| d + |v''| d²/2 = e: e / |v'| at a crossing, sqrt(2 e / |v''|) at a graze."""
+        rtol, atol = self.velocity_tolerance
+        error = _V_ERROR_FACTOR * (rtol * self.v_max + atol)
+        slope = abs(self.slip_rate(self.mode, self.t, self.y))
+        curvature = abs(self.piece_excitation.acceleration_rate(self.t))
+        return max(self.resolution, 2 * error / (slope + math.sqrt(slope**2 + 2 * curvature * error)))
 
     def log_event(self, t, after):
         same_instant = bool(self.events) and abs(t - self.events[-1].t) <= self.resolution

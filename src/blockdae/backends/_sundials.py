@@ -58,7 +58,7 @@ class SundialsBackend(AbstractBackend):
 
     def solve(self, block, excitation, horizon):
         return drive(block, excitation, horizon, self._integrator, self.name,
-                     self.max_events_at_one_instant, self.event_resolution)
+                     self.max_events_at_one_instant, self.event_resolution, (self.rtol, self.atol))
 
     def solver_options(self) -> dict:
         """Keyword arguments for the scikit-sundae solvers."""
