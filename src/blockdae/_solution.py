@@ -35,8 +35,8 @@ class Solution:
     """The motion of the block relative to its base.
 
     Attributes:
-        t: knot times [s], shape (n,): the start, every event, the pieces'
-            breakpoints and the end, in time order.
+        t: knot times [s], shape (n,): the start, every event and the end, in time
+            order (a backend may add knots of its own); use ``sol(t)`` for any time.
         u, v: relative displacement [m] and velocity [m/s] at the knots, shape (n,).
         mode: mode right after each knot, shape (n,) of int (see :class:`Mode`).
         events: located mode changes, in time order.

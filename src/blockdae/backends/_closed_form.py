@@ -26,8 +26,8 @@ def slip_motion(cf, d, u, v, c, xp=jnp):
 def _bisect(fun, lo, hi):
     """Bracketed root of ``fun``, monotone on [lo, hi]; returns the upper end.
 
-    Iterates without gradients, then takes one Newton step that carries them
-    (the implicit function theorem at the root).
+    The value is the bisection's; its derivative with respect to parameters that
+    ``fun`` closes over is the implicit function theorem's, -dF/dp / dF/dt.
     """
     flo_sign = jnp.sign(fun(lo))
 
@@ -40,7 +40,8 @@ def _bisect(fun, lo, hi):
     _, root = jax.lax.fori_loop(0, _BISECTIONS, halve, jax.lax.stop_gradient((lo, hi)))
     root = jax.lax.stop_gradient(root)
     value, slope = jax.jvp(fun, (root,), (jnp.ones_like(root),))
-    return root - jnp.where(slope != 0, value / jnp.where(slope != 0, slope, 1.0), 0.0)
+    step = jnp.where(slope != 0, value / jnp.where(slope != 0, slope, 1.0), 0.0)
+    return root - (step - jax.lax.stop_gradient(step))
 
 
 def onset_delta(cf, rem, target, is_sine):

@@ -61,7 +61,9 @@ class AbstractExcitation(abc.ABC):
         horizon = float(np.max(t, initial=0.0))
         if np.isfinite(self.duration):
             horizon = max(horizon, self.duration)
-        return evaluate(self.pieces(max(horizon, 1e-300)), t, v0=self.initial_velocity)
+        else:  # cover the last time inside a piece, not at the pieces' end
+            horizon = horizon * (1 + 1e-12) + 1e-12
+        return evaluate(self.pieces(horizon), t, v0=self.initial_velocity)
 
     def acceleration(self, t):
         """a(t) [m/s²], right-continuous at jumps."""

@@ -6,7 +6,8 @@ On piece k, with local time tau in [0, h_k],
 
 and a is monotone on every piece (pieces are split at extrema). Records have s = 0
 (linear pieces); harmonic motion and sine pulses have p1 = 0. Every function here
-works on NumPy and on JAX arrays (``xp`` is the namespace).
+works on NumPy and on JAX arrays (``xp`` is the namespace); passing ``s=None`` (with
+``w``, ``phi`` None) drops the sine terms, for kernels compiled for linear pieces only.
 """
 
 from typing import NamedTuple
@@ -53,31 +54,37 @@ def _safe_w(w, xp):
 
 def accel(p0, p1, s, w, phi, tau, xp=np):
     """a(tau) [m/s²]."""
-    return p0 + p1 * tau + s * xp.sin(w * tau + phi)
+    linear = p0 + p1 * tau
+    return linear if s is None else linear + s * xp.sin(w * tau + phi)
 
 
 def accel_rate(p0, p1, s, w, phi, tau, xp=np):
     """da/dtau [m/s³]."""
-    return p1 + s * w * xp.cos(w * tau + phi)
+    return p1 if s is None else p1 + s * w * xp.cos(w * tau + phi)
 
 
 def accel_int1(p0, p1, s, w, phi, tau, xp=np):
     """Integral of a over [0, tau] [m/s]."""
+    linear = (p0 + 0.5 * p1 * tau) * tau
+    if s is None:
+        return linear
     ws = _safe_w(w, xp)
-    sine = (s / ws) * 2.0 * xp.sin(phi + 0.5 * w * tau) * xp.sin(0.5 * w * tau)
-    return p0 * tau + 0.5 * p1 * tau**2 + sine
+    return linear + (s / ws) * 2.0 * xp.sin(phi + 0.5 * w * tau) * xp.sin(0.5 * w * tau)
 
 
 def accel_int2(p0, p1, s, w, phi, tau, xp=np):
     """Double integral of a over [0, tau] (zero value and slope at 0) [m]."""
+    linear = (0.5 * p0 + p1 * tau / 6.0) * tau**2
+    if s is None:
+        return linear
     ws = _safe_w(w, xp)
-    sine = (s / ws) * (tau * xp.cos(phi) - 2.0 * xp.cos(phi + 0.5 * w * tau) * xp.sin(0.5 * w * tau) / ws)
-    return 0.5 * p0 * tau**2 + p1 * tau**3 / 6.0 + sine
+    return linear + (s / ws) * (tau * xp.cos(phi)
+                                - 2.0 * xp.cos(phi + 0.5 * w * tau) * xp.sin(0.5 * w * tau) / ws)
 
 
 def rebase(p0, p1, s, w, phi, tau):
     """Coefficients of the same piece with its origin moved to ``tau``."""
-    return p0 + p1 * tau, p1, s, w, phi + w * tau
+    return p0 + p1 * tau, p1, s, w, (None if phi is None else phi + w * tau)
 
 
 def evaluate(pieces: Pieces, t, v0=0.0, x0=0.0):

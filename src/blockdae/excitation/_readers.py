@@ -52,6 +52,15 @@ def read_record(path, units="g", dt=None, g=STANDARD_GRAVITY, name=None) -> Reco
             raise ValueError(f"{path}: dt={dt} s contradicts the header's DT={file_dt} s")
         return Record(samples * factor, file_dt, name)
     rows = _parse_columns(text, path)
+    try:
+        return _from_columns(rows, path, factor, dt, name)
+    except ValueError as err:
+        if str(path) in str(err):
+            raise
+        raise ValueError(f"{path}: {err}") from None
+
+
+def _from_columns(rows, path, factor, dt, name):
     if rows.shape[1] == 1:
         if dt is None:
             raise ValueError(f"{path}: one-column file needs the sample step dt [s]")
@@ -65,12 +74,12 @@ def read_record(path, units="g", dt=None, g=STANDARD_GRAVITY, name=None) -> Reco
     bad = np.flatnonzero(step <= 0)
     if bad.size:
         raise ValueError(f"{path}: time column is not increasing at data row {bad[0] + 2} "
-                         f"(t={time[bad[0] + 1]!r} s after {time[bad[0]]!r} s)")
-    file_dt = (time[-1] - time[0]) / step.size
-    bad = np.flatnonzero(np.abs(step - file_dt) > 1e-6 * max(file_dt, 1e-12) + 1e-9)
+                         f"(t={float(time[bad[0] + 1])} s after {float(time[bad[0]])} s)")
+    bad = np.flatnonzero(np.abs(step - step[0]) > 1e-6 * step[0] + 1e-9)
     if bad.size:
         raise ValueError(f"{path}: time column is not uniform at data row {bad[0] + 2} "
-                         f"(step {step[bad[0]]!r} s, mean step {file_dt!r} s)")
+                         f"(step {float(step[bad[0]])} s after steps of {float(step[0])} s)")
+    file_dt = (time[-1] - time[0]) / step.size
     if dt is not None and not np.isclose(dt, file_dt):
         raise ValueError(f"{path}: dt={dt} s contradicts the time column's step {file_dt} s")
     return Record(rows[:, 1] * factor, file_dt, name)

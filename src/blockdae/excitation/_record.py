@@ -32,7 +32,7 @@ class Record(AbstractExcitation):
             raise ValueError(f"acceleration needs at least 2 samples, got {samples.size}")
         bad = np.flatnonzero(~np.isfinite(samples))
         if bad.size:
-            raise ValueError(f"acceleration sample {bad[0]} is {samples[bad[0]]!r}; samples must be finite")
+            raise ValueError(f"acceleration sample {bad[0]} is {float(samples[bad[0]])}; samples must be finite")
         samples.setflags(write=False)
         object.__setattr__(self, "acceleration_samples", samples)
         object.__setattr__(self, "dt", check_positive("dt", dt, "s"))

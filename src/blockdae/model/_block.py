@@ -192,7 +192,8 @@ class SlidingBlock(AbstractHybridModel):
 
         At a stop the relative acceleration cannot point away from rest, so the
         demand is at most f g on the stopping side; a reversal needs it beyond the
-        other threshold, and a graze within ``time_tol`` [s] keeps sliding.
+        other threshold; a threshold crossed outwards within ``time_tol`` [s] grazes
+        on or reverses.
         """
         if mode == Mode.STICK:
             return Mode.SLIP_NEG if guard_index == 0 else Mode.SLIP_POS
@@ -203,7 +204,8 @@ class SlidingBlock(AbstractHybridModel):
 
 
 def _first(values, mask):
-    return np.asarray(values)[np.asarray(mask)].flat[0] if np.any(mask) else values
+    """The first value where ``mask`` holds, as a float."""
+    return float(np.asarray(values)[np.asarray(mask)].flat[0]) if np.any(mask) else values
 
 
 def _check(bad, name, values, message):
