@@ -107,7 +107,8 @@ class Guards:
 
 
 class SundialsIntegrator(AbstractIntegrator):
-    """One scikit-sundae solver per mode; steps in ``onestep`` mode with ``tstop``."""
+    """One scikit-sundae solver per mode; a step returns at ``t_out`` (interpolated)
+    or at the first root, and no internal step passes ``t_stop`` (SUNDIALS ``tstop``)."""
 
     #: solver name in error messages
     label: str
@@ -119,7 +120,7 @@ class SundialsIntegrator(AbstractIntegrator):
         self.guards = {mode: self.guards_class(block, piece, mode) for mode in _MODES}
         self.solvers = {mode: self._build(mode, self.guards[mode], options) for mode in _MODES}
         self.mode = Mode.STICK
-        self.counts = {"n_restarts": 0, "n_steps": 0}
+        self.counts = {"n_restarts": 0, "n_calls": 0}
 
     @abc.abstractmethod
     def _build(self, mode, guards, options):
@@ -136,14 +137,12 @@ class SundialsIntegrator(AbstractIntegrator):
         self._check(result)
         self.counts["n_restarts"] += 1
 
-    def step(self, t_stop):
-        result = self.solvers[self.mode].step(t_stop, method="normal", tstop=t_stop)
+    def step(self, t_out, t_stop):
+        result = self.solvers[self.mode].step(t_out, method="normal", tstop=t_stop)
         self._check(result)
-        self.counts["n_steps"] += 1
-        t, y = float(result.t), result.y
-        if result.status == 2:
-            return t, y, self.guards[self.mode].root_index(result), False
-        return t, y, None, result.status == 1
+        self.counts["n_calls"] += 1
+        root = self.guards[self.mode].root_index(result) if result.status == 2 else None
+        return float(result.t), result.y, root
 
     def _check(self, result):
         if result.status < 0:
