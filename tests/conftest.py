@@ -27,3 +27,9 @@ def kobe() -> bd.Record:
 @pytest.fixture(scope="session")
 def sample_records() -> list[bd.Record]:
     return [bd.read_record(p, units="g") for p in sample_record_paths()]
+
+
+@pytest.fixture(scope="session")
+def jax_cache_dir(tmp_path_factory):
+    """A JAX compilation cache shared by the subprocesses of one test session."""
+    return tmp_path_factory.mktemp("jax_cache")

@@ -5,6 +5,8 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
 from ._crosscheck import CrossCheck, crosscheck
+from ._examples import SeedExample, seed_examples
+from ._plot import plot
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, Solution
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
@@ -16,4 +18,5 @@ __all__ = [
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "read_record", "simulate",
     "CrossCheck", "crosscheck",
+    "SeedExample", "plot", "seed_examples",
 ]

@@ -69,8 +69,10 @@ def _params(block: SlidingBlock, scale=1.0):
 
 
 def _bucket(n: int) -> int:
-    """n rounded up to one of four sizes per octave (few distinct compiled shapes)."""
-    step = 2 ** max(int(np.log2(max(n, 1))) - 2, 0)
+    """n rounded up to at least 64 and to one of four sizes per octave, so that few
+    distinct shapes get compiled (all short excitations share one)."""
+    n = max(n, 64)
+    step = 2 ** (int(np.log2(n)) - 2)
     return int(-(-n // step) * step)
 
 

@@ -1,0 +1,230 @@
+"""Write the notebooks of this folder from the cell sources below (run after editing them).
+
+    python notebooks/make_notebooks.py
+"""
+
+import pathlib
+
+import nbformat
+
+HERE = pathlib.Path(__file__).parent
+
+SEED_000 = [
+    ("md", """# Seed 000 reproduced: a rigid block on an accelerating base
+
+Examples 1-6 of the seed paper with the exact backend: event times located in closed form,
+figures in the layout of its Figures 3-5, friction drop (Example 2), ratcheting under a
+constant force R/Q (Example 3) and the pulses of its Newmark discussion (Examples 4-6,
+Eq. 14). Units: m, s, m/s²; g = 9.81 m/s² as in the paper."""),
+    ("code", """import matplotlib.pyplot as plt
+import numpy as np
+
+import blockdae as bd
+from blockdae._examples import rectangular_pulse_displacement
+
+examples = {e.name: e for e in bd.seed_examples()}
+solutions = {name: bd.simulate(e.block, e.motion, e.t_end) for name, e in examples.items()}"""),
+    ("md", """## Exact event times beside the paper's
+
+The paper prints times to 3-4 digits. Its text gives t* = 0.1125 s for Example 1, its
+Table 1 0.113 s; the exact onset is arcsin(mu g / A) T / (2 pi) = 0.113455 s."""),
+    ("code", """for name, e in examples.items():
+    sol = solutions[name]
+    print(f"{name}: {e.description}")
+    print(f"  {'t exact [s]':>12}  {'t paper [s]':>11}  {'from':>8} -> {'to':<8}  {'u [m]':>10}")
+    for i, ev in enumerate(sol.events):
+        paper = f"{e.paper_event_times[i]:11.4f}" if i < len(e.paper_event_times) else f"{'-':>11}"
+        print(f"  {ev.t:12.6f}  {paper}  {ev.mode_before.name:>8} -> {ev.mode_after.name:<8}  {ev.u:+10.6f}")
+    paper_u = "" if e.paper_displacement is None else f" (paper {e.paper_displacement:+.4f} m)"
+    print(f"  u(t_end) = {sol.displacement:+.6f} m{paper_u}\\n")
+    for t_ours, t_paper in zip(sol.t_events, e.paper_event_times):
+        assert abs(t_ours - t_paper) < 1.5e-3, (name, t_ours, t_paper)
+
+t_star = np.arcsin(0.6 * 9.81 / 9.0) / (2 * np.pi)
+print(f"closed-form onset t* = {t_star:.9f} s; exact backend {solutions['Example 1'].t_events[0]:.9f} s")"""),
+    ("md", """## Example 1: constant friction (Figures 3, 4 and 5)
+
+Left: base (solid) and block (dashed) acceleration, velocity and displacement (Figure 3).
+Right: the relative velocity and displacement (Figure 4) and the phase plane (Figure 5).
+While sliding the block's acceleration is the constant ±mu g = ±5.886 m/s²."""),
+    ("code", """e = examples["Example 1"]
+fig = bd.plot(solutions["Example 1"], e.motion, e.block, title=f"Example 1: {e.description}")"""),
+    ("md", """## Example 2: static and kinetic friction (mu = 0.6, f = 0.3)
+
+Once sliding, the friction drops to f g, so the block no longer catches up with the base:
+practically no common motion, as the paper notes (compare Figures 7, 8 with 3, 5)."""),
+    ("code", """e = examples["Example 2"]
+sol = bd.simulate(e.block, e.motion, 6.0)
+fig = bd.plot(sol, e.motion, e.block, title=f"Example 2: {e.description}")
+stuck = sum(ev.mode_after == bd.Mode.STICK for ev in sol.events)
+print(f"{len(sol.events)} events in 6 s, {stuck} of them back to stick")"""),
+    ("md", """## Example 3: ratcheting under R/Q = 0.3 (Figures 9 and 10)
+
+The constant force lowers the apparent friction for sliding in +x, so the block slips
+forward every cycle and never back: a permanent displacement that grows each cycle, faster
+with the lower kinetic friction f = 0.4."""),
+    ("code", """fig, (ax_u, ax_phase) = plt.subplots(1, 2, figsize=(11, 4), constrained_layout=True)
+t = np.linspace(0.0, 4.0, 2001)
+for name in ("Example 3a", "Example 3b"):
+    e = examples[name]
+    sol = bd.simulate(e.block, e.motion, 4.0)
+    u, v = sol(t)
+    label = f"f = {e.block.friction_kinetic:g}"
+    ax_u.plot(t, u, label=label)
+    ax_phase.plot(u, v, label=label)
+    per_cycle = np.diff(sol(np.array([1.0, 2.0, 3.0, 4.0]))[0])
+    print(f"{name} ({label}): u gained per cycle [m]: {np.round(per_cycle, 6)}")
+ax_u.set(xlabel="t [s]", ylabel="relative displacement u [m]", title="R/Q = 0.3, A = 7 m/s²")
+ax_phase.set(xlabel="u [m]", ylabel="v [m/s]", title="phase plane")
+ax_u.legend();"""),
+    ("md", """## Examples 4-6: single pulses and Newmark's formula
+
+Seed Eq. 14 for a rectangular pulse: u = (A g t0²/2)(1 - A/mu) with A = a/g; Newmark (1965)
+prints the same magnitude with a + sign. The block slides opposite to the base's push, so
+u < 0: the seed's sign is the right one. Smoother pulses of the same peak move the block
+far less."""),
+    ("code", """rows = []
+for name in ("Example 4", "Example 5", "Example 6"):
+    e, sol = examples[name], solutions[name]
+    rows.append((name, type(e.motion).__name__, sol.displacement, e.paper_displacement))
+eq14 = rectangular_pulse_displacement(9.0, 0.5, 0.6)
+print(f"{'example':<10} {'pulse':<17} {'exact u [m]':>12} {'paper u [m]':>12}")
+for name, pulse, u, paper in rows:
+    print(f"{name:<10} {pulse:<17} {u:+12.6f} {paper:+12.4f}")
+print(f"Eq. 14 (seed): {eq14:+.6f} m; Newmark's Eq. 23 sign: {-eq14:+.6f} m")
+assert abs(solutions["Example 4"].displacement - eq14) < 1e-12
+
+fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
+for name in ("Example 4", "Example 5", "Example 6"):
+    sol = solutions[name]
+    t = np.linspace(0.0, sol.t_end, 400)
+    ax.plot(t, sol(t)[0], label=f"{name}: {type(examples[name].motion).__name__}")
+ax.axhline(-eq14, color="0.5", ls=":", label="Newmark's sign (Eq. 23)")
+ax.set(xlabel="t [s]", ylabel="relative displacement u [m]", title="pulses of peak 9 m/s², t0 = 0.5 s, mu = 0.6")
+ax.legend();"""),
+    ("md", """Eq. 14 against the exact backend over pulse amplitudes (it is exact for the rectangle):"""),
+    ("code", """print(f"{'a [m/s²]':>9} {'exact u [m]':>12} {'Eq. 14 [m]':>12} {'difference [m]':>15}")
+block = examples["Example 4"].block
+for a in (6.5, 9.0, 12.0, 15.0):
+    exact = bd.simulate(block, bd.RectangularPulse(a, 0.5)).displacement
+    formula = rectangular_pulse_displacement(a, 0.5, 0.6)
+    print(f"{a:9.1f} {exact:+12.6f} {formula:+12.6f} {exact - formula:15.2e}")
+    assert abs(exact - formula) < 1e-12 * max(1.0, abs(formula))"""),
+]
+
+SENSITIVITIES = [
+    ("md", """# Sensitivities of the permanent displacement
+
+du/dmu, du/df, du/d(R/Q) and du/dA (A: a factor on the record's acceleration) from
+`bd.sensitivities`, across pySLAMMER's sample records, checked against central finite
+differences of the exact backend, and drawn as tornado plots of the elasticities
+(p/u) du/dp [-]."""),
+    ("code", """import importlib.resources
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import blockdae as bd
+
+G = 9.80665
+folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
+names = ("Kobe_1995_TAK-090", "Northridge_1994_PAC-175", "Duzce_1999_375-090")
+records = [bd.read_record(folder / f"{n}.csv", units="g", g=G) for n in names]
+WRT = ("mu", "mu_kinetic", "bias", "scale")"""),
+    ("code", """def block_for(record):
+    mu = 0.4 * record.peak_acceleration / G
+    return bd.SlidingBlock(mu=mu, mu_kinetic=0.8 * mu, bias=0.1 * mu, g=G)
+
+
+def finite_difference(block, record, name, h=1e-6):
+    def u(step):
+        if name == "scale":
+            return bd.simulate(block, record.scaled(1 + step)).displacement
+        value = getattr(block, "friction_kinetic" if name == "mu_kinetic" else name)
+        return bd.simulate(block.replace(**{name: value + step}), record).displacement
+    return (u(h) - u(-h)) / (2 * h)
+
+
+rows = []
+for record in records:
+    block = block_for(record)
+    sens = bd.sensitivities(block, record, wrt=WRT)
+    for name in WRT:
+        fd = finite_difference(block, record, name)
+        rows.append((record.name, name, float(sens[name]), fd))
+print(f"{'record':<26} {'p':<11} {'du/dp (AD) [m]':>15} {'du/dp (FD) [m]':>15} {'rel. diff':>10}")
+for rec, name, ad, fd in rows:
+    print(f"{rec:<26} {name:<11} {ad:15.6e} {fd:15.6e} {abs(ad - fd) / max(abs(fd), 1e-12):10.1e}")"""),
+    ("code", """fig, axes = plt.subplots(1, len(records), figsize=(12, 3.5), constrained_layout=True)
+for ax, record in zip(axes, records):
+    block = block_for(record)
+    u = bd.simulate(block, record).displacement
+    sens = bd.sensitivities(block, record, wrt=WRT)
+    values = {"mu": block.mu, "mu_kinetic": block.friction_kinetic, "bias": block.bias, "scale": 1.0}
+    elasticity = {n: values[n] / u * float(sens[n]) for n in WRT}
+    order = sorted(WRT, key=lambda n: abs(elasticity[n]))
+    ax.barh(order, [elasticity[n] for n in order], color="C0")
+    ax.axvline(0.0, color="0.5", lw=0.8)
+    ax.set(title=record.name, xlabel="(p/u) du/dp [-]")"""),
+    ("md", """du/dmu over a grid of mu on Kobe (one-way):"""),
+    ("code", """record = records[0]
+mus = np.linspace(0.05, 0.4, 8)
+grads = [float(bd.sensitivities(bd.SlidingBlock(mu=m, direction="negative", g=G), record, wrt=("mu",))["mu"])
+         for m in mus]
+fig, ax = plt.subplots(figsize=(6, 3.5), constrained_layout=True)
+ax.plot(mus, grads, "o-")
+ax.set(xlabel="mu [-]", ylabel="du/dmu [m]", title=record.name);"""),
+]
+
+BACKENDS = [
+    ("md", """# Backends compared
+
+Every available backend on the seed-000 examples and a sample record: the cross-check
+table of `bd.crosscheck`, then wall times per backend (first call with compilation, warm)."""),
+    ("code", """import importlib.resources
+import time
+
+import blockdae as bd
+
+names = bd.backends.available()
+print("available backends:", ", ".join(names))
+G = 9.80665
+folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
+kobe = bd.read_record(folder / "Kobe_1995_TAK-090.csv", units="g", g=G)
+cases = [(e.name, e.block, e.motion, e.t_end) for e in bd.seed_examples()]
+cases.append(("Kobe, mu = 0.2, two-way", bd.SlidingBlock(0.2, g=G), kobe, None))"""),
+    ("code", """for label, block, motion, t_end in cases:
+    print(f"--- {label}")
+    print(bd.crosscheck(block, motion, t_end=t_end, backends=names))"""),
+    ("code", """print(f"{'backend':<8} {'case':<26} {'first call [s]':>14} {'warm [ms]':>10} {'u [m]':>12}")
+for name in names:
+    for label, block, motion, t_end in cases[-2:]:
+        start = time.perf_counter()
+        bd.simulate(block, motion, t_end, backend=name)
+        first = time.perf_counter() - start
+        start = time.perf_counter()
+        sol = bd.simulate(block, motion, t_end, backend=name)
+        warm = time.perf_counter() - start
+        print(f"{name:<8} {label:<26} {first:14.3f} {1e3 * warm:10.2f} {sol.displacement:+12.6f}")"""),
+]
+
+NOTEBOOKS = {"01_seed000.ipynb": SEED_000, "02_sensitivities.ipynb": SENSITIVITIES,
+             "03_backends.ipynb": BACKENDS}
+
+
+def build(cells) -> nbformat.NotebookNode:
+    """A notebook (no outputs) from (kind, source) pairs."""
+    make = {"md": nbformat.v4.new_markdown_cell, "code": nbformat.v4.new_code_cell}
+    notebook = nbformat.v4.new_notebook(cells=[make[kind](source) for kind, source in cells])
+    notebook.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    return notebook
+
+
+def main():
+    for name, cells in NOTEBOOKS.items():
+        nbformat.write(build(cells), HERE / name)
+        print(f"wrote {HERE / name}")
+
+
+if __name__ == "__main__":
+    main()

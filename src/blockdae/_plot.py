@@ -1,0 +1,86 @@
+"""Figures of a solution, in the layout of seed 000 Figures 3-5 (matplotlib on demand)."""
+
+import numpy as np
+
+from ._solution import Solution
+from .excitation import AbstractExcitation
+from .model import SlidingBlock
+
+_BASE = dict(color="0.3", lw=1.2, label="base")
+_BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")
+_EVENTS = dict(ls="none", marker="o", ms=4, mfc="none", color="C0", label="events")
+
+
+def plot(solution: Solution, excitation: AbstractExcitation | None = None,
+         block: SlidingBlock | None = None, *, n_points: int = 2000, title: str | None = None):
+    """Draw a solution: absolute and relative motion, and the phase plane.
+
+    Left column (only with ``excitation``): base (solid) and block (dashed)
+    acceleration [m/s²], velocity [m/s] and displacement [m]; the block's
+    acceleration needs ``block`` (its flow gives it). Right column: relative
+    velocity v [m/s], relative displacement u [m] and the phase plane (u, v).
+    Located events are marked with circles on every panel.
+
+    Args:
+        solution: a single run (index a :class:`BatchSolution` first).
+        excitation: the base motion the solution was computed for.
+        block: the block, for the block-acceleration curve.
+        n_points: samples of the time grid; the solution's knots are added to it.
+        title: figure title.
+
+    Returns:
+        The matplotlib Figure.
+    """
+    import matplotlib.pyplot as plt
+
+    if not isinstance(solution, Solution):
+        raise TypeError(f"solution must be a Solution, got {type(solution).__name__}")
+    if not (isinstance(n_points, int) and n_points >= 2):
+        raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
+    t = np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
+    u, v = solution(t)
+    events = solution.events
+    t_ev = np.array([e.t for e in events])
+    u_ev, v_ev = np.array([e.u for e in events]), np.array([e.v for e in events])
+
+    with_base = excitation is not None
+    fig, axes = plt.subplots(3, 2 if with_base else 1, figsize=(11 if with_base else 6, 8),
+                             squeeze=False, constrained_layout=True)
+    rel_v, rel_u, phase = axes[:, -1]
+    _curve(rel_v, t, v, t_ev, v_ev, "relative velocity v [m/s]")
+    _curve(rel_u, t, u, t_ev, u_ev, "relative displacement u [m]")
+    rel_u.set_xlabel("t [s]")
+    phase.plot(u, v, color="C3", lw=1.2)
+    phase.plot(u_ev, v_ev, **_EVENTS)
+    phase.set(xlabel="u [m]", ylabel="v [m/s]", title="phase plane")
+    phase.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+
+    if with_base:
+        acc, vel, disp = axes[:, 0]
+        a_base, v_base, x_base = (excitation.acceleration(t), excitation.velocity(t),
+                                  excitation.displacement(t))
+        at_ev = np.searchsorted(t, t_ev)
+        _curve(acc, t, a_base, t_ev, a_base[at_ev], "acceleration [m/s²]", style=_BASE)
+        if block is not None:
+            mode = solution.mode[np.searchsorted(solution.t, t, side="right") - 1]
+            dv = block.flow(mode, t, np.stack([u, v]), excitation)[1]
+            acc.plot(t, a_base + dv, **_BLOCK)
+        _curve(vel, t, v_base, None, None, "velocity [m/s]", style=_BASE)
+        _curve(vel, t, v_base + v, t_ev, v_base[at_ev] + v_ev, None, style=_BLOCK)
+        _curve(disp, t, x_base, None, None, "displacement [m]", style=_BASE)
+        _curve(disp, t, x_base + u, t_ev, x_base[at_ev] + u_ev, None, style=_BLOCK)
+        disp.set_xlabel("t [s]")
+        acc.legend(loc="upper right", fontsize="small")
+    rel_v.legend(loc="best", fontsize="small")
+    if title:
+        fig.suptitle(title)
+    return fig
+
+
+def _curve(ax, t, y, t_ev, y_ev, ylabel, style=None):
+    ax.plot(t, y, **(style or dict(color="C3", lw=1.2, label="block - base")))
+    if t_ev is not None:
+        ax.plot(t_ev, y_ev, **_EVENTS)
+    if ylabel:
+        ax.set_ylabel(ylabel)
+    ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)

@@ -1,0 +1,58 @@
+"""Smoke runs of the benchmark scripts with --quick, so that they never rot."""
+
+import importlib.util
+import pathlib
+
+import pytest
+
+BENCHMARKS = pathlib.Path(__file__).parents[1] / "benchmarks"
+
+
+def _load(name, monkeypatch):
+    monkeypatch.syspath_prepend(str(BENCHMARKS))
+    spec = importlib.util.spec_from_file_location(f"benchmark_{name}", BENCHMARKS / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_vs_pyslammer_quick(monkeypatch, capsys):
+    assert _load("vs_pyslammer", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "pySLAMMER [ms]" in out and "first call [s]" in out
+    assert out.count("bar ") == 3  # every bar reported, met or not
+    table = out.split("\n\n")[1].splitlines()
+    assert len(table) == 3  # header + the 2 shortest records
+
+
+def test_vs_pyslammer_agrees_with_pyslammer_to_a_few_percent(monkeypatch, capsys):
+    """Independent computation: pySLAMMER's trapezoid integration of the same record
+    lands within 5 % of the exact answer at ky = 0.3 PGA (Northridge PAC-175: 2.5 %)."""
+    module = _load("vs_pyslammer", monkeypatch)
+    record = min(module.sample_records(quick=True), key=lambda r: r.acceleration_samples.size)
+    args = type("Args", (), dict(ratios=(0.3,), grid=2, repeat=0))
+    _, (worst_percent, *_rest) = module._compare(record, args)
+    assert 0.0 < worst_percent < 5.0
+
+
+def test_scaling_quick(monkeypatch, capsys):
+    assert _load("scaling", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "warm per sample [us]" in out and "warm per analysis [ms]" in out
+    assert out.count("log-log slope") == 2
+
+
+def test_backends_quick(monkeypatch, capsys):
+    module = _load("backends", monkeypatch)
+    assert module.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "backend 'exact'" in out and "Example 1" in out and "one-way" in out
+    for name in module.PLANNED:
+        if name not in module.bd.backends.available():
+            assert name in out.split("\n")[0]  # named in the skip note
+
+
+def test_backends_rejects_unknown_flag(monkeypatch):
+    with pytest.raises(SystemExit) as exit_:
+        _load("backends", monkeypatch).main(["--no-such-flag"])
+    assert exit_.value.code == 2

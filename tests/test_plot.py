@@ -1,0 +1,72 @@
+"""``bd.plot``: panels, event markers, and the block's acceleration from the model's flow."""
+
+import matplotlib
+import numpy as np
+import pytest
+
+import blockdae as bd
+
+
+@pytest.fixture(scope="module")
+def example_5():
+    """Seed 000, Example 5: triangular pulse; slides from t* = 0.1635 s to t** = 0.4588 s."""
+    matplotlib.use("Agg", force=True)
+    example = next(e for e in bd.seed_examples() if e.name == "Example 5")
+    return example, bd.simulate(example.block, example.motion, example.t_end)
+
+
+def _events_line(ax):
+    return next(line for line in ax.lines if line.get_label() == "events")
+
+
+def test_full_figure_has_six_panels_with_units_and_event_markers(example_5):
+    import matplotlib.pyplot as plt
+
+    example, solution = example_5
+    fig = bd.plot(solution, example.motion, example.block, title="Example 5")
+    try:
+        assert len(fig.axes) == 6
+        labels = [ax.get_ylabel() for ax in fig.axes]
+        for unit in ("[m/s²]", "[m/s]", "[m]"):
+            assert any(unit in label for label in labels)
+        rel_u = next(ax for ax in fig.axes if ax.get_ylabel().startswith("relative displacement"))
+        markers = _events_line(rel_u)
+        np.testing.assert_array_equal(markers.get_xdata(), solution.t_events)
+        np.testing.assert_array_equal(markers.get_ydata(), [e.u for e in solution.events])
+        phase = next(ax for ax in fig.axes if ax.get_title() == "phase plane")
+        assert len(_events_line(phase).get_xdata()) == len(solution.events) == 2
+    finally:
+        plt.close(fig)
+
+
+def test_block_acceleration_while_sliding_is_the_seeds_constant(example_5):
+    """Seed 000, Eq. 17: a_b = 5.886 m/s² (= mu g) while the block slides."""
+    import matplotlib.pyplot as plt
+
+    example, solution = example_5
+    fig = bd.plot(solution, example.motion, example.block)
+    try:
+        acc = next(ax for ax in fig.axes if ax.get_ylabel() == "acceleration [m/s²]")
+        block = next(line for line in acc.lines if line.get_label() == "block")
+        t, a = block.get_xdata(), block.get_ydata()
+        t_star, t_stop = solution.t_events
+        sliding = (t > t_star) & (t < t_stop)
+        np.testing.assert_allclose(a[sliding], 0.6 * 9.81, rtol=1e-12)
+        np.testing.assert_allclose(a[t < t_star], example.motion.acceleration(t[t < t_star]))
+    finally:
+        plt.close(fig)
+
+
+def test_relative_only_figure_and_bad_input(example_5):
+    import matplotlib.pyplot as plt
+
+    _, solution = example_5
+    fig = bd.plot(solution)
+    try:
+        assert len(fig.axes) == 3
+    finally:
+        plt.close(fig)
+    with pytest.raises(TypeError, match="solution must be a Solution"):
+        bd.plot("not a solution")
+    with pytest.raises(ValueError, match="n_points"):
+        bd.plot(solution, n_points=1)
