@@ -262,6 +262,24 @@ def test_trap8_solver_failure_names_time_mode_flag(backend, label):
         bd.simulate(block, motion, t_end=1.0, backend=backend, max_num_steps=1)
 
 
+@pytest.mark.parametrize("backend", SUNDIALS)
+def test_inverting_the_record_flips_u(backend):
+    """Mirror symmetry (bias 0): a(t) -> -a(t) gives u -> -u and mirrored events. The
+    first sample is beyond -mu g, so the block slides + from t = 0 and reverses at the
+    second sample. By hand (f = 0): slip+ under a = -1 + 100 t, v = t - 50 t², back to 0
+    at 0.02 s with u = 2/30000 m; slip- under a = 1 m/s² to 0.94 s (v = -0.92 m/s), then
+    coasting (a = 0) to 1.5 s: u = 2/30000 - 0.92²/2 - 0.92 * 0.56 = -0.9383333 m.
+    (The exact backend misses the slip+ at t = 0 on this record.)"""
+    block = bd.SlidingBlock(mu=0.0625, mu_kinetic=0.0)
+    record = bd.Record([-1.0] + [1.0] * 47, dt=0.02)
+    sol = bd.simulate(block, record, t_end=1.5, backend=backend)
+    inv = bd.simulate(block, record.inverted(), t_end=1.5, backend=backend)
+    assert [(e.t, e.mode_after) for e in sol.events] == [(0.0, bd.Mode.SLIP_POS), (pytest.approx(0.02), bd.Mode.SLIP_NEG)]
+    assert [(e.t, -e.mode_after) for e in inv.events] == [(e.t, e.mode_after) for e in sol.events]
+    assert inv.displacement == pytest.approx(-sol.displacement, rel=1e-12)
+    assert sol.displacement == pytest.approx(-0.9383333333333, rel=1e-10)
+
+
 # ---- horizon, dense output, settings ----------------------------------------------
 
 @pytest.mark.parametrize("backend", SUNDIALS)
