@@ -16,7 +16,7 @@ class CrossCheck:
     backend, displacement [m], n_events, t_events [s] (array), max_dt [s] (largest
     event-time difference against the reference, inf if the event lists differ in
     length or modes), rel_du [-] (|u - u_ref| / |u_ref|, or the absolute difference
-    [m] when u_ref = 0) and wall [s].
+    [m] when u_ref = 0) and wall [s] (of that call, JIT compilation included).
     """
 
     rows: list
