@@ -19,7 +19,7 @@ import jax
 import jax.numpy as jnp
 
 from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, rebase
-from ..model import demand, rest_mode, slip_constant
+from ..model import demand, rest_mode, slip_constant, stop_mode
 from ._closed_form import onset_delta, slip_motion, stop_delta
 
 
@@ -181,25 +181,10 @@ def _step(rules, exc, n_pieces, state, *, window, is_sine, log_events):
 
 
 def _mode_after_stop(rules, cf, d, c, mode, t_stop):
-    """Mode after v returns to zero in ``mode``, with grazes kept sliding.
-
-    At a stop dv/dt = c - a cannot point away from rest, so the demand is
-    sigma = -mode f g - r with mode * r <= 0 (rounding is projected out). If the
-    block would stick but the same threshold is crossed outwards at the same
-    instant (a graze: f = mu and v touches zero at the threshold), it keeps sliding.
-    """
+    """Mode after v returns to zero in ``mode`` (the model's :func:`stop_mode`)."""
     p = rules.params
-    r = c - accel(*cf, d, jnp)
-    r = jnp.where(mode * r > 0, 0.0, r)
-    sigma = -mode * p.f * p.g - r
-    rate = accel_rate(*cf, d, jnp)
-    after = rules.at_rest(sigma, rate)
-    threshold = -mode * p.mu * p.g
-    outward = -mode * rate > 0
-    wait = (threshold - sigma) / jnp.where(outward, rate, 1.0)
-    graze = (after == 0) & outward & (t_stop + wait == t_stop)
-    graze = graze & jnp.where(mode < 0, rules.allow_neg, rules.allow_pos)
-    return jnp.where(graze, mode, after)
+    return stop_mode(mode, c - accel(*cf, d, jnp), accel_rate(*cf, d, jnp), t_stop, p.mu, p.f, p.g,
+                     rules.allow_neg, rules.allow_pos, jnp)
 
 
 def _tail_to_rest(rules, state, t_start, log_events):
