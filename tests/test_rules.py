@@ -138,3 +138,19 @@ def test_dense_output_is_consistent_with_knots_and_velocity():
     np.testing.assert_allclose(sol(sol.t)[0], sol.u, atol=1e-13)
     with pytest.raises(ValueError, match="t must lie in"):
         sol(np.array(3.5))
+
+
+def test_onset_at_start_wins_over_a_later_crossing_in_the_same_piece():
+    """a rises from -1 to +1 m/s² over the first sample step, beyond both thresholds
+    (mu g = 0.613 m/s²): the block slides + from t = 0 (a < -mu g there), reverses when
+    v returns to 0 (f = 0: v = t - 50 t², at t = 0.02 s with u = 2/30000 m), and the
+    result mirrors the inverted record (found by the SUNDIALS backends' tests)."""
+    block = bd.SlidingBlock(mu=0.0625, mu_kinetic=0.0)
+    record = bd.Record([-1.0] + [1.0] * 47, dt=0.02)
+    sol = bd.simulate(block, record, t_end=1.5)
+    inv = bd.simulate(block, record.inverted(), t_end=1.5)
+    assert [(e.t, e.mode_after) for e in sol.events] == [(0.0, bd.Mode.SLIP_POS), (0.02, bd.Mode.SLIP_NEG)]
+    assert sol.events[1].u == pytest.approx(2 / 30000, rel=1e-12)
+    assert inv.displacement == pytest.approx(-sol.displacement, rel=1e-14)
+    # then slip- under a = 1 to 0.94 s (v = -0.92 m/s) and coasting to 1.5 s
+    assert sol.displacement == pytest.approx(2 / 30000 - 0.92**2 / 2 - 0.92 * 0.56, rel=1e-12)

@@ -4,6 +4,7 @@ Exact event times, solver backends that check each other, and derivatives of the
 answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
+from ._crosscheck import CrossCheck, crosscheck
 from ._examples import SeedExample, seed_examples
 from ._plot import plot
 from ._sensitivities import sensitivities
@@ -17,6 +18,7 @@ __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "read_record", "simulate",
+    "CrossCheck", "crosscheck",
     "SeedExample", "plot", "seed_examples",
     "sensitivities",
 ]

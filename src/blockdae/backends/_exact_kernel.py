@@ -19,7 +19,7 @@ import jax
 import jax.numpy as jnp
 
 from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, rebase
-from ..model import demand, rest_mode, slip_constant
+from ..model import demand, rest_mode, slip_constant, stop_mode
 from ._closed_form import onset_delta, slip_motion, stop_delta
 
 
@@ -117,7 +117,7 @@ def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
     """Stick: the onset in the rest of piece k, else in the first piece that allows one."""
     p = rules.params
     limit = p.mu * p.g
-    t_k, rem_k, cf_k = _piece(exc, state.k, state.tau)
+    _, rem_k, cf_k = _piece(exc, state.k, state.tau)
     up_k, down_k = _leaves_stick(rules, cf_k, rem_k)
     here = up_k | down_k
     j = jnp.where(here, state.k, exc.next_onset[jnp.minimum(state.k + 1, n_pieces)])
@@ -126,11 +126,14 @@ def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
     tau = jnp.where(here, state.tau, 0.0)
     t_j, rem_j, cf_j = _piece(exc, j, tau)
     up_j, _ = _leaves_stick(rules, cf_j, rem_j)
-    going_up = jnp.where(here, up_k, up_j)
-    target = p.bias * p.g + jnp.where(going_up, limit, -limit)
     sigma_j = demand(accel(*cf_j, 0.0, jnp), p.bias, p.g)
-    starts_beyond = jnp.where(going_up, sigma_j > limit, sigma_j < -limit)
-    d = jnp.where(starts_beyond, 0.0, jnp.clip(onset_delta(cf_j, rem_j, target, is_sine), 0.0, rem_j))
+    starts_up = rules.allow_neg & (sigma_j > limit)
+    starts_down = rules.allow_pos & (sigma_j < -limit)
+    # beyond a threshold at the start: onset there; else a (monotone) crosses one of them
+    going_up = starts_up | (~starts_down & up_j)
+    target = p.bias * p.g + jnp.where(going_up, limit, -limit)
+    d = jnp.where(starts_up | starts_down, 0.0,
+                  jnp.clip(onset_delta(cf_j, rem_j, target, is_sine), 0.0, rem_j))
     return _Candidate(found, jnp.where(found, j, n_pieces), jnp.where(found, tau + d, 0.0), t_j + d,
                       state.u, 0.0 * state.v, jnp.where(found, jnp.where(going_up, -1, 1), state.mode))
 
@@ -178,25 +181,10 @@ def _step(rules, exc, n_pieces, state, *, window, is_sine, log_events):
 
 
 def _mode_after_stop(rules, cf, d, c, mode, t_stop):
-    """Mode after v returns to zero in ``mode``, with grazes kept sliding.
-
-    At a stop dv/dt = c - a cannot point away from rest, so the demand is
-    sigma = -mode f g - r with mode * r <= 0 (rounding is projected out). If the
-    block would stick but the same threshold is crossed outwards at the same
-    instant (a graze: f = mu and v touches zero at the threshold), it keeps sliding.
-    """
+    """Mode after v returns to zero in ``mode`` (the model's :func:`stop_mode`)."""
     p = rules.params
-    r = c - accel(*cf, d, jnp)
-    r = jnp.where(mode * r > 0, 0.0, r)
-    sigma = -mode * p.f * p.g - r
-    rate = accel_rate(*cf, d, jnp)
-    after = rules.at_rest(sigma, rate)
-    threshold = -mode * p.mu * p.g
-    outward = -mode * rate > 0
-    wait = (threshold - sigma) / jnp.where(outward, rate, 1.0)
-    graze = (after == 0) & outward & (t_stop + wait == t_stop)
-    graze = graze & jnp.where(mode < 0, rules.allow_neg, rules.allow_pos)
-    return jnp.where(graze, mode, after)
+    return stop_mode(mode, c - accel(*cf, d, jnp), accel_rate(*cf, d, jnp), t_stop, p.mu, p.f, p.g,
+                     rules.allow_neg, rules.allow_pos, jnp)
 
 
 def _tail_to_rest(rules, state, t_start, log_events):

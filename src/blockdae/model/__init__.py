@@ -1,7 +1,8 @@
 """Pure physics: modes, flows, guards and transition rules."""
 
 from ._base import AbstractHybridModel
-from ._block import SlidingBlock, demand, rest_mode, slip_constant
+from ._block import SlidingBlock, demand, rest_mode, slip_constant, stick_guards, stop_mode
 from ._modes import Mode
 
-__all__ = ["AbstractHybridModel", "Mode", "SlidingBlock", "demand", "rest_mode", "slip_constant"]
+__all__ = ["AbstractHybridModel", "Mode", "SlidingBlock", "demand", "rest_mode", "slip_constant",
+           "stick_guards", "stop_mode"]

@@ -32,5 +32,7 @@ class AbstractHybridModel(abc.ABC):
         """The mode a block at rest relative to its base takes at ``t``."""
 
     @abc.abstractmethod
-    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp):
-        """The mode entered when guard ``guard_index`` of ``mode`` is reached."""
+    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp, time_tol=0.0):
+        """The mode entered when guard ``guard_index`` of ``mode`` is reached; a
+        threshold reached within ``time_tol`` [s] of ``t`` counts as reached at ``t``
+        (0: within rounding; ODE backends pass the uncertainty of a located root)."""

@@ -44,6 +44,38 @@ def rest_mode(sigma, sigma_rate, mu, g, allow_neg, allow_pos, xp):
     return xp.where(neg & allow_neg, -1, xp.where(pos & allow_pos, 1, 0))
 
 
+def stick_guards(friction, mu, g, allow_neg, allow_pos, xp):
+    """Stick guards on the friction force per unit mass ``friction`` [m/s²] that holds
+    the block: (mu g - F -> slip-, mu g + F -> slip+); a disallowed side is the constant 1."""
+    limit = mu * g
+    return xp.stack([xp.where(allow_neg, limit - friction, 1.0),
+                     xp.where(allow_pos, limit + friction, 1.0)])
+
+
+def stop_mode(mode, slip_rate, sigma_rate, t_stop, mu, f, g, allow_neg, allow_pos, xp, time_tol=0.0):
+    """Mode after v returns to zero in slip ``mode`` at ``t_stop`` [s].
+
+    ``slip_rate`` is dv/dt there [m/s²]; it cannot point away from rest, so the
+    demand is sigma = -mode f g - slip_rate with rounding projected out. The block
+    then takes :func:`rest_mode`, except where it would stick but the demand
+    (rate ``sigma_rate`` [m/s³]) crosses a threshold outwards within ``time_tol`` [s]
+    of the stop (``time_tol`` = 0: within rounding of ``t_stop``), as :func:`rest_mode`
+    does for a demand exactly at a threshold: the same threshold is a graze (f = mu,
+    v touches zero there) and the block keeps sliding; the other one is a reversal.
+    """
+    r = xp.where(mode * slip_rate > 0, 0.0, slip_rate)
+    sigma = -mode * f * g - r
+    after = rest_mode(sigma, sigma_rate, mu, g, allow_neg, allow_pos, xp)
+
+    def crossed_soon(side):  # the threshold on ``side`` is reached outwards in time_tol
+        outward = side * sigma_rate > 0
+        wait = (side * mu * g - sigma) / xp.where(outward, sigma_rate, 1.0)
+        allowed = xp.where(side > 0, allow_neg, allow_pos)
+        return (after == 0) & outward & ((t_stop + wait) - t_stop <= time_tol) & allowed
+
+    return xp.where(crossed_soon(-mode), mode, xp.where(crossed_soon(mode), -mode, after))
+
+
 @dataclasses.dataclass(frozen=True, eq=False)
 class SlidingBlock(AbstractHybridModel):
     """Rigid block on a base that accelerates along x (seed 000).
@@ -146,12 +178,8 @@ class SlidingBlock(AbstractHybridModel):
         disallowed direction is the constant 1). Slip+/-: (mode * v) -> stop.
         """
         if mode == Mode.STICK:
-            sigma = self.demand(t, excitation, xp)
-            limit = self.mu * self.g
-            return xp.stack([
-                xp.where(self.allow_negative, limit - sigma, 1.0),
-                xp.where(self.allow_positive, limit + sigma, 1.0),
-            ])
+            return stick_guards(self.demand(t, excitation, xp), self.mu, self.g,
+                                self.allow_negative, self.allow_positive, xp)
         return xp.stack([mode * y[1]])
 
     def mode_at_rest(self, t, excitation, xp=np):
@@ -159,16 +187,20 @@ class SlidingBlock(AbstractHybridModel):
         return rest_mode(self.demand(t, excitation, xp), excitation.acceleration_rate(t),
                          self.mu, self.g, self.allow_negative, self.allow_positive, xp)
 
-    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np):
-        """Stick guard 0 -> slip-, guard 1 -> slip+; a slip stop -> ``mode_at_rest``.
+    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
+        """Stick guard 0 -> slip-, guard 1 -> slip+; a slip stop -> :func:`stop_mode`.
 
         At a stop the relative acceleration cannot point away from rest, so the
         demand is at most f g on the stopping side; a reversal needs it beyond the
-        other threshold.
+        other threshold; a threshold crossed outwards within ``time_tol`` [s] grazes
+        on or reverses.
         """
         if mode == Mode.STICK:
             return Mode.SLIP_NEG if guard_index == 0 else Mode.SLIP_POS
-        return Mode(int(self.mode_at_rest(t, excitation, xp)))
+        slip_rate = self.flow(mode, t, y, excitation, xp)[1]
+        return Mode(int(stop_mode(mode, slip_rate, excitation.acceleration_rate(t), t, self.mu,
+                                  self.friction_kinetic, self.g, self.allow_negative,
+                                  self.allow_positive, xp, time_tol)))
 
 
 def _first(values, mask):

@@ -1,0 +1,76 @@
+"""Run one case on several backends and compare them with the exact one."""
+
+import dataclasses
+import time
+
+import numpy as np
+
+from ._simulate import simulate
+from .backends import make_backend
+
+
+@dataclasses.dataclass(frozen=True)
+class CrossCheck:
+    """Per-backend results of one case; ``rows`` is a list of dicts with keys
+
+    backend, displacement [m], n_events, t_events [s] (array), max_dt [s] (largest
+    event-time difference against the reference, inf if the event lists differ in
+    length or modes), rel_du [-] (|u - u_ref| / |u_ref|, or the absolute difference
+    [m] when u_ref = 0) and wall [s] (of that call, JIT compilation included).
+    """
+
+    rows: list
+    reference: str
+
+    def row(self, backend: str) -> dict:
+        """The row of ``backend``."""
+        for row in self.rows:
+            if row["backend"] == backend:
+                return row
+        raise KeyError(f"backend {backend!r} is not in this cross-check")
+
+    def __str__(self):
+        head = (f"{'backend':<8} {'u_end [m]':>16} {'events':>6} {'max |dt| [s]':>13} "
+                f"{'rel |du| [-]':>13} {'wall [s]':>9}")
+        lines = [head, "-" * len(head)]
+        for r in self.rows:
+            lines.append(f"{r['backend']:<8} {r['displacement']:>16.10f} {r['n_events']:>6d} "
+                         f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['wall']:>9.3f}")
+        return "\n".join(lines) + f"\n(differences against {self.reference!r})"
+
+
+def crosscheck(block, motion, backends=("exact", "cvode", "ida"), t_end=None, **options) -> CrossCheck:
+    """Solve ``block`` under ``motion`` with each backend and compare with the first.
+
+    Args:
+        backends: backend names; the first is the reference (normally "exact").
+        t_end: final time [s], or None (until rest after a finite excitation).
+        **options: settings passed to every backend that has them (e.g. ``rtol``).
+    """
+    accepted = {name: {f.name for f in dataclasses.fields(type(make_backend(name)))} for name in backends}
+    unknown = set(options) - set().union(*accepted.values())
+    if unknown:
+        raise TypeError(f"no backend in {tuple(backends)} takes the option(s) {sorted(unknown)}")
+    solutions = []
+    for name in backends:
+        start = time.perf_counter()
+        mine = {key: value for key, value in options.items() if key in accepted[name]}
+        solution = simulate(block, motion, t_end=t_end, backend=name, **mine)
+        solutions.append((name, solution, time.perf_counter() - start))
+    ref = solutions[0][1]
+    rows = [dict(backend=name, displacement=s.displacement, n_events=len(s.events), t_events=s.t_events,
+                 max_dt=_max_event_dt(ref, s), rel_du=_relative(s.displacement, ref.displacement), wall=wall)
+            for name, s, wall in solutions]
+    return CrossCheck(rows=rows, reference=backends[0])
+
+
+def _max_event_dt(ref, sol):
+    same = len(ref.events) == len(sol.events) and all(
+        (a.mode_before, a.mode_after) == (b.mode_before, b.mode_after) for a, b in zip(ref.events, sol.events))
+    if not same:
+        return np.inf
+    return float(np.max(np.abs(ref.t_events - sol.t_events), initial=0.0))
+
+
+def _relative(u, u_ref):
+    return abs(u - u_ref) / abs(u_ref) if u_ref != 0 else abs(u - u_ref)
