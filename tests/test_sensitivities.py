@@ -150,3 +150,15 @@ def test_backends_agree_on_harmonic_with_kinetic_friction_and_bias():
 def test_bad_requests_are_named(kwargs, match):
     with pytest.raises(ValueError, match=match):
         bd.sensitivities(bd.SlidingBlock(0.6), bd.RectangularPulse(9.0, 0.5), **kwargs)
+
+
+def test_exact_derivative_of_an_onset_exactly_on_a_sample():
+    """The demand reaches mu g exactly at a sample where a(t) keeps its slope, so u is
+    smooth in mu: the exact kernel's derivative equals central differences (it was halved
+    when the onset root sat on the bound of a clip)."""
+    record = bd.Record([0, 1, 2, 3, 2, 1, 0, -1, -1, 0, 0, 0], 0.125)
+    block = bd.SlidingBlock(0.25, 0.15, g=8.0)
+    h = 1e-6
+    central = (bd.simulate(block.replace(mu=0.25 + h), record).displacement
+               - bd.simulate(block.replace(mu=0.25 - h), record).displacement) / (2 * h)
+    assert bd.sensitivities(block, record, wrt=("mu",))["mu"] == pytest.approx(central, rel=1e-6)

@@ -132,8 +132,9 @@ def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
     # beyond a threshold at the start: onset there; else a (monotone) crosses one of them
     going_up = starts_up | (~starts_down & up_j)
     target = p.bias * p.g + jnp.where(going_up, limit, -limit)
-    d = jnp.where(starts_up | starts_down, 0.0,
-                  jnp.clip(onset_delta(cf_j, rem_j, target, is_sine), 0.0, rem_j))
+    d = onset_delta(cf_j, rem_j, target, is_sine)
+    # keep d in [0, rem]; jnp.clip would halve the derivative of a root on a bound
+    d = jnp.where(starts_up | starts_down | (d < 0), 0.0, jnp.where(d > rem_j, rem_j, d))
     return _Candidate(found, jnp.where(found, j, n_pieces), jnp.where(found, tau + d, 0.0), t_j + d,
                       state.u, 0.0 * state.v, jnp.where(found, jnp.where(going_up, -1, 1), state.mode))
 
