@@ -21,6 +21,7 @@ import types
 import numpy as np
 
 from ._solution import Event, Solution
+from .backends._base import never_rests_error
 from .excitation._pieces import accel, accel_rate
 from .model import Mode
 
@@ -254,9 +255,7 @@ class _Run:
             return
         rate = self.slip_rate(self.mode, self.t, self.y)
         if self.y[1] * rate >= 0:
-            raise ValueError(
-                f"the block never comes to rest after the excitation: kinetic friction mu_kinetic="
-                f"{self.block.friction_kinetic} does not exceed |bias|={abs(self.block.bias)}; give t_end [s]")
+            raise never_rests_error(self.block)
         bound = self.t + 2.0 * abs(self.y[1] / rate)  # dv/dt is constant: the stop is half-way
         self.advance_to(bound, until_stick=True)
         if self.mode != Mode.STICK:

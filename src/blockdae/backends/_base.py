@@ -37,6 +37,21 @@ class Horizon:
         return excitation.duration if self.t_end is None else self.t_end
 
 
+def never_rests_error(block: SlidingBlock, where: str = "") -> ValueError:
+    """The error for a block that slides on forever after a finite excitation."""
+    return ValueError(
+        f"the block never comes to rest after the excitation{where}: kinetic friction "
+        f"mu_kinetic={block.friction_kinetic} does not exceed |bias|={abs(block.bias)}; give t_end [s]")
+
+
+def batch_params(block: SlidingBlock) -> tuple[np.ndarray, ...]:
+    """(mu, f, bias, g, scale) as arrays of the block's batch shape, for compiled kernels."""
+    shape = block.batch_shape
+    params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
+                   for p in (block.mu, block.friction_kinetic, block.bias))
+    return params + (np.full(shape, float(block.g)), np.ones(shape))
+
+
 class AbstractBackend(abc.ABC):
     """Integrates a :class:`SlidingBlock` under an excitation to a :class:`Solution`.
 

@@ -10,7 +10,7 @@ from ..excitation import Pieces
 from ..excitation._pieces import evaluate
 from ..model import Mode, SlidingBlock, slip_constant
 from . import _exact_kernel as kernel
-from ._base import AbstractBackend
+from ._base import AbstractBackend, batch_params, never_rests_error
 
 
 @dataclasses.dataclass(frozen=True)
@@ -45,9 +45,7 @@ class ExactBackend(AbstractBackend):
     def solve_batch(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
         shape = block.batch_shape
-        params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
-                       for p in (block.mu, block.friction_kinetic, block.bias))
-        params += (np.full(shape, float(block.g)), np.ones(shape))
+        params = batch_params(block)
         final, t_final, rests, finished = self._run(kernel.run_batch, params, _device(pieces, self.window),
                                                     len(pieces.t0), horizon, block, pieces, 0)
         for i in range(shape[0]):
@@ -91,9 +89,7 @@ def _check(block, rests, finished, where=""):
         raise RuntimeError(f"the exact kernel stopped before the end of the excitation{where}: "
                            "events accumulate (chatter) faster than it can advance")
     if not bool(rests):
-        raise ValueError(
-            f"the block never comes to rest after the excitation{where}: kinetic friction "
-            f"mu_kinetic={block.friction_kinetic} does not exceed |bias|={abs(block.bias)}; give t_end [s]")
+        raise never_rests_error(block, where)
 
 
 def _solution(block, pieces, final, t_final, backend):

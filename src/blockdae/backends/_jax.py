@@ -8,7 +8,7 @@ import numpy as np
 from .._solution import BatchSolution, Event, Solution
 from ..model import Mode
 from . import _jax_kernel as kernel
-from ._base import AbstractBackend
+from ._base import AbstractBackend, batch_params, never_rests_error
 from ._exact import _DenseOutput, _device, _max_run, _params
 
 
@@ -68,9 +68,7 @@ class JaxBackend(AbstractBackend):
     def solve_batch(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
         shape = block.batch_shape
-        params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
-                       for p in (block.mu, block.friction_kinetic, block.bias))
-        params += (np.full(shape, float(block.g)), np.ones(shape))
+        params = batch_params(block)
         with jax.enable_x64(True):
             out = kernel.run_batch(params, _device(pieces, 1), cfg=self.config(block, pieces),
                                    until_rest=horizon.until_rest, full_output=False)
@@ -93,9 +91,7 @@ class JaxBackend(AbstractBackend):
                 f"{int(flags.n_failed)} segment(s) failed in diffrax{where} (e.g. more than "
                 f"max_steps={self.max_steps} steps); raise max_steps or loosen rtol={self.rtol}")
         if not bool(rests):
-            raise ValueError(
-                f"the block never comes to rest after the excitation{where}: kinetic friction "
-                f"mu_kinetic={block.friction_kinetic} does not exceed |bias|={abs(block.bias)}; give t_end [s]")
+            raise never_rests_error(block, where)
 
 
 def _solution(block, pieces, knots, t_final, n_steps, backend):
