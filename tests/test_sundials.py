@@ -330,7 +330,7 @@ def test_crosscheck_table():
     units in the headers; unknown options are refused."""
     block, motion, t_end = SEED_CASES["ex3b"]
     table = bd.crosscheck(block, motion, t_end=t_end, rtol=1e-10)
-    assert [r["backend"] for r in table.rows] == ["exact", "cvode", "ida"]
+    assert [r["backend"] for r in table.rows] == ["exact", "cvode", "ida", "jax"]
     assert table.row("exact")["max_dt"] == 0.0 and table.row("exact")["rel_du"] == 0.0
     for name in SUNDIALS:
         assert table.row(name)["max_dt"] <= 1e-9 and table.row(name)["rel_du"] <= 1e-7

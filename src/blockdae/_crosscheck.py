@@ -5,6 +5,7 @@ import time
 
 import numpy as np
 
+from ._sensitivities import UNITS, finite_differences, sensitivities
 from ._simulate import simulate
 from .backends import make_backend
 
@@ -16,11 +17,15 @@ class CrossCheck:
     backend, displacement [m], n_events, t_events [s] (array), max_dt [s] (largest
     event-time difference against the reference, inf if the event lists differ in
     length or modes), rel_du [-] (|u - u_ref| / |u_ref|, or the absolute difference
-    [m] when u_ref = 0) and wall [s] (of that call, JIT compilation included).
+    [m] when u_ref = 0) and wall [s] (of that call, JIT compilation included); with
+    ``wrt``, also sensitivities (name -> d u / d p, see :func:`blockdae.sensitivities`:
+    differentiated kernels for "exact" and "jax", central differences for the others)
+    and rel_dsens [-] (largest relative difference of those against the reference's).
     """
 
     rows: list
     reference: str
+    wrt: tuple = ()
 
     def row(self, backend: str) -> dict:
         """The row of ``backend``."""
@@ -30,21 +35,28 @@ class CrossCheck:
         raise KeyError(f"backend {backend!r} is not in this cross-check")
 
     def __str__(self):
+        derivative_heads = "".join(f" {f'du/d{name} [{UNITS[name]}]':>17}" for name in self.wrt)
         head = (f"{'backend':<8} {'u_end [m]':>16} {'events':>6} {'max |dt| [s]':>13} "
-                f"{'rel |du| [-]':>13} {'wall [s]':>9}")
+                f"{'rel |du| [-]':>13} {'wall [s]':>9}" + derivative_heads
+                + (f" {'rel |dS| [-]':>13}" if self.wrt else ""))
         lines = [head, "-" * len(head)]
         for r in self.rows:
+            derivatives = "".join(f" {r['sensitivities'][name]:>17.10g}" for name in self.wrt)
             lines.append(f"{r['backend']:<8} {r['displacement']:>16.10f} {r['n_events']:>6d} "
-                         f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['wall']:>9.3f}")
+                         f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['wall']:>9.3f}" + derivatives
+                         + (f" {r['rel_dsens']:>13.2e}" if self.wrt else ""))
         return "\n".join(lines) + f"\n(differences against {self.reference!r})"
 
 
-def crosscheck(block, motion, backends=("exact", "cvode", "ida"), t_end=None, **options) -> CrossCheck:
+def crosscheck(block, motion, backends=("exact", "cvode", "ida", "jax"), t_end=None, wrt=(),
+               **options) -> CrossCheck:
     """Solve ``block`` under ``motion`` with each backend and compare with the first.
 
     Args:
         backends: backend names; the first is the reference (normally "exact").
         t_end: final time [s], or None (until rest after a finite excitation).
+        wrt: parameters to differentiate u(t_end) by (see :func:`blockdae.sensitivities`),
+            e.g. ("mu", "mu_kinetic", "bias", "A"); none by default.
         **options: settings passed to every backend that has them (e.g. ``rtol``).
     """
     accepted = {name: {f.name for f in dataclasses.fields(type(make_backend(name)))} for name in backends}
@@ -61,7 +73,16 @@ def crosscheck(block, motion, backends=("exact", "cvode", "ida"), t_end=None, **
     rows = [dict(backend=name, displacement=s.displacement, n_events=len(s.events), t_events=s.t_events,
                  max_dt=_max_event_dt(ref, s), rel_du=_relative(s.displacement, ref.displacement), wall=wall)
             for name, s, wall in solutions]
-    return CrossCheck(rows=rows, reference=backends[0])
+    if wrt:
+        wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
+        for row in rows:
+            mine = {key: value for key, value in options.items() if key in accepted[row["backend"]]}
+            derivative = sensitivities if row["backend"] in ("exact", "jax") else finite_differences
+            row["sensitivities"] = derivative(block, motion, t_end=t_end, wrt=wrt, backend=row["backend"], **mine)
+        ref_sens = rows[0]["sensitivities"]
+        for row in rows:
+            row["rel_dsens"] = max(_relative(row["sensitivities"][n], ref_sens[n]) for n in wrt)
+    return CrossCheck(rows=rows, reference=backends[0], wrt=tuple(wrt))
 
 
 def _max_event_dt(ref, sol):

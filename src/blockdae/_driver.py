@@ -140,10 +140,13 @@ class _Run:
     # ---- the loop ----------------------------------------------------------
     def enter_piece(self, t0, coefficients):
         """Switch to the piece starting at ``t0`` [s]; a block at rest re-takes the mode
-        the right-hand limits of a(t) give."""
+        the right-hand limits of a(t) give. Where a(t) jumps the integrator restarts: a
+        multistep method must not carry its history across a discontinuous flow."""
+        a_left = self.piece_excitation.acceleration(t0)
         self.piece_excitation.set(t0, coefficients)
+        jumps = self.piece_excitation.acceleration(t0) != a_left
         self.knots.set_right_rate(self.slip_rate(self.mode, self.t, self.y))
-        self.restarted |= self.mode in self.integrator.restart_at_pieces
+        self.restarted |= jumps or self.mode in self.integrator.restart_at_pieces
         if self.mode == Mode.STICK or self.y[1] == 0:
             rest = Mode(int(self.block.mode_at_rest(t0, self.piece_excitation, SCALAR)))
             if rest != self.mode:

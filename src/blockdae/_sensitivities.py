@@ -17,8 +17,10 @@ import functools
 import jax
 import numpy as np
 
+from ._simulate import simulate
 from .backends import Horizon, make_backend
 from .backends import _exact_kernel, _jax_kernel
+from .backends._base import batch_params
 from .backends._exact import ExactBackend, _device, _check
 from .backends._jax import JaxBackend
 from .excitation import AbstractExcitation
@@ -48,10 +50,7 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
         name -> derivative [m per unit of the parameter; m/g for "A"]: a float, or an
         array of shape (n,) for a batch of n parameter sets.
     """
-    wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
-    unknown = [name for name in wrt if name not in UNITS]
-    if unknown or not wrt:
-        raise ValueError(f"wrt={wrt!r}: choose among {tuple(UNITS)}")
+    wrt = _names(wrt)
     if backend not in ("exact", "jax"):
         raise ValueError(f"backend={backend!r} has no derivatives; use 'exact' or 'jax'")
     if not isinstance(block, SlidingBlock):
@@ -64,9 +63,7 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
     kernel, static, device = _kernel(solver, block, pieces)
 
     shape = block.batch_shape
-    params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
-                   for p in (block.mu, block.friction_kinetic, block.bias))
-    params += (np.full(shape, float(block.g)), np.ones(shape))
+    params = batch_params(block)
     with jax.enable_x64(True):
         jac, aux = _jacobian(params, device, len(pieces.t0), (block.allow_negative, block.allow_positive),
                              kernel=kernel, static=static, until_rest=horizon.until_rest, batched=bool(shape))
@@ -85,6 +82,48 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
         "scale": d_scale,
     }
     return {name: (float(derivatives[name]) if not shape else derivatives[name]) for name in wrt}
+
+
+def finite_differences(block: SlidingBlock, motion: AbstractExcitation, t_end: float | None = None,
+                       wrt=("mu", "mu_kinetic", "bias", "A"), backend: str = "cvode", step: float = 1e-4,
+                       **options) -> dict:
+    """Central finite differences of u(t_end) on any backend, for checking derivatives.
+
+    Same parameters and units as :func:`sensitivities` (one parameter set). ``step`` is
+    relative: mu and mu_kinetic move by step times their value, bias by step times mu,
+    and a(t) is scaled by 1 +- step. The step must leave the block valid (f <= mu).
+    """
+    wrt = _names(wrt)
+    if block.batch_shape:
+        raise ValueError("finite_differences takes one parameter set; use block.item(i)")
+    if not (np.isfinite(step) and 0 < step < 0.1):
+        raise ValueError(f"step must be a relative step in (0, 0.1), got {step!r}")
+
+    def u(blk, mot):
+        return simulate(blk, mot, t_end=t_end, backend=backend, **options).displacement
+
+    def central(change):
+        return (u(*change(+1)) - u(*change(-1))) / 2
+
+    f = block.friction_kinetic
+    h_mu, h_f = step * block.mu, step * (f if f > 0 else block.mu)
+    d_scale = central(lambda s: (block, motion.scaled(1 + s * step))) / step
+    derivatives = {
+        "mu": lambda: central(lambda s: (block.replace(mu=block.mu + s * h_mu), motion)) / h_mu,
+        "mu_kinetic": lambda: central(lambda s: (block.replace(mu_kinetic=f + s * h_f), motion)) / h_f,
+        "bias": lambda: central(lambda s: (block.replace(bias=block.bias + s * h_mu), motion)) / h_mu,
+        "A": lambda: d_scale * block.g / motion.peak_acceleration,
+        "scale": lambda: d_scale,
+    }
+    return {name: float(derivatives[name]()) for name in wrt}
+
+
+def _names(wrt):
+    wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
+    unknown = [name for name in wrt if name not in UNITS]
+    if unknown or not wrt:
+        raise ValueError(f"wrt={wrt!r}: choose among {tuple(UNITS)}")
+    return wrt
 
 
 def _kernel(solver, block, pieces):
