@@ -7,7 +7,8 @@ the piece ends or the mode's single guard (a ``diffrax.Event``) crosses zero
 downwards; the root is bracketed by ``optimistix.Bisection`` on the solver's dense
 output, then polished by one Newton step that also carries derivatives (the
 implicit function theorem at the guard). The flow, guards and transitions come
-from :mod:`blockdae.model` (``demand``, ``slip_constant``, ``rest_mode``).
+from :mod:`blockdae.model` (``relative_acceleration``, ``stick_guards``, ``demand``,
+``slip_constant``; the stop rule through the exact kernel's ``_mode_after_stop``).
 Derivatives: forward mode (``jax.jvp``/``jax.jacfwd``), via ``diffrax.ForwardMode``.
 """
 
@@ -20,7 +21,7 @@ import jax.numpy as jnp
 import optimistix as optx
 
 from ..excitation._pieces import accel, accel_rate, rebase
-from ..model import demand, slip_constant
+from ..model import demand, relative_acceleration, slip_constant, stick_guards
 from ._closed_form import onset_delta
 from ._exact_kernel import Params, _mode_after_stop, _Rules
 
@@ -72,18 +73,15 @@ class Flags(NamedTuple):
 
 
 def _rhs(tau, y, args):
-    """dy/dtau = (v, c - a(tau)) in slip, (v, 0) in stick [m/s, m/s²]."""
-    cf, c, mode, _ = args
-    dv = c - accel(*cf, tau, jnp)
-    return y[1], jnp.where(mode == 0, 0.0, dv)
+    """dy/dtau = (v, dv/dtau) by the model's flow [m/s, m/s²]."""
+    cf, _, mode, (p, _, _) = args
+    return y[1], relative_acceleration(mode, accel(*cf, tau, jnp), p.bias, p.f, p.g, jnp)
 
 
 def _stick_guards(tau, args):
     """(mu g - sigma, mu g + sigma) [m/s²]; a disallowed direction's guard is 1."""
     cf, _, _, (p, allow_neg, allow_pos) = args
-    sigma = demand(accel(*cf, tau, jnp), p.bias, p.g)
-    limit = p.mu * p.g
-    return jnp.where(allow_neg, limit - sigma, 1.0), jnp.where(allow_pos, limit + sigma, 1.0)
+    return stick_guards(demand(accel(*cf, tau, jnp), p.bias, p.g), p.mu, p.g, allow_neg, allow_pos, jnp)
 
 
 def _guard(t, y, args, **_):

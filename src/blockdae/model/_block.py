@@ -31,6 +31,13 @@ def slip_constant(mode, bias, mu_kinetic, g):
     return (bias - mode * mu_kinetic) * g
 
 
+def relative_acceleration(mode, a, bias, mu_kinetic, g, xp):
+    """dv/dt [m/s²] in ``mode`` under base acceleration ``a`` [m/s²]: zero in stick,
+    slip_constant - a while sliding."""
+    dv = slip_constant(mode, bias, mu_kinetic, g) - a
+    return xp.where(mode == 0, 0.0 * dv, dv)
+
+
 def rest_mode(sigma, sigma_rate, mu, g, allow_neg, allow_pos, xp):
     """Mode of a block at rest (v = 0) under friction demand ``sigma`` [m/s²].
 
@@ -168,8 +175,8 @@ class SlidingBlock(AbstractHybridModel):
 
     def flow(self, mode, t, y, excitation, xp=np):
         """dy/dt = (v, dv/dt) in ``mode``; dv/dt = 0 in stick [m/s, m/s²]."""
-        dv = slip_constant(mode, self.bias, self.friction_kinetic, self.g) - excitation.acceleration(t)
-        return xp.stack([y[1], xp.where(mode == 0, 0.0 * dv, dv)])
+        a = excitation.acceleration(t)
+        return xp.stack([y[1], relative_acceleration(mode, a, self.bias, self.friction_kinetic, self.g, xp)])
 
     def guards(self, mode, t, y, excitation, xp=np):
         """Guards of ``mode``; each leaves the mode when it crosses zero downwards.
