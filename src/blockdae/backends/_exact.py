@@ -34,25 +34,27 @@ class ExactBackend(AbstractBackend):
         device = _device(pieces, self.window)
         capacity = _bucket(len(pieces.t0))  # one event per piece; grows if ever needed
         while True:
-            final, t_final, rests, finished = self._run(kernel.run, _params(block), device, len(pieces.t0),
-                                                        horizon, block, pieces, capacity)
-            if int(final.n_events) <= capacity:
+            out = self._run(kernel.run, _params(block), device, len(pieces.t0), horizon, block, pieces, capacity)
+            u, v, mode, max_abs_u, n_events, t_final, rests, finished = out.scalars
+            if n_events <= capacity:
                 break
             capacity *= 2
         _check(block, rests, finished)
-        return _solution(block, pieces, final, float(t_final), self.name)
+        n = int(n_events)
+        return _solution(block, pieces, out.log[:n], (float(u), float(v), int(mode)), float(t_final), self.name)
 
     def solve_batch(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
         shape = block.batch_shape
         params = batch_params(block)
-        final, t_final, rests, finished = self._run(kernel.run_batch, params, _device(pieces, self.window),
-                                                    len(pieces.t0), horizon, block, pieces, 0)
+        out = self._run(kernel.run_batch, params, _device(pieces, self.window), len(pieces.t0), horizon,
+                        block, pieces, 0)
+        u, _, _, max_abs_u, n_events, t_final, rests, finished = out.scalars.T
         for i in range(shape[0]):
             _check(block.item(i), rests[i], finished[i], f" (parameter set {i})")
         return BatchSolution(
-            displacement=np.asarray(final.u), max_abs_displacement=np.asarray(final.max_abs_u),
-            n_events=np.asarray(final.n_events), t_end=np.asarray(t_final), backend=self.name,
+            displacement=u, max_abs_displacement=max_abs_u, n_events=n_events.astype(int), t_end=t_final,
+            backend=self.name,
             solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
 
     def _run(self, fn, params, device, n_pieces, horizon, block, pieces, capacity):
@@ -92,19 +94,24 @@ def _check(block, rests, finished, where=""):
         raise never_rests_error(block, where)
 
 
-def _solution(block, pieces, final, t_final, backend):
-    """Knots at the start, every event and the end, straight from the kernel."""
-    n = int(final.n_events)
-    log = jax.tree.map(lambda x: np.asarray(x)[:n], final.log)
-    events = tuple(Event(float(t), Mode(int(b)), Mode(int(a)), float(u), 0.0)
-                   for t, b, a, u in zip(log.t, log.mode_before, log.mode_after, log.u))
-    t = np.concatenate([[0.0], log.t, [t_final]])
-    u = np.concatenate([[0.0], log.u, [final.u]])
-    v = np.concatenate([np.zeros(n + 1), [final.v]])
-    mode = np.concatenate([[0], log.mode_after, [final.mode]]).astype(int)
-    stats = {"max_events_at_one_instant": _max_run(log.t), "n_events": n}
+def _solution(block, pieces, log, final, t_final, backend):
+    """Knots at the start, every event and the end, straight from the kernel.
+
+    ``log``: (n_events, 4) rows of t [s], mode before, mode after, u [m];
+    ``final``: (u [m], v [m/s], mode) at ``t_final`` [s].
+    """
+    n = log.shape[0]
+    t_ev, before, after, u_ev = log.T
+    before, after = before.astype(int), after.astype(int)
+    events = tuple(Event(float(t), Mode(b), Mode(a), float(u), 0.0)
+                   for t, b, a, u in zip(t_ev, before.tolist(), after.tolist(), u_ev))
+    t = np.concatenate([[0.0], t_ev, [t_final]])
+    u = np.concatenate([[0.0], u_ev, [final[0]]])
+    v = np.concatenate([np.zeros(n + 1), [final[1]]])
+    mode = np.concatenate([[0], after, [final[2]]]).astype(int)
+    stats = {"max_events_at_one_instant": _max_run(t_ev), "n_events": n}
     return Solution(t=t, u=u, v=v, mode=mode, events=events, backend=backend,
-                    dense=_DenseOutput(block, pieces, log.t, log.u, log.mode_after), stats=stats)
+                    dense=_DenseOutput(block, pieces, t_ev, u_ev, after), stats=stats)
 
 
 def _max_run(times):

@@ -246,12 +246,29 @@ def _run(params, allowed, pieces, n_pieces, until_rest, *, window, log_capacity,
     return final, jnp.where(until_rest, t_rest, t_excitation_end), rests | ~until_rest, finished
 
 
+class Summary(NamedTuple):
+    """A run's outcome, packed into two arrays so that it crosses to the host at once."""
+
+    scalars: jax.Array  # (..., 8): u [m], v [m/s], mode, max |u| [m], n_events, t_final [s], rests, finished
+    log: jax.Array  # (..., capacity, 4): t [s], mode_before, mode_after, u [m] per event
+
+    @staticmethod
+    def pack(final, t_final, rests, finished):
+        scalars = (final.u, final.v, final.mode, final.max_abs_u, final.n_events, t_final, rests, finished)
+        return Summary(jnp.stack([jnp.asarray(x, float) for x in scalars], axis=-1),
+                       jnp.stack([jnp.asarray(x, float) for x in final.log], axis=-1))
+
+
+def _packed(params, allowed, pieces, n_pieces, until_rest, **static):
+    return Summary.pack(*_run(params, allowed, pieces, n_pieces, until_rest, **static))
+
+
 #: one parameter set
-run = jax.jit(_run, static_argnames=_STATIC)
+run = jax.jit(_packed, static_argnames=_STATIC)
 
 
 @functools.partial(jax.jit, static_argnames=_STATIC)
 def run_batch(params, allowed, pieces, n_pieces, until_rest, **static):
     """``run`` vectorised over the leading axis of every entry of ``params``."""
-    return jax.vmap(functools.partial(_run, **static), in_axes=(0, None, None, None, None))(
+    return jax.vmap(functools.partial(_packed, **static), in_axes=(0, None, None, None, None))(
         params, allowed, pieces, n_pieces, until_rest)
