@@ -19,10 +19,9 @@ import numpy as np
 
 from ._simulate import simulate
 from .backends import Horizon, make_backend
-from .backends import _exact_kernel, _jax_kernel
+from .backends import _exact_kernel
 from .backends._base import batch_params
 from .backends._exact import ExactBackend, _device, _check
-from .backends._jax import JaxBackend
 from .excitation import AbstractExcitation
 from .model import SlidingBlock
 
@@ -130,7 +129,6 @@ def _kernel(solver, block, pieces):
     """(kernel name, its static settings, the pieces padded for it)."""
     if isinstance(solver, ExactBackend):
         return "exact", (solver.window, pieces.has_sine), _device(pieces, solver.window)
-    assert isinstance(solver, JaxBackend)
     return "jax", solver.config(block, pieces), _device(pieces, 1)
 
 
@@ -141,6 +139,8 @@ def _final_u(params, pieces, n_pieces, allowed, *, kernel, static, until_rest):
         _, _, rests, finished = out = _exact_kernel._run(params, allowed, pieces, n_pieces, until_rest,
                                                          window=window, log_capacity=0, is_sine=is_sine)
         return out[0].u, (rests, finished)
+    from .backends import _jax_kernel  # diffrax loads only when the twin is used
+
     final, _, rests, flags, _ = _jax_kernel._run(params, pieces, cfg=static, until_rest=until_rest, full_output=False)
     return final.u, (rests, flags)
 
