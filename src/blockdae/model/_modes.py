@@ -12,3 +12,6 @@ class Mode(enum.IntEnum):
     STICK = 0
     SLIP_POS = 1  # block slides in +x relative to the base (v > 0)
     SLIP_NEG = -1  # block slides in -x relative to the base (v < 0)
+
+    def __str__(self):
+        return self.name
