@@ -30,6 +30,9 @@ SCALAR = types.SimpleNamespace(stack=tuple, where=lambda cond, a, b: a if cond e
 
 _EPS = np.finfo(float).eps
 _TURN_BISECTIONS = 60  # halves a piece below 1e-18 of its length
+# a(t) jumps where its two limits differ by more than this many ulps (the left limit
+# p0 + p1 h of a record's piece misses the next sample by a few ulps)
+_JUMP_ULPS = 64
 _ULPS = 8  # intervals shorter than this many ulps are not integrated
 _KNOTS_PER_RADIAN = 32  # dense-output knots on sine pieces
 # global error of v in local tolerances (the worst seen on the sample records is ~20)
@@ -144,7 +147,8 @@ class _Run:
         multistep method must not carry its history across a discontinuous flow."""
         a_left = self.piece_excitation.acceleration(t0)
         self.piece_excitation.set(t0, coefficients)
-        jumps = self.piece_excitation.acceleration(t0) != a_left
+        a_right = self.piece_excitation.acceleration(t0)
+        jumps = abs(a_right - a_left) > _JUMP_ULPS * _EPS * max(abs(a_left), abs(a_right))
         self.knots.set_right_rate(self.slip_rate(self.mode, self.t, self.y))
         self.restarted |= jumps or self.mode in self.integrator.restart_at_pieces
         if self.mode == Mode.STICK or self.y[1] == 0:
@@ -203,16 +207,18 @@ class _Run:
         on a piece), so that v is monotone between stops; None if there is none."""
         if self.mode == Mode.STICK:
             return None
-        sign = lambda t: math.copysign(1.0, self.slip_rate(self.mode, t, self.y))
         lo, hi = self.t, end
-        sign_lo = sign(lo)
-        if sign(hi) == sign_lo:
+        sign_lo = math.copysign(1.0, self.slip_rate(self.mode, lo, self.y))
+        # before the turn: dv/dt strictly of the sign at lo (a zero of either sign, +0.0
+        # or -0.0, counts as turned, so that a(t) -> -a(t) mirrors the turn exactly)
+        before = lambda t: sign_lo * self.slip_rate(self.mode, t, self.y) > 0
+        if before(hi):
             return None
         for _ in range(_TURN_BISECTIONS):
             mid = 0.5 * (lo + hi)
             if mid in (lo, hi):
                 break
-            lo, hi = (mid, hi) if sign(mid) == sign_lo else (lo, mid)
+            lo, hi = (mid, hi) if before(mid) else (lo, mid)
         return hi if hi < end else None
 
     def on_guard(self, index):
