@@ -102,7 +102,7 @@ def _segment_end(cfg, args, tau, h):
     monotone on every segment, so no guard root can hide between two steps.
     """
     cf, c, mode, _ = args
-    rate_start, rate_end = c - accel(*cf, tau, jnp), c - accel(*cf, h, jnp)
+    rate_start, rate_end = _rhs(tau, (0.0, 0.0), args)[1], _rhs(h, (0.0, 0.0), args)[1]
     d_turn = onset_delta(rebase(*cf, tau), h - tau, c, cfg.is_sine)
     turns = (mode != 0) & (rate_start * rate_end < 0) & (tau < tau + d_turn) & (tau + d_turn < h)
     return jax.lax.stop_gradient(jnp.where(turns, tau + d_turn, h))
@@ -124,7 +124,7 @@ def _polish_onset(args, tau_root):
     cf, _, _, (p, _, _) = args
     sigma = demand(accel(*cf, tau_root, jnp), p.bias, p.g)
     to_neg = sigma > 0  # guard 0 (mu g - sigma) -> slip-, guard 1 (mu g + sigma) -> slip+
-    active = lambda t: jnp.where(to_neg, _stick_guards(t, args)[0], _stick_guards(t, args)[1])
+    active = lambda t: _stick_guards(t, args)[jnp.where(to_neg, 0, 1)]
     value, slope = jax.jvp(active, (tau_root,), (jnp.ones_like(tau_root),))
     step = jnp.where(slope != 0, value / jnp.where(slope != 0, slope, 1.0), 0.0)
     return tau_root - step, jnp.where(to_neg, -1, 1)
@@ -132,8 +132,7 @@ def _polish_onset(args, tau_root):
 
 def _polish_stop(args, tau_root, u, v):
     """Newton step on v = 0 along the flow; returns (tau [s], u [m])."""
-    cf, c, _, _ = args
-    rate = c - accel(*cf, tau_root, jnp)
+    _, rate = _rhs(tau_root, (u, v), args)
     step = jnp.where(rate != 0, v / jnp.where(rate != 0, rate, 1.0), 0.0)
     return tau_root - step, u - 0.5 * v * step
 
@@ -161,7 +160,9 @@ def _segment(cfg, rules, cf, t0, h, tau, u, v, mode):
     tau_on, mode_on = _polish_onset(args, tau_root)
     tau_stop, u_stop = _polish_stop(args, tau_root, u_e, v_e)
     stick = mode == 0
-    tau_new = jnp.clip(jnp.where(stick, tau_on, tau_stop), tau, h)
+    tau_new = jnp.where(stick, tau_on, tau_stop)
+    # keep it in [tau, h]; jnp.clip would halve the derivative of a root on a bound
+    tau_new = jnp.where(tau_new < tau, tau, jnp.where(tau_new > h, h, tau_new))
     u_new = jnp.where(stick, u_e, u_stop)
     after_stop = _mode_after_stop(rules, cf, tau_new, c, mode, t0 + tau_new)
     mode_new = jnp.where(stick, mode_on, after_stop)
