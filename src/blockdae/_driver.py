@@ -23,7 +23,7 @@ import numpy as np
 from ._solution import Event, Solution
 from .backends._base import never_rests_error
 from .excitation._pieces import accel, accel_rate
-from .model import Mode
+from .model import Mode, comes_to_rest
 
 #: array namespace for the model's xp-generic rules on Python floats
 SCALAR = types.SimpleNamespace(stack=tuple, where=lambda cond, a, b: a if cond else b)
@@ -262,9 +262,10 @@ class _Run:
         self.enter_piece(t_end, (0.0,) * 5)
         if self.mode == Mode.STICK:
             return
+        block = self.block
+        if not comes_to_rest(self.y[1], self.mode, block.bias, block.friction_kinetic, block.g):
+            raise never_rests_error(block)
         rate = self.slip_rate(self.mode, self.t, self.y)
-        if self.y[1] * rate >= 0:
-            raise never_rests_error(self.block)
         bound = self.t + 2.0 * abs(self.y[1] / rate)  # dv/dt is constant: the stop is half-way
         self.advance_to(bound, until_stick=True)
         if self.mode != Mode.STICK:

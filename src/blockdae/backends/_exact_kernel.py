@@ -19,7 +19,7 @@ import jax
 import jax.numpy as jnp
 
 from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, rebase
-from ..model import demand, rest_mode, slip_constant, stop_mode
+from ..model import comes_to_rest, demand, rest_mode, slip_constant, stop_mode
 from ._closed_form import onset_delta, slip_motion, stop_delta
 
 
@@ -196,7 +196,7 @@ def _tail_to_rest(rules, state, t_start, log_events):
     p = rules.params
     sliding = state.v != 0
     c = slip_constant(state.mode, p.bias, p.f, p.g)
-    rests = ~sliding | (state.v * c < 0)
+    rests = comes_to_rest(state.v, state.mode, p.bias, p.f, p.g)
     d = jnp.where(sliding & rests, -state.v / jnp.where(c != 0, c, 1.0), 0.0)
     u = state.u + 0.5 * state.v * d
     after = rules.at_rest(-p.bias * p.g, 0.0)

@@ -21,7 +21,7 @@ import jax.numpy as jnp
 import optimistix as optx
 
 from ..excitation._pieces import accel, accel_rate, rebase
-from ..model import demand, relative_acceleration, slip_constant, stick_guards
+from ..model import comes_to_rest, demand, relative_acceleration, slip_constant, stick_guards
 from ._closed_form import onset_delta
 from ._exact_kernel import Params, _mode_after_stop, _Rules
 
@@ -235,7 +235,7 @@ def _tail(cfg, rules, carry, t_start):
     p = rules.params
     c = slip_constant(state.mode, p.bias, p.f, p.g)
     sliding = state.v != 0
-    rests = ~sliding | (state.v * c < 0)
+    rests = comes_to_rest(state.v, state.mode, p.bias, p.f, p.g)
     window = jnp.where(sliding & rests, 2.0 * jnp.abs(state.v) / jnp.where(c != 0, jnp.abs(c), 1.0) + 1.0, 0.0)
     zero = jnp.zeros_like(t_start)
     piece = (t_start, window, zero, zero, zero, zero, zero)

@@ -38,6 +38,12 @@ def relative_acceleration(mode, a, bias, mu_kinetic, g, xp):
     return xp.where(mode == 0, 0.0 * dv, dv)
 
 
+def comes_to_rest(v, mode, bias, mu_kinetic, g):
+    """Whether a block sliding at ``v`` [m/s] in ``mode`` stops once a(t) = 0: dv/dt is
+    then the constant slip_constant, so it stops iff that opposes v (or v = 0)."""
+    return (v == 0) | (v * slip_constant(mode, bias, mu_kinetic, g) < 0)
+
+
 def rest_mode(sigma, sigma_rate, mu, g, allow_neg, allow_pos, xp):
     """Mode of a block at rest (v = 0) under friction demand ``sigma`` [m/s²].
 
