@@ -44,6 +44,9 @@ def main(argv=None) -> int:
     except _UsageError as err:
         print(f"blockdae: error: {err}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader of the output stopped early (e.g. `| head`)
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at exit
+        return 0
 
 
 def _parser():
