@@ -5,7 +5,6 @@ import dataclasses
 from sksundae.cvode import CVODE
 
 from .._driver import SCALAR
-from ..model import Mode
 from ._sundials import Guards, SundialsBackend, SundialsIntegrator
 
 #: CVODE's first step after every (re)start [s]. A restart begins at order 1, and
@@ -39,11 +38,6 @@ class _CVODEGuards(Guards):
 class _CVODEIntegrator(SundialsIntegrator):
     label = "CVODE"
     guards_class = _CVODEGuards
-    # a fresh start at every piece of a(t): an Adams history carried across a kink of
-    # a(t) fits one polynomial to two pieces. Worst event-time error at rtol 1e-10 on
-    # Chi-Chi, Kobe and Kocaeli (two-way with bias, one-way): 1.7e-9 s carrying the
-    # history, 1.6e-12 s restarting from FIRST_STEP (4.8e-12 s over all 18 records)
-    restart_at_pieces = (Mode.STICK, Mode.SLIP_POS, Mode.SLIP_NEG)
 
     def _build(self, mode, guards, options):
         block, piece = self.block, self.piece

@@ -48,9 +48,6 @@ class _IDAGuards(Guards):
 class _IDAIntegrator(SundialsIntegrator):
     label = "IDA"
     guards_class = _IDAGuards
-    # F follows a(t), whose slope jumps at piece ends; restarting in slip too cuts the
-    # worst event-time error over the 18 sample records from 8.8e-9 s to 1.0e-9 s
-    restart_at_pieces = (Mode.STICK, Mode.SLIP_POS, Mode.SLIP_NEG)
 
     def _build(self, mode, guards, options):
         block, piece = self.block, self.piece
