@@ -1,8 +1,9 @@
 """The exact backend's compiled kernel.
 
-The excitation is a sequence of monotone closed-form pieces. Before the loop, every
-piece is marked where its demand leaves [-mu g, mu g], so that from stick the loop jumps
-to the next possible onset at once. In slip an iteration accumulates the closed-form
+The excitation is a sequence of monotone closed-form pieces. Before the loop, the range
+of a(t) is bounded over blocks of ``window`` pieces (independently of the parameters),
+so that from stick an iteration skips to the first block where the demand may leave
+[-mu g, mu g] and checks its pieces one by one. In slip an iteration accumulates the closed-form
 velocity over a window of ``window`` pieces and finds the first piece where v returns to
 zero, or skips the window. Each event is located in closed form (linear pieces: linear
 or quadratic equations) or by bracketing a monotone function (sine pieces), to machine
@@ -33,15 +34,6 @@ class Params(NamedTuple):
     scale: jax.Array  # factor on a(t) [-]
 
 
-class EventLog(NamedTuple):
-    """Fixed-capacity log of events, shape (capacity,) each."""
-
-    t: jax.Array
-    mode_before: jax.Array
-    mode_after: jax.Array
-    u: jax.Array
-
-
 class State(NamedTuple):
     k: jax.Array  # index of the current piece
     tau: jax.Array  # time into the current piece [s]
@@ -51,7 +43,21 @@ class State(NamedTuple):
     max_abs_u: jax.Array  # [m]
     n_events: jax.Array
     n_iterations: jax.Array
-    log: EventLog
+    log: jax.Array  # (capacity, 4): t [s], mode before, mode after, u [m] per event
+
+
+def _logged(log, n_events, logged, t, before, after, u):
+    """``log`` with (t, before, after, u) in row n_events; it counts only if ``logged``.
+
+    An unconditional row update stays in place (a masked scatter copies the log every
+    iteration); a row not logged is overwritten by the next event, and at n_events =
+    capacity the last row is: the caller then reruns with a larger log.
+    """
+    if log.shape[0] == 0:
+        return log, n_events + logged
+    row = jnp.stack([jnp.asarray(x, log.dtype) for x in (t, before, after, u)])[None]
+    slot = jnp.minimum(n_events, log.shape[0] - 1)
+    return jax.lax.dynamic_update_slice(log, row, (slot, 0)), n_events + logged
 
 
 class _Rules(NamedTuple):
@@ -65,23 +71,42 @@ class _Rules(NamedTuple):
 
 
 class _Excitation(NamedTuple):
-    """The pieces with a(t) scaled, and where in stick the block may start to slide."""
+    """The pieces (a(t) not yet scaled) and bounds of a(t) per block of pieces."""
 
     t0: jax.Array  # (n,) [s]
     h: jax.Array  # (n,) [s]
     cf: tuple  # coefficients, each (n,) (sine terms None for linear pieces)
-    next_onset: jax.Array  # (n + 1,) first piece >= k whose demand leaves [-mu g, mu g]
+    a_max: jax.Array  # (n // window,) max of a over the pieces of each block [m/s²]
+    a_min: jax.Array  # (n // window,) min of a over the pieces of each block [m/s²]
 
 
-def _prepare(rules, pieces, is_sine):
+def _prepare(pieces, window, is_sine):
+    """Parameter-free: shared by every parameter set of a batch."""
+    cf = (pieces[2], pieces[3]) + ((pieces[4], pieces[5], pieces[6]) if is_sine else (None, None, None))
+    ends = (accel(*cf, 0.0, jnp), accel(*cf, pieces[1], jnp))  # monotone pieces: extrema at their ends
+    n_blocks = pieces[0].shape[0] // window
+    per_block = lambda x: x[: n_blocks * window].reshape(n_blocks, window)
+    return _Excitation(pieces[0], pieces[1], cf, per_block(jnp.maximum(*ends)).max(axis=1),
+                       per_block(jnp.minimum(*ends)).min(axis=1))
+
+
+def _scaled(cf, scale):
+    """Coefficients of ``scale`` a(t)."""
+    p0, p1, s, w, phi = cf
+    return p0 * scale, p1 * scale, (None if s is None else s * scale), w, phi
+
+
+def _blocks_may_leave_stick(rules, exc):
+    """Per block: whether the demand may leave [-mu g, mu g] there. Conservative by a
+    relative 1e-9 (the pieces are checked one by one after), never missing an onset."""
     p = rules.params
-    cf = (pieces[2] * p.scale, pieces[3] * p.scale)
-    cf += (pieces[4] * p.scale, pieces[5], pieces[6]) if is_sine else (None, None, None)
-    up, down = _leaves_stick(rules, cf, pieces[1])
-    n = pieces[0].shape[0]
-    index = jnp.where(up | down, jnp.arange(n), n)
-    next_onset = jnp.append(jax.lax.cummin(index, reverse=True), n)
-    return _Excitation(pieces[0], pieces[1], cf, next_onset)
+    limit = p.mu * p.g
+    highest = jnp.maximum(p.scale * exc.a_max, p.scale * exc.a_min)
+    lowest = jnp.minimum(p.scale * exc.a_max, p.scale * exc.a_min)
+    slack = 1e-9 * (jnp.maximum(highest, -lowest) + jnp.abs(p.bias * p.g) + limit)
+    up = rules.allow_neg & (demand(highest, p.bias, p.g) > limit - slack)
+    down = rules.allow_pos & (demand(lowest, p.bias, p.g) < -limit + slack)
+    return up | down
 
 
 def _leaves_stick(rules, cf, rem):
@@ -95,9 +120,9 @@ def _leaves_stick(rules, cf, rem):
     return up, down
 
 
-def _piece(exc, j, tau):
+def _piece(exc, scale, j, tau):
     """Piece j from time ``tau`` into it: (start time [s], remaining length [s], coefficients)."""
-    cf = rebase(*(None if c is None else c[j] for c in exc.cf), tau)
+    cf = rebase(*_scaled(tuple(None if c is None else c[j] for c in exc.cf), scale), tau)
     return exc.t0[j] + tau, exc.h[j] - tau, cf
 
 
@@ -114,17 +139,25 @@ class _Candidate(NamedTuple):
 
 
 def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
-    """Stick: the onset in the rest of piece k, else in the first piece that allows one."""
+    """Stick: the onset in the rest of piece k, else in the first block of pieces after
+    it that may hold one; a block that holds none after all is skipped."""
     p = rules.params
     limit = p.mu * p.g
-    _, rem_k, cf_k = _piece(exc, state.k, state.tau)
+    _, rem_k, cf_k = _piece(exc, p.scale, state.k, state.tau)
     up_k, down_k = _leaves_stick(rules, cf_k, rem_k)
     here = up_k | down_k
-    j = jnp.where(here, state.k, exc.next_onset[jnp.minimum(state.k + 1, n_pieces)])
-    found = here | (j < n_pieces)
-    j = jnp.minimum(j, n_pieces - 1)
+    block_start = jnp.arange(exc.a_max.shape[0]) * window
+    candidate = _blocks_may_leave_stick(rules, exc) & (block_start + window > state.k + 1) & (block_start < n_pieces)
+    start = block_start[jnp.argmax(candidate)]
+    take = lambda x: jax.lax.dynamic_slice_in_dim(x, start, window)
+    up_b, down_b = _leaves_stick(rules, _scaled(tuple(None if c is None else take(c) for c in exc.cf), p.scale),
+                                 take(exc.h))
+    index = start + jnp.arange(window)
+    in_block = (up_b | down_b) & (index > state.k) & (index < n_pieces)
+    found = here | jnp.any(in_block)
+    j = jnp.where(here, state.k, start + jnp.argmax(in_block))
     tau = jnp.where(here, state.tau, 0.0)
-    t_j, rem_j, cf_j = _piece(exc, j, tau)
+    t_j, rem_j, cf_j = _piece(exc, p.scale, j, tau)
     up_j, _ = _leaves_stick(rules, cf_j, rem_j)
     sigma_j = demand(accel(*cf_j, 0.0, jnp), p.bias, p.g)
     starts_up = rules.allow_neg & (sigma_j > limit)
@@ -135,7 +168,8 @@ def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
     d = onset_delta(cf_j, rem_j, target, is_sine)
     # keep d in [0, rem]; jnp.clip would halve the derivative of a root on a bound
     d = jnp.where(starts_up | starts_down | (d < 0), 0.0, jnp.where(d > rem_j, rem_j, d))
-    return _Candidate(found, jnp.where(found, j, n_pieces), jnp.where(found, tau + d, 0.0), t_j + d,
+    skip_to = jnp.where(jnp.any(candidate), start + window, n_pieces)
+    return _Candidate(found, jnp.where(found, j, skip_to), jnp.where(found, tau + d, 0.0), t_j + d,
                       state.u, 0.0 * state.v, jnp.where(found, jnp.where(going_up, -1, 1), state.mode))
 
 
@@ -144,7 +178,7 @@ def _next_stop(rules, exc, state, n_pieces, *, window, is_sine):
     p = rules.params
     take = lambda x: jax.lax.dynamic_slice_in_dim(x, state.k, window)
     offset = jnp.where(jnp.arange(window) == 0, state.tau, 0.0)
-    cf = rebase(*(None if c is None else take(c) for c in exc.cf), offset)
+    cf = rebase(*_scaled(tuple(None if c is None else take(c) for c in exc.cf), p.scale), offset)
     rem = take(exc.h) - offset
     c = slip_constant(state.mode, p.bias, p.f, p.g)
     dv = c * rem - accel_int1(*cf, rem, jnp)
@@ -165,20 +199,16 @@ def _next_stop(rules, exc, state, n_pieces, *, window, is_sine):
                       jnp.where(found, 0.0, v_start[-1] + dv[-1]), jnp.where(found, after, state.mode))
 
 
-def _step(rules, exc, n_pieces, state, *, window, is_sine, log_events):
+def _step(rules, exc, n_pieces, state, *, window, is_sine):
     """One iteration: to the next event, or as far as the search went without one."""
     static = dict(window=window, is_sine=is_sine)
     nxt = jax.lax.cond(state.mode == 0, functools.partial(_next_onset, **static),
                        functools.partial(_next_stop, **static), rules, exc, state, n_pieces)
     logged = nxt.found & (nxt.after != state.mode)
-    log = state.log
-    if log_events:
-        slot = jnp.where(logged, state.n_events, log.t.shape[0])  # out of range: dropped
-        log = EventLog(*(x.at[slot].set(y, mode="drop") for x, y in
-                         zip(log, (nxt.t, state.mode, nxt.after, nxt.u))))
+    log, n_events = _logged(state.log, state.n_events, logged, nxt.t, state.mode, nxt.after, nxt.u)
     return State(k=nxt.k, tau=nxt.tau, u=nxt.u, v=nxt.v, mode=nxt.after,
                  max_abs_u=jnp.maximum(state.max_abs_u, jnp.abs(nxt.u)),
-                 n_events=state.n_events + logged, n_iterations=state.n_iterations + 1, log=log)
+                 n_events=n_events, n_iterations=state.n_iterations + 1, log=log)
 
 
 def _mode_after_stop(rules, cf, d, c, mode, t_stop):
@@ -188,7 +218,7 @@ def _mode_after_stop(rules, cf, d, c, mode, t_stop):
                      rules.allow_neg, rules.allow_pos, jnp)
 
 
-def _tail_to_rest(rules, state, t_start, log_events):
+def _tail_to_rest(rules, state, t_start):
     """After the excitation (a = 0): slide until v = 0, then stick for good.
 
     Returns the final state, its time [s] and whether the block comes to rest.
@@ -201,14 +231,9 @@ def _tail_to_rest(rules, state, t_start, log_events):
     u = state.u + 0.5 * state.v * d
     after = rules.at_rest(-p.bias * p.g, 0.0)
     logged = rests & (after != state.mode)
-    log = state.log
-    if log_events:
-        slot = jnp.where(logged, state.n_events, log.t.shape[0])
-        log = EventLog(*(x.at[slot].set(y, mode="drop") for x, y in
-                         zip(log, (t_start + d, state.mode, after, u))))
+    log, n_events = _logged(state.log, state.n_events, logged, t_start + d, state.mode, after, u)
     final = state._replace(u=u, v=jnp.where(rests, 0.0, state.v), mode=jnp.where(rests, after, state.mode),
-                           max_abs_u=jnp.maximum(state.max_abs_u, jnp.abs(u)),
-                           n_events=state.n_events + logged, log=log)
+                           max_abs_u=jnp.maximum(state.max_abs_u, jnp.abs(u)), n_events=n_events, log=log)
     return final, t_start + d, rests
 
 
@@ -227,21 +252,18 @@ def _run(params, allowed, pieces, n_pieces, until_rest, *, window, log_capacity,
     rules = _Rules(Params(*params), *allowed)
     zero = jnp.zeros_like(params[0])
     zero_int = jnp.zeros((), int)
-    capacity = max(log_capacity, 1)
-    log = EventLog(jnp.zeros(capacity), jnp.zeros(capacity, int), jnp.zeros(capacity, int), jnp.zeros(capacity))
-    init = State(zero_int, zero, zero, zero, zero_int, zero, zero_int, zero_int, log)
+    init = State(zero_int, zero, zero, zero, zero_int, zero, zero_int, zero_int, jnp.zeros((log_capacity, 4)))
     max_iterations = n_pieces // window + 2 + 4 * pieces[0].shape[0]
 
     def running(state):
         return (state.k < n_pieces) & (state.n_iterations < max_iterations)
 
-    exc = _prepare(rules, pieces, is_sine)
-    step = functools.partial(_step, rules, exc, n_pieces, window=window, is_sine=is_sine,
-                             log_events=log_capacity > 0)
+    exc = _prepare(pieces, window, is_sine)
+    step = functools.partial(_step, rules, exc, n_pieces, window=window, is_sine=is_sine)
     state = jax.lax.while_loop(running, step, init)
     finished = state.k >= n_pieces
     t_excitation_end = pieces[0][n_pieces - 1] + pieces[1][n_pieces - 1]
-    final, t_rest, rests = _tail_to_rest(rules, state, t_excitation_end, log_capacity > 0)
+    final, t_rest, rests = _tail_to_rest(rules, state, t_excitation_end)
     final = jax.tree.map(lambda a, b: jnp.where(until_rest, a, b), final, state)
     return final, jnp.where(until_rest, t_rest, t_excitation_end), rests | ~until_rest, finished
 
@@ -255,8 +277,7 @@ class Summary(NamedTuple):
     @staticmethod
     def pack(final, t_final, rests, finished):
         scalars = (final.u, final.v, final.mode, final.max_abs_u, final.n_events, t_final, rests, finished)
-        return Summary(jnp.stack([jnp.asarray(x, float) for x in scalars], axis=-1),
-                       jnp.stack([jnp.asarray(x, float) for x in final.log], axis=-1))
+        return Summary(jnp.stack([jnp.asarray(x, float) for x in scalars], axis=-1), final.log)
 
 
 def _packed(params, allowed, pieces, n_pieces, until_rest, **static):
