@@ -21,7 +21,7 @@ from ._simulate import simulate
 from .backends import Horizon, make_backend
 from .backends import _exact_kernel
 from .backends._base import batch_params
-from .backends._exact import ExactBackend, _device, _check
+from .backends._exact import ExactBackend, _check, _device, _kernel_input
 from .excitation import AbstractExcitation
 from .model import SlidingBlock
 
@@ -128,7 +128,7 @@ def _names(wrt):
 def _kernel(solver, block, pieces):
     """(kernel name, its static settings, the pieces padded for it)."""
     if isinstance(solver, ExactBackend):
-        return "exact", (solver.window, pieces.has_sine), _device(pieces, solver.window)
+        return "exact", (solver.window, pieces.has_sine), _kernel_input(pieces, solver.window)
     return "jax", solver.config(block, pieces), _device(pieces, 1)
 
 
@@ -150,7 +150,7 @@ def _jacobian(params, pieces, n_pieces, allowed, *, kernel, static, until_rest, 
     """d u / d (mu, f, bias, g, scale), for one parameter set or vectorised over a batch."""
     fun = jax.jacfwd(functools.partial(_final_u, pieces=pieces, n_pieces=n_pieces, allowed=allowed, kernel=kernel,
                                        static=static, until_rest=until_rest), has_aux=True)
-    return jax.vmap(fun)(params) if batched else fun(params)
+    return jax.lax.map(fun, params) if batched else fun(params)  # map, not vmap: see run_batch
 
 
 def _raise_if_bad(solver, block, aux, where):

@@ -45,11 +45,10 @@ class ExactBackend(AbstractBackend):
 
     def solve_batch(self, block, excitation, horizon):
         pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
-        shape = block.batch_shape
         params = batch_params(block)
         out = self._run(kernel.run_batch, params, device, len(pieces.t0), horizon, block, pieces, 0)
         u, _, _, max_abs_u, n_events, t_final, rests, finished = out.scalars.T
-        for i in range(shape[0]):
+        for i in np.flatnonzero(~(rests.astype(bool) & finished.astype(bool))):
             _check(block.item(i), rests[i], finished[i], f" (parameter set {i})")
         return BatchSolution(
             displacement=u, max_abs_displacement=max_abs_u, n_events=n_events.astype(int), t_end=t_final,
@@ -76,9 +75,9 @@ def _bucket(n: int) -> int:
 
 
 def _pieces_on_device(excitation, t_end, window):
-    """The pieces of ``excitation`` up to ``t_end`` [s], and :func:`_device`'s padded
-    copy on the JAX device; kept for the last few excitations, which are immutable
-    (padding a long record and moving it to the device costs as much as its run)."""
+    """The pieces of ``excitation`` up to ``t_end`` [s], and the kernel's input built
+    from them on the JAX device; kept for the last few excitations, which are immutable
+    (building it for a long record costs as much as a run)."""
     try:
         return _cached_pieces_on_device(excitation, t_end, window)
     except TypeError:  # an unhashable user-defined excitation
@@ -89,7 +88,11 @@ def _pieces_on_device(excitation, t_end, window):
 def _cached_pieces_on_device(excitation, t_end, window):
     pieces = excitation.pieces(t_end)
     with jax.enable_x64(True):
-        return pieces, jax.device_put(_device(pieces, window))
+        return pieces, jax.device_put(_kernel_input(pieces, window))
+
+
+def _kernel_input(pieces: Pieces, window: int) -> kernel.Excitation:
+    return kernel.prepare(_device(pieces, window), window, pieces.has_sine)
 
 
 def _device(pieces: Pieces, window: int):
