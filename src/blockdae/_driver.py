@@ -35,7 +35,9 @@ _TURN_BISECTIONS = 60  # halves a piece below 1e-18 of its length
 _JUMP_ULPS = 64
 _ULPS = 8  # intervals shorter than this many ulps are not integrated
 _KNOTS_PER_RADIAN = 32  # dense-output knots on sine pieces
-# global error of v in local tolerances (the worst seen on the sample records is ~20)
+# global error of v in local tolerances: |v'| |t_stop - t_exact| / (rtol max|v| + atol)
+# at every stop on the 18 sample records (two-way mu 0.15, f 0.12, bias 0.03 and
+# one-way mu 0.1) at rtol 1e-10 reaches 1.1 for CVODE and 9.2 for IDA
 _V_ERROR_FACTOR = 10.0
 
 
