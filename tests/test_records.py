@@ -87,3 +87,25 @@ def test_batch_equals_one_by_one():
     np.testing.assert_allclose(batch[2].t_events, bd.simulate(block.item(2), record).t_events)
     # more friction, less sliding
     assert np.all(np.diff(np.abs(batch.max_abs_displacement)) < 0)
+
+
+@pytest.mark.parametrize("motion", ["record", "harmonic"])
+def test_window_changes_speed_never_results(motion):
+    """The exact kernel's ``window`` (pieces per search step in slip, and per block of
+    the onset search in stick) only changes how far an iteration looks: windows from 1
+    to beyond the whole record give the same events. Two-way, f < mu, a bias; a record
+    (linear pieces) and a long harmonic (sine pieces) whose stick phases span blocks."""
+    if motion == "record":
+        excitation, t_end = load_sample_record("Kobe_1995_TAK-090"), None
+        block = bd.SlidingBlock(mu=0.15, mu_kinetic=0.12, bias=0.03)
+    else:
+        excitation, t_end = bd.Harmonic(7.0, 1.0), 40.0
+        block = bd.SlidingBlock(mu=0.6, mu_kinetic=0.4, bias=0.3)
+    runs = [bd.simulate(block, excitation, t_end=t_end, window=w) for w in (1, 3, 64, 8192)]
+    reference = runs[2]
+    assert len(reference.events) >= 20
+    for sol in runs:
+        assert [(e.mode_before, e.mode_after) for e in sol.events] == \
+            [(e.mode_before, e.mode_after) for e in reference.events]
+        np.testing.assert_allclose(sol.t_events, reference.t_events, rtol=0, atol=1e-12)
+        assert sol.displacement == pytest.approx(reference.displacement, rel=1e-12)

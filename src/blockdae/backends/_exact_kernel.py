@@ -2,12 +2,13 @@
 
 The excitation is a sequence of monotone closed-form pieces. Once per excitation (on the
 host, independently of the parameters) the range of a(t) is bounded over blocks of
-``window`` pieces, so that from stick an iteration skips to the first block where the demand may leave
-[-mu g, mu g] and checks its pieces one by one. In slip an iteration accumulates the closed-form
-velocity over a window of ``window`` pieces and finds the first piece where v returns to
-zero, or skips the window. Each event is located in closed form (linear pieces: linear
-or quadratic equations) or by bracketing a monotone function (sine pieces), to machine
-precision. The loop thus runs about (events + sliding pieces / window) times.
+``window`` pieces, so that from stick an iteration skips to the first block where the
+demand may leave [-mu g, mu g] and checks its pieces one by one. In slip an iteration
+accumulates the closed-form velocity over a window of ``window`` pieces and finds the
+first piece where v returns to zero, or skips the window. Each event is located in
+closed form (linear pieces: linear or quadratic equations) or by bracketing a monotone
+function (sine pieces), to machine precision. The loop thus runs about (events +
+sliding pieces / window) times.
 
 Everything is ``jax.numpy``: the kernel compiles, maps over parameter sets and
 differentiates (forward mode) through the event times.
@@ -151,11 +152,12 @@ def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
     up_k, down_k = _leaves_stick(rules, cf_k, rem_k)
     here = up_k | down_k
     block_start = jnp.arange(exc.a_max.shape[0]) * window
-    candidate = _blocks_may_leave_stick(rules, exc) & (block_start + window > state.k + 1) & (block_start < n_pieces)
+    after_k = (block_start + window > state.k + 1) & (block_start < n_pieces)
+    candidate = _blocks_may_leave_stick(rules, exc) & after_k
     start = block_start[jnp.argmax(candidate)]
     take = lambda x: jax.lax.dynamic_slice_in_dim(x, start, window)
-    up_b, down_b = _leaves_stick(rules, _scaled(tuple(None if c is None else take(c) for c in exc.cf), p.scale),
-                                 take(exc.h))
+    cf_b = _scaled(tuple(None if c is None else take(c) for c in exc.cf), p.scale)
+    up_b, down_b = _leaves_stick(rules, cf_b, take(exc.h))
     index = start + jnp.arange(window)
     in_block = (up_b | down_b) & (index > state.k) & (index < n_pieces)
     found = here | jnp.any(in_block)
