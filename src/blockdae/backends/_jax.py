@@ -67,13 +67,12 @@ class JaxBackend(AbstractBackend):
 
     def solve_batch(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
-        shape = block.batch_shape
         params = batch_params(block)
         with jax.enable_x64(True):
             out = kernel.run_batch(params, _device(pieces, 1), cfg=self.config(block, pieces),
                                    until_rest=horizon.until_rest, full_output=False)
             final, t_final, rests, flags, _ = jax.device_get(out)
-        for i in range(shape[0]):
+        for i in np.flatnonzero((flags.n_overflow > 0) | (flags.n_failed > 0) | ~rests):
             self.check(block.item(i), rests[i], jax.tree.map(lambda x: x[i], flags), f" (parameter set {i})")
         return BatchSolution(
             displacement=np.asarray(final.u), max_abs_displacement=np.asarray(final.max_abs_u),
