@@ -166,7 +166,7 @@ for ax, record in zip(axes, records):
     ax.barh(order, [elasticity[n] for n in order], color="C0")
     ax.axvline(0.0, color="0.5", lw=0.8)
     ax.set(title=record.name, xlabel="(p/u) du/dp [-]")"""),
-    ("md", """du/dmu over a grid of mu on Kobe (one-way), in one vectorised call:"""),
+    ("md", """du/dmu over a grid of mu on Kobe (one-way), in one compiled call:"""),
     ("code", """record = records[0]
 mus = np.linspace(0.05, 0.4, 8)
 grads = bd.sensitivities(bd.SlidingBlock(mu=mus, direction="negative", g=G), record, wrt=("mu",))["mu"]

@@ -147,7 +147,7 @@ def _final_u(params, pieces, n_pieces, allowed, *, kernel, static, until_rest):
 
 @functools.partial(jax.jit, static_argnames=("kernel", "static", "until_rest", "batched"))
 def _jacobian(params, pieces, n_pieces, allowed, *, kernel, static, until_rest, batched):
-    """d u / d (mu, f, bias, g, scale), for one parameter set or vectorised over a batch."""
+    """d u / d (mu, f, bias, g, scale), for one parameter set or mapped over a batch."""
     fun = jax.jacfwd(functools.partial(_final_u, pieces=pieces, n_pieces=n_pieces, allowed=allowed, kernel=kernel,
                                        static=static, until_rest=until_rest), has_aux=True)
     return jax.lax.map(fun, params) if batched else fun(params)  # map, not vmap: see run_batch

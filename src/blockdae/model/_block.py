@@ -104,7 +104,7 @@ class SlidingBlock(AbstractHybridModel):
             increasing / decreasing ("negative" with bias 0 is one-way Newmark).
 
     ``mu``, ``mu_kinetic`` and ``bias`` may be 1-D arrays (broadcast together): the
-    block is then a batch of parameter sets, solved in one vectorised call.
+    block is then a batch of parameter sets, solved in one compiled call.
     """
 
     mu: float | np.ndarray
