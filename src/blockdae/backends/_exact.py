@@ -63,7 +63,8 @@ class ExactBackend(AbstractBackend):
 
 
 def _params(block: SlidingBlock, scale=1.0):
-    return tuple(np.float64(x) for x in (block.mu, block.friction_kinetic, block.bias, block.g, scale))
+    """(mu, f, bias, g, scale) as one array: one transfer to the device, not five."""
+    return np.array([block.mu, block.friction_kinetic, block.bias, block.g, scale], dtype=np.float64)
 
 
 def _bucket(n: int) -> int:
