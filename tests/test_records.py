@@ -109,3 +109,18 @@ def test_window_changes_speed_never_results(motion):
             [(e.mode_before, e.mode_after) for e in reference.events]
         np.testing.assert_allclose(sol.t_events, reference.t_events, rtol=0, atol=1e-12)
         assert sol.displacement == pytest.approx(reference.displacement, rel=1e-12)
+
+
+def test_unhashable_excitation_still_runs():
+    """The exact backend keeps the kernel input of recent (hashable, immutable)
+    excitations; an unhashable user subclass is prepared afresh on every call."""
+
+    class Unhashable(bd.Record):
+        __hash__ = None
+
+    samples = load_sample_record("Northridge_1994_PAC-175").acceleration_samples
+    record, plain = Unhashable(samples, 0.02), bd.Record(samples, 0.02)
+    block = bd.SlidingBlock(mu=0.1, mu_kinetic=0.08)
+    assert bd.simulate(block, record).displacement == bd.simulate(block, plain).displacement
+    grid = bd.SlidingBlock(mu=np.array([0.1, 0.2]))
+    np.testing.assert_array_equal(bd.simulate(grid, record).displacement, bd.simulate(grid, plain).displacement)
