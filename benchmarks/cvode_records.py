@@ -8,18 +8,17 @@ Needs the test extra (pyslammer) for the records.
     python benchmarks/cvode_records.py [backend]      # backend: cvode (default) or ida
 """
 
-import importlib.resources
 import sys
 
 import blockdae as bd
+from _common import sample_records
 
 BLOCK = bd.SlidingBlock(mu=0.15, mu_kinetic=0.12, bias=0.03)
 RTOL = 1e-10
 
 
 def main(backend="cvode"):
-    folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
-    records = [bd.read_record(p, units="g") for p in sorted(folder.iterdir()) if p.name.endswith(".csv")]
+    records = sample_records()
     print(f"{backend} vs exact, rtol = {RTOL:g}, mu = {BLOCK.mu}, f = {BLOCK.friction_kinetic}, "
           f"R/Q = {BLOCK.bias}, until rest")
     head = (f"{'record':<34} {'samples':>7} {'events':>6} {'u_end [m]':>12} {'rel |du| [-]':>12} "

@@ -7,34 +7,22 @@ one run after compilation [s], and the largest relative difference between the t
 backends' sensitivities d u / d (mu, mu_kinetic, bias, A).
 """
 
-import importlib.resources
-import time
-
 import numpy as np
 
 import blockdae as bd
-
-
-def timed(fun):
-    fun()  # compile
-    start = time.perf_counter()
-    out = fun()
-    return out, time.perf_counter() - start
+from _common import sample_records, timed
 
 
 def main():
-    folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
-    paths = sorted(p for p in folder.iterdir() if p.name.endswith(".csv"))
     print(f"{'record':<32} {'n':>6} {'block':<16} {'u [m]':>10} {'rel du':>8} {'max dt_ev [s]':>13} "
           f"{'exact [s]':>9} {'jax [s]':>8} {'rel dsens':>9}")
     worst = {"du": 0.0, "dt": 0.0, "sens": 0.0}
-    for path in paths:
-        record = bd.read_record(path, units="g")
+    for record in sample_records():
         A = record.peak_acceleration / 9.81
         for label, block in [("f=mu", bd.SlidingBlock(0.3 * A)),
                              ("f<mu, bias", bd.SlidingBlock(0.5 * A, 0.35 * A, bias=0.1 * A))]:
-            exact, t_exact = timed(lambda: bd.simulate(block, record))
-            twin, t_twin = timed(lambda: bd.simulate(block, record, backend="jax"))
+            exact, _, t_exact = timed(lambda: bd.simulate(block, record), 1)
+            twin, _, t_twin = timed(lambda: bd.simulate(block, record, backend="jax"), 1)
             du = abs(twin.displacement / exact.displacement - 1)
             same = len(exact.events) == len(twin.events)
             dt = np.max(np.abs(exact.t_events - twin.t_events), initial=0.0) if same else np.inf
@@ -42,7 +30,7 @@ def main():
             s_twin = bd.sensitivities(block, record, backend="jax")
             ds = max(abs(s_twin[k] / s_exact[k] - 1) for k in s_exact if s_exact[k] != 0)
             worst = {"du": max(worst["du"], du), "dt": max(worst["dt"], dt), "sens": max(worst["sens"], ds)}
-            print(f"{path.stem[:32]:<32} {record.acceleration_samples.size:>6} {label:<16} "
+            print(f"{record.name[:32]:<32} {record.acceleration_samples.size:>6} {label:<16} "
                   f"{exact.displacement:>10.5f} {du:>8.1e} {dt:>13.1e} {t_exact:>9.3f} {t_twin:>8.3f} {ds:>9.1e}",
                   flush=True)
     print(f"worst: rel du = {worst['du']:.1e}, event times {worst['dt']:.1e} s, "
