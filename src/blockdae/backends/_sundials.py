@@ -114,14 +114,6 @@ class SundialsIntegrator(AbstractIntegrator):
     label: str
     #: the :class:`Guards` subclass with the solver's events signature
     guards_class: type
-    # A fresh start at every piece of a(t), in every mode. CVODE: an Adams history
-    # carried across a kink of a(t) fits one polynomial to two pieces (worst event-time
-    # error at rtol 1e-10 over the 18 sample records: 1.7e-9 s carrying it, 4.8e-12 s
-    # restarting from FIRST_STEP). IDA: F follows a(t), whose slope jumps at piece ends
-    # (8.8e-9 s restarting in stick only, 1.0e-9 s in every mode, from its own first
-    # step; 7.5e-11 s from _ida.FIRST_STEP).
-    restart_at_pieces = _MODES
-
     def __init__(self, block, piece, options):
         self.block, self.piece = block, piece
         self.guards = {mode: self.guards_class(block, piece, mode) for mode in _MODES}
