@@ -122,9 +122,8 @@ def _solution(block, pieces, log, final, t_final, backend):
     """
     n = log.shape[0]
     t_ev, before, after, u_ev = log.T
-    before, after = before.astype(int), after.astype(int)
-    events = tuple(Event(float(t), Mode(b), Mode(a), float(u), 0.0)
-                   for t, b, a, u in zip(t_ev, before.tolist(), after.tolist(), u_ev))
+    after = after.astype(int)
+    events = _events(t_ev, before, after, u_ev, np.zeros(n))
     t = np.concatenate([[0.0], t_ev, [t_final]])
     u = np.concatenate([[0.0], u_ev, [final[0]]])
     v = np.concatenate([np.zeros(n + 1), [final[1]]])
@@ -132,6 +131,14 @@ def _solution(block, pieces, log, final, t_final, backend):
     stats = {"max_events_at_one_instant": _max_run(t_ev), "n_events": n}
     return Solution(t=t, u=u, v=v, mode=mode, events=events, backend=backend,
                     dense=_DenseOutput(block, pieces, t_ev, u_ev, after), stats=stats)
+
+
+def _events(t, before, after, u, v):
+    """Events from arrays of times [s], modes before and after, u [m] and v [m/s]."""
+    floats = lambda x: np.asarray(x, float).tolist()
+    modes = lambda x: np.asarray(x).astype(int).tolist()
+    return tuple(Event(t_i, Mode(b), Mode(a), u_i, v_i)
+                 for t_i, b, a, u_i, v_i in zip(floats(t), modes(before), modes(after), floats(u), floats(v)))
 
 
 def _max_run(times):
