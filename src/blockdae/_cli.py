@@ -232,10 +232,14 @@ def _describe_block(block):
             f"direction {block.direction}, g = {block.g:g} m/s²")
 
 
+def _record_fields(record):
+    return {"record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": record.dt,
+            "peak_acceleration_m_s2": record.peak_acceleration}
+
+
 def _run_json(record, block, solution, wall):
     return {
-        "record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": record.dt,
-        "peak_acceleration_m_s2": record.peak_acceleration,
+        **_record_fields(record),
         "mu": block.mu, "mu_kinetic": block.friction_kinetic, "bias": block.bias, "g_m_s2": block.g,
         "direction": block.direction, "backend": solution.backend,
         "displacement_m": solution.displacement, "max_abs_displacement_m": solution.max_abs_displacement,
@@ -248,8 +252,7 @@ def _run_json(record, block, solution, wall):
 def _batch_rows(record, block, result, wall):
     n = block.batch_shape[0]
     return [{
-        "record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": record.dt,
-        "peak_acceleration_m_s2": record.peak_acceleration,
+        **_record_fields(record),
         "mu": float(np.broadcast_to(block.mu, (n,))[i]),
         "mu_kinetic": float(np.broadcast_to(block.friction_kinetic, (n,))[i]), "bias": block.bias,
         "direction": block.direction, "backend": result.backend,
