@@ -39,9 +39,8 @@ def plot(solution: Solution, excitation: AbstractExcitation | None = None,
         raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
     t = np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
     u, v = solution(t)
-    events = solution.events
-    t_ev = np.array([e.t for e in events])
-    u_ev, v_ev = np.array([e.u for e in events]), np.array([e.v for e in events])
+    t_ev = solution.t_events
+    u_ev, v_ev = np.array([e.u for e in solution.events]), np.array([e.v for e in solution.events])
 
     with_base = excitation is not None
     fig, axes = plt.subplots(3, 2 if with_base else 1, figsize=(11 if with_base else 6, 8),
