@@ -2,6 +2,7 @@
 
 import importlib.resources
 
+import numpy as np
 import pytest
 
 import blockdae as bd
@@ -17,6 +18,13 @@ def load_sample_record(stem: str) -> bd.Record:
     """One sample record by file stem, e.g. "Kobe_1995_TAK-090"."""
     folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
     return bd.read_record(folder / f"{stem}.csv", units="g")
+
+
+def assert_same_events(sol, ref, dt_max):
+    """The same sequence of mode changes as ``ref``, each event within ``dt_max`` [s]."""
+    assert [(e.mode_before, e.mode_after) for e in sol.events] == \
+        [(e.mode_before, e.mode_after) for e in ref.events]
+    np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=dt_max)
 
 
 @pytest.fixture(scope="session")

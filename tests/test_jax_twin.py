@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from conftest import load_sample_record
+from conftest import assert_same_events, load_sample_record
 
 import blockdae as bd
 from blockdae.backends import make_backend
@@ -21,9 +21,7 @@ SEED_EXAMPLES = {
 
 def assert_twins(exact, twin):
     """Same event sequence; event times within 1e-9 s; u(t_end) within 1e-7 relative."""
-    assert [(e.mode_before, e.mode_after) for e in twin.events] == \
-           [(e.mode_before, e.mode_after) for e in exact.events]
-    np.testing.assert_allclose(twin.t_events, exact.t_events, rtol=0, atol=1e-9)
+    assert_same_events(twin, exact, 1e-9)
     np.testing.assert_allclose(twin.displacement, exact.displacement, rtol=1e-7, atol=0)
     np.testing.assert_allclose(twin.t_end, exact.t_end, rtol=0, atol=1e-9)
 

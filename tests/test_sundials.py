@@ -13,7 +13,7 @@ import pytest
 import blockdae as bd
 from blockdae._driver import SolverError
 from blockdae.backends import make_backend
-from conftest import load_sample_record
+from conftest import assert_same_events, load_sample_record
 
 SUNDIALS = ("cvode", "ida")
 G = 9.81
@@ -50,9 +50,7 @@ def exact_cache():
 def assert_agrees(sol, ref, dt_max=1e-9, rel_du_max=1e-7, scale=None):
     """Same events (modes) as ``ref``, every time within ``dt_max`` [s], displacement
     within ``rel_du_max`` relative to |u_ref(t_end)| (or to ``scale`` [m])."""
-    assert [(e.mode_before, e.mode_after) for e in sol.events] == \
-        [(e.mode_before, e.mode_after) for e in ref.events]
-    assert np.max(np.abs(sol.t_events - ref.t_events), initial=0.0) <= dt_max
+    assert_same_events(sol, ref, dt_max)
     scale = abs(ref.displacement) if scale is None else scale
     assert abs(sol.displacement - ref.displacement) <= rel_du_max * scale
 
