@@ -18,7 +18,7 @@ def main():
           f"{'exact [s]':>9} {'jax [s]':>8} {'rel dsens':>9}")
     worst = {"du": 0.0, "dt": 0.0, "sens": 0.0}
     for record in sample_records():
-        A = record.peak_acceleration / 9.81
+        A = record.peak_acceleration / bd.STANDARD_GRAVITY
         for label, block in [("f=mu", bd.SlidingBlock(0.3 * A)),
                              ("f<mu, bias", bd.SlidingBlock(0.5 * A, 0.35 * A, bias=0.1 * A))]:
             exact, _, t_exact = timed(lambda: bd.simulate(block, record), 1)

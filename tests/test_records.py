@@ -53,7 +53,7 @@ def test_one_way_newmark_matches_fine_step_integration(stem, mu):
 def test_piecewise_linear_records_match_pulse_closed_forms():
     """Record([0, 9, 0], 0.25 s) is the triangular pulse and Record([9, 9], 0.5 s) the
     rectangular one of seed Examples 5 and 4: identical closed-form answers."""
-    block = bd.SlidingBlock(mu=0.6)
+    block = bd.SlidingBlock(mu=0.6, g=9.81)
     tri = bd.simulate(block, bd.Record([0.0, 9.0, 0.0], dt=0.25))
     tri_ref = bd.simulate(block, bd.TriangularPulse(9.0, 0.5))
     np.testing.assert_allclose(tri.t_events, tri_ref.t_events, rtol=1e-15)

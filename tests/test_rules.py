@@ -154,3 +154,23 @@ def test_onset_at_start_wins_over_a_later_crossing_in_the_same_piece():
     assert inv.displacement == pytest.approx(-sol.displacement, rel=1e-14)
     # then slip- under a = 1 to 0.94 s (v = -0.92 m/s) and coasting to 1.5 s
     assert sol.displacement == pytest.approx(2 / 30000 - 0.92**2 / 2 - 0.92 * 0.56, rel=1e-12)
+
+
+@pytest.mark.parametrize("backend, rtol", [("exact", 1e-13), ("jax", 1e-13), ("cvode", 1e-7), ("ida", 1e-7)])
+def test_frictionless_block_stays_where_it_started(backend, rtol):
+    """mu = 0: no force on the block, so it keeps the base's initial velocity and
+    u(t) = v_b(0) t - x_b(t) (closed form), on every backend; it never rests after the
+    excitation, so t_end is required."""
+    block = bd.SlidingBlock(mu=0.0)
+    motion = bd.Record(3.0 * np.sin(np.linspace(0, 20, 2001)) * np.linspace(1, 0, 2001), 0.01)
+    sol = bd.simulate(block, motion, t_end=20.0, backend=backend)
+    t = np.linspace(0.0, 20.0, 9)
+    exact = motion.velocity(0.0) * t - motion.displacement(t)
+    np.testing.assert_allclose(sol(t)[0], exact, rtol=rtol, atol=rtol * np.max(np.abs(exact)))
+    with pytest.raises(ValueError, match="never comes to rest"):
+        bd.simulate(block, motion, backend=backend)
+
+
+def test_zero_friction_with_a_bias_names_bias():
+    with pytest.raises(ValueError, match=r"bias=0\.1 must satisfy \|bias\| < mu=0\.0"):
+        bd.SlidingBlock(mu=0.0, bias=0.1)

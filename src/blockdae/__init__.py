@@ -6,10 +6,12 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 
 from ._crosscheck import CrossCheck, crosscheck
 from ._examples import SeedExample, seed_examples
+from ._newmark import NewmarkResult, newmark, yield_acceleration
 from ._plot import plot
 from ._sensitivities import sensitivities
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, Solution
+from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
@@ -19,6 +21,7 @@ __all__ = [
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "read_record", "simulate",
     "CrossCheck", "crosscheck",
-    "SeedExample", "plot", "seed_examples",
+    "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
     "sensitivities",
+    "NewmarkResult", "newmark", "yield_acceleration",
 ]

@@ -6,10 +6,8 @@ import re
 
 import numpy as np
 
+from .._units import STANDARD_GRAVITY
 from ._record import Record
-
-#: standard gravity, the value of the unit "g" [m/s²]
-STANDARD_GRAVITY = 9.80665
 
 _UNIT_FACTORS = {"g": None, "m/s2": 1.0, "m/s^2": 1.0, "m/s²": 1.0, "cm/s2": 0.01, "cm/s^2": 0.01,
                  "cm/s²": 0.01, "gal": 0.01}

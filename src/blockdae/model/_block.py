@@ -15,6 +15,7 @@ import dataclasses
 
 import numpy as np
 
+from .._units import STANDARD_GRAVITY
 from ._base import AbstractHybridModel
 from ._modes import Mode
 
@@ -98,8 +99,11 @@ class SlidingBlock(AbstractHybridModel):
         mu_kinetic: kinetic friction coefficient f [-], acting while sliding;
             defaults to ``mu``. Must satisfy 0 <= f <= mu.
         bias: R/Q, a constant force on the block in +x as a fraction of its
-            weight [-]. Must satisfy |bias| < mu (else it slides with the base at rest).
-        g: gravitational acceleration [m/s²].
+            weight [-]. Must satisfy |bias| < mu (else it slides with the base at rest);
+            mu = bias = 0 is a frictionless block, which never comes to rest once it
+            moves (give ``t_end``).
+        g: gravitational acceleration [m/s²]; standard gravity (9.80665) by default,
+            the value the record readers use for the unit "g".
         direction: "both", or "positive"/"negative" to allow sliding only with u
             increasing / decreasing ("negative" with bias 0 is one-way Newmark).
 
@@ -110,7 +114,7 @@ class SlidingBlock(AbstractHybridModel):
     mu: float | np.ndarray
     mu_kinetic: float | np.ndarray | None = None
     bias: float | np.ndarray = 0.0
-    g: float = 9.81
+    g: float = STANDARD_GRAVITY
     direction: str = "both"
 
     state_names = ("u", "v")
@@ -139,9 +143,43 @@ class SlidingBlock(AbstractHybridModel):
         _check(f < 0, "mu_kinetic", f, "must be >= 0")
         _check(f > mu, "mu_kinetic", f,
                f"must not exceed mu={_first(mu, f > mu)} (kinetic above static friction chatters)")
-        _check(np.abs(bias) >= mu, "bias", bias,
-               f"must satisfy |bias| < mu={_first(mu, np.abs(bias) >= mu)} "
+        frictionless = (mu == 0) & (bias == 0)
+        _check((np.abs(bias) >= mu) & ~frictionless, "bias", bias,
+               f"must satisfy |bias| < mu={_first(mu, (np.abs(bias) >= mu) & ~frictionless)} "
                "(else the block slides with the base at rest)")
+
+    @classmethod
+    def on_incline(cls, slope_angle, friction_angle, kinetic_friction_angle=None,
+                   g=STANDARD_GRAVITY, direction="positive") -> "SlidingBlock":
+        """A block on a plane inclined at ``slope_angle`` [degrees], shaken along the slope.
+
+        x points downslope along the plane; the base acceleration is along the slope.
+        The normal force is g cos(alpha) and gravity pulls downslope with g sin(alpha),
+        so per unit of g: ``mu = tan(phi) cos(alpha)``, ``bias = sin(alpha)`` (likewise
+        ``mu_kinetic`` from ``kinetic_friction_angle``). It slides downslope (u > 0)
+        while the base accelerates upslope by more than
+        k_y g = (tan(phi) cos(alpha) - sin(alpha)) g = (FS - 1) sin(alpha) g with
+        FS = tan(phi) / tan(alpha) (Newmark 1965; Jibson 1993, eq. 2).
+
+        Args:
+            slope_angle: alpha [degrees], 0 <= alpha < friction_angle.
+            friction_angle: static friction angle phi [degrees], < 90.
+            kinetic_friction_angle: kinetic friction angle [degrees] (default phi).
+            g: gravitational acceleration [m/s²].
+            direction: "positive" (downslope only, the default) or "both".
+        """
+        alpha, phi = np.radians(float(slope_angle)), np.radians(float(friction_angle))
+        if not 0 <= phi < np.pi / 2:
+            raise ValueError(f"friction_angle={friction_angle!r} must lie in [0, 90) degrees")
+        if not 0 <= alpha < np.pi / 2:
+            raise ValueError(f"slope_angle={slope_angle!r} must lie in [0, 90) degrees")
+        if alpha >= phi:
+            raise ValueError(f"slope_angle={slope_angle!r} must be below friction_angle={friction_angle!r} "
+                             "(else the block slides under gravity alone)")
+        kinetic = None if kinetic_friction_angle is None else (
+            np.tan(np.radians(float(kinetic_friction_angle))) * np.cos(alpha))
+        return cls(mu=np.tan(phi) * np.cos(alpha), mu_kinetic=kinetic, bias=np.sin(alpha), g=g,
+                   direction=direction)
 
     # ---- parameters --------------------------------------------------------
     @property
