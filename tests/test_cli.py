@@ -74,7 +74,7 @@ def test_batch_writes_one_csv_row_per_record_and_mu(tmp_path, capsys):
     argv = ["--no-cache", "batch", str(folder), "--mu", "0.6", "1.0", *SEED_G, "--csv", str(out_csv)]
     assert main(argv) == 0
     captured = capsys.readouterr()
-    assert "2/2" in captured.err
+    assert "4 analyses of 2 records" in captured.out and captured.err == ""  # no progress bar off a terminal
     rows = list(csv.DictReader(out_csv.open()))
     assert [(r["record"], float(r["mu"])) for r in rows] == [("a", 0.6), ("a", 1.0), ("b", 0.6), ("b", 1.0)]
     u = [float(r["displacement_m"]) for r in rows]
@@ -92,25 +92,113 @@ def test_bad_row_names_file_and_line(tmp_path, capsys, content, line):
     assert err.startswith("blockdae: error: ") and f"{path}, line {line}" in err
 
 
-def test_batch_stops_on_a_bad_file_before_computing(tmp_path, capsys):
-    (tmp_path / "good.csv").write_text(TRIANGLE_CSV)
-    (tmp_path / "zbad.csv").write_text("0.0, 0.0\n0.5, x\n")
-    assert main(["--no-cache", "batch", str(tmp_path), "--mu", "0.2"]) == 2
-    assert f"{tmp_path / 'zbad.csv'}, line 2" in capsys.readouterr().err
+def test_batch_analyses_the_good_files_and_lists_the_bad_ones(tmp_path, capsys):
+    """One bad file does not stop the batch: the good ones are written, the bad ones listed
+    with their reasons, exit status 1; --strict stops at the first with status 2."""
+    folder = tmp_path / "records"
+    folder.mkdir()
+    (folder / "good.csv").write_text(TRIANGLE_CSV)
+    (folder / "nan.csv").write_text("0.0, 0.0\n0.5, nan\n")
+    (folder / "zbad.csv").write_text("0.0, 0.0\n0.5, x\n")
+    out_csv = tmp_path / "out.csv"
+    argv = ["--no-cache", "batch", str(folder), "--mu", "0.6", *SEED_G, "--csv", str(out_csv)]
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    assert "2 of 3 files failed" in err and f"{folder / 'zbad.csv'}, line 2" in err
+    assert f"{folder / 'nan.csv'}" in err
+    assert [r["record"] for r in csv.DictReader(out_csv.open())] == ["good"]
+    assert main([*argv, "--strict"]) == 2
+    assert capsys.readouterr().err.startswith(f"blockdae: error: {folder / 'nan.csv'}")
+
+
+def test_batch_grid_over_mu_kinetic_and_bias_with_clean_columns(tmp_path, capsys):
+    """Every combination of the grids is a row, with its parameters, g and clean numbers;
+    each row equals a single run of the same block (independent call of simulate)."""
+    import blockdae as bd
+
+    folder = tmp_path / "records"
+    folder.mkdir()
+    (folder / "tri.csv").write_text(TRIANGLE_CSV)
+    out_csv = tmp_path / "out.csv"
+    argv = ["--no-cache", "batch", str(folder), "--mu", "0.5", "0.6", "--mu-kinetic", "0.3", "0.4",
+            "--bias", "0.0", "0.1", *SEED_G, "--csv", str(out_csv), "--t-end", "1.2"]
+    assert main(argv) == 0
+    capsys.readouterr()
+    rows = list(csv.DictReader(out_csv.open()))
+    assert len(rows) == 8 and "wall_time_s" not in rows[0]
+    assert rows[0]["dt_s"] == "0.25" and rows[0]["t_end_s"] == "1.2" and rows[0]["g_m_s2"] == "9.81"
+    record = bd.read_record(folder / "tri.csv", units="m/s2")
+    for row in rows:
+        block = bd.SlidingBlock(mu=float(row["mu"]), mu_kinetic=float(row["mu_kinetic"]),
+                                bias=float(row["bias"]), g=9.81)
+        assert float(row["displacement_m"]) == bd.simulate(block, record, t_end=1.2).displacement
+    assert main([*argv[:-4], "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert len(result["rows"]) == 8 and result["failed"] == []
+
+
+def test_python_and_cli_print_the_same_digits(tmp_path, capsys):
+    """Same defaults (standard gravity) in Python and on the command line: Kobe, mu 0.15, one-way."""
+    import blockdae as bd
+    from conftest import sample_record_paths
+
+    path = next(p for p in sample_record_paths() if p.name.startswith("Kobe"))
+    assert main(["--no-cache", "run", str(path), "--mu", "0.15", "--direction", "negative", "--quiet"]) == 0
+    printed = capsys.readouterr().out.strip()
+    u = bd.simulate(bd.SlidingBlock(mu=0.15, direction="negative"), bd.read_record(path)).displacement
+    assert printed == f"{u:+.6f} m"
+
+
+def test_long_event_lists_are_summarised(tmp_path, capsys):
+    """A harmonic record with many events prints the first and last five unless --events all."""
+    t = np.arange(0, 20.0, 0.01)
+    path = tmp_path / "sine.csv"
+    np.savetxt(path, np.column_stack([t, 0.5 * np.sin(2 * np.pi * t)]), delimiter=",")
+    assert main(["--no-cache", "run", str(path), "--mu", "0.2"]) == 0
+    out = capsys.readouterr().out
+    n = int(out.split("events: ")[1].split()[0])
+    assert n > 20 and f"({n - 10} more events; --events all prints them)" in out
+    assert sum(1 for line in out.splitlines() if "SLIP" in line or "STICK" in line) == 10
+    assert main(["--no-cache", "run", str(path), "--mu", "0.2", "--events", "all"]) == 0
+    out = capsys.readouterr().out
+    assert sum(1 for line in out.splitlines() if "SLIP" in line or "STICK" in line) == n
+
+
+def test_version(capsys):
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out.startswith("blockdae ")
+
+
+def test_newmark_command_prints_positive_downslope_displacements(tmp_path, capsys):
+    """Seed 000 rectangular-pulse closed form D = (A t0²/2)(A/(ky g) - 1) for the normal
+    polarity, 0 for the inverse one."""
+    path = tmp_path / "pulse.csv"
+    path.write_text("0.0, 0.4\n0.5, 0.4\n")
+    assert main(["--no-cache", "newmark", str(path), "--ky", "0.1", "0.2", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)["results"]
+    a = 0.4 * 9.80665
+    for row, ky in zip(rows, (0.1, 0.2)):
+        assert row["normal_m"] == pytest.approx(a * 0.25 / 2 * (a / (ky * 9.80665) - 1), rel=1e-13)
+        assert row["inverse_m"] == 0.0
+    assert main(["--no-cache", "newmark", str(path), "--ky", "0.1"]) == 0
+    assert "downslope displacement D >= 0 [m]" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("argv, message", [
     (["--units", "furlong"], "units='furlong' is unknown"),
     (["--mu-kinetic", "0.5"], "mu_kinetic="),
     (["--backend", "nope"], "--backend 'nope' is unknown"),
-    (["--bias", "0.3"], "bias="),
+    (["--bias", "0.3"], "argument --bias: bias=0.3 must satisfy"),
+    (["--t-end", "-5"], "argument --t-end: must be a positive finite number, got -5"),
+    (["--dt", "0"], "argument --dt: must be a positive finite number, got 0"),
+    (["--mu", "nan"], "argument --mu: must be a finite number, got nan"),
 ])
 def test_bad_arguments_exit_2_naming_the_argument(tmp_path, capsys, argv, message):
     path = tmp_path / "ok.csv"
     path.write_text(TRIANGLE_CSV)
     assert main(["--no-cache", "run", str(path), "--mu", "0.2", *argv]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("blockdae: error: ") and message in err
+    assert message in err and str(path) not in err
 
 
 def test_missing_file_and_folder(tmp_path, capsys):

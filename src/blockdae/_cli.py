@@ -1,11 +1,15 @@
-"""The ``blockdae`` command: run a record, print the seed-000 examples, batch a folder.
+"""The ``blockdae`` command: run a record, Newmark's analysis, the seed-000 examples, a
+batch over a folder.
 
 Every error about a file or an argument ends the command with exit status 2 and one
-line ``blockdae: error: ...`` on stderr naming the file (and line) or the argument.
+line ``blockdae: error: ...`` on stderr naming the file (and line) or the argument. A
+batch analyses every good file and lists the bad ones at the end (exit status 1).
 """
 
 import argparse
 import csv
+import importlib.metadata
+import itertools
 import json
 import os
 import pathlib
@@ -16,15 +20,18 @@ import numpy as np
 
 from . import backends
 from ._examples import seed_examples
+from ._newmark import newmark
 from ._simulate import simulate
-from .excitation import STANDARD_GRAVITY, read_record
+from ._units import STANDARD_GRAVITY
+from .excitation import read_record
 from .excitation._readers import unit_factor
 from .model import SlidingBlock
 
 _RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
 _CSV_FIELDS = ("record", "n_samples", "dt_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
-               "direction", "backend", "displacement_m", "max_abs_displacement_m", "n_events",
-               "t_end_s", "wall_time_s")
+               "g_m_s2", "direction", "backend", "displacement_m", "max_abs_displacement_m", "n_events",
+               "t_end_s")
+_EVENTS_SHOWN = 5  # events printed at each end of a long list by default
 
 
 class _UsageError(Exception):
@@ -52,72 +59,111 @@ def main(argv=None) -> int:
 def _parser():
     parser = argparse.ArgumentParser(
         prog="blockdae", description="Seismic sliding of a rigid block: exact event times.")
+    parser.add_argument("--version", action="version", version=f"blockdae {_version()}")
     parser.add_argument("--cache-dir", type=pathlib.Path, default=None,
                         help="JAX compilation cache, so that later runs skip compiling "
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
-    sub = parser.add_subparsers(required=True, metavar="{run,examples,batch}")
+    sub = parser.add_subparsers(required=True, metavar="{run,newmark,examples,batch}")
 
-    run = sub.add_parser("run", help="slide a block under one accelerogram file")
+    run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u)")
     run.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
-    _block_arguments(run, mu_nargs=None)
+    _block_arguments(run, nargs=None)
     _record_arguments(run)
-    run.add_argument("--t-end", type=float, default=None,
-                     help="final time [s] (default: until the block rests after the record)")
     run.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure")
     run.add_argument("--json", action="store_true", help="print the results as JSON")
+    run.add_argument("--events", choices=("summary", "all", "none"), default="summary",
+                     help=f"events to print: the first and last {_EVENTS_SHOWN} (default), all or none")
+    run.add_argument("--quiet", action="store_true", help="print only u(t_end) [m]")
     run.set_defaults(command=_run)
+
+    newmark_ = sub.add_parser("newmark", help="Newmark's one-way analysis: downslope displacement "
+                                              "(positive) for both polarities")
+    newmark_.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
+    newmark_.add_argument("--ky", type=_positive("--ky"), nargs="+", required=True,
+                          help="yield acceleration(s) [g]")
+    newmark_.add_argument("--g", type=_positive("--g"), default=STANDARD_GRAVITY,
+                          help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
+    _record_arguments(newmark_)
+    newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
+    newmark_.set_defaults(command=_newmark)
 
     examples = sub.add_parser("examples", help="seed-000 Examples 1-6: exact vs the paper")
     examples.set_defaults(command=_examples)
 
-    batch = sub.add_parser("batch", help="every record in a folder, for one or more mu")
+    batch = sub.add_parser("batch", help="every record in a folder, over a parameter grid")
     batch.add_argument("folder", type=pathlib.Path, help=f"folder of records ({', '.join(_RECORD_SUFFIXES)})")
-    _block_arguments(batch, mu_nargs="+")
+    _block_arguments(batch, nargs="+")
     _record_arguments(batch)
     batch.add_argument("--csv", type=pathlib.Path, default=None, help="write the results as CSV")
+    batch.add_argument("--json", action="store_true", help="print the results as JSON")
+    batch.add_argument("--strict", action="store_true", help="stop at the first bad file")
     batch.set_defaults(command=_batch)
     return parser
 
 
-def _block_arguments(parser, mu_nargs):
-    parser.add_argument("--mu", type=float, required=True, nargs=mu_nargs,
-                        help="static friction coefficient [-]" + (" (several: a grid)" if mu_nargs else ""))
-    parser.add_argument("--mu-kinetic", type=float, default=None, help="kinetic friction f [-] (default mu)")
-    parser.add_argument("--bias", type=float, default=0.0, help="R/Q, constant force / weight in +x [-]")
+def _block_arguments(parser, nargs):
+    grid = " (several: a grid over every combination)" if nargs else ""
+    parser.add_argument("--mu", type=_finite("--mu"), required=True, nargs=nargs,
+                        help="static friction coefficient [-]" + grid)
+    parser.add_argument("--mu-kinetic", type=_finite("--mu-kinetic"), default=None, nargs=nargs,
+                        help="kinetic friction f [-] (default mu)" + grid)
+    parser.add_argument("--bias", type=_finite("--bias"), default=[0.0] if nargs else 0.0, nargs=nargs,
+                        help="R/Q, constant force / weight in +x [-]" + grid)
     parser.add_argument("--direction", choices=("both", "positive", "negative"), default="both",
-                        help="allowed sliding direction (negative + bias 0: one-way Newmark)")
-    parser.add_argument("--g", type=float, default=STANDARD_GRAVITY,
+                        help="allowed sliding direction (negative + bias 0: one-way Newmark, u < 0; "
+                             "see `blockdae newmark` for positive downslope displacements)")
+    parser.add_argument("--g", type=_positive("--g"), default=STANDARD_GRAVITY,
                         help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
     parser.add_argument("--backend", default="exact", help=f"solver backend, one of {backends.available()}")
+    parser.add_argument("--t-end", type=_positive("--t-end"), default=None,
+                        help="final time [s] (default: until the block rests after the record)")
 
 
 def _record_arguments(parser):
-    parser.add_argument("--units", default="g", help="acceleration units: g, m/s2, cm/s2 or gal")
-    parser.add_argument("--dt", type=float, default=None, help="sample step [s], for one-column files")
+    parser.add_argument("--units", default=None,
+                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header "
+                             "says, else g)")
+    parser.add_argument("--dt", type=_positive("--dt"), default=None, help="sample step [s], for one-column files")
+
+
+def _finite(flag):
+    return _number(flag, np.isfinite, "a finite number")
+
+
+def _positive(flag):
+    return _number(flag, lambda x: np.isfinite(x) and x > 0, "a positive finite number")
+
+
+def _number(flag, ok, what):
+    def parse(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
+        if not ok(value):
+            raise argparse.ArgumentTypeError(f"must be {what}, got {text}")
+        return value
+    parse.__name__ = flag  # argparse names the argument in its message
+    return parse
 
 
 # ---- commands ---------------------------------------------------------------
 
 def _run(args):
-    block = _block(args, args.mu)
+    block = _block(args, args.mu, args.mu_kinetic, args.bias)
     record = _read(args.record, args)
     start = time.perf_counter()
     solution = _checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend),
                         f"{args.record}")
     wall = time.perf_counter() - start
     if args.plot is not None:
-        import matplotlib.pyplot as plt
-
-        from ._plot import plot
-
-        figure = plot(solution, record, block, title=f"{record.name}: mu = {args.mu}")
-        try:
-            _checked(lambda: figure.savefig(args.plot, dpi=120), f"--plot {args.plot}")
-        finally:
-            plt.close(figure)
+        _save_plot(args, solution, record, block)
     if args.json:
         print(json.dumps(_run_json(record, block, solution, wall), indent=2))
+        return 0
+    if args.quiet:
+        print(f"{solution.displacement:+.6f} m")
         return 0
     print(f"record: {_describe(record)}")
     print(f"block: {_describe_block(block)}; backend {solution.backend}")
@@ -126,16 +172,33 @@ def _run(args):
     print(f"permanent displacement u(t_end) = {solution.displacement:+.6f} m")
     print(f"max |u| = {solution.max_abs_displacement:.6f} m")
     print(f"events: {len(solution.events)}")
-    if solution.events:
-        print(solution.event_table())
+    _print_events(solution, args.events)
     print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
     if args.plot is not None:
         print(f"figure: {args.plot}")
     return 0
 
 
+def _newmark(args):
+    record = _read(args.record, args)
+    ky = np.asarray(args.ky, dtype=float)
+    result = _checked(lambda: newmark(record, ky, g=args.g), f"{args.record}")
+    table = result.to_dataframe()
+    if args.json:
+        print(json.dumps({**_record_fields(record), "g_m_s2": args.g,
+                          "results": table.to_dict(orient="records")}, indent=2))
+        return 0
+    print(f"record: {_describe(record)}")
+    print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
+    print(f"{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}")
+    for row in table.itertuples(index=False):
+        print(f"{row.ky_g:8.4f} {row.normal_m:12.6f} {row.inverse_m:12.6f} {row.mean_m:12.6f} {row.max_m:12.6f}")
+    return 0
+
+
 def _examples(args):
-    print("Seed 000, Examples 1-6: exact event times [s] and displacements [m] (g = 9.81 m/s²)")
+    print("Seed 000, Examples 1-6: exact event times [s] and displacements [m] (g = 9.81 m/s², "
+          "as in the paper)")
     for example in seed_examples():
         solution = simulate(example.block, example.motion, t_end=example.t_end)
         print(f"\n{example.name}: {example.description}; "
@@ -155,35 +218,57 @@ def _examples(args):
 
 
 def _batch(args):
-    block = _block(args, np.asarray(args.mu, dtype=float))
+    grid = list(itertools.product(args.mu, args.mu_kinetic or [None], args.bias))
+    mu, f, bias = (np.array([np.nan if x is None else x for x in column]) for column in zip(*grid))
+    block = _block(args, mu, None if args.mu_kinetic is None else f, bias)
     if not args.folder.is_dir():
         raise _UsageError(f"{args.folder}: not a folder")
     paths = sorted(p for p in args.folder.iterdir() if p.suffix.lower() in _RECORD_SUFFIXES)
     if not paths:
         raise _UsageError(f"{args.folder}: no record files ({', '.join(_RECORD_SUFFIXES)})")
-    records = [_read(path, args) for path in paths]
-    rows = []
-    for k, record in enumerate(records):
-        _progress(k, len(records), record.name)
-        start = time.perf_counter()
-        result = _checked(lambda: simulate(block, record, backend=args.backend), f"{paths[k]}")
-        wall = time.perf_counter() - start
-        rows += _batch_rows(record, block, result, wall)
-    _progress(len(records), len(records), "done")
-    print(file=sys.stderr)
-    print(f"{'record':<32} {'mu [-]':>7} {'u [m]':>11} {'max|u| [m]':>11} {'events':>7}")
-    for row in rows:
-        print(f"{row['record']:<32} {row['mu']:7.4f} {row['displacement_m']:+11.6f} "
-              f"{row['max_abs_displacement_m']:11.6f} {row['n_events']:7d}")
-    total = sum(row["wall_time_s"] for row in rows)
-    print(f"{len(rows)} analyses of {len(records)} records in {total:.2f} s (wall clock)")
+    rows, failed = [], []
+    start = time.perf_counter()
+    for k, path in enumerate(paths):
+        _progress(k, len(paths), path.name)
+        try:
+            record = _read(path, args)
+            result = _checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
+        except _UsageError as err:
+            if args.strict:
+                raise
+            failed.append(str(err))
+            continue
+        rows += _batch_rows(record, block, result)
+    wall = time.perf_counter() - start
+    _progress(len(paths), len(paths), "done")
+    if args.json:
+        print(json.dumps({"rows": rows, "failed": failed}, indent=2))
+    else:
+        print(f"{'record':<32} {'mu [-]':>7} {'f [-]':>7} {'bias [-]':>8} {'u [m]':>11} {'max|u| [m]':>11} "
+              f"{'events':>7}")
+        for row in rows:
+            print(f"{row['record']:<32} {row['mu']:7.4f} {row['mu_kinetic']:7.4f} {row['bias']:+8.4f} "
+                  f"{row['displacement_m']:+11.6f} {row['max_abs_displacement_m']:11.6f} {row['n_events']:7d}")
+        print(f"{len(rows)} analyses of {len(paths) - len(failed)} records in {wall:.2f} s (wall clock)")
     if args.csv is not None:
         _checked(lambda: _write_csv(args.csv, rows), f"--csv {args.csv}")
-        print(f"results: {args.csv}")
+        print(f"results: {args.csv}", file=sys.stderr if args.json else sys.stdout)
+    if failed:
+        print(f"blockdae: {len(failed)} of {len(paths)} files failed:", file=sys.stderr)
+        for reason in failed:
+            print(f"  {reason}", file=sys.stderr)
+        return 1
     return 0
 
 
 # ---- helpers ------------------------------------------------------------------
+
+def _version():
+    try:
+        return importlib.metadata.version("blockdae")
+    except importlib.metadata.PackageNotFoundError:  # run from a source tree
+        return "unknown"
+
 
 def _compilation_cache(args):
     """Point JAX's persistent compilation cache at a folder (this process only)."""
@@ -196,21 +281,28 @@ def _compilation_cache(args):
     jax.config.update("jax_compilation_cache_dir", str(folder))
 
 
-def _block(args, mu):
+#: the command-line flag of each SlidingBlock field, for errors that name the argument
+_FLAGS = {"mu_kinetic": "--mu-kinetic", "mu": "--mu", "bias": "--bias", "g": "--g"}
+
+
+def _block(args, mu, mu_kinetic, bias):
+    if args.units is not None:
+        _checked(lambda: unit_factor(args.units), "--units")
+    if args.backend not in backends.available():
+        raise _UsageError(f"--backend {args.backend!r} is unknown; choose one of {backends.available()}")
     try:
-        unit_factor(args.units)
-        if args.backend not in backends.available():
-            raise ValueError(f"--backend {args.backend!r} is unknown; choose one of {backends.available()}")
-        return SlidingBlock(mu=mu, mu_kinetic=args.mu_kinetic, bias=args.bias, g=args.g,
-                            direction=args.direction)
+        return SlidingBlock(mu=mu, mu_kinetic=mu_kinetic, bias=bias, g=args.g, direction=args.direction)
     except ValueError as err:
-        raise _UsageError(str(err)) from None
+        message = str(err)
+        flag = next((flag for field, flag in _FLAGS.items() if message.startswith(f"{field}=")), None)
+        raise _UsageError(f"argument {flag}: {message}" if flag else message) from None
 
 
 def _read(path, args):
     if not path.is_file():
         raise _UsageError(f"{path}: no such file")
-    return _checked(lambda: read_record(path, units=args.units, dt=args.dt, g=args.g), "")
+    units = {} if args.units is None else {"units": args.units}
+    return _checked(lambda: read_record(path, dt=args.dt, g=args.g, **units), "")
 
 
 def _checked(action, where):
@@ -232,34 +324,64 @@ def _describe_block(block):
             f"direction {block.direction}, g = {block.g:g} m/s²")
 
 
+def _print_events(solution, which):
+    """The event table: all events, none, or the first and last few of a long list."""
+    events = solution.events
+    if which == "none" or not events:
+        return
+    if which == "all" or len(events) <= 2 * _EVENTS_SHOWN:
+        print(solution.event_table())
+        return
+    lines = solution.event_table(events[:_EVENTS_SHOWN]).splitlines()
+    lines.append(f"{'...':>12}  ({len(events) - 2 * _EVENTS_SHOWN} more events; --events all prints them)")
+    lines += solution.event_table(events[-_EVENTS_SHOWN:]).splitlines()[1:]
+    print("\n".join(lines))
+
+
+def _save_plot(args, solution, record, block):
+    import matplotlib.pyplot as plt
+
+    from ._plot import plot
+
+    figure = plot(solution, record, block, title=f"{record.name}: mu = {args.mu}")
+    try:
+        _checked(lambda: figure.savefig(args.plot, dpi=120), f"--plot {args.plot}")
+    finally:
+        plt.close(figure)
+
+
+def _clean(x):
+    """A float without the noise of its last bits (12 significant digits)."""
+    return float(f"{x:.12g}")
+
+
 def _record_fields(record):
-    return {"record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": record.dt,
+    return {"record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": _clean(record.dt),
             "peak_acceleration_m_s2": record.peak_acceleration}
+
+
+def _block_fields(block):
+    return {"mu": block.mu, "mu_kinetic": block.friction_kinetic, "bias": block.bias, "g_m_s2": block.g,
+            "direction": block.direction}
 
 
 def _run_json(record, block, solution, wall):
     return {
-        **_record_fields(record),
-        "mu": block.mu, "mu_kinetic": block.friction_kinetic, "bias": block.bias, "g_m_s2": block.g,
-        "direction": block.direction, "backend": solution.backend,
+        **_record_fields(record), **_block_fields(block), "backend": solution.backend,
         "displacement_m": solution.displacement, "max_abs_displacement_m": solution.max_abs_displacement,
-        "t_end_s": solution.t_end, "wall_time_s": wall,
+        "t_end_s": _clean(solution.t_end), "wall_time_s": wall,
         "events": [{"t_s": e.t, "from": e.mode_before.name, "to": e.mode_after.name, "u_m": e.u, "v_m_s": e.v}
                    for e in solution.events],
     }
 
 
-def _batch_rows(record, block, result, wall):
-    n = block.batch_shape[0]
+def _batch_rows(record, block, result):
     return [{
-        **_record_fields(record),
-        "mu": float(np.broadcast_to(block.mu, (n,))[i]),
-        "mu_kinetic": float(np.broadcast_to(block.friction_kinetic, (n,))[i]), "bias": block.bias,
-        "direction": block.direction, "backend": result.backend,
+        **_record_fields(record), **_block_fields(block.item(i)), "backend": result.backend,
         "displacement_m": float(result.displacement[i]),
         "max_abs_displacement_m": float(result.max_abs_displacement[i]),
-        "n_events": int(result.n_events[i]), "t_end_s": float(result.t_end[i]), "wall_time_s": wall / n,
-    } for i in range(n)]
+        "n_events": int(result.n_events[i]), "t_end_s": _clean(float(result.t_end[i])),
+    } for i in range(block.batch_shape[0])]
 
 
 def _write_csv(path, rows):
@@ -270,9 +392,12 @@ def _write_csv(path, rows):
 
 
 def _progress(done, total, label, width=30):
+    """A progress bar on stderr, only when it is a terminal."""
+    if not sys.stderr.isatty():
+        return
     filled = width * done // total
     print(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} {label[:40]:<40}",
-          end="", file=sys.stderr, flush=True)
+          end="\n" if done == total else "", file=sys.stderr, flush=True)
 
 
 if __name__ == "__main__":

@@ -80,11 +80,11 @@ class Solution:
             raise ValueError(f"t must lie in [{self.t[0]}, {self.t[-1]}] s")
         return self.dense(t)
 
-    def event_table(self) -> str:
-        """The events as an aligned text table with units."""
+    def event_table(self, events=None) -> str:
+        """``events`` (default: all of them) as an aligned text table with units."""
         lines = [f"{'t [s]':>12}  {'from':>8}  {'to':<8}  {'u [m]':>12}"]
         lines += [f"{e.t:12.6f}  {e.mode_before.name:>8}  {e.mode_after.name:<8}  {e.u:12.6f}"
-                  for e in self.events]
+                  for e in (self.events if events is None else events)]
         return "\n".join(lines)
 
 
