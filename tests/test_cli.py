@@ -212,3 +212,18 @@ def test_argparse_errors_return_2(capsys):
     assert main(["run", "x.csv", "--mu", "abc"]) == 2
     assert "invalid float value: 'abc'" in capsys.readouterr().err
     assert main([]) == 2
+
+
+@pytest.mark.parametrize("setting, kept", [("cache", True), ("off", False)])
+def test_python_api_keeps_compiled_kernels_in_the_cache_folder(tmp_path, setting, kept):
+    """Without the CLI, a first compiled call writes the JAX cache under $BLOCKDAE_CACHE_DIR
+    (nothing when it is "off"), so that a new process does not compile again."""
+    folder = tmp_path / "cache"
+    code = ("import blockdae as bd; bd.sensitivities(bd.SlidingBlock(mu=0.2), "
+            "bd.Record([0.0, 3.0, 0.0], 0.5), wrt=('mu',))")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path),
+               BLOCKDAE_CACHE_DIR=str(folder) if setting == "cache" else setting)
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300,
+                          cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert (folder.is_dir() and any(folder.iterdir())) == kept

@@ -6,6 +6,7 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 
 from ._crosscheck import CrossCheck, crosscheck
 from ._examples import SeedExample, seed_examples
+from ._jax_config import set_compilation_cache
 from ._newmark import NewmarkResult, newmark, yield_acceleration
 from ._plot import plot
 from ._sensitivities import sensitivities
@@ -22,6 +23,6 @@ __all__ = [
     "read_record", "simulate",
     "CrossCheck", "crosscheck",
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
-    "sensitivities",
+    "sensitivities", "set_compilation_cache",
     "NewmarkResult", "newmark", "yield_acceleration",
 ]

@@ -20,6 +20,7 @@ import numpy as np
 
 from . import backends
 from ._examples import seed_examples
+from ._jax_config import set_compilation_cache
 from ._newmark import newmark
 from ._simulate import simulate
 from ._units import STANDARD_GRAVITY
@@ -271,14 +272,9 @@ def _version():
 
 
 def _compilation_cache(args):
-    """Point JAX's persistent compilation cache at a folder (this process only)."""
-    if args.no_cache:
-        return
-    folder = args.cache_dir or os.environ.get("BLOCKDAE_CACHE_DIR") or (
-        pathlib.Path(os.environ.get("XDG_CACHE_HOME") or pathlib.Path.home() / ".cache") / "blockdae" / "jax")
-    import jax
-
-    jax.config.update("jax_compilation_cache_dir", str(folder))
+    """--no-cache / --cache-dir override the default JAX compilation cache (this process)."""
+    if args.no_cache or args.cache_dir is not None:
+        set_compilation_cache(None if args.no_cache else args.cache_dir)
 
 
 #: the command-line flag of each SlidingBlock field, for errors that name the argument

@@ -17,6 +17,7 @@ import functools
 import jax
 import numpy as np
 
+from ._jax_config import jax_context
 from ._simulate import simulate
 from .backends import Horizon, make_backend
 from .backends import _exact_kernel
@@ -63,7 +64,7 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
 
     shape = block.batch_shape
     params = batch_params(block)
-    with jax.enable_x64(True):
+    with jax_context():
         jac, aux = _jacobian(params, device, len(pieces.t0), (block.allow_negative, block.allow_positive),
                              kernel=kernel, static=static, until_rest=horizon.until_rest, batched=bool(shape))
         jac, aux = jax.device_get((jac, aux))

@@ -6,6 +6,7 @@ import functools
 import jax
 import numpy as np
 
+from .._jax_config import jax_context
 from .._solution import BatchSolution, Event, Solution
 from ..excitation import Pieces
 from ..excitation._pieces import evaluate
@@ -56,7 +57,7 @@ class ExactBackend(AbstractBackend):
             solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
 
     def _run(self, fn, params, device, n_pieces, horizon, block, pieces, capacity):
-        with jax.enable_x64(True):
+        with jax_context():
             out = fn(params, (block.allow_negative, block.allow_positive), device, n_pieces,
                      horizon.until_rest, window=self.window, log_capacity=capacity, is_sine=pieces.has_sine)
             return kernel.Summary(*map(np.asarray, out))  # ~100 us faster than jax.device_get here
@@ -88,7 +89,7 @@ def _pieces_on_device(excitation, t_end, window):
 @functools.lru_cache(maxsize=16)
 def _cached_pieces_on_device(excitation, t_end, window):
     pieces = excitation.pieces(t_end)
-    with jax.enable_x64(True):
+    with jax_context():
         return pieces, jax.device_put(_kernel_input(pieces, window))
 
 

@@ -5,6 +5,7 @@ import dataclasses
 import jax
 import numpy as np
 
+from .._jax_config import jax_context
 from .._solution import BatchSolution, Solution
 from . import _jax_kernel as kernel
 from ._base import AbstractBackend, batch_params, never_rests_error
@@ -57,7 +58,7 @@ class JaxBackend(AbstractBackend):
 
     def solve(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
-        with jax.enable_x64(True):
+        with jax_context():
             out = kernel.run(_params(block), _device(pieces, 1), cfg=self.config(block, pieces),
                              until_rest=horizon.until_rest, full_output=True)
             final, t_final, rests, flags, knots = jax.device_get(out)
@@ -67,7 +68,7 @@ class JaxBackend(AbstractBackend):
     def solve_batch(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))
         params = batch_params(block)
-        with jax.enable_x64(True):
+        with jax_context():
             out = kernel.run_batch(params, _device(pieces, 1), cfg=self.config(block, pieces),
                                    until_rest=horizon.until_rest, full_output=False)
             final, t_final, rests, flags, _ = jax.device_get(out)

@@ -1,0 +1,48 @@
+"""How blockdae runs JAX: float64 inside its own calls, and a persistent compilation
+cache so that a kernel compiled once (per shape) is not compiled again in a later process.
+
+The cache folder is ``$BLOCKDAE_CACHE_DIR``, else ``$XDG_CACHE_HOME/blockdae/jax``, else
+``~/.cache/blockdae/jax``. Set ``BLOCKDAE_CACHE_DIR=off`` (or call
+``set_compilation_cache(None)``) to keep none. A cache folder the user set in JAX's own
+configuration is left as it is. Nothing is configured at import: only on the first
+compiled call.
+"""
+
+import contextlib
+import os
+import pathlib
+
+_OFF = ("", "off", "none", "0")
+_state = {"configured": False}
+
+
+def default_cache_dir() -> pathlib.Path | None:
+    """The folder from the environment, or None if the cache is turned off there."""
+    folder = os.environ.get("BLOCKDAE_CACHE_DIR")
+    if folder is not None:
+        return None if folder.strip().lower() in _OFF else pathlib.Path(folder)
+    base = os.environ.get("XDG_CACHE_HOME") or pathlib.Path.home() / ".cache"
+    return pathlib.Path(base) / "blockdae" / "jax"
+
+
+def set_compilation_cache(folder: str | os.PathLike | None) -> None:
+    """Keep JAX's compiled kernels in ``folder`` (None: keep no cache) for this process."""
+    import jax
+
+    jax.config.update("jax_compilation_cache_dir", None if folder is None else str(folder))
+    # kernels compile in 0.1-1.5 s; JAX's default keeps only those over 1 s
+    jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.1)
+    _state["configured"] = True
+
+
+@contextlib.contextmanager
+def jax_context():
+    """float64 for the calls inside; sets the default compilation cache on first use."""
+    import jax
+
+    if not _state["configured"]:
+        if jax.config.jax_compilation_cache_dir is None:
+            set_compilation_cache(default_cache_dir())
+        _state["configured"] = True
+    with jax.enable_x64(True):
+        yield
