@@ -1,11 +1,15 @@
-"""Write the notebooks of this folder from the cell sources below (run after editing them).
+"""Write the notebooks of this folder from the cell sources below, executed, with their
+outputs (figures, tables) stored so that they show when browsing the repository (run
+after editing them; the tests execute them again).
 
     python notebooks/make_notebooks.py
 """
 
+import os
 import pathlib
 
 import nbformat
+from nbclient import NotebookClient
 
 HERE = pathlib.Path(__file__).parent
 
@@ -183,6 +187,9 @@ table of `bd.crosscheck`, then wall times per backend (first call with compilati
     ("code", """import importlib.resources
 import time
 
+import matplotlib.pyplot as plt
+import numpy as np
+
 import blockdae as bd
 
 names = bd.backends.available()
@@ -205,6 +212,20 @@ for name in names:
         sol = bd.simulate(block, motion, t_end, backend=name)
         warm = time.perf_counter() - start
         print(f"{name:<8} {label:<26} {first:14.3f} {1e3 * warm:10.2f} {sol.displacement:+12.6f}")"""),
+    ("md", """## How far each backend's u(t) is from the exact one
+
+Dense output of every backend on the Kobe case, against the exact backend's closed form."""),
+    ("code", """label, block, motion, t_end = cases[-1]
+ref = bd.simulate(block, motion, t_end)
+fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
+for name in names:
+    if name == "exact":
+        continue
+    sol = bd.simulate(block, motion, t_end, backend=name)
+    t = np.linspace(0.0, min(sol.t_end, ref.t_end), 4000)
+    ax.semilogy(t, np.abs(sol(t)[0] - ref(t)[0]) + 1e-18, lw=0.8, label=name)
+ax.set(xlabel="t [s]", ylabel="|u - u_exact| [m]", title=f"{label}: difference from the exact backend")
+ax.legend()"""),
 ]
 
 NOTEBOOKS = {"01_seed000.ipynb": SEED_000, "02_sensitivities.ipynb": SENSITIVITIES,
@@ -212,7 +233,7 @@ NOTEBOOKS = {"01_seed000.ipynb": SEED_000, "02_sensitivities.ipynb": SENSITIVITI
 
 
 def build(cells) -> nbformat.NotebookNode:
-    """A notebook (no outputs) from (kind, source) pairs; cell ids are their positions,
+    """A notebook (not yet executed) from (kind, source) pairs; cell ids are their positions,
     so that regenerating an unchanged notebook changes no byte."""
     make = {"md": nbformat.v4.new_markdown_cell, "code": nbformat.v4.new_code_cell}
     notebook = nbformat.v4.new_notebook(
@@ -221,10 +242,18 @@ def build(cells) -> nbformat.NotebookNode:
     return notebook
 
 
+def execute(notebook: nbformat.NotebookNode) -> nbformat.NotebookNode:
+    """Run ``notebook`` in this folder, figures inline as PNG; returns it with outputs."""
+    NotebookClient(notebook, timeout=600, kernel_name="python3",
+                   resources={"metadata": {"path": str(HERE)}}).execute()
+    return notebook
+
+
 def main():
+    os.environ.setdefault("MPLBACKEND", "module://matplotlib_inline.backend_inline")
     for name, cells in NOTEBOOKS.items():
-        nbformat.write(build(cells), HERE / name)
-        print(f"wrote {HERE / name}")
+        nbformat.write(execute(build(cells)), HERE / name)
+        print(f"wrote {HERE / name} (executed)")
 
 
 if __name__ == "__main__":

@@ -35,11 +35,17 @@ def _text(notebook):
                      for out in cell.get("outputs", []))
 
 
-def test_notebooks_match_their_generator():
+def test_notebooks_match_their_generator_and_are_stored_executed():
+    """Same cells as the generator, every code cell executed with its outputs stored (so
+    a reader browsing the repository sees the figures), and no stored error."""
     generator = _generator()
     for name, cells in generator.NOTEBOOKS.items():
         stored = nbformat.read(NOTEBOOKS / name, as_version=4)
         assert [c.source for c in stored.cells] == [source for _, source in cells], name
+        code = [c for c in stored.cells if c.cell_type == "code"]
+        assert all(c.execution_count is not None for c in code), f"{name} is stored unexecuted"
+        assert not any(out.output_type == "error" for c in code for out in c.outputs), name
+        assert any("image/png" in out.get("data", {}) for c in code for out in c.outputs), name
 
 
 def test_seed000_notebook_runs(monkeypatch, jax_cache_dir):
