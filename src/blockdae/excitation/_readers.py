@@ -2,6 +2,7 @@
 
 import pathlib
 import re
+import typing
 
 import numpy as np
 
@@ -39,29 +40,34 @@ def unit_factor(units: str, g: float = STANDARD_GRAVITY) -> float:
     return _FACTORS.get(canonical_units(units), g)
 
 
-def check_peak_acceleration(samples, units: str, g: float = STANDARD_GRAVITY, source: str = "record"):
+def check_peak_acceleration(samples, units: str, g: float = STANDARD_GRAVITY, source: str = "record",
+                            units_from: str | None = None):
     """Raise ValueError if the peak of ``samples`` (in ``units``; one g is ``g`` [m/s²]) is
-    outside :data:`PLAUSIBLE_PEAK_G` in standard g, naming the peak and the likely unit mix-up."""
+    outside :data:`PLAUSIBLE_PEAK_G` in standard g, naming the peak and the likely unit mix-up.
+
+    ``units_from`` says where ``units`` came from (e.g. a file's header line), if not the caller.
+    """
     units = canonical_units(units)
     peak = float(np.max(np.abs(samples), initial=0.0))
     peak_g = peak * unit_factor(units, g) / STANDARD_GRAVITY
     low, high = PLAUSIBLE_PEAK_G
     if low <= peak_g <= high:
         return
-    raise ValueError(f"{source}: peak acceleration {peak:.4g} {_SYMBOLS[units]} = {peak_g:.4g} g is "
-                     f"implausible (outside {low:g} g to {high:g} g); {_mix_up(peak, units)}, "
-                     "or check_peak=False to accept it")
+    in_g = "" if units == "g" else f" = {peak_g:.4g} g"
+    mix_up = _likely_units(peak, units)
+    fix = f"correct the file ({units_from} sets the units)" if units_from else f"pass units={mix_up!r}"
+    hint = (f"looks like {_SYMBOLS[mix_up]} read as {_SYMBOLS[units]}: {fix}" if mix_up
+            else "check the file's values and units")
+    raise ValueError(f"{source}: peak acceleration {peak:.4g} {_SYMBOLS[units]}{in_g} is implausible "
+                     f"(outside {low:g} g to {high:g} g); {hint}, or check_peak=False to accept it")
 
 
-def _mix_up(peak, units):
-    """The hint for a peak [units] out of range: the plausible units nearest 0.3 g."""
+def _likely_units(peak, units):
+    """The other units that make ``peak`` plausible, nearest 0.3 g; None if none do."""
     low, high = PLAUSIBLE_PEAK_G
     in_g = {u: peak * unit_factor(u) / STANDARD_GRAVITY for u in _SYMBOLS if u != units}
     plausible = [u for u, p in in_g.items() if low <= p <= high]
-    if not plausible:
-        return "check the file's values and units"
-    best = min(plausible, key=lambda u: abs(np.log(in_g[u] / 0.3)))
-    return f"looks like {_SYMBOLS[best]} read as {_SYMBOLS[units]}: pass units={best!r}"
+    return min(plausible, key=lambda u: abs(np.log(in_g[u] / 0.3)), default=None)
 
 
 def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_peak=True) -> Record:
@@ -93,21 +99,51 @@ def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_
     path = pathlib.Path(path)
     if units is not None:
         canonical_units(units)  # an unknown name fails before the file is read
-    lines = path.read_text(encoding="utf-8-sig").splitlines()
-    header = _at2_header(lines, path)
-    if header is not None:
-        samples, file_dt, start_time = _read_at2(lines, header, path)
-        units = _resolve_units(units, *_at2_units(lines[:header[0]], path), path)
+    layout = _scan(path)
+    if layout.at2 is not None:
+        lines = _lines(path)
+        samples, file_dt, start_time = _read_at2(lines, layout.at2, path)
+        header_units, statement = _at2_units(lines[:layout.at2[0]], path)
+        units = _resolve_units(units, header_units, statement, path)
     else:
-        if path.suffix.lower() == ".at2":
-            raise ValueError(f"{path}: no 'NPTS=..., DT=...' line in the first {_HEADER_LINES} lines "
-                             "(AT2 header)")
-        samples, file_dt, start_time = _read_columns(lines, path)
-        units = "g" if units is None else canonical_units(units)
+        samples, file_dt, start_time = _read_columns(path, layout)
+        units, statement = "g" if units is None else canonical_units(units), None
     dt = _sample_step(dt, file_dt, path)
     if check_peak:
-        check_peak_acceleration(samples, units, g, str(path))
+        check_peak_acceleration(samples, units, g, str(path), statement and f"the header's {statement}")
     return Record(samples * unit_factor(units, g), dt, path.stem if name is None else name, start_time)
+
+
+class _Layout(typing.NamedTuple):
+    """Where a file's data start: an AT2 header, or a table's first line and separators."""
+    at2: tuple | None  # (line index, NPTS, DT [s]) of the AT2 header line
+    start: int = 0  # index of the table's first data line
+    delimiter: str | None = None  # loadtxt's: ",", ";" or None (blanks)
+    decimal_comma: bool = False
+
+
+def _scan(path):
+    """The :class:`_Layout` of ``path``, read up to the AT2 header line or the first data line."""
+    with open(path, encoding="utf-8-sig") as file:
+        for i, line in enumerate(file):
+            header = _at2_header(line, i, path) if i < _HEADER_LINES else None
+            if header is not None:
+                return _Layout(header)
+            text = line.split("#", 1)[0].strip()
+            if not text or _numbers(text, False) is None:
+                continue  # blank, or a header line of column names
+            if path.suffix.lower() == ".at2":
+                break
+            delimiter = ";" if ";" in text else "," if "," in text else None
+            return _Layout(None, i, delimiter, _decimal_comma(text, i, path))
+    if path.suffix.lower() == ".at2":
+        raise ValueError(f"{path}: no 'NPTS=..., DT=...' line in the first {_HEADER_LINES} lines (AT2 header)")
+    raise ValueError(f"{path}: no data rows")
+
+
+def _lines(path):
+    """The file's lines, split as ``open`` and ``np.loadtxt`` split them."""
+    return path.read_text(encoding="utf-8-sig").split("\n")
 
 
 def _sample_step(dt, file_dt, path):
@@ -138,19 +174,17 @@ def _resolve_units(units, header_units, statement, path):
 
 # --- PEER NGA AT2 -----------------------------------------------------------------
 
-def _at2_header(lines, path):
-    """(index, NPTS, DT [s]) of the AT2 header's NPTS/DT line, or None without one."""
-    for i, line in enumerate(lines[:_HEADER_LINES]):
-        npts, dt = _NPTS.search(line), _DT.search(line)
-        old = _OLD_HEADER.search(line)
-        if line.lstrip().startswith("#") or not (npts and dt or old):
-            continue
-        count, step = (npts.group(1), dt.group(1)) if npts and dt else old.groups()
-        try:
-            return i, int(count), float(step)
-        except ValueError:
-            raise ValueError(f"{path}, line {i + 1}: cannot read NPTS and DT in {line.strip()!r}") from None
-    return None
+def _at2_header(line, index, path):
+    """(index, NPTS, DT [s]) if ``line`` is an AT2 header's NPTS/DT line, else None."""
+    npts, dt = _NPTS.search(line), _DT.search(line)
+    old = _OLD_HEADER.search(line)
+    if line.lstrip().startswith("#") or not (npts and dt or old):
+        return None
+    count, step = (npts.group(1), dt.group(1)) if npts and dt else old.groups()
+    try:
+        return index, int(count), float(step)
+    except ValueError:
+        raise ValueError(f"{path}, line {index + 1}: cannot read NPTS and DT in {line.strip()!r}") from None
 
 
 def _at2_units(header_lines, path):
@@ -169,7 +203,7 @@ def _at2_units(header_lines, path):
 def _squeeze_units(text):
     """'CM/SEC/SEC', 'cm/s^2', 'CM/S**2' -> 'CM/S2'."""
     text = re.sub(r"\s+", "", text.upper()).replace("SEC", "S")
-    return re.sub(r"(\*\*2|\^2|²|/S)$", "2", text.replace("/S/S", "/S/"))
+    return re.sub(r"(/S|\*\*2|\^2|²)$", "2", text)
 
 
 def _read_at2(lines, header, path):
@@ -201,32 +235,27 @@ def _raise_first_bad_value(body, first_line, path):
 
 # --- one or two columns ------------------------------------------------------------
 
-def _read_columns(lines, path):
+def _read_columns(path, layout):
     """(samples, step [s] or None for one column, start time [s]) of a one- or two-column table."""
-    start, delimiter, decimal_comma = _table_start(lines, path)
-    data = lines[start:]
-    if decimal_comma:
-        data = "\n".join(data).replace(",", ".").splitlines()
+    source = path
+    if layout.decimal_comma:
+        source = "\n".join(_lines(path)[layout.start:]).replace(",", ".").split("\n")
     try:
-        rows = np.loadtxt(data, delimiter=delimiter, comments="#", ndmin=2)
+        rows = np.loadtxt(source, delimiter=layout.delimiter, comments="#", ndmin=2, encoding="utf-8-sig",
+                          skiprows=0 if layout.decimal_comma else layout.start)
     except ValueError:  # the line-by-line parser locates the error, or reads what loadtxt cannot
-        rows = _parse_rows(lines, start, decimal_comma, path)
-    return _check_rows(rows, lines, start, path)
+        rows = _parse_rows(_lines(path), layout, path)
+    return _check_rows(rows, layout.start, path)
 
 
-def _table_start(lines, path):
-    """(index of the first data line, loadtxt delimiter, decimal commas?); lines of text
-    before it (column names) are skipped."""
-    for i, line in enumerate(lines):
-        text = line.split("#", 1)[0].strip()
-        decimal_comma = ";" in text and "," in text
-        if decimal_comma and "." in text:
-            raise ValueError(f"{path}, line {i + 1}: both '.' and ',' in {text!r} with ';' separators: "
-                             "use '.' for decimals (or ',' with ';' separators), not both")
-        if text and _numbers(text, decimal_comma) is not None:
-            delimiter = ";" if ";" in text else "," if "," in text else None
-            return i, delimiter, decimal_comma
-    raise ValueError(f"{path}: no data rows")
+def _decimal_comma(text, index, path):
+    """Whether a line's numbers have decimal commas (then with ';' separators)."""
+    if ";" not in text or "," not in text:
+        return False
+    if "." in text:
+        raise ValueError(f"{path}, line {index + 1}: both '.' and ',' in {text!r} with ';' separators: "
+                         "use '.' for decimals (or ',' with ';' separators), not both")
+    return True
 
 
 def _numbers(text, decimal_comma):
@@ -238,14 +267,14 @@ def _numbers(text, decimal_comma):
         return None
 
 
-def _parse_rows(lines, start, decimal_comma, path):
-    """The table from line ``start`` on, parsed line by line; errors name the line."""
-    rows, first = [], start + 1
-    for line_no, line in enumerate(lines[start:], start=start + 1):
+def _parse_rows(lines, layout, path):
+    """The table from its first data line on, parsed line by line; errors name the line."""
+    rows, first = [], layout.start + 1
+    for line_no, line in enumerate(lines[layout.start:], start=first):
         text = line.split("#", 1)[0].strip()
         if not text:
             continue
-        row = _numbers(text, decimal_comma)
+        row = _numbers(text, layout.decimal_comma)
         if row is None:
             raise ValueError(f"{path}, line {line_no}: not a number in {text!r}")
         if rows and len(row) != len(rows[0]):
@@ -256,7 +285,7 @@ def _parse_rows(lines, start, decimal_comma, path):
 
 
 def _comma_hint(text):
-    return "; decimal commas? Separate columns by ';' then" if "," in text and "." not in text else ""
+    return "; decimal commas? Use '.' for decimals, or ';' between columns" if "," in text and "." not in text else ""
 
 
 def _data_line_numbers(lines, start):
@@ -264,15 +293,15 @@ def _data_line_numbers(lines, start):
     return [n for n, line in enumerate(lines[start:], start=start + 1) if line.split("#", 1)[0].strip()]
 
 
-def _check_rows(rows, lines, start, path):
-    """(samples, step [s] or None, start time [s]) of the checked rows of the table at ``start``."""
+def _check_rows(rows, start, path):
+    """(samples, step [s] or None, start time [s]) of the checked rows of the table at line index ``start``."""
     def line_of(k):  # file line of data row k, counted only for an error
-        return _data_line_numbers(lines, start)[k]
+        return _data_line_numbers(_lines(path), start)[k]
 
     if rows.shape[1] not in (1, 2):
         line_no = line_of(0)
         raise ValueError(f"{path}, line {line_no}: expected 1 or 2 columns (time [s], acceleration), "
-                         f"found {rows.shape[1]}{_comma_hint(lines[line_no - 1])}")
+                         f"found {rows.shape[1]}{_comma_hint(_lines(path)[line_no - 1])}")
     if not np.isfinite(rows).all():
         bad = np.flatnonzero(~np.all(np.isfinite(rows), axis=1))
         row = rows[bad[0]]
