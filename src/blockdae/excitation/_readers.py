@@ -225,6 +225,7 @@ def _read_at2(lines, header, path):
 
 
 def _raise_first_bad_value(body, first_line, path):
+    """Raise the error for the first field of ``body`` (from file line ``first_line``) that is not a number."""
     for line_no, line in enumerate(body, start=first_line):
         for field in line.split():
             try:
@@ -260,7 +261,9 @@ def _decimal_comma(text, index, path):
 
 def _numbers(text, decimal_comma):
     """The numbers of one data line, or None if a field is not a number."""
-    fields = re.split(r"[;\s]+" if decimal_comma else r"[,;\s]+", text.replace(",", ".") if decimal_comma else text)
+    if decimal_comma:
+        text = text.replace(",", ".")
+    fields = re.split(r"[;\s]+" if decimal_comma else r"[,;\s]+", text)
     try:
         return [float(f) for f in fields if f]
     except ValueError:
@@ -285,6 +288,7 @@ def _parse_rows(lines, layout, path):
 
 
 def _comma_hint(text):
+    """A hint for a line whose column count may come from decimal commas."""
     return "; decimal commas? Use '.' for decimals, or ';' between columns" if "," in text and "." not in text else ""
 
 
@@ -299,9 +303,8 @@ def _check_rows(rows, start, path):
         return _data_line_numbers(_lines(path), start)[k]
 
     if rows.shape[1] not in (1, 2):
-        line_no = line_of(0)
-        raise ValueError(f"{path}, line {line_no}: expected 1 or 2 columns (time [s], acceleration), "
-                         f"found {rows.shape[1]}{_comma_hint(_lines(path)[line_no - 1])}")
+        raise ValueError(f"{path}, line {start + 1}: expected 1 or 2 columns (time [s], acceleration), "
+                         f"found {rows.shape[1]}{_comma_hint(_lines(path)[start])}")
     if not np.isfinite(rows).all():
         bad = np.flatnonzero(~np.all(np.isfinite(rows), axis=1))
         row = rows[bad[0]]
