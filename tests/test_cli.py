@@ -227,3 +227,19 @@ def test_python_api_keeps_compiled_kernels_in_the_cache_folder(tmp_path, setting
                           cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     assert (folder.is_dir() and any(folder.iterdir())) == kept
+
+
+def test_units_mix_up_and_time_origin_are_reported(tmp_path, capsys):
+    """A record in cm/s² read as g is refused (naming the peak); --accept-peak takes it; a
+    time column starting at 5 s is said in the output and kept in the JSON (start_time_s)."""
+    path = tmp_path / "cms2.csv"
+    t = 5.0 + 0.01 * np.arange(200)
+    np.savetxt(path, np.column_stack([t, 300.0 * np.sin(2 * np.pi * t)]), delimiter=",")
+    assert main(["--no-cache", "run", str(path), "--mu", "0.2", "--t-end", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "cm/s² read as g" in err and "300" in err
+    assert main(["--no-cache", "run", str(path), "--mu", "0.2", "--units", "cm/s2"]) == 0
+    assert "at t = 5 s on the file's axis" in capsys.readouterr().out
+    assert main(["--no-cache", "run", str(path), "--mu", "0.2", "--units", "cm/s2", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["start_time_s"] == 5.0
+    assert main(["--no-cache", "run", str(path), "--mu", "0.2", "--t-end", "1", "--accept-peak", "--quiet"]) == 0

@@ -77,12 +77,12 @@ def test_read_peer_at2(tmp_path):
 
 
 @pytest.mark.parametrize("body, message", [
-    ("0.0,0.1\n0.01,0.2\n0.03,0.1\n", "not uniform at data row 3"),
-    ("0.0,0.1\n0.01,0.2\n0.01,0.1\n", "not increasing at data row 3"),
+    ("0.0,0.1\n0.01,0.2\n0.03,0.1\n", "line 3: time column is not uniform"),
+    ("0.0,0.1\n0.01,0.2\n0.01,0.1\n", "line 3: time column is not increasing"),
     ("0.0,0.1\n0.01,abc\n", "line 2: not a number"),
     ("0.0,0.1\n0.01,0.2,0.3\n", "line 2: 3 columns"),
     ("# nothing\n", "no data rows"),
-    ("0.0,0.1\n0.01,nan\n", "sample 1 is nan"),
+    ("0.0,0.1\n0.01,nan\n", "line 2: value nan is not finite"),
 ])
 def test_reader_errors_name_file_and_place(tmp_path, body, message):
     path = tmp_path / "bad.csv"
@@ -100,7 +100,7 @@ def test_unknown_units():
 @pytest.mark.parametrize("kwargs, message", [
     (dict(acceleration=[], dt=0.01), "at least 2 samples"),
     (dict(acceleration=[1.0], dt=0.01), "at least 2 samples"),
-    (dict(acceleration=[1.0, np.inf], dt=0.01), "sample 1 is inf"),
+    (dict(acceleration=[1.0, np.inf], dt=0.01), r"sample 1 \(0-based\) is inf"),
     (dict(acceleration=[1.0, 2.0], dt=0.0), "dt must be a positive"),
     (dict(acceleration=[1.0, 2.0], dt=-0.1), "dt must be a positive"),
     (dict(acceleration=[[1.0, 2.0]], dt=0.1), "1-D array"),

@@ -122,3 +122,17 @@ def test_unhashable_excitation_still_runs():
     assert bd.simulate(block, record).displacement == bd.simulate(block, plain).displacement
     grid = bd.SlidingBlock(mu=np.array([0.1, 0.2]))
     np.testing.assert_array_equal(bd.simulate(grid, record).displacement, bd.simulate(grid, plain).displacement)
+
+
+def test_start_time_is_kept_by_scaling_and_records_hash_by_identity():
+    """``start_time`` [s] labels the first sample on the file's axis: kept by scaled and
+    inverted, validated finite, shown in repr; records stay hashable by identity (eq=False)
+    as the exact backend's cache needs."""
+    record = bd.Record([0.0, 2.0, -1.0], dt=0.5, name="r", start_time=5.0)
+    for other in (record.scaled(2.0), record.inverted()):
+        assert (other.name, other.start_time) == ("r", 5.0)
+    assert "start_time=5 s" in repr(record) and bd.Record([0.0, 1.0], 0.5).start_time == 0.0
+    twin = bd.Record([0.0, 2.0, -1.0], dt=0.5, name="r", start_time=5.0)
+    assert record != twin and len({record, twin}) == 2 and hash(record) == hash(record)
+    with pytest.raises(ValueError, match="start_time must be finite"):
+        bd.Record([0.0, 1.0], 0.5, start_time=float("nan"))

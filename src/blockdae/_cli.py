@@ -29,7 +29,7 @@ from .excitation._readers import unit_factor
 from .model import SlidingBlock
 
 _RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
-_CSV_FIELDS = ("record", "n_samples", "dt_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
+_CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
                "g_m_s2", "direction", "backend", "displacement_m", "max_abs_displacement_m", "n_events",
                "t_end_s")
 _EVENTS_SHOWN = 5  # events printed at each end of a long list by default
@@ -126,6 +126,8 @@ def _record_arguments(parser):
                         help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header "
                              "says, else g)")
     parser.add_argument("--dt", type=_positive("--dt"), default=None, help="sample step [s], for one-column files")
+    parser.add_argument("--accept-peak", action="store_true",
+                        help="accept a peak acceleration outside 1e-4 g .. 10 g (else an error: wrong units?)")
 
 
 def _finite(flag):
@@ -298,7 +300,7 @@ def _read(path, args):
     if not path.is_file():
         raise _UsageError(f"{path}: no such file")
     units = {} if args.units is None else {"units": args.units}
-    return _checked(lambda: read_record(path, dt=args.dt, g=args.g, **units), "")
+    return _checked(lambda: read_record(path, dt=args.dt, g=args.g, check_peak=not args.accept_peak, **units), "")
 
 
 def _checked(action, where):
@@ -311,8 +313,10 @@ def _checked(action, where):
 
 
 def _describe(record):
+    origin = (f"; times from its first sample, at t = {record.start_time:g} s on the file's axis"
+              if record.start_time else "")
     return (f"{record.name} ({record.acceleration_samples.size} samples, dt = {record.dt:g} s, "
-            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} m/s²)")
+            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} m/s²{origin})")
 
 
 def _describe_block(block):
@@ -353,7 +357,7 @@ def _clean(x):
 
 def _record_fields(record):
     return {"record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": _clean(record.dt),
-            "peak_acceleration_m_s2": record.peak_acceleration}
+            "start_time_s": record.start_time, "peak_acceleration_m_s2": record.peak_acceleration}
 
 
 def _block_fields(block):

@@ -3,8 +3,9 @@
 from ._analytic import Harmonic, RectangularPulse, SinePulse, TriangularPulse
 from ._base import AbstractExcitation
 from ._pieces import Pieces
-from ._readers import STANDARD_GRAVITY, read_record
+from ._readers import PLAUSIBLE_PEAK_G, STANDARD_GRAVITY, check_peak_acceleration, read_record
 from ._record import Record
 
 __all__ = ["AbstractExcitation", "Harmonic", "Pieces", "Record", "RectangularPulse",
-           "STANDARD_GRAVITY", "SinePulse", "TriangularPulse", "read_record"]
+           "PLAUSIBLE_PEAK_G", "STANDARD_GRAVITY", "SinePulse", "TriangularPulse", "check_peak_acceleration",
+           "read_record"]

@@ -1,123 +1,341 @@
-"""Readers for accelerogram files."""
+"""Readers for accelerogram files: two-column, one-column and PEER NGA .AT2 text."""
 
-import io
 import pathlib
 import re
+import typing
 
 import numpy as np
 
 from .._units import STANDARD_GRAVITY
 from ._record import Record
 
-_UNIT_FACTORS = {"g": None, "m/s2": 1.0, "m/s^2": 1.0, "m/s²": 1.0, "cm/s2": 0.01, "cm/s^2": 0.01,
-                 "cm/s²": 0.01, "gal": 0.01}
-_AT2_HEADER = re.compile(r"NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*([0-9.eE+-]+)", re.IGNORECASE)
-_AT2_OLD_HEADER = re.compile(r"^\s*(\d+)\s+([0-9.eE+-]+)\s+NPTS", re.IGNORECASE)
+#: plausible peak acceleration of a record [g]; outside it the units are likely wrong
+PLAUSIBLE_PEAK_G = (1e-4, 10.0)
+
+_UNITS = {"g": "g", "m/s2": "m/s2", "m/s^2": "m/s2", "m/s²": "m/s2",
+          "cm/s2": "cm/s2", "cm/s^2": "cm/s2", "cm/s²": "cm/s2", "gal": "cm/s2"}
+_FACTORS = {"m/s2": 1.0, "cm/s2": 0.01}
+_SYMBOLS = {"g": "g", "m/s2": "m/s²", "cm/s2": "cm/s²"}
+# an AT2 header's "IN UNITS OF ..." text, squeezed by _squeeze_units
+_HEADER_UNITS = {"G": "g", "M/S2": "m/s2", "CM/S2": "cm/s2", "GAL": "cm/s2", "GALS": "cm/s2"}
+_NPTS = re.compile(r"\bNPTS\s*=\s*(\d+)", re.IGNORECASE)
+_DT = re.compile(r"\bDT\s*=\s*([0-9.eE+-]+)", re.IGNORECASE)
+_OLD_HEADER = re.compile(r"^\s*(\d+)\s+([0-9.eE+-]+)\s+NPTS", re.IGNORECASE)
+_UNITS_OF = re.compile(r"UNITS\s+OF\s+(.*?)[\s.]*$", re.IGNORECASE)
+_HEADER_LINES = 10  # where the NPTS/DT line of an AT2 file is looked for
+
+
+def canonical_units(units: str) -> str:
+    """The name "g", "m/s2" or "cm/s2" of ``units`` (also "gal", "m/s^2", "cm/s²", ...)."""
+    key = str(units).strip().lower()
+    if key not in _UNITS:
+        raise ValueError(f"units={units!r} is unknown; use one of {sorted(_UNITS)}")
+    return _UNITS[key]
 
 
 def unit_factor(units: str, g: float = STANDARD_GRAVITY) -> float:
-    """Factor converting ``units`` to m/s² ("g", "m/s2", "cm/s2" or "gal")."""
-    key = str(units).strip().lower()
-    if key not in _UNIT_FACTORS:
-        raise ValueError(f"units={units!r} is unknown; use one of {sorted(_UNIT_FACTORS)}")
-    return g if _UNIT_FACTORS[key] is None else _UNIT_FACTORS[key]
+    """Factor converting ``units`` to m/s² ("g", "m/s2", "cm/s2" or "gal"); one g is ``g`` [m/s²]."""
+    return _FACTORS.get(canonical_units(units), g)
 
 
-def read_record(path, units="g", dt=None, g=STANDARD_GRAVITY, name=None) -> Record:
+def check_peak_acceleration(samples, units: str, g: float = STANDARD_GRAVITY, source: str = "record",
+                            units_from: str | None = None):
+    """Raise ValueError if the peak of ``samples`` (in ``units``; one g is ``g`` [m/s²]) is
+    outside :data:`PLAUSIBLE_PEAK_G` in standard g, naming the peak and the likely unit mix-up.
+
+    ``units_from`` says where ``units`` came from (e.g. a file's header line), if not the caller.
+    """
+    units = canonical_units(units)
+    peak = float(np.max(np.abs(samples), initial=0.0))
+    peak_g = peak * unit_factor(units, g) / STANDARD_GRAVITY
+    low, high = PLAUSIBLE_PEAK_G
+    if low <= peak_g <= high:
+        return
+    in_g = "" if units == "g" else f" = {peak_g:.4g} g"
+    mix_up = _likely_units(peak, units)
+    fix = f"correct the file ({units_from} sets the units)" if units_from else f"pass units={mix_up!r}"
+    hint = (f"looks like {_SYMBOLS[mix_up]} read as {_SYMBOLS[units]}: {fix}" if mix_up
+            else "check the file's values and units")
+    raise ValueError(f"{source}: peak acceleration {peak:.4g} {_SYMBOLS[units]}{in_g} is implausible "
+                     f"(outside {low:g} g to {high:g} g); {hint}, or check_peak=False to accept it")
+
+
+def _likely_units(peak, units):
+    """The other units that make ``peak`` plausible, nearest 0.3 g; None if none do."""
+    low, high = PLAUSIBLE_PEAK_G
+    in_g = {u: peak * unit_factor(u) / STANDARD_GRAVITY for u in _SYMBOLS if u != units}
+    plausible = [u for u, p in in_g.items() if low <= p <= high]
+    return min(plausible, key=lambda u: abs(np.log(in_g[u] / 0.3)), default=None)
+
+
+def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_peak=True) -> Record:
     """Read an accelerogram file into a :class:`Record` [m/s²].
 
     Formats:
-      * two columns (time [s], acceleration), comma- or space-separated, '#' comments,
-        optional UTF-8 BOM; the time column must be uniform and increasing, and time
-        is counted from its first value;
+      * two columns (time [s], acceleration), separated by commas, blanks or semicolons
+        (semicolons with decimal commas, ``0,01;0,5``, too), '#' comments, optional
+        header line and UTF-8 BOM; the time column must be uniform and increasing, and
+        its first value is kept as ``Record.start_time``;
       * one column of accelerations, with the sample step ``dt`` [s] given;
-      * PEER NGA ``.AT2`` (NPTS and DT read from the header).
+      * PEER NGA AT2 (any file name: found by its ``NPTS=..., DT=...`` header line, in
+        either order, or the older ``5000  0.0050  NPTS, DT`` line); its
+        ``... IN UNITS OF G`` (or ``CM/SEC/SEC``, ``M/SEC/SEC``, ``GAL``) line is read.
 
     Args:
         path: file path.
-        units: units of the acceleration values: "g", "m/s2", "cm/s2" or "gal".
-        dt: sample step [s], required for one-column files only.
-        g: the value of one "g" [m/s²] when ``units="g"``.
+        units: units of the values: "g", "m/s2", "cm/s2" or "gal"; None: as the AT2
+            header says, "g" for files that do not say. Contradicting the header raises.
+        dt: sample step [s]; required for one-column files only, checked against the
+            file's step otherwise.
+        g: the value of one "g" [m/s²].
         name: record name; the file stem by default.
+        check_peak: raise if the peak acceleration is implausible (outside
+            :data:`PLAUSIBLE_PEAK_G`), a sign of wrong units; False accepts any peak.
+
+    Errors are ValueErrors naming the file and, where there is one, its 1-based line.
     """
     path = pathlib.Path(path)
-    factor = unit_factor(units, g)
-    text = path.read_text(encoding="utf-8-sig")
-    name = path.stem if name is None else name
+    if units is not None:
+        canonical_units(units)  # an unknown name fails before the file is read
+    layout = _scan(path)
+    if layout.at2 is not None:
+        lines = _lines(path)
+        samples, file_dt, start_time = _read_at2(lines, layout.at2, path)
+        header_units, statement = _at2_units(lines[:layout.at2[0]], path)
+        units = _resolve_units(units, header_units, statement, path)
+    else:
+        samples, file_dt, start_time = _read_columns(path, layout)
+        units, statement = "g" if units is None else canonical_units(units), None
+    dt = _sample_step(dt, file_dt, path)
+    if check_peak:
+        check_peak_acceleration(samples, units, g, str(path), statement and f"the header's {statement}")
+    return Record(samples * unit_factor(units, g), dt, path.stem if name is None else name, start_time)
+
+
+class _Layout(typing.NamedTuple):
+    """Where a file's data start: an AT2 header, or a table's first line and separators."""
+    at2: tuple | None  # (line index, NPTS, DT [s]) of the AT2 header line
+    start: int = 0  # index of the table's first data line
+    delimiter: str | None = None  # loadtxt's: ",", ";" or None (blanks)
+    decimal_comma: bool = False
+
+
+def _scan(path):
+    """The :class:`_Layout` of ``path``, read up to the AT2 header line or the first data line."""
+    with open(path, encoding="utf-8-sig") as file:
+        for i, line in enumerate(file):
+            header = _at2_header(line, i, path) if i < _HEADER_LINES else None
+            if header is not None:
+                return _Layout(header)
+            text = line.split("#", 1)[0].strip()
+            if not text or _numbers(text, False) is None:
+                continue  # blank, or a header line of column names
+            if path.suffix.lower() == ".at2":
+                break
+            delimiter = ";" if ";" in text else "," if "," in text else None
+            return _Layout(None, i, delimiter, _decimal_comma(text, i, path))
     if path.suffix.lower() == ".at2":
-        samples, file_dt = _parse_at2(text, path)
-        if dt is not None and not np.isclose(dt, file_dt):
-            raise ValueError(f"{path}: dt={dt} s contradicts the header's DT={file_dt} s")
-        return Record(samples * factor, file_dt, name)
-    rows = _parse_columns(text, path)
-    try:
-        return _from_columns(rows, path, factor, dt, name)
-    except ValueError as err:
-        if str(path) in str(err):
-            raise
-        raise ValueError(f"{path}: {err}") from None
+        raise ValueError(f"{path}: no 'NPTS=..., DT=...' line in the first {_HEADER_LINES} lines (AT2 header)")
+    raise ValueError(f"{path}: no data rows")
 
 
-def _from_columns(rows, path, factor, dt, name):
-    if rows.shape[1] == 1:
+def _lines(path):
+    """The file's lines, split as ``open`` and ``np.loadtxt`` split them."""
+    return path.read_text(encoding="utf-8-sig").split("\n")
+
+
+def _sample_step(dt, file_dt, path):
+    """The sample step [s]: the file's, which a given ``dt`` must match, or the given one."""
+    if file_dt is None:
         if dt is None:
             raise ValueError(f"{path}: one-column file needs the sample step dt [s]")
-        return Record(rows[:, 0] * factor, dt, name)
-    if rows.shape[1] != 2:
-        raise ValueError(f"{path}: expected 1 or 2 columns, found {rows.shape[1]}")
-    time = rows[:, 0]
-    step = np.diff(time)
-    if step.size == 0:
-        raise ValueError(f"{path}: needs at least 2 samples")
-    bad = np.flatnonzero(step <= 0)
-    if bad.size:
-        raise ValueError(f"{path}: time column is not increasing at data row {bad[0] + 2} "
-                         f"(t={float(time[bad[0] + 1])} s after {float(time[bad[0]])} s)")
-    bad = np.flatnonzero(np.abs(step - step[0]) > 1e-6 * step[0] + 1e-9)
-    if bad.size:
-        raise ValueError(f"{path}: time column is not uniform at data row {bad[0] + 2} "
-                         f"(step {float(step[bad[0]])} s after steps of {float(step[0])} s)")
-    file_dt = (time[-1] - time[0]) / step.size
+        return dt
     if dt is not None and not np.isclose(dt, file_dt):
-        raise ValueError(f"{path}: dt={dt} s contradicts the time column's step {file_dt} s")
-    return Record(rows[:, 1] * factor, file_dt, name)
+        raise ValueError(f"{path}: dt={dt:.6g} s contradicts the file's step {file_dt:.6g} s")
+    return file_dt
 
 
-def _parse_columns(text, path):
-    rows = []
-    for line_no, line in enumerate(io.StringIO(text), start=1):
-        line = line.split("#", 1)[0].strip()
-        if not line:
+def _resolve_units(units, header_units, statement, path):
+    """The units to read with: ``units``, or the header's; they must agree."""
+    if units is None:
+        if statement and header_units is None:
+            raise ValueError(f"{path}, {statement}: units not understood; pass units= "
+                             "('g', 'm/s2' or 'cm/s2')")
+        return header_units or "g"
+    given = canonical_units(units)
+    if header_units and given != header_units:
+        raise ValueError(f"{path}: units={units!r} ({_SYMBOLS[given]}) contradicts the header, "
+                         f"{statement}, which says {_SYMBOLS[header_units]}; leave units=None to "
+                         "use the header's")
+    return given
+
+
+# --- PEER NGA AT2 -----------------------------------------------------------------
+
+def _at2_header(line, index, path):
+    """(index, NPTS, DT [s]) if ``line`` is an AT2 header's NPTS/DT line, else None."""
+    npts, dt = _NPTS.search(line), _DT.search(line)
+    old = _OLD_HEADER.search(line)
+    if line.lstrip().startswith("#") or not (npts and dt or old):
+        return None
+    count, step = (npts.group(1), dt.group(1)) if npts and dt else old.groups()
+    try:
+        return index, int(count), float(step)
+    except ValueError:
+        raise ValueError(f"{path}, line {index + 1}: cannot read NPTS and DT in {line.strip()!r}") from None
+
+
+def _at2_units(header_lines, path):
+    """(units or None, "line N: '...'") of the header's 'IN UNITS OF' line; (None, None) without."""
+    for n, line in enumerate(header_lines, start=1):
+        match = _UNITS_OF.search(line)
+        if not match:
             continue
-        fields = [f for f in re.split(r"[,\s;]+", line) if f]
-        try:
-            rows.append([float(f) for f in fields])
-        except ValueError:
-            if not rows:  # a header line of column names before the data
-                continue
-            raise ValueError(f"{path}, line {line_no}: not a number in {line!r}") from None
-        if len(rows[-1]) != len(rows[0]):
-            raise ValueError(f"{path}, line {line_no}: {len(rows[-1])} columns, expected {len(rows[0])}")
-    if not rows:
-        raise ValueError(f"{path}: no data rows")
+        statement = f"line {n}: {line.strip()!r}"
+        if re.search(r"VELOCITY|DISPLACEMENT", line, re.IGNORECASE):
+            raise ValueError(f"{path}, {statement}: not an acceleration time series")
+        return _HEADER_UNITS.get(_squeeze_units(match.group(1))), statement
+    return None, None
+
+
+def _squeeze_units(text):
+    """'CM/SEC/SEC', 'cm/s^2', 'CM/S**2' -> 'CM/S2'."""
+    text = re.sub(r"\s+", "", text.upper()).replace("SEC", "S")
+    return re.sub(r"(/S|\*\*2|\^2|²)$", "2", text)
+
+
+def _read_at2(lines, header, path):
+    """(samples, DT [s], start time 0) of an AT2 file, its values after the header line."""
+    index, npts, dt = header
+    body = lines[index + 1:]
+    try:
+        samples = np.array(" ".join(body).split(), dtype=float)
+    except ValueError:
+        _raise_first_bad_value(body, index + 2, path)
+    if samples.size != npts:
+        raise ValueError(f"{path}: header (line {index + 1}) says NPTS={npts}, found {samples.size} values")
+    bad = np.flatnonzero(~np.isfinite(samples))
+    if bad.size:
+        counts = np.cumsum([len(line.split()) for line in body])
+        line_no = index + 2 + int(np.searchsorted(counts, bad[0], side="right"))
+        raise ValueError(f"{path}, line {line_no}: value {samples[bad[0]]} is not finite")
+    return samples, dt, 0.0
+
+
+def _raise_first_bad_value(body, first_line, path):
+    """Raise the error for the first field of ``body`` (from file line ``first_line``) that is not a number."""
+    for line_no, line in enumerate(body, start=first_line):
+        for field in line.split():
+            try:
+                float(field)
+            except ValueError:
+                raise ValueError(f"{path}, line {line_no}: not a number, {field!r}, in {line.strip()!r}") from None
+
+
+# --- one or two columns ------------------------------------------------------------
+
+def _read_columns(path, layout):
+    """(samples, step [s] or None for one column, start time [s]) of a one- or two-column table."""
+    source = path
+    if layout.decimal_comma:
+        source = "\n".join(_lines(path)[layout.start:]).replace(",", ".").split("\n")
+    try:
+        rows = np.loadtxt(source, delimiter=layout.delimiter, comments="#", ndmin=2, encoding="utf-8-sig",
+                          skiprows=0 if layout.decimal_comma else layout.start)
+    except ValueError:  # the line-by-line parser locates the error, or reads what loadtxt cannot
+        rows = _parse_rows(_lines(path), layout, path)
+    return _check_rows(rows, layout.start, path)
+
+
+def _decimal_comma(text, index, path):
+    """Whether a line's numbers have decimal commas (then with ';' separators)."""
+    if ";" not in text or "," not in text:
+        return False
+    if "." in text:
+        raise ValueError(f"{path}, line {index + 1}: both '.' and ',' in {text!r} with ';' separators: "
+                         "use '.' for decimals (or ',' with ';' separators), not both")
+    return True
+
+
+def _numbers(text, decimal_comma):
+    """The numbers of one data line, or None if a field is not a number."""
+    if decimal_comma:
+        text = text.replace(",", ".")
+    fields = re.split(r"[;\s]+" if decimal_comma else r"[,;\s]+", text)
+    try:
+        return [float(f) for f in fields if f]
+    except ValueError:
+        return None
+
+
+def _parse_rows(lines, layout, path):
+    """The table from its first data line on, parsed line by line; errors name the line."""
+    rows, first = [], layout.start + 1
+    for line_no, line in enumerate(lines[layout.start:], start=first):
+        text = line.split("#", 1)[0].strip()
+        if not text:
+            continue
+        row = _numbers(text, layout.decimal_comma)
+        if row is None:
+            raise ValueError(f"{path}, line {line_no}: not a number in {text!r}")
+        if rows and len(row) != len(rows[0]):
+            raise ValueError(f"{path}, line {line_no}: {len(row)} columns, expected {len(rows[0])} "
+                             f"as on line {first}{_comma_hint(text)}")
+        rows.append(row)
     return np.array(rows)
 
 
-def _parse_at2(text, path):
-    lines = text.splitlines()
-    for header_end, line in enumerate(lines[:10]):
-        match = _AT2_HEADER.search(line) or _AT2_OLD_HEADER.search(line)
-        if match:
+def _comma_hint(text):
+    """A hint for a line whose column count may come from decimal commas."""
+    return "; decimal commas? Use '.' for decimals, or ';' between columns" if "," in text and "." not in text else ""
+
+
+def _data_line_numbers(lines, start):
+    """1-based file line numbers of the table's data rows, from line ``start`` on."""
+    return [n for n, line in enumerate(lines[start:], start=start + 1) if line.split("#", 1)[0].strip()]
+
+
+def _check_rows(rows, start, path):
+    """(samples, step [s] or None, start time [s]) of the checked rows of the table at line index ``start``."""
+    def line_of(k):  # file line of data row k, counted only for an error
+        return _data_line_numbers(_lines(path), start)[k]
+
+    if rows.shape[1] not in (1, 2):
+        raise ValueError(f"{path}, line {start + 1}: expected 1 or 2 columns (time [s], acceleration), "
+                         f"found {rows.shape[1]}{_comma_hint(_lines(path)[start])}")
+    if not np.isfinite(rows).all():
+        bad = np.flatnonzero(~np.all(np.isfinite(rows), axis=1))
+        row = rows[bad[0]]
+        raise ValueError(f"{path}, line {line_of(bad[0])}: value {row[~np.isfinite(row)][0]} is not finite")
+    if rows.shape[1] == 1:
+        return rows[:, 0], None, 0.0
+    return rows[:, 1], *_time_step(rows[:, 0], line_of, path)
+
+
+def _time_step(time, line_of, path):
+    """(step [s], start time [s]) of a uniform increasing time column."""
+    if time.size < 2:
+        raise ValueError(f"{path}: needs at least 2 samples")
+    step = np.diff(time)
+    bad = np.flatnonzero(step <= 0)
+    if bad.size:
+        k = bad[0] + 1
+        raise ValueError(f"{path}, line {line_of(k)}: time column is not increasing "
+                         f"(t = {time[k]:.6g} s after {time[k - 1]:.6g} s)")
+    middle = (step.size - 1) // 2
+    usual = np.partition(step, middle)[middle]  # the lower median step
+    bad = np.flatnonzero(np.abs(step - usual) > 1e-6 * usual + 1e-9)
+    if bad.size:
+        k = bad[0] + 1
+        shown, others = _distinct(step[bad[0]], usual)
+        raise ValueError(f"{path}, line {line_of(k)}: time column is not uniform "
+                         f"(step {shown} s to t = {time[k]:.9g} s, where the others are {others} s)")
+    return float(f"{(time[-1] - time[0]) / step.size:.12g}"), float(time[0])
+
+
+def _distinct(a, b):
+    """``a`` and ``b`` printed to the fewest significant digits (6, 9 or 12) that tell them apart."""
+    for digits in (6, 9, 12):
+        if f"{a:.{digits}g}" != f"{b:.{digits}g}":
             break
-    else:
-        raise ValueError(f"{path}: no 'NPTS=..., DT=...' line in the AT2 header")
-    npts, dt = int(match.group(1)), float(match.group(2))
-    values = []
-    for line_no, line in enumerate(lines[header_end + 1:], start=header_end + 2):
-        try:
-            values.extend(float(v) for v in line.split())
-        except ValueError:
-            raise ValueError(f"{path}, line {line_no}: not a number in {line.strip()!r}") from None
-    if len(values) != npts:
-        raise ValueError(f"{path}: header says NPTS={npts}, found {len(values)} values")
-    return np.array(values), dt
+    return f"{a:.{digits}g}", f"{b:.{digits}g}"
