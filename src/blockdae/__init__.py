@@ -10,6 +10,7 @@ from ._plot import plot
 from ._sensitivities import sensitivities
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, Solution
+from ._sweep import SweepSolution, simulate_many
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
@@ -18,6 +19,7 @@ __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "read_record", "simulate",
+    "SweepSolution", "simulate_many",
     "CrossCheck", "crosscheck",
     "SeedExample", "plot", "seed_examples",
     "sensitivities",

@@ -1,5 +1,7 @@
 """The one entry point: ``simulate``."""
 
+import dataclasses
+
 from ._solution import BatchSolution, Solution
 from .backends import Horizon, make_backend
 from .excitation import AbstractExcitation
@@ -28,6 +30,5 @@ def simulate(block: SlidingBlock, motion: AbstractExcitation, t_end: float | Non
         raise TypeError(f"motion must be an excitation (Harmonic, Record, ...), got {type(motion).__name__}")
     horizon = Horizon.resolve(motion, t_end)
     solver = make_backend(backend, **options)
-    if block.batch_shape:
-        return solver.solve_batch(block, motion, horizon)
-    return solver.solve(block, motion, horizon)
+    result = solver.solve_batch(block, motion, horizon) if block.batch_shape else solver.solve(block, motion, horizon)
+    return dataclasses.replace(result, block=block, motion=motion)
