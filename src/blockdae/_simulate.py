@@ -33,8 +33,8 @@ def simulate(block: SlidingBlock, motion: AbstractExcitation, t_end: float | Non
                 max_step=None: largest internal step [s]; None: no bound besides
                     the stops at every piece of a(t) and every turning point of v.
                 max_num_steps=5000: most internal steps between two stops [-].
-                max_events_at_one_instant=5: most consecutive events at one instant
-                    [-]; more (chatter) raises an error.
+                max_events_at_one_instant=5: most consecutive events at one instant [-];
+                    more (chatter) raises an error.
                 event_resolution=1e-9: events closer than this are one instant [s].
             backend="jax" (diffrax twin, forward-mode differentiable):
                 rtol=1e-10: relative tolerance of the step-size controller [-].
