@@ -45,7 +45,8 @@ def simulate(block: SlidingBlock, motion: AbstractExcitation, t_end: float | Non
                 max_steps=4096: most solver steps per segment [-].
 
     Returns:
-        A :class:`Solution`, or a :class:`BatchSolution` for a batch.
+        A :class:`Solution`, or a :class:`BatchSolution` for a batch; either keeps
+        ``block`` and ``motion``. For several motions or scales: :func:`simulate_many`.
     """
     if not isinstance(block, SlidingBlock):
         raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
