@@ -8,6 +8,7 @@ import numpy as np
 from ._sensitivities import UNITS, finite_differences, sensitivities
 from ._simulate import simulate
 from .backends import make_backend
+from .model import SlidingBlock
 
 
 @dataclasses.dataclass(frozen=True)
@@ -45,7 +46,8 @@ class CrossCheck:
         for r in self.rows:
             derivatives = "".join(f" {r['sensitivities'][name]:>17.10g}" for name in self.wrt)
             lines.append(f"{r['backend']:<8} {r['displacement']:>16.10f} {r['n_events']:>6d} "
-                         f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['first']:>9.3f} {r['warm']:>9.3f}" + derivatives
+                         f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['first']:>9.3f} {r['warm']:>9.3f}"
+                         + derivatives
                          + (f" {r['rel_dsens']:>13.2e}" if self.wrt else ""))
         return "\n".join(lines) + f"\n(differences against {self.reference!r})"
 
@@ -66,6 +68,8 @@ def crosscheck(block, motion, backends=("exact", "cvode", "ida", "jax"), t_end=N
     Returns:
         A :class:`CrossCheck`, or a list of n of them for a batch.
     """
+    if not isinstance(block, SlidingBlock):
+        raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
     accepted = {name: {f.name for f in dataclasses.fields(type(make_backend(name)))} for name in backends}
     unknown = set(options) - set().union(*accepted.values())
     if unknown:
