@@ -12,6 +12,7 @@ from ._plot import plot
 from ._sensitivities import sensitivities
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, Solution
+from ._sweep import SweepSolution, simulate_many
 from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_record)
@@ -21,6 +22,7 @@ __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "check_peak_acceleration", "read_record", "simulate",
+    "SweepSolution", "simulate_many",
     "CrossCheck", "crosscheck",
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
     "sensitivities", "set_compilation_cache",

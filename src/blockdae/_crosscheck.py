@@ -8,6 +8,7 @@ import numpy as np
 from ._sensitivities import UNITS, finite_differences, sensitivities
 from ._simulate import simulate
 from .backends import make_backend
+from .model import SlidingBlock
 
 
 @dataclasses.dataclass(frozen=True)
@@ -17,10 +18,12 @@ class CrossCheck:
     backend, displacement [m], n_events, t_events [s] (array), max_dt [s] (largest
     event-time difference against the reference, inf if the event lists differ in
     length or modes), rel_du [-] (|u - u_ref| / |u_ref|, or the absolute difference
-    [m] when u_ref = 0) and wall [s] (of that call, JIT compilation included); with
-    ``wrt``, also sensitivities (name -> d u / d p, see :func:`blockdae.sensitivities`:
-    differentiated kernels for "exact" and "jax", central differences for the others)
-    and rel_dsens [-] (largest relative difference of those against the reference's).
+    [m] when u_ref = 0), first [s] (wall time of the first call, which includes JIT
+    compilation when this process has not compiled that shape yet) and warm [s] (of a
+    second, identical call); with ``wrt``, also sensitivities (name -> d u / d p, see
+    :func:`blockdae.sensitivities`: differentiated kernels for "exact" and "jax", finite
+    differences for the others, one-sided at a bound such as mu_kinetic = mu) and
+    rel_dsens [-] (largest relative difference of those against the reference's).
     """
 
     rows: list
@@ -37,42 +40,57 @@ class CrossCheck:
     def __str__(self):
         derivative_heads = "".join(f" {f'du/d{name} [{UNITS[name]}]':>17}" for name in self.wrt)
         head = (f"{'backend':<8} {'u_end [m]':>16} {'events':>6} {'max |dt| [s]':>13} "
-                f"{'rel |du| [-]':>13} {'wall [s]':>9}" + derivative_heads
+                f"{'rel |du| [-]':>13} {'first [s]':>9} {'warm [s]':>9}" + derivative_heads
                 + (f" {'rel |dS| [-]':>13}" if self.wrt else ""))
         lines = [head, "-" * len(head)]
         for r in self.rows:
             derivatives = "".join(f" {r['sensitivities'][name]:>17.10g}" for name in self.wrt)
             lines.append(f"{r['backend']:<8} {r['displacement']:>16.10f} {r['n_events']:>6d} "
-                         f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['wall']:>9.3f}" + derivatives
+                         f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['first']:>9.3f} {r['warm']:>9.3f}"
+                         + derivatives
                          + (f" {r['rel_dsens']:>13.2e}" if self.wrt else ""))
         return "\n".join(lines) + f"\n(differences against {self.reference!r})"
 
 
 def crosscheck(block, motion, backends=("exact", "cvode", "ida", "jax"), t_end=None, wrt=(),
-               **options) -> CrossCheck:
-    """Solve ``block`` under ``motion`` with each backend and compare with the first.
+               **options) -> CrossCheck | list[CrossCheck]:
+    """Solve ``block`` under ``motion`` with each backend (twice: first and warm call)
+    and compare with the first backend.
 
     Args:
+        block: the block; for a batch of n parameter sets, each is checked on its own.
         backends: backend names; the first is the reference (normally "exact").
         t_end: final time [s], or None (until rest after a finite excitation).
         wrt: parameters to differentiate u(t_end) by (see :func:`blockdae.sensitivities`),
             e.g. ("mu", "mu_kinetic", "bias", "A"); none by default.
         **options: settings passed to every backend that has them (e.g. ``rtol``).
+
+    Returns:
+        A :class:`CrossCheck`, or a list of n of them for a batch.
     """
+    if not isinstance(block, SlidingBlock):
+        raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
     accepted = {name: {f.name for f in dataclasses.fields(type(make_backend(name)))} for name in backends}
     unknown = set(options) - set().union(*accepted.values())
     if unknown:
         raise TypeError(f"no backend in {tuple(backends)} takes the option(s) {sorted(unknown)}")
+    if block.batch_shape:
+        return [crosscheck(block.item(i), motion, backends, t_end, wrt, **options)
+                for i in range(block.batch_shape[0])]
     solutions = []
     for name in backends:
-        start = time.perf_counter()
         mine = {key: value for key, value in options.items() if key in accepted[name]}
-        solution = simulate(block, motion, t_end=t_end, backend=name, **mine)
-        solutions.append((name, solution, time.perf_counter() - start))
+        walls = []
+        for _ in range(2):
+            start = time.perf_counter()
+            solution = simulate(block, motion, t_end=t_end, backend=name, **mine)
+            walls.append(time.perf_counter() - start)
+        solutions.append((name, solution, walls))
     ref = solutions[0][1]
     rows = [dict(backend=name, displacement=s.displacement, n_events=len(s.events), t_events=s.t_events,
-                 max_dt=_max_event_dt(ref, s), rel_du=_relative(s.displacement, ref.displacement), wall=wall)
-            for name, s, wall in solutions]
+                 max_dt=_max_event_dt(ref, s), rel_du=_relative(s.displacement, ref.displacement),
+                 first=first, warm=warm)
+            for name, s, (first, warm) in solutions]
     if wrt:
         wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
         for row in rows:

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from ._solution import Solution
+from ._solution import BatchSolution, Solution
 from .excitation import AbstractExcitation
 from .model import SlidingBlock
 
@@ -11,9 +11,14 @@ _BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")
 _EVENTS = dict(ls="none", marker="o", ms=4, mfc="none", color="C0", label="events")
 
 
-def plot(solution: Solution, excitation: AbstractExcitation | None = None,
+def plot(solution: Solution | BatchSolution, excitation: AbstractExcitation | None = None,
          block: SlidingBlock | None = None, *, n_points: int = 2000, title: str | None = None):
     """Draw a solution: absolute and relative motion, and the phase plane.
+
+    A :class:`BatchSolution` is drawn as u(t_end) and max |u| [m] against the one
+    parameter that varies across its grid (mu_kinetic counts only when the grid sets
+    it), or against the parameter-set index when none or several vary (the x label
+    then names those that vary).
 
     Left column (only with ``excitation``): base (solid) and block (dashed)
     acceleration [m/s²], velocity [m/s] and displacement [m]; the block's
@@ -22,7 +27,8 @@ def plot(solution: Solution, excitation: AbstractExcitation | None = None,
     Located events are marked with circles on every panel.
 
     Args:
-        solution: a single run (index a :class:`BatchSolution` first).
+        solution: a single run, or a batch (``excitation``, ``block``, ``n_points``
+            are then unused).
         excitation: the base motion the solution was computed for.
         block: the block, for the block-acceleration curve.
         n_points: samples of the time grid; the solution's knots are added to it.
@@ -33,8 +39,10 @@ def plot(solution: Solution, excitation: AbstractExcitation | None = None,
     """
     import matplotlib.pyplot as plt
 
+    if isinstance(solution, BatchSolution):
+        return _plot_batch(solution, title=title)
     if not isinstance(solution, Solution):
-        raise TypeError(f"solution must be a Solution, got {type(solution).__name__}")
+        raise TypeError(f"solution must be a Solution or a BatchSolution, got {type(solution).__name__}")
     if not (isinstance(n_points, int) and n_points >= 2):
         raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
     t = np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
@@ -83,3 +91,25 @@ def _curve(ax, t, y, t_ev, y_ev, ylabel, style=None):
     if ylabel:
         ax.set_ylabel(ylabel)
     ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+
+
+def _plot_batch(batch: BatchSolution, *, title: str | None = None):
+    """u(t_end) and max |u| [m] of each parameter set against the parameter that varies."""
+    import matplotlib.pyplot as plt
+
+    grid = batch.parameters()
+    if batch.block is not None and batch.block.mu_kinetic is None:
+        del grid["mu_kinetic"]
+    varied = [name for name, values in grid.items() if np.unique(values).size > 1]
+    if len(varied) == 1:
+        x, xlabel = grid[varied[0]], f"{varied[0]} [-]"
+    else:
+        x = np.arange(len(batch))
+        xlabel = "parameter set" + (f" ({', '.join(varied)} vary)" if varied else "")
+    fig, ax = plt.subplots(figsize=(6, 4), constrained_layout=True)
+    ax.plot(x, batch.displacement, marker="o", ms=4, color="C3", label="u(t_end)")
+    ax.plot(x, batch.max_abs_displacement, marker="s", ms=4, mfc="none", ls="--", color="0.3", label="max |u|")
+    ax.set(xlabel=xlabel, ylabel="displacement [m]", title=title)
+    ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    ax.legend(loc="best", fontsize="small")
+    return fig

@@ -87,11 +87,13 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
 def finite_differences(block: SlidingBlock, motion: AbstractExcitation, t_end: float | None = None,
                        wrt=("mu", "mu_kinetic", "bias", "A"), backend: str = "cvode", step: float = 1e-4,
                        **options) -> dict:
-    """Central finite differences of u(t_end) on any backend, for checking derivatives.
+    """Finite differences of u(t_end) on any backend, for checking derivatives.
 
     Same parameters and units as :func:`sensitivities` (one parameter set). ``step`` is
     relative: mu and mu_kinetic move by step times their value, bias by step times mu,
-    and a(t) is scaled by 1 +- step. The step must leave the block valid (f <= mu).
+    and a(t) is scaled by 1 +- step. Central differences, or second-order one-sided
+    ones where a step would leave the block invalid (at a bound: mu_kinetic = mu,
+    |bias| near mu), taken from the valid side.
     """
     wrt = _names(wrt)
     if block.batch_shape:
@@ -102,20 +104,34 @@ def finite_differences(block: SlidingBlock, motion: AbstractExcitation, t_end: f
     def u(blk, mot):
         return simulate(blk, mot, t_end=t_end, backend=backend, **options).displacement
 
-    def central(change):
-        return (u(*change(+1)) - u(*change(-1))) / 2
-
     f = block.friction_kinetic
     h_mu, h_f = step * block.mu, step * (f if f > 0 else block.mu)
-    d_scale = central(lambda s: (block, motion.scaled(1 + s * step))) / step
+    d_scale = functools.cache(lambda: _difference(u, lambda s: (block, motion.scaled(1 + s * step))) / step)
     derivatives = {
-        "mu": lambda: central(lambda s: (block.replace(mu=block.mu + s * h_mu), motion)) / h_mu,
-        "mu_kinetic": lambda: central(lambda s: (block.replace(mu_kinetic=f + s * h_f), motion)) / h_f,
-        "bias": lambda: central(lambda s: (block.replace(bias=block.bias + s * h_mu), motion)) / h_mu,
-        "A": lambda: d_scale * block.g / motion.peak_acceleration,
-        "scale": lambda: d_scale,
+        "mu": lambda: _difference(u, lambda s: (block.replace(mu=block.mu + s * h_mu), motion)) / h_mu,
+        "mu_kinetic": lambda: _difference(u, lambda s: (block.replace(mu_kinetic=f + s * h_f), motion)) / h_f,
+        "bias": lambda: _difference(u, lambda s: (block.replace(bias=block.bias + s * h_mu), motion)) / h_mu,
+        "A": lambda: d_scale() * block.g / motion.peak_acceleration,
+        "scale": d_scale,
     }
     return {name: float(derivatives[name]()) for name in wrt}
+
+
+def _difference(u, change):
+    """d u(change(s)) / d s at s = 0: central, or second-order one-sided from the side
+    where ``change`` (a step of s = +-1, +-2 giving (block, motion)) stays a valid block."""
+    valid = {}
+    for s in (-2, -1, 1, 2):
+        try:
+            valid[s] = change(s)
+        except ValueError:  # the block refuses this step: a bound of the parameter
+            continue
+    if 1 in valid and -1 in valid:
+        return (u(*valid[1]) - u(*valid[-1])) / 2
+    for side in (1, -1):
+        if side in valid and 2 * side in valid:
+            return side * (4 * u(*valid[side]) - u(*valid[2 * side]) - 3 * u(*change(0))) / 2
+    raise ValueError("no step of the parameter leaves the block valid; use a smaller step")
 
 
 def _names(wrt):

@@ -5,7 +5,8 @@ from typing import Callable
 
 import numpy as np
 
-from .model import Mode
+from .excitation import AbstractExcitation
+from .model import Mode, SlidingBlock
 
 
 @dataclasses.dataclass(frozen=True)
@@ -42,6 +43,8 @@ class Solution:
         events: located mode changes, in time order.
         backend: name of the backend that produced it.
         stats: counters, e.g. ``max_events_at_one_instant`` and solver statistics.
+        block, motion: the block and the base excitation it was computed for
+            (set by :func:`blockdae.simulate`; None if a backend was called directly).
     """
 
     t: np.ndarray
@@ -52,6 +55,8 @@ class Solution:
     backend: str
     dense: Callable = dataclasses.field(repr=False)
     stats: dict = dataclasses.field(default_factory=dict)
+    block: SlidingBlock | None = dataclasses.field(default=None, repr=False)
+    motion: AbstractExcitation | None = dataclasses.field(default=None, repr=False)
 
     @property
     def t_end(self) -> float:
@@ -87,6 +92,19 @@ class Solution:
                   for e in (self.events if events is None else events)]
         return "\n".join(lines)
 
+    def to_dataframe(self):
+        """The events as a pandas DataFrame, one row per event: t_s [s], mode_before,
+        mode_after (mode names), u_m [m], v_m_s [m/s]."""
+        import pandas as pd
+
+        return pd.DataFrame({
+            "t_s": pd.Series([e.t for e in self.events], dtype=float),
+            "mode_before": pd.Series([e.mode_before.name for e in self.events], dtype=object),
+            "mode_after": pd.Series([e.mode_after.name for e in self.events], dtype=object),
+            "u_m": pd.Series([e.u for e in self.events], dtype=float),
+            "v_m_s": pd.Series([e.v for e in self.events], dtype=float),
+        })
+
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class BatchSolution:
@@ -97,6 +115,10 @@ class BatchSolution:
         max_abs_displacement: max |u| per parameter set [m], shape (n,).
         n_events: number of events per parameter set, shape (n,).
         t_end: final time per parameter set [s], shape (n,).
+        backend: name of the backend that produced it.
+        block: the parameter grid, a block whose parameters are arrays of shape (n,)
+            (set by :func:`blockdae.simulate`; None if a backend was called directly).
+        motion: the base excitation.
     """
 
     displacement: np.ndarray
@@ -105,10 +127,39 @@ class BatchSolution:
     t_end: np.ndarray
     backend: str
     solve_one: Callable = dataclasses.field(repr=False)
+    block: SlidingBlock | None = dataclasses.field(default=None, repr=False)
+    motion: AbstractExcitation | None = dataclasses.field(default=None, repr=False)
 
     def __len__(self):
         return self.displacement.shape[0]
 
     def __getitem__(self, index: int) -> Solution:
         """The full :class:`Solution` (events, dense output) of one parameter set."""
-        return self.solve_one(index)
+        solution = self.solve_one(index)
+        if self.block is None:
+            return solution
+        return dataclasses.replace(solution, block=self.block.item(index), motion=self.motion)
+
+    def parameters(self) -> dict:
+        """The grid: mu, mu_kinetic (the kinetic coefficient in effect) and bias [-], each
+        of shape (n,); empty if the block is unknown."""
+        if self.block is None:
+            return {}
+        values = (self.block.mu, self.block.friction_kinetic, self.block.bias)
+        return dict(zip(("mu", "mu_kinetic", "bias"),
+                        (np.broadcast_to(np.asarray(p, dtype=float), (len(self),)) for p in values)))
+
+    def to_dataframe(self):
+        """A pandas DataFrame, one row per parameter set: the grid (mu, mu_kinetic, bias
+        [-], g_m_s2 [m/s²], direction; when the block is known) and displacement_m,
+        max_abs_displacement_m [m], n_events, t_end_s [s]."""
+        import pandas as pd
+
+        columns = self.parameters()
+        if self.block is not None:
+            columns |= {"g_m_s2": float(self.block.g), "direction": self.block.direction}
+        columns |= {"displacement_m": np.asarray(self.displacement, dtype=float),
+                    "max_abs_displacement_m": np.asarray(self.max_abs_displacement, dtype=float),
+                    "n_events": np.asarray(self.n_events, dtype=int),
+                    "t_end_s": np.asarray(self.t_end, dtype=float)}
+        return pd.DataFrame(columns, index=pd.RangeIndex(len(self)))
