@@ -7,15 +7,17 @@ from conftest import assert_same_events, load_sample_record
 import blockdae as bd
 from blockdae.backends import make_backend
 
+G = 9.81  # the seed paper's g [m/s²]
+
 # seed 000: Examples 1-3 (harmonic, run 3 s: one compiled shape) and 4-6 (pulses, to rest)
 SEED_EXAMPLES = {
-    "ex1": (bd.SlidingBlock(0.6), bd.Harmonic(9.0, 1.0), 3.0),
-    "ex2": (bd.SlidingBlock(0.6, 0.3), bd.Harmonic(9.0, 1.0), 3.0),
-    "ex3a": (bd.SlidingBlock(0.6, 0.6, bias=0.3), bd.Harmonic(7.0, 1.0), 3.0),
-    "ex3b": (bd.SlidingBlock(0.6, 0.4, bias=0.3), bd.Harmonic(7.0, 1.0), 3.0),
-    "ex4": (bd.SlidingBlock(0.6), bd.RectangularPulse(9.0, 0.5), None),
-    "ex5": (bd.SlidingBlock(0.6), bd.TriangularPulse(9.0, 0.5), None),
-    "ex6": (bd.SlidingBlock(0.6), bd.SinePulse(9.0, 0.5), None),
+    "ex1": (bd.SlidingBlock(0.6, g=G), bd.Harmonic(9.0, 1.0), 3.0),
+    "ex2": (bd.SlidingBlock(0.6, 0.3, g=G), bd.Harmonic(9.0, 1.0), 3.0),
+    "ex3a": (bd.SlidingBlock(0.6, 0.6, bias=0.3, g=G), bd.Harmonic(7.0, 1.0), 3.0),
+    "ex3b": (bd.SlidingBlock(0.6, 0.4, bias=0.3, g=G), bd.Harmonic(7.0, 1.0), 3.0),
+    "ex4": (bd.SlidingBlock(0.6, g=G), bd.RectangularPulse(9.0, 0.5), None),
+    "ex5": (bd.SlidingBlock(0.6, g=G), bd.TriangularPulse(9.0, 0.5), None),
+    "ex6": (bd.SlidingBlock(0.6, g=G), bd.SinePulse(9.0, 0.5), None),
 }
 
 

@@ -21,13 +21,13 @@ G = 9.81
 # seed 000: Example 1 (mu 0.6, A 9 m/s², T 1 s), 2 (f 0.3), 3 (A 7, bias 0.3, f 0.6 / 0.4),
 # 4-6 (pulses of 9 m/s² for 0.5 s, until rest)
 SEED_CASES = {
-    "ex1": (bd.SlidingBlock(mu=0.6), bd.Harmonic(9.0, 1.0), 3.0),
-    "ex2": (bd.SlidingBlock(mu=0.6, mu_kinetic=0.3), bd.Harmonic(9.0, 1.0), 3.0),
-    "ex3a": (bd.SlidingBlock(mu=0.6, mu_kinetic=0.6, bias=0.3), bd.Harmonic(7.0, 1.0), 3.0),
-    "ex3b": (bd.SlidingBlock(mu=0.6, mu_kinetic=0.4, bias=0.3), bd.Harmonic(7.0, 1.0), 3.0),
-    "ex4": (bd.SlidingBlock(mu=0.6), bd.RectangularPulse(9.0, 0.5), None),
-    "ex5": (bd.SlidingBlock(mu=0.6), bd.TriangularPulse(9.0, 0.5), None),
-    "ex6": (bd.SlidingBlock(mu=0.6), bd.SinePulse(9.0, 0.5), None),
+    "ex1": (bd.SlidingBlock(mu=0.6, g=G), bd.Harmonic(9.0, 1.0), 3.0),
+    "ex2": (bd.SlidingBlock(mu=0.6, mu_kinetic=0.3, g=G), bd.Harmonic(9.0, 1.0), 3.0),
+    "ex3a": (bd.SlidingBlock(mu=0.6, mu_kinetic=0.6, bias=0.3, g=G), bd.Harmonic(7.0, 1.0), 3.0),
+    "ex3b": (bd.SlidingBlock(mu=0.6, mu_kinetic=0.4, bias=0.3, g=G), bd.Harmonic(7.0, 1.0), 3.0),
+    "ex4": (bd.SlidingBlock(mu=0.6, g=G), bd.RectangularPulse(9.0, 0.5), None),
+    "ex5": (bd.SlidingBlock(mu=0.6, g=G), bd.TriangularPulse(9.0, 0.5), None),
+    "ex6": (bd.SlidingBlock(mu=0.6, g=G), bd.SinePulse(9.0, 0.5), None),
 }
 # short pySLAMMER records; two-way sliding with f < mu and a bias
 RECORDS = ("Northridge_1994_PAC-175", "Cape_Mendocino_1992_PET-090", "Kobe_1995_TAK-090")
@@ -151,7 +151,7 @@ def test_trap2_stops_in_both_directions(backend, exact_cache):
 def test_trap3_onset_not_stepped_over_in_stick(backend):
     """In stick the flow is zero and steps grow without bound; the first onset must still
     be at t* = asin(mu g / A) T / (2 pi) (closed form), also with max_step = 1000 s."""
-    block, motion = bd.SlidingBlock(mu=0.6), bd.Harmonic(9.0, 1.0)
+    block, motion = bd.SlidingBlock(mu=0.6, g=G), bd.Harmonic(9.0, 1.0)
     onset = math.asin(0.6 * G / 9.0) / (2 * math.pi)
     sol = bd.simulate(block, motion, t_end=0.3, backend=backend, max_step=1000.0)
     assert sol.events[0].t == pytest.approx(onset, abs=1e-9)
@@ -174,7 +174,7 @@ def test_trap5_restart_on_a_guard_root_fires_nothing(backend):
     """A demand exactly at the threshold (rectangular pulse of mu g): the stick guards
     are exactly zero from the restart on. The block never slides (rest_mode: a demand
     at the threshold that does not move outwards sticks) and no event fires."""
-    block = bd.SlidingBlock(mu=0.5)
+    block = bd.SlidingBlock(mu=0.5, g=G)
     sol = bd.simulate(block, bd.RectangularPulse(0.5 * G, 0.5), t_end=1.0, backend=backend)
     assert sol.events == () and sol.displacement == 0.0
 
@@ -195,7 +195,7 @@ def test_trap5_no_duplicate_event_after_restart(backend, exact_cache):
 def test_trap6_barely_crossing_guard_found(backend, max_step, exact_cache):
     """A = 1.0001 mu g: the demand exceeds mu g for 2 acos(1/1.0001) T / (2 pi) = 4.5 ms at
     every peak, and the block slides a few ms; found even with a large max_step."""
-    block, motion = bd.SlidingBlock(mu=0.6), bd.Harmonic(1.0001 * 0.6 * G, 1.0)
+    block, motion = bd.SlidingBlock(mu=0.6, g=G), bd.Harmonic(1.0001 * 0.6 * G, 1.0)
     ref = exact_cache("barely", block, motion, 2.0)
     sol = bd.simulate(block, motion, t_end=2.0, backend=backend, max_step=max_step)
     windows = sol.t_events[1::2] - sol.t_events[0::2]
