@@ -16,6 +16,8 @@ from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
+from .motions import (IntensityMeasures, baseline_corrected, cumulative_arias, intensity_measures,
+                      motion_histories)
 
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
@@ -25,4 +27,5 @@ __all__ = [
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
     "sensitivities", "set_compilation_cache",
     "NewmarkResult", "newmark", "yield_acceleration",
+    "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
 ]

@@ -1,0 +1,7 @@
+"""Ground motions: histories, intensity measures, baseline correction, response spectra
+and the relative motion of two surface points (seed 003)."""
+
+from ._baseline import baseline_corrected, polynomial_trend
+from ._intensity import IntensityMeasures, cumulative_arias, intensity_measures, motion_histories
+
+__all__ = ["baseline_corrected", "polynomial_trend", "IntensityMeasures", "cumulative_arias", "intensity_measures", "motion_histories"]
