@@ -17,6 +17,8 @@ from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
+from .motions import (IntensityMeasures, ResponseSpectrum, baseline_corrected, cumulative_arias,
+                      intensity_measures, motion_histories, response_spectrum)
 
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
@@ -27,4 +29,6 @@ __all__ = [
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
     "sensitivities", "set_compilation_cache",
     "NewmarkResult", "newmark", "yield_acceleration",
+    "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
+    "ResponseSpectrum", "response_spectrum",
 ]
