@@ -6,6 +6,7 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 
 from ._crosscheck import CrossCheck, crosscheck
 from ._examples import SeedExample, seed_examples
+from ._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
 from ._jax_config import set_compilation_cache
 from ._newmark import NewmarkResult, newmark, yield_acceleration
 from ._plot import plot
@@ -31,4 +32,5 @@ __all__ = [
     "NewmarkResult", "newmark", "yield_acceleration",
     "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
     "ResponseSpectrum", "response_spectrum",
+    "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
 ]
