@@ -18,6 +18,7 @@ from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
+from .structures import Floor, ShearFrame
 from .motions import (IntensityMeasures, ResponseSpectrum, baseline_corrected, cumulative_arias,
                       intensity_measures, motion_histories, response_spectrum)
 
@@ -33,4 +34,5 @@ __all__ = [
     "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
     "ResponseSpectrum", "response_spectrum",
     "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
+    "Floor", "ShearFrame",
 ]
