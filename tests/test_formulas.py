@@ -103,6 +103,8 @@ def test_refit_with_scatter_is_close_and_beats_the_true_coefficients():
     (lambda: bd.AdjustmentFactor(offset=-0.2)(0.5, 0.1), r"mu \+ offset must be positive"),
     (lambda: bd.fit_adjustment_factor([1.0, 2.0], 1.0, 0.5, 0.1), r"two values of mu"),
     (lambda: bd.fit_adjustment_factor([1.0, 0.0], 1.0, 0.5, [0.1, 0.2]), r"at least 2 cases"),
+    (lambda: bd.fit_adjustment_factor([1.0, 1.0], [1.0, 0.0], 0.5, [0.1, 0.2], space="linear"),
+     r"at least 2 cases with R_d > 0, got 1"),
     (lambda: bd.fit_adjustment_factor(1.0, 1.0, 0.5, 0.1, space="lin"), r"space must be"),
 ])
 def test_bad_input_names_the_field(call, message):

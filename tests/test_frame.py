@@ -65,7 +65,7 @@ def step_floor_accelerations(n, k_over_m, zeta, a0, t, t_off):
 @pytest.mark.parametrize("refine", [1, 3])
 def test_floor_accelerations_under_a_step_match_the_closed_form(refine):
     """A constant record 2 m/s² for 1 s, then the free vibration to 2.5 s: every sample of
-    every floor equals the modal step response (to 1e-12 of the peak)."""
+    every floor equals the modal step response (to 1e-13 of the peak; measured 4e-15)."""
     frame = bd.ShearFrame(storeys=4, period=0.25, damping=0.07)
     record = bd.Record(np.full(101, 2.0), dt=0.01, name="step")
     floors = frame.floor_motions(record, refine=refine, t_end=2.5)
@@ -74,7 +74,7 @@ def test_floor_accelerations_under_a_step_match_the_closed_form(refine):
     t = floors[0].times
     expected = step_floor_accelerations(4, frame.stiffness_ratio, 0.07, 2.0, t, 1.0)
     got = np.array([f.acceleration_samples for f in floors])
-    np.testing.assert_allclose(got, expected, rtol=0, atol=1e-12 * np.abs(expected).max())
+    np.testing.assert_allclose(got, expected, rtol=0, atol=1e-13 * np.abs(expected).max())
 
 
 def whole_frame_dop853(frame, record):

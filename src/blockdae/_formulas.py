@@ -118,7 +118,8 @@ def fit_adjustment_factor(rc, rd, pga, mu, *, space: str = "log") -> AdjustmentF
         pga: A [g]; mu: μ [-]; broadcastable to ``rc``.
         space: "log" (default) minimises Σ (ln R_c - ln(Adj·R_d))², so that every case
             counts by its relative error (R_c spans decades over A); "linear" minimises
-            Σ (R_c - Adj·R_d)². Cases with R_c = 0 or R_d = 0 are left out in "log".
+            Σ (R_c - Adj·R_d)². Cases with R_d = 0 (A <= μ) are left out, and in "log"
+            also those with R_c = 0.
 
     Returns:
         The :class:`AdjustmentFactor` with the fitted ``scale`` and ``offset``.
@@ -134,10 +135,11 @@ def fit_adjustment_factor(rc, rd, pga, mu, *, space: str = "log") -> AdjustmentF
         raise ValueError(f"space must be 'log' or 'linear', got {space!r}")
     rc, rd, pga, mu = np.broadcast_arrays(_nonnegative("rc", rc, "m"), _nonnegative("rd", rd, "m"),
                                           _positive("pga", pga, "g"), _positive("mu", mu, "-"))
-    keep = (rc > 0) & (rd > 0) if space == "log" else np.ones(rc.shape, dtype=bool)
+    keep = (rd > 0) & (rc > 0) if space == "log" else rd > 0  # R_d = 0 cases do not depend on the fit
     rc, rd, pga, mu = (x[keep].ravel() for x in (rc, rd, pga, mu))
     if rc.size < 2:
-        raise ValueError(f"fit_adjustment_factor needs at least 2 cases with R_c > 0 and R_d > 0, got {rc.size}")
+        needs = "R_c > 0 and R_d > 0" if space == "log" else "R_d > 0"
+        raise ValueError(f"fit_adjustment_factor needs at least 2 cases with {needs}, got {rc.size}")
     if np.ptp(mu) == 0:
         raise ValueError("fit_adjustment_factor needs at least two values of mu to separate scale and offset")
 
