@@ -56,3 +56,10 @@ def test_backends_rejects_unknown_flag(monkeypatch):
     with pytest.raises(SystemExit) as exit_:
         _load("backends", monkeypatch).main(["--no-such-flag"])
     assert exit_.value.code == 2
+
+
+def test_floor_refinement_quick(monkeypatch, capsys):
+    assert _load("floor_refinement", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "median rel. error" in out and "observed order" in out
+    assert len(out.split("\n\n")[1].splitlines()) == 6  # header + m = 1, 2, 4, 8, 16

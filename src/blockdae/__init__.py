@@ -6,6 +6,7 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 
 from ._crosscheck import CrossCheck, crosscheck
 from ._examples import SeedExample, seed_examples
+from ._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
 from ._jax_config import set_compilation_cache
 from ._newmark import NewmarkResult, newmark, yield_acceleration
 from ._plot import plot
@@ -17,6 +18,7 @@ from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
+from .structures import Floor, ShearFrame
 from .motions import (IntensityMeasures, ResponseSpectrum, baseline_corrected, cumulative_arias,
                       intensity_measures, motion_histories, response_spectrum)
 
@@ -31,4 +33,6 @@ __all__ = [
     "NewmarkResult", "newmark", "yield_acceleration",
     "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
     "ResponseSpectrum", "response_spectrum",
+    "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
+    "Floor", "ShearFrame",
 ]

@@ -244,15 +244,15 @@ def _refine(k, q, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, 
 
 
 @njit(cache=True)
-def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
-    """Located max |u|, |v|, |a_abs|, |z| over the pieces (best, when: shape (4,))."""
-    n = h.size
+def history(h, p0, p1, s, w, phi, om, ze, us, vs):
+    """The exact response at the ends of the pieces, from rest at the start.
+
+    Fills us, vs (shape (n + 1,), n = h.size) with u, u' at t0[0] (zero) and at the
+    end of every piece: the Nigam-Jennings recurrence for linear pieces of the common
+    length h[0], the exact step of ``_step`` for the others.
+    """
     al = ze * om
     be = om * np.sqrt(1.0 - ze * ze)
-    om2 = om * om
-    tz = 2.0 * ze * om
-    us = np.zeros(n + 1)
-    vs = np.zeros(n + 1)
     # the Nigam-Jennings matrix of a linear piece of the common length h[0]:
     # (u1, v1) = M (u0, v0, p0, p1), from the exact step applied to unit inputs
     href = h[0]
@@ -263,17 +263,33 @@ def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
         M[0, j], M[1, j] = _step(e[0], e[1], e[2], e[3], 0.0, 0.0, 0.0, href, om, ze, al, be)
     m00, m01, m02, m03 = M[0, 0], M[0, 1], M[0, 2], M[0, 3]
     m10, m11, m12, m13 = M[1, 0], M[1, 1], M[1, 2], M[1, 3]
-    b0 = b1 = b2 = b3 = 0.0  # local maxima: no aliasing with the arrays written in the loop
-    i0 = i1 = i2 = i3 = 0
     u = v = 0.0
-    for i in range(1, n + 1):  # pass 1: the exact recurrence and the sample maxima
-        k = i - 1
+    us[0] = vs[0] = 0.0
+    for k in range(h.size):
         if s[k] == 0.0 and h[k] == href:
             u, v = m00 * u + m01 * v + m02 * p0[k] + m03 * p1[k], m10 * u + m11 * v + m12 * p0[k] + m13 * p1[k]
         else:
             u, v = _step(u, v, p0[k], p1[k], s[k], w[k], phi[k], h[k], om, ze, al, be)
-        us[i] = u
-        vs[i] = v
+        us[k + 1] = u
+        vs[k + 1] = v
+
+
+@njit(cache=True)
+def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
+    """Located max |u|, |v|, |a_abs|, |z| over the pieces (best, when: shape (4,))."""
+    n = h.size
+    al = ze * om
+    be = om * np.sqrt(1.0 - ze * ze)
+    om2 = om * om
+    tz = 2.0 * ze * om
+    us = np.empty(n + 1)
+    vs = np.empty(n + 1)
+    history(h, p0, p1, s, w, phi, om, ze, us, vs)  # pass 1: the exact recurrence
+    b0 = b1 = b2 = b3 = 0.0  # the sample maxima
+    i0 = i1 = i2 = i3 = 0
+    for i in range(1, n + 1):
+        u = us[i]
+        v = vs[i]
         x = abs(u)
         if x > b0:
             b0, i0 = x, i
