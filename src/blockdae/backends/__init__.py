@@ -7,6 +7,7 @@ from ._base import AbstractBackend, Horizon
 # name -> "module:class", imported on first use so that unused solvers cost nothing
 _REGISTRY = {
     "exact": "blockdae.backends._exact:ExactBackend",
+    "exact-jax": "blockdae.backends._exact_jax:ExactJaxBackend",
     "cvode": "blockdae.backends._cvode:CVODEBackend",
     "ida": "blockdae.backends._ida:IDABackend",
     "jax": "blockdae.backends._jax:JaxBackend",

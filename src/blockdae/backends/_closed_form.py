@@ -26,8 +26,12 @@ BLOCK_SLACK = 1e-9
 
 def slip_motion(cf, d, u, v, c, xp):
     """(u [m], v [m/s]) after ``d`` [s] of sliding with slip constant ``c`` [m/s²]."""
-    return (u + v * d + 0.5 * c * d**2 - accel_int2(*cf, d, xp),
-            v + c * d - accel_int1(*cf, d, xp))
+    return u + v * d + 0.5 * c * d**2 - accel_int2(*cf, d, xp), slip_velocity(cf, d, v, c, xp)
+
+
+def slip_velocity(cf, d, v, c, xp):
+    """v [m/s] after ``d`` [s] of sliding from ``v`` with slip constant ``c`` [m/s²]."""
+    return v + c * d - accel_int1(*cf, d, xp)
 
 
 def slip_rate(cf, d, c, xp):

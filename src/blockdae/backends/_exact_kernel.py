@@ -27,7 +27,8 @@ from ..excitation._pieces import accel, accel_int1, accel_int2, rebase
 from ..model import demand, rest_mode, slip_constant
 from ._closed_form import (BISECTIONS, block_may_leave_stick, crosses_zero, departure_rate, leaves_stick, mode_after_stop,
                            onset_delta_linear, onset_gap, onset_side, onset_target, onset_within, rate_turns,
-                           sine_stop_bracket, slip_motion, slip_rate, stop_delta_linear, tail_to_rest)
+                           sine_stop_bracket, slip_motion, slip_rate, slip_velocity, stop_delta_linear,
+                           tail_to_rest)
 
 
 class Params(NamedTuple):
@@ -166,7 +167,7 @@ def stop_delta(cf, rem, v, c, mode, is_sine):
         return d_lin, found_lin
     r0 = departure_rate(cf, v, c, mode, jnp)
     rate = lambda d: slip_rate(cf, d, c, jnp)
-    vel = lambda d: slip_motion(cf, d, 0.0, v, c, jnp)[1]
+    vel = lambda d: slip_velocity(cf, d, v, c, jnp)
     turns = rate_turns(r0, rate(rem), jnp)
     d_turn = jnp.where(turns, _bisect(rate, jnp.zeros_like(rem), rem), rem)
     lo, hi = sine_stop_bracket(r0, turns, d_turn, rem, mode, jnp)
