@@ -42,10 +42,11 @@ class EventLog(collections.abc.Sequence):
     __slots__ = ("t", "mode_before", "mode_after", "u", "v", "_events")
 
     def __init__(self, t, mode_before, mode_after, u, v):
-        for name, values, dtype in (("t", t, float), ("mode_before", mode_before, int),
-                                    ("mode_after", mode_after, int), ("u", u, float), ("v", v, float)):
-            array = np.array(values, dtype=dtype)
-            array.setflags(write=False)
+        fields = (("t", t, float), ("mode_before", mode_before, int), ("mode_after", mode_after, int),
+                  ("u", u, float), ("v", v, float))
+        for name, values, dtype in fields:
+            array = np.asarray(values, dtype=dtype).view()  # a read-only view, never a copy
+            array.flags.writeable = False
             object.__setattr__(self, name, array)
         object.__setattr__(self, "_events", None)
 

@@ -20,8 +20,8 @@ def exact_solution(block: SlidingBlock, pieces: Pieces, knots, max_run: int, bac
     ``knots``: (t [s], u [m], v [m/s], mode after, mode before), each (n_events + 2,):
     the start, every event (v = 0) and the end.
     """
-    t, u, v, after, before = (np.asarray(x) for x in knots)
-    after, before = after.astype(int), before.astype(int)
+    t, u, v, after, before = knots
+    after, before = np.asarray(after).astype(int), np.asarray(before).astype(int)
     n = t.shape[0] - 2
     events = EventLog(t[1:-1], before[1:-1], after[1:-1], u[1:-1], v[1:-1])
     return Solution(t=t, u=u, v=v, mode=after, events=events, backend=backend,

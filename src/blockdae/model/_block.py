@@ -152,7 +152,10 @@ class SlidingBlock(AbstractHybridModel):
     @property
     def batch_shape(self) -> tuple[int, ...]:
         """() for one parameter set, (n,) for a batch of n."""
-        return np.broadcast_shapes(*(np.shape(p) for p in (self.mu, self.friction_kinetic, self.bias)))
+        params = (self.mu, self.friction_kinetic, self.bias)
+        if not any(isinstance(p, np.ndarray) for p in params):  # floats once validated
+            return ()
+        return np.broadcast_shapes(*(np.shape(p) for p in params))
 
     @property
     def allow_negative(self) -> bool:
