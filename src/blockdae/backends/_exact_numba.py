@@ -280,8 +280,8 @@ def kernels():
             one = (exc[0][a:b], exc[1][a:b], exc[2][a:b], exc[3][a:b], _slice(exc[4], a, b),
                    _slice(exc[5], a, b), _slice(exc[6], a, b), exc[7][c:d], exc[8][c:d])
             p = params[j]
-            outcome, _ = _run(one, window, (p[0], p[1], p[2], p[3], p[4]), (flags[0], flags[1], flags[2][i]), 0)
-            out[i, j] = outcome
+            flags_i = (flags[0], flags[1], flags[2][i])
+            out[i, j], _ = _run(one, window, (p[0], p[1], p[2], p[3], p[4]), flags_i, 0)
         return out
 
     return (numba.njit(cache=True, **_OPTIONS)(run_one),
