@@ -58,7 +58,7 @@ print(n, time.perf_counter() - start, read)
 """
 
 
-@numba.njit(cache=True)
+@numba.njit
 def _read_once(a):
     """The limit: one pass over the samples that only reads them."""
     total = 0.0

@@ -45,8 +45,10 @@ class EventLog(collections.abc.Sequence):
         fields = (("t", t, float), ("mode_before", mode_before, int), ("mode_after", mode_after, int),
                   ("u", u, float), ("v", v, float))
         for name, values, dtype in fields:
-            array = np.asarray(values, dtype=dtype).view()  # a read-only view, never a copy
-            array.flags.writeable = False
+            array = np.asarray(values, dtype=dtype)
+            if array.flags.writeable:  # a read-only view, never a copy
+                array = array.view()
+                array.flags.writeable = False
             object.__setattr__(self, name, array)
         object.__setattr__(self, "_events", None)
 

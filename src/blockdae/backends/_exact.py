@@ -10,7 +10,7 @@ from ..excitation import Pieces
 from ..excitation._pieces import accel
 from ..model import SlidingBlock
 from . import _exact_numba as engine
-from ._base import AbstractBackend, batch_params
+from ._base import AbstractBackend
 from ._results import check, exact_solution
 
 
@@ -56,14 +56,24 @@ class ExactBackend(AbstractBackend):
         """
         inputs = [_engine_input(e, h.integration_end(e), self.window)[1] for e, h in zip(excitations, horizons)]
         exc, offsets = _concatenated(inputs)
-        params = np.stack([np.atleast_1d(p) for p in batch_params(block)], axis=1)
         _, run_batch = engine.kernels()
         until_rest = np.array([h.until_rest for h in horizons])
-        out = run_batch(exc, offsets, self.window, params, (block.allow_negative, block.allow_positive, until_rest))
-        for i, j in zip(*np.nonzero((out[:, :, 6] == 0) | (out[:, :, 7] == 0))):
-            where = f" (excitation {i}, parameter set {j})" if len(inputs) > 1 else f" (parameter set {j})"
-            check(block.item(j) if block.batch_shape else block, out[i, j, 6], out[i, j, 7], where)
+        out = run_batch(exc, offsets, self.window, _batch_params(block), (block.allow_negative,
+                                                                         block.allow_positive, until_rest))
+        if not out[:, :, 6:8].all():  # rests, finished
+            for i, j in zip(*np.nonzero((out[:, :, 6] == 0) | (out[:, :, 7] == 0))):
+                where = f" (excitation {i}, parameter set {j})" if len(inputs) > 1 else f" (parameter set {j})"
+                check(block.item(j) if block.batch_shape else block, out[i, j, 6], out[i, j, 7], where)
         return out
+
+
+def _batch_params(block):
+    """(m, 5) rows of (mu, f, bias, g, scale = 1) for a batch of m parameter sets (or one)."""
+    values = (block.mu, block.friction_kinetic, block.bias, block.g, 1.0)
+    params = np.empty((max(getattr(x, "size", 1) for x in values), 5))
+    for column, x in enumerate(values):
+        params[:, column] = x
+    return params
 
 
 def _flags(block, horizon):

@@ -119,6 +119,6 @@ def _knots(log, final, t_final):
     t_ev, before, after, u_ev = log.T
     u_end, v_end, mode_end = final
     n = t_ev.shape[0]
-    return (np.concatenate([[0.0], t_ev, [t_final]]), np.concatenate([[0.0], u_ev, [u_end]]),
-            np.concatenate([np.zeros(n + 1), [v_end]]), np.concatenate([[0], after, [mode_end]]),
-            np.concatenate([[0], before, [mode_end]]))
+    return np.stack([np.concatenate([[0.0], t_ev, [t_final]]), np.concatenate([[0.0], u_ev, [u_end]]),
+                     np.concatenate([np.zeros(n + 1), [v_end]]), np.concatenate([[0], after, [mode_end]]),
+                     np.concatenate([[0], before, [mode_end]])])

@@ -79,6 +79,8 @@ def _stop_delta(cf, rem, v, c, mode):
     """First d in (0, rem] where v(d) returns to 0 in slip ``mode``: (d [s], found).
     Twin of ``_exact_kernel.stop_delta``."""
     if not _is_sine(*cf):
+        if _far_from_rest(cf, rem, v, c, mode):
+            return rem, False
         return stop_delta_linear(cf, rem, v, c, mode, xp)
     r0 = departure_rate(cf, v, c, mode, xp)
     turns = rate_turns(r0, slip_rate(cf, rem, c, xp), xp)
@@ -87,6 +89,16 @@ def _stop_delta(cf, rem, v, c, mode):
     if crosses_zero(slip_velocity(cf, lo, v, c, xp), slip_velocity(cf, hi, v, c, xp), mode):
         return _bisect(slip_velocity, cf, lo, hi, v, c, xp), True
     return rem, False
+
+
+def _far_from_rest(cf, rem, v, c, mode):
+    """Whether v = v0 + r d + q d² (r = c - p0, q = -p1/2) cannot return to 0 on a linear
+    piece of length ``rem``: |v0| > 2 (|r| rem + |q| rem²). A screen that saves the
+    square root and divisions of :func:`stop_delta_linear` on most sliding pieces, never
+    changing its answer: its root is -2 v0 / (r -+ sqrt(r² - 4 q v0)), beyond ``rem``
+    whenever |v0| > rem (|r| + sqrt(|q v0|)), which the factor 2 ensures with room for
+    rounding (as x² - a x >= (x² - a²) / 2 with x² = |v0|, a² = |q| rem²)."""
+    return mode * v > 2.0 * (abs(c - cf[0]) * rem + 0.5 * abs(cf[1]) * rem * rem)
 
 
 def _is_sine(p0, p1, s, w, phi):

@@ -17,11 +17,15 @@ from ._base import never_rests_error
 def exact_solution(block: SlidingBlock, pieces: Pieces, knots, max_run: int, backend: str) -> Solution:
     """The Solution of an exact engine, without a loop over events.
 
-    ``knots``: (t [s], u [m], v [m/s], mode after, mode before), each (n_events + 2,):
-    the start, every event (v = 0) and the end.
+    ``knots``: (5, n_events + 2) rows of t [s], u [m], v [m/s], mode after and mode
+    before: the start, every event (v = 0) and the end.
     """
-    t, u, v, after, before = knots
-    after, before = np.asarray(after).astype(int), np.asarray(before).astype(int)
+    knots = np.asarray(knots)
+    knots.flags.writeable = False  # its rows are the Solution's arrays
+    modes = knots[3:].astype(int)
+    modes.flags.writeable = False
+    t, u, v = knots[:3]
+    after, before = modes
     n = t.shape[0] - 2
     events = EventLog(t[1:-1], before[1:-1], after[1:-1], u[1:-1], v[1:-1])
     return Solution(t=t, u=u, v=v, mode=after, events=events, backend=backend,

@@ -152,10 +152,8 @@ class SlidingBlock(AbstractHybridModel):
     @property
     def batch_shape(self) -> tuple[int, ...]:
         """() for one parameter set, (n,) for a batch of n."""
-        params = (self.mu, self.friction_kinetic, self.bias)
-        if not any(isinstance(p, np.ndarray) for p in params):  # floats once validated
-            return ()
-        return np.broadcast_shapes(*(np.shape(p) for p in params))
+        shapes = {p.shape for p in (self.mu, self.friction_kinetic, self.bias) if isinstance(p, np.ndarray)}
+        return np.broadcast_shapes(*shapes) if len(shapes) > 1 else next(iter(shapes), ())  # else floats
 
     @property
     def allow_negative(self) -> bool:
