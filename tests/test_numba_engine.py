@@ -19,6 +19,7 @@ from conftest import assert_same_events, load_sample_record, sample_record_paths
 
 import blockdae as bd
 from blockdae.backends import _exact_kernel, _exact_numba
+from blockdae.backends._exact import prepare
 
 G = 9.80665
 STEMS = [p.name[:-4] for p in sample_record_paths()]
@@ -132,7 +133,8 @@ def test_never_resting_block_raises():
 
 
 def test_batch_equals_one_by_one(kobe):
-    """The batch runs the very loop of a single run, in parallel: identical numbers."""
+    """A batch runs the very loop of a single run, in parallel or on the calling thread
+    (small batches): identical numbers."""
     mu = np.linspace(0.05, 0.3, 16)
     block = bd.SlidingBlock(mu=mu, mu_kinetic=0.9 * mu, bias=0.01, g=G)
     batch = bd.simulate(block, kobe)
@@ -141,6 +143,12 @@ def test_batch_equals_one_by_one(kobe):
         assert batch.displacement[i] == one.displacement
         assert batch.max_abs_displacement[i] == one.max_abs_displacement
         assert batch.n_events[i] == len(one.events) and batch.t_end[i] == one.t_end
+    exc = prepare(kobe.pieces(kobe.duration), 64)
+    offsets = np.array([[0, len(exc[0]), 0, len(exc[7])]])
+    params = np.stack([block.mu, block.mu_kinetic, np.full(16, 0.01), np.full(16, G), np.ones(16)], axis=1)
+    _, parallel, serial = _exact_numba.kernels()
+    flags = (True, True, np.array([True]))
+    np.testing.assert_array_equal(parallel(exc, offsets, 64, params, flags), serial(exc, offsets, 64, params, flags))
     jax_batch = bd.simulate(block, kobe, backend="exact-jax")
     np.testing.assert_allclose(batch.displacement, jax_batch.displacement, rtol=1e-12, atol=1e-15)
     np.testing.assert_array_equal(batch.n_events, jax_batch.n_events)

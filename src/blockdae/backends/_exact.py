@@ -14,6 +14,11 @@ from ._base import AbstractBackend
 from ._results import check, exact_solution
 
 
+#: pieces x parameter sets above which a batch runs in parallel (~30 ms on one core); below,
+#: waking the worker threads may cost more than they save (~8 ms a call on some VMs)
+_PARALLEL_WORK = 3e7
+
+
 @dataclasses.dataclass(frozen=True)
 class ExactBackend(AbstractBackend):
     """Closed-form integration, compiled with numba (float64, parallel over cores for
@@ -34,7 +39,7 @@ class ExactBackend(AbstractBackend):
 
     def solve(self, block, excitation, horizon):
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
-        run_one, _ = engine.kernels()
+        run_one, _, _ = engine.kernels()
         params = (float(block.mu), float(block.friction_kinetic), float(block.bias), float(block.g), 1.0)
         outcome, knots = run_one(exc, self.window, params, _flags(block, horizon), 64)
         check(block, outcome[6], outcome[7])
@@ -56,10 +61,11 @@ class ExactBackend(AbstractBackend):
         """
         inputs = [_engine_input(e, h.integration_end(e), self.window)[1] for e, h in zip(excitations, horizons)]
         exc, offsets = _concatenated(inputs)
-        _, run_batch = engine.kernels()
+        params = _batch_params(block)
+        _, parallel, serial = engine.kernels()
+        run_batch = parallel if len(params) * len(exc[0]) >= _PARALLEL_WORK else serial
         until_rest = np.array([h.until_rest for h in horizons])
-        out = run_batch(exc, offsets, self.window, _batch_params(block), (block.allow_negative,
-                                                                         block.allow_positive, until_rest))
+        out = run_batch(exc, offsets, self.window, params, (block.allow_negative, block.allow_positive, until_rest))
         if not out[:, :, 6:8].all():  # rests, finished
             for i, j in zip(*np.nonzero((out[:, :, 6] == 0) | (out[:, :, 7] == 0))):
                 where = f" (excitation {i}, parameter set {j})" if len(inputs) > 1 else f" (parameter set {j})"

@@ -262,9 +262,21 @@ def _slice(x, a, b):
     return x[a:b]
 
 
+def _run_item(exc, offsets, window, params, flags, item, out):
+    """Item ``item`` of a batch (see :func:`kernels`) into ``out``."""
+    n_exc = offsets.shape[0]
+    i, j = item % n_exc, item // n_exc  # neighbours differ in excitation: even shares
+    a, b, c, d = offsets[i]
+    one = (exc[0][a:b], exc[1][a:b], exc[2][a:b], exc[3][a:b], _slice(exc[4], a, b), _slice(exc[5], a, b),
+           _slice(exc[6], a, b), exc[7][c:d], exc[8][c:d])
+    p = params[j]
+    out[i, j], _ = _run(one, window, (p[0], p[1], p[2], p[3], p[4]), (flags[0], flags[1], flags[2][i]), 0)
+
+
 @functools.cache
 def kernels():
-    """(run_one, run_batch), compiled on their first call (or loaded from numba's cache).
+    """(run_one, run_batch, run_batch_serial), compiled on their first call (or loaded
+    from numba's cache).
 
     ``run_one(exc, window, params, flags, capacity)``: :func:`_run`, one parameter set
     with its knot log (``capacity``: rows to start with, > 0).
@@ -273,7 +285,8 @@ def kernels():
     ``offsets[i, 0]:offsets[i, 1]``, blocks ``offsets[i, 2]:offsets[i, 3]`` of ``exc``)
     under every parameter set j (rows of ``params``, (m, 5)), in parallel over cores,
     final numbers only: outcomes (n_exc, m, 9). ``flags``: (slip- allowed, slip+
-    allowed, until rest per excitation (n_exc,) bool).
+    allowed, until rest per excitation (n_exc,) bool). ``run_batch_serial``: the same
+    on the calling thread, for batches too small to repay waking the worker threads.
     """
     _register()
     fingerprint = hashlib.sha256(b"".join(pathlib.Path(m.__file__).read_bytes() for m in _SHARED)).hexdigest()
@@ -284,20 +297,21 @@ def kernels():
 
     def run_batch(exc, offsets, window, params, flags):
         fingerprint  # noqa: B018
-        n_exc, m = offsets.shape[0], params.shape[0]
-        out = np.empty((n_exc, m, len(OUTCOME_FIELDS)))
-        for item in numba.prange(n_exc * m):
-            i, j = item % n_exc, item // n_exc  # neighbours differ in excitation: even shares
-            a, b, c, d = offsets[i]
-            one = (exc[0][a:b], exc[1][a:b], exc[2][a:b], exc[3][a:b], _slice(exc[4], a, b),
-                   _slice(exc[5], a, b), _slice(exc[6], a, b), exc[7][c:d], exc[8][c:d])
-            p = params[j]
-            flags_i = (flags[0], flags[1], flags[2][i])
-            out[i, j], _ = _run(one, window, (p[0], p[1], p[2], p[3], p[4]), flags_i, 0)
+        out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
+        for item in numba.prange(out.shape[0] * out.shape[1]):
+            _run_item(exc, offsets, window, params, flags, item, out)
+        return out
+
+    def run_batch_serial(exc, offsets, window, params, flags):
+        fingerprint  # noqa: B018 -- a function of its own: numba's cache key omits ``parallel``
+        out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
+        for item in range(out.shape[0] * out.shape[1]):
+            _run_item(exc, offsets, window, params, flags, item, out)
         return out
 
     return (numba.njit(cache=True, **_OPTIONS)(run_one),
-            numba.njit(cache=True, parallel=True, **_OPTIONS)(run_batch))
+            numba.njit(cache=True, parallel=True, **_OPTIONS)(run_batch),
+            numba.njit(cache=True, **_OPTIONS)(run_batch_serial))
 
 
 #: modules whose functions the engine compiles besides its own
