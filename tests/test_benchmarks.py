@@ -20,7 +20,7 @@ def test_vs_pyslammer_quick(monkeypatch, capsys):
     assert _load("vs_pyslammer", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "pySLAMMER [ms]" in out and "first call [s]" in out
-    assert out.count("bar ") == 3  # every bar reported, met or not
+    assert out.count("bar ") == 6  # every bar reported, met or not
     table = out.split("\n\n")[1].splitlines()
     assert len(table) == 3  # header + the 2 shortest records
 

@@ -6,13 +6,14 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 
 from ._crosscheck import CrossCheck, crosscheck
 from ._examples import SeedExample, seed_examples
+from ._final import FinalNumbers, simulate_final
 from ._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
 from ._jax_config import set_compilation_cache
 from ._newmark import NewmarkResult, newmark, yield_acceleration
 from ._plot import plot
 from ._sensitivities import sensitivities
 from ._simulate import simulate
-from ._solution import BatchSolution, Event, Solution
+from ._solution import BatchSolution, Event, EventLog, Solution
 from ._sweep import SweepSolution, simulate_many
 from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
@@ -23,10 +24,11 @@ from .motions import (IntensityMeasures, ResponseSpectrum, baseline_corrected, c
                       intensity_measures, motion_histories, response_spectrum)
 
 __all__ = [
-    "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
+    "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "check_peak_acceleration", "read_record", "simulate",
     "SweepSolution", "simulate_many",
+    "FinalNumbers", "simulate_final",
     "CrossCheck", "crosscheck",
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
     "sensitivities", "set_compilation_cache",

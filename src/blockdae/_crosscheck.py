@@ -95,7 +95,7 @@ def crosscheck(block, motion, backends=("exact", "cvode", "ida", "jax"), t_end=N
         wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
         for row in rows:
             mine = {key: value for key, value in options.items() if key in accepted[row["backend"]]}
-            derivative = sensitivities if row["backend"] in ("exact", "jax") else finite_differences
+            derivative = sensitivities if row["backend"] in ("exact", "exact-jax", "jax") else finite_differences
             row["sensitivities"] = derivative(block, motion, t_end=t_end, wrt=wrt, backend=row["backend"], **mine)
         ref_sens = rows[0]["sensitivities"]
         for row in rows:

@@ -14,15 +14,13 @@ With f < mu the displacement itself jumps there.
 
 import functools
 
-import jax
 import numpy as np
 
 from ._jax_config import jax_context
 from ._simulate import simulate
 from .backends import Horizon, make_backend
-from .backends import _exact_kernel
 from .backends._base import batch_params
-from .backends._exact import ExactBackend, _check, _device, _kernel_input
+from .backends._results import check
 from .excitation import AbstractExcitation
 from .model import SlidingBlock
 
@@ -43,7 +41,8 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
             alone), "bias" (R/Q), "A" (peak base acceleration in units of
             ``block.g``, the excitation scaled so that its peak is A g) and "scale"
             (a factor k on a(t), at k = 1).
-        backend: "exact" (closed forms) or "jax" (the diffrax twin).
+        backend: "exact" (closed forms, differentiated through the JAX kernel of
+            "exact-jax") or "jax" (the diffrax twin).
         **options: settings of the backend.
 
     Returns:
@@ -51,21 +50,22 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
         array of shape (n,) for a batch of n parameter sets.
     """
     wrt = _names(wrt)
-    if backend not in ("exact", "jax"):
+    if backend not in ("exact", "exact-jax", "jax"):
         raise ValueError(f"backend={backend!r} has no derivatives; use 'exact' or 'jax'")
+    import jax  # loads only when derivatives are asked for
     if not isinstance(block, SlidingBlock):
         raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
     if "A" in wrt and not motion.peak_acceleration > 0:
         raise ValueError(f"'A' needs a motion with a nonzero peak acceleration, got {motion.peak_acceleration} m/s²")
     horizon = Horizon.resolve(motion, t_end)
-    solver = make_backend(backend, **options)
+    solver = make_backend("exact-jax" if backend == "exact" else backend, **options)
     pieces = motion.pieces(horizon.integration_end(motion))
     kernel, static, device = _kernel(solver, block, pieces)
 
     shape = block.batch_shape
     params = batch_params(block)
     with jax_context():
-        jac, aux = _jacobian(params, device, len(pieces.t0), (block.allow_negative, block.allow_positive),
+        jac, aux = _jacobian()(params, device, len(pieces.t0), (block.allow_negative, block.allow_positive),
                              kernel=kernel, static=static, until_rest=horizon.until_rest, batched=bool(shape))
         jac, aux = jax.device_get((jac, aux))
     for i in range(shape[0]) if shape else [None]:
@@ -144,7 +144,9 @@ def _names(wrt):
 
 def _kernel(solver, block, pieces):
     """(kernel name, its static settings, the pieces padded for it)."""
-    if isinstance(solver, ExactBackend):
+    from .backends._exact_jax import _device, _kernel_input
+
+    if solver.name == "exact-jax":
         return "exact", (solver.window, pieces.has_sine), _kernel_input(pieces, solver.window)
     return "jax", solver.config(block, pieces), _device(pieces, 1)
 
@@ -152,6 +154,8 @@ def _kernel(solver, block, pieces):
 def _final_u(params, pieces, n_pieces, allowed, *, kernel, static, until_rest):
     """u(t_end) [m], and what tells whether the run was sound."""
     if kernel == "exact":
+        from .backends import _exact_kernel
+
         window, is_sine = static
         _, _, rests, finished = out = _exact_kernel._run(params, allowed, pieces, n_pieces, until_rest,
                                                          window=window, log_capacity=0, is_sine=is_sine)
@@ -162,16 +166,25 @@ def _final_u(params, pieces, n_pieces, allowed, *, kernel, static, until_rest):
     return final.u, (rests, flags)
 
 
-@functools.partial(jax.jit, static_argnames=("kernel", "static", "until_rest", "batched"))
-def _jacobian(params, pieces, n_pieces, allowed, *, kernel, static, until_rest, batched):
+@functools.cache
+def _jacobian():
+    """:func:`_jacobian_of_u`, compiled (JAX loads on the first call)."""
+    import jax
+
+    return jax.jit(_jacobian_of_u, static_argnames=("kernel", "static", "until_rest", "batched"))
+
+
+def _jacobian_of_u(params, pieces, n_pieces, allowed, *, kernel, static, until_rest, batched):
     """d u / d (mu, f, bias, g, scale), for one parameter set or mapped over a batch."""
+    import jax
+
     fun = jax.jacfwd(functools.partial(_final_u, pieces=pieces, n_pieces=n_pieces, allowed=allowed, kernel=kernel,
                                        static=static, until_rest=until_rest), has_aux=True)
     return jax.lax.map(fun, params) if batched else fun(params)  # map, not vmap: see run_batch
 
 
 def _raise_if_bad(solver, block, aux, where):
-    if isinstance(solver, ExactBackend):
-        _check(block, *aux, where)
+    if solver.name == "exact-jax":
+        check(block, *aux, where)
     else:
         solver.check(block, *aux, where)

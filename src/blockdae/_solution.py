@@ -1,5 +1,6 @@
 """Results of a simulation: located events, knots and dense output."""
 
+import collections.abc
 import dataclasses
 from typing import Callable
 
@@ -31,6 +32,59 @@ class Event:
                 f"  u = {self.u:+.6f} m")
 
 
+class EventLog(collections.abc.Sequence):
+    """Events kept as arrays, each (n,); the :class:`Event` objects are built when first
+    read. Compares equal to any sequence of the same events (e.g. a tuple).
+
+    Attributes:
+        t: times [s]; mode_before, mode_after: ints (see :class:`Mode`); u: [m]; v: [m/s].
+    """
+
+    __slots__ = ("t", "mode_before", "mode_after", "u", "v", "_events")
+
+    def __init__(self, t, mode_before, mode_after, u, v):
+        fields = (("t", t, float), ("mode_before", mode_before, int), ("mode_after", mode_after, int),
+                  ("u", u, float), ("v", v, float))
+        for name, values, dtype in fields:
+            array = np.asarray(values, dtype=dtype)
+            if array.flags.writeable:  # a read-only view, never a copy
+                array = array.view()
+                array.flags.writeable = False
+            object.__setattr__(self, name, array)
+        object.__setattr__(self, "_events", None)
+
+    def __setattr__(self, name, value):
+        raise AttributeError("an EventLog is immutable")
+
+    def _built(self) -> tuple:
+        if self._events is None:
+            modes = {int(m): m for m in Mode}
+            object.__setattr__(self, "_events", tuple(
+                Event(t, modes[b], modes[a], u, v) for t, b, a, u, v in zip(
+                    self.t.tolist(), self.mode_before.tolist(), self.mode_after.tolist(), self.u.tolist(),
+                    self.v.tolist())))
+        return self._events
+
+    def __len__(self):
+        return self.t.shape[0]
+
+    def __getitem__(self, index):
+        return self._built()[index]
+
+    def __iter__(self):
+        return iter(self._built())
+
+    def __eq__(self, other):
+        if isinstance(other, collections.abc.Sequence) and not isinstance(other, str):
+            return self._built() == tuple(other)
+        return NotImplemented
+
+    __hash__ = None
+
+    def __repr__(self):
+        return f"EventLog({list(self._built())!r})"
+
+
 @dataclasses.dataclass(frozen=True, eq=False)
 class Solution:
     """The motion of the block relative to its base.
@@ -40,7 +94,7 @@ class Solution:
             order (a backend may add knots of its own); use ``sol(t)`` for any time.
         u, v: relative displacement [m] and velocity [m/s] at the knots, shape (n,).
         mode: mode right after each knot, shape (n,) of int (see :class:`Mode`).
-        events: located mode changes, in time order.
+        events: located mode changes, in time order (a tuple or an :class:`EventLog`).
         backend: name of the backend that produced it.
         stats: counters, e.g. ``max_events_at_one_instant`` and solver statistics.
         block, motion: the block and the base excitation it was computed for
@@ -51,7 +105,7 @@ class Solution:
     u: np.ndarray
     v: np.ndarray
     mode: np.ndarray
-    events: tuple[Event, ...]
+    events: "tuple[Event, ...] | EventLog"
     backend: str
     dense: Callable = dataclasses.field(repr=False)
     stats: dict = dataclasses.field(default_factory=dict)
@@ -76,6 +130,8 @@ class Solution:
     @property
     def t_events(self) -> np.ndarray:
         """Event times [s], shape (n_events,)."""
+        if isinstance(self.events, EventLog):
+            return self.events.t.copy()
         return np.array([e.t for e in self.events])
 
     def __call__(self, t):

@@ -1,5 +1,6 @@
 """Solver backends behind one contract; see :class:`AbstractBackend`."""
 
+import functools
 import importlib
 
 from ._base import AbstractBackend, Horizon
@@ -7,6 +8,7 @@ from ._base import AbstractBackend, Horizon
 # name -> "module:class", imported on first use so that unused solvers cost nothing
 _REGISTRY = {
     "exact": "blockdae.backends._exact:ExactBackend",
+    "exact-jax": "blockdae.backends._exact_jax:ExactJaxBackend",
     "cvode": "blockdae.backends._cvode:CVODEBackend",
     "ida": "blockdae.backends._ida:IDABackend",
     "jax": "blockdae.backends._jax:JaxBackend",
@@ -22,12 +24,16 @@ def make_backend(name: str, **options) -> AbstractBackend:
     """The backend called ``name``, configured with ``options``."""
     if name not in _REGISTRY:
         raise ValueError(f"backend={name!r} is unknown; choose one of {available()}")
-    module, cls = _REGISTRY[name].split(":")
-    backend_cls = getattr(importlib.import_module(module), cls)
     try:
-        return backend_cls(**options)
+        return _backend_class(name)(**options)
     except TypeError as err:
         raise TypeError(f"backend {name!r}: {err}") from None
+
+
+@functools.cache
+def _backend_class(name: str) -> type:
+    module, cls = _REGISTRY[name].split(":")
+    return getattr(importlib.import_module(module), cls)
 
 
 __all__ = ["AbstractBackend", "Horizon", "available", "make_backend"]

@@ -2,6 +2,7 @@
 
 import abc
 import dataclasses
+import math
 
 import numpy as np
 
@@ -20,11 +21,11 @@ class Horizon:
     @classmethod
     def resolve(cls, excitation: AbstractExcitation, t_end) -> "Horizon":
         if t_end is None:
-            if not np.isfinite(excitation.duration):
+            if not math.isfinite(excitation.duration):
                 raise ValueError(f"{type(excitation).__name__} never ends: give t_end [s]")
             return cls(None)
         t_end = float(t_end)
-        if not (np.isfinite(t_end) and t_end > 0):
+        if not (math.isfinite(t_end) and t_end > 0):
             raise ValueError(f"t_end must be a positive finite time [s], got {t_end!r}")
         return cls(t_end)
 

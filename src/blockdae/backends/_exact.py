@@ -3,25 +3,31 @@
 import dataclasses
 import functools
 
-import jax
 import numpy as np
 
-from .._jax_config import jax_context
-from .._solution import BatchSolution, Event, Solution
+from .._solution import BatchSolution
 from ..excitation import Pieces
-from ..excitation._pieces import evaluate
-from ..model import Mode, SlidingBlock, slip_constant
-from . import _exact_kernel as kernel
-from ._base import AbstractBackend, batch_params, never_rests_error
+from ..excitation._pieces import accel
+from ..model import SlidingBlock
+from . import _exact_numba as engine
+from ._base import AbstractBackend
+from ._results import check, exact_solution
+
+
+#: pieces x parameter sets above which a batch runs in parallel (~30 ms on one core); below,
+#: waking the worker threads may cost more than they save (~8 ms a call on some VMs)
+_PARALLEL_WORK = 3e7
 
 
 @dataclasses.dataclass(frozen=True)
 class ExactBackend(AbstractBackend):
-    """Closed-form integration, compiled with JAX (float64).
+    """Closed-form integration, compiled with numba (float64, parallel over cores for
+    batches). ``backend="exact-jax"`` runs the same closed forms and rules compiled
+    with JAX, for derivatives and accelerators.
 
     Args:
-        window: pieces of a(t) examined per loop iteration; a tuning knob that
-            changes speed, never results.
+        window: pieces of a(t) per block of the onset search's bounds; a tuning knob
+            that changes speed, never results.
     """
 
     window: int = 64
@@ -32,156 +38,91 @@ class ExactBackend(AbstractBackend):
             raise ValueError(f"window must be an integer >= 1, got {self.window!r}")
 
     def solve(self, block, excitation, horizon):
-        pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
-        capacity = _bucket(len(pieces.t0))  # one event per piece; grows if ever needed
-        while True:
-            out = self._run(kernel.run, _params(block), device, len(pieces.t0), horizon, block, pieces, capacity)
-            u, v, mode, max_abs_u, n_events, t_final, rests, finished = out.scalars
-            if n_events < capacity:  # a full log may have lost its last row
-                break
-            capacity *= 2
-        _check(block, rests, finished)
-        n = int(n_events)
-        return _solution(block, pieces, out.log[:n], (float(u), float(v), int(mode)), float(t_final), self.name)
+        pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
+        run_one, _, _ = engine.kernels()
+        params = (float(block.mu), float(block.friction_kinetic), float(block.bias), float(block.g), 1.0)
+        outcome, knots = run_one(exc, self.window, params, _flags(block, horizon), 64)
+        check(block, outcome[6], outcome[7])
+        return exact_solution(block, pieces, knots, int(outcome[8]), self.name)
 
     def solve_batch(self, block, excitation, horizon):
-        pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
-        params = batch_params(block)
-        out = self._run(kernel.run_batch, params, device, len(pieces.t0), horizon, block, pieces, 0)
-        u, _, _, max_abs_u, n_events, t_final, rests, finished = out.scalars.T
-        for i in np.flatnonzero(~(rests.astype(bool) & finished.astype(bool))):
-            _check(block.item(i), rests[i], finished[i], f" (parameter set {i})")
+        out = self.solve_final(block, [excitation], [horizon])[0]
         return BatchSolution(
-            displacement=u, max_abs_displacement=max_abs_u, n_events=n_events.astype(int), t_end=t_final,
-            backend=self.name,
+            displacement=out[:, 0], max_abs_displacement=out[:, 3], n_events=out[:, 4].astype(int),
+            t_end=out[:, 5], backend=self.name,
             solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
 
-    def _run(self, fn, params, device, n_pieces, horizon, block, pieces, capacity):
-        with jax_context():
-            out = fn(params, (block.allow_negative, block.allow_positive), device, n_pieces,
-                     horizon.until_rest, window=self.window, log_capacity=capacity, is_sine=pieces.has_sine)
-            return kernel.Summary(*map(np.asarray, out))  # ~100 us faster than jax.device_get here
+    def solve_final(self, block: SlidingBlock, excitations, horizons) -> np.ndarray:
+        """Final numbers only, for every excitation under every parameter set of
+        ``block`` (a batch of m, or one), in parallel over cores.
+
+        Returns:
+            (len(excitations), m, 9), the engine's outcomes (``OUTCOME_FIELDS``).
+        """
+        inputs = [_engine_input(e, h.integration_end(e), self.window)[1] for e, h in zip(excitations, horizons)]
+        exc, offsets = _concatenated(inputs)
+        params = _batch_params(block)
+        _, parallel, serial = engine.kernels()
+        run_batch = parallel if len(params) * len(exc[0]) >= _PARALLEL_WORK else serial
+        until_rest = np.array([h.until_rest for h in horizons])
+        out = run_batch(exc, offsets, self.window, params, (block.allow_negative, block.allow_positive, until_rest))
+        if not out[:, :, 6:8].all():  # rests, finished
+            for i, j in zip(*np.nonzero((out[:, :, 6] == 0) | (out[:, :, 7] == 0))):
+                where = f" (excitation {i}, parameter set {j})" if len(inputs) > 1 else f" (parameter set {j})"
+                check(block.item(j) if block.batch_shape else block, out[i, j, 6], out[i, j, 7], where)
+        return out
 
 
-def _params(block: SlidingBlock, scale=1.0):
-    """(mu, f, bias, g, scale) as one array: one transfer to the device, not five."""
-    return np.array([block.mu, block.friction_kinetic, block.bias, block.g, scale], dtype=np.float64)
+def _batch_params(block):
+    """(m, 5) rows of (mu, f, bias, g, scale = 1) for a batch of m parameter sets (or one)."""
+    values = (block.mu, block.friction_kinetic, block.bias, block.g, 1.0)
+    params = np.empty((max(getattr(x, "size", 1) for x in values), 5))
+    for column, x in enumerate(values):
+        params[:, column] = x
+    return params
 
 
-def _bucket(n: int) -> int:
-    """n rounded up to at least 64 and to one of four sizes per octave, so that few
-    distinct shapes get compiled (all short excitations share one)."""
-    n = max(n, 64)
-    step = 2 ** (int(np.log2(n)) - 2)
-    return int(-(-n // step) * step)
+def _flags(block, horizon):
+    return block.allow_negative, block.allow_positive, horizon.until_rest
 
 
-def _pieces_on_device(excitation, t_end, window):
-    """The pieces of ``excitation`` up to ``t_end`` [s], and the kernel's input built
-    from them on the JAX device; kept for the last few excitations, which are immutable
-    (building it for a long record costs as much as a run)."""
+def _engine_input(excitation, t_end, window):
+    """The pieces of ``excitation`` up to ``t_end`` [s] and the engine's input built from
+    them; kept for the last few excitations, which are immutable."""
     try:
-        return _cached_pieces_on_device(excitation, t_end, window)
+        return _cached_engine_input(excitation, t_end, window)
     except TypeError:  # an unhashable user-defined excitation
-        return _cached_pieces_on_device.__wrapped__(excitation, t_end, window)
+        return _cached_engine_input.__wrapped__(excitation, t_end, window)
 
 
 @functools.lru_cache(maxsize=16)
-def _cached_pieces_on_device(excitation, t_end, window):
+def _cached_engine_input(excitation, t_end, window):
     pieces = excitation.pieces(t_end)
-    with jax_context():
-        return pieces, jax.device_put(_kernel_input(pieces, window))
+    return pieces, prepare(pieces, window)
 
 
-def _kernel_input(pieces: Pieces, window: int) -> kernel.Excitation:
-    return kernel.prepare(_device(pieces, window), window, pieces.has_sine)
+def prepare(pieces: Pieces, window: int) -> tuple:
+    """The engine's ``exc`` (see :mod:`._exact_numba`): the pieces (sine terms None if
+    there are none) and the range of a(t) per block of ``window`` pieces."""
+    sine = (pieces.s, pieces.w, pieces.phi) if pieces.has_sine else (None, None, None)
+    coefficients = (pieces.p0, pieces.p1, *sine)
+    ends = (accel(*coefficients, 0.0), accel(*coefficients, pieces.h))  # monotone: extrema at the ends
+    pad = -len(pieces.t0) % window
+    per_block = lambda x, fill, reduce: reduce(np.append(x, np.full(pad, fill)).reshape(-1, window), axis=1)
+    a_max = per_block(np.maximum(*ends), -np.inf, np.max)
+    a_min = per_block(np.minimum(*ends), np.inf, np.min)
+    return tuple(np.ascontiguousarray(x, dtype=float) if x is not None else None
+                 for x in (pieces.t0, pieces.h, *coefficients, a_max, a_min))
 
 
-def _device(pieces: Pieces, window: int):
-    """Pieces padded with empty, zero-acceleration pieces to a bucketed length plus one
-    window, so that records of similar length share one compiled kernel."""
-    n = len(pieces.t0)
-    pad = _bucket(n) - n + window
-    zeros = np.zeros(pad)
-    padded = Pieces.concatenate([pieces, Pieces(zeros + pieces.t_end, *(zeros,) * 6)])
-    return tuple(padded)
-
-
-def _check(block, rests, finished, where=""):
-    if not bool(finished):
-        raise RuntimeError(f"the exact kernel stopped before the end of the excitation{where}: "
-                           "events accumulate (chatter) faster than it can advance")
-    if not bool(rests):
-        raise never_rests_error(block, where)
-
-
-def _solution(block, pieces, log, final, t_final, backend):
-    """Knots at the start, every event and the end, straight from the kernel.
-
-    ``log``: (n_events, 4) rows of t [s], mode before, mode after, u [m];
-    ``final``: (u [m], v [m/s], mode) at ``t_final`` [s].
-    """
-    n = log.shape[0]
-    t_ev, before, after, u_ev = log.T
-    after = after.astype(int)
-    events = _events(t_ev, before, after, u_ev, np.zeros(n))
-    t = np.concatenate([[0.0], t_ev, [t_final]])
-    u = np.concatenate([[0.0], u_ev, [final[0]]])
-    v = np.concatenate([np.zeros(n + 1), [final[1]]])
-    mode = np.concatenate([[0], after, [final[2]]]).astype(int)
-    stats = {"max_events_at_one_instant": _max_run(t_ev), "n_events": n}
-    return Solution(t=t, u=u, v=v, mode=mode, events=events, backend=backend,
-                    dense=_DenseOutput(block, pieces, t_ev, u_ev, after), stats=stats)
-
-
-def _events(t, before, after, u, v):
-    """Events from arrays of times [s], modes before and after, u [m] and v [m/s]."""
-    floats = lambda x: np.asarray(x, float).tolist()
-    modes = lambda x: np.asarray(x).astype(int).tolist()
-    return tuple(Event(t_i, Mode(b), Mode(a), u_i, v_i)
-                 for t_i, b, a, u_i, v_i in zip(floats(t), modes(before), modes(after), floats(u), floats(v)))
-
-
-def _max_run(times):
-    if times.size == 0:
-        return 0
-    edges = np.flatnonzero(np.diff(times) != 0)
-    return int(np.max(np.diff(np.concatenate([[-1], edges, [times.size - 1]]))))
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class _DenseOutput:
-    """u(t), v(t) in closed form from the last event before t.
-
-    In slip from an event at t_e with (u_e, v_e = 0... or not), with the base's
-    velocity vb and displacement xb (integrals of a):
-    v = v_e + c (t - t_e) - (vb(t) - vb(t_e)) and
-    u = u_e + v_e (t - t_e) + c (t - t_e)²/2 - (xb(t) - xb(t_e) - vb(t_e) (t - t_e)).
-    """
-
-    block: SlidingBlock
-    pieces: Pieces
-    t_events: np.ndarray
-    u_events: np.ndarray
-    mode_after: np.ndarray
-
-    def mode_at(self, t):
-        i = np.searchsorted(self.t_events, t, side="right") - 1
-        return np.where(i >= 0, self.mode_after[np.maximum(i, 0)], 0).astype(int)
-
-    def __call__(self, t):
-        t = np.asarray(t, dtype=float)
-        i = np.searchsorted(self.t_events, t, side="right") - 1
-        started = i >= 0
-        j = np.maximum(i, 0)
-        t_e = np.where(started, self.t_events[j] if self.t_events.size else 0.0, 0.0)
-        u_e = np.where(started, self.u_events[j] if self.u_events.size else 0.0, 0.0)
-        mode = self.mode_at(t)
-        _, _, vb, xb = evaluate(self.pieces, t)
-        _, _, vb_e, xb_e = evaluate(self.pieces, t_e)
-        c = slip_constant(mode, self.block.bias, self.block.friction_kinetic, self.block.g)
-        d = t - t_e
-        v = c * d - (vb - vb_e)
-        u = u_e + 0.5 * c * d**2 - (xb - xb_e - vb_e * d)
-        stick = mode == 0
-        return np.where(stick, u_e, u), np.where(stick, 0.0, v)
+def _concatenated(inputs):
+    """One ``exc`` from several and their (piece start, end, block start, end) offsets."""
+    if len(inputs) == 1:
+        return inputs[0], np.array([[0, len(inputs[0][0]), 0, len(inputs[0][7])]], dtype=np.int64)
+    if any(x[4] is not None for x in inputs):
+        inputs = [x if x[4] is not None else x[:4] + tuple(np.zeros_like(x[0]) for _ in range(3)) + x[7:]
+                  for x in inputs]
+    exc = tuple(None if inputs[0][f] is None else np.concatenate([x[f] for x in inputs]) for f in range(9))
+    pieces = np.cumsum([0] + [len(x[0]) for x in inputs])
+    blocks = np.cumsum([0] + [len(x[7]) for x in inputs])
+    return exc, np.stack([pieces[:-1], pieces[1:], blocks[:-1], blocks[1:]], axis=1).astype(np.int64)

@@ -11,7 +11,9 @@ function (sine pieces), to machine precision. The loop thus runs about (events +
 sliding pieces / window) times.
 
 Everything is ``jax.numpy``: the kernel compiles, maps over parameter sets and
-differentiates (forward mode) through the event times.
+differentiates (forward mode) through the event times. The closed forms and rules come
+from :mod:`._closed_form` and :mod:`blockdae.model`, which the numba engine
+(:mod:`._exact_numba`) compiles too; only the loop and the bisection are this kernel's own.
 """
 
 import functools
@@ -21,9 +23,12 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, rebase
-from ..model import comes_to_rest, demand, rest_mode, slip_constant, stop_mode
-from ._closed_form import onset_delta, slip_motion, stop_delta
+from ..excitation._pieces import accel, accel_int1, accel_int2, rebase
+from ..model import demand, rest_mode, slip_constant
+from ._closed_form import (BISECTIONS, block_may_leave_stick, crosses_zero, departure_rate, leaves_stick, mode_after_stop,
+                           onset_delta_linear, onset_gap, onset_side, onset_target, onset_within, rate_turns,
+                           sine_stop_bracket, slip_motion, slip_rate, slip_velocity, stop_delta_linear,
+                           tail_to_rest)
 
 
 class Params(NamedTuple):
@@ -102,33 +107,74 @@ def _scaled(cf, scale):
 
 
 def _blocks_may_leave_stick(rules, exc):
-    """Per block: whether the demand may leave [-mu g, mu g] there. Conservative by a
-    relative 1e-9 (the pieces are checked one by one after), never missing an onset."""
+    """Per block: whether the demand may leave [-mu g, mu g] there."""
     p = rules.params
-    limit = p.mu * p.g
-    highest = jnp.maximum(p.scale * exc.a_max, p.scale * exc.a_min)
-    lowest = jnp.minimum(p.scale * exc.a_max, p.scale * exc.a_min)
-    slack = 1e-9 * (jnp.maximum(highest, -lowest) + jnp.abs(p.bias * p.g) + limit)
-    up = rules.allow_neg & (demand(highest, p.bias, p.g) > limit - slack)
-    down = rules.allow_pos & (demand(lowest, p.bias, p.g) < -limit + slack)
-    return up | down
+    return block_may_leave_stick(exc.a_max, exc.a_min, p.scale, p.bias, p.g, p.mu * p.g,
+                                 rules.allow_neg, rules.allow_pos, jnp)
 
 
 def _leaves_stick(rules, cf, rem):
     """Whether the demand exceeds +mu g (-> slip-) / -mu g (-> slip+) on [0, rem]."""
     p = rules.params
-    limit = p.mu * p.g
     start = demand(accel(*cf, 0.0, jnp), p.bias, p.g)
     end = demand(accel(*cf, rem, jnp), p.bias, p.g)
-    up = rules.allow_neg & ((end > limit) | (start > limit))
-    down = rules.allow_pos & ((end < -limit) | (start < -limit))
-    return up, down
+    return leaves_stick(start, end, p.mu * p.g, rules.allow_neg, rules.allow_pos)
 
 
 def _piece(exc, scale, j, tau):
     """Piece j from time ``tau`` into it: (start time [s], remaining length [s], coefficients)."""
     cf = rebase(*_scaled(tuple(None if c is None else c[j] for c in exc.cf), scale), tau)
     return exc.t0[j] + tau, exc.h[j] - tau, cf
+
+
+def _bisect(fun, lo, hi):
+    """Bracketed root of ``fun``, monotone on [lo, hi]; returns the upper end.
+
+    The value is the bisection's; its derivative with respect to parameters that
+    ``fun`` closes over is the implicit function theorem's, -dF/dp / dF/dt.
+    Twin of ``_exact_numba._bisect`` (same halvings, no derivative): keep them alike.
+    """
+    flo_sign = jnp.sign(fun(lo))
+
+    def halve(_, bracket):
+        lo, hi = bracket
+        mid = 0.5 * (lo + hi)
+        keep_lo = jnp.sign(fun(mid)) == flo_sign
+        return jnp.where(keep_lo, mid, lo), jnp.where(keep_lo, hi, mid)
+
+    _, root = jax.lax.fori_loop(0, BISECTIONS, halve, jax.lax.stop_gradient((lo, hi)))
+    root = jax.lax.stop_gradient(root)
+    value, slope = jax.jvp(fun, (root,), (jnp.ones_like(root),))
+    step = jnp.where(slope != 0, value / jnp.where(slope != 0, slope, 1.0), 0.0)
+    return root - (step - jax.lax.stop_gradient(step))
+
+
+def onset_delta(cf, rem, target, is_sine):
+    """Time [s] until a(d) reaches ``target`` [m/s²] on [0, rem] (a monotone).
+    Twin of ``_exact_numba._onset_delta``."""
+    linear = onset_delta_linear(cf, target, jnp)
+    if not is_sine:
+        return linear
+    sine = _bisect(lambda d: onset_gap(cf, d, target, jnp), jnp.zeros_like(rem), rem)
+    return jnp.where(cf[2] != 0, sine, linear)
+
+
+def stop_delta(cf, rem, v, c, mode, is_sine):
+    """First time d in (0, rem] where v(d) returns to 0 in slip ``mode`` (= sign of v):
+    (d [s], found). Twin of ``_exact_numba._stop_delta``."""
+    d_lin, found_lin = stop_delta_linear(cf, rem, v, c, mode, jnp)
+    if not is_sine:
+        return d_lin, found_lin
+    r0 = departure_rate(cf, v, c, mode, jnp)
+    rate = lambda d: slip_rate(cf, d, c, jnp)
+    vel = lambda d: slip_velocity(cf, d, v, c, jnp)
+    turns = rate_turns(r0, rate(rem), jnp)
+    d_turn = jnp.where(turns, _bisect(rate, jnp.zeros_like(rem), rem), rem)
+    lo, hi = sine_stop_bracket(r0, turns, d_turn, rem, mode, jnp)
+    found_sin = crosses_zero(vel(lo), vel(hi), mode)
+    d_sin = jnp.where(found_sin, _bisect(vel, lo, hi), rem)
+    sine = cf[2] != 0
+    return jnp.where(sine, d_sin, d_lin), jnp.where(sine, found_sin, found_lin)
 
 
 class _Candidate(NamedTuple):
@@ -166,14 +212,9 @@ def _next_onset(rules, exc, state, n_pieces, *, window, is_sine):
     t_j, rem_j, cf_j = _piece(exc, p.scale, j, tau)
     up_j, _ = _leaves_stick(rules, cf_j, rem_j)
     sigma_j = demand(accel(*cf_j, 0.0, jnp), p.bias, p.g)
-    starts_up = rules.allow_neg & (sigma_j > limit)
-    starts_down = rules.allow_pos & (sigma_j < -limit)
-    # beyond a threshold at the start: onset there; else a (monotone) crosses one of them
-    going_up = starts_up | (~starts_down & up_j)
-    target = p.bias * p.g + jnp.where(going_up, limit, -limit)
-    d = onset_delta(cf_j, rem_j, target, is_sine)
-    # keep d in [0, rem]; jnp.clip would halve the derivative of a root on a bound
-    d = jnp.where(starts_up | starts_down | (d < 0), 0.0, jnp.where(d > rem_j, rem_j, d))
+    going_up, at_once = onset_side(sigma_j, up_j, limit, rules.allow_neg, rules.allow_pos)
+    target = onset_target(going_up, p.bias, p.g, limit, jnp)
+    d = onset_within(onset_delta(cf_j, rem_j, target, is_sine), rem_j, at_once, jnp)
     skip_to = jnp.where(jnp.any(candidate), start + window, n_pieces)
     return _Candidate(found, jnp.where(found, j, skip_to), jnp.where(found, tau + d, 0.0), t_j + d,
                       state.u, 0.0 * state.v, jnp.where(found, jnp.where(going_up, -1, 1), state.mode))
@@ -197,7 +238,7 @@ def _next_stop(rules, exc, state, n_pieces, *, window, is_sine):
     cf_i = tuple(None if x is None else x[i] for x in cf)
     d = d_stop[i]
     t_event = take(exc.t0)[i] + offset[i] + d
-    u_event, _ = slip_motion(cf_i, d, u_start[i], v_start[i], c)
+    u_event, _ = slip_motion(cf_i, d, u_start[i], v_start[i], c, jnp)
     after = _mode_after_stop(rules, cf_i, d, c, state.mode, t_event)
     return _Candidate(found, jnp.where(found, state.k + i, state.k + window),
                       jnp.where(found, offset[i] + d, 0.0), t_event,
@@ -220,8 +261,7 @@ def _step(rules, exc, n_pieces, state, *, window, is_sine):
 def _mode_after_stop(rules, cf, d, c, mode, t_stop):
     """Mode after v returns to zero in ``mode`` (the model's :func:`stop_mode`)."""
     p = rules.params
-    return stop_mode(mode, c - accel(*cf, d, jnp), accel_rate(*cf, d, jnp), t_stop, p.mu, p.f, p.g,
-                     rules.allow_neg, rules.allow_pos, jnp)
+    return mode_after_stop(cf, d, c, mode, t_stop, p.mu, p.f, p.g, rules.allow_neg, rules.allow_pos, jnp)
 
 
 def _tail_to_rest(rules, state, t_start):
@@ -230,11 +270,7 @@ def _tail_to_rest(rules, state, t_start):
     Returns the final state, its time [s] and whether the block comes to rest.
     """
     p = rules.params
-    sliding = state.v != 0
-    c = slip_constant(state.mode, p.bias, p.f, p.g)
-    rests = comes_to_rest(state.v, state.mode, p.bias, p.f, p.g)
-    d = jnp.where(sliding & rests, -state.v / jnp.where(c != 0, c, 1.0), 0.0)
-    u = state.u + 0.5 * state.v * d
+    d, u, rests = tail_to_rest(state.u, state.v, state.mode, p.bias, p.f, p.g, jnp)
     after = rules.at_rest(-p.bias * p.g, 0.0)
     logged = rests & (after != state.mode)
     log, n_events = _logged(state.log, state.n_events, logged, t_start + d, state.mode, after, u)

@@ -6,10 +6,11 @@ import jax
 import numpy as np
 
 from .._jax_config import jax_context
-from .._solution import BatchSolution, Solution
+from .._solution import BatchSolution, EventLog, Solution
 from . import _jax_kernel as kernel
 from ._base import AbstractBackend, batch_params, never_rests_error
-from ._exact import _DenseOutput, _device, _events, _max_run, _params
+from ._exact_jax import _device, _params
+from ._results import DenseOutput, max_run
 
 
 @dataclasses.dataclass(frozen=True)
@@ -101,9 +102,9 @@ def _solution(block, pieces, knots, t_final, n_steps, backend):
     t, u, v, before, after, is_event = (take(x) for x in (knots.t, knots.u, knots.v, knots.mode_before,
                                                           knots.mode_after, knots.is_event))
     ev = np.flatnonzero(is_event)
-    events = _events(t[ev], before[ev], after[ev], u[ev], v[ev])
-    dense = _DenseOutput(block, pieces, t[ev], u[ev], after[ev].astype(int))
-    stats = {"max_events_at_one_instant": _max_run(t[ev]), "n_events": len(events), "n_steps": n_steps}
+    events = EventLog(t[ev], before[ev], after[ev], u[ev], v[ev])
+    dense = DenseOutput(block, pieces, events.t, events.u, events.mode_after)
+    stats = {"max_events_at_one_instant": max_run(events.t), "n_events": len(events), "n_steps": n_steps}
     return Solution(t=np.concatenate([[0.0], t]), u=np.concatenate([[0.0], u]), v=np.concatenate([[0.0], v]),
                     mode=np.concatenate([[0], after]).astype(int), events=events, backend=backend,
                     dense=dense, stats=stats)

@@ -22,8 +22,7 @@ import optimistix as optx
 
 from ..excitation._pieces import accel, accel_rate, rebase
 from ..model import comes_to_rest, demand, relative_acceleration, slip_constant, stick_guards
-from ._closed_form import onset_delta
-from ._exact_kernel import Params, _mode_after_stop, _Rules
+from ._exact_kernel import Params, _mode_after_stop, _Rules, onset_delta
 
 # guards decrease through their roots (flip=True): no bracket check, which under vmap
 # would also run on members without an event

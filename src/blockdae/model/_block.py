@@ -190,7 +190,8 @@ class SlidingBlock(AbstractHybridModel):
     @property
     def batch_shape(self) -> tuple[int, ...]:
         """() for one parameter set, (n,) for a batch of n."""
-        return np.broadcast_shapes(*(np.shape(p) for p in (self.mu, self.friction_kinetic, self.bias)))
+        shapes = {p.shape for p in (self.mu, self.friction_kinetic, self.bias) if isinstance(p, np.ndarray)}
+        return np.broadcast_shapes(*shapes) if len(shapes) > 1 else next(iter(shapes), ())  # else floats
 
     @property
     def allow_negative(self) -> bool:
