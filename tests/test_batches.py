@@ -262,7 +262,7 @@ def documented_options():
     section = doc[doc.index("**options"):doc.index("Returns:")]
     options, current = {}, []
     for line in section.splitlines():
-        names = re.findall(r'backend="(\w+)"', line)
+        names = re.findall(r'backend="([\w-]+)"', line)
         if line.startswith(" " * 8 + "backend="):
             current = names
             for name in names:

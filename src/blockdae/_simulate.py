@@ -22,8 +22,10 @@ def simulate(block: SlidingBlock, motion: AbstractExcitation, t_end: float | Non
         **options: settings of the backend, name=default: meaning [unit]
             (tests check this list against the backends' fields)
 
-            backend="exact" (closed form, compiled with JAX):
-                window=64: pieces of a(t) examined per loop iteration [-]; changes
+            backend="exact" and backend="exact-jax" (closed forms compiled with numba,
+            batches parallel over cores; or with JAX, what ``sensitivities``
+            differentiates):
+                window=64: pieces of a(t) per block of the onset search [-]; changes
                     speed, never results.
             backend="cvode" (ODE in u, v) and backend="ida" (DAE, with the friction
             force per unit mass F as algebraic variable):
