@@ -16,8 +16,8 @@ from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
-from .motions import (IntensityMeasures, ResponseSpectrum, baseline_corrected, cumulative_arias,
-                      intensity_measures, motion_histories, response_spectrum)
+from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected, cumulative_arias,
+                      fourier_amplitude, intensity_measures, motion_histories, relative_motion, response_spectrum)
 
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "Harmonic", "Mode",
@@ -28,5 +28,5 @@ __all__ = [
     "sensitivities", "set_compilation_cache",
     "NewmarkResult", "newmark", "yield_acceleration",
     "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
-    "ResponseSpectrum", "response_spectrum",
+    "ResponseSpectrum", "response_spectrum", "RelativeMotion", "fourier_amplitude", "relative_motion",
 ]
