@@ -19,9 +19,10 @@ from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
+from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
+                      cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
+                      relative_motion, response_spectrum)
 from .structures import Floor, ShearFrame
-from .motions import (IntensityMeasures, ResponseSpectrum, baseline_corrected, cumulative_arias,
-                      intensity_measures, motion_histories, response_spectrum)
 
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
@@ -34,7 +35,7 @@ __all__ = [
     "sensitivities", "set_compilation_cache",
     "NewmarkResult", "newmark", "yield_acceleration",
     "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
-    "ResponseSpectrum", "response_spectrum",
+    "ResponseSpectrum", "response_spectrum", "RelativeMotion", "fourier_amplitude", "relative_motion",
     "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
     "Floor", "ShearFrame",
 ]

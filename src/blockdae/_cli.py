@@ -25,6 +25,7 @@ from ._newmark import newmark
 from ._simulate import simulate
 from ._units import STANDARD_GRAVITY
 from .excitation import read_record
+from .motions._commands import add_spectrum_parser, add_two_point_parser
 from .excitation._readers import unit_factor
 from .model import SlidingBlock
 
@@ -65,7 +66,7 @@ def _parser():
                         help="JAX compilation cache, so that later runs skip compiling "
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
-    sub = parser.add_subparsers(required=True, metavar="{run,newmark,examples,batch}")
+    sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,examples,batch}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u)")
     run.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
@@ -88,6 +89,9 @@ def _parser():
     _record_arguments(newmark_)
     newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
     newmark_.set_defaults(command=_newmark)
+
+    add_spectrum_parser(sub)
+    add_two_point_parser(sub)
 
     examples = sub.add_parser("examples", help="seed-000 Examples 1-6: exact vs the paper")
     examples.set_defaults(command=_examples)

@@ -1,0 +1,229 @@
+"""``blockdae spectrum`` and ``blockdae two-point``: command functions for the CLI.
+
+Hook into ``blockdae._cli._parser`` with ``add_spectrum_parser(sub)`` and
+``add_two_point_parser(sub)``; each sets ``command`` to a function of the parsed args
+returning the exit status (errors: one ``blockdae: error: ...`` line, status 2).
+"""
+
+import argparse
+import csv
+import json
+import pathlib
+import sys
+
+import numpy as np
+
+from .._units import STANDARD_GRAVITY
+
+SEED_LAGS = np.geomspace(0.05, 3.0, 20)  # seed 003: 20 lags from 0.05 to 3 s
+DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)
+
+
+def _number(flag, ok, what):
+    def parse(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
+        if not ok(value):
+            raise argparse.ArgumentTypeError(f"must be {what}, got {text}")
+        return value
+    parse.__name__ = flag
+    return parse
+
+
+def _common(parser):
+    parser.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
+    parser.add_argument("--units", default=None,
+                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header says, else g)")
+    parser.add_argument("--dt", type=_number("--dt", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+                        default=None, help="sample step [s], for one-column files")
+    parser.add_argument("--g", type=_number("--g", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+                        default=STANDARD_GRAVITY, help="the unit 'g' [m/s²] (default 9.80665)")
+    parser.add_argument("--pga", type=_number("--pga", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+                        default=None, help="scale the record to this PGA [g] (seed 003: 0.1)")
+    parser.add_argument("--csv", type=pathlib.Path, default=None, help="write the table as CSV")
+    parser.add_argument("--json", action="store_true", help="print the results as JSON")
+    parser.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure")
+
+
+def add_spectrum_parser(subparsers):
+    """The ``spectrum`` subcommand: exact response spectra of one record."""
+    p = subparsers.add_parser("spectrum", help="exact response spectra of a record (Sd, Sv, Sa, PSa, ...)")
+    _common(p)
+    p.add_argument("--periods", nargs="+", default=None,
+                   type=_number("--periods", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+                   help="oscillator periods [s] (default 100 log-spaced from 0.01 to 10 s)")
+    p.add_argument("--damping", nargs="+", default=[0.05],
+                   type=_number("--damping", lambda x: np.isfinite(x) and 0 <= x < 1, "in [0, 1)"),
+                   help="fractions of critical damping [-] (default 0.05)")
+    p.add_argument("--baseline", choices=("none", "polynomial", "mean"), default="none",
+                   help="baseline correction before the analysis (default none)")
+    p.add_argument("--t-end", type=_number("--t-end", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+                   default=None, help="end of the window [s] (default the record's duration)")
+    p.set_defaults(command=run_spectrum)
+    return p
+
+
+def add_two_point_parser(subparsers):
+    """The ``two-point`` subcommand: relative motion of two surface points (seed 003)."""
+    p = subparsers.add_parser("two-point", help="largest relative displacement of two points τ = b/c apart "
+                                                "(seed 003)")
+    _common(p)
+    p.add_argument("--lags", nargs="+", default=None,
+                   type=_number("--lags", lambda x: np.isfinite(x) and x >= 0, "a number >= 0"),
+                   help="lags τ = b/c [s] (default the seed's 20 lags, 0.05 to 3 s)")
+    p.add_argument("--baseline", choices=("none", "polynomial", "mean"), default="polynomial",
+                   help="baseline correction first (default polynomial, as the seed's records were)")
+    p.add_argument("--damping", type=_number("--damping", lambda x: np.isfinite(x) and 0 <= x < 1, "in [0, 1)"),
+                   default=0.05, help="damping of the 2 Sd(2τ) estimate [-] (default 0.05)")
+    p.set_defaults(command=run_two_point)
+    return p
+
+
+class _Error(Exception):
+    pass
+
+
+def _record(args):
+    from ..excitation import read_record
+    from ._baseline import baseline_corrected
+
+    if not args.record.is_file():
+        raise _Error(f"{args.record}: no such file")
+    units = {} if args.units is None else {"units": args.units}
+    try:
+        rec = read_record(args.record, dt=args.dt, g=args.g, **units)
+        rec = baseline_corrected(rec, args.baseline)
+    except (ValueError, OSError) as err:
+        message = str(err)
+        raise _Error(message if str(args.record) in message else f"{args.record}: {message}") from None
+    if args.pga is not None:
+        if rec.peak_acceleration == 0:
+            raise _Error(f"{args.record}: --pga cannot scale a record of zeros")
+        rec = rec.scaled(args.pga * args.g / rec.peak_acceleration)
+    return rec
+
+
+def _guarded(action):
+    def command(args):
+        try:
+            return action(args)
+        except _Error as err:
+            print(f"blockdae: error: {err}", file=sys.stderr)
+            return 2
+    return command
+
+
+def _write_csv(path, rows):
+    try:
+        with open(path, "w", newline="") as stream:
+            writer = csv.DictWriter(stream, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+    except OSError as err:
+        raise _Error(f"--csv {path}: {err.strerror or err}") from None
+
+
+def _save(fig, path):
+    import matplotlib.pyplot as plt
+
+    try:
+        fig.savefig(path, dpi=120)
+    except (OSError, ValueError) as err:
+        raise _Error(f"--plot {path}: {err}") from None
+    finally:
+        plt.close(fig)
+
+
+@_guarded
+def run_spectrum(args):
+    from ._spectra import response_spectrum
+
+    rec = _record(args)
+    periods = DEFAULT_PERIODS if args.periods is None else np.array(args.periods)
+    try:
+        spec = response_spectrum(rec, periods, np.array(args.damping), t_end=args.t_end)
+    except ValueError as err:
+        raise _Error(str(err)) from None
+    rows = []
+    for j, zeta in enumerate(args.damping):
+        one = spec if spec.sd.ndim == 1 else _index(spec, j)
+        rows += one.table()
+    if args.csv:
+        _write_csv(args.csv, rows)
+    if args.json:
+        print(json.dumps({"record": rec.name, "dt_s": rec.dt, "pga_m_s2": rec.peak_acceleration,
+                          "baseline": args.baseline, "rows": rows}, indent=1))
+    else:
+        print(f"{rec.name}: {rec.acceleration_samples.size} samples, dt = {rec.dt:g} s, "
+              f"PGA {rec.peak_acceleration:.4g} m/s², baseline {args.baseline}")
+        print(f"{'T [s]':>9} {'ζ':>5} {'Sd [m]':>11} {'Sv [m/s]':>11} {'Sa [m/s²]':>11} {'PSa [m/s²]':>11} "
+              f"{'Sd,abs [m]':>11}")
+        for r in rows:
+            print(f"{r['period_s']:9.4g} {r['damping']:5.3g} {r['sd_m']:11.5g} {r['sv_m_s']:11.5g} "
+                  f"{r['sa_m_s2']:11.5g} {r['psa_m_s2']:11.5g} {r['sd_abs_m']:11.5g}")
+    if args.plot:
+        from ._figures import plot_spectrum
+
+        _save(plot_spectrum(spec, title=f"{rec.name}: PSa"), args.plot)
+    return 0
+
+
+def _index(spec, j):
+    import dataclasses
+
+    fields = {f.name: getattr(spec, f.name) for f in dataclasses.fields(spec)}
+    for name in ("sd", "sv", "sa", "sd_abs", "t_sd", "t_sv", "t_sa", "t_sd_abs"):
+        fields[name] = fields[name][j]
+    fields["damping"] = spec.damping[j]
+    return type(spec)(**fields)
+
+
+@_guarded
+def run_two_point(args):
+    from ._two_point import relative_motion
+
+    rec = _record(args)
+    lags = SEED_LAGS if args.lags is None else np.array(args.lags)
+    try:
+        rm = relative_motion(rec, lags, damping=args.damping)
+    except ValueError as err:
+        raise _Error(str(err)) from None
+    rows = rm.table()
+    if args.csv:
+        _write_csv(args.csv, rows)
+    if args.json:
+        print(json.dumps({"record": rec.name, "baseline": args.baseline, "pga_m_s2": rm.pga, "pgv_m_s": rm.pgv,
+                          "pgd_m": rm.pgd, "d_max_m": rm.d_max, "d_min_m": rm.d_min, "rows": rows}, indent=1))
+    else:
+        print(f"{rec.name}: a_m = {rm.pga:.4g} m/s², v_m = {rm.pgv:.4g} m/s, d_m = {rm.pgd:.4g} m "
+              f"(d from {rm.d_min:.4g} to {rm.d_max:.4g} m), baseline {args.baseline}")
+        print(f"{'τ [s]':>8} {'R [m]':>10} {'t_R [s]':>8} {'v_m τ':>10} {'eq.1 −':>10} {'eq.1 +':>10} "
+              f"{'2 Fourier':>10} {'2 Sd(2τ)':>10} {'envelope':>10}")
+        for r in rows:
+            print(f"{r['lag_s']:8.4g} {r['r_m']:10.4g} {r['t_r_s']:8.3f} {r['velocity_bound_m']:10.4g} "
+                  f"{r['eq1_minus_m']:10.4g} {r['eq1_plus_m']:10.4g} {r['fourier_m']:10.4g} "
+                  f"{r['spectral_m']:10.4g} {r['envelope_m']:10.4g}")
+    if args.plot:
+        from ._figures import plot_relative_motion
+
+        _save(plot_relative_motion(rm), args.plot)
+    return 0
+
+
+def main(argv=None) -> int:
+    """Stand-alone entry (``python -m blockdae.motions._commands``) until the hook in ``_cli``."""
+    parser = argparse.ArgumentParser(prog="blockdae")
+    sub = parser.add_subparsers(required=True, metavar="{spectrum,two-point}")
+    add_spectrum_parser(sub)
+    add_two_point_parser(sub)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exit_:
+        return int(exit_.code or 0)
+    return args.command(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
