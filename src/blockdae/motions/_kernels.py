@@ -105,17 +105,20 @@ def _critical(k, k1, k2, al, be, w1, w2, a, b, da):
 
 @njit(cache=True)
 def max_abs(k, al, be, w1, w2, h, best, t_best):
+    """(max(best, max |f| on [0, h]), where): t_best is kept when nothing beats ``best``."""
+    return max_abs_ws(k, al, be, w1, w2, h, best, t_best, np.empty(10), np.empty(10), np.empty((_STACK, 6)))
+
+
+@njit(cache=True)
+def max_abs_ws(k, al, be, w1, w2, h, best, t_best, k1, k2, stack):
     """(max(best, max |f| on [0, h]), where): t_best is kept when nothing beats ``best``.
 
     Branch and bound: an interval [a, b] is dropped when max(|f(a)|, |f(b)|) + M2 (b-a)²/8
     cannot beat ``best``; where f' is certified monotone (|f''(m)| > M3 (b - a) / 2) the
     only candidate inside is the root of f', found by bracketed Newton to rounding.
     """
-    k1 = np.empty(10)
-    k2 = np.empty(10)
     _derivative(k, al, be, w1, w2, k1)
     _derivative(k1, al, be, w1, w2, k2)
-    stack = np.empty((_STACK, 6))
     fa, da, _ = _eval3(k, k1, k2, al, be, w1, w2, 0.0)
     fb, db, _ = _eval3(k, k1, k2, al, be, w1, w2, h)
     if abs(fa) > best:
@@ -231,13 +234,13 @@ def _step(u0, v0, p0, p1, s, w, phi, hk, om, ze, al, be):
 
 
 @njit(cache=True)
-def _refine(k, q, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when):
+def _refine(k, q, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when, ws1, ws2, stack):
     """Branch and bound for quantity q on piece k; updates best[q], when[q]."""
     A0, A1, gu, eu = _particular(p0[k], p1[k], s[k], w[k], phi[k], om, ze)
     c = us[k] - A0 - gu
     d = (vs[k] - A1 - w[k] * eu + al * c) / be
     _fill(kk, q, A0, A1, gu, eu, c, d, al, be, om, ze, p0[k], p1[k], s[k], w[k], phi[k], xg[k], vg[k])
-    b, tb = max_abs(kk, al, be, w[k], 0.0, h[k], best[q], -1.0)
+    b, tb = max_abs_ws(kk, al, be, w[k], 0.0, h[k], best[q], -1.0, ws1, ws2, stack)
     if tb >= 0.0:
         best[q] = b
         when[q] = t0[k] + tb
@@ -309,6 +312,9 @@ def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
     when[2] = t0[i2] if i2 < n else t_end
     when[3] = t0[i3] if i3 < n else t_end
     kk = np.empty(10)
+    ws1 = np.empty(10)
+    ws2 = np.empty(10)
+    stack = np.empty((_STACK, 6))
     inv_be = 1.0 / be
     inv_om = 1.0 / om
     inv_om2 = 1.0 / om2
@@ -323,7 +329,8 @@ def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
                 d = (vs[k] - A1 - w[k] * eu + al * c) * inv_be
                 _fill(kk, q, A0, A1, gu, eu, c, d, al, be, om, ze, p0[k], p1[k], s[k], w[k], phi[k], xg[k], vg[k])
                 if _bound(kk, al, be, w[k], hk) > best[q] * (1.0 + 1e-15):
-                    _refine(k, q, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when)
+                    _refine(k, q, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
+                    ws1, ws2, stack)
             continue
         if hk != h_prev:
             h_prev = hk
@@ -343,23 +350,27 @@ def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
         # u
         thr = max(best[0] - max(abs(A0), abs(A0 + A1 * hk)), (best[0] - max(abs(u0), abs(u1))) * k2u)
         if thr < 0.0 or R2 > thr * thr:
-            _refine(k, 0, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when)
+            _refine(k, 0, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
+                    ws1, ws2, stack)
         # v
         thr = max((best[1] - abs(A1)) * inv_om, (best[1] - max(abs(v0), abs(v1))) * k2v)
         if thr < 0.0 or R2 > thr * thr:
-            _refine(k, 1, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when)
+            _refine(k, 1, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
+                    ws1, ws2, stack)
         # absolute acceleration: poly p0 + p1 τ, damped amplitude ω² R
         pa = max(abs(p0[k]), abs(p0[k] + p1[k] * hk))
         ends = max(abs(tz * v0 + om2 * u0), abs(tz * v1 + om2 * u1))
         thr = max((best[2] - pa) * inv_om2, (best[2] - ends) * k2a)
         if thr < 0.0 or R2 > thr * thr:
-            _refine(k, 2, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when)
+            _refine(k, 2, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
+                    ws1, ws2, stack)
         # absolute displacement: poly A0 + xg + (A1 + vg) τ + p0 τ²/2 + p1 τ³/6
         poly = abs(A0 + xg[k]) + hk * (abs(A1 + vg[k]) + hk * (0.5 * abs(p0[k]) + hk * abs(p1[k]) / 6.0))
         ends = max(abs(u0 + xg[k]), abs(u1 + xg[k + 1]))
         thr = max(best[3] - poly, (best[3] - ends - pa * h8) * k2u)
         if thr < 0.0 or R2 > thr * thr:
-            _refine(k, 3, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when)
+            _refine(k, 3, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
+                    ws1, ws2, stack)
 
 
 @njit(cache=True)
