@@ -1,4 +1,4 @@
-"""The `spectrum` and `two-point` command functions (blockdae.motions._commands)."""
+"""The `blockdae spectrum` and `blockdae two-point` commands."""
 
 import csv
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae.motions._commands import main
+from blockdae._cli import main
 from conftest import sample_record_paths
 
 
@@ -35,7 +35,7 @@ def test_two_point_table_and_plot(kobe_path, tmp_path, capsys):
 @pytest.mark.parametrize("argv, message", [
     (["spectrum", "/no/such.csv"], "no such file"),
     (["spectrum", "KOBE", "--damping", "1.0"], "argument --damping: must be in [0, 1)"),
-    (["spectrum", "KOBE", "--periods", "-1"], "argument --periods: must be a positive number"),
+    (["spectrum", "KOBE", "--periods", "-1"], "argument --periods: must be a positive finite number"),
     (["two-point", "KOBE", "--lags", "-0.1"], "argument --lags: must be a number >= 0"),
 ])
 def test_errors_name_the_argument(kobe_path, capsys, argv, message):

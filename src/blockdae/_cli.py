@@ -7,7 +7,6 @@ batch analyses every good file and lists the bad ones at the end (exit status 1)
 """
 
 import argparse
-import csv
 import importlib.metadata
 import itertools
 import json
@@ -19,12 +18,12 @@ import time
 import numpy as np
 
 from . import backends
+from ._cli_common import UsageError, checked, finite, positive, read, save_figure, write_csv
 from ._examples import seed_examples
 from ._jax_config import set_compilation_cache
 from ._newmark import newmark
 from ._simulate import simulate
 from ._units import STANDARD_GRAVITY
-from .excitation import read_record
 from .motions._commands import add_spectrum_parser, add_two_point_parser
 from .excitation._readers import unit_factor
 from .model import SlidingBlock
@@ -34,10 +33,6 @@ _CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration
                "g_m_s2", "direction", "backend", "displacement_m", "max_abs_displacement_m", "n_events",
                "t_end_s")
 _EVENTS_SHOWN = 5  # events printed at each end of a long list by default
-
-
-class _UsageError(Exception):
-    """A bad file or argument, reported as ``blockdae: error: ...`` with exit status 2."""
 
 
 def main(argv=None) -> int:
@@ -50,7 +45,7 @@ def main(argv=None) -> int:
     try:
         _compilation_cache(args)
         return args.command(args)
-    except _UsageError as err:
+    except UsageError as err:
         print(f"blockdae: error: {err}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # the reader of the output stopped early (e.g. `| head`)
@@ -82,9 +77,9 @@ def _parser():
     newmark_ = sub.add_parser("newmark", help="Newmark's one-way analysis: downslope displacement "
                                               "(positive) for both polarities")
     newmark_.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
-    newmark_.add_argument("--ky", type=_positive("--ky"), nargs="+", required=True,
+    newmark_.add_argument("--ky", type=positive("--ky"), nargs="+", required=True,
                           help="yield acceleration(s) [g]")
-    newmark_.add_argument("--g", type=_positive("--g"), default=STANDARD_GRAVITY,
+    newmark_.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                           help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
     _record_arguments(newmark_)
     newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
@@ -109,19 +104,19 @@ def _parser():
 
 def _block_arguments(parser, nargs):
     grid = " (several: a grid over every combination)" if nargs else ""
-    parser.add_argument("--mu", type=_finite("--mu"), required=True, nargs=nargs,
+    parser.add_argument("--mu", type=finite("--mu"), required=True, nargs=nargs,
                         help="static friction coefficient [-]" + grid)
-    parser.add_argument("--mu-kinetic", type=_finite("--mu-kinetic"), default=None, nargs=nargs,
+    parser.add_argument("--mu-kinetic", type=finite("--mu-kinetic"), default=None, nargs=nargs,
                         help="kinetic friction f [-] (default mu)" + grid)
-    parser.add_argument("--bias", type=_finite("--bias"), default=[0.0] if nargs else 0.0, nargs=nargs,
+    parser.add_argument("--bias", type=finite("--bias"), default=[0.0] if nargs else 0.0, nargs=nargs,
                         help="R/Q, constant force / weight in +x [-]" + grid)
     parser.add_argument("--direction", choices=("both", "positive", "negative"), default="both",
                         help="allowed sliding direction (negative + bias 0: one-way Newmark, u < 0; "
                              "see `blockdae newmark` for positive downslope displacements)")
-    parser.add_argument("--g", type=_positive("--g"), default=STANDARD_GRAVITY,
+    parser.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                         help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
     parser.add_argument("--backend", default="exact", help=f"solver backend, one of {backends.available()}")
-    parser.add_argument("--t-end", type=_positive("--t-end"), default=None,
+    parser.add_argument("--t-end", type=positive("--t-end"), default=None,
                         help="final time [s] (default: until the block rests after the record)")
 
 
@@ -129,39 +124,18 @@ def _record_arguments(parser):
     parser.add_argument("--units", default=None,
                         help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header "
                              "says, else g)")
-    parser.add_argument("--dt", type=_positive("--dt"), default=None, help="sample step [s], for one-column files")
+    parser.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
     parser.add_argument("--accept-peak", action="store_true",
                         help="accept a peak acceleration outside 1e-4 g .. 10 g (else an error: wrong units?)")
-
-
-def _finite(flag):
-    return _number(flag, np.isfinite, "a finite number")
-
-
-def _positive(flag):
-    return _number(flag, lambda x: np.isfinite(x) and x > 0, "a positive finite number")
-
-
-def _number(flag, ok, what):
-    def parse(text):
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
-        if not ok(value):
-            raise argparse.ArgumentTypeError(f"must be {what}, got {text}")
-        return value
-    parse.__name__ = flag  # argparse names the argument in its message
-    return parse
 
 
 # ---- commands ---------------------------------------------------------------
 
 def _run(args):
     block = _block(args, args.mu, args.mu_kinetic, args.bias)
-    record = _read(args.record, args)
+    record = read(args.record, args)
     start = time.perf_counter()
-    solution = _checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend),
+    solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend),
                         f"{args.record}")
     wall = time.perf_counter() - start
     if args.plot is not None:
@@ -187,9 +161,9 @@ def _run(args):
 
 
 def _newmark(args):
-    record = _read(args.record, args)
+    record = read(args.record, args)
     ky = np.asarray(args.ky, dtype=float)
-    result = _checked(lambda: newmark(record, ky, g=args.g), f"{args.record}")
+    result = checked(lambda: newmark(record, ky, g=args.g), f"{args.record}")
     table = result.to_dataframe()
     if args.json:
         print(json.dumps({**_record_fields(record), "g_m_s2": args.g,
@@ -229,18 +203,18 @@ def _batch(args):
     mu, f, bias = (np.array([np.nan if x is None else x for x in column]) for column in zip(*grid))
     block = _block(args, mu, None if args.mu_kinetic is None else f, bias)
     if not args.folder.is_dir():
-        raise _UsageError(f"{args.folder}: not a folder")
+        raise UsageError(f"{args.folder}: not a folder")
     paths = sorted(p for p in args.folder.iterdir() if p.suffix.lower() in _RECORD_SUFFIXES)
     if not paths:
-        raise _UsageError(f"{args.folder}: no record files ({', '.join(_RECORD_SUFFIXES)})")
+        raise UsageError(f"{args.folder}: no record files ({', '.join(_RECORD_SUFFIXES)})")
     rows, failed = [], []
     start = time.perf_counter()
     for k, path in enumerate(paths):
         _progress(k, len(paths), path.name)
         try:
-            record = _read(path, args)
-            result = _checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
-        except _UsageError as err:
+            record = read(path, args)
+            result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
+        except UsageError as err:
             if args.strict:
                 raise
             failed.append(str(err))
@@ -258,7 +232,7 @@ def _batch(args):
                   f"{row['displacement_m']:+11.6f} {row['max_abs_displacement_m']:11.6f} {row['n_events']:7d}")
         print(f"{len(rows)} analyses of {len(paths) - len(failed)} records in {wall:.2f} s (wall clock)")
     if args.csv is not None:
-        _checked(lambda: _write_csv(args.csv, rows), f"--csv {args.csv}")
+        checked(lambda: write_csv(args.csv, rows, _CSV_FIELDS), f"--csv {args.csv}")
         print(f"results: {args.csv}", file=sys.stderr if args.json else sys.stdout)
     if failed:
         print(f"blockdae: {len(failed)} of {len(paths)} files failed:", file=sys.stderr)
@@ -289,31 +263,15 @@ _FLAGS = {"mu_kinetic": "--mu-kinetic", "mu": "--mu", "bias": "--bias", "g": "--
 
 def _block(args, mu, mu_kinetic, bias):
     if args.units is not None:
-        _checked(lambda: unit_factor(args.units), "--units")
+        checked(lambda: unit_factor(args.units), "--units")
     if args.backend not in backends.available():
-        raise _UsageError(f"--backend {args.backend!r} is unknown; choose one of {backends.available()}")
+        raise UsageError(f"--backend {args.backend!r} is unknown; choose one of {backends.available()}")
     try:
         return SlidingBlock(mu=mu, mu_kinetic=mu_kinetic, bias=bias, g=args.g, direction=args.direction)
     except ValueError as err:
         message = str(err)
         flag = next((flag for field, flag in _FLAGS.items() if message.startswith(f"{field}=")), None)
-        raise _UsageError(f"argument {flag}: {message}" if flag else message) from None
-
-
-def _read(path, args):
-    if not path.is_file():
-        raise _UsageError(f"{path}: no such file")
-    units = {} if args.units is None else {"units": args.units}
-    return _checked(lambda: read_record(path, dt=args.dt, g=args.g, check_peak=not args.accept_peak, **units), "")
-
-
-def _checked(action, where):
-    """Run ``action``; a ValueError/OSError becomes a usage error naming ``where``."""
-    try:
-        return action()
-    except (ValueError, OSError) as err:
-        message = str(err)
-        raise _UsageError(message if not where or where in message else f"{where}: {message}") from None
+        raise UsageError(f"argument {flag}: {message}" if flag else message) from None
 
 
 def _describe(record):
@@ -343,15 +301,9 @@ def _print_events(solution, which):
 
 
 def _save_plot(args, solution, record, block):
-    import matplotlib.pyplot as plt
-
     from ._plot import plot
 
-    figure = plot(solution, record, block, title=f"{record.name}: mu = {args.mu}")
-    try:
-        _checked(lambda: figure.savefig(args.plot, dpi=120), f"--plot {args.plot}")
-    finally:
-        plt.close(figure)
+    save_figure(plot(solution, record, block, title=f"{record.name}: mu = {args.mu}"), args.plot)
 
 
 def _clean(x):
@@ -386,13 +338,6 @@ def _batch_rows(record, block, result):
         "max_abs_displacement_m": float(result.max_abs_displacement[i]),
         "n_events": int(result.n_events[i]), "t_end_s": _clean(float(result.t_end[i])),
     } for i in range(block.batch_shape[0])]
-
-
-def _write_csv(path, rows):
-    with open(path, "w", newline="") as stream:
-        writer = csv.DictWriter(stream, fieldnames=_CSV_FIELDS)
-        writer.writeheader()
-        writer.writerows(rows)
 
 
 def _progress(done, total, label, width=30):

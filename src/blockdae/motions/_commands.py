@@ -1,46 +1,32 @@
 """``blockdae spectrum`` and ``blockdae two-point``: command functions for the CLI.
 
-Hook into ``blockdae._cli._parser`` with ``add_spectrum_parser(sub)`` and
+``blockdae._cli`` adds them with ``add_spectrum_parser(sub)`` and
 ``add_two_point_parser(sub)``; each sets ``command`` to a function of the parsed args
-returning the exit status (errors: one ``blockdae: error: ...`` line, status 2).
+returning the exit status (errors: :class:`UsageError`, one ``blockdae: error: ...``
+line and status 2).
 """
 
-import argparse
-import csv
 import json
 import pathlib
-import sys
 
 import numpy as np
 
+from .._cli_common import UsageError, checked, number, positive, read, save_figure, write_csv
 from .._units import STANDARD_GRAVITY
 
 SEED_LAGS = np.geomspace(0.05, 3.0, 20)  # seed 003: 20 lags from 0.05 to 3 s
 DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)
 
 
-def _number(flag, ok, what):
-    def parse(text):
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
-        if not ok(value):
-            raise argparse.ArgumentTypeError(f"must be {what}, got {text}")
-        return value
-    parse.__name__ = flag
-    return parse
-
-
 def _common(parser):
     parser.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
     parser.add_argument("--units", default=None,
                         help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header says, else g)")
-    parser.add_argument("--dt", type=_number("--dt", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+    parser.add_argument("--dt", type=positive("--dt"),
                         default=None, help="sample step [s], for one-column files")
-    parser.add_argument("--g", type=_number("--g", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+    parser.add_argument("--g", type=positive("--g"),
                         default=STANDARD_GRAVITY, help="the unit 'g' [m/s²] (default 9.80665)")
-    parser.add_argument("--pga", type=_number("--pga", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+    parser.add_argument("--pga", type=positive("--pga"),
                         default=None, help="scale the record to this PGA [g] (seed 003: 0.1)")
     parser.add_argument("--csv", type=pathlib.Path, default=None, help="write the table as CSV")
     parser.add_argument("--json", action="store_true", help="print the results as JSON")
@@ -52,14 +38,14 @@ def add_spectrum_parser(subparsers):
     p = subparsers.add_parser("spectrum", help="exact response spectra of a record (Sd, Sv, Sa, PSa, ...)")
     _common(p)
     p.add_argument("--periods", nargs="+", default=None,
-                   type=_number("--periods", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+                   type=positive("--periods"),
                    help="oscillator periods [s] (default 100 log-spaced from 0.01 to 10 s)")
     p.add_argument("--damping", nargs="+", default=[0.05],
-                   type=_number("--damping", lambda x: np.isfinite(x) and 0 <= x < 1, "in [0, 1)"),
+                   type=number("--damping", lambda x: np.isfinite(x) and 0 <= x < 1, "in [0, 1)"),
                    help="fractions of critical damping [-] (default 0.05)")
     p.add_argument("--baseline", choices=("none", "polynomial", "mean"), default="none",
                    help="baseline correction before the analysis (default none)")
-    p.add_argument("--t-end", type=_number("--t-end", lambda x: np.isfinite(x) and x > 0, "a positive number"),
+    p.add_argument("--t-end", type=positive("--t-end"),
                    default=None, help="end of the window [s] (default the record's duration)")
     p.set_defaults(command=run_spectrum)
     return p
@@ -71,72 +57,28 @@ def add_two_point_parser(subparsers):
                                                 "(seed 003)")
     _common(p)
     p.add_argument("--lags", nargs="+", default=None,
-                   type=_number("--lags", lambda x: np.isfinite(x) and x >= 0, "a number >= 0"),
+                   type=number("--lags", lambda x: np.isfinite(x) and x >= 0, "a number >= 0"),
                    help="lags τ = b/c [s] (default the seed's 20 lags, 0.05 to 3 s)")
     p.add_argument("--baseline", choices=("none", "polynomial", "mean"), default="polynomial",
                    help="baseline correction first (default polynomial, as the seed's records were)")
-    p.add_argument("--damping", type=_number("--damping", lambda x: np.isfinite(x) and 0 <= x < 1, "in [0, 1)"),
+    p.add_argument("--damping", type=number("--damping", lambda x: np.isfinite(x) and 0 <= x < 1, "in [0, 1)"),
                    default=0.05, help="damping of the 2 Sd(2τ) estimate [-] (default 0.05)")
     p.set_defaults(command=run_two_point)
     return p
 
 
-class _Error(Exception):
-    pass
-
-
 def _record(args):
-    from ..excitation import read_record
     from ._baseline import baseline_corrected
 
-    if not args.record.is_file():
-        raise _Error(f"{args.record}: no such file")
-    units = {} if args.units is None else {"units": args.units}
-    try:
-        rec = read_record(args.record, dt=args.dt, g=args.g, **units)
-        rec = baseline_corrected(rec, args.baseline)
-    except (ValueError, OSError) as err:
-        message = str(err)
-        raise _Error(message if str(args.record) in message else f"{args.record}: {message}") from None
+    rec = read(args.record, args)
+    rec = checked(lambda: baseline_corrected(rec, args.baseline), str(args.record))
     if args.pga is not None:
         if rec.peak_acceleration == 0:
-            raise _Error(f"{args.record}: --pga cannot scale a record of zeros")
+            raise UsageError(f"{args.record}: --pga cannot scale a record of zeros")
         rec = rec.scaled(args.pga * args.g / rec.peak_acceleration)
     return rec
 
 
-def _guarded(action):
-    def command(args):
-        try:
-            return action(args)
-        except _Error as err:
-            print(f"blockdae: error: {err}", file=sys.stderr)
-            return 2
-    return command
-
-
-def _write_csv(path, rows):
-    try:
-        with open(path, "w", newline="") as stream:
-            writer = csv.DictWriter(stream, fieldnames=list(rows[0]))
-            writer.writeheader()
-            writer.writerows(rows)
-    except OSError as err:
-        raise _Error(f"--csv {path}: {err.strerror or err}") from None
-
-
-def _save(fig, path):
-    import matplotlib.pyplot as plt
-
-    try:
-        fig.savefig(path, dpi=120)
-    except (OSError, ValueError) as err:
-        raise _Error(f"--plot {path}: {err}") from None
-    finally:
-        plt.close(fig)
-
-
-@_guarded
 def run_spectrum(args):
     from ._spectra import response_spectrum
 
@@ -145,13 +87,13 @@ def run_spectrum(args):
     try:
         spec = response_spectrum(rec, periods, np.array(args.damping), t_end=args.t_end)
     except ValueError as err:
-        raise _Error(str(err)) from None
+        raise UsageError(str(err)) from None
     rows = []
     for j, zeta in enumerate(args.damping):
         one = spec if spec.sd.ndim == 1 else _index(spec, j)
         rows += one.table()
     if args.csv:
-        _write_csv(args.csv, rows)
+        write_csv(args.csv, rows)
     if args.json:
         print(json.dumps({"record": rec.name, "dt_s": rec.dt, "pga_m_s2": rec.peak_acceleration,
                           "baseline": args.baseline, "rows": rows}, indent=1))
@@ -166,7 +108,7 @@ def run_spectrum(args):
     if args.plot:
         from ._figures import plot_spectrum
 
-        _save(plot_spectrum(spec, title=f"{rec.name}: PSa"), args.plot)
+        save_figure(plot_spectrum(spec, title=f"{rec.name}: PSa"), args.plot)
     return 0
 
 
@@ -180,7 +122,6 @@ def _index(spec, j):
     return type(spec)(**fields)
 
 
-@_guarded
 def run_two_point(args):
     from ._two_point import relative_motion
 
@@ -189,10 +130,10 @@ def run_two_point(args):
     try:
         rm = relative_motion(rec, lags, damping=args.damping)
     except ValueError as err:
-        raise _Error(str(err)) from None
+        raise UsageError(str(err)) from None
     rows = rm.table()
     if args.csv:
-        _write_csv(args.csv, rows)
+        write_csv(args.csv, rows)
     if args.json:
         print(json.dumps({"record": rec.name, "baseline": args.baseline, "pga_m_s2": rm.pga, "pgv_m_s": rm.pgv,
                           "pgd_m": rm.pgd, "d_max_m": rm.d_max, "d_min_m": rm.d_min, "rows": rows}, indent=1))
@@ -208,22 +149,5 @@ def run_two_point(args):
     if args.plot:
         from ._figures import plot_relative_motion
 
-        _save(plot_relative_motion(rm), args.plot)
+        save_figure(plot_relative_motion(rm), args.plot)
     return 0
-
-
-def main(argv=None) -> int:
-    """Stand-alone entry (``python -m blockdae.motions._commands``) until the hook in ``_cli``."""
-    parser = argparse.ArgumentParser(prog="blockdae")
-    sub = parser.add_subparsers(required=True, metavar="{spectrum,two-point}")
-    add_spectrum_parser(sub)
-    add_two_point_parser(sub)
-    try:
-        args = parser.parse_args(argv)
-    except SystemExit as exit_:
-        return int(exit_.code or 0)
-    return args.command(args)
-
-
-if __name__ == "__main__":
-    sys.exit(main())

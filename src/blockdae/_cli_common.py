@@ -1,0 +1,74 @@
+"""Pieces every ``blockdae`` command shares: argument types that name their flag, the
+usage error (``blockdae: error: ...``, exit status 2), reading a record argument,
+writing CSV and saving figures."""
+
+import argparse
+import csv
+
+import numpy as np
+
+from .excitation import read_record
+
+
+class UsageError(Exception):
+    """A bad file or argument, reported as ``blockdae: error: ...`` with exit status 2."""
+
+
+def number(flag, ok, what):
+    """An argparse type for ``flag``: a float for which ``ok`` holds, else "must be ``what``"."""
+    def parse(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
+        if not ok(value):
+            raise argparse.ArgumentTypeError(f"must be {what}, got {text}")
+        return value
+    parse.__name__ = flag  # argparse names the argument in its message
+    return parse
+
+
+def finite(flag):
+    return number(flag, np.isfinite, "a finite number")
+
+
+def positive(flag):
+    return number(flag, lambda x: np.isfinite(x) and x > 0, "a positive finite number")
+
+
+def checked(action, where):
+    """Run ``action``; a ValueError/OSError becomes a usage error naming ``where``."""
+    try:
+        return action()
+    except (ValueError, OSError) as err:
+        message = str(err)
+        raise UsageError(message if not where or where in message else f"{where}: {message}") from None
+
+
+def read(path, args):
+    """The record at ``path`` with the command's --units, --dt, --g (and --accept-peak)."""
+    if not path.is_file():
+        raise UsageError(f"{path}: no such file")
+    units = {} if args.units is None else {"units": args.units}
+    check_peak = not getattr(args, "accept_peak", False)
+    return checked(lambda: read_record(path, dt=args.dt, g=args.g, check_peak=check_peak, **units), "")
+
+
+def write_csv(path, rows, fields=None):
+    """``rows`` (dicts) as CSV with a header (``fields``, default the first row's keys)."""
+    def write():
+        with open(path, "w", newline="") as stream:
+            writer = csv.DictWriter(stream, fieldnames=fields or list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+    checked(write, f"--csv {path}")
+
+
+def save_figure(figure, path):
+    """Save ``figure`` as PNG at ``path`` and close it."""
+    import matplotlib.pyplot as plt
+
+    try:
+        checked(lambda: figure.savefig(path, dpi=120), f"--plot {path}")
+    finally:
+        plt.close(figure)
