@@ -69,3 +69,9 @@ def test_sensitivities_notebook_runs(monkeypatch, jax_cache_dir):
 def test_backends_notebook_runs(monkeypatch, jax_cache_dir):
     notebook = _execute("03_backends.ipynb", monkeypatch, jax_cache_dir)
     assert "available backends:" in _text(notebook)
+
+
+def test_two_points_notebook_runs(monkeypatch, jax_cache_dir):
+    """Seed 003: R(tau) <= v_m tau on every record and lag (checked inside the notebook)."""
+    notebook = _execute("06_two_points.ipynb", monkeypatch, jax_cache_dir)
+    assert "largest R / (v_m tau) over every record and lag" in _text(notebook)
