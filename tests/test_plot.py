@@ -70,3 +70,24 @@ def test_relative_only_figure_and_bad_input(example_5):
         bd.plot("not a solution")
     with pytest.raises(ValueError, match="n_points"):
         bd.plot(solution, n_points=1)
+
+
+def test_plot_draws_spectra_and_relative_motion():
+    """bd.plot dispatches: a spectrum is PSa against T on log-log axes (the curve is the
+    spectrum's own psa), a RelativeMotion is R against tau."""
+    import matplotlib.pyplot as plt
+
+    record = bd.Record(np.sin(np.linspace(0, 30, 1501)), 0.01)
+    spectrum = bd.response_spectrum(record, np.geomspace(0.05, 5, 30))
+    fig = bd.plot(spectrum)
+    try:
+        ax = fig.axes[0]
+        assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
+        np.testing.assert_allclose(ax.lines[0].get_ydata(), spectrum.psa)
+    finally:
+        plt.close(fig)
+    fig = bd.plot(bd.relative_motion(record, [0.1, 0.5, 1.0]))
+    try:
+        assert "[s]" in fig.axes[0].get_xlabel() and "[m]" in fig.axes[0].get_ylabel()
+    finally:
+        plt.close(fig)

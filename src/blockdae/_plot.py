@@ -5,17 +5,21 @@ import numpy as np
 from ._solution import BatchSolution, Solution
 from .excitation import AbstractExcitation
 from .model import SlidingBlock
+from .motions import RelativeMotion, ResponseSpectrum, plot_relative_motion, plot_spectrum
 
 _BASE = dict(color="0.3", lw=1.2, label="base")
 _BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")
 _EVENTS = dict(ls="none", marker="o", ms=4, mfc="none", color="C0", label="events")
 
 
-def plot(solution: Solution | BatchSolution, excitation: AbstractExcitation | None = None,
+def plot(solution: Solution | BatchSolution | ResponseSpectrum | RelativeMotion, excitation: AbstractExcitation | None = None,
          block: SlidingBlock | None = None, *, n_points: int = 2000, title: str | None = None):
     """Draw a solution: absolute and relative motion, and the phase plane.
 
-    A :class:`BatchSolution` is drawn as u(t_end) and max |u| [m] against the one
+    A :class:`ResponseSpectrum` is drawn as PSa [m/s²] against the period (log-log; see
+    :func:`blockdae.motions.plot_spectrum` for the other quantities), a
+    :class:`RelativeMotion` as R(tau) with the seed-003 estimates. A
+    :class:`BatchSolution` is drawn as u(t_end) and max |u| [m] against the one
     parameter that varies across its grid (mu_kinetic counts only when the grid sets
     it), or against the parameter-set index when none or several vary (the x label
     then names those that vary).
@@ -41,8 +45,13 @@ def plot(solution: Solution | BatchSolution, excitation: AbstractExcitation | No
 
     if isinstance(solution, BatchSolution):
         return _plot_batch(solution, title=title)
+    if isinstance(solution, ResponseSpectrum):
+        return plot_spectrum(solution, title=title)
+    if isinstance(solution, RelativeMotion):
+        return plot_relative_motion(solution, title=title)
     if not isinstance(solution, Solution):
-        raise TypeError(f"solution must be a Solution or a BatchSolution, got {type(solution).__name__}")
+        raise TypeError("solution must be a Solution, BatchSolution, ResponseSpectrum or RelativeMotion, "
+                        f"got {type(solution).__name__}")
     if not (isinstance(n_points, int) and n_points >= 2):
         raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
     t = np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
