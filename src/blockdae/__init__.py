@@ -20,6 +20,7 @@ from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse,
                          TriangularPulse, check_peak_acceleration, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
 from .structures import Floor, ShearFrame
+from .study import load_study, save_study, study, summary as study_summary
 from .motions import (IntensityMeasures, ResponseSpectrum, baseline_corrected, cumulative_arias,
                       intensity_measures, motion_histories, response_spectrum)
 
@@ -37,4 +38,5 @@ __all__ = [
     "ResponseSpectrum", "response_spectrum",
     "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
     "Floor", "ShearFrame",
+    "load_study", "save_study", "study", "study_summary",
 ]
