@@ -27,7 +27,7 @@ def load_study(path) -> pd.DataFrame:
     if _kind(path) == "parquet":
         _parquet_engine()
         return pd.read_parquet(path)
-    return pd.read_csv(path, float_precision="round_trip")
+    return pd.read_csv(path)
 
 
 def _kind(path):
