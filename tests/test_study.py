@@ -2,9 +2,6 @@
 the seed-002 summaries, save and reload, the command and the benchmark's smoke run."""
 
 import concurrent.futures
-import pathlib
-import subprocess
-import sys
 
 import numpy as np
 import pandas as pd
@@ -14,8 +11,8 @@ import blockdae as bd
 from blockdae.study import _command
 from blockdae.study import _study as study_module  # bd.study is the function
 from conftest import load_sample_record, sample_record_paths
+from test_benchmarks import _load as _load_benchmark
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
 SHORT = ("Northridge_1994_PAC-175", "Cape_Mendocino_1992_PET-090", "Kobe_1995_TAK-090")
 FRAME = bd.ShearFrame(5, 0.3, 0.05)
 WHERE = ["ground", FRAME.floor(1), FRAME.floor(5)]
@@ -158,8 +155,7 @@ def test_command(tmp_path, records, capsys):
     assert _command.main([str(tmp_path / "empty"), "--mu", "0.1", "--pga", "0.5", "--out", str(out)]) == 2
 
 
-def test_benchmark_smoke():
-    run = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "study.py"), "--quick"],
-                         capture_output=True, text=True, timeout=600)
-    assert run.returncode == 0, run.stderr
-    assert "analyses/s" in run.stdout
+def test_benchmark_quick(monkeypatch, capsys):
+    assert _load_benchmark("study", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "analyses/s" in out and "FAIL" not in out and "DIFFERS" not in out

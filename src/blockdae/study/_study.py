@@ -61,7 +61,8 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
         direction: "negative" (one-way, u < 0, the seed's body), "positive" or "both".
         executor: None (run here, on every core), a ``dask.distributed.Client`` or a
             ``concurrent.futures.Executor``: tasks of whole records are submitted to it.
-        progress: a tqdm bar over the tasks; None: only when stderr is a terminal.
+        progress: a tqdm bar over the tasks; None: only when stderr is a terminal
+            (and tqdm is installed).
         refine: floor motions sampled at dt/refine [s] (:meth:`bd.ShearFrame.floor_motions`).
         sd_period, damping: period [s] and damping ratio [-] of the oscillator whose
             displacement spectrum gives Sd (see ``sd_m``).
@@ -248,10 +249,25 @@ def _on_executor(executor, tasks, grid, bar):
 
 
 def _progress_bar(progress, total):
-    from tqdm.auto import tqdm
-
+    """A tqdm bar over the tasks (tqdm: the ``study`` extra); a silent one if not shown."""
     show = sys.stderr.isatty() if progress is None else bool(progress)
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        if progress:
+            raise ImportError("progress=True needs tqdm: pip install 'blockdae[study]'") from None
+        return _Silent()
     return tqdm(total=total, disable=not show, desc="study", unit="task")
+
+
+class _Silent:
+    """The bar when tqdm is not installed."""
+
+    def update(self, n=1):
+        pass
+
+    def close(self):
+        pass
 
 
 def _table(parts, grid) -> pd.DataFrame:
