@@ -159,3 +159,16 @@ def test_benchmark_quick(monkeypatch, capsys):
     assert _load_benchmark("study", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "analyses/s" in out and "FAIL" not in out and "DIFFERS" not in out
+
+
+def test_simulate_final_scale_equals_scaled_motions(records):
+    block = bd.SlidingBlock(mu=np.array([0.1, 0.25]), direction="both")
+    factors = [0.5, 1.5, -1.0]
+    out = bd.simulate_final(block, records[:2], scale=factors)
+    assert out.displacement.shape == (2, 2, 3)
+    for k, factor in enumerate(factors):
+        ref = bd.simulate_final(block, [r.scaled(factor) for r in records[:2]])
+        for got, want in zip(out, ref):
+            np.testing.assert_allclose(got[..., k], want, rtol=1e-12, atol=1e-300)
+    with pytest.raises(ValueError, match="scale must be"):
+        bd.simulate_final(block, records[:1], scale=[])
