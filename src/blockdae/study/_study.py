@@ -60,7 +60,9 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
         where: locations: "ground" and/or floors (``bd.ShearFrame(...).floor(i)``).
         direction: "negative" (one-way, u < 0, the seed's body), "positive" or "both".
         executor: None (run here, on every core), a ``dask.distributed.Client`` or a
-            ``concurrent.futures.Executor``: tasks of whole records are submitted to it.
+            ``concurrent.futures.Executor``: tasks of whole records are submitted to it
+            (a ProcessPoolExecutor with ``mp_context=multiprocessing.get_context("spawn")``:
+            forking a process that ran the engine's OpenMP threads aborts it).
         progress: a tqdm bar over the tasks; None: only when stderr is a terminal
             (and tqdm is installed).
         refine: floor motions sampled at dt/refine [s] (:meth:`bd.ShearFrame.floor_motions`).
