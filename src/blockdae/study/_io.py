@@ -2,10 +2,8 @@
 
 import pathlib
 
-import pandas as pd
 
-
-def save_study(table: pd.DataFrame, path) -> pathlib.Path:
+def save_study(table, path) -> pathlib.Path:
     """Write a study's table to ``path``: ``.csv`` (floats to the last bit), or
     ``.parquet`` (needs pyarrow or fastparquet). Returns the path."""
     path = pathlib.Path(path)
@@ -18,12 +16,14 @@ def save_study(table: pd.DataFrame, path) -> pathlib.Path:
     return path
 
 
-def load_study(path) -> pd.DataFrame:
+def load_study(path):
     """Read a table written by :func:`save_study`; equal to the one saved (same
     columns, dtypes and values)."""
     path = pathlib.Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"{path}: no such file")
+    import pandas as pd
+
     if _kind(path) == "parquet":
         _parquet_engine()
         return pd.read_parquet(path)

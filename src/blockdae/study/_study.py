@@ -15,7 +15,6 @@ import os
 import sys
 
 import numpy as np
-import pandas as pd
 
 from .._final import simulate_final
 from .._formulas import AdjustmentFactor, newmark_rd_sd
@@ -48,7 +47,7 @@ class _Grid:
 
 
 def study(records, mu, pga=None, scale=None, where=("ground",), direction="negative", *, executor=None,
-          progress=None, refine=4, sd_period=10.0, damping=0.05, t_end=None, g=STANDARD_GRAVITY) -> pd.DataFrame:
+          progress=None, refine=4, sd_period=10.0, damping=0.05, t_end=None, g=STANDARD_GRAVITY):
     """Slide a block under every record, μ, intensity and location: one tidy table.
 
     Args:
@@ -107,7 +106,7 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
     return _table(parts, grid)
 
 
-def summary(table: pd.DataFrame, adjustment: AdjustmentFactor = AdjustmentFactor()) -> pd.DataFrame:
+def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
     """The seed's summaries of a study normalised by ``pga``: means over the records.
 
     Args:
@@ -272,7 +271,9 @@ class _Silent:
         pass
 
 
-def _table(parts, grid) -> pd.DataFrame:
+def _table(parts, grid):
+    import pandas as pd
+
     cols = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
     labels = [_label(p) for p in grid.where]
     place = cols.pop("place")
