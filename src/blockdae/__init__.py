@@ -23,6 +23,7 @@ from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, basel
                       cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
                       relative_motion, response_spectrum)
 from .structures import Floor, ShearFrame
+from .study import load_study, save_study, study, summary as study_summary
 
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
@@ -38,4 +39,5 @@ __all__ = [
     "ResponseSpectrum", "response_spectrum", "RelativeMotion", "fourier_amplitude", "relative_motion",
     "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
     "Floor", "ShearFrame",
+    "load_study", "save_study", "study", "study_summary",
 ]

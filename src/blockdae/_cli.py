@@ -25,6 +25,7 @@ from ._newmark import newmark
 from ._simulate import simulate
 from ._units import STANDARD_GRAVITY
 from .motions._commands import add_spectrum_parser, add_two_point_parser
+from .study._command import add_study_parser
 from .excitation._readers import unit_factor
 from .model import SlidingBlock
 
@@ -61,7 +62,7 @@ def _parser():
                         help="JAX compilation cache, so that later runs skip compiling "
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
-    sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,examples,batch}")
+    sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,examples,batch,study}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u)")
     run.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
@@ -99,6 +100,8 @@ def _parser():
     batch.add_argument("--json", action="store_true", help="print the results as JSON")
     batch.add_argument("--strict", action="store_true", help="stop at the first bad file")
     batch.set_defaults(command=_batch)
+
+    add_study_parser(sub)
     return parser
 
 

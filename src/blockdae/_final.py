@@ -10,7 +10,8 @@ from .model import SlidingBlock
 
 
 class FinalNumbers(NamedTuple):
-    """The final numbers of many analyses; each of shape (n_motions,) + block.batch_shape."""
+    """The final numbers of many analyses; each of shape (n_motions,) + block.batch_shape
+    (+ (n_scales,) when ``scale`` is given)."""
 
     displacement: np.ndarray  # u(t_end) [m]
     max_abs_displacement: np.ndarray  # max |u(t)| [m]
@@ -18,7 +19,8 @@ class FinalNumbers(NamedTuple):
     t_end: np.ndarray  # final time [s]
 
 
-def simulate_final(block: SlidingBlock, motions, t_end: float | None = None, **options) -> FinalNumbers:
+def simulate_final(block: SlidingBlock, motions, t_end: float | None = None, *, scale=None,
+                   **options) -> FinalNumbers:
     """Slide ``block`` on each of ``motions``; the final numbers only, no events or knots.
 
     Every (motion, parameter set) pair runs in one call of the exact backend's compiled
@@ -30,6 +32,9 @@ def simulate_final(block: SlidingBlock, motions, t_end: float | None = None, **o
         motions: a sequence of excitations (or one).
         t_end: final time [s] of every motion; None: until the block has come to rest
             after each (finite) motion.
+        scale: None, or a 1-D sequence of factors on every motion's a(t) [-]: a last
+            axis of the results, each factor equal to sliding on ``motion.scaled(k)``
+            (to rounding of the product) without a scaled copy of any motion.
         **options: settings of the exact backend (``window``).
     """
     if not isinstance(block, SlidingBlock):
@@ -38,9 +43,12 @@ def simulate_final(block: SlidingBlock, motions, t_end: float | None = None, **o
     for i, motion in enumerate(motions):
         if not isinstance(motion, AbstractExcitation):
             raise TypeError(f"motions[{i}] must be an excitation (Harmonic, Record, ...), got {type(motion).__name__}")
+    factors = (1.0,) if scale is None else np.asarray(scale, dtype=float)
+    if np.ndim(factors) != 1 or np.size(factors) == 0 or not np.all(np.isfinite(factors)):
+        raise ValueError(f"scale must be a non-empty 1-D sequence of finite factors [-], got {scale!r}")
     horizons = [Horizon.resolve(motion, t_end) for motion in motions]
-    out = make_backend("exact", **options).solve_final(block, motions, horizons)
-    shape = (len(motions),) + block.batch_shape
+    out = make_backend("exact", **options).solve_final(block, motions, horizons, factors)
+    shape = (len(motions),) + block.batch_shape + (() if scale is None else (len(factors),))
     pick = lambda column: out[:, :, column].reshape(shape)
     return FinalNumbers(displacement=pick(0), max_abs_displacement=pick(3), n_events=pick(4).astype(int),
                         t_end=pick(5))

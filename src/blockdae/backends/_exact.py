@@ -52,16 +52,18 @@ class ExactBackend(AbstractBackend):
             t_end=out[:, 5], backend=self.name,
             solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
 
-    def solve_final(self, block: SlidingBlock, excitations, horizons) -> np.ndarray:
+    def solve_final(self, block: SlidingBlock, excitations, horizons, scale=(1.0,)) -> np.ndarray:
         """Final numbers only, for every excitation under every parameter set of
-        ``block`` (a batch of m, or one), in parallel over cores.
+        ``block`` (a batch of m, or one) at every factor of ``scale`` on a(t) (s of
+        them), in parallel over cores.
 
         Returns:
-            (len(excitations), m, 9), the engine's outcomes (``OUTCOME_FIELDS``).
+            (len(excitations), m * s, 9), the engine's outcomes (``OUTCOME_FIELDS``);
+            parameter set j at factor k in column j * s + k.
         """
         inputs = [_engine_input(e, h.integration_end(e), self.window)[1] for e, h in zip(excitations, horizons)]
         exc, offsets = _concatenated(inputs)
-        params = _batch_params(block)
+        params = _batch_params(block, scale)
         _, parallel, serial = engine.kernels()
         run_batch = parallel if len(params) * len(exc[0]) >= _PARALLEL_WORK else serial
         until_rest = np.array([h.until_rest for h in horizons])
@@ -69,17 +71,22 @@ class ExactBackend(AbstractBackend):
         if not out[:, :, 6:8].all():  # rests, finished
             for i, j in zip(*np.nonzero((out[:, :, 6] == 0) | (out[:, :, 7] == 0))):
                 where = f" (excitation {i}, parameter set {j})" if len(inputs) > 1 else f" (parameter set {j})"
-                check(block.item(j) if block.batch_shape else block, out[i, j, 6], out[i, j, 7], where)
+                j_set = j // len(scale)
+                check(block.item(j_set) if block.batch_shape else block, out[i, j, 6], out[i, j, 7], where)
         return out
 
 
-def _batch_params(block):
-    """(m, 5) rows of (mu, f, bias, g, scale = 1) for a batch of m parameter sets (or one)."""
-    values = (block.mu, block.friction_kinetic, block.bias, block.g, 1.0)
-    params = np.empty((max(getattr(x, "size", 1) for x in values), 5))
+def _batch_params(block, scale=(1.0,)):
+    """(m * s, 5) rows of (mu, f, bias, g, scale) for a batch of m parameter sets (or
+    one), each at the s factors of ``scale`` [-]."""
+    values = (block.mu, block.friction_kinetic, block.bias, block.g)
+    scale = np.asarray(scale, dtype=float).ravel()
+    m = max(np.size(x) for x in values)
+    params = np.empty((m, scale.size, 5))
     for column, x in enumerate(values):
-        params[:, column] = x
-    return params
+        params[:, :, column] = np.reshape(x, (-1, 1))
+    params[:, :, 4] = scale
+    return params.reshape(m * scale.size, 5)
 
 
 def _flags(block, horizon):

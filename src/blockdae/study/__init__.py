@@ -1,0 +1,7 @@
+"""Studies of records × friction × intensity × location (seed 002): a tidy table, its
+summaries, saving and reloading, and the ``blockdae study`` command."""
+
+from ._io import load_study, save_study
+from ._study import study, summary
+
+__all__ = ["load_study", "save_study", "study", "summary"]

@@ -1,0 +1,117 @@
+"""``blockdae study``: the command function for the CLI.
+
+``blockdae._cli`` adds it with ``add_study_parser(sub)``; it sets ``command`` to
+:func:`run_study` (errors: :class:`UsageError`, one ``blockdae: error: ...`` line, exit
+status 2). Every file is read, and checked, before any analysis.
+"""
+
+import argparse
+import pathlib
+import time
+
+import numpy as np
+
+from .._cli_common import UsageError, number, positive, read
+from .._units import STANDARD_GRAVITY
+from ..structures import ShearFrame
+from ._io import save_study
+from ._study import study, summary
+
+_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
+
+
+def _grid(text):
+    """"START:STOP:N" (N values, linearly spaced, ends included) or one number."""
+    try:
+        if ":" in text:
+            start, stop, n = text.split(":")
+            return list(np.linspace(float(start), float(stop), int(n)))
+        return [float(text)]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number or START:STOP:N, got {text!r}") from None
+
+
+def add_study_parser(subparsers):
+    """The ``study`` sub-command on an argparse ``subparsers`` object."""
+    p = subparsers.add_parser("study", help="every record of a folder × mu × PGA × ground and floors (seed 002)")
+    p.add_argument("folder", type=pathlib.Path, help=f"folder of records ({', '.join(_SUFFIXES)})")
+    p.add_argument("--mu", type=positive("--mu"), nargs="+", required=True, help="friction coefficients [-]")
+    size = p.add_mutually_exclusive_group(required=True)
+    size.add_argument("--pga", type=_grid, nargs="+", help="target peak accelerations [g]: values or START:STOP:N")
+    size.add_argument("--scale", type=_grid, nargs="+", help="factors on the motions [-]: values or START:STOP:N")
+    p.add_argument("--frame", type=positive("--frame"), nargs="*", default=[], metavar="T1",
+                   help="fundamental periods [s] of shear frames: every floor of each is a location")
+    p.add_argument("--storeys", type=int, default=5, help="storeys of the frames (default 5)")
+    p.add_argument("--damping", type=number("--damping", lambda x: 0 <= x < 1, "in [0, 1)"), default=0.05, help="modal damping ratio of the frames [-] (default 0.05)")
+    p.add_argument("--no-ground", action="store_true", help="floors only")
+    p.add_argument("--direction", choices=("negative", "positive", "both"), default="negative",
+                   help="allowed sliding direction (default negative: one-way)")
+    p.add_argument("--units", default=None, help="acceleration units of the files: g, m/s2, cm/s2 or gal "
+                                                 "(default: as an AT2 header says, else g)")
+    p.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
+    p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
+                   help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")
+    p.add_argument("--out", type=pathlib.Path, required=True, help="results table (.csv or .parquet)")
+    p.add_argument("--summary", type=pathlib.Path, default=None, help="also the seed's summaries (.csv)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="a Dask scheduler (e.g. tcp://host:8786) to run the tasks on")
+    p.set_defaults(command=run_study)
+    return p
+
+
+def run_study(args) -> int:
+    """Run the study that ``args`` describe; the exit status."""
+    records = _records(args)
+    frames = [ShearFrame(args.storeys, period, args.damping) for period in args.frame] if args.frame else []
+    where = ([] if args.no_ground else ["ground"]) + [f.floor(i) for f in frames for i in range(1, f.storeys + 1)]
+    grid = dict(pga=_flat(args.pga)) if args.pga else dict(scale=_flat(args.scale))
+    client = _client(args.scheduler)
+    start = time.perf_counter()
+    try:
+        table = study(records, mu=args.mu, where=where, direction=args.direction, executor=client, g=args.g, **grid)
+    except (ValueError, TypeError) as err:
+        raise UsageError(str(err)) from None
+    finally:
+        if client is not None:
+            client.close()
+    wall = time.perf_counter() - start
+    _save(lambda: save_study(table, args.out), "--out")
+    if args.summary is not None:
+        _save(lambda: save_study(summary(table), args.summary), "--summary")
+    print(f"{len(table)} analyses ({len(records)} records × {len(where)} locations × {len(args.mu)} mu × "
+          f"{len(table) // (len(records) * len(where) * len(args.mu))} intensities) in {wall:.2f} s; "
+          f"results: {args.out}")
+    return 0
+
+
+def _records(args):
+    if not args.folder.is_dir():
+        raise UsageError(f"{args.folder}: not a folder")
+    paths = sorted(p for p in args.folder.iterdir() if p.suffix.lower() in _SUFFIXES)
+    if not paths:
+        raise UsageError(f"{args.folder}: no record files ({', '.join(_SUFFIXES)})")
+    return [read(path, args) for path in paths]
+
+
+def _flat(groups):
+    return [x for group in groups for x in group]
+
+
+def _client(address):
+    if address is None:
+        return None
+    try:
+        from distributed import Client
+    except ImportError:
+        raise UsageError("--scheduler needs dask.distributed: pip install 'blockdae[study]'") from None
+    try:
+        return Client(address, timeout=30)
+    except (OSError, TimeoutError) as err:
+        raise UsageError(f"--scheduler {address}: {err}") from None
+
+
+def _save(action, flag):
+    try:
+        action()
+    except (ValueError, OSError, ImportError) as err:
+        raise UsageError(f"{flag}: {err}") from None

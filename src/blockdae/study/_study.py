@@ -1,0 +1,301 @@
+"""Studies of records × friction × intensity × location (seed 002), as one tidy table.
+
+A study slides a one-way (by default) block on the ground and on floors of shear frames
+under every record, at every friction coefficient μ and every intensity. The work is
+split into tasks of whole records: a task computes the ground and floor motions of its
+records once (one frame response per record and frame), normalises each motion to a
+peak of 1 g (``pga``) and runs every (motion, μ, intensity) in one call of the compiled
+engine, the intensity being the engine's factor on a(t) (no scaled copy of any motion).
+Memory is O(records of a task × samples), never O(analyses × samples); tasks run one
+after the other here (the engine uses every core) or on an executor (Dask).
+"""
+
+import dataclasses
+import os
+import sys
+
+import numpy as np
+
+from .._final import simulate_final
+from .._formulas import AdjustmentFactor, newmark_rd_sd
+from .._units import STANDARD_GRAVITY
+from ..excitation import Record
+from ..model import SlidingBlock
+from ..motions import response_spectrum
+from ..structures import Floor
+
+#: analyses per task aimed at (Dask: each task costs 0.2-1 ms of overhead; aim at 10³-10⁴)
+TASK_ANALYSES = 2000
+#: bytes per row of the result table, with room for building it (measured ~150)
+ROW_BYTES = 400
+
+
+@dataclasses.dataclass(frozen=True)
+class _Grid:
+    """What every task shares: the grid and the settings (small, sent with each task)."""
+
+    mu: np.ndarray
+    factors: np.ndarray  # pga [g] ("pga") or factors on a(t) [-] ("scale")
+    by: str  # "pga" or "scale"
+    where: tuple
+    direction: str
+    refine: int
+    sd_period: float
+    damping: float
+    t_end: float | None
+    g: float
+
+
+def study(records, mu, pga=None, scale=None, where=("ground",), direction="negative", *, executor=None,
+          progress=None, refine=4, sd_period=10.0, damping=0.05, t_end=None, g=STANDARD_GRAVITY):
+    """Slide a block under every record, μ, intensity and location: one tidy table.
+
+    Args:
+        records: ground accelerograms (:class:`bd.Record` [m/s²], distinct names).
+        mu: friction coefficients μ > 0 [-].
+        pga: target peak accelerations A > 0 [g]: the motion at each location (ground
+            or floor) is scaled so that its peak |a| is A g (seed 002).
+        scale: instead of ``pga``, factors > 0 [-] on the motion at each location.
+        where: locations: "ground" and/or floors (``bd.ShearFrame(...).floor(i)``).
+        direction: "negative" (one-way, u < 0, the seed's body), "positive" or "both".
+        executor: None (run here, on every core), a ``dask.distributed.Client`` or a
+            ``concurrent.futures.Executor``: tasks of whole records are submitted to it
+            (a ProcessPoolExecutor with ``mp_context=multiprocessing.get_context("spawn")``:
+            forking a process that ran the engine's OpenMP threads aborts it).
+        progress: a tqdm bar over the tasks; None: only when stderr is a terminal
+            (and tqdm is installed).
+        refine: floor motions sampled at dt/refine [s] (:meth:`bd.ShearFrame.floor_motions`).
+        sd_period, damping: period [s] and damping ratio [-] of the oscillator whose
+            displacement spectrum gives Sd (see ``sd_m``).
+        t_end: final time [s]; None: until the block rests after each motion.
+        g: the value of one g [m/s²].
+
+    Returns:
+        A DataFrame, one row per record × location × μ × intensity (in that order):
+        record; location ("ground" or "T1=0.3s n=5 zeta=0.05 floor 1"); floor (0: ground);
+        frame_period_s (T_1 of the frame [s], NaN on the ground); mu [-]; pga_g (peak
+        |a| of the motion used [g]); scale (its factor on the location's motion [-]);
+        pga_m_s2 [m/s²]; pgv_m_s (peak |v| of the motion used, exact for linear pieces
+        [m/s]); sd_m (Sd [m]: the seed's "absolute displacement spectrum at the low
+        frequency end", which it identifies with the largest base displacement; the
+        displacement u + x_g of a long-period oscillator tends to 0, its displacement u
+        relative to the base to max |x_g|, so Sd = max |u| at ``sd_period``, exact);
+        displacement_m (u at the end [m]); max_abs_displacement_m (R_c, max |u| [m]);
+        n_events (mode changes); n_slips (slip episodes = slip onsets, one-way
+        studies only: there stick and slip alternate, so n_slips = ⌈n_events / 2⌉);
+        t_end_s (final time [s]).
+
+    Every check runs before any work (:class:`ValueError`): no records, a record that
+    is not a finite :class:`bd.Record`, μ or an intensity <= 0, a result table larger
+    than the free memory. Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu,
+    direction=direction), motion.scaled(scale))`` of the location's motion to rounding.
+    """
+    records, grid = _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g)
+    tasks = _tasks(records, len(grid.where) * grid.mu.size * grid.factors.size)
+    bar = _progress_bar(progress, len(tasks))
+    try:
+        if executor is None:
+            parts = []
+            for chunk in tasks:
+                parts.append(run_task(chunk, grid))
+                bar.update()
+        else:
+            parts = _on_executor(executor, tasks, grid, bar)
+    finally:
+        bar.close()
+    return _table(parts, grid)
+
+
+def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
+    """The seed's summaries of a study normalised by ``pga``: means over the records.
+
+    Args:
+        table: the result of :func:`study` (or :func:`load_study`).
+        adjustment: the factor of seed 002's eq. 4.
+
+    Returns:
+        One row per location × μ × pga_g: location, floor, frame_period_s, mu, pga_g,
+        n_records, rc_m (mean R_c = mean max |u| [m]), sd_m (mean Sd [m]), rd_m (eq. 3
+        with the mean Sd [m]), adjustment (eq. 4 [-]) and rd_adjusted_m (its product
+        with rd_m [m]).
+    """
+    keys = ["location", "floor", "frame_period_s", "mu", "pga_g"]
+    out = (table.groupby(keys, sort=False, dropna=False)
+           .agg(n_records=("record", "size"), rc_m=("max_abs_displacement_m", "mean"), sd_m=("sd_m", "mean"))
+           .reset_index())
+    out["rd_m"] = newmark_rd_sd(out["sd_m"].to_numpy(), out["pga_g"].to_numpy(), out["mu"].to_numpy())
+    out["adjustment"] = adjustment(out["pga_g"].to_numpy(), out["mu"].to_numpy())
+    out["rd_adjusted_m"] = out["adjustment"] * out["rd_m"]
+    return out
+
+
+def run_task(records, grid: _Grid) -> dict:
+    """One task: every location, μ and intensity under ``records``; columns as arrays."""
+    motions, places = [], []
+    for record in records:
+        floors = {}
+        for place in grid.where:
+            if place == "ground":
+                motions.append(record)
+            else:
+                if place.frame not in floors:  # one frame response per record and frame
+                    floors[place.frame] = place.frame.floor_motions(record, refine=grid.refine)
+                motions.append(floors[place.frame][place.level - 1])
+            places.append(place)
+    peak = np.array([m.peak_acceleration for m in motions])
+    unit = grid.g if grid.by == "pga" else 1.0  # engine motions: peak 1 g, or as they are
+    engine_motions = [Record(m.acceleration_samples * (unit / p), m.dt, m.name) for m, p in zip(motions, peak)] \
+        if grid.by == "pga" else motions
+    block = SlidingBlock(mu=grid.mu, direction=grid.direction, g=grid.g)
+    out = simulate_final(block, engine_motions, grid.t_end, scale=grid.factors)
+    sd = response_spectrum(motions, grid.sd_period, grid.damping).sd
+    pgv = np.array([_peak_velocity(m) for m in motions])
+    n_mu, n_f = grid.mu.size, grid.factors.size
+    each = lambda x: np.repeat(np.asarray(x), n_mu * n_f)  # per motion -> per row
+    factors = np.tile(grid.factors, len(motions) * n_mu)
+    scale = factors * np.repeat(grid.g / peak, n_mu * n_f) if grid.by == "pga" else factors
+    return dict(record=each([m.name for m in records for _ in grid.where]),
+                place=each([grid.where.index(p) for p in places]),
+                mu=np.tile(np.repeat(grid.mu, n_f), len(motions)),
+                scale=scale, pga_m_s2=scale * each(peak), pgv_m_s=scale * each(pgv), sd_m=scale * each(sd),
+                displacement_m=out.displacement.ravel(), max_abs_displacement_m=out.max_abs_displacement.ravel(),
+                n_events=out.n_events.ravel(), t_end_s=out.t_end.ravel())
+
+
+def _peak_velocity(record: Record) -> float:
+    """max |v(t)| [m/s] of a record (linear between samples, starting at rest): at the
+    samples and where a(t) crosses zero inside a piece."""
+    a, dt = record.acceleration_samples, record.dt
+    v = np.concatenate([[0.0], np.cumsum(0.5 * dt * (a[:-1] + a[1:]))])
+    cross = a[:-1] * a[1:] < 0
+    slope = np.diff(a)[cross] / dt
+    inside = v[:-1][cross] - a[:-1][cross] ** 2 / (2 * slope)
+    return float(max(np.max(np.abs(v)), np.max(np.abs(inside), initial=0.0)))
+
+
+def _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g):
+    if isinstance(records, Record):
+        records = [records]
+    records = list(records)
+    if not records:
+        raise ValueError("records is empty: give at least one bd.Record")
+    for i, record in enumerate(records):
+        if not isinstance(record, Record):
+            raise TypeError(f"records[{i}] must be a bd.Record, got {type(record).__name__}")
+        if not np.all(np.isfinite(record.acceleration_samples)):
+            raise ValueError(f"records[{i}] ({record.name!r}) has samples that are not finite (NaN or inf)")
+    names = [r.name for r in records]
+    if len(set(names)) < len(names):
+        raise ValueError(f"record names must be distinct (they label the rows); repeated: "
+                         f"{sorted({n for n in names if names.count(n) > 1})}")
+    mu = _values("mu", mu, "-")
+    if (pga is None) == (scale is None):
+        raise ValueError("give pga (target peaks [g]) or scale (factors [-]), one of the two")
+    by = "pga" if pga is not None else "scale"
+    factors = _values(by, pga if pga is not None else scale, "g" if by == "pga" else "-")
+    where = tuple([where] if isinstance(where, (str, Floor)) else where)
+    if not where:
+        raise ValueError('where is empty: give "ground" and/or floors (frame.floor(i))')
+    for place in where:
+        if not (place == "ground" or isinstance(place, Floor)):
+            raise ValueError(f'where must hold "ground" or bd.Floor objects, got {place!r}')
+    if len(set(where)) < len(where):
+        raise ValueError(f"where repeats a location: {where!r}")
+    SlidingBlock(mu=mu, direction=direction, g=g)  # checks direction and g
+    _values("sd_period", sd_period, "s")
+    if not (np.isfinite(damping) and 0 <= damping < 1):
+        raise ValueError(f"damping must lie in [0, 1) [-], got {damping!r}")
+    if isinstance(refine, bool) or not isinstance(refine, (int, np.integer)) or refine < 1:
+        raise ValueError(f"refine must be an integer >= 1 (floor samples per record step), got {refine!r}")
+    if t_end is not None:
+        _values("t_end", t_end, "s")
+    if by == "pga" and any(r.peak_acceleration == 0 for r in records):
+        raise ValueError(f"pga cannot normalise a record of zeros: {next(r.name for r in records if r.peak_acceleration == 0)!r}")
+    rows = len(records) * len(where) * mu.size * factors.size
+    free = os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    if rows * ROW_BYTES > free:
+        raise ValueError(f"the result table would have {rows:,} rows (~{rows * ROW_BYTES / 2**30:.1f} GiB), more "
+                         f"than the free memory ({free / 2**30:.1f} GiB): split the study or shrink the grid")
+    grid = _Grid(mu=mu, factors=factors, by=by, where=where, direction=direction, refine=refine,
+                 sd_period=float(sd_period), damping=float(damping), t_end=t_end, g=float(g))
+    return records, grid
+
+
+def _values(name, values, unit):
+    x = np.atleast_1d(np.asarray(values, dtype=float))
+    if x.ndim != 1 or x.size == 0:
+        raise ValueError(f"{name} must be a number or a non-empty 1-D sequence [{unit}], got {values!r}")
+    bad = ~(np.isfinite(x) & (x > 0))
+    if np.any(bad):
+        raise ValueError(f"{name} must be positive and finite [{unit}], got {float(x[bad][0])!r}")
+    return x
+
+
+def _tasks(records, analyses_per_record):
+    """Consecutive records in groups of about :data:`TASK_ANALYSES` analyses (at least one record)."""
+    size = max(1, TASK_ANALYSES // analyses_per_record)
+    return [records[i:i + size] for i in range(0, len(records), size)]
+
+
+def _on_executor(executor, tasks, grid, bar):
+    """Submit the tasks; their results in task order."""
+    futures = [executor.submit(run_task, chunk, grid) for chunk in tasks]
+    if hasattr(executor, "gather"):  # dask.distributed.Client
+        from distributed import as_completed
+    else:
+        from concurrent.futures import as_completed
+    for _ in as_completed(futures):
+        bar.update()
+    return [f.result() for f in futures]
+
+
+def _progress_bar(progress, total):
+    """A tqdm bar over the tasks (tqdm: the ``study`` extra); a silent one if not shown."""
+    show = sys.stderr.isatty() if progress is None else bool(progress)
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        if progress:
+            raise ImportError("progress=True needs tqdm: pip install 'blockdae[study]'") from None
+        return _Silent()
+    return tqdm(total=total, disable=not show, desc="study", unit="task")
+
+
+class _Silent:
+    """The bar when tqdm is not installed."""
+
+    def update(self, n=1):
+        pass
+
+    def close(self):
+        pass
+
+
+def _table(parts, grid):
+    import pandas as pd
+
+    cols = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+    labels = [_label(p) for p in grid.where]
+    place = cols.pop("place")
+    df = pd.DataFrame({
+        "record": cols.pop("record"),
+        "location": np.array(labels, dtype=object)[place],
+        "floor": np.array([0 if p == "ground" else p.level for p in grid.where])[place],
+        "frame_period_s": np.array([np.nan if p == "ground" else p.frame.period for p in grid.where])[place],
+        "mu": cols.pop("mu"),
+        "pga_g": cols["pga_m_s2"] / grid.g,
+    })
+    if grid.by == "pga":  # exactly the grid's values, not their round trip through the peaks
+        df["pga_g"] = np.tile(grid.factors, len(df) // grid.factors.size)
+    for k, v in cols.items():
+        df[k] = v
+    if grid.direction != "both":
+        df.insert(df.columns.get_loc("n_events") + 1, "n_slips", (df["n_events"] + 1) // 2)
+    return df
+
+
+def _label(place) -> str:
+    if place == "ground":
+        return "ground"
+    f = place.frame
+    return f"T1={f.period:g}s n={f.storeys} zeta={f.damping:g} floor {place.level}"

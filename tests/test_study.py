@@ -1,0 +1,174 @@
+"""bd.study: rows against independent simulations, local == Dask, errors before work,
+the seed-002 summaries, save and reload, the command and the benchmark's smoke run."""
+
+import concurrent.futures
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import blockdae as bd
+from blockdae._cli import main
+from blockdae.study import _study as study_module  # bd.study is the function
+from conftest import load_sample_record, sample_record_paths
+from test_benchmarks import _load as _load_benchmark
+
+SHORT = ("Northridge_1994_PAC-175", "Cape_Mendocino_1992_PET-090", "Kobe_1995_TAK-090")
+FRAME = bd.ShearFrame(5, 0.3, 0.05)
+WHERE = ["ground", FRAME.floor(1), FRAME.floor(5)]
+MU = [0.1, 0.3]
+PGA = [0.2, 0.6]
+
+
+@pytest.fixture(scope="module")
+def records():
+    return [load_sample_record(stem) for stem in SHORT]
+
+
+@pytest.fixture(scope="module")
+def table(records):
+    return bd.study(records, mu=MU, pga=PGA, where=WHERE)
+
+
+def test_shape_order_and_units(table, records):
+    assert len(table) == len(records) * len(WHERE) * len(MU) * len(PGA)
+    assert list(table["record"].unique()) == list(SHORT)
+    assert list(table.loc[:7, "pga_g"]) == PGA * 4
+    assert set(table["floor"]) == {0, 1, 5}
+    np.testing.assert_allclose(table["pga_m_s2"], table["pga_g"] * bd.STANDARD_GRAVITY, rtol=1e-14)
+    assert (table["n_slips"] == (table["n_events"] + 1) // 2).all()
+    assert table["frame_period_s"].isna().eq(table["location"] == "ground").all()
+
+
+@pytest.mark.parametrize("row", [0, 5, 10, 17, 23, 30, 35])
+def test_rows_equal_independent_simulations(table, records, row):
+    r = table.iloc[row]
+    record = records[SHORT.index(r["record"])]
+    motion = record if r["floor"] == 0 else FRAME.floor(int(r["floor"])).motion(record)
+    used = motion.scaled(r["scale"])
+    sol = bd.simulate(bd.SlidingBlock(mu=r["mu"], direction="negative"), used)
+    np.testing.assert_allclose(r["max_abs_displacement_m"], sol.max_abs_displacement, rtol=1e-12, atol=0)
+    np.testing.assert_allclose(r["displacement_m"], sol.displacement, rtol=1e-12, atol=1e-300)
+    assert r["n_events"] == len(sol.events)
+    assert r["n_slips"] == sum(int(e.mode_after) != 0 for e in sol.events)
+    im = bd.intensity_measures(used)
+    np.testing.assert_allclose([r["pga_m_s2"], r["pgv_m_s"]], [im.pga, im.pgv], rtol=1e-12)
+    np.testing.assert_allclose(r["sd_m"], bd.response_spectrum(used, 10.0, 0.05).sd, rtol=1e-12)
+
+
+def test_scale_grid_is_the_pga_grid_by_other_names(records, table):
+    ground = table[table["floor"] == 0]
+    k = ground["scale"].to_numpy().reshape(len(records), -1)[:, :len(PGA)]
+    by_scale = bd.study(records[:1], mu=MU[:1], scale=k[0], where="ground")
+    np.testing.assert_allclose(by_scale["max_abs_displacement_m"],
+                               ground["max_abs_displacement_m"].to_numpy()[:len(PGA)], rtol=1e-12)
+    np.testing.assert_allclose(by_scale["pga_g"], PGA, rtol=1e-14)
+
+
+def test_local_equals_dask(records, table):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None) \
+            as cluster, distributed.Client(cluster) as client:
+        on_dask = bd.study(records, mu=MU, pga=PGA, where=WHERE, executor=client)
+    pd.testing.assert_frame_equal(on_dask, table)
+
+
+def test_local_equals_executor(records, table, monkeypatch):
+    monkeypatch.setattr(study_module, "TASK_ANALYSES", 1)  # one task per record
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        pd.testing.assert_frame_equal(bd.study(records, mu=MU, pga=PGA, where=WHERE, executor=pool), table)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(records=[]), "records is empty"),
+    (dict(records=["x"]), "must be a bd.Record"),
+    (dict(mu=[0.1, 0.0]), "mu must be positive"),
+    (dict(mu=[-0.1]), "mu must be positive"),
+    (dict(pga=[0.5, -1.0]), "pga must be positive"),
+    (dict(pga=[np.nan]), "pga must be positive"),
+    (dict(pga=None), "give pga"),
+    (dict(scale=[1.0]), "give pga"),
+    (dict(where=["roof"]), "where must hold"),
+    (dict(where=[]), "where is empty"),
+    (dict(mu=np.linspace(0.01, 1, 10**4), pga=np.linspace(0.01, 1, 10**4)), "free memory"),
+])
+def test_bad_input_fails_before_work(records, kwargs, match, monkeypatch):
+    monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
+    args = dict(records=records, mu=MU, pga=PGA) | kwargs
+    with pytest.raises((ValueError, TypeError), match=match):
+        bd.study(**args)
+
+
+def test_a_record_with_nan_fails_before_work(records, monkeypatch):
+    bad = bd.Record(np.ones(3), 0.01, name="nan")
+    object.__setattr__(bad, "acceleration_samples", np.array([0.0, np.nan, 1.0]))  # past Record's own check
+    monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
+    with pytest.raises(ValueError, match="not finite"):
+        bd.study([records[0], bad], mu=MU, pga=PGA)
+
+
+def test_summary_follows_the_formulas(table):
+    s = bd.study_summary(table)
+    assert len(s) == len(WHERE) * len(MU) * len(PGA) and (s["n_records"] == len(SHORT)).all()
+    for _, row in s.sample(4, random_state=1).iterrows():
+        cases = table[(table["location"] == row["location"]) & (table["mu"] == row["mu"])
+                      & (table["pga_g"] == row["pga_g"])]
+        assert row["rc_m"] == pytest.approx(cases["max_abs_displacement_m"].mean(), rel=1e-14)
+        assert row["sd_m"] == pytest.approx(cases["sd_m"].mean(), rel=1e-14)
+        rd = bd.newmark_rd_sd(row["sd_m"], row["pga_g"], row["mu"])
+        assert row["rd_m"] == pytest.approx(rd, rel=1e-14)
+        adj = bd.AdjustmentFactor()(row["pga_g"], row["mu"])
+        assert row["rd_adjusted_m"] == pytest.approx(adj * rd, rel=1e-14)
+
+
+def test_save_and_load_round_trip(table, tmp_path):
+    pd.testing.assert_frame_equal(bd.load_study(bd.save_study(table, tmp_path / "s.csv")), table)
+    with pytest.raises(ValueError, match=".csv or .parquet"):
+        bd.save_study(table, tmp_path / "s.xlsx")
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        with pytest.raises(ImportError, match="pyarrow"):
+            bd.save_study(table, tmp_path / "s.parquet")
+    else:
+        pd.testing.assert_frame_equal(bd.load_study(bd.save_study(table, tmp_path / "s.parquet")), table)
+
+
+def test_command(tmp_path, records, capsys):
+    folder = tmp_path / "records"
+    folder.mkdir()
+    for path in sample_record_paths():
+        if path.stem in SHORT[:2]:
+            (folder / path.name).write_bytes(path.read_bytes())
+    out = tmp_path / "r.csv"
+    status = main(["--no-cache", "study", str(folder), "--mu", "0.1", "0.3", "--pga", "0.2:0.6:2", "--frame", "0.3",
+                            "--out", str(out)])
+    assert status == 0, capsys.readouterr().err
+    got = bd.load_study(out)
+    assert len(got) == 2 * 6 * 2 * 2 and sorted(got["pga_g"].unique()) == PGA
+    expected = bd.study(sorted(records[:2], key=lambda r: r.name), mu=MU, pga=PGA,
+                        where=["ground"] + [FRAME.floor(i) for i in range(1, 6)])
+    pd.testing.assert_frame_equal(got, expected)
+    (folder / "bad.csv").write_text("0.0, 1.0\n0.01, nan\n")
+    assert main(["--no-cache", "study", str(folder), "--mu", "0.1", "--pga", "0.5", "--out", str(out)]) == 2
+    assert "bad.csv" in capsys.readouterr().err
+    assert main(["--no-cache", "study", str(tmp_path / "empty"), "--mu", "0.1", "--pga", "0.5", "--out", str(out)]) == 2
+
+
+def test_benchmark_quick(monkeypatch, capsys):
+    assert _load_benchmark("study", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "analyses/s" in out and "FAIL" not in out and "DIFFERS" not in out
+
+
+def test_simulate_final_scale_equals_scaled_motions(records):
+    block = bd.SlidingBlock(mu=np.array([0.1, 0.25]), direction="both")
+    factors = [0.5, 1.5, -1.0]
+    out = bd.simulate_final(block, records[:2], scale=factors)
+    assert out.displacement.shape == (2, 2, 3)
+    for k, factor in enumerate(factors):
+        ref = bd.simulate_final(block, [r.scaled(factor) for r in records[:2]])
+        for got, want in zip(out, ref):
+            np.testing.assert_allclose(got[..., k], want, rtol=1e-12, atol=1e-300)
+    with pytest.raises(ValueError, match="scale must be"):
+        bd.simulate_final(block, records[:1], scale=[])
