@@ -94,7 +94,8 @@ def main(argv=None):
                "limit [ns/sample]", "first call [s]"]
     print_table(headers, rows)
     measured = _summarize(np.array(summary))
-    measured["user loop in a fresh process [s]"] = _user_loop(len(records), cold=not args.quick)
+    measured["user loop in a fresh process [s]"] = _user_loop(len(records), cold=not args.quick,
+                                                             repeat=1 if args.quick else 3)
     measured["10^6 analyses, final numbers [s]"] = _final_numbers(records, args.analyses)
     _report_bars(measured, args)
     return 0
@@ -146,17 +147,19 @@ def _summarize(summary):
             "first call in this process [s]": np.max(first)}
 
 
-def _user_loop(n_records, cold):
-    """Seconds of the user's loop in a fresh process with numba's disk cache filled;
-    with ``cold``, first in an empty cache (compiling the engine), which fills it."""
+def _user_loop(n_records, cold, repeat=3):
+    """Seconds of the user's loop in a fresh process with numba's disk cache filled
+    (median of ``repeat`` processes); with ``cold``, first in an empty cache (compiling
+    the engine), which fills it."""
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, NUMBA_CACHE_DIR=cache) if cold else None
-        runs = [_run_user_loop(n_records, env) for _ in range(2 if cold else 1)]
-    (seconds, n, read) = runs[-1]
-    compiling = f"{runs[0][0]:.2f} s compiling the engine, " if cold else ""
+        first = _run_user_loop(n_records, env) if cold else None
+        runs = sorted(_run_user_loop(n_records, env) for _ in range(repeat))
+    seconds, n, read = runs[len(runs) // 2]
+    compiling = f"{first[0]:.2f} s compiling the engine, " if cold else ""
     print(f"\nuser's loop, fresh process: {n} analyses ({n_records} records read from file, scaled to PGA 0.3 g, "
-          f"both polarities, 5 ky): {compiling}{seconds:.2f} s with numba's disk cache (of which reading "
-          f"the files {read:.2f} s)")
+          f"both polarities, 5 ky): {compiling}{seconds:.2f} s with numba's disk cache (median of {repeat} "
+          f"processes: {', '.join(f'{r[0]:.2f}' for r in runs)} s; reading the files {read:.2f} s)")
     return seconds
 
 

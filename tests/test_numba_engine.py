@@ -144,7 +144,7 @@ def test_batch_equals_one_by_one(kobe):
         assert batch.max_abs_displacement[i] == one.max_abs_displacement
         assert batch.n_events[i] == len(one.events) and batch.t_end[i] == one.t_end
     exc = prepare(kobe.pieces(kobe.duration), 64)
-    offsets = np.array([[0, len(exc[0]), 0, len(exc[7])]])
+    offsets = np.array([[0, len(exc[0]), 0, len(exc[9])]])
     params = np.stack([block.mu, block.mu_kinetic, np.full(16, 0.01), np.full(16, G), np.ones(16)], axis=1)
     _, parallel, serial = _exact_numba.kernels()
     flags = (True, True, np.array([True]))

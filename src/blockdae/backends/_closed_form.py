@@ -55,7 +55,8 @@ def leaves_stick(sigma_start, sigma_end, limit, allow_neg, allow_pos):
 def block_may_leave_stick(a_max, a_min, scale, bias, g, limit, allow_neg, allow_pos, xp):
     """Whether the demand may leave [-limit, limit] on a block of pieces where the
     unscaled a(t) lies in [a_min, a_max] [m/s²]. Conservative by :data:`BLOCK_SLACK`
-    (the pieces are checked one by one after), never missing an onset."""
+    (the pieces are checked one by one after), never missing an onset. A filter, not a
+    rule: the numba engine applies a coarser one (``_exact_numba._thresholds``)."""
     highest = xp.maximum(scale * a_max, scale * a_min)
     lowest = xp.minimum(scale * a_max, scale * a_min)
     slack = BLOCK_SLACK * (xp.maximum(highest, -lowest) + xp.abs(bias * g) + limit)

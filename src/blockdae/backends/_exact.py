@@ -110,26 +110,26 @@ def _cached_engine_input(excitation, t_end, window):
 
 def prepare(pieces: Pieces, window: int) -> tuple:
     """The engine's ``exc`` (see :mod:`._exact_numba`): the pieces (sine terms None if
-    there are none) and the range of a(t) per block of ``window`` pieces."""
+    there are none) and the range of a(t) per piece and per block of ``window`` pieces."""
     sine = (pieces.s, pieces.w, pieces.phi) if pieces.has_sine else (None, None, None)
     coefficients = (pieces.p0, pieces.p1, *sine)
     ends = (accel(*coefficients, 0.0), accel(*coefficients, pieces.h))  # monotone: extrema at the ends
+    a_hi, a_lo = np.maximum(*ends), np.minimum(*ends)
     pad = -len(pieces.t0) % window
     per_block = lambda x, fill, reduce: reduce(np.append(x, np.full(pad, fill)).reshape(-1, window), axis=1)
-    a_max = per_block(np.maximum(*ends), -np.inf, np.max)
-    a_min = per_block(np.minimum(*ends), np.inf, np.min)
     return tuple(np.ascontiguousarray(x, dtype=float) if x is not None else None
-                 for x in (pieces.t0, pieces.h, *coefficients, a_max, a_min))
+                 for x in (pieces.t0, pieces.h, *coefficients, a_hi, a_lo, per_block(a_hi, -np.inf, np.max),
+                           per_block(a_lo, np.inf, np.min)))
 
 
 def _concatenated(inputs):
     """One ``exc`` from several and their (piece start, end, block start, end) offsets."""
     if len(inputs) == 1:
-        return inputs[0], np.array([[0, len(inputs[0][0]), 0, len(inputs[0][7])]], dtype=np.int64)
+        return inputs[0], np.array([[0, len(inputs[0][0]), 0, len(inputs[0][9])]], dtype=np.int64)
     if any(x[4] is not None for x in inputs):
         inputs = [x if x[4] is not None else x[:4] + tuple(np.zeros_like(x[0]) for _ in range(3)) + x[7:]
                   for x in inputs]
-    exc = tuple(None if inputs[0][f] is None else np.concatenate([x[f] for x in inputs]) for f in range(9))
+    exc = tuple(None if inputs[0][f] is None else np.concatenate([x[f] for x in inputs]) for f in range(11))
     pieces = np.cumsum([0] + [len(x[0]) for x in inputs])
-    blocks = np.cumsum([0] + [len(x[7]) for x in inputs])
+    blocks = np.cumsum([0] + [len(x[9]) for x in inputs])
     return exc, np.stack([pieces[:-1], pieces[1:], blocks[:-1], blocks[1:]], axis=1).astype(np.int64)

@@ -1,9 +1,9 @@
 """The exact engine compiled with numba: the JAX kernel's algorithm as a plain loop.
 
-Stick: per-block bounds of a(t) (:func:`~._exact_kernel.prepare`) skip the blocks of
-``window`` pieces where the demand stays within [-mu g, mu g]; the pieces of the other
-blocks are checked one by one and the onset is located in closed form (a linear
-equation; sine pieces: bisection). Slip: u and v are carried piece by piece in closed
+Stick: bounds of a(t) per block of ``window`` pieces and per piece (from
+:func:`._exact.prepare`) skip the blocks and pieces where the demand stays within
+[-mu g, mu g]; the other pieces are checked exactly and the onset is located in closed
+form (a linear equation; sine pieces: bisection). Slip: u and v are carried piece by piece in closed
 form; the first piece where v returns to zero holds the stop (a quadratic; sine pieces:
 a bracketed bisection) and :func:`~blockdae.model.stop_mode` decides what follows.
 
@@ -15,10 +15,10 @@ engine's own. The entry points compile on first use and are cached on disk by nu
 modules, which numba would not otherwise check.
 
 Arguments shared by the entry points:
-    exc: (t0, h, p0, p1, s, w, phi, a_max, a_min): the pieces, each (n,) [s, s, m/s²,
-        m/s³, m/s², rad/s, rad], with s, w, phi None for linear pieces only, and the
-        bounds of the unscaled a(t) per block of ``window`` pieces, each (ceil(n /
-        window),) [m/s²].
+    exc: (t0, h, p0, p1, s, w, phi, a_hi, a_lo, a_max, a_min): the pieces, each (n,)
+        [s, s, m/s², m/s³, m/s², rad/s, rad], with s, w, phi None for linear pieces only;
+        the range of the unscaled a(t) on each piece, each (n,) [m/s²], and per block of
+        ``window`` pieces, each (ceil(n / window),) [m/s²].
     params: (mu, f, bias, g, scale): static and kinetic friction [-], R/Q [-], g [m/s²]
         and a factor on a(t) [-].
     flags: (slip- allowed, slip+ allowed, until rest after the excitation).
@@ -41,7 +41,7 @@ from ..model import _block
 from ..model._block import demand, rest_mode, slip_constant
 from . import _closed_form
 from . import _xp_scalar as xp
-from ._closed_form import (BISECTIONS, block_may_leave_stick, crosses_zero, departure_rate, leaves_stick,
+from ._closed_form import (BISECTIONS, BLOCK_SLACK, crosses_zero, departure_rate, leaves_stick,
                            mode_after_stop, onset_delta_linear, onset_gap, onset_side, onset_target,
                            onset_within, rate_turns, sine_stop_bracket, slip_motion, slip_rate, slip_velocity,
                            stop_delta_linear, tail_to_rest)
@@ -131,28 +131,47 @@ def _leaves(exc, params, flags, j, tau):
     return leaves_stick(start, end, mu * g, flags[0], flags[1])
 
 
-def _next_leaving_piece(exc, window, params, flags, k, tau):
+def _next_leaving_piece(exc, window, params, flags, thresholds, k, tau):
     """The first piece, from ``tau`` [s] into piece k on, where the demand leaves stick:
-    (piece, time into it [s]); (n, 0) if none. Blocks whose bounds keep the demand in
-    stick are skipped whole."""
-    mu, _, bias, g, scale = params
+    (piece, time into it [s], whether it leaves upwards); (n, 0, False) if none. Blocks
+    and pieces whose bounds keep a(t) within ``thresholds`` (see :func:`_thresholds`)
+    are skipped unchecked."""
     up, down = _leaves(exc, params, flags, k, tau)
     if up | down:
-        return k, tau
+        return k, tau, up
     n = exc[0].shape[0]
-    a_max, a_min = exc[7], exc[8]
+    a_hi, a_lo, a_max, a_min = exc[7:]
+    above, below = thresholds
     j = k + 1
+    block = j // window
     while j < n:
-        block = j // window
         end = min((block + 1) * window, n)
-        if block_may_leave_stick(a_max[block], a_min[block], scale, bias, g, mu * g, flags[0], flags[1], xp):
+        if (a_max[block] > above) | (a_min[block] < below):
             while j < end:
-                up, down = _leaves(exc, params, flags, j, 0.0)
-                if up | down:
-                    return j, 0.0
+                if (a_hi[j] > above) | (a_lo[j] < below):
+                    up, down = _leaves(exc, params, flags, j, 0.0)
+                    if up | down:
+                        return j, 0.0, up
                 j += 1
-        j = end
-    return n, 0.0
+        j, block = end, block + 1
+    return n, 0.0, False
+
+
+def _thresholds(exc, params, flags):
+    """(above, below) [m/s²]: the demand may leave stick only where the unscaled a(t)
+    rises above ``above`` or falls below ``below``. Conservative as the JAX kernel's
+    :func:`block_may_leave_stick` (its slack taken at the largest |a| of the excitation,
+    doubled), but found once per run: only the speed depends on it."""
+    a_max, a_min = exc[9], exc[10]
+    mu, _, bias, g, scale = params
+    limit = mu * g
+    if scale == 0:
+        return math.inf, -math.inf
+    a_abs = max(np.max(a_max), -np.min(a_min))
+    slack = 2 * BLOCK_SLACK * (abs(scale) * a_abs + abs(bias * g) + limit)
+    up = (bias * g + limit - slack) / scale if flags[0] else math.inf * scale  # a > up slides -
+    down = (bias * g - limit + slack) / scale if flags[1] else -math.inf * scale  # a < down slides +
+    return (up, down) if scale > 0 else (down, up)
 
 
 def _logged(knots, n_knots, t, before, after, u):
@@ -188,14 +207,14 @@ def _run(exc, window, params, flags, capacity):
     max_abs_u, n_events, n_found = 0.0, 0, 0
     last_t, run, max_run = -math.inf, 0, 0
     max_found = 4 * n + 2  # more events than this: chatter
+    thresholds = _thresholds(exc, params, flags)
     while k < n and n_found < max_found:
         before = mode
         if mode == 0:
-            k, tau = _next_leaving_piece(exc, window, params, flags, k, tau)
+            k, tau, up = _next_leaving_piece(exc, window, params, flags, thresholds, k, tau)
             if k == n:
                 break
             t_k, rem, cf = _piece(exc, scale, k, tau)
-            up, _ = _leaves(exc, params, flags, k, tau)
             going_up, at_once = onset_side(demand(accel(*cf, 0.0, xp), bias, g), up, mu * g, allow_neg, allow_pos)
             d = onset_within(_onset_delta(cf, rem, onset_target(going_up, bias, g, mu * g, xp)), rem, at_once, xp)
             t_event, tau = t_k + d, tau + d
@@ -268,7 +287,7 @@ def _run_item(exc, offsets, window, params, flags, item, out):
     i, j = item % n_exc, item // n_exc  # neighbours differ in excitation: even shares
     a, b, c, d = offsets[i]
     one = (exc[0][a:b], exc[1][a:b], exc[2][a:b], exc[3][a:b], _slice(exc[4], a, b), _slice(exc[5], a, b),
-           _slice(exc[6], a, b), exc[7][c:d], exc[8][c:d])
+           _slice(exc[6], a, b), exc[7][a:b], exc[8][a:b], exc[9][c:d], exc[10][c:d])
     p = params[j]
     out[i, j], _ = _run(one, window, (p[0], p[1], p[2], p[3], p[4]), (flags[0], flags[1], flags[2][i]), 0)
 
