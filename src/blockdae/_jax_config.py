@@ -13,7 +13,8 @@ import os
 import pathlib
 
 _OFF = ("", "off", "none", "0")
-_state = {"configured": False}
+_DEFAULT = object()  # no folder chosen: the environment's, unless JAX has one set
+_state = {"folder": _DEFAULT, "applied": False}
 
 
 def default_cache_dir() -> pathlib.Path | None:
@@ -26,23 +27,31 @@ def default_cache_dir() -> pathlib.Path | None:
 
 
 def set_compilation_cache(folder: str | os.PathLike | None) -> None:
-    """Keep JAX's compiled kernels in ``folder`` (None: keep no cache) for this process."""
+    """Keep JAX's compiled kernels in ``folder`` (None: keep no cache) for this process;
+    takes effect at the next compiled call (JAX is not imported for it)."""
+    _state["folder"] = None if folder is None else pathlib.Path(folder)
+    if _state["applied"]:
+        _apply(_state["folder"])
+
+
+def _apply(folder):
     import jax
 
     jax.config.update("jax_compilation_cache_dir", None if folder is None else str(folder))
     # kernels compile in 0.1-1.5 s; JAX's default keeps only those over 1 s
     jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.1)
-    _state["configured"] = True
 
 
 @contextlib.contextmanager
 def jax_context():
-    """float64 for the calls inside; sets the default compilation cache on first use."""
+    """float64 for the calls inside; sets the compilation cache on first use."""
     import jax
 
-    if not _state["configured"]:
-        if jax.config.jax_compilation_cache_dir is None:
-            set_compilation_cache(default_cache_dir())
-        _state["configured"] = True
+    if not _state["applied"]:
+        if _state["folder"] is not _DEFAULT:
+            _apply(_state["folder"])
+        elif jax.config.jax_compilation_cache_dir is None:
+            _apply(default_cache_dir())
+        _state["applied"] = True
     with jax.enable_x64(True):
         yield
