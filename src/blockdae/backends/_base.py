@@ -53,6 +53,12 @@ def batch_params(block: SlidingBlock) -> tuple[np.ndarray, ...]:
     return params + (np.full(shape, float(block.g)), np.ones(shape))
 
 
+def check_window(window) -> None:
+    """The exact backends' ``window`` (pieces per block of a(t) bounds): an integer >= 1."""
+    if not (isinstance(window, int) and window >= 1):
+        raise ValueError(f"window must be an integer >= 1, got {window!r}")
+
+
 class AbstractBackend(abc.ABC):
     """Integrates a :class:`SlidingBlock` under an excitation to a :class:`Solution`.
 

@@ -10,7 +10,7 @@ from ..excitation import Pieces
 from ..excitation._pieces import accel
 from ..model import SlidingBlock
 from . import _exact_numba as engine
-from ._base import AbstractBackend
+from ._base import AbstractBackend, check_window
 from ._results import check, exact_solution
 
 
@@ -34,8 +34,7 @@ class ExactBackend(AbstractBackend):
     name = "exact"
 
     def __post_init__(self):
-        if not (isinstance(self.window, int) and self.window >= 1):
-            raise ValueError(f"window must be an integer >= 1, got {self.window!r}")
+        check_window(self.window)
 
     def solve(self, block, excitation, horizon):
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)

@@ -15,7 +15,7 @@ from .._solution import BatchSolution
 from ..excitation import Pieces
 from ..model import SlidingBlock
 from . import _exact_kernel as kernel
-from ._base import AbstractBackend, batch_params
+from ._base import AbstractBackend, batch_params, check_window
 from ._results import check, exact_solution, max_run
 
 
@@ -33,8 +33,7 @@ class ExactJaxBackend(AbstractBackend):
     name = "exact-jax"
 
     def __post_init__(self):
-        if not (isinstance(self.window, int) and self.window >= 1):
-            raise ValueError(f"window must be an integer >= 1, got {self.window!r}")
+        check_window(self.window)
 
     def solve(self, block, excitation, horizon):
         pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
