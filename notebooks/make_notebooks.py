@@ -291,9 +291,86 @@ R calculated, v_m tau, and eq. 1 with both signs, for tau = 0.05, 0.1, 0.2, 0.5 
 table[["lag_s", "r_m", "velocity_bound_m", "eq1_minus_m", "eq1_plus_m"]]"""),
 ]
 
+NEWMARK_FORMULA = [
+    ("md", """# Seed 002 reproduced: Newmark's formula in terms of Sd, on the ground and on floors
+
+Seed 002 compares the mean largest relative displacement R_c of a body (exact solution)
+with R_d from Newmark's formula in terms of Sd (eq. 3), on the ground and on the floors of
+uniform 5-storey shear frames (T_n = 0.2, 0.3, 0.5 s, 5 % modal damping), and fits an
+adjustment factor (eq. 4, read as 0.19 sqrt(A) / (mu + 0.06)). The seed's 75 CIT records are
+not available: the 18 pySLAMMER sample records stand in. Each motion (ground or floor) is
+normalised to its peak and scaled to A_gx = 0.05 ... 1.0 g; one-way sliding. Sd is the
+relative displacement spectrum at T = 10 s (5 %), the seed's "low-frequency end".
+Units: m, s, g for A_gx."""),
+    ("code", """import importlib.resources
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import blockdae as bd
+
+samples = importlib.resources.files("pyslammer") / "sample_ground_motions"
+records = [bd.read_record(p) for p in sorted(samples.iterdir()) if p.name.endswith(".csv")]
+frames = {tn: bd.ShearFrame(storeys=5, period=tn, damping=0.05) for tn in (0.2, 0.3, 0.5)}
+where = ["ground"] + [f.floor(i) for f in frames.values() for i in (1, 5)]
+mus, pgas = [0.1, 0.2, 0.3], np.linspace(0.05, 1.0, 20)
+table = bd.study(records, mu=mus, pga=pgas, where=where, progress=False)
+summary = bd.study_summary(table)
+print(f"{len(table)} analyses over {len(records)} records and {len(where)} locations")"""),
+    ("md", """## Figure 4: mean displacement response spectra of the ground (records at 1 g)"""),
+    ("code", """periods = np.geomspace(0.05, 10.0, 60)
+at_1g = [r.scaled(bd.STANDARD_GRAVITY / r.peak_acceleration) for r in records]
+spectrum = bd.response_spectrum(at_1g, periods, 0.05)
+fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
+ax.loglog(periods, spectrum.sd.mean(axis=0), label="relative, Sd")
+ax.loglog(periods, spectrum.sd_abs.mean(axis=0), "--", label="absolute")
+ax.set(xlabel="period T [s]", ylabel="mean displacement [m]", title="18 records at PGA 1 g, 5 % damping")
+ax.legend()"""),
+    ("md", """## Figure 5: mean R_c (solid) and R_d of eq. 3 (dashed) on the ground"""),
+    ("code", """def figure(location_mask, title, adjusted=False):
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
+    for k, mu in enumerate(mus):
+        rows = summary[location_mask & (summary.mu == mu)]
+        ax.plot(rows.pga_g, rows.rc_m, color=f"C{k}", label=f"R_c, mu = {mu}")
+        ax.plot(rows.pga_g, rows.rd_adjusted_m if adjusted else rows.rd_m, "--", color=f"C{k}",
+                label=f"{'adjusted ' if adjusted else ''}R_d, mu = {mu}")
+    ax.set(xlabel="A_gx [g]", ylabel="mean largest relative displacement [m]", title=title)
+    ax.legend(fontsize=8)
+    return fig
+
+
+ground = summary.location == "ground"
+fig = figure(ground, "Ground: R_c and R_d (eq. 3)")"""),
+    ("md", """## Figures 6-10: adjusted R_d against R_c, ground and floors 1 and 5 (T_n = 0.3, 0.5; also 0.2 s)"""),
+    ("code", """fig = figure(ground, "Ground (Fig. 6)", adjusted=True)
+for tn in (0.3, 0.5, 0.2):
+    for level in (1, 5):
+        mask = (summary.frame_period_s == tn) & (summary.floor == level)
+        figure(mask, f"Floor {level}, T_n = {tn} s", adjusted=True)"""),
+    ("md", """## The adjustment factor refitted to these records
+
+Least squares on log R_c = log(adj(A, mu) R_d) over every location, mu and A where both
+are positive (R_d = 0 for A_gx <= mu)."""),
+    ("code", """fit = bd.fit_adjustment_factor(summary.rc_m, summary.rd_m, summary.pga_g, summary.mu)
+seed = bd.AdjustmentFactor()
+both = (summary.rc_m > 0) & (summary.rd_m > 0)  # A_gx > mu and the body slid
+for label, adj in (("seed (as read)", seed), ("refitted", fit)):
+    ratio = np.log((adj(summary.pga_g, summary.mu) * summary.rd_m)[both] / summary.rc_m[both])
+    print(f"{label:15s} adj = {adj.scale:.3f} sqrt(A) / (mu {adj.offset:+.3f}): "
+          f"log(R_d adj / R_c) mean {ratio.mean():+.3f}, std {ratio.std():.3f}")
+fig, ax = plt.subplots(figsize=(5.5, 5), constrained_layout=True)
+ok = both
+ax.loglog(summary.rc_m[ok], (fit(summary.pga_g, summary.mu) * summary.rd_m)[ok], ".", ms=3)
+lims = [summary.rc_m[ok].min(), summary.rc_m[ok].max()]
+ax.loglog(lims, lims, "k-", lw=0.8)
+ax.set(xlabel="R_c [m] (exact, mean over records)", ylabel="refitted adjusted R_d [m]",
+       title="Scatter of the refitted formula")"""),
+]
+
 NOTEBOOKS = {"01_seed000.ipynb": SEED_000, "02_sensitivities.ipynb": SENSITIVITIES,
              "03_backends.ipynb": BACKENDS,
-             "06_two_points.ipynb": TWO_POINTS}
+             "06_two_points.ipynb": TWO_POINTS,
+             "07_newmark_formula.ipynb": NEWMARK_FORMULA}
 
 
 def build(cells) -> nbformat.NotebookNode:

@@ -75,3 +75,9 @@ def test_two_points_notebook_runs(monkeypatch, jax_cache_dir):
     """Seed 003: R(tau) <= v_m tau on every record and lag (checked inside the notebook)."""
     notebook = _execute("06_two_points.ipynb", monkeypatch, jax_cache_dir)
     assert "largest R / (v_m tau) over every record and lag" in _text(notebook)
+
+
+def test_newmark_formula_notebook_runs(monkeypatch, jax_cache_dir):
+    """Seed 002 with the sample records: the study, its figures and the refitted factor."""
+    notebook = _execute("07_newmark_formula.ipynb", monkeypatch, jax_cache_dir)
+    assert "refitted" in _text(notebook) and "analyses over 18 records and 7 locations" in _text(notebook)
