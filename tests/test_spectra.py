@@ -220,3 +220,44 @@ def test_bad_motion():
         response_spectrum(bd.Harmonic(1.0, 1.0), 1.0)
     with pytest.raises(ValueError, match="damping = 0 at the period"):
         response_spectrum(bd.Harmonic(1.0, 1.0), 1.0, 0.0, t_end=2.0)
+
+
+@pytest.mark.parametrize("psa_unit, unit", [("g", bd.STANDARD_GRAVITY), ("m/s²", 1.0)])
+def test_tripartite_plot_diagonals(kobe, psa_unit, unit):
+    """PSv-T log axes with diagonals where Sd = PSv T/(2π) and PSa = 2π PSv/T are constant."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=True)
+    import matplotlib.pyplot as plt
+
+    spec = response_spectrum(kobe, np.geomspace(0.02, 5, 30), 0.05)
+    fig = bd.motions.plot_spectrum(spec, quantity="psv", tripartite=True, psa_unit=psa_unit)
+    try:
+        ax = fig.axes[0]
+        assert ax.get_xlabel() == "period T [s]" and ax.get_ylabel() == "PSV [m/s]"
+        assert ax.get_xscale() == ax.get_yscale() == "log"
+        curve = next(line for line in ax.lines if line.get_gid() is None)
+        np.testing.assert_array_equal(curve.get_ydata(), spec.psv)
+        sd_lines = [line for line in ax.lines if (line.get_gid() or "").startswith("sd ")]
+        psa_lines = [line for line in ax.lines if (line.get_gid() or "").startswith("psa ")]
+        assert len(sd_lines) >= 2 and len(psa_lines) >= 2
+        texts = [t.get_text() for t in ax.texts]
+        for line in sd_lines:
+            sd = float(line.get_gid().split()[1])
+            T, psv = line.get_xdata(), line.get_ydata()
+            np.testing.assert_allclose(psv * T / (2 * np.pi), sd, rtol=1e-13)
+            assert f"Sd {sd:g} m" in texts
+        for line in psa_lines:
+            psa = float(line.get_gid().split()[1])
+            assert line.get_gid().endswith(psa_unit)
+            T, psv = line.get_xdata(), line.get_ydata()
+            np.testing.assert_allclose(2 * np.pi * psv / T / unit, psa, rtol=1e-13)
+            assert f"PSa {psa:g} {psa_unit}" in texts
+        # the diagonals span the curve's axes and do not widen them
+        lo, hi = ax.get_ylim()
+        assert lo <= spec.psv.min() and hi >= spec.psv.max()
+        assert all(lo * 0.999 <= t.get_position()[1] <= hi * 1.001 for t in ax.texts)
+    finally:
+        plt.close(fig)
+    with pytest.raises(ValueError, match="tripartite axes need quantity = 'psv'"):
+        bd.motions.plot_spectrum(spec, quantity="psa", tripartite=True)

@@ -2,8 +2,11 @@
 
 import numpy as np
 
+from .._units import STANDARD_GRAVITY
 
-def plot_spectrum(spectrum, *, quantity="psa", ax=None, title=None, label=None):
+
+def plot_spectrum(spectrum, *, quantity="psa", ax=None, title=None, label=None, tripartite=False,
+                  psa_unit="g", g=STANDARD_GRAVITY):
     """Log-log spectrum curves against the period [s].
 
     Args:
@@ -11,6 +14,10 @@ def plot_spectrum(spectrum, *, quantity="psa", ax=None, title=None, label=None):
         quantity: "sd" [m], "sv" [m/s], "sa" [m/s²], "psv" [m/s], "psa" [m/s²] or "sd_abs" [m].
         ax: matplotlib Axes to draw on (a new figure otherwise).
         label: legend label prefix (default the motion names and damping values).
+        tripartite: with quantity "psv", add the diagonals of constant Sd = PSv T/(2π) [m]
+            (slope -1) and of constant PSa = 2π PSv/T (slope +1), labelled.
+        psa_unit: unit of the PSa diagonals, "g" or "m/s²".
+        g: the unit "g" [m/s²].
 
     Returns:
         The matplotlib Figure.
@@ -20,6 +27,10 @@ def plot_spectrum(spectrum, *, quantity="psa", ax=None, title=None, label=None):
     units = {"sd": "m", "sv": "m/s", "sa": "m/s²", "psv": "m/s", "psa": "m/s²", "sd_abs": "m"}
     if quantity not in units:
         raise ValueError(f"quantity = {quantity!r}; quantity must be one of {sorted(units)}")
+    if tripartite and quantity != "psv":
+        raise ValueError(f"tripartite axes need quantity = 'psv', got {quantity!r}")
+    if psa_unit not in ("g", "m/s²"):
+        raise ValueError(f"psa_unit = {psa_unit!r}; psa_unit must be 'g' or 'm/s²'")
     if ax is None:
         fig, ax = plt.subplots(figsize=(6, 4.5), constrained_layout=True)
     fig = ax.figure
@@ -35,11 +46,41 @@ def plot_spectrum(spectrum, *, quantity="psa", ax=None, title=None, label=None):
     ax.set_xlabel("period T [s]")
     ax.set_ylabel(f"{quantity.upper()} [{units[quantity]}]")
     ax.grid(True, which="both", lw=0.3)
+    if tripartite:
+        _tripartite_grid(ax, 1.0 if psa_unit == "m/s²" else g, psa_unit)
     if curves.shape[0] <= 8:
         ax.legend(fontsize=8)
     if title:
         ax.set_title(title)
     return fig
+
+
+def _decades(lo, hi):
+    """The powers of ten in [lo, hi]."""
+    return 10.0 ** np.arange(np.ceil(np.log10(lo) - 1e-9), np.floor(np.log10(hi) + 1e-9) + 1)
+
+
+def _tripartite_grid(ax, unit, unit_name):
+    """Diagonals of constant Sd [m] and PSa [``unit`` m/s²] on PSv [m/s]-T [s] log axes, one
+    per decade of each, drawn across the current limits (kept) and labelled at their middle."""
+    (t0, t1), (v0, v1) = ax.get_xlim(), ax.get_ylim()
+    T = np.geomspace(t0, t1, 2)
+    style = dict(color="0.55", lw=0.6, zorder=0.5)
+    text = dict(fontsize=7, color="0.35", ha="center", va="center",
+                bbox=dict(fc="white", ec="none", alpha=0.7, pad=0.5))
+    for sd in _decades(v0 * t0 / (2 * np.pi), v1 * t1 / (2 * np.pi)):  # PSv = 2π Sd / T
+        ax.plot(T, 2 * np.pi * sd / T, ls="--", gid=f"sd {sd:g} m", **style)
+        lo, hi = max(t0, 2 * np.pi * sd / v1), min(t1, 2 * np.pi * sd / v0)
+        tm = np.sqrt(lo * hi)
+        ax.text(tm, 2 * np.pi * sd / tm, f"Sd {sd:g} m", **text)
+    for psa in _decades(2 * np.pi * v0 / (t1 * unit), 2 * np.pi * v1 / (t0 * unit)):  # PSv = PSa T / 2π
+        a = psa * unit
+        ax.plot(T, a * T / (2 * np.pi), ls=":", gid=f"psa {psa:g} {unit_name}", **style)
+        lo, hi = max(t0, 2 * np.pi * v0 / a), min(t1, 2 * np.pi * v1 / a)
+        tm = np.sqrt(lo * hi)
+        ax.text(tm, a * tm / (2 * np.pi), f"PSa {psa:g} {unit_name}", **text)
+    ax.set_xlim(t0, t1)
+    ax.set_ylim(v0, v1)
 
 
 def plot_relative_motion(rm, *, ax=None, title=None, estimates=True):

@@ -320,7 +320,11 @@ def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
     inv_om2 = 1.0 / om2
     h_prev = -1.0
     h8 = k2u = k2v = k2a = 0.0
-    for k in range(n):  # pass 2: pieces whose bound can beat the sample maxima
+    flag = np.empty(n, dtype=np.bool_)
+    _screen(h, p0, p1, s, us, vs, xg, vg, om, ze, best, flag)
+    for k in range(n):  # pass 2: pieces whose bound can beat the running maxima
+        if not flag[k]:
+            continue
         hk = h[k]
         if s[k] != 0.0:  # sine pieces: bounds from the coefficients, then refine
             for q in range(4):
@@ -371,6 +375,53 @@ def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
         if thr < 0.0 or R2 > thr * thr:
             _refine(k, 3, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
                     ws1, ws2, stack)
+
+
+@njit(cache=True, error_model="numpy")  # no zero-division branch: vectorises
+def _screen(h, p0, p1, s, us, vs, xg, vg, om, ze, best, flag):
+    """flag[k]: piece k passes any of the four tests of ``_one``'s pass 2 against ``best``.
+
+    The same arithmetic as there, branch-free so that it vectorises; the maxima only grow
+    during pass 2 and every test is monotone in them, so the flagged pieces include all
+    that pass 2 refines, which stays exact by re-testing them with the running maxima.
+    Sine pieces are always flagged.
+    """
+    al = ze * om
+    be = om * np.sqrt(1.0 - ze * ze)
+    om2 = om * om
+    tz = 2.0 * ze * om
+    inv_be = 1.0 / be
+    inv_om = 1.0 / om
+    inv_om2 = 1.0 / om2
+    b0, b1, b2, b3 = best[0], best[1], best[2], best[3]
+    for k in range(h.size):
+        hk = h[k]
+        h8 = 0.125 * hk * hk
+        k2u = 1.0 / (om2 * h8)
+        k2v = k2u * inv_om
+        k2a = k2u * inv_om2
+        A1 = -p1[k] * inv_om2
+        A0 = -p0[k] * inv_om2 - 2.0 * ze * A1 * inv_om
+        c = us[k] - A0
+        d = (vs[k] - A1 + al * c) * inv_be
+        R2 = c * c + d * d
+        u0, u1, v0, v1 = us[k], us[k + 1], vs[k], vs[k + 1]
+        t0 = _max(b0 - _max(abs(A0), abs(A0 + A1 * hk)), (b0 - _max(abs(u0), abs(u1))) * k2u)
+        t1 = _max((b1 - abs(A1)) * inv_om, (b1 - _max(abs(v0), abs(v1))) * k2v)
+        pa = _max(abs(p0[k]), abs(p0[k] + p1[k] * hk))
+        ends = _max(abs(tz * v0 + om2 * u0), abs(tz * v1 + om2 * u1))
+        t2 = _max((b2 - pa) * inv_om2, (b2 - ends) * k2a)
+        poly = abs(A0 + xg[k]) + hk * (abs(A1 + vg[k]) + hk * (0.5 * abs(p0[k]) + hk * abs(p1[k]) / 6.0))
+        ends = _max(abs(u0 + xg[k]), abs(u1 + xg[k + 1]))
+        t3 = _max(b3 - poly, (b3 - ends - pa * h8) * k2u)
+        flag[k] = ((s[k] != 0.0) | (t0 < 0.0) | (R2 > t0 * t0) | (t1 < 0.0) | (R2 > t1 * t1)
+                   | (t2 < 0.0) | (R2 > t2 * t2) | (t3 < 0.0) | (R2 > t3 * t3))
+
+
+@njit(cache=True, inline="always")
+def _max(a, b):
+    """max(a, b) as a select (vectorisable); the same value as ``max`` for numbers."""
+    return a if a > b else b
 
 
 @njit(cache=True)
