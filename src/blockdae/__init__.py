@@ -16,7 +16,7 @@ from ._simulate import simulate
 from ._solution import BatchSolution, Event, EventLog, Solution
 from ._sweep import SweepSolution, simulate_many
 from ._units import STANDARD_GRAVITY
-from .excitation import (AbstractExcitation, Harmonic, Record, RectangularPulse, SinePulse,
+from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_record)
 from .model import AbstractHybridModel, Mode, SlidingBlock
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
@@ -26,7 +26,7 @@ from .structures import Floor, ShearFrame
 from .study import load_study, save_study, study, summary as study_summary
 
 __all__ = [
-    "AbstractExcitation", "AbstractHybridModel", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
+    "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "check_peak_acceleration", "read_record", "simulate",
     "SweepSolution", "simulate_many",
