@@ -14,11 +14,12 @@ from ._plot import plot
 from ._sensitivities import sensitivities
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, EventLog, Solution
+from ._solution_planar import PlanarEvent, PlanarSolution
 from ._sweep import SweepSolution, simulate_many
 from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_record)
-from .model import AbstractHybridModel, Mode, SlidingBlock
+from .model import AbstractHybridModel, Mode, PlanarBlock, PlanarMode, SlidingBlock
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
                       cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
                       relative_motion, response_spectrum)
@@ -29,6 +30,7 @@ __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "check_peak_acceleration", "read_record", "simulate",
+    "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution",
     "SweepSolution", "simulate_many",
     "FinalNumbers", "simulate_final",
     "CrossCheck", "crosscheck",

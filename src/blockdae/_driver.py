@@ -11,23 +11,22 @@ mode and reports guard roots. Per piece of the excitation the driver
 3. at a guard root logs the :class:`Event`, asks the model for the next mode and
    restarts the integrator.
 
-Callbacks see a :class:`PieceExcitation` (one closed form) and the :data:`SCALAR`
-namespace, so the model's own ``flow``/``guards`` run on Python floats in a few µs.
+Callbacks see a :class:`PieceExcitation` (one closed form per component) and the
+:data:`SCALAR` namespace, so the model's own ``flow``/``guards`` run on Python floats in
+a few µs. Everything that depends on the model's state (which modes keep it constant,
+what a stop resets, where a guard may turn) is asked of the model, so one loop serves
+every :class:`~blockdae.model.AbstractHybridModel`.
 """
 
 import abc
 import math
-import types
 
 import numpy as np
 
 from ._solution import Event, Solution
-from .backends._base import never_rests_error
 from .excitation._pieces import accel, accel_rate
-from .model import Mode, comes_to_rest
+from .model._base import SCALAR
 
-#: array namespace for the model's xp-generic rules on Python floats
-SCALAR = types.SimpleNamespace(stack=tuple, where=lambda cond, a, b: a if cond else b)
 
 _EPS = np.finfo(float).eps
 _TURN_BISECTIONS = 60  # halves a piece below 1e-18 of its length
@@ -40,23 +39,39 @@ _V_ERROR_FACTOR = 10.0
 
 
 class PieceExcitation:
-    """a(t) [m/s²] on one monotone piece, in closed form; stands in for the excitation
-    in the model's rules inside solver callbacks (``acceleration``, ``acceleration_rate``)."""
+    """The base acceleration [m/s²] on one monotone piece, in closed form, one
+    (p0, p1, s, w, phi) per component; stands in for the excitation in the model's
+    rules inside solver callbacks. ``acceleration``/``acceleration_rate`` give the first
+    component (a 1-D motion), ``component``/``component_rate`` any of them."""
 
     __slots__ = ("t0", "coefficients")
 
-    def __init__(self):
-        self.t0, self.coefficients = 0.0, (0.0,) * 5
+    def __init__(self, n_components=1):
+        self.t0, self.coefficients = 0.0, ((0.0,) * 5,) * n_components
 
     def set(self, t0, coefficients):
-        """Switch to the piece starting at ``t0`` [s] with (p0, p1, s, w, phi)."""
-        self.t0, self.coefficients = float(t0), tuple(float(c) for c in coefficients)
+        """Switch to the piece starting at ``t0`` [s] with one (p0, p1, s, w, phi) per component."""
+        self.t0 = float(t0)
+        self.coefficients = tuple(tuple(float(c) for c in component) for component in coefficients)
+
+    def component(self, index, t):
+        """Component ``index`` of the base acceleration at ``t`` [m/s²]."""
+        return accel(*self.coefficients[index], t - self.t0, math)
+
+    def component_rate(self, index, t):
+        """Its rate just after ``t`` [m/s³]."""
+        return accel_rate(*self.coefficients[index], t - self.t0, math)
 
     def acceleration(self, t):
-        return accel(*self.coefficients, t - self.t0, math)
+        return self.component(0, t)
 
     def acceleration_rate(self, t):
-        return accel_rate(*self.coefficients, t - self.t0, math)
+        return self.component_rate(0, t)
+
+    @property
+    def highest_frequency(self):
+        """Largest angular frequency of a sine term on the piece [rad/s] (0: none)."""
+        return max((c[3] for c in self.coefficients if c[2] != 0), default=0.0)
 
 
 class SolverError(RuntimeError):
@@ -66,21 +81,22 @@ class SolverError(RuntimeError):
 class AbstractIntegrator(abc.ABC):
     """One solver in one mode at a time, as the driver sees it.
 
-    Built by a backend for one run with the block and the driver's
+    Built by a backend for one run with the model and the driver's
     :class:`PieceExcitation`, whose coefficients change between calls.
     """
 
     @abc.abstractmethod
-    def restart(self, mode: Mode, t: float, y: np.ndarray) -> None:
-        """Start afresh in ``mode`` at ``t`` [s] from y = (u [m], v [m/s])."""
+    def restart(self, mode, t: float, y: np.ndarray) -> None:
+        """Start afresh in ``mode`` at ``t`` [s] from the model's state ``y``."""
 
     @abc.abstractmethod
     def step(self, t_out: float, t_stop: float) -> tuple[float, np.ndarray, int | None]:
         """Integrate to ``t_out`` <= ``t_stop`` [s] or to the first guard root, with no
         internal step past ``t_stop``.
 
-        Returns (t [s], (u, v), index of the guard that reached zero, or None when
-        ``t_out`` was reached). Raises :class:`SolverError` on failure.
+        Returns (t [s], state (the model's states first), index of the guard that
+        reached zero, or None when ``t_out`` was reached). Raises :class:`SolverError`
+        on failure.
         """
 
     @property
@@ -89,57 +105,64 @@ class AbstractIntegrator(abc.ABC):
         """Solver counters (steps, right-hand-side calls, ...)."""
 
 
-def drive(block, excitation, horizon, integrator_factory, backend_name, max_events_at_one_instant,
+def drive(model, excitation, horizon, integrator_factory, backend_name, max_events_at_one_instant,
           event_resolution, velocity_tolerance):
-    """Run ``block`` under ``excitation`` to ``horizon`` with one integrator.
+    """Run ``model`` under ``excitation`` to ``horizon`` with one integrator.
 
     Args:
-        integrator_factory: ``(block, piece) -> AbstractIntegrator``.
-        backend_name: recorded in the :class:`Solution`.
+        integrator_factory: ``(model, piece) -> AbstractIntegrator``.
+        backend_name: recorded in the solution.
         max_events_at_one_instant: most consecutive events at one instant [-]; more
             (chatter) raises an error instead of looping.
         event_resolution: events closer than this [s] are one instant: a stop where
             a threshold is crossed within it grazes or reverses (the model's
-            ``stop_mode``), and chatter is counted over it.
+            ``mode_after_guard``), and chatter is counted over it.
         velocity_tolerance: (rtol [-], atol [m/s]) of the integrator; a stop is
-            uncertain by the time v needs to change by a few of these (see
+            uncertain by the time the guard needs to change by a few of these (see
             ``_Run.stop_uncertainty``), which widens ``event_resolution`` at grazes.
     """
-    pieces = excitation.pieces(horizon.integration_end(excitation))
-    run = _Run(block, integrator_factory, max_events_at_one_instant, event_resolution, velocity_tolerance)
-    starts = np.append(pieces.t0[1:], pieces.t_end)
-    for k in range(len(pieces.t0)):
-        run.piece(pieces.t0[k], starts[k], tuple(c[k] for c in pieces[2:]))
+    components = model.excitation_pieces(excitation, horizon.integration_end(excitation))
+    run = _Run(model, len(components), integrator_factory, max_events_at_one_instant, event_resolution,
+               velocity_tolerance)
+    t0, h = components[0].t0, components[0].h
+    starts = np.append(t0[1:], t0[-1] + h[-1])
+    for k in range(len(t0)):
+        run.piece(t0[k], starts[k], tuple(tuple(c[k] for c in p[2:]) for p in components))
     if horizon.until_rest:
-        run.tail_to_rest(pieces.t_end)
+        run.tail_to_rest(float(starts[-1]))
     return run.solution(backend_name)
 
 
 class _Run:
     """State of one run: time, state, mode, knots and events."""
 
-    def __init__(self, block, integrator_factory, max_events_at_one_instant, event_resolution,
+    def __init__(self, model, n_components, integrator_factory, max_events_at_one_instant, event_resolution,
                  velocity_tolerance):
-        self.block, self.resolution = block, event_resolution
+        self.model, self.resolution = model, event_resolution
         self.velocity_tolerance, self.v_max = velocity_tolerance, 0.0
-        self.piece_excitation = PieceExcitation()
-        self.integrator = integrator_factory(block, self.piece_excitation)
+        self.piece_excitation = PieceExcitation(n_components)
+        self.integrator = integrator_factory(model, self.piece_excitation)
         self.cap = max_events_at_one_instant
-        self.t, self.y, self.mode = 0.0, np.zeros(2), Mode.STICK
+        self.n_states = len(model.state_names)
+        self.mode, self.y = model.initial_mode, np.zeros(self.n_states)
+        self.t = 0.0
         self.events, self.run_length, self.max_run = [], 0, 0
         self.restarted = True
         self.knots = _Knots()
-        self.knots.add(self.t, self.y, self.mode, 0.0, 0.0)
+        self.knots.add(self.t, self.y, self.mode, self.y, self.y)
 
     # ---- model rules on the current piece ---------------------------------
-    def slip_rate(self, mode, t, y):
-        """dv/dt [m/s²] in ``mode`` from the model's flow."""
-        return self.block.flow(mode, t, y, self.piece_excitation, SCALAR)[1]
+    def rate(self, mode, t, y):
+        """dy/dt in ``mode`` from the model's flow, as an array."""
+        return np.array(self.model.flow(mode, t, y, self.piece_excitation, SCALAR), dtype=float)
+
+    def to_mode(self, value):
+        return self.model.modes(int(value))
 
     # ---- the loop ----------------------------------------------------------
     def enter_piece(self, t0, coefficients):
         """Switch to the piece starting at ``t0`` [s]; a block at rest re-takes the mode
-        the right-hand limits of a(t) give.
+        the right-hand limits of the excitation give.
 
         The integrator restarts at every piece, in every mode: a multistep history
         carried across a kink or jump of a(t) fits one polynomial to two pieces
@@ -149,26 +172,26 @@ class _Run:
         only, 1.0e-9 s in every mode).
         """
         self.piece_excitation.set(t0, coefficients)
-        self.knots.set_right_rate(self.slip_rate(self.mode, self.t, self.y))
+        self.knots.set_right_rate(self.rate(self.mode, self.t, self.y))
         self.restarted = True
-        if self.mode == Mode.STICK or self.y[1] == 0:
-            rest = Mode(int(self.block.mode_at_rest(t0, self.piece_excitation, SCALAR)))
+        if self.model.at_rest(self.mode, self.y):
+            rest = self.to_mode(self.model.mode_at_rest(t0, self.piece_excitation, SCALAR))
             if rest != self.mode:
-                self.y = np.array([self.y[0], 0.0])
+                self.y = self.model.rest_state(self.y)
                 self.log_event(float(t0), rest)
 
     def piece(self, t0, end, coefficients):
-        """Integrate over one piece [t0, end] [s] of a(t)."""
+        """Integrate over one piece [t0, end] [s] of the excitation."""
         self.enter_piece(t0, coefficients)
         self.advance_to(float(end))
 
-    def advance_to(self, end, until_stick=False):
-        if self.mode == Mode.STICK and not self.guard_changes_sign(end):
-            self.t, self.restarted = end, True  # the state is constant in stick
-            self.knots.add(end, self.y, self.mode, 0.0, 0.0)
+    def advance_to(self, end, until_rest=False):
+        if self.model.is_static(self.mode) and not self.guard_may_reach_zero(end):
+            self.t, self.restarted = end, True  # the state is constant and stays in the mode
+            self.knots.add(end, self.y, self.mode, np.zeros(self.n_states), np.zeros(self.n_states))
             return
         turn = self.turning_point(end)
-        while self.t < end and not (until_stick and self.mode == Mode.STICK):
+        while self.t < end and not (until_rest and self.model.is_static(self.mode)):
             if self.restarted:
                 self.integrator.restart(self.mode, self.t, self.y)
                 self.restarted = False
@@ -179,10 +202,10 @@ class _Run:
                 continue
             t_out = min(target, self.t + self.output_step())
             t, y, root = self.integrator.step(t_out, target)
-            self.t, self.y = (t_out if root is None else float(t)), np.array(y[:2], dtype=float)
-            self.v_max = max(self.v_max, abs(self.y[1]))
+            self.t, self.y = (t_out if root is None else float(t)), np.array(y[:self.n_states], dtype=float)
+            self.v_max = max(self.v_max, self.model.speed(self.y))
             if root is None:
-                rate = self.slip_rate(self.mode, self.t, self.y)
+                rate = self.rate(self.mode, self.t, self.y)
                 self.knots.add(self.t, self.y, self.mode, rate, rate)
             else:
                 self.on_guard(root)
@@ -192,26 +215,32 @@ class _Run:
         """Largest gap between knots [s]: cubic Hermite is exact for the cubic u of a
         linear piece; on a sine piece of angular frequency w, 1 / (32 w) keeps its
         error near 1e-9 of the amplitude (h^4 w^4 / 384)."""
-        w = self.piece_excitation.coefficients[3]
-        return 1.0 / (_KNOTS_PER_RADIAN * w) if self.piece_excitation.coefficients[2] != 0 else math.inf
+        w = self.piece_excitation.highest_frequency
+        return 1.0 / (_KNOTS_PER_RADIAN * w) if w > 0 else math.inf
 
-    def guard_changes_sign(self, end):
-        """Whether a guard of the mode may reach zero before ``end`` [s]. Stick guards
-        are monotone on a piece, so positive values at both ends exclude a root and the
-        integrator need not run (it restarts, exactly, where the state is constant)."""
-        guards = lambda t: self.block.guards(self.mode, t, self.y, self.piece_excitation, SCALAR)
-        return min(guards(end)) <= 0 or min(guards(self.t)) <= 0
+    def guard_may_reach_zero(self, end):
+        """Whether a guard of a static mode may reach zero before ``end`` [s]. The
+        model's ``turn_rate`` splits the piece where a guard may turn, so that positive
+        values at the ends and at the split exclude a root and the integrator need not
+        run (it restarts, exactly, where the state is constant)."""
+        guards = lambda t: self.model.guards(self.mode, t, self.y, self.piece_excitation, SCALAR)
+        turn = self.turning_point(end)
+        times = (self.t, end) if turn is None else (self.t, turn, end)
+        return any(min(guards(t)) <= 0 for t in times)
 
     def turning_point(self, end):
-        """In slip: the time in (t, end) [s] where dv/dt changes sign (dv/dt is monotone
-        on a piece), so that v is monotone between stops; None if there is none."""
-        if self.mode == Mode.STICK:
-            return None
+        """The time in (t, end) [s] where the model's ``turn_rate`` changes sign (it is
+        monotone on a piece), so that the guards are monotone between stops; None if
+        there is none or the mode has no turn rate."""
+        rate = lambda t: self.model.turn_rate(self.mode, t, self.y, self.piece_excitation, SCALAR)
         lo, hi = self.t, end
-        sign_lo = math.copysign(1.0, self.slip_rate(self.mode, lo, self.y))
-        # before the turn: dv/dt strictly of the sign at lo (a zero of either sign, +0.0
-        # or -0.0, counts as turned, so that a(t) -> -a(t) mirrors the turn exactly)
-        before = lambda t: sign_lo * self.slip_rate(self.mode, t, self.y) > 0
+        first = rate(lo)
+        if first is None:
+            return None
+        sign_lo = math.copysign(1.0, first)
+        # before the turn: the rate strictly of the sign at lo (a zero of either sign,
+        # +0.0 or -0.0, counts as turned, so that a(t) -> -a(t) mirrors the turn exactly)
+        before = lambda t: sign_lo * rate(t) > 0
         if before(hi):
             return None
         for _ in range(_TURN_BISECTIONS):
@@ -222,66 +251,67 @@ class _Run:
         return hi if hi < end else None
 
     def on_guard(self, index):
-        """A guard of the current mode reached zero at ``self.t``."""
-        before = self.mode
-        if before != Mode.STICK:
-            self.y = np.array([self.y[0], 0.0])  # a stop: v = 0 by definition
-        after = Mode(int(self.block.mode_after_guard(before, index, self.t, self.y, self.piece_excitation,
-                                                     SCALAR, self.stop_uncertainty())))
-        rate = self.slip_rate(before, self.t, self.y)
+        """Guard ``index`` of the current mode reached zero at ``self.t``."""
+        model, before = self.model, self.mode
+        self.y = model.state_at_guard(before, index, self.y)
+        after = self.to_mode(model.mode_after_guard(before, index, self.t, self.y, self.piece_excitation,
+                                                    SCALAR, self.stop_uncertainty(index)))
+        rate = self.rate(before, self.t, self.y)
         self.knots.add(self.t, self.y, before, rate, rate)
-        if after != before:
+        if after != before or model.guard_restarts(before, index):
             self.log_event(self.t, after)
 
-    def stop_uncertainty(self):
-        """How far [s] the located stop may lie from the true one, at least the event
-        resolution. With the velocity error e (``_V_ERROR_FACTOR`` local tolerances),
-        v' at the stop and v'' = -da/dt, the root of v moves by the d that solves
-        |v'| d + |v''| d²/2 = e: e / |v'| at a crossing, sqrt(2 e / |v''|) at a graze."""
+    def stop_uncertainty(self, index):
+        """How far [s] the located root of guard ``index`` may lie from the true one, at
+        least the event resolution. With the error e of the guard (``_V_ERROR_FACTOR``
+        local tolerances of the velocities) and the guard's rate g' and curvature g''
+        from the model, the root moves by the d that solves |g'| d + |g''| d²/2 = e:
+        e / |g'| at a crossing, sqrt(2 e / |g''|) at a graze."""
         rtol, atol = self.velocity_tolerance
         error = _V_ERROR_FACTOR * (rtol * self.v_max + atol)
-        slope = abs(self.slip_rate(self.mode, self.t, self.y))
-        curvature = abs(self.piece_excitation.acceleration_rate(self.t))
+        slope, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
+        slope, curvature = abs(slope), abs(curvature)
+        if slope == curvature == 0:  # a guard that does not move: its root is where it was found
+            return self.resolution
         return max(self.resolution, 2 * error / (slope + math.sqrt(slope**2 + 2 * curvature * error)))
 
     def log_event(self, t, after):
         same_instant = bool(self.events) and abs(t - self.events[-1].t) <= self.resolution
         self.run_length = self.run_length + 1 if same_instant else 1
         self.max_run = max(self.max_run, self.run_length)
-        self.events.append(Event(float(t), self.mode, after, float(self.y[0]), float(self.y[1])))
+        before, model = self.mode, self.model
+        self.events.append(model.event(float(t), before, after, self.y))
+        self.y = model.state_on_entry(before, after, t, self.y, self.piece_excitation, SCALAR)
         if self.run_length > self.cap:
             modes = " -> ".join(e.mode_before.name for e in self.events[-self.run_length:])
             raise RuntimeError(
                 f"{self.run_length} events at t = {t:.12g} s ({modes} -> {after.name}): chatter; "
                 f"raise max_events_at_one_instant={self.cap}")
         self.mode, self.restarted = after, True
-        self.knots.add(t, self.y, after, 0.0, self.slip_rate(after, t, self.y))
+        self.knots.add(t, self.y, after, np.zeros(self.n_states), self.rate(after, t, self.y))
 
     def tail_to_rest(self, t_end):
-        """After the excitation (a = 0): slide until the stop guard fires."""
-        self.enter_piece(t_end, (0.0,) * 5)
-        if self.mode == Mode.STICK:
+        """After the excitation (zero acceleration): run until the model is at rest in a
+        static mode, within the model's bound on the time that takes."""
+        self.enter_piece(t_end, ((0.0,) * 5,) * len(self.piece_excitation.coefficients))
+        if self.model.is_static(self.mode):
             return
-        block = self.block
-        if not comes_to_rest(self.y[1], self.mode, block.bias, block.friction_kinetic, block.g):
-            raise never_rests_error(block)
-        rate = self.slip_rate(self.mode, self.t, self.y)
-        bound = self.t + 2.0 * abs(self.y[1] / rate)  # dv/dt is constant: the stop is half-way
-        self.advance_to(bound, until_stick=True)
-        if self.mode != Mode.STICK:
-            raise RuntimeError(f"{self.mode.name} found no stop by t = {bound:.6g} s after the excitation")
+        bound = self.t + self.model.time_to_rest(self.mode, self.y)
+        self.advance_to(bound, until_rest=True)
+        if not self.model.is_static(self.mode):
+            raise RuntimeError(f"{self.mode.name} found no rest by t = {bound:.6g} s after the excitation")
 
     def solution(self, backend_name):
-        t, u, v, mode, rate_start, rate_end = self.knots.arrays()
+        t, y, mode, rate_start, rate_end = self.knots.arrays()
         stats = {"max_events_at_one_instant": self.max_run, "n_events": len(self.events),
                  **self.integrator.stats}
-        return Solution(t=t, u=u, v=v, mode=mode, events=tuple(self.events), backend=backend_name,
-                        dense=HermiteDense(t, u, v, rate_start, rate_end), stats=stats)
+        return self.model.solution(t=t, y=y, mode=mode, events=tuple(self.events), backend=backend_name,
+                                   dense=HermiteDense(t, y, rate_start, rate_end), stats=stats)
 
 
 class _Knots:
-    """Knots of a run. Interval i = [t_i, t_i+1] runs in ``mode[i]``; dv/dt is
-    ``rate_start[i]`` just after t_i and ``rate_end[i]`` just before t_i+1 [m/s²]."""
+    """Knots of a run. Interval i = [t_i, t_i+1] runs in ``mode[i]``; dy/dt is
+    ``rate_start[i]`` just after t_i and ``rate_end[i]`` just before t_i+1."""
 
     def __init__(self):
         self.rows, self.rate_end = [], []
@@ -289,33 +319,35 @@ class _Knots:
     def add(self, t, y, mode_after, rate_left, rate_right):
         """A knot at ``t`` [s]; ``rate_left`` ends the previous interval."""
         if self.rows:
-            self.rate_end.append(rate_left)
-        self.rows.append([t, y[0], y[1], int(mode_after), rate_right])
+            self.rate_end.append(np.array(rate_left, dtype=float))
+        self.rows.append([t, np.array(y, dtype=float), int(mode_after), np.array(rate_right, dtype=float)])
 
     def set_right_rate(self, rate_right):
-        """dv/dt just after the last knot, once the excitation's next piece is known."""
-        self.rows[-1][4] = rate_right
+        """dy/dt just after the last knot, once the excitation's next piece is known."""
+        self.rows[-1][3] = np.array(rate_right, dtype=float)
 
     def arrays(self):
-        t, u, v, mode, rate_start = (np.array(c) for c in zip(*self.rows))
-        return t, u, v, mode.astype(int), rate_start, np.append(self.rate_end, 0.0)
+        """t (n,), y (n, k), mode (n,), rate_start (n, k), rate_end (n, k)."""
+        t, y, mode, rate_start = zip(*self.rows)
+        rate_end = np.array(self.rate_end + [np.zeros_like(y[0])]).reshape(len(t), -1)
+        return np.array(t), np.array(y), np.array(mode, dtype=int), np.array(rate_start), rate_end
 
 
 class HermiteDense:
-    """u(t), v(t) between knots by cubic Hermite interpolation of (u, v) with slopes
-    (v, dv/dt) [m, m/s]."""
+    """The state between knots by cubic Hermite interpolation of each component of y
+    with slopes dy/dt; ``__call__(t)`` returns a tuple of k arrays of t's shape."""
 
-    def __init__(self, t, u, v, rate_start, rate_end):
-        self.t, self.u, self.v = t, u, v
+    def __init__(self, t, y, rate_start, rate_end):
+        self.t, self.y = t, y
         self.rate_start, self.rate_end = rate_start, rate_end
 
     def __call__(self, t):
+        t = np.asarray(t, dtype=float)
         i = np.clip(np.searchsorted(self.t, t, side="right") - 1, 0, len(self.t) - 2)
         h = self.t[i + 1] - self.t[i]
         s = np.where(h > 0, (t - self.t[i]) / np.where(h > 0, h, 1.0), 0.0)
         h00, h10 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s
         h01, h11 = -2 * s**3 + 3 * s**2, s**3 - s**2
-        u = h00 * self.u[i] + h10 * h * self.v[i] + h01 * self.u[i + 1] + h11 * h * self.v[i + 1]
-        v = (h00 * self.v[i] + h10 * h * self.rate_start[i] + h01 * self.v[i + 1]
-             + h11 * h * self.rate_end[i])
-        return u, v
+        y0, y1 = np.moveaxis(self.y[i], -1, 0), np.moveaxis(self.y[i + 1], -1, 0)
+        d0, d1 = np.moveaxis(self.rate_start[i], -1, 0), np.moveaxis(self.rate_end[i], -1, 0)
+        return tuple(h00 * y0 + h10 * h * d0 + h01 * y1 + h11 * h * d1)

@@ -3,22 +3,29 @@
 import dataclasses
 
 from ._solution import BatchSolution, Solution
-from .backends import Horizon, make_backend
-from .excitation import AbstractExcitation
-from .model import SlidingBlock
+from .backends import Horizon, available, make_backend
+from ._solution_planar import PlanarSolution
+from .excitation import AbstractExcitation, BaseMotion
+from .model import PlanarBlock, SlidingBlock
+
+#: the backend each model runs on unless told otherwise
+DEFAULT_BACKEND = {SlidingBlock: "exact", PlanarBlock: "cvode"}
 
 
-def simulate(block: SlidingBlock, motion: AbstractExcitation, t_end: float | None = None,
-             backend: str = "exact", **options) -> Solution | BatchSolution:
+def simulate(block: SlidingBlock | PlanarBlock, motion: AbstractExcitation | BaseMotion,
+             t_end: float | None = None, backend: str | None = None,
+             **options) -> Solution | BatchSolution | PlanarSolution:
     """Slide ``block`` on a base moving with ``motion``.
 
     Args:
-        block: the block; a batch of parameter sets if its parameters are arrays.
-        motion: base excitation.
+        block: a :class:`SlidingBlock` (a batch of parameter sets if its parameters
+            are arrays) or a :class:`PlanarBlock`.
+        motion: base excitation; for a PlanarBlock also a :class:`BaseMotion` (x, y, z
+            components; a 1-D excitation is its x component).
         t_end: final time [s]. None: until the block has come to rest after a finite
             excitation ends.
-        backend: "exact" (closed form), or another name from
-            ``blockdae.backends.available()``.
+        backend: a name from ``blockdae.backends.available()``; None: "exact" (closed
+            form) for a SlidingBlock, "cvode" for a PlanarBlock.
         **options: settings of the backend, name=default: meaning [unit]
             (tests check this list against the backends' fields)
 
@@ -50,11 +57,17 @@ def simulate(block: SlidingBlock, motion: AbstractExcitation, t_end: float | Non
         A :class:`Solution`, or a :class:`BatchSolution` for a batch; either keeps
         ``block`` and ``motion``. For several motions or scales: :func:`simulate_many`.
     """
-    if not isinstance(block, SlidingBlock):
-        raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
-    if not isinstance(motion, AbstractExcitation):
-        raise TypeError(f"motion must be an excitation (Harmonic, Record, ...), got {type(motion).__name__}")
+    if not isinstance(block, tuple(DEFAULT_BACKEND)):
+        raise TypeError(f"block must be a SlidingBlock or a PlanarBlock, got {type(block).__name__}")
+    planar = isinstance(block, PlanarBlock)
+    if not isinstance(motion, (AbstractExcitation, BaseMotion) if planar else AbstractExcitation):
+        kinds = "an excitation (Harmonic, Record, ...)" + (" or a BaseMotion" if planar else "")
+        raise TypeError(f"motion must be {kinds}, got {type(motion).__name__}")
     horizon = Horizon.resolve(motion, t_end)
+    backend = DEFAULT_BACKEND[type(block)] if backend is None else backend
     solver = make_backend(backend, **options)
+    if not isinstance(block, solver.models):
+        raise ValueError(f"backend={backend!r} does not run a {type(block).__name__}; choose one of "
+                         f"{[name for name in available() if isinstance(block, make_backend(name).models)]}")
     result = solver.solve_batch(block, motion, horizon) if block.batch_shape else solver.solve(block, motion, horizon)
     return dataclasses.replace(result, block=block, motion=motion)

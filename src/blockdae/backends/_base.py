@@ -8,7 +8,7 @@ import numpy as np
 
 from .._solution import BatchSolution, Solution
 from ..excitation import AbstractExcitation
-from ..model import SlidingBlock
+from ..model import SlidingBlock, never_rests_error  # noqa: F401 (backends raise it)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -38,13 +38,6 @@ class Horizon:
         return excitation.duration if self.t_end is None else self.t_end
 
 
-def never_rests_error(block: SlidingBlock, where: str = "") -> ValueError:
-    """The error for a block that slides on forever after a finite excitation."""
-    return ValueError(
-        f"the block never comes to rest after the excitation{where}: kinetic friction "
-        f"mu_kinetic={block.friction_kinetic} does not exceed |bias|={abs(block.bias)}; give t_end [s]")
-
-
 def batch_params(block: SlidingBlock) -> tuple[np.ndarray, ...]:
     """(mu, f, bias, g, scale) as arrays of the block's batch shape, for compiled kernels."""
     shape = block.batch_shape
@@ -67,6 +60,8 @@ class AbstractBackend(abc.ABC):
     """
 
     name: str
+    #: the model types this backend runs
+    models: tuple[type, ...] = (SlidingBlock,)
 
     @abc.abstractmethod
     def solve(self, block: SlidingBlock, excitation: AbstractExcitation, horizon: Horizon) -> Solution:

@@ -5,6 +5,7 @@ import dataclasses
 from sksundae.cvode import CVODE
 
 from .._driver import SCALAR
+from ..model import PlanarBlock, SlidingBlock
 from ._sundials import Guards, SundialsBackend, SundialsIntegrator
 
 #: CVODE's first step after every (re)start [s]. A restart begins at order 1, and
@@ -25,6 +26,7 @@ class CVODEBackend(SundialsBackend):
     every piece of a(t), each time from a first step of :data:`FIRST_STEP` [s]."""
 
     name = "cvode"
+    models = (SlidingBlock, PlanarBlock)
 
     def _integrator(self, block, piece):
         return _CVODEIntegrator(block, piece, self.solver_options())
@@ -43,7 +45,7 @@ class _CVODEIntegrator(SundialsIntegrator):
         block, piece = self.block, self.piece
 
         def rhs(t, y, yp):
-            yp[0], yp[1] = block.flow(mode, t, y, piece, SCALAR)
+            yp[:] = block.flow(mode, t, y, piece, SCALAR)
 
         return CVODE(rhs, eventsfn=guards, num_events=len(guards.direction), method="Adams",
                      first_step=FIRST_STEP, **options)

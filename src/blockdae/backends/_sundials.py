@@ -14,11 +14,7 @@ from numbers import Integral, Real
 import numpy as np
 
 from .._driver import SCALAR, AbstractIntegrator, SolverError, drive
-from ..model import Mode
 from ._base import AbstractBackend
-
-_MODES = (Mode.STICK, Mode.SLIP_POS, Mode.SLIP_NEG)
-
 
 @dataclasses.dataclass(frozen=True)
 class SundialsBackend(AbstractBackend):
@@ -87,7 +83,7 @@ class Guards:
 
     def __init__(self, block, piece, mode):
         self.block, self.piece, self.mode = block, piece, mode
-        count = len(block.guards(mode, piece.t0, (0.0, 0.0), piece, SCALAR))
+        count = len(block.guards(mode, piece.t0, np.zeros(len(block.state_names)), piece, SCALAR))
         self.terminal = [True] * count
         self.direction = [-1] * count  # every guard leaves its mode crossing zero downwards
 
@@ -116,9 +112,9 @@ class SundialsIntegrator(AbstractIntegrator):
     guards_class: type
     def __init__(self, block, piece, options):
         self.block, self.piece = block, piece
-        self.guards = {mode: self.guards_class(block, piece, mode) for mode in _MODES}
-        self.solvers = {mode: self._build(mode, self.guards[mode], options) for mode in _MODES}
-        self.mode = Mode.STICK
+        self.guards = {mode: self.guards_class(block, piece, mode) for mode in block.modes}
+        self.solvers = {mode: self._build(mode, self.guards[mode], options) for mode in block.modes}
+        self.mode = block.initial_mode
         self.counts = {"n_restarts": 0, "n_calls": 0}
 
     @abc.abstractmethod

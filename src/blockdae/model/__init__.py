@@ -1,9 +1,10 @@
 """Pure physics: modes, flows, guards and transition rules."""
 
 from ._base import AbstractHybridModel
-from ._block import (SlidingBlock, comes_to_rest, demand, relative_acceleration, rest_mode, slip_constant,
-                     stick_guards, stop_mode)
+from ._block import (SlidingBlock, comes_to_rest, demand, never_rests_error, relative_acceleration, rest_mode,
+                     slip_constant, stick_guards, stop_mode)
 from ._modes import Mode
+from ._planar import PlanarBlock, PlanarMode
 
-__all__ = ["AbstractHybridModel", "Mode", "SlidingBlock", "comes_to_rest", "demand", "relative_acceleration",
-           "rest_mode", "slip_constant", "stick_guards", "stop_mode"]
+__all__ = ["AbstractHybridModel", "Mode", "PlanarBlock", "PlanarMode", "SlidingBlock", "comes_to_rest", "demand", "never_rests_error",
+           "relative_acceleration", "rest_mode", "slip_constant", "stick_guards", "stop_mode"]

@@ -1,6 +1,12 @@
 """The contract a hybrid model gives to the driver and to the backends."""
 
 import abc
+import enum
+import math
+import types
+
+#: the array namespace of the model's xp-generic rules on Python floats (the driver's)
+SCALAR = types.SimpleNamespace(stack=tuple, sqrt=math.sqrt, where=lambda cond, a, b: a if cond else b)
 
 
 class AbstractHybridModel(abc.ABC):
@@ -8,13 +14,21 @@ class AbstractHybridModel(abc.ABC):
 
     A model is pure physics. Backends integrate ``flow`` in one mode, locate the
     roots of ``guards`` and ask ``mode_after_guard`` which mode follows; none of them
-    re-derives these rules. Every method works on NumPy and on JAX arrays: ``xp`` is
-    the array namespace (``numpy`` or ``jax.numpy``).
+    re-derives these rules. Every method that takes ``xp`` works on NumPy and on JAX
+    arrays (``xp`` is the array namespace: ``numpy`` or ``jax.numpy``) and on Python
+    floats (the driver's scalar namespace). ``excitation`` is the base motion, or the
+    driver's one piece of it, with ``component(i, t)``/``component_rate(i, t)``
+    (``acceleration``/``acceleration_rate``: component 0).
     """
 
     #: names of the continuous states, in order
     state_names: tuple[str, ...]
+    #: the mode enumeration (an IntEnum)
+    modes: type[enum.IntEnum]
+    #: the mode at t = 0 (the model starts at rest relative to its base)
+    initial_mode: enum.IntEnum
 
+    # ---- the automaton -------------------------------------------------------
     @abc.abstractmethod
     def flow(self, mode, t, y, excitation, xp):
         """dy/dt in ``mode`` at time ``t`` [s], for state ``y`` of shape (n,)."""
@@ -36,3 +50,63 @@ class AbstractHybridModel(abc.ABC):
         """The mode entered when guard ``guard_index`` of ``mode`` is reached; a
         threshold reached within ``time_tol`` [s] of ``t`` counts as reached at ``t``
         (0: within rounding; ODE backends pass the uncertainty of a located root)."""
+
+    # ---- what the hybrid driver asks (state bookkeeping) ---------------------
+    def excitation_pieces(self, excitation, t_end):
+        """The excitation's components as :class:`~blockdae.excitation.Pieces` on one
+        partition of [0, t_end] [s] (one component by default)."""
+        return (excitation.pieces(t_end),)
+
+    @abc.abstractmethod
+    def is_static(self, mode) -> bool:
+        """Whether the state is constant in ``mode`` (no integration needed)."""
+
+    @abc.abstractmethod
+    def at_rest(self, mode, y) -> bool:
+        """Whether the block is at rest relative to its base (it re-takes
+        ``mode_at_rest`` when a new piece of the excitation begins)."""
+
+    @abc.abstractmethod
+    def rest_state(self, y):
+        """``y`` with the relative velocities set to zero."""
+
+    @abc.abstractmethod
+    def state_at_guard(self, mode, guard_index, y):
+        """The state where guard ``guard_index`` of ``mode`` is zero (e.g. v = 0 at a
+        stop, exactly), from the located ``y``."""
+
+    def state_on_entry(self, before, after, t, y, excitation, xp):
+        """The state on entering ``after`` from ``before`` at ``t`` (unchanged by default)."""
+        return y
+
+    def guard_restarts(self, mode, guard_index) -> bool:
+        """Whether reaching the guard is an event even if the mode stays (False)."""
+        return False
+
+    @abc.abstractmethod
+    def turn_rate(self, mode, t, y, excitation, xp):
+        """A quantity, monotone on a piece of the excitation, whose sign change marks
+        where a guard of ``mode`` may turn; None: the guards cannot turn."""
+
+    @abc.abstractmethod
+    def guard_rates(self, mode, guard_index, t, y, excitation):
+        """(rate, curvature) of the guard in time near ``t`` [unit/s, unit/s²], for
+        the uncertainty of its located root."""
+
+    @abc.abstractmethod
+    def speed(self, y) -> float:
+        """Size of the relative velocity [m/s] (sets the velocity error scale)."""
+
+    @abc.abstractmethod
+    def time_to_rest(self, mode, y) -> float:
+        """After the excitation ends: a time [s] within which the block comes to rest
+        from ``y`` in ``mode``; raises ValueError if it never does."""
+
+    @abc.abstractmethod
+    def event(self, t, mode_before, mode_after, y):
+        """The event record of a mode change at ``t`` [s] in state ``y``."""
+
+    @abc.abstractmethod
+    def solution(self, *, t, y, mode, events, backend, dense, stats):
+        """The model's solution from the driver's knots: ``t`` (n,), ``y`` (n, k),
+        ``mode`` (n,), ``dense(t)`` -> k arrays."""

@@ -45,6 +45,13 @@ def comes_to_rest(v, mode, bias, mu_kinetic, g):
     return (v == 0) | (v * slip_constant(mode, bias, mu_kinetic, g) < 0)
 
 
+def never_rests_error(block, where: str = "") -> ValueError:
+    """The error for a block that slides on forever after a finite excitation."""
+    return ValueError(
+        f"the block never comes to rest after the excitation{where}: kinetic friction "
+        f"mu_kinetic={block.friction_kinetic} does not exceed |bias|={abs(block.bias)}; give t_end [s]")
+
+
 def rest_mode(sigma, sigma_rate, mu, g, allow_neg, allow_pos, xp):
     """Mode of a block at rest (v = 0) under friction demand ``sigma`` [m/s²].
 
@@ -118,6 +125,8 @@ class SlidingBlock(AbstractHybridModel):
     direction: str = "both"
 
     state_names = ("u", "v")
+    modes = Mode
+    initial_mode = Mode.STICK
 
     def __post_init__(self):
         for name in ("mu", "mu_kinetic", "bias"):
@@ -253,6 +262,49 @@ class SlidingBlock(AbstractHybridModel):
         return Mode(int(stop_mode(mode, slip_rate, excitation.acceleration_rate(t), t, self.mu,
                                   self.friction_kinetic, self.g, self.allow_negative,
                                   self.allow_positive, xp, time_tol)))
+
+    # ---- what the hybrid driver asks -----------------------------------------
+    def is_static(self, mode):
+        return mode == Mode.STICK
+
+    def at_rest(self, mode, y):
+        return mode == Mode.STICK or y[1] == 0
+
+    def rest_state(self, y):
+        return np.array([y[0], 0.0])
+
+    def state_at_guard(self, mode, guard_index, y):
+        """A slip stop has v = 0 by definition; stick guards leave the state."""
+        return y if mode == Mode.STICK else np.array([y[0], 0.0])
+
+    def turn_rate(self, mode, t, y, excitation, xp=np):
+        """In slip, dv/dt (monotone on a piece, so that v is monotone between its sign
+        changes); stick guards are monotone on a piece (None)."""
+        return None if mode == Mode.STICK else self.flow(mode, t, y, excitation, xp)[1]
+
+    def guard_rates(self, mode, guard_index, t, y, excitation):
+        """The stop guard's rate dv/dt and curvature -da/dt [m/s², m/s³]."""
+        return self.flow(mode, t, y, excitation, np)[1], excitation.acceleration_rate(t)
+
+    def speed(self, y):
+        return abs(y[1])
+
+    def time_to_rest(self, mode, y):
+        """dv/dt is constant once a(t) = 0: the stop is half of 2 |v / (dv/dt)| [s]."""
+        if not comes_to_rest(y[1], mode, self.bias, self.friction_kinetic, self.g):
+            raise never_rests_error(self)
+        return 2.0 * abs(y[1] / slip_constant(mode, self.bias, self.friction_kinetic, self.g))
+
+    def event(self, t, mode_before, mode_after, y):
+        from .._solution import Event
+
+        return Event(t, mode_before, mode_after, float(y[0]), float(y[1]))
+
+    def solution(self, *, t, y, mode, events, backend, dense, stats):
+        from .._solution import Solution
+
+        return Solution(t=t, u=y[:, 0], v=y[:, 1], mode=mode, events=events, backend=backend, dense=dense,
+                        stats=stats)
 
 
 def _first(values, mask):

@@ -1,0 +1,329 @@
+"""The rigid block on a plane under two horizontal and one vertical base component
+(seed 001, Elms), with flight when the base falls faster than g.
+
+With the base acceleration (a_x, a_y, a_z)(t) [m/s²] (z upward) and the bias
+b = (b_x, b_y) (a constant horizontal force on the block as a fraction of its
+weight), the normal force per unit mass is n = g + a_z and the friction force per
+unit mass that carries the block with the base is the *demand*
+
+    sigma(t) = a_h(t) - b g            [m/s²],   a_h = (a_x, a_y).
+
+Stick holds while |sigma| <= mu n (the friction circle, seed eq. 7). Sliding, the
+relative velocity v = s e (speed s >= 0, direction e) obeys v' = -sigma - f n e, kept
+as
+
+    s' = e . (-sigma) - f n,      s e' = (e_perp . (-sigma)) e_perp,
+
+so that a stop is a simple root of s, not a touch of |v| (seed eqs. 19-20 in SI). In
+flight (n <= 0) there is no friction: v' = -sigma, and the gap w above the base obeys
+w'' = -n; the block lands when w returns to zero.
+
+State y = (u_x, u_y, s, c_x, c_y, w, w'): relative displacement [m]; on the base the
+speed s [m/s] and the direction as a vector c (e = c / |c|) [-]; in flight s = 0 and
+c = v [m/s] (Cartesian: nothing stops there, and the polar form is singular at s = 0);
+the gap [m] and its rate [m/s]. The direction is a vector rather than an angle so that
+with a_y = b_y = 0 the motion stays exactly on the x axis.
+"""
+
+import dataclasses
+import enum
+import math
+
+import numpy as np
+
+from .._units import STANDARD_GRAVITY
+from ._base import SCALAR, AbstractHybridModel
+
+_UX, _UY, _S, _CX, _CY, _W, _WD = range(7)
+
+
+class PlanarMode(enum.IntEnum):
+    """Mode of the planar block relative to its base."""
+
+    STICK = 0
+    SLIP = 1  # sliding in the direction e, on the base
+    FLIGHT = 2  # off the base (n <= 0): no friction
+
+    def __str__(self):
+        return self.name
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class PlanarBlock(AbstractHybridModel):
+    """Rigid block on a horizontal plane shaken in x, y and z (seed 001).
+
+    Args:
+        mu: static friction coefficient [-], > 0.
+        mu_kinetic: kinetic friction coefficient f [-], 0 <= f <= mu; default ``mu``.
+        bias: (b_x, b_y), a constant horizontal force on the block as a fraction of
+            its weight [-], |bias| < mu (Elms's P acts in -x: ``bias=(-P, 0)``).
+        g: gravitational acceleration [m/s²]; standard gravity by default.
+        restitution: vertical coefficient of restitution at landing [-], in [0, 1):
+            the vertical relative velocity is multiplied by -restitution, the
+            horizontal one is kept.
+        bounce_threshold: a rebound slower than this [m/s] ends in contact, so that a
+            bouncing block settles in finitely many bounces (no Zeno loop).
+    """
+
+    mu: float
+    mu_kinetic: float | None = None
+    bias: tuple[float, float] = (0.0, 0.0)
+    g: float = STANDARD_GRAVITY
+    restitution: float = 0.0
+    bounce_threshold: float = 1e-4
+
+    state_names = ("u_x", "u_y", "s", "c_x", "c_y", "w", "w_rate")
+    modes = PlanarMode
+    initial_mode = PlanarMode.STICK
+
+    def __post_init__(self):
+        for name in ("mu", "g", "restitution", "bounce_threshold") + (() if self.mu_kinetic is None
+                                                                       else ("mu_kinetic",)):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+                raise ValueError(f"{name} must be a real number, got {value!r}")
+            if not math.isfinite(value):
+                raise ValueError(f"{name} must be finite, got {value!r}")
+            object.__setattr__(self, name, float(value))
+        bias = np.asarray(self.bias, dtype=float)
+        if bias.shape != (2,) or not np.all(np.isfinite(bias)):
+            raise ValueError(f"bias must be a finite pair (b_x, b_y) [-], got {self.bias!r}")
+        object.__setattr__(self, "bias", (float(bias[0]), float(bias[1])))
+        if self.mu <= 0:
+            raise ValueError(f"mu={self.mu!r} must be > 0")
+        if not 0 <= self.friction_kinetic <= self.mu:
+            raise ValueError(f"mu_kinetic={self.friction_kinetic!r} must lie in [0, mu={self.mu!r}]")
+        if math.hypot(*self.bias) >= self.mu:
+            raise ValueError(f"bias={self.bias!r} must satisfy |bias| = {math.hypot(*self.bias):.6g} < "
+                             f"mu={self.mu!r} (else the block slides with the base at rest)")
+        if self.g <= 0:
+            raise ValueError(f"g must be a positive acceleration [m/s²], got {self.g!r}")
+        if not 0 <= self.restitution < 1:
+            raise ValueError(f"restitution={self.restitution!r} must lie in [0, 1)")
+        if self.bounce_threshold <= 0:
+            raise ValueError(f"bounce_threshold={self.bounce_threshold!r} must be > 0 [m/s]")
+
+    @property
+    def friction_kinetic(self) -> float:
+        """Kinetic friction coefficient f [-] (``mu_kinetic``, or ``mu`` if None)."""
+        return self.mu if self.mu_kinetic is None else self.mu_kinetic
+
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """() : a PlanarBlock is one parameter set."""
+        return ()
+
+    def replace(self, **changes) -> "PlanarBlock":
+        """A copy with some parameters changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    # ---- forces per unit mass -------------------------------------------------
+    def normal(self, t, excitation):
+        """n = g + a_z [m/s²] and its rate [m/s³]."""
+        return self.g + excitation.component(2, t), excitation.component_rate(2, t)
+
+    def demand(self, t, excitation):
+        """sigma = a_h - b g [m/s²] and its rate [m/s³], as (x, y) pairs."""
+        sigma = (excitation.component(0, t) - self.bias[0] * self.g,
+                 excitation.component(1, t) - self.bias[1] * self.g)
+        return sigma, (excitation.component_rate(0, t), excitation.component_rate(1, t))
+
+    # ---- hybrid automaton ----------------------------------------------------
+    def flow(self, mode, t, y, excitation, xp=np):
+        """dy/dt in ``mode`` (zero in stick)."""
+        zero = 0.0 * y[_UX]
+        if mode == PlanarMode.STICK:
+            return xp.stack([zero] * 7)
+        (sx, sy), _ = self.demand(t, excitation)
+        n, _ = self.normal(t, excitation)
+        if mode == PlanarMode.FLIGHT:
+            return xp.stack([y[_CX], y[_CY], zero, -sx, -sy, y[_WD], -n])
+        size = xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
+        ex, ey = y[_CX] / size, y[_CY] / size
+        along = -(ex * sx + ey * sy)
+        across = ey * sx - ex * sy  # e_perp . (-sigma), e_perp = (-e_y, e_x)
+        s = y[_S]
+        turn = xp.where(s == 0, 0.0, across / xp.where(s == 0, 1.0, s))  # de/dt along e_perp [1/s]
+        return xp.stack([s * ex, s * ey, along - self.friction_kinetic * n, -ey * turn * size,
+                         ex * turn * size, zero, zero])
+
+    def guards(self, mode, t, y, excitation, xp=np):
+        """Stick: (n -> flight, mu n - |sigma| -> slip). Slip: (n -> flight,
+        s -> stop). Flight: (w -> landing)."""
+        n, _ = self.normal(t, excitation)
+        if mode == PlanarMode.STICK:
+            (sx, sy), _ = self.demand(t, excitation)
+            return xp.stack([n, self.mu * n - xp.sqrt(sx**2 + sy**2)])
+        if mode == PlanarMode.SLIP:
+            return xp.stack([n, y[_S]])
+        return xp.stack([y[_W]])
+
+    def mode_at_rest(self, t, excitation, xp=np):
+        """Flight if n < 0 (or n = 0 falling), else slip if the demand is outside the
+        friction circle (or on it moving outwards), else stick."""
+        n, n_rate = self.normal(t, excitation)
+        (sx, sy), (rx, ry) = self.demand(t, excitation)
+        size = math.hypot(sx, sy)
+        margin = self.mu * n - size  # > 0 inside the circle
+        margin_rate = self.mu * n_rate - ((sx * rx + sy * ry) / size if size > 0 else math.hypot(rx, ry))
+        if n < 0 or (n == 0 and n_rate < 0):
+            return PlanarMode.FLIGHT
+        if margin < 0 or (margin == 0 and margin_rate < 0):
+            return PlanarMode.SLIP
+        return PlanarMode.STICK
+
+    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
+        """Stick or slip: n reaching zero -> flight; stick: the circle reached -> slip;
+        a stop -> stick, unless the demand leaves the circle within ``time_tol`` [s]
+        (it then slides on along the demand). Landing -> a rebound (flight) while it is
+        above ``bounce_threshold``, else slip if still moving, else the mode at rest."""
+        if mode != PlanarMode.FLIGHT and guard_index == 0:
+            return PlanarMode.FLIGHT
+        if mode == PlanarMode.STICK:
+            return PlanarMode.SLIP
+        if mode == PlanarMode.FLIGHT:
+            if -self.restitution * y[_WD] > self.bounce_threshold:
+                return PlanarMode.FLIGHT
+            if y[_CX] != 0 or y[_CY] != 0:
+                n, n_rate = self.normal(t, excitation)
+                return PlanarMode.FLIGHT if n < 0 or (n == 0 and n_rate < 0) else PlanarMode.SLIP
+        rest = self.mode_at_rest(t, excitation, xp)
+        if rest == PlanarMode.STICK and self._leaves_circle_within(t, excitation, time_tol):
+            return PlanarMode.SLIP
+        return rest
+
+    def _leaves_circle_within(self, t, excitation, time_tol):
+        n, n_rate = self.normal(t, excitation)
+        (sx, sy), (rx, ry) = self.demand(t, excitation)
+        size = math.hypot(sx, sy)
+        margin = self.mu * n - size
+        margin_rate = self.mu * n_rate - ((sx * rx + sy * ry) / size if size > 0 else math.hypot(rx, ry))
+        return margin_rate < 0 and (t + margin / -margin_rate) - t <= time_tol
+
+    # ---- what the hybrid driver asks -----------------------------------------
+    def excitation_pieces(self, excitation, t_end):
+        """(a_x, a_y, a_z) pieces on one partition; a 1-D excitation is a_x alone."""
+        from ..excitation import BaseMotion
+
+        motion = excitation if isinstance(excitation, BaseMotion) else BaseMotion(excitation)
+        return motion.aligned_pieces(t_end)
+
+    def is_static(self, mode):
+        return mode == PlanarMode.STICK
+
+    def at_rest(self, mode, y):
+        return mode == PlanarMode.STICK or (mode == PlanarMode.SLIP and y[_S] == 0)
+
+    def rest_state(self, y):
+        return _with(y, {_S: 0.0, _W: 0.0, _WD: 0.0})
+
+    def state_at_guard(self, mode, guard_index, y):
+        """A stop has s = 0 and a landing w = 0, exactly."""
+        if mode == PlanarMode.SLIP and guard_index == 1:
+            return _with(y, {_S: 0.0})
+        if mode == PlanarMode.FLIGHT:
+            return _with(y, {_W: 0.0})
+        return y
+
+    def guard_restarts(self, mode, guard_index):
+        """A landing (a rebound stays in flight) and a stop (the slide may go on in a
+        new direction) are events."""
+        return mode == PlanarMode.FLIGHT or (mode == PlanarMode.SLIP and guard_index == 1)
+
+    def state_on_entry(self, before, after, t, y, excitation, xp=np):
+        """A liftoff starts with w = w' = 0 and v in Cartesian form; a landing keeps the
+        horizontal velocity and takes -restitution times the vertical one (a rebound)
+        or zero (contact); sliding from rest starts along the relative acceleration
+        -sigma (or, where sigma = 0, along its rate)."""
+        if after == PlanarMode.FLIGHT:
+            if before == PlanarMode.FLIGHT:
+                return _with(y, {_W: 0.0, _WD: -self.restitution * y[_WD]})
+            ex, ey = _unit(y)
+            return _with(y, {_S: 0.0, _CX: y[_S] * ex, _CY: y[_S] * ey, _W: 0.0, _WD: 0.0})
+        if before == PlanarMode.FLIGHT:  # back to the polar form
+            speed = math.hypot(y[_CX], y[_CY])
+            y = _with(y, {_S: speed, _W: 0.0, _WD: 0.0})
+        if after == PlanarMode.STICK:
+            return _with(y, {_S: 0.0})
+        return self._along_demand(t, excitation, y) if y[_S] == 0 else y
+
+    def _along_demand(self, t, excitation, y):
+        (sx, sy), (rx, ry) = self.demand(t, excitation)
+        for x, y_ in ((sx, sy), (rx, ry)):
+            size = math.hypot(x, y_)
+            if size > 0:
+                return _with(y, {_CX: -x / size, _CY: -y_ / size})
+        return y
+
+    def turn_rate(self, mode, t, y, excitation, xp=np):
+        """Stick: the rate of (mu n)² - |sigma|² (linear in t on a linear piece), where
+        the stick guards may turn. Flight: w' (the gap turns at its top). Slip: none
+        (n is monotone on a piece, s stops at a simple root)."""
+        if mode == PlanarMode.STICK:
+            n, n_rate = self.normal(t, excitation)
+            (sx, sy), (rx, ry) = self.demand(t, excitation)
+            return 2 * (self.mu**2 * n * n_rate - (sx * rx + sy * ry))
+        if mode == PlanarMode.FLIGHT:
+            return y[_WD]
+        return None
+
+    def guard_rates(self, mode, guard_index, t, y, excitation):
+        n, n_rate = self.normal(t, excitation)
+        if mode == PlanarMode.SLIP and guard_index == 1:
+            _, (rx, ry) = self.demand(t, excitation)
+            rate = self.flow(mode, t, y, excitation, SCALAR)[_S]
+            return rate, math.hypot(rx, ry) + self.friction_kinetic * abs(n_rate)
+        if mode == PlanarMode.FLIGHT:
+            return y[_WD], n
+        if mode == PlanarMode.STICK and guard_index == 1:
+            (sx, sy), (rx, ry) = self.demand(t, excitation)
+            return self.mu * n_rate - (sx * rx + sy * ry) / max(math.hypot(sx, sy), 1e-300), 0.0
+        return n_rate, 0.0
+
+    def speed(self, y):
+        return math.hypot(y[_S], y[_CX], y[_CY]) if y[_S] == 0 else math.hypot(y[_S], y[_WD])
+
+    def time_to_rest(self, mode, y):
+        """With a = 0 (n = g, relative acceleration b g): the flight ends within
+        (w' + sqrt(w'² + 2 g w)) / g, the slide within twice s / ((f - |b|) g) after it."""
+        b, f, g = math.hypot(*self.bias), self.friction_kinetic, self.g
+        if f <= b:
+            raise ValueError(f"the block never comes to rest after the excitation: kinetic friction "
+                             f"mu_kinetic={f} does not exceed |bias|={b}; give t_end [s]")
+        flight = (y[_WD] + math.sqrt(y[_WD] ** 2 + 2 * g * y[_W])) / g if mode == PlanarMode.FLIGHT else 0.0
+        speed = math.hypot(y[_CX], y[_CY]) if mode == PlanarMode.FLIGHT else abs(y[_S])
+        return flight + 2.0 * (speed + b * g * flight) / ((f - b) * g) + 1e-12
+
+    def event(self, t, mode_before, mode_after, y):
+        from .._solution_planar import PlanarEvent
+
+        vx, vy = horizontal_velocity(mode_before, y)
+        return PlanarEvent(t, mode_before, mode_after, float(y[_UX]), float(y[_UY]), float(vx), float(vy),
+                           float(y[_WD]))
+
+    def solution(self, *, t, y, mode, events, backend, dense, stats):
+        from .._solution_planar import PlanarSolution
+
+        return PlanarSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense,
+                              stats=stats)
+
+
+def horizontal_velocity(mode, y):
+    """(v_x, v_y) [m/s] from the state in ``mode`` (works on arrays of states)."""
+    y = np.asarray(y, dtype=float)
+    flying = np.asarray(mode) == PlanarMode.FLIGHT
+    size = np.hypot(y[..., _CX], y[..., _CY])
+    scale = np.where(flying, 1.0, y[..., _S] / np.where(size > 0, size, 1.0))
+    return y[..., _CX] * scale, y[..., _CY] * scale
+
+
+def _with(y, changes):
+    y = np.array(y, dtype=float)
+    for index, value in changes.items():
+        y[index] = value
+    return y
+
+
+def _unit(y):
+    size = math.hypot(y[_CX], y[_CY])
+    return (y[_CX] / size, y[_CY] / size) if size > 0 else (0.0, 0.0)
