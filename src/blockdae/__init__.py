@@ -18,7 +18,7 @@ from ._solution_planar import PlanarEvent, PlanarSolution
 from ._sweep import SweepSolution, simulate_many
 from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RectangularPulse, SinePulse,
-                         TriangularPulse, check_peak_acceleration, read_record)
+                         TriangularPulse, check_peak_acceleration, read_motion, read_record)
 from .model import AbstractHybridModel, Mode, PlanarBlock, PlanarMode, SlidingBlock
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
                       cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
@@ -29,7 +29,7 @@ from .study import load_study, save_study, study, summary as study_summary
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
-    "check_peak_acceleration", "read_record", "simulate",
+    "check_peak_acceleration", "read_motion", "read_record", "simulate",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution",
     "SweepSolution", "simulate_many",
     "FinalNumbers", "simulate_final",

@@ -15,18 +15,23 @@ class Harmonic(AbstractExcitation):
     Args:
         amplitude: A [m/s²].
         period: T [s].
+        cycles: n [-], a positive number (0.5, 1, 2.25, ...): a(t) ends after n
+            periods (duration n T [s], a = 0 after, the base keeps v(n T)); None: never ends.
     """
 
     amplitude: float
     period: float
+    cycles: float | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "amplitude", check_finite("amplitude", self.amplitude, "m/s²"))
         object.__setattr__(self, "period", check_positive("period", self.period, "s"))
+        if self.cycles is not None:
+            object.__setattr__(self, "cycles", check_positive("cycles", self.cycles, "-"))
 
     @property
     def duration(self) -> float:
-        return np.inf
+        return np.inf if self.cycles is None else self.cycles * self.period
 
     @property
     def peak_acceleration(self) -> float:
@@ -47,6 +52,10 @@ class Harmonic(AbstractExcitation):
         t0, h = edges[:-1], np.diff(edges)
         zeros = np.zeros_like(t0)
         return Pieces(t0, h, zeros, zeros, zeros + self.amplitude, zeros + w, np.mod(w * t0, 2 * np.pi))
+
+    def __repr__(self):
+        cycles = "" if self.cycles is None else f", cycles={self.cycles!r}"
+        return f"Harmonic(amplitude={self.amplitude!r}, period={self.period!r}{cycles})"
 
 
 @dataclasses.dataclass(frozen=True)

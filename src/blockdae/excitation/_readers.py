@@ -23,6 +23,8 @@ _DT = re.compile(r"\bDT\s*=\s*([0-9.eE+-]+)", re.IGNORECASE)
 _OLD_HEADER = re.compile(r"^\s*(\d+)\s+([0-9.eE+-]+)\s+NPTS", re.IGNORECASE)
 _UNITS_OF = re.compile(r"UNITS\s+OF\s+(.*?)[\s.]*$", re.IGNORECASE)
 _HEADER_LINES = 10  # where the NPTS/DT line of an AT2 file is looked for
+#: the table read_record reads: (most columns, their description for errors)
+ONE_COMPONENT = (2, "1 or 2 columns (time [s], acceleration)")
 
 
 def canonical_units(units: str) -> str:
@@ -95,21 +97,34 @@ def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_
     Errors are ValueErrors naming the file and, where there is one, its 1-based line.
     """
     path = pathlib.Path(path)
+    samples, dt, start_time = read_samples(path, units, dt, g, check_peak, ONE_COMPONENT)
+    return Record(samples[:, 0], dt, path.stem if name is None else name, start_time)
+
+
+def read_samples(path, units, dt, g, check_peak, columns):
+    """(accelerations [m/s²], shape (n, k), sample step [s], start time [s]) of a file read
+    as :func:`read_record` reads it; a table may hold k > 1 accelerations after its time column.
+
+    ``columns``: (most columns of a table, their description for errors), e.g. :data:`ONE_COMPONENT`.
+    The peak check covers all k columns at once (one file, one unit).
+    """
+    path = pathlib.Path(path)
     if units is not None:
         canonical_units(units)  # an unknown name fails before the file is read
     layout = _scan(path)
     if layout.at2 is not None:
         lines = _lines(path)
         samples, file_dt, start_time = _read_at2(lines, layout.at2, path)
+        samples = samples[:, None]
         header_units, statement = _at2_units(lines[:layout.at2[0]], path)
         units = _resolve_units(units, header_units, statement, path)
     else:
-        samples, file_dt, start_time = _read_columns(path, layout)
+        samples, file_dt, start_time = _read_columns(path, layout, columns)
         units, statement = "g" if units is None else canonical_units(units), None
     dt = _sample_step(dt, file_dt, path)
     if check_peak:
         check_peak_acceleration(samples, units, g, str(path), statement and f"the header's {statement}")
-    return Record(samples * unit_factor(units, g), dt, path.stem if name is None else name, start_time)
+    return samples * unit_factor(units, g), dt, start_time
 
 
 class _Layout(typing.NamedTuple):
@@ -232,10 +247,11 @@ def _raise_first_bad_value(body, first_line, path):
                 raise ValueError(f"{path}, line {line_no}: not a number, {field!r}, in {line.strip()!r}") from None
 
 
-# --- one or two columns ------------------------------------------------------------
+# --- tables: one column, or time and accelerations ---------------------------------
 
-def _read_columns(path, layout):
-    """(samples, step [s] or None for one column, start time [s]) of a one- or two-column table."""
+def _read_columns(path, layout, columns):
+    """(samples, shape (n, k), step [s] or None for one column, start time [s]) of a table of one
+    column of accelerations or a time column [s] and k accelerations; ``columns`` as for read_samples."""
     source = path
     if layout.decimal_comma:
         source = "\n".join(_lines(path)[layout.start:]).replace(",", ".").split("\n")
@@ -244,7 +260,7 @@ def _read_columns(path, layout):
                           skiprows=0 if layout.decimal_comma else layout.start)
     except ValueError:  # the line-by-line parser locates the error, or reads what loadtxt cannot
         rows = _parse_rows(_lines(path), layout, path)
-    return _check_rows(rows, layout.start, path)
+    return _check_rows(rows, layout.start, path, columns)
 
 
 def _decimal_comma(text, index, path):
@@ -295,21 +311,22 @@ def _data_line_numbers(lines, start):
     return [n for n, line in enumerate(lines[start:], start=start + 1) if line.split("#", 1)[0].strip()]
 
 
-def _check_rows(rows, start, path):
+def _check_rows(rows, start, path, columns):
     """(samples, step [s] or None, start time [s]) of the checked rows of the table at line index ``start``."""
     def line_of(k):  # file line of data row k, counted only for an error
         return _data_line_numbers(_lines(path), start)[k]
 
-    if rows.shape[1] not in (1, 2):
-        raise ValueError(f"{path}, line {start + 1}: expected 1 or 2 columns (time [s], acceleration), "
+    most, described = columns
+    if rows.shape[1] > most:
+        raise ValueError(f"{path}, line {start + 1}: expected {described}, "
                          f"found {rows.shape[1]}{_comma_hint(_lines(path)[start])}")
     if not np.isfinite(rows).all():
         bad = np.flatnonzero(~np.all(np.isfinite(rows), axis=1))
         row = rows[bad[0]]
         raise ValueError(f"{path}, line {line_of(bad[0])}: value {row[~np.isfinite(row)][0]} is not finite")
     if rows.shape[1] == 1:
-        return rows[:, 0], None, 0.0
-    return rows[:, 1], *_time_step(rows[:, 0], line_of, path)
+        return rows, None, 0.0
+    return rows[:, 1:], *_time_step(rows[:, 0], line_of, path)
 
 
 def _time_step(time, line_of, path):

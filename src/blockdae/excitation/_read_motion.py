@@ -1,0 +1,42 @@
+"""Reading a three-component base motion: one file per component, or one table."""
+
+import pathlib
+
+from .._units import STANDARD_GRAVITY
+from ._motion import BaseMotion
+from ._readers import read_record, read_samples
+from ._record import Record
+
+_AXES = ("x", "y", "z")
+# a table read_motion reads: one column of a_x (with dt), or time [s] and up to three components
+_COMPONENTS = (4, "1 to 4 columns (time [s], a_x[, a_y[, a_z]])")
+
+
+def read_motion(x, y=None, z=None, *, units=None, dt=None, g=STANDARD_GRAVITY, name=None,
+                check_peak=True) -> BaseMotion:
+    """Read a base motion (a_x, a_y, a_z) [m/s²] from files.
+
+    Either one file per component, ``x`` and optionally ``y``, ``z``, each read by
+    :func:`read_record` with the options below (components named after their files);
+    or, with ``x`` alone, one file: a table with columns time [s], a_x, a_y[, a_z]
+    (read as read_record reads two columns: separators, header line, '#' comments;
+    components named "<name> x", ...), or a file read_record reads, giving a_x alone.
+
+    Args:
+        x, y, z: file paths; y, z None: absent.
+        units, dt, g, check_peak: as for :func:`read_record`; one unit for all columns
+            of a table, whose peak check covers them all.
+        name: label of the components; the file stems by default.
+
+    Records of different lengths are fine (a component is zero after its last
+    sample); different sample steps raise ValueError (see :class:`BaseMotion`).
+    """
+    options = dict(units=units, dt=dt, g=g, check_peak=check_peak)
+    if y is None and z is None:
+        path = pathlib.Path(x)
+        samples, step, start_time = read_samples(path, columns=_COMPONENTS, **options)
+        label = path.stem if name is None else name
+        return BaseMotion(*(Record(a, step, f"{label} {axis}", start_time) for a, axis in zip(samples.T, _AXES)))
+    labels = (None,) * 3 if name is None else tuple(f"{name} {axis}" for axis in _AXES)
+    return BaseMotion(*(None if path is None else read_record(path, name=label, **options)
+                        for path, label in zip((x, y, z), labels)))
