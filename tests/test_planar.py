@@ -1,0 +1,193 @@
+"""The planar block (seed 001) on the generic hybrid driver, against independent answers:
+the 1-D block's exact backend (closed forms), the same problem rotated in the plane,
+closed-form flight, and a Cartesian DOP853 integration written here."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+import blockdae as bd
+from conftest import load_sample_record
+
+G = 9.81
+
+
+def planar_twin(block: bd.SlidingBlock, **changes) -> bd.PlanarBlock:
+    """The planar block with the 1-D block's parameters (bias along x)."""
+    return bd.PlanarBlock(mu=block.mu, mu_kinetic=block.mu_kinetic, bias=(block.bias, 0.0), g=block.g, **changes)
+
+
+def assert_reduces(sol, ref, event_dt=1e-9, rel=1e-8):
+    """The planar solution ``sol`` is the 1-D ``ref`` along x: same mode changes (slip
+    of either sign is SLIP), events within ``event_dt`` [s], u_x within ``rel`` of the
+    largest |u| (the 1-D CVODE backend itself is 1.5e-10 m off on Example 1, whose final
+    u is 3 % of its largest)."""
+    slip = lambda m: "STICK" if m == bd.Mode.STICK else "SLIP"
+    assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == \
+        [(slip(e.mode_before), slip(e.mode_after)) for e in ref.events]
+    np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=event_dt)
+    assert abs(sol.displacement[0] - ref.displacement) <= rel * ref.max_abs_displacement
+
+
+@pytest.mark.parametrize("example", bd.seed_examples(), ids=lambda e: e.name)
+def test_x_only_motion_reduces_to_the_1d_block(example):
+    ref = bd.simulate(example.block, example.motion, t_end=example.t_end)  # exact closed forms
+    sol = bd.simulate(planar_twin(example.block), example.motion, t_end=example.t_end)
+    assert_reduces(sol, ref)
+    assert np.all(sol.u_y == 0.0)  # nothing pushes it off the x axis, not even rounding
+
+
+@pytest.mark.parametrize("stem", ["Kobe_1995_TAK-090", "Northridge_1994_PAC-175"])
+def test_a_record_along_x_reduces_to_the_1d_block(stem):
+    record = load_sample_record(stem)
+    block = bd.SlidingBlock(mu=0.15, mu_kinetic=0.12, bias=0.03)
+    ref = bd.simulate(block, record)
+    sol = bd.simulate(planar_twin(block), bd.BaseMotion(record))
+    assert_reduces(sol, ref)
+
+
+@pytest.mark.parametrize("angle", [30.0, pytest.param(135.0, marks=pytest.mark.xfail(strict=True, reason=(
+    "known limitation: near a stop against the drive the sliding direction is unstable "
+    "(a transverse error grows like (t_stop - t)^-a); CVODE's local errors in the "
+    "direction, not rounding, grow there and move the stop by ~9e-6 s at 135 degrees")))])
+def test_a_motion_along_a_rotated_line_is_the_1d_block_rotated(angle):
+    """Shaking along a line at ``angle`` with the bias along it is the 1-D problem in a
+    rotated frame: every component of the planar code (circle, direction, both
+    displacement components) is exercised, and the answer is known exactly."""
+    example = bd.seed_examples()[3]  # Example 3b: bias 0.3, f 0.4 < mu 0.6, harmonic
+    c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+    motion = bd.BaseMotion(example.motion.scaled(c), example.motion.scaled(s))
+    block = bd.PlanarBlock(mu=0.6, mu_kinetic=0.4, bias=(0.3 * c, 0.3 * s), g=G)
+    ref = bd.simulate(example.block, example.motion, t_end=example.t_end)
+    sol = bd.simulate(block, motion, t_end=example.t_end)
+    np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=1e-8)
+    u = np.array([c, s]) * ref.displacement
+    np.testing.assert_allclose(sol.displacement, u, rtol=0, atol=1e-8 * abs(ref.displacement))
+
+
+def cartesian_reference(motion_xy, mu, f, bias, g, t_on, t_end):
+    """An independent answer written here: v' = -sigma - f g v/|v| integrated in
+    Cartesian form with DOP853 from the onset ``t_on`` [s] until |v| falls to 1e-9 m/s
+    (an approximate stop, good to ~1e-9 / (f g - |sigma|) s)."""
+    def sigma(t):
+        ax, ay = motion_xy(t)
+        return np.array([ax - bias[0] * g, ay - bias[1] * g])
+
+    e0 = -sigma(t_on) / np.linalg.norm(sigma(t_on))
+
+    def rhs(t, y):
+        v = y[2:]
+        speed = np.hypot(*v)
+        e = v / speed if speed > 0 else e0
+        return [*v, *(-sigma(t) - f * g * e)]
+
+    def stop(t, y):
+        return np.hypot(y[2], y[3]) - 1e-9
+
+    stop.terminal, stop.direction = True, -1
+    sol = solve_ivp(rhs, (t_on, t_end), [0, 0, 1e-12 * e0[0], 1e-12 * e0[1]], method="DOP853", rtol=1e-12,
+                    atol=1e-15, events=stop)
+    return sol.t_events[0][0], sol.y[:2, -1]
+
+
+def test_elms_one_sine_wave_with_lateral_shaking_against_a_cartesian_integration():
+    """Seed 001 set-up (g = 1, accelerations in g): C_x = A sin(pi t) for one wave,
+    C_y = R C_x, bias P = mu - N in -x; here N/A = 0.5, mu = 0.8, R = 0.8, f = 0.7."""
+    amplitude, mu, f, ratio = 1.0, 0.8, 0.7, 0.8
+    bias = (-(mu - 0.5 * amplitude), 0.0)
+    wave = bd.Harmonic(amplitude, 2.0, cycles=1)
+    sol = bd.simulate(bd.PlanarBlock(mu=mu, mu_kinetic=f, bias=bias, g=1.0),
+                      bd.BaseMotion(wave, wave.scaled(ratio)))
+    assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == [("STICK", "SLIP"), ("SLIP", "STICK")]
+    onset = brentq(lambda t: math.hypot(amplitude * math.sin(math.pi * t) - bias[0],
+                                        ratio * amplitude * math.sin(math.pi * t)) - mu, 0.0, 0.5, xtol=1e-15)
+    assert abs(sol.t_events[0] - onset) <= 1e-12
+    motion_xy = lambda t: (amplitude * math.sin(math.pi * t) * (t < 2), ratio * amplitude * math.sin(math.pi * t) * (t < 2))
+    t_stop, u = cartesian_reference(motion_xy, mu, f, bias, 1.0, onset, 10.0)
+    assert abs(sol.t_events[1] - t_stop) <= 1e-7
+    np.testing.assert_allclose(sol.displacement, u, rtol=0, atol=1e-7)
+    assert sol.displacement[1] < 0 and sol.displacement[0] < 0  # it slides away from +x and +y shaking
+
+
+def flight_closed_form(depth, duration, g):
+    """Base falling with a_z = -depth sin(pi t / T): liftoff where g + a_z = 0, then
+    w'' = -(g + a_z) from w = w' = 0 integrated in closed form; landing at w = 0."""
+    w_ = math.pi / duration
+    t1 = math.asin(g / depth) / w_
+    az_int1 = lambda t: depth / w_ * (math.cos(w_ * t) - math.cos(w_ * t1))  # integral of a_z from t1
+    def gap(t):  # valid while the pulse lasts and after it (a_z = 0 past T)
+        tau = min(t, duration)
+        inside = (-g * (tau - t1) ** 2 / 2 - depth / w_ * ((math.sin(w_ * tau) - math.sin(w_ * t1)) / w_
+                                                          - math.cos(w_ * t1) * (tau - t1)))
+        rate_at_end = -g * (tau - t1) - az_int1(tau)
+        return inside + rate_at_end * (t - tau) - g * (t - tau) ** 2 / 2
+    t2 = brentq(gap, t1 + 1e-6, 10.0, xtol=1e-15)
+    return t1, t2
+
+
+def test_flight_under_a_falling_base_lands_where_the_closed_form_says():
+    depth, duration = 1.5 * G, 0.3
+    sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G), bd.BaseMotion(bd.RectangularPulse(0.0, duration), None,
+                                                                   bd.SinePulse(-depth, duration)))
+    t1, t2 = flight_closed_form(depth, duration, G)
+    assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == [("STICK", "FLIGHT"), ("FLIGHT", "STICK")]
+    np.testing.assert_allclose(sol.t_events, [t1, t2], rtol=0, atol=1e-9)
+    assert sol.events[1].v_z < 0  # the impact velocity
+    assert np.all(sol.gap >= -1e-12)
+
+
+def test_bounces_shrink_by_the_restitution_and_end_in_contact():
+    restitution, threshold = 0.5, 1e-3
+    motion = bd.BaseMotion(bd.SinePulse(2.0, 0.5), None, bd.SinePulse(-15.0, 0.3))
+    sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G, restitution=restitution, bounce_threshold=threshold), motion)
+    landings = [e for e in sol.events if e.mode_before == bd.PlanarMode.FLIGHT]
+    rebounds = [e for e in landings if e.mode_after == bd.PlanarMode.FLIGHT]
+    assert len(rebounds) >= 3 and landings[-1].mode_after != bd.PlanarMode.FLIGHT
+    # after the base stops moving vertically, each flight is ballistic: the next impact
+    # is as fast as the last rebound, which is restitution times the impact
+    late = [e for e in landings if e.t > 0.3]
+    for first, second in zip(late, late[1:]):
+        assert second.v_z == pytest.approx(restitution * first.v_z, rel=1e-6)
+    # finitely many bounces: the rebound falls below the threshold after at most this many
+    assert len(late) <= 1 + math.ceil(math.log(threshold / -late[0].v_z) / math.log(restitution)) + 1
+    assert sol.mode[-1] != bd.PlanarMode.FLIGHT and sol.gap[-1] == 0.0
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    (dict(mu=0.0), "mu"), (dict(mu=-0.1), "mu"), (dict(mu=0.3, mu_kinetic=0.4), "mu_kinetic"),
+    (dict(mu=0.3, bias=(0.2, 0.25)), "bias"), (dict(mu=0.3, bias=(np.nan, 0.0)), "bias"),
+    (dict(mu=0.3, bias=(0.1,)), "bias"), (dict(mu=0.3, restitution=1.0), "restitution"),
+    (dict(mu=0.3, g=0.0), "g"), (dict(mu=np.nan), "mu"), (dict(mu=0.3, bounce_threshold=0.0), "bounce_threshold"),
+])
+def test_bad_parameters_name_the_field(kwargs, field):
+    with pytest.raises(ValueError, match=field):
+        bd.PlanarBlock(**kwargs)
+
+
+def test_backends_and_motions_that_do_not_fit_say_so():
+    block, motion = bd.PlanarBlock(mu=0.3), bd.BaseMotion(bd.SinePulse(4.0, 0.5))
+    with pytest.raises(ValueError, match="does not run a PlanarBlock.*cvode"):
+        bd.simulate(block, motion, backend="exact")
+    with pytest.raises(TypeError, match="BaseMotion"):
+        bd.simulate(block, np.zeros(3))
+    with pytest.raises(TypeError, match="motion must be an excitation"):
+        bd.simulate(bd.SlidingBlock(mu=0.3), motion)
+    with pytest.raises(ValueError, match="never comes to rest"):
+        bd.simulate(bd.PlanarBlock(mu=0.3, mu_kinetic=0.1, bias=(0.2, 0.0)), motion.scaled(3.0))
+
+
+def test_planar_solution_tables_and_dense_output():
+    wave = bd.Harmonic(1.0, 2.0, cycles=1)
+    sol = bd.simulate(bd.PlanarBlock(mu=0.8, mu_kinetic=0.7, bias=(-0.3, 0.0), g=1.0),
+                      bd.BaseMotion(wave, wave.scaled(0.8)))
+    u_x, u_y, v_x, v_y, gap = sol(sol.t)
+    np.testing.assert_allclose(u_x, sol.u_x, atol=1e-15)
+    np.testing.assert_allclose(np.hypot(v_x, v_y)[sol.mode == bd.PlanarMode.STICK], 0.0, atol=1e-15)
+    table = sol.to_dataframe()
+    assert list(table.mode_after) == ["SLIP", "STICK"] and "direction_deg" in table
+    assert "u_x [m]" in sol.event_table()
+    with pytest.raises(ValueError, match="t must lie"):
+        sol(sol.t_end + 1.0)
