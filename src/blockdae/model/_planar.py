@@ -158,15 +158,24 @@ class PlanarBlock(AbstractHybridModel):
             return xp.stack([n, y[_S]])
         return xp.stack([y[_W]])
 
-    def mode_at_rest(self, t, excitation, xp=np):
-        """Flight if n < 0 (or n = 0 falling), else slip if the demand is outside the
-        friction circle (or on it moving outwards), else stick."""
+    def circle_margin(self, t, excitation):
+        """mu n - |sigma| [m/s²] (> 0 inside the friction circle) and its rate [m/s³]
+        (where sigma = 0, the rate of -|sigma| is -|sigma'|)."""
         n, n_rate = self.normal(t, excitation)
         (sx, sy), (rx, ry) = self.demand(t, excitation)
         size = math.hypot(sx, sy)
-        margin = self.mu * n - size  # > 0 inside the circle
-        margin_rate = self.mu * n_rate - ((sx * rx + sy * ry) / size if size > 0 else math.hypot(rx, ry))
-        if n < 0 or (n == 0 and n_rate < 0):
+        return self.mu * n - size, self.mu * n_rate - ((sx * rx + sy * ry) / size if size > 0 else math.hypot(rx, ry))
+
+    def lifts_off(self, t, excitation):
+        """Whether n = g + a_z is negative, or zero and falling, at ``t``."""
+        n, n_rate = self.normal(t, excitation)
+        return n < 0 or (n == 0 and n_rate < 0)
+
+    def mode_at_rest(self, t, excitation, xp=np):
+        """Flight if n < 0 (or n = 0 falling), else slip if the demand is outside the
+        friction circle (or on it moving outwards), else stick."""
+        margin, margin_rate = self.circle_margin(t, excitation)
+        if self.lifts_off(t, excitation):
             return PlanarMode.FLIGHT
         if margin < 0 or (margin == 0 and margin_rate < 0):
             return PlanarMode.SLIP
@@ -185,20 +194,12 @@ class PlanarBlock(AbstractHybridModel):
             if -self.restitution * y[_WD] > self.bounce_threshold:
                 return PlanarMode.FLIGHT
             if y[_CX] != 0 or y[_CY] != 0:
-                n, n_rate = self.normal(t, excitation)
-                return PlanarMode.FLIGHT if n < 0 or (n == 0 and n_rate < 0) else PlanarMode.SLIP
+                return PlanarMode.FLIGHT if self.lifts_off(t, excitation) else PlanarMode.SLIP
         rest = self.mode_at_rest(t, excitation, xp)
-        if rest == PlanarMode.STICK and self._leaves_circle_within(t, excitation, time_tol):
-            return PlanarMode.SLIP
+        margin, margin_rate = self.circle_margin(t, excitation)
+        if rest == PlanarMode.STICK and margin_rate < 0 and (t + margin / -margin_rate) - t <= time_tol:
+            return PlanarMode.SLIP  # it leaves the circle within time_tol: slides on
         return rest
-
-    def _leaves_circle_within(self, t, excitation, time_tol):
-        n, n_rate = self.normal(t, excitation)
-        (sx, sy), (rx, ry) = self.demand(t, excitation)
-        size = math.hypot(sx, sy)
-        margin = self.mu * n - size
-        margin_rate = self.mu * n_rate - ((sx * rx + sy * ry) / size if size > 0 else math.hypot(rx, ry))
-        return margin_rate < 0 and (t + margin / -margin_rate) - t <= time_tol
 
     # ---- what the hybrid driver asks -----------------------------------------
     def excitation_pieces(self, excitation, t_end):
@@ -276,8 +277,7 @@ class PlanarBlock(AbstractHybridModel):
         if mode == PlanarMode.FLIGHT:
             return y[_WD], n
         if mode == PlanarMode.STICK and guard_index == 1:
-            (sx, sy), (rx, ry) = self.demand(t, excitation)
-            return self.mu * n_rate - (sx * rx + sy * ry) / max(math.hypot(sx, sy), 1e-300), 0.0
+            return self.circle_margin(t, excitation)[1], 0.0
         return n_rate, 0.0
 
     def speed(self, y):
