@@ -1,22 +1,48 @@
 """IDA backend: the natural DAE with the friction force as an algebraic variable.
 
-States (u, v, F): F [m/s²] is the friction force per unit mass the base exerts on the
-block. With the demand sigma(t) (the model's :func:`~blockdae.model.demand`) and the
-mode's relative acceleration dv/dt (the model's ``flow``), Newton's law reads
+The model's states y are followed by the friction force per unit mass the base exerts
+on the block, F [m/s²] (one component per horizontal axis of the model), an algebraic
+variable. With the demand sigma(t) (the model's ``demand``), Newton's law reads
 
-    u' = v,    v' = F - sigma(t),    0 = F - (sigma(t) + dv/dt),
+    relative horizontal acceleration = F - sigma(t),
 
-so F = sigma in stick (v' = 0) and F = -mode f g in slip. Stick guards are the model's
-:func:`~blockdae.model.stick_guards` on the algebraic F; slip guards are mode * v.
+and the mode's algebraic equation fixes F. The DAE form of each model type:
+
+* :class:`~blockdae.SlidingBlock`, states (u, v, F)::
+
+      u' = v,    v' = F - sigma(t),    0 = F - (sigma(t) + dv/dt),
+
+  so F = sigma in stick (v' = 0) and F = -mode f g in slip. Stick guards are the
+  model's :func:`~blockdae.model.stick_guards` on the algebraic F; slip guards are
+  mode * v.
+
+* :class:`~blockdae.PlanarBlock`, states (u_x, u_y, s, c_x, c_y, w, w', F_x, F_y), F
+  from the model's ``friction``: sigma in stick, where every rate is 0; -f n e in slip
+  (e = c / |c|, n = g + a_z), with the polar form written through F::
+
+      u' = s e,    s' = e . (F - sigma),    s e' = (e_perp . (F - sigma)) e_perp,
+
+  the last as s (e_perp . c') = (e_perp . (F - sigma)) |c| and e . c' = 0 (|c| kept);
+  zero in flight, where u' = c (the Cartesian velocity), c' = F - sigma, w'' = -n.
+  Stick guards are (n, mu n - |F|) on the algebraic F; the others are the model's.
+
+  The direction equation is stiff near s = 0 (e relaxes towards F - sigma at the rate
+  |sigma| / s), so it is kept multiplied by s: as s -> 0 it tends to the algebraic
+  condition e_perp . (F - sigma) = 0 instead of an unbounded Jacobian. Divided by s
+  (as in the model's flow), IDA ran out of steps approaching the last stop of Kobe
+  TAK-090 in x with Northridge PAC-175 in y (mu 0.15, f 0.12, bias (0.03, 0.01)) at
+  rtol 1e-11 and 1e-12. The radial equation fixes |c|, which s e' = ... alone leaves
+  undetermined at s = 0.
 """
 
 import dataclasses
+import math
 
 import numpy as np
 from sksundae.ida import IDA
 
 from .._driver import SCALAR
-from ..model import Mode, stick_guards
+from ..model import Mode, PlanarBlock, PlanarMode, SlidingBlock, stick_guards
 from ._sundials import Guards, SundialsBackend, SundialsIntegrator
 
 #: IDA's first step after every (re)start [s]. IDA starts at order 1 and, while no step
@@ -42,30 +68,35 @@ class IDABackend(SundialsBackend):
     piece of a(t), each time from a first step of :data:`FIRST_STEP` [s]."""
 
     name = "ida"
+    models = (SlidingBlock, PlanarBlock)
 
     def _integrator(self, block, piece):
+        form = dae_form(block, piece)
         options = self.solver_options()
         # F is measured against the friction capacity mu g: an absolute tolerance of
         # atol [m/s²] would force steps of ~1e-16 s wherever the demand crosses zero
         friction_atol = max(self.atol, self.rtol * block.mu * block.g)
-        options["atol"] = np.array([self.atol, self.atol, friction_atol])
-        return _IDAIntegrator(block, piece, options)
+        options["atol"] = np.array([self.atol] * form.n_states + [friction_atol] * form.n_friction)
+        return _IDAIntegrator(form, options)
 
 
-class _IDAGuards(Guards):
-    def __call__(self, t, y, yp, out):
-        block = self.block
-        if self.mode == Mode.STICK:
-            out[:] = stick_guards(y[2], block.mu, block.g, block.allow_negative, block.allow_positive, SCALAR)
-        else:
-            out[:] = block.guards(self.mode, t, y, self.piece, SCALAR)
+def dae_form(block, piece):
+    """The DAE form of ``block``'s type on the driver's excitation ``piece``."""
+    for model, form in _FORMS:
+        if isinstance(block, model):
+            return form(block, piece)
+    raise TypeError(f"IDA has no DAE form for a {type(block).__name__}")
 
 
-class _IDAIntegrator(SundialsIntegrator):
-    label = "IDA"
-    guards_class = _IDAGuards
+class _LineForm:
+    """:class:`SlidingBlock`: (u, v, F)."""
 
-    def _build(self, mode, guards, options):
+    n_states, n_friction = 2, 1
+
+    def __init__(self, block, piece):
+        self.block, self.piece = block, piece
+
+    def residual(self, mode):
         block, piece = self.block, self.piece
 
         def residual(t, y, yp, res):
@@ -74,13 +105,149 @@ class _IDAIntegrator(SundialsIntegrator):
             res[1] = yp[1] - (y[2] - sigma)
             res[2] = y[2] - sigma - block.flow(mode, t, y, piece, SCALAR)[1]
 
-        return IDA(residual, eventsfn=guards, num_events=len(guards.direction), algebraic_idx=[2],
-                   first_step=FIRST_STEP, **options)
+        return residual
 
-    def _initialise(self, solver, mode, t, y):
-        """Consistent (y, y') at ``t``: F from the algebraic equation; F' = da/dt in
-        stick (F = sigma) and 0 in slip (F constant)."""
+    def guards(self, mode, t, y, out):
+        block = self.block
+        if mode == Mode.STICK:
+            out[:] = stick_guards(y[2], block.mu, block.g, block.allow_negative, block.allow_positive, SCALAR)
+        else:
+            out[:] = block.guards(mode, t, y, self.piece, SCALAR)
+
+    def consistent(self, mode, t, y):
+        """(y, y') at ``t``: F from the algebraic equation; F' = da/dt in stick
+        (F = sigma) and 0 in slip (F constant)."""
         rate = self.block.flow(mode, t, y, self.piece, SCALAR)[1]
         friction = self.block.demand(t, self.piece, SCALAR) + rate
         friction_rate = self.piece.acceleration_rate(t) if mode == Mode.STICK else 0.0
-        return solver.init_step(t, np.array([y[0], y[1], friction]), np.array([y[1], rate, friction_rate]))
+        return np.array([y[0], y[1], friction]), np.array([y[1], rate, friction_rate])
+
+
+class _PlanarForm:
+    """:class:`PlanarBlock`: (u_x, u_y, s, c_x, c_y, w, w', F_x, F_y)."""
+
+    n_states, n_friction = 7, 2
+
+    def __init__(self, block, piece):
+        if block.state_names != ("u_x", "u_y", "s", "c_x", "c_y", "w", "w_rate"):
+            raise RuntimeError(f"the planar DAE form expects another state layout than {block.state_names}")
+        self.block, self.piece = block, piece
+
+    def residual(self, mode):
+        block, piece = self.block, self.piece
+        friction = block.friction
+
+        def algebraic(t, y, res):
+            """0 = F - the mode's friction; returns F - sigma, the relative acceleration."""
+            fx, fy = friction(mode, t, y, piece, SCALAR)
+            res[7], res[8] = y[7] - fx, y[8] - fy
+            (sx, sy), _ = block.demand(t, piece)
+            return y[7] - sx, y[8] - sy
+
+        if mode == PlanarMode.STICK:
+            def residual(t, y, yp, res):
+                algebraic(t, y, res)
+                res[:7] = yp[:7]
+        elif mode == PlanarMode.SLIP:
+            def residual(t, y, yp, res):
+                rx, ry = algebraic(t, y, res)
+                size = math.sqrt(y[3] ** 2 + y[4] ** 2)
+                ex, ey = y[3] / size, y[4] / size
+                s = y[2]
+                across = ex * ry - ey * rx  # e_perp . (F - sigma), e_perp = (-e_y, e_x)
+                res[0] = yp[0] - s * ex
+                res[1] = yp[1] - s * ey
+                res[2] = yp[2] - (ex * rx + ey * ry)
+                res[3] = s * (ex * yp[4] - ey * yp[3]) - across * size  # s e' = across e_perp (c' = |c| e')
+                res[4] = ex * yp[3] + ey * yp[4]  # |c| constant
+                res[5] = yp[5]
+                res[6] = yp[6]
+        else:
+            def residual(t, y, yp, res):
+                rx, ry = algebraic(t, y, res)
+                n, _ = block.normal(t, piece)
+                res[0] = yp[0] - y[3]
+                res[1] = yp[1] - y[4]
+                res[2] = yp[2]
+                res[3] = yp[3] - rx
+                res[4] = yp[4] - ry
+                res[5] = yp[5] - y[6]
+                res[6] = yp[6] + n
+
+        return residual
+
+    def guards(self, mode, t, y, out):
+        if mode == PlanarMode.STICK:
+            n, _ = self.block.normal(t, self.piece)
+            out[0], out[1] = n, self.block.mu * n - math.sqrt(y[7] ** 2 + y[8] ** 2)
+        else:
+            out[:] = self.block.guards(mode, t, y, self.piece, SCALAR)
+
+    def consistent(self, mode, t, y):
+        """(y, y') at ``t``: y' from the model's flow, F from its friction; F' = d sigma/dt
+        in stick, -f (n' e + n e') in slip, 0 in flight. A slide that starts from rest
+        (s = 0) starts along -sigma and e turns with it at once: with s' = a >= 0 there,
+        e' = -(e_perp . sigma') / (|sigma| + a) e_perp (the direction lags -sigma by
+        O(s), see below), where the flow's polar form has 0 / 0."""
+        block, piece = self.block, self.piece
+        rate = np.array(block.flow(mode, t, y, piece, SCALAR), dtype=float)
+        friction = block.friction(mode, t, y, piece, SCALAR)
+        if mode == PlanarMode.STICK:
+            friction_rate = block.demand(t, piece)[1]
+        elif mode == PlanarMode.SLIP:
+            n, n_rate = block.normal(t, piece)
+            size = math.sqrt(y[3] ** 2 + y[4] ** 2)
+            ex, ey = y[3] / size, y[4] / size
+            if y[2] == 0:
+                rate[3], rate[4] = _onset_turn(block, piece, t, ex, ey, rate[2]) * size * np.array([-ey, ex])
+            friction_rate = tuple(-block.friction_kinetic * (n_rate * e + n * c_rate / size)
+                                  for e, c_rate in ((ex, rate[3]), (ey, rate[4])))
+        else:
+            friction_rate = (0.0, 0.0)
+        return np.concatenate([y, friction]), np.concatenate([rate, friction_rate])
+
+
+def _onset_turn(block, piece, t, ex, ey, speed_rate):
+    """de/dt along e_perp [1/s] where a slide starts from rest along e = -sigma / |sigma|.
+
+    With the lag phi of e behind -sigma (turning at omega = e_perp . (-sigma') / |sigma|)
+    and s = a tau, phi' = -omega - |sigma| phi / s has the solution phi = -omega a tau /
+    (a + |sigma|), so e turns at omega |sigma| / (a + |sigma|) (at a = 0, s ~ tau², it
+    follows -sigma). The flow's polar form gives e' = 0 there; from it IDA's first step
+    failed down to its smallest step at rtol 1e-12 on the Elms pulses (divided form)
+    and at rtol 1e-11 and 1e-12 on the Kobe/Northridge onsets (the form above).
+    """
+    (sx, sy), (rx, ry) = block.demand(t, piece)
+    scale = math.hypot(sx, sy) + max(speed_rate, 0.0)
+    return (ey * rx - ex * ry) / scale if scale > 0 else 0.0
+
+
+_FORMS = ((SlidingBlock, _LineForm), (PlanarBlock, _PlanarForm))
+
+
+class _IDAGuards(Guards):
+    def __init__(self, block, piece, mode):
+        super().__init__(block, piece, mode)
+        self.form = dae_form(block, piece)
+
+    def __call__(self, t, y, yp, out):
+        self.form.guards(self.mode, t, y, out)
+
+
+class _IDAIntegrator(SundialsIntegrator):
+    label = "IDA"
+    guards_class = _IDAGuards
+
+    def __init__(self, form, options):
+        self.form = form
+        super().__init__(form.block, form.piece, options)
+
+    def _build(self, mode, guards, options):
+        form = self.form
+        algebraic = list(range(form.n_states, form.n_states + form.n_friction))
+        return IDA(form.residual(mode), eventsfn=guards, num_events=len(guards.direction),
+                   algebraic_idx=algebraic, first_step=FIRST_STEP, **options)
+
+    def _initialise(self, solver, mode, t, y):
+        """Consistent (y, y') at ``t`` from the model's state (the DAE form's)."""
+        return solver.init_step(t, *self.form.consistent(mode, t, y))

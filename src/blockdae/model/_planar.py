@@ -128,6 +128,18 @@ class PlanarBlock(AbstractHybridModel):
                  excitation.component(1, t) - self.bias[1] * self.g)
         return sigma, (excitation.component_rate(0, t), excitation.component_rate(1, t))
 
+    def friction(self, mode, t, y, excitation, xp=np):
+        """(F_x, F_y): the friction force per unit mass the base exerts on the block in
+        ``mode`` [m/s²], so that the relative horizontal acceleration is F - sigma: the
+        demand sigma in stick, -f n e in slip, zero in flight."""
+        if mode == PlanarMode.STICK:
+            return self.demand(t, excitation)[0]
+        if mode == PlanarMode.FLIGHT:
+            return 0.0 * y[_UX], 0.0 * y[_UX]
+        n, _ = self.normal(t, excitation)
+        scale = -self.friction_kinetic * n / xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
+        return scale * y[_CX], scale * y[_CY]
+
     # ---- hybrid automaton ----------------------------------------------------
     def flow(self, mode, t, y, excitation, xp=np):
         """dy/dt in ``mode`` (zero in stick)."""
