@@ -35,7 +35,7 @@ def simulate(block: SlidingBlock | PlanarBlock, motion: AbstractExcitation | Bas
                 window=64: pieces of a(t) per block of the onset search [-]; changes
                     speed, never results.
             backend="cvode" (ODE in u, v) and backend="ida" (DAE, with the friction
-            force per unit mass F as algebraic variable):
+            force per unit mass F, for a PlanarBlock (F_x, F_y), as algebraic variables):
                 rtol=1e-10: relative tolerance [-], in [1e-14, 1e-2].
                 atol=1e-14: absolute tolerance [m, m/s]; IDA's on F [m/s²] is at
                     least rtol mu g.
