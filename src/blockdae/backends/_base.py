@@ -2,13 +2,14 @@
 
 import abc
 import dataclasses
+import functools
 import math
 
 import numpy as np
 
 from .._solution import BatchSolution, Solution
 from ..excitation import AbstractExcitation
-from ..model import SlidingBlock, never_rests_error  # noqa: F401 (backends raise it)
+from ..model import SlidingBlock
 
 
 @dataclasses.dataclass(frozen=True)
@@ -44,6 +45,21 @@ def batch_params(block: SlidingBlock) -> tuple[np.ndarray, ...]:
     params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
                    for p in (block.mu, block.friction_kinetic, block.bias))
     return params + (np.full(shape, float(block.g)), np.ones(shape))
+
+
+def cached_per_excitation(build):
+    """``build(excitation, t_end, window)`` kept for the last few excitations, which are
+    immutable; an unhashable (user-defined) excitation is built afresh every call."""
+    cached = functools.lru_cache(maxsize=16)(build)
+
+    @functools.wraps(build)
+    def get(excitation, t_end, window):
+        try:
+            return cached(excitation, t_end, window)
+        except TypeError:  # an unhashable user-defined excitation
+            return build(excitation, t_end, window)
+
+    return get
 
 
 def check_window(window) -> None:

@@ -1,7 +1,6 @@
 """The exact backend: closed forms on every piece, events to machine precision."""
 
 import dataclasses
-import functools
 
 import numpy as np
 
@@ -10,7 +9,7 @@ from ..excitation import Pieces
 from ..excitation._pieces import accel
 from ..model import SlidingBlock
 from . import _exact_numba as engine
-from ._base import AbstractBackend, check_window
+from ._base import AbstractBackend, cached_per_excitation, check_window
 from ._results import check, exact_solution
 
 
@@ -92,17 +91,9 @@ def _flags(block, horizon):
     return block.allow_negative, block.allow_positive, horizon.until_rest
 
 
+@cached_per_excitation
 def _engine_input(excitation, t_end, window):
-    """The pieces of ``excitation`` up to ``t_end`` [s] and the engine's input built from
-    them; kept for the last few excitations, which are immutable."""
-    try:
-        return _cached_engine_input(excitation, t_end, window)
-    except TypeError:  # an unhashable user-defined excitation
-        return _cached_engine_input.__wrapped__(excitation, t_end, window)
-
-
-@functools.lru_cache(maxsize=16)
-def _cached_engine_input(excitation, t_end, window):
+    """The pieces of ``excitation`` up to ``t_end`` [s] and the engine's input built from them."""
     pieces = excitation.pieces(t_end)
     return pieces, prepare(pieces, window)
 

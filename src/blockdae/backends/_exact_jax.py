@@ -5,7 +5,6 @@ cross-checked in the tests.
 """
 
 import dataclasses
-import functools
 
 import jax
 import numpy as np
@@ -15,7 +14,7 @@ from .._solution import BatchSolution
 from ..excitation import Pieces
 from ..model import SlidingBlock
 from . import _exact_kernel as kernel
-from ._base import AbstractBackend, batch_params, check_window
+from ._base import AbstractBackend, batch_params, cached_per_excitation, check_window
 from ._results import check, exact_solution, max_run
 
 
@@ -81,18 +80,10 @@ def _bucket(n: int) -> int:
     return int(-(-n // step) * step)
 
 
+@cached_per_excitation
 def _pieces_on_device(excitation, t_end, window):
     """The pieces of ``excitation`` up to ``t_end`` [s], and the kernel's input built
-    from them on the JAX device; kept for the last few excitations, which are immutable
-    (building it for a long record costs as much as a run)."""
-    try:
-        return _cached_pieces_on_device(excitation, t_end, window)
-    except TypeError:  # an unhashable user-defined excitation
-        return _cached_pieces_on_device.__wrapped__(excitation, t_end, window)
-
-
-@functools.lru_cache(maxsize=16)
-def _cached_pieces_on_device(excitation, t_end, window):
+    from them on the JAX device (building it for a long record costs as much as a run)."""
     pieces = excitation.pieces(t_end)
     with jax_context():
         return pieces, jax.device_put(_kernel_input(pieces, window))

@@ -8,7 +8,8 @@ import numpy as np
 from .._jax_config import jax_context
 from .._solution import BatchSolution, EventLog, Solution
 from . import _jax_kernel as kernel
-from ._base import AbstractBackend, batch_params, never_rests_error
+from ..model import never_rests_error
+from ._base import AbstractBackend, batch_params
 from ._exact_jax import _device, _params
 from ._results import DenseOutput, max_run
 

@@ -11,7 +11,7 @@ from .._solution import EventLog, Solution
 from ..excitation import Pieces
 from ..excitation._pieces import evaluate
 from ..model import SlidingBlock, slip_constant
-from ._base import never_rests_error
+from ..model import never_rests_error
 
 
 def exact_solution(block: SlidingBlock, pieces: Pieces, knots, max_run: int, backend: str) -> Solution:
