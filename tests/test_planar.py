@@ -49,14 +49,14 @@ def test_a_record_along_x_reduces_to_the_1d_block(stem):
     assert_reduces(sol, ref)
 
 
-@pytest.mark.parametrize("angle", [30.0, pytest.param(135.0, marks=pytest.mark.xfail(strict=True, reason=(
-    "known limitation: near a stop against the drive the sliding direction is unstable "
-    "(a transverse error grows like (t_stop - t)^-a); CVODE's local errors in the "
-    "direction, not rounding, grow there and move the stop by ~9e-6 s at 135 degrees")))])
+@pytest.mark.parametrize("angle", [30.0, 135.0])
 def test_a_motion_along_a_rotated_line_is_the_1d_block_rotated(angle):
     """Shaking along a line at ``angle`` with the bias along it is the 1-D problem in a
     rotated frame: every component of the planar code (circle, direction, both
-    displacement components) is exercised, and the answer is known exactly."""
+    displacement components) is exercised, and the answer is known exactly. At 135
+    degrees (a stop against the drive, where the direction is unstable) CVODE's stop was
+    ~9e-6 s off before the direction's relaxation rate was capped below
+    ``SLOW_SPEED``; measured since: 5.4e-12 s, 7.5e-9 of u."""
     example = bd.seed_examples()[3]  # Example 3b: bias 0.3, f 0.4 < mu 0.6, harmonic
     c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
     motion = bd.BaseMotion(example.motion.scaled(c), example.motion.scaled(s))

@@ -281,7 +281,7 @@ class _Run:
         self.max_run = max(self.max_run, self.run_length)
         before, model = self.mode, self.model
         self.events.append(model.event(float(t), before, after, self.y))
-        self.y = model.state_on_entry(before, after, t, self.y, self.piece_excitation, SCALAR)
+        self.y = np.array(model.state_on_entry(before, after, t, self.y, self.piece_excitation, SCALAR), dtype=float)
         if self.run_length > self.cap:
             modes = " -> ".join(e.mode_before.name for e in self.events[-self.run_length:])
             raise RuntimeError(

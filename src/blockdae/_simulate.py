@@ -48,10 +48,15 @@ def simulate(block: SlidingBlock | PlanarBlock, motion: AbstractExcitation | Bas
             backend="jax" (diffrax twin, forward-mode differentiable):
                 rtol=1e-10: relative tolerance of the step-size controller [-].
                 atol=1e-12: absolute tolerance [m, m/s].
-                solver="tsit5": diffrax solver [-]: "tsit5", "dopri5", "dopri8"
-                    (explicit) or "kvaerno5" (implicit).
-                max_segments=8: most segments (events + 1) in one piece of a(t) [-].
+                solver=None: diffrax solver [-]: "tsit5", "dopri5", "dopri8"
+                    (explicit) or "kvaerno5" (implicit); None: "tsit5" for a
+                    SlidingBlock, "dopri8" for a PlanarBlock.
+                max_segments=8: most segments (events + 1) in one piece of a(t) [-]
+                    (SlidingBlock).
                 max_steps=4096: most solver steps per segment [-].
+                max_events_at_one_instant=5: most events at one instant [-]
+                    (PlanarBlock; more: chatter, an error).
+                event_resolution=1e-9: events closer are one instant [s] (PlanarBlock).
 
     Returns:
         A :class:`Solution`, or a :class:`BatchSolution` for a batch; either keeps

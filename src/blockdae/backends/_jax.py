@@ -1,14 +1,20 @@
-"""The JAX twin: the hybrid automaton integrated with diffrax, events by root finding."""
+"""The JAX twin: the hybrid automaton integrated with diffrax, events by root finding.
+
+A :class:`~blockdae.SlidingBlock` runs in one compiled kernel (:mod:`._jax_kernel`);
+any other model runs on the generic driver with a diffrax integrator per mode
+(:mod:`._jax_hybrid`)."""
 
 import dataclasses
 
 import jax
 import numpy as np
 
+from .._driver import drive
 from .._jax_config import jax_context
 from .._solution import BatchSolution, EventLog, Solution
 from . import _jax_kernel as kernel
-from ..model import never_rests_error
+from ..model import PlanarBlock, SlidingBlock, never_rests_error
+from ._jax_hybrid import DiffraxIntegrator, Settings
 from ._base import AbstractBackend, batch_params
 from ._exact_jax import _device, _params
 from ._results import DenseOutput, max_run
@@ -23,42 +29,57 @@ class JaxBackend(AbstractBackend):
     output, then one Newton step). Independent of the exact backend's closed-form
     motion; both take the flow, guards and transition rules from the model.
     Differentiable in forward mode only (``jax.jvp``/``jacfwd``; see
-    :func:`blockdae.sensitivities`).
+    :func:`blockdae.sensitivities`). Other models (:class:`~blockdae.PlanarBlock`) run
+    on the generic hybrid driver, one compiled diffrax segment per driver step.
 
     Args:
         rtol, atol: tolerances of the step-size controller [-, m and m/s].
         solver: "tsit5", "dopri5", "dopri8" (explicit) or "kvaerno5" (implicit; its
-            third-order dense output locates events on sine pieces only to ~1e-9 s).
+            third-order dense output locates events on sine pieces only to ~1e-9 s);
+            None: "tsit5" for a SlidingBlock, "dopri8" for other models (the polar
+            slide of a PlanarBlock is stiff just after an onset, where a high order
+            keeps the steps few).
         max_segments: most segments (events + 1) one piece of a(t) may hold; more
-            raises an error instead of looping.
+            raises an error instead of looping (SlidingBlock).
         max_steps: most solver steps per segment.
+        max_events_at_one_instant: most consecutive events at one instant (other
+            models; more: chatter, an error).
+        event_resolution: events closer than this are one instant [s] (other models).
     """
 
     rtol: float = 1e-10
     atol: float = 1e-12
-    solver: str = "tsit5"
+    solver: str | None = None
     max_segments: int = 8
     max_steps: int = 4096
+    max_events_at_one_instant: int = 5
+    event_resolution: float = 1e-9
     name = "jax"
+    models = (SlidingBlock, PlanarBlock)
 
     def __post_init__(self):
         for field in ("rtol", "atol"):
             value = getattr(self, field)
             if not (isinstance(value, (int, float)) and np.isfinite(value) and 0 < value < 1):
                 raise ValueError(f"{field} must be a number in (0, 1), got {value!r}")
-        if self.solver not in kernel.SOLVERS:
+        if self.solver is not None and self.solver not in kernel.SOLVERS:
             raise ValueError(f"solver must be one of {tuple(kernel.SOLVERS)}, got {self.solver!r}")
-        for field, least in (("max_segments", 2), ("max_steps", 1)):
+        if not (isinstance(self.event_resolution, (int, float)) and 0 <= self.event_resolution < 1):
+            raise ValueError(f"event_resolution must be a time in [0, 1) [s], got {self.event_resolution!r}")
+        for field, least in (("max_segments", 2), ("max_steps", 1), ("max_events_at_one_instant", 1)):
             value = getattr(self, field)
             if not (isinstance(value, int) and value >= least):
                 raise ValueError(f"{field} must be an integer >= {least}, got {value!r}")
 
     def config(self, block, pieces):
         """The kernel's static settings for ``block`` under ``pieces``."""
-        return kernel.Config(block.allow_negative, block.allow_positive, pieces.has_sine, self.solver,
+        return kernel.Config(block.allow_negative, block.allow_positive, pieces.has_sine, self.solver or "tsit5",
                              float(self.rtol), float(self.atol), self.max_segments, self.max_steps)
 
     def solve(self, block, excitation, horizon):
+        if not isinstance(block, SlidingBlock):
+            return drive(block, excitation, horizon, self.integrator, self.name, self.max_events_at_one_instant,
+                         self.event_resolution, (self.rtol, self.atol))
         pieces = excitation.pieces(horizon.integration_end(excitation))
         with jax_context():
             out = kernel.run(_params(block), _device(pieces, 1), cfg=self.config(block, pieces),
@@ -66,6 +87,11 @@ class JaxBackend(AbstractBackend):
             final, t_final, rests, flags, knots = jax.device_get(out)
         self.check(block, rests, flags)
         return _solution(block, pieces, knots, float(t_final), int(flags.n_steps), self.name)
+
+    def integrator(self, model, piece):
+        """The generic driver's integrator for ``model`` (``piece``: its excitation)."""
+        settings = Settings(self.solver or "dopri8", float(self.rtol), float(self.atol), self.max_steps)
+        return DiffraxIntegrator(model, piece, settings)
 
     def solve_batch(self, block, excitation, horizon):
         pieces = excitation.pieces(horizon.integration_end(excitation))

@@ -5,6 +5,8 @@ import enum
 import math
 import types
 
+import numpy as np
+
 #: the array namespace of the model's xp-generic rules on Python floats (the driver's)
 SCALAR = types.SimpleNamespace(stack=tuple, sqrt=math.sqrt, where=lambda cond, a, b: a if cond else b)
 
@@ -27,6 +29,8 @@ class AbstractHybridModel(abc.ABC):
     modes: type[enum.IntEnum]
     #: the mode at t = 0 (the model starts at rest relative to its base)
     initial_mode: enum.IntEnum
+    #: names of the excitation's components, in the order of ``excitation_pieces``
+    component_names: tuple[str, ...] = ("x",)
 
     # ---- the automaton -------------------------------------------------------
     @abc.abstractmethod
@@ -71,13 +75,30 @@ class AbstractHybridModel(abc.ABC):
         """``y`` with the relative velocities set to zero."""
 
     @abc.abstractmethod
-    def state_at_guard(self, mode, guard_index, y):
+    def state_at_guard(self, mode, guard_index, y, xp=np):
         """The state where guard ``guard_index`` of ``mode`` is zero (e.g. v = 0 at a
         stop, exactly), from the located ``y``."""
 
     def state_on_entry(self, before, after, t, y, excitation, xp):
         """The state on entering ``after`` from ``before`` at ``t`` (unchanged by default)."""
         return y
+
+    # ---- parameters, for JAX (compiled rules, derivatives) ------------------
+    def parameters(self) -> dict:
+        """The model's real parameters by name [their units]: every value that ``flow``,
+        ``guards``, ``state_at_guard`` and ``state_on_entry`` read (what compiled
+        backends pass as arguments and :func:`blockdae.sensitivities` differentiates)."""
+        raise NotImplementedError(f"{type(self).__name__} does not list its parameters")
+
+    def with_parameters(self, values: dict) -> "AbstractHybridModel":
+        """This model with the parameters ``values`` (name -> number or traced JAX
+        scalar, names from :meth:`parameters`), not validated: for compiled rules."""
+        raise NotImplementedError(f"{type(self).__name__} does not take traced parameters")
+
+    def tied_parameters(self) -> dict:
+        """name -> the parameters that move with it as ``replace(name=...)`` moves them
+        (e.g. a kinetic friction that defaults to the static one); none by default."""
+        return {}
 
     def guard_restarts(self, mode, guard_index) -> bool:
         """Whether reaching the guard is an event even if the mode stays (False)."""

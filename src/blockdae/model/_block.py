@@ -273,7 +273,7 @@ class SlidingBlock(AbstractHybridModel):
     def rest_state(self, y):
         return np.array([y[0], 0.0])
 
-    def state_at_guard(self, mode, guard_index, y):
+    def state_at_guard(self, mode, guard_index, y, xp=np):
         """A slip stop has v = 0 by definition; stick guards leave the state."""
         return y if mode == Mode.STICK else np.array([y[0], 0.0])
 

@@ -35,6 +35,15 @@ from .._units import STANDARD_GRAVITY
 from ._base import SCALAR, AbstractHybridModel
 
 _UX, _UY, _S, _CX, _CY, _W, _WD = range(7)
+#: below this speed [m/s] the direction relaxes towards the demand at the rate
+#: |sigma| / SLOW_SPEED instead of |sigma| / s. Just after an onset with f = mu,
+#: s ~ tau², and the exact rate |sigma| / s makes the slide so stiff that no solver
+#: steps through it (explicit ones need ~1 / tau steps). The lag of the direction
+#: behind the demand, omega s / |sigma| (omega: its turning rate), is then
+#: omega SLOW_SPEED / |sigma| < 1e-6 rad while s < SLOW_SPEED, which moves u by less
+#: than omega SLOW_SPEED² tau / |sigma| ~ 1e-15 m (Elms's pulse: stops 2e-12 s,
+#: u 1e-11 off a reference with the exact rate, tests/test_planar_jax.py).
+SLOW_SPEED = 1e-6
 
 
 class PlanarMode(enum.IntEnum):
@@ -75,6 +84,7 @@ class PlanarBlock(AbstractHybridModel):
     state_names = ("u_x", "u_y", "s", "c_x", "c_y", "w", "w_rate")
     modes = PlanarMode
     initial_mode = PlanarMode.STICK
+    component_names = ("x", "y", "z")
 
     def __post_init__(self):
         for name in ("mu", "g", "restitution", "bounce_threshold") + (() if self.mu_kinetic is None
@@ -155,7 +165,7 @@ class PlanarBlock(AbstractHybridModel):
         along = -(ex * sx + ey * sy)
         across = ey * sx - ex * sy  # e_perp . (-sigma), e_perp = (-e_y, e_x)
         s = y[_S]
-        turn = xp.where(s == 0, 0.0, across / xp.where(s == 0, 1.0, s))  # de/dt along e_perp [1/s]
+        turn = across / xp.where(s > SLOW_SPEED, s, SLOW_SPEED)  # de/dt along e_perp [1/s]
         return xp.stack([s * ex, s * ey, along - self.friction_kinetic * n, -ey * turn * size,
                          ex * turn * size, zero, zero])
 
@@ -230,12 +240,12 @@ class PlanarBlock(AbstractHybridModel):
     def rest_state(self, y):
         return _with(y, {_S: 0.0, _W: 0.0, _WD: 0.0})
 
-    def state_at_guard(self, mode, guard_index, y):
+    def state_at_guard(self, mode, guard_index, y, xp=np):
         """A stop has s = 0 and a landing w = 0, exactly."""
         if mode == PlanarMode.SLIP and guard_index == 1:
-            return _with(y, {_S: 0.0})
+            return _with(y, {_S: 0.0}, xp)
         if mode == PlanarMode.FLIGHT:
-            return _with(y, {_W: 0.0})
+            return _with(y, {_W: 0.0}, xp)
         return y
 
     def guard_restarts(self, mode, guard_index):
@@ -250,23 +260,42 @@ class PlanarBlock(AbstractHybridModel):
         -sigma (or, where sigma = 0, along its rate)."""
         if after == PlanarMode.FLIGHT:
             if before == PlanarMode.FLIGHT:
-                return _with(y, {_W: 0.0, _WD: -self.restitution * y[_WD]})
-            ex, ey = _unit(y)
-            return _with(y, {_S: 0.0, _CX: y[_S] * ex, _CY: y[_S] * ey, _W: 0.0, _WD: 0.0})
+                return _with(y, {_W: 0.0, _WD: -self.restitution * y[_WD]}, xp)
+            ex, ey = _unit(y, xp)
+            return _with(y, {_S: 0.0, _CX: y[_S] * ex, _CY: y[_S] * ey, _W: 0.0, _WD: 0.0}, xp)
         if before == PlanarMode.FLIGHT:  # back to the polar form
-            speed = math.hypot(y[_CX], y[_CY])
-            y = _with(y, {_S: speed, _W: 0.0, _WD: 0.0})
+            y = _with(y, {_S: xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2), _W: 0.0, _WD: 0.0}, xp)
         if after == PlanarMode.STICK:
-            return _with(y, {_S: 0.0})
-        return self._along_demand(t, excitation, y) if y[_S] == 0 else y
+            return _with(y, {_S: 0.0}, xp)
+        return xp.where(y[_S] == 0, self._along_demand(t, excitation, y, xp), y)
 
-    def _along_demand(self, t, excitation, y):
+    def _along_demand(self, t, excitation, y, xp):
         (sx, sy), (rx, ry) = self.demand(t, excitation)
-        for x, y_ in ((sx, sy), (rx, ry)):
-            size = math.hypot(x, y_)
-            if size > 0:
-                return _with(y, {_CX: -x / size, _CY: -y_ / size})
-        return y
+        size, rate_size = xp.sqrt(sx**2 + sy**2), xp.sqrt(rx**2 + ry**2)
+        on_demand = size > 0
+        x, y_, n = (xp.where(on_demand, a, b) for a, b in ((sx, rx), (sy, ry), (size, rate_size)))
+        moving = n > 0
+        n = xp.where(moving, n, 1.0)
+        return _with(y, {_CX: xp.where(moving, -x / n, y[_CX]), _CY: xp.where(moving, -y_ / n, y[_CY])}, xp)
+
+    # ---- parameters ----------------------------------------------------------
+    def parameters(self):
+        """mu, mu_kinetic (f), bias_x, bias_y [-], g [m/s²], restitution [-]."""
+        return {"mu": self.mu, "mu_kinetic": self.friction_kinetic, "bias_x": self.bias[0],
+                "bias_y": self.bias[1], "g": self.g, "restitution": self.restitution}
+
+    def with_parameters(self, values):
+        values = {**self.parameters(), **values}
+        model = object.__new__(PlanarBlock)
+        fields = {"mu": values["mu"], "mu_kinetic": values["mu_kinetic"], "bias": (values["bias_x"], values["bias_y"]),
+                  "g": values["g"], "restitution": values["restitution"], "bounce_threshold": self.bounce_threshold}
+        for name, value in fields.items():
+            object.__setattr__(model, name, value)
+        return model
+
+    def tied_parameters(self):
+        """mu moves the kinetic friction too when ``mu_kinetic`` is None."""
+        return {"mu": ("mu_kinetic",)} if self.mu_kinetic is None else {}
 
     def turn_rate(self, mode, t, y, excitation, xp=np):
         """Stick: the rate of (mu n)² - |sigma|² (linear in t on a linear piece), where
@@ -329,13 +358,18 @@ def horizontal_velocity(mode, y):
     return y[..., _CX] * scale, y[..., _CY] * scale
 
 
-def _with(y, changes):
-    y = np.array(y, dtype=float)
-    for index, value in changes.items():
-        y[index] = value
-    return y
+def _with(y, changes, xp=np):
+    """``y`` with the components ``changes`` (index -> value) replaced."""
+    if xp is np:
+        y = np.array(y, dtype=float)
+        for index, value in changes.items():
+            y[index] = value
+        return y
+    return xp.stack([changes.get(index, y[index]) for index in range(len(y))])
 
 
-def _unit(y):
-    size = math.hypot(y[_CX], y[_CY])
-    return (y[_CX] / size, y[_CY] / size) if size > 0 else (0.0, 0.0)
+def _unit(y, xp):
+    size = xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
+    moving = size > 0
+    size = xp.where(moving, size, 1.0)
+    return xp.where(moving, y[_CX] / size, 0.0), xp.where(moving, y[_CY] / size, 0.0)
