@@ -106,7 +106,7 @@ class AbstractIntegrator(abc.ABC):
 
 
 def drive(model, excitation, horizon, integrator_factory, backend_name, max_events_at_one_instant,
-          event_resolution, velocity_tolerance):
+          event_resolution, velocity_tolerance, trace=None):
     """Run ``model`` under ``excitation`` to ``horizon`` with one integrator.
 
     Args:
@@ -120,10 +120,17 @@ def drive(model, excitation, horizon, integrator_factory, backend_name, max_even
         velocity_tolerance: (rtol [-], atol [m/s]) of the integrator; a stop is
             uncertain by the time the guard needs to change by a few of these (see
             ``_Run.stop_uncertainty``), which widens ``event_resolution`` at grazes.
+        trace: a list to append the run's steps to, in order (for derivatives along the
+            located trajectory, :mod:`blockdae._hybrid_sensitivities`); each a tuple
+            ("flow", mode, t_from, y_from, t_to, piece) (the integrator ran ``mode``
+            from ``y_from``), ("guard", mode, index, t, y) (guard ``index`` reached zero
+            at ``t`` in state ``y``) or ("entry", before, after, t, y, piece) (the mode
+            changed at ``t``; ``y`` before ``state_on_entry``); ``piece`` is the piece's
+            (t0 [s], coefficients).
     """
     components = model.excitation_pieces(excitation, horizon.integration_end(excitation))
     run = _Run(model, len(components), integrator_factory, max_events_at_one_instant, event_resolution,
-               velocity_tolerance)
+               velocity_tolerance, trace)
     t0, h = components[0].t0, components[0].h
     starts = np.append(t0[1:], t0[-1] + h[-1])
     for k in range(len(t0)):
@@ -137,8 +144,8 @@ class _Run:
     """State of one run: time, state, mode, knots and events."""
 
     def __init__(self, model, n_components, integrator_factory, max_events_at_one_instant, event_resolution,
-                 velocity_tolerance):
-        self.model, self.resolution = model, event_resolution
+                 velocity_tolerance, trace=None):
+        self.model, self.resolution, self.trace = model, event_resolution, trace
         self.velocity_tolerance, self.v_max = velocity_tolerance, 0.0
         self.piece_excitation = PieceExcitation(n_components)
         self.integrator = integrator_factory(model, self.piece_excitation)
@@ -158,6 +165,15 @@ class _Run:
 
     def to_mode(self, value):
         return self.model.modes(int(value))
+
+    def current_piece(self):
+        """The current piece of the excitation: (t0 [s], coefficients)."""
+        return self.piece_excitation.t0, self.piece_excitation.coefficients
+
+    def record(self, *step):
+        """Append ``step`` to the trace, if one is kept (see :func:`drive`)."""
+        if self.trace is not None:
+            self.trace.append(step)
 
     # ---- the loop ----------------------------------------------------------
     def enter_piece(self, t0, coefficients):
@@ -202,7 +218,9 @@ class _Run:
                 continue
             t_out = min(target, self.t + self.output_step())
             t, y, root = self.integrator.step(t_out, target)
+            t_from, y_from = self.t, self.y
             self.t, self.y = (t_out if root is None else float(t)), np.array(y[:self.n_states], dtype=float)
+            self.record("flow", self.mode, t_from, y_from, self.t, self.current_piece())
             self.v_max = max(self.v_max, self.model.speed(self.y))
             if root is None:
                 rate = self.rate(self.mode, self.t, self.y)
@@ -253,6 +271,7 @@ class _Run:
     def on_guard(self, index):
         """Guard ``index`` of the current mode reached zero at ``self.t``."""
         model, before = self.model, self.mode
+        self.record("guard", before, index, self.t, self.y)
         self.y = model.state_at_guard(before, index, self.y)
         after = self.to_mode(model.mode_after_guard(before, index, self.t, self.y, self.piece_excitation,
                                                     SCALAR, self.stop_uncertainty(index)))
@@ -281,6 +300,7 @@ class _Run:
         self.max_run = max(self.max_run, self.run_length)
         before, model = self.mode, self.model
         self.events.append(model.event(float(t), before, after, self.y))
+        self.record("entry", before, after, float(t), self.y, self.current_piece())
         self.y = np.array(model.state_on_entry(before, after, t, self.y, self.piece_excitation, SCALAR), dtype=float)
         if self.run_length > self.cap:
             modes = " -> ".join(e.mode_before.name for e in self.events[-self.run_length:])

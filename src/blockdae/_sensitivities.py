@@ -10,6 +10,10 @@ the branch the transition rule takes: a demand that touches the threshold and
 turns back does not slide, so the new episode is absent and the value is the
 one-sided derivative from the side without it (A below, mu above the threshold).
 With f < mu the displacement itself jumps there.
+
+Other models (:class:`~blockdae.PlanarBlock`) are differentiated along the trajectory
+the JAX twin locates, by the variational equation and the saltation jump at every
+event (:mod:`._hybrid_sensitivities`); their displacement is a vector.
 """
 
 import functools
@@ -21,40 +25,57 @@ from ._simulate import simulate
 from .backends import Horizon, make_backend
 from .backends._base import batch_params
 from .backends._results import check
-from .excitation import AbstractExcitation
+from .excitation import AbstractExcitation, BaseMotion
 from .model import SlidingBlock
 
-#: parameter name -> unit of d u / d parameter
+#: parameter name -> unit of d u / d parameter (SlidingBlock)
 UNITS = {"mu": "m", "mu_kinetic": "m", "bias": "m", "A": "m/g", "scale": "m"}
+#: the parameters differentiated by default (SlidingBlock)
+DEFAULT_WRT = ("mu", "mu_kinetic", "bias", "A")
 
 
-def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float | None = None,
-                  wrt=("mu", "mu_kinetic", "bias", "A"), backend: str = "exact", **options) -> dict:
+def unit(name: str) -> str:
+    """Unit of d u / d ``name``: m/g for "A", else m (per unit of the parameter)."""
+    return "m/g" if name == "A" else "m"
+
+
+def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: str | None = None,
+                  **options) -> dict:
     """d u(t_end) / d p for each parameter p in ``wrt``.
 
     Args:
-        block: the block; a batch of parameter sets if its parameters are 1-D arrays.
-        motion: base excitation.
+        block: a :class:`SlidingBlock` (a batch of parameter sets if its parameters are
+            1-D arrays) or another model (a :class:`PlanarBlock`).
+        motion: base excitation (for a PlanarBlock also a :class:`BaseMotion`).
         t_end: final time [s]; None: when the block rests after the excitation ends.
-        wrt: any of "mu" (static friction; when ``block.mu_kinetic`` is None the
-            kinetic coefficient follows it, so it moves both), "mu_kinetic" (kinetic
-            alone), "bias" (R/Q), "A" (peak base acceleration in units of
-            ``block.g``, the excitation scaled so that its peak is A g) and "scale"
-            (a factor k on a(t), at k = 1).
+        wrt: for a SlidingBlock any of "mu" (static friction; when
+            ``block.mu_kinetic`` is None the kinetic coefficient follows it, so it
+            moves both), "mu_kinetic" (kinetic alone), "bias" (R/Q), "A" (peak base
+            acceleration in units of ``block.g``, the excitation scaled so that its
+            peak is A g) and "scale" (a factor k on a(t), at k = 1); default ("mu",
+            "mu_kinetic", "bias", "A"). For other models any of the model's
+            ``parameters()`` (PlanarBlock: "mu", "mu_kinetic", "bias_x", "bias_y",
+            "g", "restitution"), "A" (every component scaled so that the largest
+            component peak is A g) and "A_<component>" (one component's scale
+            factor, at 1: "A_x", "A_y", "A_z"; with y = R x, "A_y" is Elms's R);
+            default: ("mu", "mu_kinetic", "bias_x", "bias_y", "A") for a PlanarBlock.
         backend: "exact" (closed forms, differentiated through the JAX kernel of
-            "exact-jax") or "jax" (the diffrax twin).
+            "exact-jax") or "jax" (the diffrax twin); None: "exact" for a
+            SlidingBlock, "jax" (the only one) for other models.
         **options: settings of the backend.
 
     Returns:
         name -> derivative [m per unit of the parameter; m/g for "A"]: a float, or an
-        array of shape (n,) for a batch of n parameter sets.
+        array of shape (n,) for a batch of n parameter sets; for other models an
+        array of shape (2,), d(u_x, u_y)(t_end) / dp.
     """
-    wrt = _names(wrt)
+    if not isinstance(block, SlidingBlock):
+        return _hybrid_sensitivities(block, motion, t_end, wrt, "jax" if backend is None else backend, options)
+    backend = "exact" if backend is None else backend
+    wrt = _names(DEFAULT_WRT if wrt is None else wrt)
     if backend not in ("exact", "exact-jax", "jax"):
         raise ValueError(f"backend={backend!r} has no derivatives; use 'exact' or 'jax'")
     import jax  # loads only when derivatives are asked for
-    if not isinstance(block, SlidingBlock):
-        raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
     if "A" in wrt and not motion.peak_acceleration > 0:
         raise ValueError(f"'A' needs a motion with a nonzero peak acceleration, got {motion.peak_acceleration} m/s²")
     horizon = Horizon.resolve(motion, t_end)
@@ -84,22 +105,24 @@ def sensitivities(block: SlidingBlock, motion: AbstractExcitation, t_end: float 
     return {name: (float(derivatives[name]) if not shape else derivatives[name]) for name in wrt}
 
 
-def finite_differences(block: SlidingBlock, motion: AbstractExcitation, t_end: float | None = None,
-                       wrt=("mu", "mu_kinetic", "bias", "A"), backend: str = "cvode", step: float = 1e-4,
-                       **options) -> dict:
+def finite_differences(block, motion, t_end: float | None = None, wrt=DEFAULT_WRT, backend: str = "cvode",
+                       step: float = 1e-4, **options) -> dict:
     """Finite differences of u(t_end) on any backend, for checking derivatives.
 
     Same parameters and units as :func:`sensitivities` (one parameter set). ``step`` is
     relative: mu and mu_kinetic move by step times their value, bias by step times mu,
-    and a(t) is scaled by 1 +- step. Central differences, or second-order one-sided
+    and a(t) is scaled by 1 +- step (other models: each parameter by step times its
+    value, or by step where it is 0; each component's scale by step). Central differences, or second-order one-sided
     ones where a step would leave the block invalid (at a bound: mu_kinetic = mu,
     |bias| near mu), taken from the valid side.
     """
-    wrt = _names(wrt)
     if block.batch_shape:
         raise ValueError("finite_differences takes one parameter set; use block.item(i)")
     if not (np.isfinite(step) and 0 < step < 0.1):
         raise ValueError(f"step must be a relative step in (0, 0.1), got {step!r}")
+    if not isinstance(block, SlidingBlock):
+        return _hybrid_differences(block, motion, t_end, wrt, backend, step, options)
+    wrt = _names(wrt)
 
     def u(blk, mot):
         return simulate(blk, mot, t_end=t_end, backend=backend, **options).displacement
@@ -115,6 +138,74 @@ def finite_differences(block: SlidingBlock, motion: AbstractExcitation, t_end: f
         "scale": d_scale,
     }
     return {name: float(derivatives[name]()) for name in wrt}
+
+
+def _hybrid_sensitivities(block, motion, t_end, wrt, backend, options):
+    """:func:`sensitivities` for a model other than SlidingBlock."""
+    from . import _hybrid_sensitivities as hybrid
+
+    if backend != "jax":
+        raise ValueError(f"backend={backend!r} has no derivatives for a {type(block).__name__}; use 'jax'")
+    wrt = _hybrid_names(block, wrt)
+    peak = _largest_peak(motion) if "A" in wrt else None
+    horizon = Horizon.resolve(motion, t_end)
+    jacobian = hybrid.displacement_jacobian(block, motion, horizon, make_backend("jax", **options))
+    column = dict(zip(hybrid.parameter_names(block), jacobian.T))
+    derivatives = {}
+    for name in wrt:
+        if name == "A":  # every component scaled by k = A g / peak
+            derivatives[name] = sum(column[f"A_{c}"] for c in block.component_names) * block.g / peak
+        else:
+            derivatives[name] = column[name] + sum(column[tied] for tied in block.tied_parameters().get(name, ()))
+    return derivatives
+
+
+def _hybrid_differences(block, motion, t_end, wrt, backend, step, options):
+    """:func:`finite_differences` for a model other than SlidingBlock."""
+    wrt = _hybrid_names(block, wrt)
+    motion = motion if isinstance(motion, BaseMotion) else BaseMotion(motion)
+
+    def u(blk, mot):
+        return simulate(blk, mot, t_end=t_end, backend=backend, **options).displacement
+
+    def parameter(name):
+        value = block.parameters()[name]
+        h = step * (abs(value) if value != 0 else 1.0)
+        return _difference(u, lambda s: (block.replace_parameter(name, value + s * h), motion)) / h
+
+    def scale(names):
+        return _difference(u, lambda s: (block, motion.scaled_components(**{c: 1 + s * step for c in names}))) / step
+
+    derivatives = {}
+    for name in wrt:
+        if name == "A":
+            derivatives[name] = scale(block.component_names) * block.g / _largest_peak(motion)
+        elif name.startswith("A_"):
+            derivatives[name] = scale((name[2:],))
+        else:
+            derivatives[name] = parameter(name)
+    return derivatives
+
+
+def _hybrid_names(block, wrt):
+    from ._hybrid_sensitivities import parameter_names
+
+    known = parameter_names(block) + ("A",)
+    wrt = ("mu", "mu_kinetic", "bias_x", "bias_y", "A") if wrt is None else wrt
+    wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
+    unknown = [name for name in wrt if name not in known]
+    if unknown or not wrt:
+        raise ValueError(f"wrt={wrt!r}: choose among {known}")
+    return wrt
+
+
+def _largest_peak(motion):
+    """The largest peak acceleration of the motion's components [m/s²] (> 0)."""
+    peak = motion.peak_acceleration
+    peak = max(peak) if isinstance(peak, tuple) else float(peak)
+    if not peak > 0:
+        raise ValueError(f"'A' needs a motion with a nonzero peak acceleration, got {peak} m/s²")
+    return peak
 
 
 def _difference(u, change):

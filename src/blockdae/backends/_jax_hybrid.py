@@ -71,17 +71,35 @@ def model_parameters(model) -> dict:
     return {name: np.float64(value) for name, value in model.parameters().items()}
 
 
-@functools.cache
-def segment_function(model_type, mode, settings, template):
-    """The compiled segment integration of ``mode`` for models of ``model_type``.
-
-    ``template`` is a model of that type; the function rebuilds it from its
-    ``parameters`` argument by ``with_parameters`` (every value the rules read). Called
+def segment_function(model, mode, settings):
+    """The compiled segment integration of ``mode`` for models of ``model``'s type (one
+    per type, mode and settings, for every parameter set). Called
     as ``(parameters, t0, coefficients, scales, t_start [s], t_out [s], y0)``, it returns
     (t [s], y, whether a guard was reached, the index of the smallest guard there,
     diffrax result, accepted steps).
     """
+    return _segment_function(type(model), mode, settings, ModelTemplate(model))
+
+
+class ModelTemplate:
+    """A model of a type, standing for every model of that type in a cache key: the
+    compiled functions rebuild the model from their ``parameters`` argument by
+    ``with_parameters`` (every value the rules read)."""
+
+    def __init__(self, model):
+        self.model = model
+
+    def __hash__(self):
+        return hash(type(self.model))
+
+    def __eq__(self, other):
+        return type(self.model) is type(other.model)
+
+
+@functools.cache
+def _segment_function(model_type, mode, settings, template):
     del model_type  # part of the cache key only
+    template = template.model
 
     def run(parameters, t0, coefficients, scales, t_start, t_out, y0):
         model = template.with_parameters(parameters)
@@ -119,7 +137,7 @@ class DiffraxIntegrator(AbstractIntegrator):
 
     def step(self, t_out, t_stop):
         del t_stop  # diffrax steps onto t_out <= t_stop and never past it
-        run = segment_function(type(self.model), self.mode, self.settings, self.model)
+        run = segment_function(self.model, self.mode, self.settings)
         with jax_context():
             out = run(self.parameters, np.float64(self.piece.t0), np.asarray(self.piece.coefficients, dtype=float),
                       self.scales, np.float64(self.t), np.float64(t_out), self.y)

@@ -31,6 +31,8 @@ class AbstractHybridModel(abc.ABC):
     initial_mode: enum.IntEnum
     #: names of the excitation's components, in the order of ``excitation_pieces``
     component_names: tuple[str, ...] = ("x",)
+    #: indices of the states that make up the displacement the solution reports
+    displacement_states: tuple[int, ...] = (0,)
 
     # ---- the automaton -------------------------------------------------------
     @abc.abstractmethod
@@ -94,6 +96,11 @@ class AbstractHybridModel(abc.ABC):
         """This model with the parameters ``values`` (name -> number or traced JAX
         scalar, names from :meth:`parameters`), not validated: for compiled rules."""
         raise NotImplementedError(f"{type(self).__name__} does not take traced parameters")
+
+    def replace_parameter(self, name: str, value: float) -> "AbstractHybridModel":
+        """A validated copy with parameter ``name`` (from :meth:`parameters`) set to
+        ``value``; raises ValueError where that is no valid model."""
+        return self.replace(**{name: value})
 
     def tied_parameters(self) -> dict:
         """name -> the parameters that move with it as ``replace(name=...)`` moves them

@@ -85,6 +85,7 @@ class PlanarBlock(AbstractHybridModel):
     modes = PlanarMode
     initial_mode = PlanarMode.STICK
     component_names = ("x", "y", "z")
+    displacement_states = (_UX, _UY)
 
     def __post_init__(self):
         for name in ("mu", "g", "restitution", "bounce_threshold") + (() if self.mu_kinetic is None
@@ -292,6 +293,14 @@ class PlanarBlock(AbstractHybridModel):
         for name, value in fields.items():
             object.__setattr__(model, name, value)
         return model
+
+    def replace_parameter(self, name, value):
+        """As ``replace``; "bias_x" and "bias_y" set one component of ``bias``."""
+        if name in ("bias_x", "bias_y"):
+            bias = list(self.bias)
+            bias[name == "bias_y"] = value
+            return self.replace(bias=tuple(bias))
+        return self.replace(**{name: value})
 
     def tied_parameters(self):
         """mu moves the kinetic friction too when ``mu_kinetic`` is None."""
