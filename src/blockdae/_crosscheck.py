@@ -5,20 +5,24 @@ import time
 
 import numpy as np
 
-from ._sensitivities import UNITS, finite_differences, sensitivities
+from ._sensitivities import finite_differences, sensitivities, unit
 from ._simulate import simulate
 from .backends import make_backend
-from .model import SlidingBlock
+from .model import AbstractHybridModel, SlidingBlock
+
+#: the backends a cross-check runs by default, those that run the block, in this order
+DEFAULT_BACKENDS = ("exact", "cvode", "ida", "jax")
 
 
 @dataclasses.dataclass(frozen=True)
 class CrossCheck:
     """Per-backend results of one case; ``rows`` is a list of dicts with keys
 
-    backend, displacement [m], n_events, t_events [s] (array), max_dt [s] (largest
+    backend, displacement [m] (a float, or the model's displacement vector, e.g.
+    (u_x, u_y) for a PlanarBlock), n_events, t_events [s] (array), max_dt [s] (largest
     event-time difference against the reference, inf if the event lists differ in
-    length or modes), rel_du [-] (|u - u_ref| / |u_ref|, or the absolute difference
-    [m] when u_ref = 0), first [s] (wall time of the first call, which includes JIT
+    length or modes), rel_du [-] (|u - u_ref| / |u_ref| (Euclidean norms), or the
+    absolute difference [m] when u_ref = 0), first [s] (wall time of the first call, which includes JIT
     compilation when this process has not compiled that shape yet) and warm [s] (of a
     second, identical call); with ``wrt``, also sensitivities (name -> d u / d p, see
     :func:`blockdae.sensitivities`: differentiated kernels for "exact" and "jax", finite
@@ -38,28 +42,32 @@ class CrossCheck:
         raise KeyError(f"backend {backend!r} is not in this cross-check")
 
     def __str__(self):
-        derivative_heads = "".join(f" {f'du/d{name} [{UNITS[name]}]':>17}" for name in self.wrt)
-        head = (f"{'backend':<8} {'u_end [m]':>16} {'events':>6} {'max |dt| [s]':>13} "
+        width = max(16, max(len(_values(r["displacement"])) for r in self.rows))
+        d_width = max([17] + [len(_values(r["sensitivities"][n])) for r in self.rows for n in self.wrt])
+        derivative_heads = "".join(f" {f'du/d{name} [{unit(name)}]':>{d_width}}" for name in self.wrt)
+        head = (f"{'backend':<8} {'u_end [m]':>{width}} {'events':>6} {'max |dt| [s]':>13} "
                 f"{'rel |du| [-]':>13} {'first [s]':>9} {'warm [s]':>9}" + derivative_heads
                 + (f" {'rel |dS| [-]':>13}" if self.wrt else ""))
         lines = [head, "-" * len(head)]
         for r in self.rows:
-            derivatives = "".join(f" {r['sensitivities'][name]:>17.10g}" for name in self.wrt)
-            lines.append(f"{r['backend']:<8} {r['displacement']:>16.10f} {r['n_events']:>6d} "
+            derivatives = "".join(f" {_values(r['sensitivities'][name], '.10g'):>{d_width}}" for name in self.wrt)
+            lines.append(f"{r['backend']:<8} {_values(r['displacement']):>{width}} {r['n_events']:>6d} "
                          f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['first']:>9.3f} {r['warm']:>9.3f}"
                          + derivatives
                          + (f" {r['rel_dsens']:>13.2e}" if self.wrt else ""))
         return "\n".join(lines) + f"\n(differences against {self.reference!r})"
 
 
-def crosscheck(block, motion, backends=("exact", "cvode", "ida", "jax"), t_end=None, wrt=(),
-               **options) -> CrossCheck | list[CrossCheck]:
+def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> CrossCheck | list[CrossCheck]:
     """Solve ``block`` under ``motion`` with each backend (twice: first and warm call)
     and compare with the first backend.
 
     Args:
-        block: the block; for a batch of n parameter sets, each is checked on its own.
-        backends: backend names; the first is the reference (normally "exact").
+        block: the block (a SlidingBlock or another model, e.g. a PlanarBlock); for a
+            batch of n parameter sets, each is checked on its own.
+        motion: base excitation (for a PlanarBlock also a BaseMotion).
+        backends: backend names; the first is the reference (normally "exact"); None:
+            those of "exact", "cvode", "ida", "jax" that run the block, in this order.
         t_end: final time [s], or None (until rest after a finite excitation).
         wrt: parameters to differentiate u(t_end) by (see :func:`blockdae.sensitivities`),
             e.g. ("mu", "mu_kinetic", "bias", "A"); none by default.
@@ -68,8 +76,10 @@ def crosscheck(block, motion, backends=("exact", "cvode", "ida", "jax"), t_end=N
     Returns:
         A :class:`CrossCheck`, or a list of n of them for a batch.
     """
-    if not isinstance(block, SlidingBlock):
-        raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
+    if not isinstance(block, AbstractHybridModel):
+        raise TypeError(f"block must be a SlidingBlock or a PlanarBlock, got {type(block).__name__}")
+    if backends is None:
+        backends = tuple(name for name in DEFAULT_BACKENDS if isinstance(block, make_backend(name).models))
     accepted = {name: {f.name for f in dataclasses.fields(type(make_backend(name)))} for name in backends}
     unknown = set(options) - set().union(*accepted.values())
     if unknown:
@@ -95,7 +105,8 @@ def crosscheck(block, motion, backends=("exact", "cvode", "ida", "jax"), t_end=N
         wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
         for row in rows:
             mine = {key: value for key, value in options.items() if key in accepted[row["backend"]]}
-            derivative = sensitivities if row["backend"] in ("exact", "exact-jax", "jax") else finite_differences
+            differentiated = ("exact", "exact-jax", "jax") if isinstance(block, SlidingBlock) else ("jax",)
+            derivative = sensitivities if row["backend"] in differentiated else finite_differences
             row["sensitivities"] = derivative(block, motion, t_end=t_end, wrt=wrt, backend=row["backend"], **mine)
         ref_sens = rows[0]["sensitivities"]
         for row in rows:
@@ -112,4 +123,12 @@ def _max_event_dt(ref, sol):
 
 
 def _relative(u, u_ref):
-    return abs(u - u_ref) / abs(u_ref) if u_ref != 0 else abs(u - u_ref)
+    """|u - u_ref| / |u_ref| (Euclidean norms), or |u - u_ref| when u_ref = 0."""
+    difference, size = float(np.linalg.norm(np.subtract(u, u_ref))), float(np.linalg.norm(u_ref))
+    return difference / size if size != 0 else difference
+
+
+def _values(x, spec=".10f"):
+    """A number, or a vector as "(a, b)", formatted with ``spec``."""
+    x = np.asarray(x, dtype=float)
+    return format(float(x), spec) if x.ndim == 0 else "(" + ", ".join(format(v, spec) for v in x) + ")"

@@ -1,0 +1,142 @@
+"""The JAX twin on the planar block (diffrax under the generic driver) and the planar
+sensitivities (variational equation and saltation jumps along the located trajectory),
+against IDA, CVODE, the 1-D exact block, the polar reference of tests/test_planar_ida.py
+and central differences on CVODE (an independent backend) at rtol 1e-12."""
+
+import numpy as np
+import pytest
+
+import blockdae as bd
+from blockdae._sensitivities import finite_differences
+from blockdae.backends import make_backend
+from conftest import load_sample_record
+from test_planar_ida import (PULSE, VERTICAL, X_ONLY, assert_agrees, assert_reduces, elms, slide_reference,
+                             stop_after_the_pulse)
+
+RTOL = 1e-10
+WRT = ("mu", "mu_kinetic", "bias_x", "bias_y", "A", "A_x", "A_y", "A_z")
+
+
+def jax_and_ida(block, motion, t_end=None):
+    return tuple(bd.simulate(block, motion, t_end=t_end, backend=name, rtol=RTOL) for name in ("jax", "ida"))
+
+
+def assert_derivatives_match_differences(block, motion, t_end=None, wrt=WRT, rel_max=1e-6):
+    """Every d(u_x, u_y)/dp within ``rel_max`` of central differences on CVODE at rtol
+    1e-12 (one-sided where a step leaves the block invalid, e.g. mu_kinetic = mu)."""
+    derivatives = bd.sensitivities(block, motion, t_end=t_end, wrt=wrt)
+    differences = finite_differences(block, motion, t_end=t_end, wrt=wrt, backend="cvode", rtol=1e-12)
+    for name in wrt:
+        size = np.linalg.norm(differences[name])
+        assert derivatives[name].shape == (2,)
+        assert np.linalg.norm(derivatives[name] - differences[name]) <= rel_max * max(size, 1e-3), name
+
+
+# ---- the twin runs any driver model ------------------------------------------------
+
+def test_jax_runs_a_planar_block():
+    assert bd.PlanarBlock in make_backend("jax").models
+    block, _, motion, _ = X_ONLY["pulse"]
+    sol = bd.simulate(block, motion, backend="jax")
+    assert isinstance(sol, bd.PlanarSolution) and sol.backend == "jax"
+    assert sol.stats["n_steps"] > 0
+
+
+@pytest.mark.parametrize("case", ["pulse", pytest.param("harmonic", marks=pytest.mark.slow)])
+def test_x_only_motion_is_the_exact_1d_block(case):
+    """Measured: pulse 3.3e-14 s, 6.7e-14 of u; harmonic 3.1e-14 s, 6.9e-16 of max |u|."""
+    block, twin, motion, t_end = X_ONLY[case]
+    sol = bd.simulate(block, motion, t_end=t_end, backend="jax", rtol=RTOL)
+    assert_reduces(sol, bd.simulate(twin, motion, t_end=t_end), dt_max=1e-9, rel_du_max=1e-8)
+
+
+# ---- Elms's pulse -------------------------------------------------------------------
+
+@pytest.mark.parametrize("ratio", [0.4, pytest.param(0.8, marks=pytest.mark.slow)])
+def test_elms_pulse_agrees_with_the_reference_and_ida(ratio):
+    """Measured against the reference: onset and stop 1.6e-13 / 2.0e-12 s, u 5.4e-13 /
+    1.1e-11; against IDA 8.5e-11 / 5.2e-10 s, 6.0e-11 / 1.0e-9 (R = 0.4 / 0.8)."""
+    t_on, state = slide_reference(ratio, PULSE)
+    duration, u = stop_after_the_pulse(state)
+    sol, ida = jax_and_ida(*elms(ratio))
+    np.testing.assert_allclose(sol.t_events, [t_on, PULSE + duration], rtol=0, atol=1e-9)
+    assert np.hypot(*(sol.displacement - u)) <= 1e-7 * np.hypot(*u)
+    assert_agrees(sol, ida)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ratio", [0.4, 0.8])
+def test_elms_pulse_with_vertical_shaking_agrees_with_ida(ratio):
+    """a_z = 0.3 sin(2 pi t / 0.7) g to t = 4 s. Measured: 9.2e-10 / 7.1e-10 s, 1.1e-9 /
+    4.7e-10 of u (R = 0.4 / 0.8)."""
+    assert_agrees(*jax_and_ida(*elms(ratio, bd.Harmonic(*VERTICAL)), 4.0))
+
+
+def test_crosscheck_covers_the_planar_block():
+    block, motion = elms(0.4)
+    table = bd.crosscheck(block, motion, backends=("ida", "jax", "cvode"), rtol=RTOL)
+    assert [row["backend"] for row in table.rows] == ["ida", "jax", "cvode"]
+    for row in table.rows:
+        assert row["displacement"].shape == (2,) and row["n_events"] == 2
+        assert row["max_dt"] <= 1e-9 and row["rel_du"] <= 1e-7
+    assert "(-0.64355" in str(table)  # u_x [m], the vector printed
+    assert bd.crosscheck(block, motion).reference == "cvode"  # those that run it
+
+
+# ---- a two-component record ------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def two_records():
+    """Kobe TAK-090 in x, Duzce 375-090 in y (both dt 0.01 s; 40.1 s and 30.8 s)."""
+    kobe, duzce = load_sample_record("Kobe_1995_TAK-090"), load_sample_record("Duzce_1999_375-090")
+    return bd.PlanarBlock(mu=0.15, mu_kinetic=0.12, bias=(0.03, 0.01), g=9.81), bd.BaseMotion(kobe, duzce), kobe.duration
+
+
+@pytest.mark.slow
+def test_two_component_record_agrees_with_cvode(two_records):
+    """48 events. Measured against CVODE at rtol 1e-12: 2.5e-13 s, 5.5e-13 of u; CVODE
+    at rtol 1e-10 is 6.1e-11 s off it, IDA 9.6e-9 s (one stop, at 13.49 s)."""
+    block, motion, t_end = two_records
+    sol = bd.simulate(block, motion, t_end=t_end, backend="jax", rtol=RTOL)
+    ref = bd.simulate(block, motion, t_end=t_end, backend="cvode", rtol=1e-12)
+    assert len(ref.events) >= 40
+    assert_agrees(sol, ref)
+
+
+# ---- sensitivities ------------------------------------------------------------------
+
+def test_elms_sensitivities_match_central_differences():
+    """R = 0.4. Measured: 2e-8 (bias_y), 5e-8 (mu_kinetic, one-sided at f = mu), 4e-9
+    (bias_x), 3.6e-10 (A_x), 7.0e-10 (A_y); A_z = 0 (no vertical component)."""
+    assert_derivatives_match_differences(*elms(0.4))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ratio, vertical", [(0.8, False), (0.4, True), (0.8, True)])
+def test_elms_sensitivities_match_central_differences_in_every_case(ratio, vertical):
+    """Measured: R = 0.8 up to 4.8e-8; with a_z (to t = 4 s) up to 1.9e-8 (R = 0.4)."""
+    block, motion = elms(ratio, bd.Harmonic(*VERTICAL) if vertical else None)
+    assert_derivatives_match_differences(block, motion, t_end=4.0 if vertical else None)
+
+
+@pytest.mark.slow
+def test_two_component_record_sensitivities_match_central_differences(two_records):
+    block, motion, t_end = two_records
+    assert_derivatives_match_differences(block, motion, t_end, wrt=WRT[:-1])
+
+
+def test_lateral_ratio_derivative_is_the_y_scale():
+    """With y = R x, d u / d R at R = 0.4 is the y component's scale derivative over R."""
+    block, motion = elms(0.4)
+    d = bd.sensitivities(block, motion, wrt=("A_y",))["A_y"]
+    step = 1e-4
+    shifted = [bd.simulate(*elms(0.4 + s * step), backend="cvode", rtol=1e-12).displacement for s in (1, -1)]
+    np.testing.assert_allclose(d / 0.4, (shifted[0] - shifted[1]) / (2 * step), rtol=1e-6)
+
+
+def test_planar_sensitivities_refuse_unknown_parameters():
+    block, motion = elms(0.4)
+    with pytest.raises(ValueError, match="wrt"):
+        bd.sensitivities(block, motion, wrt=("bias",))
+    with pytest.raises(ValueError, match="backend"):
+        bd.sensitivities(block, motion, backend="exact")
