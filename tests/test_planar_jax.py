@@ -89,7 +89,8 @@ def test_crosscheck_covers_the_planar_block():
 def two_records():
     """Kobe TAK-090 in x, Duzce 375-090 in y (both dt 0.01 s; 40.1 s and 30.8 s)."""
     kobe, duzce = load_sample_record("Kobe_1995_TAK-090"), load_sample_record("Duzce_1999_375-090")
-    return bd.PlanarBlock(mu=0.15, mu_kinetic=0.12, bias=(0.03, 0.01), g=9.81), bd.BaseMotion(kobe, duzce), kobe.duration
+    block = bd.PlanarBlock(mu=0.15, mu_kinetic=0.12, bias=(0.03, 0.01), g=9.81)
+    return block, bd.BaseMotion(kobe, duzce), kobe.duration
 
 
 @pytest.mark.slow

@@ -25,7 +25,7 @@ from ._simulate import simulate
 from .backends import Horizon, make_backend
 from .backends._base import batch_params
 from .backends._results import check
-from .excitation import AbstractExcitation, BaseMotion
+from .excitation import BaseMotion
 from .model import SlidingBlock
 
 #: parameter name -> unit of d u / d parameter (SlidingBlock)

@@ -14,7 +14,8 @@ as
 
     s' = e . (-sigma) - f n,      s e' = (e_perp . (-sigma)) e_perp,
 
-so that a stop is a simple root of s, not a touch of |v| (seed eqs. 19-20 in SI). In
+so that a stop is a simple root of s, not a touch of |v| (seed eqs. 19-20 in SI; below
+``SLOW_SPEED`` the rate of e takes s = SLOW_SPEED, see there). In
 flight (n <= 0) there is no friction: v' = -sigma, and the gap w above the base obeys
 w'' = -n; the block lands when w returns to zero.
 
