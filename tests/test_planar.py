@@ -13,6 +13,8 @@ import blockdae as bd
 from conftest import load_sample_record
 
 G = 9.81
+#: this file checks the model on CVODE (IDA, the default for PlanarBlock: test_planar_ida.py)
+CVODE = "cvode"
 
 
 def planar_twin(block: bd.SlidingBlock, **changes) -> bd.PlanarBlock:
@@ -35,7 +37,7 @@ def assert_reduces(sol, ref, event_dt=1e-9, rel=1e-8):
 @pytest.mark.parametrize("example", bd.seed_examples(), ids=lambda e: e.name)
 def test_x_only_motion_reduces_to_the_1d_block(example):
     ref = bd.simulate(example.block, example.motion, t_end=example.t_end)  # exact closed forms
-    sol = bd.simulate(planar_twin(example.block), example.motion, t_end=example.t_end)
+    sol = bd.simulate(planar_twin(example.block), example.motion, t_end=example.t_end, backend=CVODE)
     assert_reduces(sol, ref)
     assert np.all(sol.u_y == 0.0)  # nothing pushes it off the x axis, not even rounding
 
@@ -45,7 +47,7 @@ def test_a_record_along_x_reduces_to_the_1d_block(stem):
     record = load_sample_record(stem)
     block = bd.SlidingBlock(mu=0.15, mu_kinetic=0.12, bias=0.03)
     ref = bd.simulate(block, record)
-    sol = bd.simulate(planar_twin(block), bd.BaseMotion(record))
+    sol = bd.simulate(planar_twin(block), bd.BaseMotion(record), backend=CVODE)
     assert_reduces(sol, ref)
 
 
@@ -62,7 +64,7 @@ def test_a_motion_along_a_rotated_line_is_the_1d_block_rotated(angle):
     motion = bd.BaseMotion(example.motion.scaled(c), example.motion.scaled(s))
     block = bd.PlanarBlock(mu=0.6, mu_kinetic=0.4, bias=(0.3 * c, 0.3 * s), g=G)
     ref = bd.simulate(example.block, example.motion, t_end=example.t_end)
-    sol = bd.simulate(block, motion, t_end=example.t_end)
+    sol = bd.simulate(block, motion, t_end=example.t_end, backend=CVODE)
     np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=1e-8)
     u = np.array([c, s]) * ref.displacement
     np.testing.assert_allclose(sol.displacement, u, rtol=0, atol=1e-8 * abs(ref.displacement))
@@ -100,7 +102,7 @@ def test_elms_one_sine_wave_with_lateral_shaking_against_a_cartesian_integration
     bias = (-(mu - 0.5 * amplitude), 0.0)
     wave = bd.Harmonic(amplitude, 2.0, cycles=1)
     sol = bd.simulate(bd.PlanarBlock(mu=mu, mu_kinetic=f, bias=bias, g=1.0),
-                      bd.BaseMotion(wave, wave.scaled(ratio)))
+                      bd.BaseMotion(wave, wave.scaled(ratio)), backend=CVODE)
     assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == [("STICK", "SLIP"), ("SLIP", "STICK")]
     onset = brentq(lambda t: math.hypot(amplitude * math.sin(math.pi * t) - bias[0],
                                         ratio * amplitude * math.sin(math.pi * t)) - mu, 0.0, 0.5, xtol=1e-15)
@@ -133,7 +135,7 @@ def flight_closed_form(depth, duration, g):
 def test_flight_under_a_falling_base_lands_where_the_closed_form_says():
     depth, duration = 1.5 * G, 0.3
     sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G), bd.BaseMotion(bd.RectangularPulse(0.0, duration), None,
-                                                                   bd.SinePulse(-depth, duration)))
+                                                                   bd.SinePulse(-depth, duration)), backend=CVODE)
     t1, t2 = flight_closed_form(depth, duration, G)
     assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == [("STICK", "FLIGHT"), ("FLIGHT", "STICK")]
     np.testing.assert_allclose(sol.t_events, [t1, t2], rtol=0, atol=1e-9)
@@ -144,7 +146,7 @@ def test_flight_under_a_falling_base_lands_where_the_closed_form_says():
 def test_bounces_shrink_by_the_restitution_and_end_in_contact():
     restitution, threshold = 0.5, 1e-3
     motion = bd.BaseMotion(bd.SinePulse(2.0, 0.5), None, bd.SinePulse(-15.0, 0.3))
-    sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G, restitution=restitution, bounce_threshold=threshold), motion)
+    sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G, restitution=restitution, bounce_threshold=threshold), motion, backend=CVODE)
     landings = [e for e in sol.events if e.mode_before == bd.PlanarMode.FLIGHT]
     rebounds = [e for e in landings if e.mode_after == bd.PlanarMode.FLIGHT]
     assert len(rebounds) >= 3 and landings[-1].mode_after != bd.PlanarMode.FLIGHT
@@ -184,7 +186,7 @@ def test_backends_and_motions_that_do_not_fit_say_so():
 def test_planar_solution_tables_and_dense_output():
     wave = bd.Harmonic(1.0, 2.0, cycles=1)
     sol = bd.simulate(bd.PlanarBlock(mu=0.8, mu_kinetic=0.7, bias=(-0.3, 0.0), g=1.0),
-                      bd.BaseMotion(wave, wave.scaled(0.8)))
+                      bd.BaseMotion(wave, wave.scaled(0.8)), backend=CVODE)
     u_x, u_y, v_x, v_y, gap = sol(sol.t)
     np.testing.assert_allclose(u_x, sol.u_x, atol=1e-15)
     np.testing.assert_allclose(np.hypot(v_x, v_y)[sol.mode == bd.PlanarMode.STICK], 0.0, atol=1e-15)
