@@ -195,3 +195,34 @@ def test_planar_solution_tables_and_dense_output():
     assert "u_x [m]" in sol.event_table()
     with pytest.raises(ValueError, match="t must lie"):
         sol(sol.t_end + 1.0)
+
+
+def test_a_batch_of_planar_blocks_is_each_block_alone():
+    """Arrays of mu, mu_kinetic and bias components broadcast to parameter sets; each
+    row equals the block run alone (the driver backends run one set after another)."""
+    wave = bd.Harmonic(1.0, 2.0, cycles=1)
+    motion = bd.BaseMotion(wave, wave.scaled(0.8))
+    block = bd.PlanarBlock(mu=np.array([0.8, 0.8, 0.9]), mu_kinetic=0.7, bias=(np.array([-0.3, -0.2, -0.3]), 0.05),
+                           g=1.0)
+    assert block.batch_shape == (3,)
+    batch = bd.simulate(block, motion, backend=CVODE)
+    for i in range(3):
+        alone = bd.simulate(block.item(i), motion, backend=CVODE)
+        assert np.array_equal(batch.displacement[i], alone.displacement)
+        assert batch.max_abs_displacement[i] == alone.max_abs_displacement
+        assert np.array_equal(batch[i].t_events, alone.t_events)
+    table = batch.to_dataframe()
+    assert list(table.columns[:5]) == ["mu", "mu_kinetic", "bias_x", "bias_y", "g_m_s2"]
+    np.testing.assert_array_equal(table[["displacement_x_m", "displacement_y_m"]].to_numpy(), batch.displacement)
+    assert table["bias_y"].tolist() == [0.05] * 3
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(mu=np.array([0.3, 0.5]), bias=(np.array([0.1, 0.6]), 0.0)), r"bias=\(0.6, 0.0\).*mu=0.5.*parameter set 1"),
+    (dict(mu=np.array([0.3, 0.5]), mu_kinetic=np.array([0.1, 0.6])), r"mu_kinetic=0.6 .*mu=0.5\].*parameter set 1"),
+    (dict(mu=np.array([0.3, 0.5, 0.7]), bias=(np.array([0.1, 0.2]), 0.0)), "broadcast"),
+    (dict(mu=np.ones((2, 2))), "mu must be a real number or a 1-D array"),
+])
+def test_a_bad_parameter_set_in_a_batch_is_named(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        bd.PlanarBlock(**kwargs)

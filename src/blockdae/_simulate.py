@@ -18,8 +18,8 @@ def simulate(block: SlidingBlock | PlanarBlock, motion: AbstractExcitation | Bas
     """Slide ``block`` on a base moving with ``motion``.
 
     Args:
-        block: a :class:`SlidingBlock` (a batch of parameter sets if its parameters
-            are arrays) or a :class:`PlanarBlock`.
+        block: a :class:`SlidingBlock` or a :class:`PlanarBlock`; a batch of
+            parameter sets if its parameters are 1-D arrays.
         motion: base excitation; for a PlanarBlock also a :class:`BaseMotion` (x, y, z
             components; a 1-D excitation is its x component).
         t_end: final time [s]. None: until the block has come to rest after a finite
