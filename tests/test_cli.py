@@ -292,6 +292,9 @@ def test_run_on_a_table_or_two_files_slides_a_block_on_a_plane(tmp_path, capsys)
     assert "max |u| = " in out and "slide [deg]" in out and "direction [deg]" in out
     assert main(["--no-cache", "run", str(table), *ELMS, "--quiet"]) == 0
     assert capsys.readouterr().out.strip() == f"({u_x:+.6f}, {u_y:+.6f}) m"
+    png = tmp_path / "path.png"
+    assert main(["--no-cache", "run", str(table), *ELMS, "--plot", str(png), "--events", "none"]) == 0
+    assert f"figure: {png}" in capsys.readouterr().out and png.stat().st_size > 10_000
 
 
 def test_a_zero_second_component_gives_the_1d_exact_answer(tmp_path, capsys):

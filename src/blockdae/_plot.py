@@ -16,8 +16,9 @@ _BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")
 _EVENTS = dict(ls="none", marker="o", ms=4, mfc="none", color="C0", label="events")
 
 
-def plot(solution: Solution | BatchSolution | PlanarSolution | ResponseSpectrum | RelativeMotion, excitation: AbstractExcitation | None = None,
-         block: SlidingBlock | None = None, *, n_points: int = 2000, title: str | None = None):
+def plot(solution: Solution | BatchSolution | PlanarSolution | ResponseSpectrum | RelativeMotion,
+         excitation: AbstractExcitation | None = None, block: SlidingBlock | None = None, *,
+         n_points: int = 2000, title: str | None = None):
     """Draw a solution: absolute and relative motion, and the phase plane.
 
     A :class:`ResponseSpectrum` is drawn as PSa [m/s²] against the period (log-log; see
