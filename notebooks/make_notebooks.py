@@ -440,8 +440,9 @@ assert abs(figures[0.0].displacement[0] - exact.displacement) <= 1e-7 * abs(exac
 assert np.max(figures[0.8](np.linspace(0, figures[0.8].t_end, 4001))[2]) > 0  # v_x turns positive (Fig. 6)
 print(f"Elms's estimate of the passive plateau at R = 0.8: {elms.SEED_FIG6_PLATEAU:+.3f} ('roughly')")"""),
     ("md", """The sliding direction at each event (`slide`: the direction of the slide it starts or
-ends, degrees from +x). At R = 0.8 the slide starts at about -146° (against the demand,
-his eqs. 19-20) and ends turned round, towards +x and +y:"""),
+ends, degrees from +x). At R = 0.8 the slide starts at -155°, against the demand
+(C_x + P, C_y) (his eqs. 19-20). It ends at 141°: as the speed falls to zero the direction
+swings round to oppose the demand again, here (0.14, -0.12) at the stop:"""),
     ("code", """print(figures[0.8].event_table())
 fig = bd.plot(figures[0.8], title="R = 0.8: path of the block relative to the table")"""),
     ("md", """## Figures 7 and 8: percent increase of the final x displacement against R
@@ -475,7 +476,7 @@ for mu, pct in fig8.items():
     print(f"{mu:8.1f}" + "".join(f"{p:10.1f}" for p in pct))
 print(f"largest increase, Fig. 7: {max(p[-1] for p in fig7.values()):.1f} % (seed: 'almost 60 %'); "
       f"Fig. 8 (mu >= 0.6): {max(p[-1] for mu, p in fig8.items() if mu > 0.5):.1f} % (seed: 'about 60 %')")"""),
-    ("md", """The trends of the seed hold: every curve rises with R, and at R = 1 the increase is
+    ("md", """The trends of the seed hold: every curve but mu = 0.5 (P = 0) rises with R, and at R = 1 the increase is
 larger for larger N/A. The largest value at mu = 0.8 (N/A = 0.9) is above the seed's
 "almost 60 %"; Fig. 8's largest (mu = 1.0) is close to its "about 60 %". Note that
 N/A = 0.9 > mu = 0.8 means P = -0.1: the bias pushes in +x and the block drifts that way.
