@@ -1,5 +1,6 @@
-"""The ``blockdae`` command: run a record, Newmark's analysis, the seed-000 examples, a
-batch over a folder.
+"""The ``blockdae`` command: run a record (or two or three components: a block on a
+plane, see ``_cli_planar``), Newmark's analysis, the seed-000 examples, a batch over a
+folder.
 
 Every error about a file or an argument ends the command with exit status 2 and one
 line ``blockdae: error: ...`` on stderr naming the file (and line) or the argument. A
