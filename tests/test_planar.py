@@ -226,3 +226,20 @@ def test_a_batch_of_planar_blocks_is_each_block_alone():
 def test_a_bad_parameter_set_in_a_batch_is_named(kwargs, message):
     with pytest.raises(ValueError, match=message):
         bd.PlanarBlock(**kwargs)
+
+
+def test_slide_directions_start_on_the_friction_circle_and_end_with_the_last_velocity():
+    """Seed 001 eqs. 19-20: a slide starts against the demand, e = -(C_x + P, C_y) / |.|
+    (closed form at the located onset); it ends in the direction of the velocity just
+    before the stop (the dense output a little earlier)."""
+    wave = bd.Harmonic(1.0, 2.0, cycles=1)
+    sol = bd.simulate(bd.PlanarBlock(mu=0.8, bias=(-0.3, 0.0), g=1.0), bd.BaseMotion(wave, wave.scaled(0.4)),
+                      backend="ida")
+    slides = sol.slide_directions()
+    onset, stop = sol.events[0], sol.events[1]
+    c_x = math.sin(math.pi * onset.t)
+    assert slides[0] == pytest.approx(math.degrees(math.atan2(-0.4 * c_x, -(c_x + 0.3))), abs=1e-9)
+    _, _, v_x, v_y, _ = sol(stop.t - 1e-6)
+    assert slides[1] == pytest.approx(math.degrees(math.atan2(v_y, v_x)), abs=1e-2)
+    assert math.isnan(onset.direction)  # the velocity before an onset is zero: no direction
+    assert "slide [deg]" in sol.event_table() and list(sol.to_dataframe().slide_deg) == pytest.approx(list(slides))
