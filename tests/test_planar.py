@@ -13,6 +13,8 @@ import blockdae as bd
 from conftest import load_sample_record
 
 G = 9.81
+#: this file checks the model on CVODE (IDA, the default for PlanarBlock: test_planar_ida.py)
+CVODE = "cvode"
 
 
 def planar_twin(block: bd.SlidingBlock, **changes) -> bd.PlanarBlock:
@@ -35,7 +37,7 @@ def assert_reduces(sol, ref, event_dt=1e-9, rel=1e-8):
 @pytest.mark.parametrize("example", bd.seed_examples(), ids=lambda e: e.name)
 def test_x_only_motion_reduces_to_the_1d_block(example):
     ref = bd.simulate(example.block, example.motion, t_end=example.t_end)  # exact closed forms
-    sol = bd.simulate(planar_twin(example.block), example.motion, t_end=example.t_end)
+    sol = bd.simulate(planar_twin(example.block), example.motion, t_end=example.t_end, backend=CVODE)
     assert_reduces(sol, ref)
     assert np.all(sol.u_y == 0.0)  # nothing pushes it off the x axis, not even rounding
 
@@ -45,7 +47,7 @@ def test_a_record_along_x_reduces_to_the_1d_block(stem):
     record = load_sample_record(stem)
     block = bd.SlidingBlock(mu=0.15, mu_kinetic=0.12, bias=0.03)
     ref = bd.simulate(block, record)
-    sol = bd.simulate(planar_twin(block), bd.BaseMotion(record))
+    sol = bd.simulate(planar_twin(block), bd.BaseMotion(record), backend=CVODE)
     assert_reduces(sol, ref)
 
 
@@ -62,7 +64,7 @@ def test_a_motion_along_a_rotated_line_is_the_1d_block_rotated(angle):
     motion = bd.BaseMotion(example.motion.scaled(c), example.motion.scaled(s))
     block = bd.PlanarBlock(mu=0.6, mu_kinetic=0.4, bias=(0.3 * c, 0.3 * s), g=G)
     ref = bd.simulate(example.block, example.motion, t_end=example.t_end)
-    sol = bd.simulate(block, motion, t_end=example.t_end)
+    sol = bd.simulate(block, motion, t_end=example.t_end, backend=CVODE)
     np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=1e-8)
     u = np.array([c, s]) * ref.displacement
     np.testing.assert_allclose(sol.displacement, u, rtol=0, atol=1e-8 * abs(ref.displacement))
@@ -100,7 +102,7 @@ def test_elms_one_sine_wave_with_lateral_shaking_against_a_cartesian_integration
     bias = (-(mu - 0.5 * amplitude), 0.0)
     wave = bd.Harmonic(amplitude, 2.0, cycles=1)
     sol = bd.simulate(bd.PlanarBlock(mu=mu, mu_kinetic=f, bias=bias, g=1.0),
-                      bd.BaseMotion(wave, wave.scaled(ratio)))
+                      bd.BaseMotion(wave, wave.scaled(ratio)), backend=CVODE)
     assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == [("STICK", "SLIP"), ("SLIP", "STICK")]
     onset = brentq(lambda t: math.hypot(amplitude * math.sin(math.pi * t) - bias[0],
                                         ratio * amplitude * math.sin(math.pi * t)) - mu, 0.0, 0.5, xtol=1e-15)
@@ -133,7 +135,7 @@ def flight_closed_form(depth, duration, g):
 def test_flight_under_a_falling_base_lands_where_the_closed_form_says():
     depth, duration = 1.5 * G, 0.3
     sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G), bd.BaseMotion(bd.RectangularPulse(0.0, duration), None,
-                                                                   bd.SinePulse(-depth, duration)))
+                                                                   bd.SinePulse(-depth, duration)), backend=CVODE)
     t1, t2 = flight_closed_form(depth, duration, G)
     assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == [("STICK", "FLIGHT"), ("FLIGHT", "STICK")]
     np.testing.assert_allclose(sol.t_events, [t1, t2], rtol=0, atol=1e-9)
@@ -144,7 +146,7 @@ def test_flight_under_a_falling_base_lands_where_the_closed_form_says():
 def test_bounces_shrink_by_the_restitution_and_end_in_contact():
     restitution, threshold = 0.5, 1e-3
     motion = bd.BaseMotion(bd.SinePulse(2.0, 0.5), None, bd.SinePulse(-15.0, 0.3))
-    sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G, restitution=restitution, bounce_threshold=threshold), motion)
+    sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G, restitution=restitution, bounce_threshold=threshold), motion, backend=CVODE)
     landings = [e for e in sol.events if e.mode_before == bd.PlanarMode.FLIGHT]
     rebounds = [e for e in landings if e.mode_after == bd.PlanarMode.FLIGHT]
     assert len(rebounds) >= 3 and landings[-1].mode_after != bd.PlanarMode.FLIGHT
@@ -184,7 +186,7 @@ def test_backends_and_motions_that_do_not_fit_say_so():
 def test_planar_solution_tables_and_dense_output():
     wave = bd.Harmonic(1.0, 2.0, cycles=1)
     sol = bd.simulate(bd.PlanarBlock(mu=0.8, mu_kinetic=0.7, bias=(-0.3, 0.0), g=1.0),
-                      bd.BaseMotion(wave, wave.scaled(0.8)))
+                      bd.BaseMotion(wave, wave.scaled(0.8)), backend=CVODE)
     u_x, u_y, v_x, v_y, gap = sol(sol.t)
     np.testing.assert_allclose(u_x, sol.u_x, atol=1e-15)
     np.testing.assert_allclose(np.hypot(v_x, v_y)[sol.mode == bd.PlanarMode.STICK], 0.0, atol=1e-15)
@@ -193,3 +195,51 @@ def test_planar_solution_tables_and_dense_output():
     assert "u_x [m]" in sol.event_table()
     with pytest.raises(ValueError, match="t must lie"):
         sol(sol.t_end + 1.0)
+
+
+def test_a_batch_of_planar_blocks_is_each_block_alone():
+    """Arrays of mu, mu_kinetic and bias components broadcast to parameter sets; each
+    row equals the block run alone (the driver backends run one set after another)."""
+    wave = bd.Harmonic(1.0, 2.0, cycles=1)
+    motion = bd.BaseMotion(wave, wave.scaled(0.8))
+    block = bd.PlanarBlock(mu=np.array([0.8, 0.8, 0.9]), mu_kinetic=0.7, bias=(np.array([-0.3, -0.2, -0.3]), 0.05),
+                           g=1.0)
+    assert block.batch_shape == (3,)
+    batch = bd.simulate(block, motion, backend=CVODE)
+    for i in range(3):
+        alone = bd.simulate(block.item(i), motion, backend=CVODE)
+        assert np.array_equal(batch.displacement[i], alone.displacement)
+        assert batch.max_abs_displacement[i] == alone.max_abs_displacement
+        assert np.array_equal(batch[i].t_events, alone.t_events)
+    table = batch.to_dataframe()
+    assert list(table.columns[:5]) == ["mu", "mu_kinetic", "bias_x", "bias_y", "g_m_s2"]
+    np.testing.assert_array_equal(table[["displacement_x_m", "displacement_y_m"]].to_numpy(), batch.displacement)
+    assert table["bias_y"].tolist() == [0.05] * 3
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(mu=np.array([0.3, 0.5]), bias=(np.array([0.1, 0.6]), 0.0)), r"bias=\(0.6, 0.0\).*mu=0.5.*parameter set 1"),
+    (dict(mu=np.array([0.3, 0.5]), mu_kinetic=np.array([0.1, 0.6])), r"mu_kinetic=0.6 .*mu=0.5\].*parameter set 1"),
+    (dict(mu=np.array([0.3, 0.5, 0.7]), bias=(np.array([0.1, 0.2]), 0.0)), "broadcast"),
+    (dict(mu=np.ones((2, 2))), "mu must be a real number or a 1-D array"),
+])
+def test_a_bad_parameter_set_in_a_batch_is_named(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        bd.PlanarBlock(**kwargs)
+
+
+def test_slide_directions_start_on_the_friction_circle_and_end_with_the_last_velocity():
+    """Seed 001 eqs. 19-20: a slide starts against the demand, e = -(C_x + P, C_y) / |.|
+    (closed form at the located onset); it ends in the direction of the velocity just
+    before the stop (the dense output a little earlier)."""
+    wave = bd.Harmonic(1.0, 2.0, cycles=1)
+    sol = bd.simulate(bd.PlanarBlock(mu=0.8, bias=(-0.3, 0.0), g=1.0), bd.BaseMotion(wave, wave.scaled(0.4)),
+                      backend="ida")
+    slides = sol.slide_directions()
+    onset, stop = sol.events[0], sol.events[1]
+    c_x = math.sin(math.pi * onset.t)
+    assert slides[0] == pytest.approx(math.degrees(math.atan2(-0.4 * c_x, -(c_x + 0.3))), abs=1e-9)
+    _, _, v_x, v_y, _ = sol(stop.t - 1e-6)
+    assert slides[1] == pytest.approx(math.degrees(math.atan2(v_y, v_x)), abs=1e-2)
+    assert math.isnan(onset.direction)  # the velocity before an onset is zero: no direction
+    assert "slide [deg]" in sol.event_table() and list(sol.to_dataframe().slide_deg) == pytest.approx(list(slides))

@@ -91,3 +91,46 @@ def test_plot_draws_spectra_and_relative_motion():
         assert "[s]" in fig.axes[0].get_xlabel() and "[m]" in fig.axes[0].get_ylabel()
     finally:
         plt.close(fig)
+
+
+@pytest.fixture(scope="module")
+def elms_planar():
+    """Seed 001, Figure 6 set-up (g = 1): C_x = sin(pi t) for one wave, C_y = 0.8 C_x,
+    mu = 0.8, N/A = 0.5 (bias 0.3 in -x)."""
+    matplotlib.use("Agg", force=True)
+    wave = bd.Harmonic(1.0, 2.0, cycles=1)
+    block = bd.PlanarBlock(mu=0.8, bias=(-0.3, 0.0), g=1.0)
+    return bd.simulate(block, bd.BaseMotion(wave, wave.scaled(0.8)), backend="ida")
+
+
+def test_planar_figure_draws_the_solutions_path_components_and_speed(elms_planar):
+    """The drawn curves are the solution's own values at the drawn times (dense output at
+    the knots equals the knots), and the events sit at their located times and places."""
+    import matplotlib.pyplot as plt
+
+    sol = elms_planar
+    fig = bd.plot(sol, n_points=400, title="Elms R = 0.8")
+    try:
+        path, disp, speed = fig.axes
+        assert (path.get_xlabel(), path.get_ylabel()) == ("u_x [m]", "u_y [m]")
+        assert disp.get_ylabel() == "relative displacement [m]" and "[m/s]" in speed.get_ylabel()
+        u_x, u_y = path.lines[0].get_xdata(), path.lines[0].get_ydata()
+        t = next(line for line in disp.lines if line.get_label() == "u_x").get_xdata()
+        knot_t, first = np.unique(sol.t, return_index=True)  # an event is a knot on either side
+        drawn = np.isin(t, knot_t)
+        np.testing.assert_array_equal(t[drawn], knot_t)
+        np.testing.assert_allclose(u_x[drawn], sol.u_x[first], rtol=0, atol=1e-15)
+        np.testing.assert_allclose(u_y[drawn], sol.u_y[first], rtol=0, atol=1e-15)
+        markers = _events_line(path)
+        np.testing.assert_array_equal(markers.get_xdata(), [e.u_x for e in sol.events])
+        np.testing.assert_array_equal(markers.get_ydata(), [e.u_y for e in sol.events])
+        np.testing.assert_array_equal(_events_line(disp).get_xdata(), np.tile(sol.t_events, 2))
+        on_speed = _events_line(speed)
+        np.testing.assert_array_equal(on_speed.get_xdata(), sol.t_events)
+        np.testing.assert_allclose(on_speed.get_ydata(), 0.0, atol=1e-12)  # an onset and a stop: at rest
+        v_x, v_y = sol.velocity
+        drawn_speed = speed.lines[0].get_ydata()
+        np.testing.assert_allclose(drawn_speed[drawn], np.hypot(v_x, v_y)[first], rtol=0, atol=1e-12)
+        assert np.max(drawn_speed) > 0.1  # it slides
+    finally:
+        plt.close(fig)

@@ -1,5 +1,6 @@
-"""The ``blockdae`` command: run a record, Newmark's analysis, the seed-000 examples, a
-batch over a folder.
+"""The ``blockdae`` command: run a record (or two or three components: a block on a
+plane, see ``_cli_planar``), Newmark's analysis, the seed-000 examples, a batch over a
+folder.
 
 Every error about a file or an argument ends the command with exit status 2 and one
 line ``blockdae: error: ...`` on stderr naming the file (and line) or the argument. A
@@ -19,6 +20,7 @@ import numpy as np
 
 from . import backends
 from ._cli_common import UsageError, checked, finite, positive, read, save_figure, write_csv
+from ._cli_planar import is_planar, read_motion_argument, run_planar, x_record
 from ._examples import seed_examples
 from ._jax_config import set_compilation_cache
 from ._newmark import newmark
@@ -64,9 +66,18 @@ def _parser():
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
     sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,examples,batch,study}")
 
-    run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u)")
-    run.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
-    _block_arguments(run, nargs=None)
+    run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
+                                     "plane under two or three components (u_x, u_y)")
+    run.add_argument("record", type=pathlib.Path,
+                     help="accelerogram (CSV t,a / one column / .AT2), the x component; or a table of "
+                          "time [s], a_x, a_y[, a_z] (a block on a plane)")
+    run.add_argument("--y", type=pathlib.Path, default=None, metavar="FILE",
+                     help="second horizontal component (a block on a plane)")
+    run.add_argument("--z", type=pathlib.Path, default=None, metavar="FILE",
+                     help="vertical component, upward positive (a block on a plane)")
+    _block_arguments(run, nargs=None, planar=True)
+    run.add_argument("--bias-y", type=finite("--bias-y"), default=0.0,
+                     help="on a plane: constant force / weight in +y [-] (--bias is the one in +x)")
     _record_arguments(run)
     run.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure")
     run.add_argument("--json", action="store_true", help="print the results as JSON")
@@ -105,7 +116,7 @@ def _parser():
     return parser
 
 
-def _block_arguments(parser, nargs):
+def _block_arguments(parser, nargs, planar=False):
     grid = " (several: a grid over every combination)" if nargs else ""
     parser.add_argument("--mu", type=finite("--mu"), required=True, nargs=nargs,
                         help="static friction coefficient [-]" + grid)
@@ -118,7 +129,9 @@ def _block_arguments(parser, nargs):
                              "see `blockdae newmark` for positive downslope displacements)")
     parser.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                         help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
-    parser.add_argument("--backend", default="exact", help=f"solver backend, one of {backends.available()}")
+    parser.add_argument("--backend", default=None if planar else "exact",
+                        help=f"solver backend, one of {backends.available()} (default: exact"
+                             + ("; on a plane: ida)" if planar else ")"))
     parser.add_argument("--t-end", type=positive("--t-end"), default=None,
                         help="final time [s] (default: until the block rests after the record)")
 
@@ -135,10 +148,17 @@ def _record_arguments(parser):
 # ---- commands ---------------------------------------------------------------
 
 def _run(args):
+    _check_units_and_backend(args)
+    motion = read_motion_argument(args)
+    if is_planar(motion) or args.y is not None or args.z is not None:
+        return run_planar(args, motion, _print_events)
+    if args.bias_y:
+        raise UsageError("argument --bias-y: needs a second horizontal component (--y, or a table of "
+                         "time, a_x, a_y)")
     block = _block(args, args.mu, args.mu_kinetic, args.bias)
-    record = read(args.record, args)
+    record = x_record(motion, args.record)
     start = time.perf_counter()
-    solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend),
+    solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend or "exact"),
                         f"{args.record}")
     wall = time.perf_counter() - start
     if args.plot is not None:
@@ -264,11 +284,15 @@ def _compilation_cache(args):
 _FLAGS = {"mu_kinetic": "--mu-kinetic", "mu": "--mu", "bias": "--bias", "g": "--g"}
 
 
-def _block(args, mu, mu_kinetic, bias):
+def _check_units_and_backend(args):
     if args.units is not None:
         checked(lambda: unit_factor(args.units), "--units")
-    if args.backend not in backends.available():
+    if args.backend is not None and args.backend not in backends.available():
         raise UsageError(f"--backend {args.backend!r} is unknown; choose one of {backends.available()}")
+
+
+def _block(args, mu, mu_kinetic, bias):
+    _check_units_and_backend(args)
     try:
         return SlidingBlock(mu=mu, mu_kinetic=mu_kinetic, bias=bias, g=args.g, direction=args.direction)
     except ValueError as err:

@@ -4,7 +4,9 @@ The driver owns the hybrid logic; an integrator (CVODE, IDA, ...) only integrate
 mode and reports guard roots. Per piece of the excitation the driver
 
 1. lets a block at rest re-take ``mode_at_rest`` from the piece's right-hand limits,
-2. restarts the integrator and runs it with a hard stop (``tstop``) at the piece end,
+2. in a mode whose state is constant (stick), locates the first guard root in time
+   alone, by bisection to adjacent floats on parts where the guards are monotone;
+   otherwise restarts the integrator and runs it with a hard stop (``tstop``) at the piece end,
    and in a slip mode also at the turning point of v, so that every guard is monotone
    between two stops and a sign change at the end of an internal step cannot hide two
    roots,
@@ -123,8 +125,8 @@ def drive(model, excitation, horizon, integrator_factory, backend_name, max_even
         trace: a list to append the run's steps to, in order (for derivatives along the
             located trajectory, :mod:`blockdae._hybrid_sensitivities`); each a tuple
             ("flow", mode, t_from, y_from, t_to, piece) (the integrator ran ``mode``
-            from ``y_from``), ("guard", mode, index, t, y) (guard ``index`` reached zero
-            at ``t`` in state ``y``) or ("entry", before, after, t, y, piece) (the mode
+            from ``y_from``), ("guard", mode, index, t, y, piece) (guard ``index``
+            reached zero at ``t`` in state ``y``) or ("entry", before, after, t, y, piece) (the mode
             changed at ``t``; ``y`` before ``state_on_entry``); ``piece`` is the piece's
             (t0 [s], coefficients).
     """
@@ -202,12 +204,18 @@ class _Run:
         self.advance_to(float(end))
 
     def advance_to(self, end, until_rest=False):
-        if self.model.is_static(self.mode) and not self.guard_may_reach_zero(end):
-            self.t, self.restarted = end, True  # the state is constant and stays in the mode
-            self.knots.add(end, self.y, self.mode, np.zeros(self.n_states), np.zeros(self.n_states))
-            return
         turn = self.turning_point(end)
         while self.t < end and not (until_rest and self.model.is_static(self.mode)):
+            if self.model.is_static(self.mode):
+                root = self.static_root(end)
+                if root is None:
+                    self.t, self.restarted = end, True  # the state is constant and stays in the mode
+                    self.knots.add(end, self.y, self.mode, np.zeros(self.n_states), np.zeros(self.n_states))
+                    return
+                self.t, index = root
+                self.on_guard(index)
+                turn = self.turning_point(end)
+                continue
             if self.restarted:
                 self.integrator.restart(self.mode, self.t, self.y)
                 self.restarted = False
@@ -236,15 +244,20 @@ class _Run:
         w = self.piece_excitation.highest_frequency
         return 1.0 / (_KNOTS_PER_RADIAN * w) if w > 0 else math.inf
 
-    def guard_may_reach_zero(self, end):
-        """Whether a guard of a static mode may reach zero before ``end`` [s]. The
-        model's ``turn_rate`` splits the piece where a guard may turn, so that positive
-        values at the ends and at the split exclude a root and the integrator need not
-        run (it restarts, exactly, where the state is constant)."""
+    def static_root(self, end):
+        """The first guard root in (t, end] [s] of a static mode, located in t alone (the
+        state is constant): (time, guard index), or None. The model's ``turn_rate``
+        splits the piece where a guard may turn, so that each guard is monotone on
+        both parts and a root is bracketed where it goes from > 0 to <= 0."""
         guards = lambda t: self.model.guards(self.mode, t, self.y, self.piece_excitation, SCALAR)
         turn = self.turning_point(end)
         times = (self.t, end) if turn is None else (self.t, turn, end)
-        return any(min(guards(t)) <= 0 for t in times)
+        for a, b in zip(times[:-1], times[1:]):
+            at_a, at_b = guards(a), guards(b)
+            crossing = [i for i in range(len(at_b)) if at_a[i] > 0 >= at_b[i]]
+            if crossing:
+                return min((_bracketed_root(lambda t: guards(t)[i], a, b), i) for i in crossing)
+        return None
 
     def turning_point(self, end):
         """The time in (t, end) [s] where the model's ``turn_rate`` changes sign (it is
@@ -271,7 +284,7 @@ class _Run:
     def on_guard(self, index):
         """Guard ``index`` of the current mode reached zero at ``self.t``."""
         model, before = self.model, self.mode
-        self.record("guard", before, index, self.t, self.y)
+        self.record("guard", before, index, self.t, self.y, self.current_piece())
         self.y = model.state_at_guard(before, index, self.y)
         after = self.to_mode(model.mode_after_guard(before, index, self.t, self.y, self.piece_excitation,
                                                     SCALAR, self.stop_uncertainty(index)))
@@ -327,6 +340,16 @@ class _Run:
                  **self.integrator.stats}
         return self.model.solution(t=t, y=y, mode=mode, events=tuple(self.events), backend=backend_name,
                                    dense=HermiteDense(t, y, rate_start, rate_end), stats=stats)
+
+
+def _bracketed_root(fun, a, b):
+    """The t in (a, b] [s] where ``fun`` (> 0 at a, <= 0 at b, monotone) reaches zero:
+    the first float at which it is <= 0, by bisection to adjacent floats."""
+    while True:
+        mid = 0.5 * (a + b)
+        if mid <= a or mid >= b:
+            return b
+        a, b = (mid, b) if fun(mid) > 0 else (a, mid)
 
 
 class _Knots:

@@ -67,18 +67,17 @@ def _replay(model, template, settings, theta, trace):
                     raise RuntimeError(f"the variational equation failed in {mode.name} on [{t_from:.12g}, "
                                        f"{t_to:.12g}] s (diffrax result {int(result)}); raise max_steps")
                 S = np.asarray(S)
-            last_piece = piece
         elif kind == "guard":
-            _, mode, index, t, y = step
+            _, mode, index, t, y, piece = step
             if pending is not None:
                 S, pending = _finish(template, pending, theta), None
-            S_bar, tau, y = _guard_jump(template, mode, index)(theta, *_arrays(last_piece), t, y, S)
-            pending = (S_bar, tau, mode, t, y, last_piece)
+            S_bar, tau, y = _guard_jump(template, mode, index)(theta, *_arrays(piece), t, y, S)
+            pending = (S_bar, tau, mode, t, y, piece)
         else:
             _, before, after, t, y, piece = step
             S_bar, tau = (S, np.zeros(len(theta))) if pending is None else pending[:2]
             S_bar, y = _entry_jump(template, before, after)(theta, *_arrays(piece), t, y, S_bar, tau)
-            pending, last_piece = (S_bar, tau, after, t, y, piece), piece
+            pending = (S_bar, tau, after, t, y, piece)
     return np.asarray(S if pending is None else _finish(template, pending, theta))
 
 

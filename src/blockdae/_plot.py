@@ -1,8 +1,12 @@
-"""Figures of a solution, in the layout of seed 000 Figures 3-5 (matplotlib on demand)."""
+"""Figures of a solution, in the layout of seed 000 Figures 3-5, and of a planar
+solution (seed 001): the path in the plane and its components (matplotlib on demand)."""
+
+import math
 
 import numpy as np
 
 from ._solution import BatchSolution, Solution
+from ._solution_planar import PlanarSolution
 from .excitation import AbstractExcitation
 from .model import SlidingBlock
 from .motions import RelativeMotion, ResponseSpectrum, plot_relative_motion, plot_spectrum
@@ -12,8 +16,9 @@ _BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")
 _EVENTS = dict(ls="none", marker="o", ms=4, mfc="none", color="C0", label="events")
 
 
-def plot(solution: Solution | BatchSolution | ResponseSpectrum | RelativeMotion, excitation: AbstractExcitation | None = None,
-         block: SlidingBlock | None = None, *, n_points: int = 2000, title: str | None = None):
+def plot(solution: Solution | BatchSolution | PlanarSolution | ResponseSpectrum | RelativeMotion,
+         excitation: AbstractExcitation | None = None, block: SlidingBlock | None = None, *,
+         n_points: int = 2000, title: str | None = None):
     """Draw a solution: absolute and relative motion, and the phase plane.
 
     A :class:`ResponseSpectrum` is drawn as PSa [m/s²] against the period (log-log; see
@@ -22,7 +27,9 @@ def plot(solution: Solution | BatchSolution | ResponseSpectrum | RelativeMotion,
     :class:`BatchSolution` is drawn as u(t_end) and max |u| [m] against the one
     parameter that varies across its grid (mu_kinetic counts only when the grid sets
     it), or against the parameter-set index when none or several vary (the x label
-    then names those that vary).
+    then names those that vary). A :class:`PlanarSolution` is drawn as the path
+    (u_x, u_y) [m] of the block relative to the base, u_x and u_y [m] and the relative
+    speed |v| [m/s] against time, events marked (``excitation`` and ``block`` unused).
 
     Left column (only with ``excitation``): base (solid) and block (dashed)
     acceleration [m/s²], velocity [m/s] and displacement [m]; the block's
@@ -49,11 +56,13 @@ def plot(solution: Solution | BatchSolution | ResponseSpectrum | RelativeMotion,
         return plot_spectrum(solution, title=title)
     if isinstance(solution, RelativeMotion):
         return plot_relative_motion(solution, title=title)
-    if not isinstance(solution, Solution):
-        raise TypeError("solution must be a Solution, BatchSolution, ResponseSpectrum or RelativeMotion, "
-                        f"got {type(solution).__name__}")
+    if not isinstance(solution, (Solution, PlanarSolution)):
+        raise TypeError("solution must be a Solution, BatchSolution, PlanarSolution, ResponseSpectrum or "
+                        f"RelativeMotion, got {type(solution).__name__}")
     if not (isinstance(n_points, int) and n_points >= 2):
         raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
+    if isinstance(solution, PlanarSolution):
+        return _plot_planar(solution, n_points=n_points, title=title)
     t = np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
     u, v = solution(t)
     t_ev = solution.t_events
@@ -121,4 +130,34 @@ def _plot_batch(batch: BatchSolution, *, title: str | None = None):
     ax.set(xlabel=xlabel, ylabel="displacement [m]", title=title)
     ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
     ax.legend(loc="best", fontsize="small")
+    return fig
+
+
+def _plot_planar(solution: PlanarSolution, *, n_points: int, title: str | None = None):
+    """Path (u_x, u_y) [m] in the plane; u_x, u_y [m] and |v| [m/s] against time; events marked."""
+    import matplotlib.pyplot as plt
+
+    t = np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
+    u_x, u_y, v_x, v_y, _ = solution(t)
+    events = solution.events
+    t_ev = solution.t_events
+    ux_ev, uy_ev = np.array([e.u_x for e in events]), np.array([e.u_y for e in events])
+    speed_ev = np.array([math.hypot(e.v_x, e.v_y) for e in events])
+
+    fig, (path, disp, speed) = plt.subplots(1, 3, figsize=(15, 4.5), constrained_layout=True)
+    path.plot(u_x, u_y, color="C3", lw=1.2, label="block - base")
+    path.plot(ux_ev, uy_ev, **_EVENTS)
+    path.set(xlabel="u_x [m]", ylabel="u_y [m]", title="path relative to the base")
+    path.set_aspect("equal", adjustable="datalim")
+    path.legend(loc="best", fontsize="small")
+    disp.plot(t, u_x, color="C3", lw=1.2, label="u_x")
+    disp.plot(t, u_y, color="C0", lw=1.2, ls="--", label="u_y")
+    disp.plot(np.concatenate([t_ev, t_ev]), np.concatenate([ux_ev, uy_ev]), **_EVENTS)
+    disp.set(xlabel="t [s]", ylabel="relative displacement [m]")
+    disp.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    disp.legend(loc="best", fontsize="small")
+    _curve(speed, t, np.hypot(v_x, v_y), t_ev, speed_ev, "relative speed |v| [m/s]")
+    speed.set_xlabel("t [s]")
+    if title:
+        fig.suptitle(title)
     return fig

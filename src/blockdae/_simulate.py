@@ -9,7 +9,7 @@ from .excitation import AbstractExcitation, BaseMotion
 from .model import PlanarBlock, SlidingBlock
 
 #: the backend each model runs on unless told otherwise
-DEFAULT_BACKEND = {SlidingBlock: "exact", PlanarBlock: "cvode"}
+DEFAULT_BACKEND = {SlidingBlock: "exact", PlanarBlock: "ida"}
 
 
 def simulate(block: SlidingBlock | PlanarBlock, motion: AbstractExcitation | BaseMotion,
@@ -18,14 +18,14 @@ def simulate(block: SlidingBlock | PlanarBlock, motion: AbstractExcitation | Bas
     """Slide ``block`` on a base moving with ``motion``.
 
     Args:
-        block: a :class:`SlidingBlock` (a batch of parameter sets if its parameters
-            are arrays) or a :class:`PlanarBlock`.
+        block: a :class:`SlidingBlock` or a :class:`PlanarBlock`; a batch of
+            parameter sets if its parameters are 1-D arrays.
         motion: base excitation; for a PlanarBlock also a :class:`BaseMotion` (x, y, z
             components; a 1-D excitation is its x component).
         t_end: final time [s]. None: until the block has come to rest after a finite
             excitation ends.
         backend: a name from ``blockdae.backends.available()``; None: "exact" (closed
-            form) for a SlidingBlock, "cvode" for a PlanarBlock.
+            form) for a SlidingBlock, "ida" for a PlanarBlock.
         **options: settings of the backend, name=default: meaning [unit]
             (tests check this list against the backends' fields)
 

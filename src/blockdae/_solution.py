@@ -167,7 +167,8 @@ class BatchSolution:
     """Results for a batch of parameter sets over one excitation.
 
     Attributes:
-        displacement: u(t_end) per parameter set [m], shape (n,).
+        displacement: u(t_end) per parameter set [m], shape (n,); for a planar block
+            (u_x, u_y)(t_end), shape (n, 2).
         max_abs_displacement: max |u| per parameter set [m], shape (n,).
         n_events: number of events per parameter set, shape (n,).
         t_end: final time per parameter set [s], shape (n,).
@@ -197,25 +198,26 @@ class BatchSolution:
         return dataclasses.replace(solution, block=self.block.item(index), motion=self.motion)
 
     def parameters(self) -> dict:
-        """The grid: mu, mu_kinetic (the kinetic coefficient in effect) and bias [-], each
-        of shape (n,); empty if the block is unknown."""
-        if self.block is None:
-            return {}
-        values = (self.block.mu, self.block.friction_kinetic, self.block.bias)
-        return dict(zip(("mu", "mu_kinetic", "bias"),
-                        (np.broadcast_to(np.asarray(p, dtype=float), (len(self),)) for p in values)))
+        """The grid, each of shape (n,): mu, mu_kinetic (the kinetic coefficient in
+        effect) and bias [-] (bias_x, bias_y for a planar block); empty if the block is
+        unknown."""
+        return {} if self.block is None else self.block.batch_parameters()
 
     def to_dataframe(self):
         """A pandas DataFrame, one row per parameter set: the grid (mu, mu_kinetic, bias
-        [-], g_m_s2 [m/s²], direction; when the block is known) and displacement_m,
+        [-], g_m_s2 [m/s²], and the direction of a 1-D block; when the block is known),
+        displacement_m (displacement_x_m, displacement_y_m for a planar block),
         max_abs_displacement_m [m], n_events, t_end_s [s]."""
         import pandas as pd
 
         columns = self.parameters()
         if self.block is not None:
-            columns |= {"g_m_s2": float(self.block.g), "direction": self.block.direction}
-        columns |= {"displacement_m": np.asarray(self.displacement, dtype=float),
-                    "max_abs_displacement_m": np.asarray(self.max_abs_displacement, dtype=float),
+            columns |= {"g_m_s2": float(self.block.g)}
+            if isinstance(self.block, SlidingBlock):
+                columns |= {"direction": self.block.direction}
+        u = np.asarray(self.displacement, dtype=float)
+        columns |= ({"displacement_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]})
+        columns |= {"max_abs_displacement_m": np.asarray(self.max_abs_displacement, dtype=float),
                     "n_events": np.asarray(self.n_events, dtype=int),
                     "t_end_s": np.asarray(self.t_end, dtype=float)}
         return pd.DataFrame(columns, index=pd.RangeIndex(len(self)))

@@ -118,21 +118,40 @@ class PlanarSolution:
         vx, vy = horizontal_velocity(mode, state)
         return state[..., 0], state[..., 1], vx, vy, state[..., 5]
 
+    def slide_directions(self) -> np.ndarray:
+        """Direction of the slide on the base that each event starts (onset, landing
+        into a slide) or else ends (stop, liftoff) [degrees from +x], shape (n_events,);
+        nan where the block slides on neither side. Read from the knots at the event
+        (the state before and after it), where the direction is known even at rest."""
+        directions = np.full(len(self.events), math.nan)
+        for k, e in enumerate(self.events):
+            before, after = np.searchsorted(self.t, e.t, "left"), np.searchsorted(self.t, e.t, "right") - 1
+            knot = after if e.mode_after == PlanarMode.SLIP else before if e.mode_before == PlanarMode.SLIP else None
+            if knot is not None:
+                c_x, c_y = self.state[knot, 3:5]
+                directions[k] = math.degrees(math.atan2(c_y, c_x))
+        return directions
+
     def event_table(self, events=None) -> str:
-        """``events`` (default: all of them) as an aligned text table with units."""
+        """``events`` (default: all of them) as an aligned text table with units:
+        direction: of the relative velocity just before the event (nan at rest); slide:
+        of the slide it starts or ends (see :meth:`slide_directions`)."""
+        chosen = self.events if events is None else events
+        slides = dict(zip((e.t for e in self.events), self.slide_directions()))
         lines = [f"{'t [s]':>12}  {'from':>6}  {'to':<6}  {'u_x [m]':>12}  {'u_y [m]':>12}  "
-                 f"{'direction [deg]':>15}"]
+                 f"{'direction [deg]':>15}  {'slide [deg]':>11}"]
         lines += [f"{e.t:12.6f}  {e.mode_before.name:>6}  {e.mode_after.name:<6}  {e.u_x:12.6f}  "
-                  f"{e.u_y:12.6f}  {e.direction:15.3f}" for e in (self.events if events is None else events)]
+                  f"{e.u_y:12.6f}  {e.direction:15.3f}  {slides.get(e.t, math.nan):11.3f}" for e in chosen]
         return "\n".join(lines)
 
     def to_dataframe(self):
         """The events as a pandas DataFrame: t_s [s], mode_before, mode_after, u_x_m,
-        u_y_m [m], v_x_m_s, v_y_m_s, v_z_m_s [m/s], direction_deg."""
+        u_y_m [m], v_x_m_s, v_y_m_s, v_z_m_s [m/s], direction_deg, slide_deg (see
+        :meth:`slide_directions`)."""
         import pandas as pd
 
-        rows = [(e.t, e.mode_before.name, e.mode_after.name, e.u_x, e.u_y, e.v_x, e.v_y, e.v_z, e.direction)
-                for e in self.events]
+        rows = [(e.t, e.mode_before.name, e.mode_after.name, e.u_x, e.u_y, e.v_x, e.v_y, e.v_z, e.direction, slide)
+                for e, slide in zip(self.events, self.slide_directions())]
         columns = ["t_s", "mode_before", "mode_after", "u_x_m", "u_y_m", "v_x_m_s", "v_y_m_s", "v_z_m_s",
-                   "direction_deg"]
+                   "direction_deg", "slide_deg"]
         return pd.DataFrame(rows, columns=columns)

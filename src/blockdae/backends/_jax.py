@@ -94,6 +94,8 @@ class JaxBackend(AbstractBackend):
         return DiffraxIntegrator(model, piece, settings)
 
     def solve_batch(self, block, excitation, horizon):
+        if not isinstance(block, SlidingBlock):  # one driver run per parameter set
+            return super().solve_batch(block, excitation, horizon)
         pieces = excitation.pieces(horizon.integration_end(excitation))
         params = batch_params(block)
         with jax_context():

@@ -212,6 +212,13 @@ class SlidingBlock(AbstractHybridModel):
         """Whether slip+ (u increasing) is allowed."""
         return self.direction in ("both", "positive")
 
+    def batch_parameters(self) -> dict:
+        """The grid: mu, mu_kinetic (the coefficient in effect) and bias [-], each of
+        shape ``batch_shape``."""
+        values = (self.mu, self.friction_kinetic, self.bias)
+        return {name: np.broadcast_to(np.asarray(p, dtype=float), self.batch_shape)
+                for name, p in zip(("mu", "mu_kinetic", "bias"), values)}
+
     def item(self, index: int) -> "SlidingBlock":
         """The ``index``-th parameter set of a batch, as a scalar block."""
         mu, f, bias = (np.broadcast_to(p, self.batch_shape)[index]

@@ -67,6 +67,9 @@ class PlanarBlock(AbstractHybridModel):
         mu_kinetic: kinetic friction coefficient f [-], 0 <= f <= mu; default ``mu``.
         bias: (b_x, b_y), a constant horizontal force on the block as a fraction of
             its weight [-], |bias| < mu (Elms's P acts in -x: ``bias=(-P, 0)``).
+
+    ``mu``, ``mu_kinetic``, ``b_x`` and ``b_y`` may be 1-D arrays (broadcast together):
+    the block is then a batch of parameter sets.
         g: gravitational acceleration [m/s²]; standard gravity by default.
         restitution: vertical coefficient of restitution at landing [-], in [0, 1):
             the vertical relative velocity is multiplied by -restitution, the
@@ -89,25 +92,32 @@ class PlanarBlock(AbstractHybridModel):
     displacement_states = (_UX, _UY)
 
     def __post_init__(self):
-        for name in ("mu", "g", "restitution", "bounce_threshold") + (() if self.mu_kinetic is None
-                                                                       else ("mu_kinetic",)):
+        for name in ("g", "restitution", "bounce_threshold"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
                 raise ValueError(f"{name} must be a real number, got {value!r}")
             if not math.isfinite(value):
                 raise ValueError(f"{name} must be finite, got {value!r}")
             object.__setattr__(self, name, float(value))
-        bias = np.asarray(self.bias, dtype=float)
-        if bias.shape != (2,) or not np.all(np.isfinite(bias)):
-            raise ValueError(f"bias must be a finite pair (b_x, b_y) [-], got {self.bias!r}")
-        object.__setattr__(self, "bias", (float(bias[0]), float(bias[1])))
-        if self.mu <= 0:
-            raise ValueError(f"mu={self.mu!r} must be > 0")
-        if not 0 <= self.friction_kinetic <= self.mu:
-            raise ValueError(f"mu_kinetic={self.friction_kinetic!r} must lie in [0, mu={self.mu!r}]")
-        if math.hypot(*self.bias) >= self.mu:
-            raise ValueError(f"bias={self.bias!r} must satisfy |bias| = {math.hypot(*self.bias):.6g} < "
-                             f"mu={self.mu!r} (else the block slides with the base at rest)")
+        for name in ("mu", "mu_kinetic"):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, _parameter(name, getattr(self, name)))
+        try:
+            pair = tuple(self.bias)
+        except TypeError:
+            pair = ()
+        if len(pair) != 2:
+            raise ValueError(f"bias must be a pair (b_x, b_y) [-] of numbers or of 1-D arrays, got {self.bias!r}")
+        object.__setattr__(self, "bias", tuple(_parameter(name, b) for name, b in zip(("bias_x", "bias_y"), pair)))
+        try:
+            mu, f, bx, by = np.broadcast_arrays(self.mu, self.friction_kinetic, *self.bias)
+        except ValueError as err:
+            raise ValueError(f"mu, mu_kinetic and bias must broadcast together: {err}") from None
+        _check(mu <= 0, "mu", mu, lambda i: "must be > 0")
+        _check((f < 0) | (f > mu), "mu_kinetic", f, lambda i: f"must lie in [0, mu={float(mu[i])!r}]")
+        _check(np.hypot(bx, by) >= mu, "bias", np.stack([bx, by], axis=-1),
+               lambda i: f"must satisfy |bias| < mu (|bias| = {float(np.hypot(bx, by)[i]):.6g}, "
+                         f"mu={float(mu[i])!r}; else the block slides with the base at rest)")
         if self.g <= 0:
             raise ValueError(f"g must be a positive acceleration [m/s²], got {self.g!r}")
         if not 0 <= self.restitution < 1:
@@ -122,8 +132,20 @@ class PlanarBlock(AbstractHybridModel):
 
     @property
     def batch_shape(self) -> tuple[int, ...]:
-        """() : a PlanarBlock is one parameter set."""
-        return ()
+        """() for one parameter set, (n,) for a batch of n."""
+        return np.broadcast_shapes(*(np.shape(p) for p in (self.mu, self.friction_kinetic, *self.bias)))
+
+    def batch_parameters(self) -> dict:
+        """The grid: mu, mu_kinetic (the coefficient in effect), bias_x, bias_y [-], each
+        of shape ``batch_shape``."""
+        values = (self.mu, self.friction_kinetic, *self.bias)
+        return {name: np.broadcast_to(np.asarray(p, dtype=float), self.batch_shape)
+                for name, p in zip(("mu", "mu_kinetic", "bias_x", "bias_y"), values)}
+
+    def item(self, index: int) -> "PlanarBlock":
+        """The ``index``-th parameter set of a batch, as one block."""
+        p = {name: float(value[index]) for name, value in self.batch_parameters().items()}
+        return dataclasses.replace(self, mu=p["mu"], mu_kinetic=p["mu_kinetic"], bias=(p["bias_x"], p["bias_y"]))
 
     def replace(self, **changes) -> "PlanarBlock":
         """A copy with some parameters changed (validated again)."""
@@ -366,6 +388,30 @@ def horizontal_velocity(mode, y):
     size = np.hypot(y[..., _CX], y[..., _CY])
     scale = np.where(flying, 1.0, y[..., _S] / np.where(size > 0, size, 1.0))
     return y[..., _CX] * scale, y[..., _CY] * scale
+
+
+def _parameter(name, value):
+    """A float, or a 1-D array of floats (a batch); finite."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number or a 1-D array of them, got {value!r}") from None
+    if array.ndim > 1 or isinstance(value, bool):
+        raise ValueError(f"{name} must be a real number or a 1-D array of them, got {value!r}")
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return float(array) if array.ndim == 0 else array
+
+
+def _check(bad, name, value, message):
+    """Raise naming ``name`` and its value in the first parameter set where ``bad``;
+    ``message(index)`` says what is wrong."""
+    if np.any(bad):
+        index = (int(np.flatnonzero(bad)[0]),) if np.ndim(bad) else ()
+        where = f" (parameter set {index[0]})" if index else ""
+        shown = np.asarray(value)[index]
+        shown = tuple(float(v) for v in shown) if shown.ndim else float(shown)
+        raise ValueError(f"{name}={shown!r} {message(index)}{where}")
 
 
 def _with(y, changes, xp=np):
