@@ -138,6 +138,15 @@ def test_lateral_ratio_derivative_is_the_y_scale():
     np.testing.assert_allclose(d / 0.4, (shifted[0] - shifted[1]) / (2 * step), rtol=1e-6)
 
 
+def test_planar_sensitivities_of_a_batch_are_those_of_its_sets():
+    block, motion = elms(0.4)
+    batch = block.replace(bias=(np.array([-0.3, -0.2]), 0.0))
+    derivatives = bd.sensitivities(batch, motion, wrt=("bias_x",))["bias_x"]
+    assert derivatives.shape == (2, 2)
+    for i in range(2):
+        np.testing.assert_array_equal(derivatives[i], bd.sensitivities(batch.item(i), motion, wrt=("bias_x",))["bias_x"])
+
+
 def test_planar_sensitivities_refuse_unknown_parameters():
     block, motion = elms(0.4)
     with pytest.raises(ValueError, match="wrt"):

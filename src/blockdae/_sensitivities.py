@@ -67,7 +67,7 @@ def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: 
     Returns:
         name -> derivative [m per unit of the parameter; m/g for "A"]: a float, or an
         array of shape (n,) for a batch of n parameter sets; for other models an
-        array of shape (2,), d(u_x, u_y)(t_end) / dp.
+        array of shape (2,), d(u_x, u_y)(t_end) / dp, or (n, 2) for a batch.
     """
     if not isinstance(block, SlidingBlock):
         return _hybrid_sensitivities(block, motion, t_end, wrt, "jax" if backend is None else backend, options)
@@ -146,6 +146,10 @@ def _hybrid_sensitivities(block, motion, t_end, wrt, backend, options):
 
     if backend != "jax":
         raise ValueError(f"backend={backend!r} has no derivatives for a {type(block).__name__}; use 'jax'")
+    if block.batch_shape:  # one located trajectory per parameter set
+        sets = [_hybrid_sensitivities(block.item(i), motion, t_end, wrt, backend, options)
+                for i in range(block.batch_shape[0])]
+        return {name: np.array([one[name] for one in sets]) for name in sets[0]}
     wrt = _hybrid_names(block, wrt)
     peak = _largest_peak(motion) if "A" in wrt else None
     horizon = Horizon.resolve(motion, t_end)
