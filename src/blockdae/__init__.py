@@ -15,11 +15,13 @@ from ._sensitivities import sensitivities
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, EventLog, Solution
 from ._solution_planar import PlanarEvent, PlanarSolution
+from ._solution_upthrow import Flight, UpthrowEvent, UpthrowSolution
 from ._sweep import SweepSolution, simulate_many
+from ._upthrow import UpthrowEstimate, upthrow_estimate
 from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_motion, read_record)
-from .model import AbstractHybridModel, Mode, PlanarBlock, PlanarMode, SlidingBlock
+from .model import AbstractHybridModel, Mode, PlanarBlock, PlanarMode, SlidingBlock, SpringSupportedMass, UpthrowMode
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
                       cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
                       relative_motion, response_spectrum)
@@ -31,6 +33,8 @@ __all__ = [
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "check_peak_acceleration", "read_motion", "read_record", "simulate",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution",
+    "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",
+    "upthrow_estimate",
     "SweepSolution", "simulate_many",
     "FinalNumbers", "simulate_final",
     "CrossCheck", "crosscheck",

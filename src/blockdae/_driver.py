@@ -240,9 +240,10 @@ class _Run:
     def output_step(self):
         """Largest gap between knots [s]: cubic Hermite is exact for the cubic u of a
         linear piece; on a sine piece of angular frequency w, 1 / (32 w) keeps its
-        error near 1e-9 of the amplitude (h^4 w^4 / 384)."""
+        error near 1e-9 of the amplitude (h^4 w^4 / 384); at most the model's own
+        ``output_step`` (an oscillator's)."""
         w = self.piece_excitation.highest_frequency
-        return 1.0 / (_KNOTS_PER_RADIAN * w) if w > 0 else math.inf
+        return min(1.0 / (_KNOTS_PER_RADIAN * w) if w > 0 else math.inf, self.model.output_step())
 
     def static_root(self, end):
         """The first guard root in (t, end] [s] of a static mode, located in t alone (the

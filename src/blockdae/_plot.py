@@ -7,6 +7,7 @@ import numpy as np
 
 from ._solution import BatchSolution, Solution
 from ._solution_planar import PlanarSolution
+from ._solution_upthrow import UpthrowSolution
 from .excitation import AbstractExcitation
 from .model import SlidingBlock
 from .motions import RelativeMotion, ResponseSpectrum, plot_relative_motion, plot_spectrum
@@ -56,6 +57,8 @@ def plot(solution: Solution | BatchSolution | PlanarSolution | ResponseSpectrum 
         return plot_spectrum(solution, title=title)
     if isinstance(solution, RelativeMotion):
         return plot_relative_motion(solution, title=title)
+    if isinstance(solution, UpthrowSolution):  # seed 004: a flight history
+        return plot_upthrow(solution, n_points=n_points, title=title)
     if not isinstance(solution, (Solution, PlanarSolution)):
         raise TypeError("solution must be a Solution, BatchSolution, PlanarSolution, ResponseSpectrum or "
                         f"RelativeMotion, got {type(solution).__name__}")
@@ -158,6 +161,40 @@ def _plot_planar(solution: PlanarSolution, *, n_points: int, title: str | None =
     disp.legend(loc="best", fontsize="small")
     _curve(speed, t, np.hypot(v_x, v_y), t_ev, speed_ev, "relative speed |v| [m/s]")
     speed.set_xlabel("t [s]")
+    if title:
+        fig.suptitle(title)
+    return fig
+
+
+# ---- a spring-supported mass (seed 004) --------------------------------------------
+def plot_upthrow(solution: UpthrowSolution, *, n_points: int = 2000, title: str | None = None):
+    """A flight history: the ground y and the mass y + u [m] (absolute, from the static
+    position), the gap u - u0 above the unloaded support [m], and the support force per
+    unit mass n [m/s²]; liftoffs (triangles up) and landings (down) marked."""
+    import matplotlib.pyplot as plt
+
+    if not (isinstance(n_points, int) and n_points >= 2):
+        raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
+    t = np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
+    u, _, gap, force = solution(t)
+    ground = solution.motion.displacement(t) - solution.motion.displacement(0.0) if solution.motion else 0 * t
+    fig, (position, lift, support) = plt.subplots(3, 1, sharex=True, figsize=(8, 7), constrained_layout=True)
+    position.plot(t, ground, **_BASE)
+    position.plot(t, ground + u, color="C3", lw=1.2, label="mass")
+    position.set_ylabel("displacement [m]")
+    lift.plot(t, gap, color="C3", lw=1.2)
+    lift.set_ylabel("gap u - u0 [m]")
+    support.plot(t, force, color="C0", lw=1.2)
+    support.set(ylabel="support force n [m/s²]", xlabel="t [s]")
+    for kind, marker in (("liftoff", "^"), ("landing", "v")):
+        times = np.array([e.t for e in solution.events_of(kind)])
+        if times.size:
+            at = np.interp(times, t, ground)
+            position.plot(times, at + solution(times)[0], ls="none", marker=marker, color="k", ms=5, label=kind)
+            lift.plot(times, 0 * times, ls="none", marker=marker, color="k", ms=5)
+    for ax in (position, lift, support):
+        ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    position.legend(loc="best", fontsize="small")
     if title:
         fig.suptitle(title)
     return fig

@@ -6,26 +6,29 @@ from ._solution import BatchSolution, Solution
 from .backends import Horizon, available, make_backend
 from ._solution_planar import PlanarSolution
 from .excitation import AbstractExcitation, BaseMotion
-from .model import PlanarBlock, SlidingBlock
+from ._solution_upthrow import UpthrowSolution
+from .model import PlanarBlock, SlidingBlock, SpringSupportedMass
 
 #: the backend each model runs on unless told otherwise
-DEFAULT_BACKEND = {SlidingBlock: "exact", PlanarBlock: "ida"}
+DEFAULT_BACKEND = {SlidingBlock: "exact", PlanarBlock: "ida", SpringSupportedMass: "exact"}
 
 
-def simulate(block: SlidingBlock | PlanarBlock, motion: AbstractExcitation | BaseMotion,
+def simulate(block: SlidingBlock | PlanarBlock | SpringSupportedMass, motion: AbstractExcitation | BaseMotion,
              t_end: float | None = None, backend: str | None = None,
-             **options) -> Solution | BatchSolution | PlanarSolution:
+             **options) -> Solution | BatchSolution | PlanarSolution | UpthrowSolution:
     """Slide ``block`` on a base moving with ``motion``.
 
     Args:
-        block: a :class:`SlidingBlock` or a :class:`PlanarBlock`; a batch of
-            parameter sets if its parameters are 1-D arrays.
+        block: a :class:`SlidingBlock` or a :class:`PlanarBlock` (a batch of
+            parameter sets if its parameters are 1-D arrays), or a
+            :class:`SpringSupportedMass` (``motion`` is then its vertical ground
+            acceleration; give ``t_end``).
         motion: base excitation; for a PlanarBlock also a :class:`BaseMotion` (x, y, z
             components; a 1-D excitation is its x component).
         t_end: final time [s]. None: until the block has come to rest after a finite
             excitation ends.
         backend: a name from ``blockdae.backends.available()``; None: "exact" (closed
-            form) for a SlidingBlock, "ida" for a PlanarBlock.
+            form) for a SlidingBlock and a SpringSupportedMass, "ida" for a PlanarBlock.
         **options: settings of the backend, name=default: meaning [unit]
             (tests check this list against the backends' fields)
 
@@ -63,7 +66,8 @@ def simulate(block: SlidingBlock | PlanarBlock, motion: AbstractExcitation | Bas
         ``block`` and ``motion``. For several motions or scales: :func:`simulate_many`.
     """
     if not isinstance(block, tuple(DEFAULT_BACKEND)):
-        raise TypeError(f"block must be a SlidingBlock or a PlanarBlock, got {type(block).__name__}")
+        raise TypeError(f"block must be a SlidingBlock, a PlanarBlock or a SpringSupportedMass, "
+                        f"got {type(block).__name__}")
     planar = isinstance(block, PlanarBlock)
     if not isinstance(motion, (AbstractExcitation, BaseMotion) if planar else AbstractExcitation):
         kinds = "an excitation (Harmonic, Record, ...)" + (" or a BaseMotion" if planar else "")

@@ -7,9 +7,10 @@ import numpy as np
 from .._solution import BatchSolution
 from ..excitation import Pieces
 from ..excitation._pieces import accel
-from ..model import SlidingBlock
+from ..model import SlidingBlock, SpringSupportedMass
 from . import _exact_numba as engine
 from ._base import AbstractBackend, cached_per_excitation, check_window
+from ._closed_form_linear import solve_closed_form
 from ._results import check, exact_solution
 
 
@@ -22,7 +23,9 @@ _PARALLEL_WORK = 3e7
 class ExactBackend(AbstractBackend):
     """Closed-form integration, compiled with numba (float64, parallel over cores for
     batches). ``backend="exact-jax"`` runs the same closed forms and rules compiled
-    with JAX, for derivatives and accelerators.
+    with JAX, for derivatives and accelerators. A :class:`SpringSupportedMass` runs
+    on the generic driver with closed-form steps instead
+    (:mod:`blockdae.backends._closed_form_linear`; ``window`` is unused there).
 
     Args:
         window: pieces of a(t) per block of the onset search's bounds; a tuning knob
@@ -31,11 +34,14 @@ class ExactBackend(AbstractBackend):
 
     window: int = 64
     name = "exact"
+    models = (SlidingBlock, SpringSupportedMass)
 
     def __post_init__(self):
         check_window(self.window)
 
     def solve(self, block, excitation, horizon):
+        if isinstance(block, SpringSupportedMass):  # closed-form steps on the generic driver
+            return solve_closed_form(block, excitation, horizon, self.name)
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
         run_one, _, _ = engine.kernels()
         params = (float(block.mu), float(block.friction_kinetic), float(block.bias), float(block.g), 1.0)

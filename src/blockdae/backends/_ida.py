@@ -34,7 +34,7 @@ import numpy as np
 from sksundae.ida import IDA
 
 from .._driver import SCALAR
-from ..model import Mode, PlanarBlock, PlanarMode, SlidingBlock, stick_guards
+from ..model import Mode, PlanarBlock, PlanarMode, SlidingBlock, SpringSupportedMass, UpthrowMode, stick_guards
 from ..model._planar import SLOW_SPEED
 from ._sundials import Guards, SundialsBackend, SundialsIntegrator
 
@@ -61,14 +61,14 @@ class IDABackend(SundialsBackend):
     piece of a(t), each time from a first step of :data:`FIRST_STEP` [s]."""
 
     name = "ida"
-    models = (SlidingBlock, PlanarBlock)
+    models = (SlidingBlock, PlanarBlock, SpringSupportedMass)
 
     def _integrator(self, block, piece):
         form = dae_form(block, piece)
         options = self.solver_options()
         # F is measured against the friction capacity mu g: an absolute tolerance of
         # atol [m/s²] would force steps of ~1e-16 s wherever the demand crosses zero
-        friction_atol = max(self.atol, self.rtol * block.mu * block.g)
+        friction_atol = max(self.atol, self.rtol * form.force_scale)
         options["atol"] = np.array([self.atol] * form.n_states + [friction_atol] * form.n_friction)
         return _IDAIntegrator(form, options)
 
@@ -88,6 +88,7 @@ class _LineForm:
 
     def __init__(self, block, piece):
         self.block, self.piece = block, piece
+        self.force_scale = block.mu * block.g
 
     def residual(self, mode):
         block, piece = self.block, self.piece
@@ -125,6 +126,7 @@ class _PlanarForm:
         if block.state_names != ("u_x", "u_y", "s", "c_x", "c_y", "w", "w_rate"):
             raise RuntimeError(f"the planar DAE form expects another state layout than {block.state_names}")
         self.block, self.piece = block, piece
+        self.force_scale = block.mu * block.g
 
     def residual(self, mode):
         block, piece = self.block, self.piece
@@ -162,7 +164,49 @@ class _PlanarForm:
         return np.concatenate([y, friction]), np.concatenate([rate, friction_rate])
 
 
-_FORMS = ((SlidingBlock, _LineForm), (PlanarBlock, _PlanarForm))
+class _SpringForm:
+    """:class:`SpringSupportedMass`: (u, u', N), N the support force per unit mass
+    [m/s²] (the model's ``support_force``: its law in contact, 0 in flight)::
+
+        u' = u_rate,    u_rate' = relative_acceleration(t, N),    0 = N - support_force.
+
+    The contact guard is N itself; the flight guards are the model's.
+    """
+
+    n_states, n_friction = 2, 1
+
+    def __init__(self, block, piece):
+        self.block, self.piece = block, piece
+        self.force_scale = block.g
+
+    def residual(self, mode):
+        block, piece = self.block, self.piece
+
+        def residual(t, y, yp, res):
+            res[0] = yp[0] - y[1]
+            res[1] = yp[1] - block.relative_acceleration(t, y[2], piece)
+            res[2] = y[2] - block.support_force(mode, t, y, piece, SCALAR)
+
+        return residual
+
+    def guards(self, mode, t, y, out):
+        if mode == UpthrowMode.CONTACT:
+            out[0] = y[2]
+        else:
+            out[:] = self.block.guards(mode, t, y, self.piece, SCALAR)
+
+    def consistent(self, mode, t, y):
+        """(y, y') at ``t``: N from the model; N' from its law, affine in the state, at
+        the rate (u', u'') minus its value at zero."""
+        block, piece = self.block, self.piece
+        rate = np.array(block.flow(mode, t, y, piece, SCALAR), dtype=float)
+        force = block.support_force(mode, t, y, piece, SCALAR)
+        force_rate = block.support_force(mode, t, rate, piece, SCALAR) - block.support_force(
+            mode, t, np.zeros(2), piece, SCALAR)
+        return np.array([y[0], y[1], force]), np.array([y[1], rate[1], force_rate])
+
+
+_FORMS = ((SlidingBlock, _LineForm), (PlanarBlock, _PlanarForm), (SpringSupportedMass, _SpringForm))
 
 
 class _IDAGuards(Guards):

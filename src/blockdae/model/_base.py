@@ -107,6 +107,11 @@ class AbstractHybridModel(abc.ABC):
         (e.g. a kinetic friction that defaults to the static one); none by default."""
         return {}
 
+    def output_step(self) -> float:
+        """Largest gap between dense-output knots [s] the model's own motion needs
+        (inf: the excitation alone sets it)."""
+        return math.inf
+
     def guard_restarts(self, mode, guard_index) -> bool:
         """Whether reaching the guard is an event even if the mode stays (False)."""
         return False

@@ -1,0 +1,239 @@
+"""A compact mass on a unilateral spring-dashpot support, shaken vertically (seed 004,
+Newmark on upthrow).
+
+The support has natural circular frequency omega = 2 pi f [rad/s], damping ratio zeta
+and static deflection u0 = g / omega² [m]. With the vertical base acceleration y''(t)
+[m/s², upward positive] and u = x - y the displacement of the mass relative to the
+ground from its static position (upward positive), the support force per unit mass
+(compression positive) is
+
+    n = omega² (u0 - u) - 2 zeta omega u'            [m/s²],
+
+and Newton's law reads u'' = n - g - y''. In CONTACT this is the oscillator
+u'' + 2 zeta omega u' + omega² u = -y'' (seed eq. 4 with damping); it holds while n > 0.
+When n reaches 0 from above the mass flies (n = 0: u'' = -g - y'').
+
+Landing rule: the support is the clamped Kelvin-Voigt law, n = max(0, omega² (u0 - u)
+- 2 zeta omega u') while the mass is within the unloaded length (u <= u0), and 0
+above it. Contact therefore resumes when the mass is at or below u0 and the law pushes:
+a falling mass lands where u returns to u0 from above (n = -2 zeta omega u' > 0 there,
+so contact is consistent); with damping a mass can lift off below u0 (the dashpot pulls
+it off while the spring still pushes) and, if it does not rise above u0, it lands while
+still rising, where the law's n returns to 0 from below. Without damping both reduce to
+the seed's rule: separation and landing at u = u0.
+
+Flight is split at its top (u' = 0) into FLIGHT_UP and FLIGHT_DOWN so that every guard
+is affine in the state (u, u') within a mode: the top of each flight is then a located
+event like liftoff and landing.
+"""
+
+import dataclasses
+import enum
+import math
+
+import numpy as np
+
+from .._units import STANDARD_GRAVITY
+from ._base import SCALAR, AbstractHybridModel
+
+_U, _V = range(2)
+#: dense-output knots per radian of the support's oscillation (cubic Hermite error near
+#: 1e-9 of the amplitude: h^4 omega^4 / 384 with h = 1 / (32 omega))
+_KNOTS_PER_RADIAN = 32
+
+
+class UpthrowMode(enum.IntEnum):
+    """Mode of a spring-supported mass."""
+
+    CONTACT = 0  # on the support: a damped oscillator
+    FLIGHT_UP = 1  # off the support, rising relative to the ground (u' > 0)
+    FLIGHT_DOWN = 2  # off the support, falling relative to the ground (u' <= 0)
+
+    def __str__(self):
+        return self.name
+
+
+#: event kind of each mode change (before, after)
+EVENT_KINDS = {(UpthrowMode.CONTACT, UpthrowMode.FLIGHT_UP): "liftoff",
+               (UpthrowMode.FLIGHT_UP, UpthrowMode.FLIGHT_DOWN): "top",
+               (UpthrowMode.FLIGHT_DOWN, UpthrowMode.FLIGHT_UP): "bottom",
+               (UpthrowMode.FLIGHT_UP, UpthrowMode.CONTACT): "landing",
+               (UpthrowMode.FLIGHT_DOWN, UpthrowMode.CONTACT): "landing"}
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class SpringSupportedMass(AbstractHybridModel):
+    """A mass resting on a unilateral spring-dashpot support under vertical ground motion.
+
+    Args:
+        frequency: natural frequency f of the mass on its support [Hz], > 0.
+        damping: damping ratio zeta of the support [-], in [0, 1).
+        g: gravitational acceleration [m/s²], > 0.
+
+    The excitation's component 0 is the vertical ground acceleration y''(t) [m/s²,
+    upward positive]. State y = (u [m], u' [m/s]).
+    """
+
+    frequency: float
+    damping: float = 0.0
+    g: float = STANDARD_GRAVITY
+
+    state_names = ("u", "u_rate")
+    modes = UpthrowMode
+    initial_mode = UpthrowMode.CONTACT
+
+    def __post_init__(self):
+        for name in ("frequency", "damping", "g"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+                raise ValueError(f"{name} must be a real number, got {value!r}")
+            if not math.isfinite(value):
+                raise ValueError(f"{name} must be finite, got {value!r}")
+            object.__setattr__(self, name, float(value))
+        if self.frequency <= 0:
+            raise ValueError(f"frequency={self.frequency!r} must be > 0 [Hz]")
+        if not 0 <= self.damping < 1:
+            raise ValueError(f"damping={self.damping!r} must lie in [0, 1)")
+        if self.g <= 0:
+            raise ValueError(f"g={self.g!r} must be > 0 [m/s²]")
+
+    @classmethod
+    def from_static_deflection(cls, u0, damping=0.0, g=STANDARD_GRAVITY) -> "SpringSupportedMass":
+        """The mass whose support deflects by ``u0`` [m] under its weight (seed eq. 9:
+        f = sqrt(g / u0) / (2 pi))."""
+        if isinstance(u0, bool) or not isinstance(u0, (int, float, np.floating, np.integer)) \
+                or not math.isfinite(u0) or u0 <= 0:
+            raise ValueError(f"u0={u0!r} must be a positive finite static deflection [m]")
+        checked = cls(1.0, damping, g)  # validates damping and g
+        return cls(math.sqrt(checked.g / u0) / (2 * math.pi), checked.damping, checked.g)
+
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """() : one parameter set."""
+        return ()
+
+    @property
+    def omega(self) -> float:
+        """Natural circular frequency omega = 2 pi f [rad/s]."""
+        return 2 * math.pi * self.frequency
+
+    @property
+    def static_deflection(self) -> float:
+        """u0 = g / omega² [m] (seed eq. 5)."""
+        return self.g / self.omega**2
+
+    #: the seed's name for the static deflection [m]
+    u0 = static_deflection
+
+    def replace(self, **changes) -> "SpringSupportedMass":
+        """A copy with some parameters changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    # ---- the physics, affine in the state within a mode ---------------------
+    def linear_flow(self, mode):
+        """(k [1/s²], c [1/s], b [m/s²]) of u'' + c u' + k u = b - y''(t) in ``mode``."""
+        if mode == UpthrowMode.CONTACT:
+            return self.omega**2, 2 * self.damping * self.omega, 0.0
+        return 0.0, 0.0, -self.g
+
+    def affine_guards(self, mode):
+        """The guards of ``mode`` as rows (alpha, beta, gamma): alpha u + beta u' + gamma.
+
+        CONTACT: (n / omega² -> liftoff). FLIGHT_UP: (u' -> top, -n / omega² -> landing
+        while rising). FLIGHT_DOWN: (u - u0 -> landing, -u' -> rising again).
+        """
+        u0, ratio = self.static_deflection, 2 * self.damping / self.omega
+        if mode == UpthrowMode.CONTACT:
+            return ((-1.0, -ratio, u0),)
+        if mode == UpthrowMode.FLIGHT_UP:
+            return ((0.0, 1.0, 0.0), (1.0, ratio, -u0))
+        return ((1.0, 0.0, -u0), (0.0, -1.0, 0.0))
+
+    def support_force(self, mode, t, y, excitation, xp=np):
+        """n [m/s²] the support exerts per unit mass (compression positive; 0 in flight)."""
+        if mode == UpthrowMode.CONTACT:
+            return self.omega**2 * (self.static_deflection - y[_U]) - 2 * self.damping * self.omega * y[_V]
+        return 0.0 * y[_U]
+
+    def relative_acceleration(self, t, force, excitation):
+        """u'' = n - g - y''(t) [m/s²] with the support force ``force`` per unit mass."""
+        return force - self.g - excitation.acceleration(t)
+
+    # ---- hybrid automaton ----------------------------------------------------
+    def flow(self, mode, t, y, excitation, xp=np):
+        """(u', u'') in ``mode``."""
+        k, c, b = self.linear_flow(mode)
+        return xp.stack([y[_V], b - k * y[_U] - c * y[_V] - excitation.acceleration(t)])
+
+    def guards(self, mode, t, y, excitation, xp=np):
+        """The affine guards of ``mode`` (see :meth:`affine_guards`), each left when it
+        crosses zero downwards."""
+        return xp.stack([alpha * y[_U] + beta * y[_V] + gamma for alpha, beta, gamma in self.affine_guards(mode)])
+
+    def mode_at_rest(self, t, excitation, xp=np):
+        """A mass at rest on its support is in contact."""
+        return UpthrowMode.CONTACT
+
+    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
+        """Contact -> FLIGHT_UP at liftoff; FLIGHT_UP -> FLIGHT_DOWN at the top or
+        CONTACT at a rising landing; FLIGHT_DOWN -> CONTACT at landing or FLIGHT_UP
+        when it rises again (base falling faster than g)."""
+        if mode == UpthrowMode.CONTACT:
+            return UpthrowMode.FLIGHT_UP
+        if mode == UpthrowMode.FLIGHT_UP:
+            return UpthrowMode.FLIGHT_DOWN if guard_index == 0 else UpthrowMode.CONTACT
+        return UpthrowMode.CONTACT if guard_index == 0 else UpthrowMode.FLIGHT_UP
+
+    # ---- what the hybrid driver asks -----------------------------------------
+    def is_static(self, mode):
+        return False
+
+    def at_rest(self, mode, y):
+        return False
+
+    def rest_state(self, y):
+        return np.array([y[_U], 0.0])
+
+    def state_at_guard(self, mode, guard_index, y):
+        """A top or bottom has u' = 0 and a falling landing u = u0, exactly."""
+        y = np.array(y, dtype=float)
+        if mode != UpthrowMode.CONTACT and (mode == UpthrowMode.FLIGHT_UP) == (guard_index == 0):
+            y[_V] = 0.0
+        elif mode == UpthrowMode.FLIGHT_DOWN:
+            y[_U] = self.static_deflection
+        return y
+
+    def turn_rate(self, mode, t, y, excitation, xp=np):
+        """None: the driver's knots (:meth:`output_step`) and the solvers' steps
+        resolve the oscillation; the exact backend brackets every root itself."""
+        return None
+
+    def output_step(self):
+        """Largest gap between dense-output knots [s]: 1 / (32 omega)."""
+        return 1.0 / (_KNOTS_PER_RADIAN * self.omega)
+
+    def guard_rates(self, mode, guard_index, t, y, excitation):
+        """(rate, curvature) of the guard from u', u'' and u''' of the flow."""
+        alpha, beta, _ = self.affine_guards(mode)[guard_index]
+        k, c, _ = self.linear_flow(mode)
+        accel = self.flow(mode, t, y, excitation, SCALAR)[1]
+        jerk = -k * y[_V] - c * accel - excitation.acceleration_rate(t)
+        return alpha * y[_V] + beta * accel, alpha * accel + beta * jerk
+
+    def speed(self, y):
+        return abs(float(y[_V]))
+
+    def time_to_rest(self, mode, y):
+        raise ValueError("a mass on springs never comes to rest exactly after the excitation: give t_end [s]")
+
+    def event(self, t, mode_before, mode_after, y):
+        from .._solution_upthrow import UpthrowEvent
+
+        return UpthrowEvent(EVENT_KINDS[(mode_before, mode_after)], float(t), float(y[_U]), float(y[_V]),
+                            float(y[_U]) - self.static_deflection, mode_before, mode_after)
+
+    def solution(self, *, t, y, mode, events, backend, dense, stats):
+        from .._solution_upthrow import UpthrowSolution
+
+        return UpthrowSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense,
+                               stats=stats)
