@@ -13,7 +13,7 @@ from .._driver import drive
 from .._jax_config import jax_context
 from .._solution import BatchSolution, EventLog, Solution
 from . import _jax_kernel as kernel
-from ..model import PlanarBlock, SlidingBlock, never_rests_error
+from ..model import PlanarBlock, SlidingBlock, SpringSupportedMass, never_rests_error
 from ._jax_hybrid import DiffraxIntegrator, Settings
 from ._base import AbstractBackend, batch_params
 from ._exact_jax import _device, _params
@@ -55,7 +55,7 @@ class JaxBackend(AbstractBackend):
     max_events_at_one_instant: int = 5
     event_resolution: float = 1e-9
     name = "jax"
-    models = (SlidingBlock, PlanarBlock)
+    models = (SlidingBlock, PlanarBlock, SpringSupportedMass)
 
     def __post_init__(self):
         for field in ("rtol", "atol"):

@@ -194,14 +194,25 @@ class SpringSupportedMass(AbstractHybridModel):
     def rest_state(self, y):
         return np.array([y[_U], 0.0])
 
-    def state_at_guard(self, mode, guard_index, y):
+    def state_at_guard(self, mode, guard_index, y, xp=np):
         """A top or bottom has u' = 0 and a falling landing u = u0, exactly."""
-        y = np.array(y, dtype=float)
         if mode != UpthrowMode.CONTACT and (mode == UpthrowMode.FLIGHT_UP) == (guard_index == 0):
-            y[_V] = 0.0
-        elif mode == UpthrowMode.FLIGHT_DOWN:
-            y[_U] = self.static_deflection
+            return xp.stack([y[_U], 0.0 * y[_V]])
+        if mode == UpthrowMode.FLIGHT_DOWN:
+            return xp.stack([0.0 * y[_U] + self.static_deflection, y[_V]])
         return y
+
+    # ---- parameters, for JAX (compiled rules, derivatives) ------------------
+    def parameters(self):
+        """frequency [Hz], damping [-], g [m/s²]."""
+        return {"frequency": self.frequency, "damping": self.damping, "g": self.g}
+
+    def with_parameters(self, values):
+        values = {**self.parameters(), **values}
+        model = object.__new__(SpringSupportedMass)
+        for name, value in values.items():
+            object.__setattr__(model, name, value)
+        return model
 
     def turn_rate(self, mode, t, y, excitation, xp=np):
         """None: the driver's knots (:meth:`output_step`) and the solvers' steps
