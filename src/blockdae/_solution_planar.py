@@ -2,9 +2,10 @@
 
 import dataclasses
 import math
-from typing import Callable
 
 import numpy as np
+
+from ._solution_driver import DriverSolution
 
 from .model._planar import PlanarMode, horizontal_velocity
 
@@ -43,7 +44,7 @@ class PlanarEvent:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class PlanarSolution:
+class PlanarSolution(DriverSolution):
     """The motion of a planar block relative to its base.
 
     Attributes:
@@ -57,16 +58,6 @@ class PlanarSolution:
         stats: counters.
         block, motion: the block and the base motion (set by :func:`blockdae.simulate`).
     """
-
-    t: np.ndarray
-    state: np.ndarray
-    mode: np.ndarray
-    events: tuple
-    backend: str
-    dense: Callable = dataclasses.field(repr=False)
-    stats: dict = dataclasses.field(default_factory=dict)
-    block: object = dataclasses.field(default=None, repr=False)
-    motion: object = dataclasses.field(default=None, repr=False)
 
     @property
     def u_x(self) -> np.ndarray:
@@ -89,11 +80,6 @@ class PlanarSolution:
         return self.state[:, 5]
 
     @property
-    def t_end(self) -> float:
-        """Final time [s]."""
-        return float(self.t[-1])
-
-    @property
     def displacement(self) -> np.ndarray:
         """Permanent relative displacement (u_x, u_y) at t_end [m], shape (2,)."""
         return self.state[-1, :2].copy()
@@ -103,18 +89,9 @@ class PlanarSolution:
         """Largest |u| = sqrt(u_x² + u_y²) at the knots [m]."""
         return float(np.max(np.hypot(self.u_x, self.u_y)))
 
-    @property
-    def t_events(self) -> np.ndarray:
-        """Event times [s], shape (n_events,)."""
-        return np.array([e.t for e in self.events])
-
     def __call__(self, t):
         """(u_x, u_y [m], v_x, v_y [m/s], gap [m]) at times ``t`` in [0, t_end] [s]."""
-        t = np.asarray(t, dtype=float)
-        if np.any((t < self.t[0]) | (t > self.t[-1])):
-            raise ValueError(f"t must lie in [{self.t[0]}, {self.t[-1]}] s")
-        state = np.stack(self.dense(t), axis=-1)
-        mode = self.mode[np.clip(np.searchsorted(self.t, t, side="right") - 1, 0, len(self.t) - 1)]
+        state, mode = self.dense_state(t)
         vx, vy = horizontal_velocity(mode, state)
         return state[..., 0], state[..., 1], vx, vy, state[..., 5]
 

@@ -1,9 +1,10 @@
 """Results of a spring-supported mass: located liftoffs, tops and landings, dense output."""
 
 import dataclasses
-from typing import Callable
 
 import numpy as np
+
+from ._solution_driver import DriverSolution
 
 from .model._spring import UpthrowMode
 
@@ -60,7 +61,7 @@ class Flight:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class UpthrowSolution:
+class UpthrowSolution(DriverSolution):
     """The motion of a spring-supported mass relative to the ground.
 
     Attributes:
@@ -73,16 +74,6 @@ class UpthrowSolution:
         block, motion: the model and the ground motion (set by :func:`blockdae.simulate`).
     """
 
-    t: np.ndarray
-    state: np.ndarray
-    mode: np.ndarray
-    events: tuple
-    backend: str
-    dense: Callable = dataclasses.field(repr=False)
-    stats: dict = dataclasses.field(default_factory=dict)
-    block: object = dataclasses.field(default=None, repr=False)
-    motion: object = dataclasses.field(default=None, repr=False)
-
     @property
     def u(self) -> np.ndarray:
         """u at the knots [m], shape (n,)."""
@@ -92,16 +83,6 @@ class UpthrowSolution:
     def u_rate(self) -> np.ndarray:
         """u' at the knots [m/s], shape (n,)."""
         return self.state[:, 1]
-
-    @property
-    def t_end(self) -> float:
-        """Final time [s]."""
-        return float(self.t[-1])
-
-    @property
-    def t_events(self) -> np.ndarray:
-        """Event times [s], shape (n_events,)."""
-        return np.array([e.t for e in self.events])
 
     def events_of(self, kind: str) -> tuple:
         """The events of one kind ("liftoff", "top", "landing", "bottom")."""
@@ -128,11 +109,8 @@ class UpthrowSolution:
         """(u [m], u' [m/s], gap [m], n [m/s²]) at times ``t`` in [0, t_end] [s]: the
         gap u - u0 above the unloaded support in flight (0 in contact and below u0) and
         the support force per unit mass n (0 in flight)."""
-        t = np.asarray(t, dtype=float)
-        if np.any((t < self.t[0]) | (t > self.t[-1])):
-            raise ValueError(f"t must lie in [{self.t[0]}, {self.t[-1]}] s")
-        u, u_rate = self.dense(t)
-        mode = self.mode[np.clip(np.searchsorted(self.t, t, side="right") - 1, 0, len(self.t) - 1)]
+        state, mode = self.dense_state(t)
+        u, u_rate = state[..., 0], state[..., 1]
         block = self.block
         flying = mode != UpthrowMode.CONTACT
         law = block.omega**2 * (block.static_deflection - u) - 2 * block.damping * block.omega * u_rate
