@@ -19,7 +19,7 @@ import time
 import numpy as np
 
 from . import backends
-from ._cli_common import UsageError, checked, finite, positive, read, save_figure, write_csv
+from ._cli_common import UsageError, checked, describe_record, finite, positive, read, save_figure, write_csv
 from ._cli_planar import is_planar, read_motion_argument, run_planar, x_record
 from ._examples import seed_examples
 from ._jax_config import set_compilation_cache
@@ -169,7 +169,7 @@ def _run(args):
     if args.quiet:
         print(f"{solution.displacement:+.6f} m")
         return 0
-    print(f"record: {_describe(record)}")
+    print(f"record: {describe_record(record)}")
     print(f"block: {_describe_block(block)}; backend {solution.backend}")
     print(f"final time t_end = {solution.t_end:.4f} s"
           + (" (block at rest after the record)" if args.t_end is None else ""))
@@ -192,7 +192,7 @@ def _newmark(args):
         print(json.dumps({**_record_fields(record), "g_m_s2": args.g,
                           "results": table.to_dict(orient="records")}, indent=2))
         return 0
-    print(f"record: {_describe(record)}")
+    print(f"record: {describe_record(record)}")
     print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
     print(f"{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}")
     for row in table.itertuples(index=False):
@@ -299,13 +299,6 @@ def _block(args, mu, mu_kinetic, bias):
         message = str(err)
         flag = next((flag for field, flag in _FLAGS.items() if message.startswith(f"{field}=")), None)
         raise UsageError(f"argument {flag}: {message}" if flag else message) from None
-
-
-def _describe(record):
-    origin = (f"; times from its first sample, at t = {record.start_time:g} s on the file's axis"
-              if record.start_time else "")
-    return (f"{record.name} ({record.acceleration_samples.size} samples, dt = {record.dt:g} s, "
-            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} m/s²{origin})")
 
 
 def _describe_block(block):

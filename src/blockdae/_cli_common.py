@@ -72,3 +72,11 @@ def save_figure(figure, path):
         checked(lambda: figure.savefig(path, dpi=120), f"--plot {path}")
     finally:
         plt.close(figure)
+
+
+def describe_record(record) -> str:
+    """One line on a record: name, samples, dt [s], duration [s], peak [m/s²], start."""
+    origin = (f"; times from its first sample, at t = {record.start_time:g} s on the file's axis"
+              if record.start_time else "")
+    return (f"{record.name} ({record.acceleration_samples.size} samples, dt = {record.dt:g} s, "
+            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} m/s²{origin})")

@@ -5,7 +5,7 @@ import json
 import pathlib
 import time
 
-from ._cli_common import UsageError, checked, save_figure
+from ._cli_common import UsageError, checked, describe_record, save_figure
 from ._simulate import simulate
 from .excitation import Record, read_motion
 from .model import PlanarBlock
@@ -77,7 +77,7 @@ def run_planar(args, motion, print_events):
         return 0
     for axis, component in zip("xyz", motion.components):
         if component is not None:
-            print(f"record {axis}: {_describe(component)}")
+            print(f"record {axis}: {describe_record(component)}")
     print(f"block on a plane: mu = {block.mu:g}, f = {block.friction_kinetic:g}, bias (b_x, b_y) = "
           f"({block.bias[0]:g}, {block.bias[1]:g}) [-], g = {block.g:g} m/s²; backend {solution.backend}")
     print(f"final time t_end = {solution.t_end:.4f} s"
@@ -91,11 +91,6 @@ def run_planar(args, motion, print_events):
     if args.plot is not None:
         print(f"figure: {args.plot}")
     return 0
-
-
-def _describe(record):
-    return (f"{record.name} ({record.acceleration_samples.size} samples, dt = {record.dt:g} s, "
-            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} m/s²)")
 
 
 def _json(motion, block, solution, wall):
