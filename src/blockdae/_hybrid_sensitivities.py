@@ -14,10 +14,15 @@ factor per excitation component, at 1):
   S+ = h_y (S- + f- dt/dp) + h_t dt/dp + h_p - f+ dt/dp (the saltation matrix);
 * a mode change at a piece start (a block at rest re-taking a mode) has a fixed time.
 
+At every event the replay keeps dt/dp and the total derivatives of the located state
+before and after the event's maps (:class:`EventSensitivity`), from which quantities
+read at events (a liftoff velocity, a flight's height or duration) are differentiated.
+
 Nothing here knows the model: flows, guards and maps come from the model, evaluated
 on ``jax.numpy``.
 """
 
+import dataclasses
 import functools
 
 import diffrax
@@ -37,24 +42,59 @@ def parameter_names(model) -> tuple[str, ...]:
     return tuple(model.parameters()) + tuple(f"A_{name}" for name in model.component_names)
 
 
+@dataclasses.dataclass(frozen=True)
+class EventSensitivity:
+    """Derivatives at one located event, by the parameters of :func:`parameter_names`
+    (n_p of them) and the n_y states.
+
+    Attributes:
+        t: event time [s]; mode_before, mode_after: the modes on either side.
+        dt_dp: d t_event / dp [s per unit], shape (n_p,).
+        dy_dp_before: d y(t_event) / dp of the located state before the event's maps,
+            S- + f- dt/dp [state unit per unit], shape (n_y, n_p).
+        dy_dp_after: the same after them (``state_at_guard``, ``state_on_entry``),
+            shape (n_y, n_p).
+    """
+
+    t: float
+    mode_before: object
+    mode_after: object
+    dt_dp: np.ndarray
+    dy_dp_before: np.ndarray
+    dy_dp_after: np.ndarray
+
+
 def displacement_jacobian(model, motion, horizon, backend):
     """d(final displacement)/dp [m per unit], shape (len(displacement_states),
     len(parameter_names(model))), along the trajectory the JAX twin ``backend`` locates."""
-    trace = []
-    drive(model, motion, horizon, backend.integrator, backend.name, backend.max_events_at_one_instant,
-          backend.event_resolution, (backend.rtol, backend.atol), trace=trace)
-    settings = Settings(backend.solver or "dopri8", float(backend.rtol), float(backend.atol), backend.max_steps)
-    theta = np.array([*model.parameters().values()] + [1.0] * len(model.component_names))
-    template = ModelTemplate(model)
-    with jax_context():
-        S = _replay(model, template, settings, theta, trace)
+    _, S, _ = trajectory_sensitivities(model, motion, horizon, backend)
     return S[list(model.displacement_states)]
 
 
-def _replay(model, template, settings, theta, trace):
-    """S at the end of ``trace`` (see the module's docstring)."""
+def trajectory_sensitivities(model, motion, horizon, backend):
+    """The trajectory the JAX twin ``backend`` locates and its derivatives by the
+    parameters of :func:`parameter_names`: (solution, dy(t_end)/dp of shape (n_y, n_p),
+    one :class:`EventSensitivity` per event of the solution, in its order)."""
+    trace = []
+    solution = drive(model, motion, horizon, backend.integrator, backend.name, backend.max_events_at_one_instant,
+                     backend.event_resolution, (backend.rtol, backend.atol), trace=trace)
+    settings = Settings(backend.solver or "dopri8", float(backend.rtol), float(backend.atol), backend.max_steps)
+    theta = np.array([*model.parameters().values()] + [1.0] * len(model.component_names))
+    template = ModelTemplate(model)
+    events = []
+    with jax_context():
+        S = _replay(model, template, settings, theta, trace, events)
+    if len(events) != len(solution.events):
+        raise RuntimeError(f"the replay found {len(events)} events, the run {len(solution.events)}")
+    return solution, S, events
+
+
+def _replay(model, template, settings, theta, trace, events):
+    """S at the end of ``trace`` (see the module's docstring); appends an
+    :class:`EventSensitivity` to ``events`` at every mode change."""
     S = np.zeros((len(model.state_names), len(theta)))
     pending = None  # (S- + f- dt/dp mapped so far, dt/dp, mode, t, y, piece) at an event
+    located = None  # S- + f- dt/dp at the last guard, before its map
     for step in trace:
         kind = step[0]
         if kind == "flow":
@@ -71,13 +111,18 @@ def _replay(model, template, settings, theta, trace):
             _, mode, index, t, y, piece = step
             if pending is not None:
                 S, pending = _finish(template, pending, theta), None
-            S_bar, tau, y = _guard_jump(template, mode, index)(theta, *_arrays(piece), t, y, S)
+            S_bar, tau, y, located = _guard_jump(template, mode, index)(theta, *_arrays(piece), t, y, S)
             pending = (S_bar, tau, mode, t, y, piece)
         else:
             _, before, after, t, y, piece = step
-            S_bar, tau = (S, np.zeros(len(theta))) if pending is None else pending[:2]
+            if pending is None:
+                S_bar, tau, located = S, np.zeros(len(theta)), S
+            else:
+                S_bar, tau = pending[:2]
             S_bar, y = _entry_jump(template, before, after)(theta, *_arrays(piece), t, y, S_bar, tau)
             pending = (S_bar, tau, after, t, y, piece)
+            events.append(EventSensitivity(t, before, after, *(np.asarray(a) for a in (tau, located, S_bar))))
+            located = S_bar  # a further event at this instant starts from this one's state
     return np.asarray(S if pending is None else _finish(template, pending, theta))
 
 
@@ -131,8 +176,8 @@ def _state_norm(error):
 
 @functools.cache
 def _guard_jump(key, mode, index):
-    """(theta, t0, coefficients, t, y, S) -> (h_y (S + f dt/dp), dt/dp, h(y)) at the
-    root of guard ``index``, h = ``state_at_guard``."""
+    """(theta, t0, coefficients, t, y, S) -> (h_y (S + f dt/dp) + h_p, dt/dp, h(y),
+    S + f dt/dp) at the root of guard ``index``, h = ``state_at_guard``."""
     template = key.model
 
     def run(theta, t0, coefficients, t, y, S):
@@ -144,8 +189,10 @@ def _guard_jump(key, mode, index):
         rate = model.flow(mode, t, y, excitation, jnp)
         g_t, g_y, g_p = jax.jacfwd(guard, argnums=(0, 1, 2))(t, y, theta)
         tau = -(g_y @ S + g_p) / (g_t + g_y @ rate)
-        at_guard = lambda y: model.state_at_guard(mode, index, y, jnp)
-        return jax.jacfwd(at_guard)(y) @ (S + jnp.outer(rate, tau)), tau, at_guard(y)
+        located = S + jnp.outer(rate, tau)
+        at_guard = lambda y, theta: _rules(template, theta, t0, coefficients)[0].state_at_guard(mode, index, y, jnp)
+        h_y, h_p = jax.jacfwd(at_guard, argnums=(0, 1))(y, theta)
+        return h_y @ located + h_p, tau, at_guard(y, theta), located
 
     return jax.jit(run)
 

@@ -13,7 +13,9 @@ With f < mu the displacement itself jumps there.
 
 Other models (:class:`~blockdae.PlanarBlock`) are differentiated along the trajectory
 the JAX twin locates, by the variational equation and the saltation jump at every
-event (:mod:`._hybrid_sensitivities`); their displacement is a vector.
+event (:mod:`._hybrid_sensitivities`); their displacement is a vector. For a
+:class:`~blockdae.SpringSupportedMass` the derivatives are those of its flights (the
+first liftoff velocity, the largest height, the total flight time; :mod:`._upthrow_sensitivities`).
 """
 
 import functools
@@ -26,7 +28,7 @@ from .backends import Horizon, make_backend
 from .backends._base import batch_params
 from .backends._results import check
 from .excitation import BaseMotion
-from .model import SlidingBlock
+from .model import SlidingBlock, SpringSupportedMass
 
 #: parameter name -> unit of d u / d parameter (SlidingBlock)
 UNITS = {"mu": "m", "mu_kinetic": "m", "bias": "m", "A": "m/g", "scale": "m"}
@@ -39,13 +41,15 @@ def unit(name: str) -> str:
     return "m/g" if name == "A" else "m"
 
 
-def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: str | None = None,
+def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: str | None = None, of=None,
                   **options) -> dict:
-    """d u(t_end) / d p for each parameter p in ``wrt``.
+    """d u(t_end) / d p for each parameter p in ``wrt`` (for a SpringSupportedMass: the
+    derivatives of its flights, see ``of``).
 
     Args:
         block: a :class:`SlidingBlock` (a batch of parameter sets if its parameters are
-            1-D arrays) or another model (a :class:`PlanarBlock`).
+            1-D arrays) or another model (a :class:`PlanarBlock`, a
+            :class:`SpringSupportedMass`).
         motion: base excitation (for a PlanarBlock also a :class:`BaseMotion`).
         t_end: final time [s]; None: when the block rests after the excitation ends.
         wrt: for a SlidingBlock any of "mu" (static friction; when
@@ -58,17 +62,30 @@ def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: 
             "g", "restitution"), "A" (every component scaled so that the largest
             component peak is A g) and "A_<component>" (one component's scale
             factor, at 1: "A_x", "A_y", "A_z"; with y = R x, "A_y" is Elms's R);
-            default: ("mu", "mu_kinetic", "bias_x", "bias_y", "A") for a PlanarBlock.
+            default: ("mu", "mu_kinetic", "bias_x", "bias_y", "A") for a PlanarBlock,
+            ("frequency", "damping", "A") for a SpringSupportedMass (also "g").
         backend: "exact" (closed forms, differentiated through the JAX kernel of
             "exact-jax") or "jax" (the diffrax twin); None: "exact" for a
             SlidingBlock, "jax" (the only one) for other models.
+        of: SpringSupportedMass only: the quantities differentiated, any of
+            "liftoff_velocity" (u' at the first liftoff [m/s]), "height" (the largest
+            u - u0 of a flight [m], at a top) and "flight_time" (the sum of landing -
+            liftoff [s]; a flight not landed by t_end counts to t_end); default all three.
         **options: settings of the backend.
 
     Returns:
         name -> derivative [m per unit of the parameter; m/g for "A"]: a float, or an
         array of shape (n,) for a batch of n parameter sets; for other models an
-        array of shape (2,), d(u_x, u_y)(t_end) / dp, or (n, 2) for a batch.
+        array of shape (2,), d(u_x, u_y)(t_end) / dp, or (n, 2) for a batch. For a
+        SpringSupportedMass: quantity -> parameter -> float, in the quantity's unit
+        per unit of the parameter (per Hz, per unit damping ratio, per g for "A",
+        per m/s² for "g").
     """
+    if isinstance(block, SpringSupportedMass):
+        return _upthrow_sensitivities(block, motion, t_end, wrt, "jax" if backend is None else backend, of, options)
+    if of is not None:
+        raise ValueError(f"of={of!r} applies to a SpringSupportedMass only; a {type(block).__name__} has the "
+                         "derivatives of its displacement")
     if not isinstance(block, SlidingBlock):
         return _hybrid_sensitivities(block, motion, t_end, wrt, "jax" if backend is None else backend, options)
     backend = "exact" if backend is None else backend
@@ -150,11 +167,41 @@ def _hybrid_sensitivities(block, motion, t_end, wrt, backend, options):
         sets = [_hybrid_sensitivities(block.item(i), motion, t_end, wrt, backend, options)
                 for i in range(block.batch_shape[0])]
         return {name: np.array([one[name] for one in sets]) for name in sets[0]}
-    wrt = _hybrid_names(block, wrt)
+    wrt = _hybrid_names(block, wrt, ("mu", "mu_kinetic", "bias_x", "bias_y", "A"))
     peak = _largest_peak(motion) if "A" in wrt else None
     horizon = Horizon.resolve(motion, t_end)
     jacobian = hybrid.displacement_jacobian(block, motion, horizon, make_backend("jax", **options))
-    column = dict(zip(hybrid.parameter_names(block), jacobian.T))
+    return _by_name(block, jacobian.T, wrt, peak)
+
+
+def _upthrow_sensitivities(mass, motion, t_end, wrt, backend, of, options):
+    """:func:`sensitivities` for a SpringSupportedMass: quantity -> parameter -> float."""
+    from . import _hybrid_sensitivities as hybrid
+    from ._upthrow_sensitivities import QUANTITIES, flight_quantity_jacobians
+
+    if backend != "jax":
+        raise ValueError(f"backend={backend!r} has no derivatives for a SpringSupportedMass; use 'jax'")
+    of = tuple(QUANTITIES) if of is None else ((of,) if isinstance(of, str) else tuple(of))
+    unknown = [name for name in of if name not in QUANTITIES]
+    if unknown or not of:
+        raise ValueError(f"of={of!r}: choose among {tuple(QUANTITIES)}")
+    wrt = _hybrid_names(mass, wrt, ("frequency", "damping", "A"))
+    peak = _largest_peak(motion) if "A" in wrt else None
+    horizon = Horizon.resolve(motion, t_end)
+    solution, _, events = hybrid.trajectory_sensitivities(mass, motion, horizon, make_backend("jax", **options))
+    with jax_context():
+        rows = flight_quantity_jacobians(mass, solution, events, of)
+    return {quantity: {name: float(value) for name, value in _by_name(mass, row, wrt, peak).items()}
+            for quantity, row in rows.items()}
+
+
+def _by_name(block, columns, wrt, peak):
+    """name -> derivative for each name in ``wrt`` from ``columns``, one per parameter
+    of :func:`._hybrid_sensitivities.parameter_names`: "A" sums every component's scale
+    factor times g / ``peak`` (k = A g / peak), a parameter adds those tied to it."""
+    from ._hybrid_sensitivities import parameter_names
+
+    column = dict(zip(parameter_names(block), columns))
     derivatives = {}
     for name in wrt:
         if name == "A":  # every component scaled by k = A g / peak
@@ -166,7 +213,7 @@ def _hybrid_sensitivities(block, motion, t_end, wrt, backend, options):
 
 def _hybrid_differences(block, motion, t_end, wrt, backend, step, options):
     """:func:`finite_differences` for a model other than SlidingBlock."""
-    wrt = _hybrid_names(block, wrt)
+    wrt = _hybrid_names(block, wrt, ())
     motion = motion if isinstance(motion, BaseMotion) else BaseMotion(motion)
 
     def u(blk, mot):
@@ -191,11 +238,11 @@ def _hybrid_differences(block, motion, t_end, wrt, backend, step, options):
     return derivatives
 
 
-def _hybrid_names(block, wrt):
+def _hybrid_names(block, wrt, default):
     from ._hybrid_sensitivities import parameter_names
 
     known = parameter_names(block) + ("A",)
-    wrt = ("mu", "mu_kinetic", "bias_x", "bias_y", "A") if wrt is None else wrt
+    wrt = default if wrt is None else wrt
     wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
     unknown = [name for name in wrt if name not in known]
     if unknown or not wrt:
