@@ -95,7 +95,7 @@ def _replay(model, template, settings, theta, trace, events):
     S = np.zeros((len(model.state_names), len(theta)))
     pending = None  # (S- + f- dt/dp mapped so far, dt/dp, mode, t, y, piece) at an event
     located = None  # S- + f- dt/dp at the last guard, before its map
-    for step in trace:
+    for step in _joined(trace):
         kind = step[0]
         if kind == "flow":
             _, mode, t_from, y_from, t_to, piece = step
@@ -124,6 +124,24 @@ def _replay(model, template, settings, theta, trace, events):
             events.append(EventSensitivity(t, before, after, *(np.asarray(a) for a in (tau, located, S_bar))))
             located = S_bar  # a further event at this instant starts from this one's state
     return np.asarray(S if pending is None else _finish(template, pending, theta))
+
+
+def _joined(trace):
+    """``trace`` with consecutive "flow" steps of one mode on one piece (the driver's
+    dense-output knots) joined into one, integrated from the first one's state."""
+    joined = []
+    for step in trace:
+        last = joined[-1] if joined else None
+        if (step[0] == "flow" and last is not None and last[0] == "flow" and last[1] == step[1]
+                and last[4] == step[2] and _same_piece(last[5], step[5])):
+            joined[-1] = (*last[:4], step[4], last[5])
+        else:
+            joined.append(step)
+    return joined
+
+
+def _same_piece(a, b):
+    return a[0] == b[0] and np.array_equal(a[1], b[1])
 
 
 def _finish(template, pending, theta):
