@@ -62,7 +62,8 @@ def test_undamped_sine_train():
 
 @pytest.mark.slow
 def test_scaled_sample_record():
-    """Kobe TAK-090 as vertical motion at 0.5 g, 5 Hz, 5 %, the first 3.2 s (four flights)."""
+    """Kobe TAK-090 as vertical motion at 0.5 g, 5 Hz, 5 %, the first 3.2 s (four flights).
+    Measured <= 3.4e-8."""
     record = load_sample_record("Kobe_1995_TAK-090")
     assert_match_differences(bd.SpringSupportedMass(5.0, 0.05), record.scaled(0.5 * G / record.peak_acceleration),
                              3.2)
