@@ -1,4 +1,4 @@
-"""Derivatives of a hybrid model's final displacement along its located trajectory.
+"""Derivatives of a hybrid model's final state and events along its located trajectory.
 
 The JAX twin (:mod:`blockdae.backends._jax_hybrid`) runs the generic driver once and
 keeps its trace (every integrated stretch, guard root and mode change). The trace is
