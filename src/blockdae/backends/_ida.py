@@ -141,7 +141,7 @@ class _PlanarForm:
 
     def guards(self, mode, t, y, out):
         if mode == PlanarMode.STICK:
-            n, _ = self.block.normal(t, self.piece)
+            n, _ = self.block.normal(t, self.piece, y)
             out[0], out[1] = n, self.block.mu * n - math.sqrt(y[7] ** 2 + y[8] ** 2)
         else:
             out[:] = self.block.guards(mode, t, y, self.piece, SCALAR)
@@ -155,7 +155,7 @@ class _PlanarForm:
         if mode == PlanarMode.STICK:
             friction_rate = block.demand(t, piece)[1]
         elif mode == PlanarMode.SLIP:
-            n, n_rate = block.normal(t, piece)
+            n, n_rate = block.normal(t, piece, y)
             size = math.sqrt(y[3] ** 2 + y[4] ** 2)
             friction_rate = tuple(-block.friction_kinetic * (n_rate * c + n * c_rate) / size
                                   for c, c_rate in ((y[3], rate[3]), (y[4], rate[4])))
