@@ -259,7 +259,8 @@ class PlanarBlock(AbstractHybridModel):
         return PlanarMode.STICK
 
     def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
-        """Stick or slip: n reaching zero -> flight; stick: the circle reached -> slip;
+        """Stick or slip: n reaching zero -> flight; stick: the circle reached -> slip
+        (flight where the demand is zero);
         a stop -> stick, unless the demand leaves the circle within ``time_tol`` [s]
         (it then slides on along the demand). Landing -> a rebound (flight) while it is
         above ``bounce_threshold`` (on a rigid support), else slip if still moving, else
@@ -267,7 +268,10 @@ class PlanarBlock(AbstractHybridModel):
         if mode != PlanarMode.FLIGHT and guard_index == 0:
             return PlanarMode.FLIGHT
         if mode == PlanarMode.STICK:
-            return PlanarMode.SLIP
+            (sx, sy), _ = self.demand(t, excitation)
+            # with no demand the circle shrinks to its centre only as n reaches zero: that
+            # is a liftoff (an integrated stick, on a spring, may report either guard)
+            return PlanarMode.FLIGHT if sx == 0 and sy == 0 else PlanarMode.SLIP
         if mode == PlanarMode.FLIGHT:
             if not self.support.compliant and -self.restitution * y[_WD] > self.bounce_threshold:
                 return PlanarMode.FLIGHT
