@@ -22,7 +22,10 @@ w'' = -n; the block lands when w returns to zero.
 State y = (u_x, u_y, s, c_x, c_y, w, w'): relative displacement [m]; on the base the
 speed s [m/s] and the direction as a vector c (e = c / |c|) [-]; in flight s = 0 and
 c = v [m/s] (Cartesian: nothing stops there, and the polar form is singular at s = 0);
-the gap [m] and its rate [m/s]. The direction is a vector rather than an angle so that
+the gap [m] and its rate [m/s]. On a compliant support (``support``, see
+:mod:`blockdae.model._support`) n comes from the support's law at (w, w'), w is the
+height from the static position and moves in contact too (w'' = n - g - a_z), and the
+flight ends by the support's landing rule. The direction is a vector rather than an angle so that
 with a_y = b_y = 0 the motion stays exactly on the x axis.
 """
 

@@ -22,6 +22,9 @@ it off while the spring still pushes) and, if it does not rise above u0, it land
 still rising, where the law's n returns to 0 from below. Without damping both reduce to
 the seed's rule: separation and landing at u = u0.
 
+The law and the landing rows are :class:`~blockdae.SpringSupport`'s, which a
+:class:`~blockdae.PlanarBlock` can stand on too (one rule for both).
+
 Flight is split at its top (u' = 0) into FLIGHT_UP and FLIGHT_DOWN so that every guard
 is affine in the state (u, u') within a mode: the top of each flight is then a located
 event like liftoff and landing.
