@@ -226,16 +226,28 @@ class PlanarBlock(AbstractHybridModel):
 
     def guards(self, mode, t, y, excitation, xp=np):
         """Stick: (n -> flight, mu n - |sigma| -> slip). Slip: (n -> flight,
-        s -> stop). Flight: (w -> landing; on a spring the support's landing gap)."""
+        s -> stop). Flight: (w -> landing; on a spring the support's landing gap).
+        The force guards are times :attr:`guard_scale`."""
         if mode == PlanarMode.FLIGHT:
             if self.support.compliant:
                 return xp.stack([self.support.landing_gap(self.g, y[_W], y[_WD], xp)])
             return xp.stack([y[_W]])
         n, _ = self.normal(t, excitation, y)
+        if self.support.compliant:
+            n = n * self.guard_scale
         if mode == PlanarMode.STICK:
             (sx, sy), _ = self.demand(t, excitation)
-            return xp.stack([n, self.mu * n - xp.sqrt(sx**2 + sy**2)])
+            size = xp.sqrt(sx**2 + sy**2)
+            return xp.stack([n, self.mu * n - (size * self.guard_scale if self.support.compliant else size)])
         return xp.stack([n, y[_S]])
+
+    @property
+    def guard_scale(self):
+        """Factor of the force guards (n, mu n - |sigma|): 1 [-] on a rigid support,
+        1 / omega² [s²] on a spring, where they are then lengths [m] like the
+        support's law rows (n / omega²), so that a root finder asking |guard| < atol
+        at adjacent floats of t can meet it where n moves as fast as omega² w'."""
+        return 1.0 / self.support.stiffness()[0] if self.support.compliant else 1.0
 
     def circle_margin(self, t, excitation, y=None):
         """mu n - |sigma| [m/s²] (> 0 inside the friction circle) and its rate [m/s³]
@@ -419,8 +431,8 @@ class PlanarBlock(AbstractHybridModel):
         if mode == PlanarMode.FLIGHT:
             return y[_WD], n
         if mode == PlanarMode.STICK and guard_index == 1:
-            return self.circle_margin(t, excitation, y)[1], 0.0
-        return n_rate, 0.0
+            return self.circle_margin(t, excitation, y)[1] * self.guard_scale, 0.0
+        return n_rate * self.guard_scale, 0.0
 
     def speed(self, y):
         if self.support.compliant:  # horizontal and vertical
