@@ -320,13 +320,12 @@ class PlanarBlock(AbstractHybridModel):
         return _with(y, {_S: 0.0, _W: 0.0, _WD: 0.0})
 
     def state_at_guard(self, mode, guard_index, y, xp=np):
-        """A stop has s = 0 and a landing w = 0 (on a spring a falling landing w = u0),
-        exactly."""
+        """A stop has s = 0 and a landing on a rigid support w = 0, exactly; a landing on
+        a spring keeps the located state (u0 moves with the parameters, which a map of
+        y alone could not follow in the derivatives)."""
         if mode == PlanarMode.SLIP and guard_index == 1:
             return _with(y, {_S: 0.0}, xp)
-        if mode == PlanarMode.FLIGHT and self.support.compliant:
-            return _with(y, {_W: xp.where(y[_WD] > 0, y[_W], self.support.static_deflection(self.g) + 0.0 * y[_W])}, xp)
-        if mode == PlanarMode.FLIGHT:
+        if mode == PlanarMode.FLIGHT and not self.support.compliant:
             return _with(y, {_W: 0.0}, xp)
         return y
 
