@@ -149,6 +149,17 @@ def test_a_spring_never_rests_so_t_end_is_needed():
 
 
 @pytest.mark.slow
+def test_jax_keeps_rigid_and_spring_blocks_apart():
+    """Compiled rules are shared by models with the same parameter names only: a spring
+    block, then a rigid one (run first in a process, the spring's rules once served
+    the rigid block too), then the spring again each agree with CVODE."""
+    motion = sideways_motion(0.1)
+    for block in (SIDEWAYS_BLOCK, bd.PlanarBlock(0.3), SIDEWAYS_BLOCK):
+        ref = bd.simulate(block, motion, t_end=0.4, backend="cvode", rtol=RTOL)
+        assert_agree(bd.simulate(block, motion, t_end=0.4, backend="jax", rtol=RTOL), ref)
+
+
+@pytest.mark.slow
 @pytest.mark.parametrize("backend", ["ida", "jax"])
 def test_backends_agree_on_records_in_three_components(backend):
     """Kobe TAK-090 in x, Duzce 375-090 in y and 1.2 times it in z, first 10 s, on a
