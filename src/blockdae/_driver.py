@@ -193,7 +193,7 @@ class _Run:
         self.knots.set_right_rate(self.rate(self.mode, self.t, self.y))
         self.restarted = True
         if self.model.at_rest(self.mode, self.y):
-            rest = self.to_mode(self.model.mode_at_rest(t0, self.piece_excitation, SCALAR))
+            rest = self.to_mode(self.model.mode_at_rest(t0, self.piece_excitation, SCALAR, y=self.y))
             if rest != self.mode:
                 self.y = self.model.rest_state(self.y)
                 self.log_event(float(t0), rest)

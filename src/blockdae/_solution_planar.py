@@ -76,7 +76,9 @@ class PlanarSolution(DriverSolution):
 
     @property
     def gap(self) -> np.ndarray:
-        """Height of the block above the base at the knots [m] (0 in contact)."""
+        """Height w of the block above its rest on the support at the knots [m] (on a
+        rigid support the gap above the base, 0 in contact; on a spring measured from
+        the static position, upward positive)."""
         return self.state[:, 5]
 
     @property

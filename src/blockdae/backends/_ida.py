@@ -19,7 +19,8 @@ and the mode's algebraic equation fixes F. The DAE form of each model type:
 * :class:`~blockdae.PlanarBlock`, states (u_x, u_y, s, c_x, c_y, w, w', F_x, F_y): the
   model's flow with the algebraic F in place of its friction (``flow(..., friction=F)``),
   0 = F - the model's ``friction`` (sigma in stick, -f n e in slip, 0 in flight). Stick
-  guards are (n, mu n - |F|) on the algebraic F; the others are the model's.
+  guards are (n, mu n - |F|) on the algebraic F, times the model's ``guard_scale``; the
+  others are the model's.
 
   The direction rows (c_x', c_y') are multiplied by max(s, SLOW_SPEED): the rate of e,
   (e_perp . (F - sigma)) / max(s, SLOW_SPEED), is stiff as s falls, and in this scaling
@@ -141,8 +142,9 @@ class _PlanarForm:
 
     def guards(self, mode, t, y, out):
         if mode == PlanarMode.STICK:
-            n, _ = self.block.normal(t, self.piece)
-            out[0], out[1] = n, self.block.mu * n - math.sqrt(y[7] ** 2 + y[8] ** 2)
+            n, _ = self.block.normal(t, self.piece, y)
+            scale = self.block.guard_scale
+            out[0], out[1] = scale * n, scale * (self.block.mu * n - math.sqrt(y[7] ** 2 + y[8] ** 2))
         else:
             out[:] = self.block.guards(mode, t, y, self.piece, SCALAR)
 
@@ -155,7 +157,7 @@ class _PlanarForm:
         if mode == PlanarMode.STICK:
             friction_rate = block.demand(t, piece)[1]
         elif mode == PlanarMode.SLIP:
-            n, n_rate = block.normal(t, piece)
+            n, n_rate = block.normal(t, piece, y)
             size = math.sqrt(y[3] ** 2 + y[4] ** 2)
             friction_rate = tuple(-block.friction_kinetic * (n_rate * c + n * c_rate) / size
                                   for c, c_rate in ((y[3], rate[3]), (y[4], rate[4])))

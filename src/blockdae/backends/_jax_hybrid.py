@@ -82,18 +82,20 @@ def segment_function(model, mode, settings):
 
 
 class ModelTemplate:
-    """A model of a type, standing for every model of that type in a cache key: the
-    compiled functions rebuild the model from their ``parameters`` argument by
-    ``with_parameters`` (every value the rules read)."""
+    """A model of a type, standing for every model of that type with the same parameter
+    names in a cache key (a PlanarBlock on a spring names the spring's too, and its
+    rules differ): the compiled functions rebuild the model from their ``parameters``
+    argument by ``with_parameters`` (every value the rules read)."""
 
     def __init__(self, model):
         self.model = model
+        self.key = (type(model), tuple(model.parameters()))
 
     def __hash__(self):
-        return hash(type(self.model))
+        return hash(self.key)
 
     def __eq__(self, other):
-        return type(self.model) is type(other.model)
+        return self.key == other.key
 
 
 @functools.cache

@@ -6,6 +6,7 @@ from ._block import (SlidingBlock, comes_to_rest, demand, never_rests_error, rel
 from ._modes import Mode
 from ._planar import PlanarBlock, PlanarMode
 from ._spring import SpringSupportedMass, UpthrowMode
+from ._support import RigidSupport, SpringSupport
 
-__all__ = ["AbstractHybridModel", "Mode", "PlanarBlock", "PlanarMode", "SlidingBlock", "SpringSupportedMass", "UpthrowMode", "comes_to_rest", "demand", "never_rests_error",
+__all__ = ["AbstractHybridModel", "Mode", "PlanarBlock", "PlanarMode", "RigidSupport", "SlidingBlock", "SpringSupport", "SpringSupportedMass", "UpthrowMode", "comes_to_rest", "demand", "never_rests_error",
            "relative_acceleration", "rest_mode", "slip_constant", "stick_guards", "stop_mode"]

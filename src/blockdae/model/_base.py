@@ -48,8 +48,9 @@ class AbstractHybridModel(abc.ABC):
         """
 
     @abc.abstractmethod
-    def mode_at_rest(self, t, excitation, xp):
-        """The mode a block at rest relative to its base takes at ``t``."""
+    def mode_at_rest(self, t, excitation, xp, y=None):
+        """The mode a block at rest relative to its base takes at ``t`` (in state ``y``,
+        where the mode depends on more than the excitation: a compliant support)."""
 
     @abc.abstractmethod
     def mode_after_guard(self, mode, guard_index, t, y, excitation, xp, time_tol=0.0):

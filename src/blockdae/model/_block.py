@@ -250,7 +250,7 @@ class SlidingBlock(AbstractHybridModel):
                                 self.allow_negative, self.allow_positive, xp)
         return xp.stack([mode * y[1]])
 
-    def mode_at_rest(self, t, excitation, xp=np):
+    def mode_at_rest(self, t, excitation, xp=np, y=None):
         """Mode of the block at rest at ``t``, from the right-hand limits of a(t)."""
         return rest_mode(self.demand(t, excitation, xp), excitation.acceleration_rate(t),
                          self.mu, self.g, self.allow_negative, self.allow_positive, xp)

@@ -22,7 +22,10 @@ w'' = -n; the block lands when w returns to zero.
 State y = (u_x, u_y, s, c_x, c_y, w, w'): relative displacement [m]; on the base the
 speed s [m/s] and the direction as a vector c (e = c / |c|) [-]; in flight s = 0 and
 c = v [m/s] (Cartesian: nothing stops there, and the polar form is singular at s = 0);
-the gap [m] and its rate [m/s]. The direction is a vector rather than an angle so that
+the gap [m] and its rate [m/s]. On a compliant support (``support``, see
+:mod:`blockdae.model._support`) n comes from the support's law at (w, w'), w is the
+height from the static position and moves in contact too (w'' = n - g - a_z), and the
+flight ends by the support's landing rule. The direction is a vector rather than an angle so that
 with a_y = b_y = 0 the motion stays exactly on the x axis.
 """
 
@@ -34,6 +37,7 @@ import numpy as np
 
 from .._units import STANDARD_GRAVITY
 from ._base import SCALAR, AbstractHybridModel
+from ._support import RigidSupport, SpringSupport, parse_support
 
 _UX, _UY, _S, _CX, _CY, _W, _WD = range(7)
 #: below this speed [m/s] the direction relaxes towards the demand at the rate
@@ -76,6 +80,11 @@ class PlanarBlock(AbstractHybridModel):
             horizontal one is kept.
         bounce_threshold: a rebound slower than this [m/s] ends in contact, so that a
             bouncing block settles in finitely many bounces (no Zeno loop).
+        support: what the block stands on (:mod:`blockdae.model._support`): a
+            :class:`RigidSupport` (default: n = g + a_z, w = 0 in contact) or a
+            :class:`SpringSupport` (n from its spring-dashpot law, w its deflection
+            from the static position; ``restitution`` then plays no part: the block
+            lands on the unloaded spring and stays on it while it pushes).
     """
 
     mu: float
@@ -84,6 +93,7 @@ class PlanarBlock(AbstractHybridModel):
     g: float = STANDARD_GRAVITY
     restitution: float = 0.0
     bounce_threshold: float = 1e-4
+    support: RigidSupport | SpringSupport = RigidSupport()
 
     state_names = ("u_x", "u_y", "s", "c_x", "c_y", "w", "w_rate")
     modes = PlanarMode
@@ -124,6 +134,7 @@ class PlanarBlock(AbstractHybridModel):
             raise ValueError(f"restitution={self.restitution!r} must lie in [0, 1)")
         if self.bounce_threshold <= 0:
             raise ValueError(f"bounce_threshold={self.bounce_threshold!r} must be > 0 [m/s]")
+        parse_support(self.support)
 
     @property
     def friction_kinetic(self) -> float:
@@ -152,9 +163,22 @@ class PlanarBlock(AbstractHybridModel):
         return dataclasses.replace(self, **changes)
 
     # ---- forces per unit mass -------------------------------------------------
-    def normal(self, t, excitation):
-        """n = g + a_z [m/s²] and its rate [m/s³]."""
-        return self.g + excitation.component(2, t), excitation.component_rate(2, t)
+    def normal(self, t, excitation, y=None):
+        """n [m/s²] and its rate [m/s³] on the base: g + a_z on a rigid support; on a
+        spring the law at the state ``y``, whose rate follows from w'' = n - g - a_z."""
+        if not self.support.compliant:
+            return self.g + excitation.component(2, t), excitation.component_rate(2, t)
+        n = self.support.law(self.g, y[_W], y[_WD])
+        k, c = self.support.stiffness()
+        return n, -k * y[_WD] - c * (n - self.g - excitation.component(2, t))
+
+    def _vertical_flow(self, t, y, excitation, n):
+        """(w', w'') in contact under the normal force ``n`` [m/s²]: zero on a rigid
+        support, (w', n - g - a_z) on a spring."""
+        zero = 0.0 * y[_UX]
+        if not self.support.compliant:
+            return zero, zero
+        return y[_WD], n - self.g - excitation.component(2, t)
 
     def demand(self, t, excitation):
         """sigma = a_h - b g [m/s²] and its rate [m/s³], as (x, y) pairs."""
@@ -170,7 +194,7 @@ class PlanarBlock(AbstractHybridModel):
             return self.demand(t, excitation)[0]
         if mode == PlanarMode.FLIGHT:
             return 0.0 * y[_UX], 0.0 * y[_UX]
-        n, _ = self.normal(t, excitation)
+        n, _ = self.normal(t, excitation, y)
         scale = -self.friction_kinetic * n / xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
         return scale * y[_CX], scale * y[_CY]
 
@@ -181,12 +205,14 @@ class PlanarBlock(AbstractHybridModel):
         is F - sigma (a DAE backend's algebraic F)."""
         zero = 0.0 * y[_UX]
         if mode == PlanarMode.STICK:
-            return xp.stack([zero] * 7)
+            if not self.support.compliant:
+                return xp.stack([zero] * 7)
+            return xp.stack([zero] * 5 + list(self._vertical_flow(t, y, excitation, self.normal(t, excitation, y)[0])))
         (sx, sy), _ = self.demand(t, excitation)
-        n, _ = self.normal(t, excitation)
         rx, ry = (-sx, -sy) if friction is None else (friction[0] - sx, friction[1] - sy)
-        if mode == PlanarMode.FLIGHT:
-            return xp.stack([y[_CX], y[_CY], zero, rx, ry, y[_WD], -n])
+        if mode == PlanarMode.FLIGHT:  # w'' = -(g + a_z)
+            return xp.stack([y[_CX], y[_CY], zero, rx, ry, y[_WD], -(self.g + excitation.component(2, t))])
+        n, _ = self.normal(t, excitation, y)
         size = xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
         ex, ey = y[_CX] / size, y[_CY] / size
         along = ex * rx + ey * ry  # e . (F - sigma)
@@ -195,58 +221,79 @@ class PlanarBlock(AbstractHybridModel):
             along = along - self.friction_kinetic * n
         s = y[_S]
         turn = across / xp.where(s > SLOW_SPEED, s, SLOW_SPEED)  # de/dt along e_perp [1/s]
-        return xp.stack([s * ex, s * ey, along, -ey * turn * size, ex * turn * size, zero, zero])
+        return xp.stack([s * ex, s * ey, along, -ey * turn * size, ex * turn * size,
+                         *self._vertical_flow(t, y, excitation, n)])
 
     def guards(self, mode, t, y, excitation, xp=np):
         """Stick: (n -> flight, mu n - |sigma| -> slip). Slip: (n -> flight,
-        s -> stop). Flight: (w -> landing)."""
-        n, _ = self.normal(t, excitation)
+        s -> stop). Flight: (w -> landing; on a spring the support's landing gap).
+        The force guards are times :attr:`guard_scale`."""
+        if mode == PlanarMode.FLIGHT:
+            if self.support.compliant:
+                return xp.stack([self.support.landing_gap(self.g, y[_W], y[_WD], xp)])
+            return xp.stack([y[_W]])
+        n, _ = self.normal(t, excitation, y)
+        if self.support.compliant:
+            n = n * self.guard_scale
         if mode == PlanarMode.STICK:
             (sx, sy), _ = self.demand(t, excitation)
-            return xp.stack([n, self.mu * n - xp.sqrt(sx**2 + sy**2)])
-        if mode == PlanarMode.SLIP:
-            return xp.stack([n, y[_S]])
-        return xp.stack([y[_W]])
+            size = xp.sqrt(sx**2 + sy**2)
+            return xp.stack([n, self.mu * n - (size * self.guard_scale if self.support.compliant else size)])
+        return xp.stack([n, y[_S]])
 
-    def circle_margin(self, t, excitation):
+    @property
+    def guard_scale(self):
+        """Factor of the force guards (n, mu n - |sigma|): 1 [-] on a rigid support,
+        1 / omega² [s²] on a spring, where they are then lengths [m] like the
+        support's law rows (n / omega²), so that a root finder asking |guard| < atol
+        at adjacent floats of t can meet it where n moves as fast as omega² w'."""
+        return 1.0 / self.support.stiffness()[0] if self.support.compliant else 1.0
+
+    def circle_margin(self, t, excitation, y=None):
         """mu n - |sigma| [m/s²] (> 0 inside the friction circle) and its rate [m/s³]
-        (where sigma = 0, the rate of -|sigma| is -|sigma'|)."""
-        n, n_rate = self.normal(t, excitation)
+        (where sigma = 0, the rate of -|sigma| is -|sigma'|); ``y``: the state (on a spring)."""
+        n, n_rate = self.normal(t, excitation, y)
         (sx, sy), (rx, ry) = self.demand(t, excitation)
         size = math.hypot(sx, sy)
         return self.mu * n - size, self.mu * n_rate - ((sx * rx + sy * ry) / size if size > 0 else math.hypot(rx, ry))
 
-    def lifts_off(self, t, excitation):
-        """Whether n = g + a_z is negative, or zero and falling, at ``t``."""
-        n, n_rate = self.normal(t, excitation)
+    def lifts_off(self, t, excitation, y=None):
+        """Whether n is negative, or zero and falling, at ``t`` (in state ``y``)."""
+        n, n_rate = self.normal(t, excitation, y)
         return n < 0 or (n == 0 and n_rate < 0)
 
-    def mode_at_rest(self, t, excitation, xp=np):
+    def mode_at_rest(self, t, excitation, xp=np, y=None):
         """Flight if n < 0 (or n = 0 falling), else slip if the demand is outside the
-        friction circle (or on it moving outwards), else stick."""
-        margin, margin_rate = self.circle_margin(t, excitation)
-        if self.lifts_off(t, excitation):
+        friction circle (or on it moving outwards), else stick (``y``: the state, which
+        sets n on a spring)."""
+        margin, margin_rate = self.circle_margin(t, excitation, y)
+        if self.lifts_off(t, excitation, y):
             return PlanarMode.FLIGHT
         if margin < 0 or (margin == 0 and margin_rate < 0):
             return PlanarMode.SLIP
         return PlanarMode.STICK
 
     def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
-        """Stick or slip: n reaching zero -> flight; stick: the circle reached -> slip;
+        """Stick or slip: n reaching zero -> flight; stick: the circle reached -> slip
+        (flight where the demand is zero);
         a stop -> stick, unless the demand leaves the circle within ``time_tol`` [s]
         (it then slides on along the demand). Landing -> a rebound (flight) while it is
-        above ``bounce_threshold``, else slip if still moving, else the mode at rest."""
+        above ``bounce_threshold`` (on a rigid support), else slip if still moving, else
+        the mode at rest."""
         if mode != PlanarMode.FLIGHT and guard_index == 0:
             return PlanarMode.FLIGHT
         if mode == PlanarMode.STICK:
-            return PlanarMode.SLIP
+            (sx, sy), _ = self.demand(t, excitation)
+            # with no demand the circle shrinks to its centre only as n reaches zero: that
+            # is a liftoff (an integrated stick, on a spring, may report either guard)
+            return PlanarMode.FLIGHT if sx == 0 and sy == 0 else PlanarMode.SLIP
         if mode == PlanarMode.FLIGHT:
-            if -self.restitution * y[_WD] > self.bounce_threshold:
+            if not self.support.compliant and -self.restitution * y[_WD] > self.bounce_threshold:
                 return PlanarMode.FLIGHT
             if y[_CX] != 0 or y[_CY] != 0:
-                return PlanarMode.FLIGHT if self.lifts_off(t, excitation) else PlanarMode.SLIP
-        rest = self.mode_at_rest(t, excitation, xp)
-        margin, margin_rate = self.circle_margin(t, excitation)
+                return PlanarMode.FLIGHT if self.lifts_off(t, excitation, y) else PlanarMode.SLIP
+        rest = self.mode_at_rest(t, excitation, xp, y)
+        margin, margin_rate = self.circle_margin(t, excitation, y)
         if rest == PlanarMode.STICK and margin_rate < 0 and (t + margin / -margin_rate) - t <= time_tol:
             return PlanarMode.SLIP  # it leaves the circle within time_tol: slides on
         return rest
@@ -260,19 +307,25 @@ class PlanarBlock(AbstractHybridModel):
         return motion.aligned_pieces(t_end)
 
     def is_static(self, mode):
-        return mode == PlanarMode.STICK
+        """Stick on a rigid support (on a spring the block moves with it)."""
+        return mode == PlanarMode.STICK and not self.support.compliant
 
     def at_rest(self, mode, y):
         return mode == PlanarMode.STICK or (mode == PlanarMode.SLIP and y[_S] == 0)
 
     def rest_state(self, y):
+        """s = 0, and w = w' = 0 on a rigid support (a spring keeps its motion)."""
+        if self.support.compliant:
+            return _with(y, {_S: 0.0})
         return _with(y, {_S: 0.0, _W: 0.0, _WD: 0.0})
 
     def state_at_guard(self, mode, guard_index, y, xp=np):
-        """A stop has s = 0 and a landing w = 0, exactly."""
+        """A stop has s = 0 and a landing on a rigid support w = 0, exactly; a landing on
+        a spring keeps the located state (u0 moves with the parameters, which a map of
+        y alone could not follow in the derivatives)."""
         if mode == PlanarMode.SLIP and guard_index == 1:
             return _with(y, {_S: 0.0}, xp)
-        if mode == PlanarMode.FLIGHT:
+        if mode == PlanarMode.FLIGHT and not self.support.compliant:
             return _with(y, {_W: 0.0}, xp)
         return y
 
@@ -282,17 +335,19 @@ class PlanarBlock(AbstractHybridModel):
         return mode == PlanarMode.FLIGHT or (mode == PlanarMode.SLIP and guard_index == 1)
 
     def state_on_entry(self, before, after, t, y, excitation, xp=np):
-        """A liftoff starts with w = w' = 0 and v in Cartesian form; a landing keeps the
-        horizontal velocity and takes -restitution times the vertical one (a rebound)
-        or zero (contact); sliding from rest starts along the relative acceleration
-        -sigma (or, where sigma = 0, along its rate)."""
+        """A liftoff starts with v in Cartesian form and, on a rigid support, w = w' = 0;
+        a landing keeps the horizontal velocity and, on a rigid support, takes
+        -restitution times the vertical one (a rebound) or zero (contact); on a spring
+        the vertical motion goes on. Sliding from rest starts along the relative
+        acceleration -sigma (or, where sigma = 0, along its rate)."""
+        vertical = {} if self.support.compliant else {_W: 0.0, _WD: 0.0}
         if after == PlanarMode.FLIGHT:
             if before == PlanarMode.FLIGHT:
                 return _with(y, {_W: 0.0, _WD: -self.restitution * y[_WD]}, xp)
             ex, ey = _unit(y, xp)
-            return _with(y, {_S: 0.0, _CX: y[_S] * ex, _CY: y[_S] * ey, _W: 0.0, _WD: 0.0}, xp)
+            return _with(y, {_S: 0.0, _CX: y[_S] * ex, _CY: y[_S] * ey, **vertical}, xp)
         if before == PlanarMode.FLIGHT:  # back to the polar form
-            y = _with(y, {_S: xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2), _W: 0.0, _WD: 0.0}, xp)
+            y = _with(y, {_S: xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2), **vertical}, xp)
         if after == PlanarMode.STICK:
             return _with(y, {_S: 0.0}, xp)
         return xp.where(y[_S] == 0, self._along_demand(t, excitation, y, xp), y)
@@ -308,21 +363,29 @@ class PlanarBlock(AbstractHybridModel):
 
     # ---- parameters ----------------------------------------------------------
     def parameters(self):
-        """mu, mu_kinetic (f), bias_x, bias_y [-], g [m/s²], restitution [-]."""
+        """mu, mu_kinetic (f), bias_x, bias_y [-], g [m/s²], restitution [-], and the
+        support's (a spring's support_frequency [Hz] and support_damping [-])."""
         return {"mu": self.mu, "mu_kinetic": self.friction_kinetic, "bias_x": self.bias[0],
-                "bias_y": self.bias[1], "g": self.g, "restitution": self.restitution}
+                "bias_y": self.bias[1], "g": self.g, "restitution": self.restitution, **self.support.parameters()}
 
     def with_parameters(self, values):
+        """The block with ``values``; a spring support where they name its parameters."""
         values = {**self.parameters(), **values}
+        support = SpringSupport.unchecked(values["support_frequency"], values["support_damping"]) \
+            if "support_frequency" in values else RigidSupport()
         model = object.__new__(PlanarBlock)
         fields = {"mu": values["mu"], "mu_kinetic": values["mu_kinetic"], "bias": (values["bias_x"], values["bias_y"]),
-                  "g": values["g"], "restitution": values["restitution"], "bounce_threshold": self.bounce_threshold}
+                  "g": values["g"], "restitution": values["restitution"], "bounce_threshold": self.bounce_threshold,
+                  "support": support}
         for name, value in fields.items():
             object.__setattr__(model, name, value)
         return model
 
     def replace_parameter(self, name, value):
-        """As ``replace``; "bias_x" and "bias_y" set one component of ``bias``."""
+        """As ``replace``; "bias_x" and "bias_y" set one component of ``bias``,
+        "support_frequency" and "support_damping" a field of the spring support."""
+        if name in ("support_frequency", "support_damping"):
+            return self.replace(support=self.support.replace(**{name.removeprefix("support_"): value}))
         if name in ("bias_x", "bias_y"):
             bias = list(self.bias)
             bias[name == "bias_y"] = value
@@ -336,7 +399,10 @@ class PlanarBlock(AbstractHybridModel):
     def turn_rate(self, mode, t, y, excitation, xp=np):
         """Stick: the rate of (mu n)² - |sigma|² (linear in t on a linear piece), where
         the stick guards may turn. Flight: w' (the gap turns at its top). Slip: none
-        (n is monotone on a piece, s stops at a simple root)."""
+        (n is monotone on a piece, s stops at a simple root). On a spring: none (the
+        guards follow the oscillating state; :meth:`output_step` resolves it)."""
+        if self.support.compliant:
+            return None
         if mode == PlanarMode.STICK:
             n, n_rate = self.normal(t, excitation)
             (sx, sy), (rx, ry) = self.demand(t, excitation)
@@ -345,8 +411,18 @@ class PlanarBlock(AbstractHybridModel):
             return y[_WD]
         return None
 
+    def output_step(self):
+        """1 / (32 omega) [s] on a spring (its oscillation), else inf."""
+        if self.support.compliant:
+            return 1.0 / (32 * self.support.omega)
+        return math.inf
+
     def guard_rates(self, mode, guard_index, t, y, excitation):
-        n, n_rate = self.normal(t, excitation)
+        if self.support.compliant and mode == PlanarMode.FLIGHT:
+            fall = -(self.g + excitation.component(2, t))  # w''
+            ratio = 2 * self.support.damping / self.support.omega if y[_WD] > 0 else 0.0
+            return y[_WD] + ratio * fall, fall
+        n, n_rate = self.normal(t, excitation, y)
         if mode == PlanarMode.SLIP and guard_index == 1:
             _, (rx, ry) = self.demand(t, excitation)
             rate = self.flow(mode, t, y, excitation, SCALAR)[_S]
@@ -354,15 +430,21 @@ class PlanarBlock(AbstractHybridModel):
         if mode == PlanarMode.FLIGHT:
             return y[_WD], n
         if mode == PlanarMode.STICK and guard_index == 1:
-            return self.circle_margin(t, excitation)[1], 0.0
-        return n_rate, 0.0
+            return self.circle_margin(t, excitation, y)[1] * self.guard_scale, 0.0
+        return n_rate * self.guard_scale, 0.0
 
     def speed(self, y):
+        if self.support.compliant:  # horizontal and vertical
+            return math.hypot(y[_S], y[_CX], y[_CY], y[_WD]) if y[_S] == 0 else math.hypot(y[_S], y[_WD])
         return math.hypot(y[_S], y[_CX], y[_CY]) if y[_S] == 0 else math.hypot(y[_S], y[_WD])
 
     def time_to_rest(self, mode, y):
         """With a = 0 (n = g, relative acceleration b g): the flight ends within
-        (w' + sqrt(w'² + 2 g w)) / g, the slide within twice s / ((f - |b|) g) after it."""
+        (w' + sqrt(w'² + 2 g w)) / g, the slide within twice s / ((f - |b|) g) after it.
+        On a spring the block never rests exactly (ValueError)."""
+        if self.support.compliant:
+            raise ValueError("a block on a spring support never comes to rest exactly after the excitation: "
+                             "give t_end [s]")
         b, f, g = math.hypot(*self.bias), self.friction_kinetic, self.g
         if f <= b:
             raise ValueError(f"the block never comes to rest after the excitation: kinetic friction "

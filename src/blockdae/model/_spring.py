@@ -22,6 +22,9 @@ it off while the spring still pushes) and, if it does not rise above u0, it land
 still rising, where the law's n returns to 0 from below. Without damping both reduce to
 the seed's rule: separation and landing at u = u0.
 
+The law and the landing rows are :class:`~blockdae.SpringSupport`'s, which a
+:class:`~blockdae.PlanarBlock` can stand on too (one rule for both).
+
 Flight is split at its top (u' = 0) into FLIGHT_UP and FLIGHT_DOWN so that every guard
 is affine in the state (u, u') within a mode: the top of each flight is then a located
 event like liftoff and landing.
@@ -35,6 +38,7 @@ import numpy as np
 
 from .._units import STANDARD_GRAVITY
 from ._base import SCALAR, AbstractHybridModel
+from ._support import SpringSupport
 
 _U, _V = range(2)
 #: dense-output knots per radian of the support's oscillation (cubic Hermite error near
@@ -90,10 +94,7 @@ class SpringSupportedMass(AbstractHybridModel):
             if not math.isfinite(value):
                 raise ValueError(f"{name} must be finite, got {value!r}")
             object.__setattr__(self, name, float(value))
-        if self.frequency <= 0:
-            raise ValueError(f"frequency={self.frequency!r} must be > 0 [Hz]")
-        if not 0 <= self.damping < 1:
-            raise ValueError(f"damping={self.damping!r} must lie in [0, 1)")
+        SpringSupport(self.frequency, self.damping)  # validates frequency and damping
         if self.g <= 0:
             raise ValueError(f"g={self.g!r} must be > 0 [m/s²]")
 
@@ -113,14 +114,19 @@ class SpringSupportedMass(AbstractHybridModel):
         return ()
 
     @property
+    def support(self) -> SpringSupport:
+        """The spring-dashpot support, whose law and landing rule this model follows."""
+        return SpringSupport.unchecked(self.frequency, self.damping)
+
+    @property
     def omega(self) -> float:
         """Natural circular frequency omega = 2 pi f [rad/s]."""
-        return 2 * math.pi * self.frequency
+        return self.support.omega
 
     @property
     def static_deflection(self) -> float:
         """u0 = g / omega² [m] (seed eq. 5)."""
-        return self.g / self.omega**2
+        return self.support.static_deflection(self.g)
 
     #: the seed's name for the static deflection [m]
     u0 = static_deflection
@@ -133,7 +139,7 @@ class SpringSupportedMass(AbstractHybridModel):
     def linear_flow(self, mode):
         """(k [1/s²], c [1/s], b [m/s²]) of u'' + c u' + k u = b - y''(t) in ``mode``."""
         if mode == UpthrowMode.CONTACT:
-            return self.omega**2, 2 * self.damping * self.omega, 0.0
+            return (*self.support.stiffness(), 0.0)
         return 0.0, 0.0, -self.g
 
     def affine_guards(self, mode):
@@ -142,17 +148,17 @@ class SpringSupportedMass(AbstractHybridModel):
         CONTACT: (n / omega² -> liftoff). FLIGHT_UP: (u' -> top, -n / omega² -> landing
         while rising). FLIGHT_DOWN: (u - u0 -> landing, -u' -> rising again).
         """
-        u0, ratio = self.static_deflection, 2 * self.damping / self.omega
+        liftoff, rising_landing, falling_landing = self.support.law_rows(self.g)
         if mode == UpthrowMode.CONTACT:
-            return ((-1.0, -ratio, u0),)
+            return (liftoff,)
         if mode == UpthrowMode.FLIGHT_UP:
-            return ((0.0, 1.0, 0.0), (1.0, ratio, -u0))
-        return ((1.0, 0.0, -u0), (0.0, -1.0, 0.0))
+            return ((0.0, 1.0, 0.0), rising_landing)
+        return (falling_landing, (0.0, -1.0, 0.0))
 
     def support_force(self, mode, t, y, excitation, xp=np):
         """n [m/s²] the support exerts per unit mass (compression positive; 0 in flight)."""
         if mode == UpthrowMode.CONTACT:
-            return self.omega**2 * (self.static_deflection - y[_U]) - 2 * self.damping * self.omega * y[_V]
+            return self.support.law(self.g, y[_U], y[_V])
         return 0.0 * y[_U]
 
     def relative_acceleration(self, t, force, excitation):
@@ -170,7 +176,7 @@ class SpringSupportedMass(AbstractHybridModel):
         crosses zero downwards."""
         return xp.stack([alpha * y[_U] + beta * y[_V] + gamma for alpha, beta, gamma in self.affine_guards(mode)])
 
-    def mode_at_rest(self, t, excitation, xp=np):
+    def mode_at_rest(self, t, excitation, xp=np, y=None):
         """A mass at rest on its support is in contact."""
         return UpthrowMode.CONTACT
 
