@@ -25,7 +25,6 @@ import math
 
 import numpy as np
 
-from ._solution import Event, Solution
 from .excitation._pieces import accel, accel_rate
 from .model._base import SCALAR
 

@@ -37,6 +37,7 @@ import numpy as np
 
 from .._units import STANDARD_GRAVITY
 from ._base import SCALAR, AbstractHybridModel
+from ._checks import set_real_fields
 from ._support import RigidSupport, SpringSupport, parse_support
 
 _UX, _UY, _S, _CX, _CY, _W, _WD = range(7)
@@ -102,13 +103,7 @@ class PlanarBlock(AbstractHybridModel):
     displacement_states = (_UX, _UY)
 
     def __post_init__(self):
-        for name in ("g", "restitution", "bounce_threshold"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-                raise ValueError(f"{name} must be a real number, got {value!r}")
-            if not math.isfinite(value):
-                raise ValueError(f"{name} must be finite, got {value!r}")
-            object.__setattr__(self, name, float(value))
+        set_real_fields(self, ("g", "restitution", "bounce_threshold"))
         for name in ("mu", "mu_kinetic"):
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, _parameter(name, getattr(self, name)))

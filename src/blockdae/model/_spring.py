@@ -38,6 +38,7 @@ import numpy as np
 
 from .._units import STANDARD_GRAVITY
 from ._base import SCALAR, AbstractHybridModel
+from ._checks import set_real_fields
 from ._support import SpringSupport
 
 _U, _V = range(2)
@@ -87,13 +88,7 @@ class SpringSupportedMass(AbstractHybridModel):
     initial_mode = UpthrowMode.CONTACT
 
     def __post_init__(self):
-        for name in ("frequency", "damping", "g"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-                raise ValueError(f"{name} must be a real number, got {value!r}")
-            if not math.isfinite(value):
-                raise ValueError(f"{name} must be finite, got {value!r}")
-            object.__setattr__(self, name, float(value))
+        set_real_fields(self, ("frequency", "damping", "g"))
         SpringSupport(self.frequency, self.damping)  # validates frequency and damping
         if self.g <= 0:
             raise ValueError(f"g={self.g!r} must be > 0 [m/s²]")

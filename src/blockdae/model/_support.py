@@ -24,7 +24,7 @@ Every rule works on floats, NumPy and JAX arrays (``xp``: the array namespace).
 import dataclasses
 import math
 
-import numpy as np
+from ._checks import set_real_fields
 
 
 @dataclasses.dataclass(frozen=True)
@@ -61,13 +61,7 @@ class SpringSupport:
     compliant = True
 
     def __post_init__(self):
-        for name in ("frequency", "damping"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-                raise ValueError(f"{name} must be a real number, got {value!r}")
-            if not math.isfinite(value):
-                raise ValueError(f"{name} must be finite, got {value!r}")
-            object.__setattr__(self, name, float(value))
+        set_real_fields(self, ("frequency", "damping"))
         if self.frequency <= 0:
             raise ValueError(f"frequency={self.frequency!r} must be > 0 [Hz]")
         if not 0 <= self.damping < 1:

@@ -12,7 +12,7 @@ import dataclasses
 
 import numpy as np
 
-from ..excitation._pieces import accel, accel_int1, accel_int2, rebase
+from ..excitation._pieces import accel_int1, accel_int2, rebase
 from . import _checks
 from ._intensity import _Chain, intensity_measures
 
