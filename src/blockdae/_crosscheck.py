@@ -77,7 +77,8 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
         A :class:`CrossCheck`, or a list of n of them for a batch.
     """
     if not isinstance(block, AbstractHybridModel):
-        raise TypeError(f"block must be a SlidingBlock or a PlanarBlock, got {type(block).__name__}")
+        raise TypeError(f"block must be a model (SlidingBlock, PlanarBlock, SpringSupportedMass), "
+                        f"got {type(block).__name__}")
     if backends is None:
         backends = tuple(name for name in DEFAULT_BACKENDS if isinstance(block, make_backend(name).models))
     accepted = {name: {f.name for f in dataclasses.fields(type(make_backend(name)))} for name in backends}

@@ -62,8 +62,9 @@ def simulate(block: SlidingBlock | PlanarBlock | SpringSupportedMass, motion: Ab
                 event_resolution=1e-9: events closer are one instant [s] (PlanarBlock).
 
     Returns:
-        A :class:`Solution`, or a :class:`BatchSolution` for a batch; either keeps
-        ``block`` and ``motion``. For several motions or scales: :func:`simulate_many`.
+        A :class:`Solution` (SlidingBlock), :class:`PlanarSolution` or
+        :class:`UpthrowSolution` (SpringSupportedMass), or a :class:`BatchSolution` for
+        a batch; each keeps ``block`` and ``motion``. For several motions or scales: :func:`simulate_many`.
     """
     if not isinstance(block, tuple(DEFAULT_BACKEND)):
         raise TypeError(f"block must be a SlidingBlock, a PlanarBlock or a SpringSupportedMass, "
