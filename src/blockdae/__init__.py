@@ -21,7 +21,8 @@ from ._upthrow import UpthrowEstimate, upthrow_estimate
 from ._units import STANDARD_GRAVITY
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_motion, read_record)
-from .model import AbstractHybridModel, Mode, PlanarBlock, RigidSupport, SpringSupport, PlanarMode, SlidingBlock, SpringSupportedMass, UpthrowMode
+from .model import (AbstractHybridModel, Mode, PlanarBlock, PlanarMode, RigidSupport, SlidingBlock, SpringSupport,
+                    SpringSupportedMass, UpthrowMode)
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
                       cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
                       relative_motion, response_spectrum)
