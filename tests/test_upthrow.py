@@ -218,6 +218,21 @@ def test_cvode_agrees_with_exact_on_every_sample_record(path):
             assert_agree(bd.simulate(block, motion, t_end=t_end, backend="cvode", rtol=1e-10), exact)
 
 
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason=(
+    "known limitation of IDA on this model at rtol 1e-10: its event times drift during flights "
+    "(N Palm Springs at 0.6 g, 5 Hz, 5 %: 2.2e-9 s off exact after 5 s; rtol 1e-11: 1.6e-9 s, "
+    "1e-12: 1.8e-10 s); restarting at every sample, its first step at 1e-9 ... 1e-5 s gives "
+    "5.2e-9 ... 1.8e-8 s, and carrying its history across samples in flight 8.6e-9 s (15 s)"))
+def test_ida_agrees_with_exact_on_a_record_at_rtol_1e_10():
+    record = load_sample_record("N_Palm_Springs_1986_WWT-180")
+    motion = record.scaled(0.6 * G / record.peak_acceleration)
+    block = bd.SpringSupportedMass(5.0, 0.05)
+    exact = bd.simulate(block, motion, t_end=5.0)
+    assert len(exact.flights) >= 5
+    assert_agree(bd.simulate(block, motion, t_end=5.0, backend="ida", rtol=1e-10), exact)
+
+
 # ---- behaviour -----------------------------------------------------------------------
 def test_damped_liftoff_below_u0_and_landing_rules():
     """With damping the dashpot pulls the mass off below u0 (n = 0 at u = u0 - 2 z u'/w);
