@@ -316,10 +316,6 @@ def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
     ws2 = np.empty(10)
     stack = np.empty((_STACK, 6))
     inv_be = 1.0 / be
-    inv_om = 1.0 / om
-    inv_om2 = 1.0 / om2
-    h_prev = -1.0
-    h8 = k2u = k2v = k2a = 0.0
     flag = np.empty(n, dtype=np.bool_)
     _screen(h, p0, p1, s, us, vs, xg, vg, om, ze, best, flag)
     for k in range(n):  # pass 2: pieces whose bound can beat the running maxima
@@ -336,45 +332,12 @@ def _one(t0, h, p0, p1, s, w, phi, xg, vg, om, ze, best, when):
                     _refine(k, q, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
                     ws1, ws2, stack)
             continue
-        if hk != h_prev:
-            h_prev = hk
-            h8 = 0.125 * hk * hk
-            k2u = 1.0 / (om2 * h8)  # 1 / (ω² h²/8): |u''| <= ω² R
-            k2v = k2u * inv_om
-            k2a = k2u * inv_om2
-        # linear piece: u = A0 + A1 τ + e^(-ατ)(c cos βτ + d sin βτ), R = sqrt(c² + d²);
-        # |f| <= min(max|poly| + k1 R, max|f(ends)| + (m2poly + k2 R) h²/8), so f can beat
-        # best only if R > max((best - max|poly|) / k1, (best - ends - m2poly h²/8) / k2)
-        A1 = -p1[k] * inv_om2
-        A0 = -p0[k] * inv_om2 - 2.0 * ze * A1 * inv_om
-        c = us[k] - A0
-        d = (vs[k] - A1 + al * c) * inv_be
-        R2 = c * c + d * d
-        u0, u1, v0, v1 = us[k], us[k + 1], vs[k], vs[k + 1]
-        # u
-        thr = max(best[0] - max(abs(A0), abs(A0 + A1 * hk)), (best[0] - max(abs(u0), abs(u1))) * k2u)
-        if thr < 0.0 or R2 > thr * thr:
-            _refine(k, 0, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
-                    ws1, ws2, stack)
-        # v
-        thr = max((best[1] - abs(A1)) * inv_om, (best[1] - max(abs(v0), abs(v1))) * k2v)
-        if thr < 0.0 or R2 > thr * thr:
-            _refine(k, 1, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
-                    ws1, ws2, stack)
-        # absolute acceleration: poly p0 + p1 τ, damped amplitude ω² R
-        pa = max(abs(p0[k]), abs(p0[k] + p1[k] * hk))
-        ends = max(abs(tz * v0 + om2 * u0), abs(tz * v1 + om2 * u1))
-        thr = max((best[2] - pa) * inv_om2, (best[2] - ends) * k2a)
-        if thr < 0.0 or R2 > thr * thr:
-            _refine(k, 2, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
-                    ws1, ws2, stack)
-        # absolute displacement: poly A0 + xg + (A1 + vg) τ + p0 τ²/2 + p1 τ³/6
-        poly = abs(A0 + xg[k]) + hk * (abs(A1 + vg[k]) + hk * (0.5 * abs(p0[k]) + hk * abs(p1[k]) / 6.0))
-        ends = max(abs(u0 + xg[k]), abs(u1 + xg[k + 1]))
-        thr = max(best[3] - poly, (best[3] - ends - pa * h8) * k2u)
-        if thr < 0.0 or R2 > thr * thr:
-            _refine(k, 3, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
-                    ws1, ws2, stack)
+        R2, thr0, thr1, thr2, thr3 = _linear_thresholds(hk, p0[k], p1[k], us[k], us[k + 1], vs[k], vs[k + 1],
+                                                        xg[k], xg[k + 1], vg[k], om, ze, best)
+        for q, thr in ((0, thr0), (1, thr1), (2, thr2), (3, thr3)):
+            if thr < 0.0 or R2 > thr * thr:
+                _refine(k, q, us, vs, t0, h, p0, p1, s, w, phi, xg, vg, om, ze, al, be, kk, best, when,
+                        ws1, ws2, stack)
 
 
 @njit(cache=True, error_model="numpy")  # no zero-division branch: vectorises
@@ -386,36 +349,49 @@ def _screen(h, p0, p1, s, us, vs, xg, vg, om, ze, best, flag):
     that pass 2 refines, which stays exact by re-testing them with the running maxima.
     Sine pieces are always flagged.
     """
+    for k in range(h.size):
+        R2, t0, t1, t2, t3 = _linear_thresholds(h[k], p0[k], p1[k], us[k], us[k + 1], vs[k], vs[k + 1],
+                                                xg[k], xg[k + 1], vg[k], om, ze, best)
+        flag[k] = ((s[k] != 0.0) | (t0 < 0.0) | (R2 > t0 * t0) | (t1 < 0.0) | (R2 > t1 * t1)
+                   | (t2 < 0.0) | (R2 > t2 * t2) | (t3 < 0.0) | (R2 > t3 * t3))
+
+
+@njit(cache=True, inline="always")
+def _linear_thresholds(hk, p0, p1, u0, u1, v0, v1, xg0, xg1, vg0, om, ze, best):
+    """Pass 2's tests on a linear piece of length ``hk`` [s]: (R², thr_u, thr_v, thr_a,
+    thr_z); quantity q can beat ``best[q]`` only if thr_q < 0 or R² > thr_q².
+
+    On the piece u = A0 + A1 τ + e^(-ατ)(c cos βτ + d sin βτ), R = sqrt(c² + d²), and
+    |f| <= min(max|poly| + k1 R, max|f(ends)| + (m2poly + k2 R) h²/8), so f can beat
+    best only if R > max((best - max|poly|) / k1, (best - ends - m2poly h²/8) / k2).
+    Branch-free (selects only), so that ``_screen`` vectorises.
+    """
     al = ze * om
     be = om * np.sqrt(1.0 - ze * ze)
     om2 = om * om
     tz = 2.0 * ze * om
-    inv_be = 1.0 / be
     inv_om = 1.0 / om
     inv_om2 = 1.0 / om2
-    b0, b1, b2, b3 = best[0], best[1], best[2], best[3]
-    for k in range(h.size):
-        hk = h[k]
-        h8 = 0.125 * hk * hk
-        k2u = 1.0 / (om2 * h8)
-        k2v = k2u * inv_om
-        k2a = k2u * inv_om2
-        A1 = -p1[k] * inv_om2
-        A0 = -p0[k] * inv_om2 - 2.0 * ze * A1 * inv_om
-        c = us[k] - A0
-        d = (vs[k] - A1 + al * c) * inv_be
-        R2 = c * c + d * d
-        u0, u1, v0, v1 = us[k], us[k + 1], vs[k], vs[k + 1]
-        t0 = _max(b0 - _max(abs(A0), abs(A0 + A1 * hk)), (b0 - _max(abs(u0), abs(u1))) * k2u)
-        t1 = _max((b1 - abs(A1)) * inv_om, (b1 - _max(abs(v0), abs(v1))) * k2v)
-        pa = _max(abs(p0[k]), abs(p0[k] + p1[k] * hk))
-        ends = _max(abs(tz * v0 + om2 * u0), abs(tz * v1 + om2 * u1))
-        t2 = _max((b2 - pa) * inv_om2, (b2 - ends) * k2a)
-        poly = abs(A0 + xg[k]) + hk * (abs(A1 + vg[k]) + hk * (0.5 * abs(p0[k]) + hk * abs(p1[k]) / 6.0))
-        ends = _max(abs(u0 + xg[k]), abs(u1 + xg[k + 1]))
-        t3 = _max(b3 - poly, (b3 - ends - pa * h8) * k2u)
-        flag[k] = ((s[k] != 0.0) | (t0 < 0.0) | (R2 > t0 * t0) | (t1 < 0.0) | (R2 > t1 * t1)
-                   | (t2 < 0.0) | (R2 > t2 * t2) | (t3 < 0.0) | (R2 > t3 * t3))
+    h8 = 0.125 * hk * hk
+    k2u = 1.0 / (om2 * h8)  # 1 / (ω² h²/8): |u''| <= ω² R
+    k2v = k2u * inv_om
+    k2a = k2u * inv_om2
+    A1 = -p1 * inv_om2
+    A0 = -p0 * inv_om2 - 2.0 * ze * A1 * inv_om
+    c = u0 - A0
+    d = (v0 - A1 + al * c) * (1.0 / be)
+    R2 = c * c + d * d
+    thr_u = _max(best[0] - _max(abs(A0), abs(A0 + A1 * hk)), (best[0] - _max(abs(u0), abs(u1))) * k2u)
+    thr_v = _max((best[1] - abs(A1)) * inv_om, (best[1] - _max(abs(v0), abs(v1))) * k2v)
+    # absolute acceleration: poly p0 + p1 τ, damped amplitude ω² R
+    pa = _max(abs(p0), abs(p0 + p1 * hk))
+    ends = _max(abs(tz * v0 + om2 * u0), abs(tz * v1 + om2 * u1))
+    thr_a = _max((best[2] - pa) * inv_om2, (best[2] - ends) * k2a)
+    # absolute displacement: poly A0 + xg + (A1 + vg) τ + p0 τ²/2 + p1 τ³/6
+    poly = abs(A0 + xg0) + hk * (abs(A1 + vg0) + hk * (0.5 * abs(p0) + hk * abs(p1) / 6.0))
+    ends = _max(abs(u0 + xg0), abs(u1 + xg1))
+    thr_z = _max(best[3] - poly, (best[3] - ends - pa * h8) * k2u)
+    return R2, thr_u, thr_v, thr_a, thr_z
 
 
 @njit(cache=True, inline="always")
