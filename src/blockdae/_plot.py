@@ -1,5 +1,6 @@
-"""Figures of a solution, in the layout of seed 000 Figures 3-5, and of a planar
-solution (seed 001): the path in the plane and its components (matplotlib on demand)."""
+"""Figures of a solution, in the layout of seed 000 Figures 3-5, of a planar solution
+(seed 001: the path in the plane and its components) and of a flight history (seed 004);
+matplotlib on demand."""
 
 import math
 
@@ -17,7 +18,7 @@ _BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")
 _EVENTS = dict(ls="none", marker="o", ms=4, mfc="none", color="C0", label="events")
 
 
-def plot(solution: Solution | BatchSolution | PlanarSolution | ResponseSpectrum | RelativeMotion,
+def plot(solution: Solution | BatchSolution | PlanarSolution | UpthrowSolution | ResponseSpectrum | RelativeMotion,
          excitation: AbstractExcitation | None = None, block: SlidingBlock | None = None, *,
          n_points: int = 2000, title: str | None = None):
     """Draw a solution: absolute and relative motion, and the phase plane.
@@ -30,7 +31,9 @@ def plot(solution: Solution | BatchSolution | PlanarSolution | ResponseSpectrum 
     it), or against the parameter-set index when none or several vary (the x label
     then names those that vary). A :class:`PlanarSolution` is drawn as the path
     (u_x, u_y) [m] of the block relative to the base, u_x and u_y [m] and the relative
-    speed |v| [m/s] against time, events marked (``excitation`` and ``block`` unused).
+    speed |v| [m/s] against time, events marked (``excitation`` and ``block`` unused);
+    an :class:`UpthrowSolution` as its flight history (ground and mass, gap, support
+    force; liftoffs and landings marked).
 
     Left column (only with ``excitation``): base (solid) and block (dashed)
     acceleration [m/s²], velocity [m/s] and displacement [m]; the block's
@@ -57,13 +60,13 @@ def plot(solution: Solution | BatchSolution | PlanarSolution | ResponseSpectrum 
         return plot_spectrum(solution, title=title)
     if isinstance(solution, RelativeMotion):
         return plot_relative_motion(solution, title=title)
-    if isinstance(solution, UpthrowSolution):  # seed 004: a flight history
-        return plot_upthrow(solution, n_points=n_points, title=title)
-    if not isinstance(solution, (Solution, PlanarSolution)):
-        raise TypeError("solution must be a Solution, BatchSolution, PlanarSolution, ResponseSpectrum or "
-                        f"RelativeMotion, got {type(solution).__name__}")
+    if not isinstance(solution, (Solution, PlanarSolution, UpthrowSolution)):
+        raise TypeError("solution must be a Solution, BatchSolution, PlanarSolution, UpthrowSolution, "
+                        f"ResponseSpectrum or RelativeMotion, got {type(solution).__name__}")
     if not (isinstance(n_points, int) and n_points >= 2):
         raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
+    if isinstance(solution, UpthrowSolution):  # seed 004: a flight history
+        return _plot_upthrow(solution, n_points=n_points, title=title)
     if isinstance(solution, PlanarSolution):
         return _plot_planar(solution, n_points=n_points, title=title)
     t = np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
@@ -167,14 +170,12 @@ def _plot_planar(solution: PlanarSolution, *, n_points: int, title: str | None =
 
 
 # ---- a spring-supported mass (seed 004) --------------------------------------------
-def plot_upthrow(solution: UpthrowSolution, *, n_points: int = 2000, title: str | None = None):
+def _plot_upthrow(solution: UpthrowSolution, *, n_points: int, title: str | None = None):
     """A flight history: the ground y and the mass y + u [m] (absolute, from the static
     position), the gap u - u0 above the unloaded support [m], and the support force per
     unit mass n [m/s²]; liftoffs (triangles up) and landings (down) marked."""
     import matplotlib.pyplot as plt
 
-    if not (isinstance(n_points, int) and n_points >= 2):
-        raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
     t = np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
     u, _, gap, force = solution(t)
     ground = solution.motion.displacement(t) - solution.motion.displacement(0.0) if solution.motion else 0 * t
