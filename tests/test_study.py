@@ -9,7 +9,7 @@ import pytest
 
 import blockdae as bd
 from blockdae._cli import main
-from blockdae.study import _study as study_module  # bd.study is the function
+from blockdae.studies import _study as study_module
 from conftest import load_sample_record, sample_record_paths
 from test_benchmarks import _load as _load_benchmark
 

@@ -27,7 +27,7 @@ from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, basel
                       cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
                       relative_motion, response_spectrum)
 from .structures import Floor, ShearFrame
-from .study import load_study, save_study, study, summary as study_summary
+from .studies import load_study, save_study, study, summary as study_summary
 
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",

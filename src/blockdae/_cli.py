@@ -27,7 +27,7 @@ from ._newmark import newmark
 from ._simulate import simulate
 from ._units import STANDARD_GRAVITY
 from .motions._commands import add_spectrum_parser, add_two_point_parser
-from .study._command import add_study_parser
+from .studies._command import add_study_parser
 from .excitation._readers import unit_factor
 from .model import SlidingBlock
 
