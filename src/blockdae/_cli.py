@@ -1,6 +1,6 @@
 """The ``blockdae`` command: run a record (or two or three components: a block on a
-plane, see ``_cli_planar``), Newmark's analysis, the seed-000 examples, a batch over a
-folder.
+plane, see ``_cli_planar``), Newmark's analysis, a mass on a spring support under a
+vertical record (``_cli_upthrow``), the seed-000 examples, a batch over a folder.
 
 Every error about a file or an argument ends the command with exit status 2 and one
 line ``blockdae: error: ...`` on stderr naming the file (and line) or the argument. A
@@ -19,8 +19,10 @@ import time
 import numpy as np
 
 from . import backends
-from ._cli_common import UsageError, checked, describe_record, finite, positive, read, save_figure, write_csv
+from ._cli_common import (UsageError, checked, clean, describe_record, finite, positive, read, record_arguments,
+                          record_fields, save_figure, write_csv)
 from ._cli_planar import is_planar, read_motion_argument, run_planar, x_record
+from ._cli_upthrow import add_upthrow_parser
 from ._examples import seed_examples
 from ._jax_config import set_compilation_cache
 from ._newmark import newmark
@@ -64,7 +66,7 @@ def _parser():
                         help="JAX compilation cache, so that later runs skip compiling "
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
-    sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,examples,batch,study}")
+    sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,upthrow,examples,batch,study}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
                                      "plane under two or three components (u_x, u_y)")
@@ -78,7 +80,7 @@ def _parser():
     _block_arguments(run, nargs=None, planar=True)
     run.add_argument("--bias-y", type=finite("--bias-y"), default=0.0,
                      help="on a plane: constant force / weight in +y [-] (--bias is the one in +x)")
-    _record_arguments(run)
+    record_arguments(run)
     run.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure")
     run.add_argument("--json", action="store_true", help="print the results as JSON")
     run.add_argument("--events", choices=("summary", "all", "none"), default="summary",
@@ -93,12 +95,13 @@ def _parser():
                           help="yield acceleration(s) [g]")
     newmark_.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                           help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
-    _record_arguments(newmark_)
+    record_arguments(newmark_)
     newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
     newmark_.set_defaults(command=_newmark)
 
     add_spectrum_parser(sub)
     add_two_point_parser(sub)
+    add_upthrow_parser(sub)
 
     examples = sub.add_parser("examples", help="seed-000 Examples 1-6: exact vs the paper")
     examples.set_defaults(command=_examples)
@@ -106,7 +109,7 @@ def _parser():
     batch = sub.add_parser("batch", help="every record in a folder, over a parameter grid")
     batch.add_argument("folder", type=pathlib.Path, help=f"folder of records ({', '.join(_RECORD_SUFFIXES)})")
     _block_arguments(batch, nargs="+")
-    _record_arguments(batch)
+    record_arguments(batch)
     batch.add_argument("--csv", type=pathlib.Path, default=None, help="write the results as CSV")
     batch.add_argument("--json", action="store_true", help="print the results as JSON")
     batch.add_argument("--strict", action="store_true", help="stop at the first bad file")
@@ -134,15 +137,6 @@ def _block_arguments(parser, nargs, planar=False):
                              + ("; on a plane: ida)" if planar else ")"))
     parser.add_argument("--t-end", type=positive("--t-end"), default=None,
                         help="final time [s] (default: until the block rests after the record)")
-
-
-def _record_arguments(parser):
-    parser.add_argument("--units", default=None,
-                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header "
-                             "says, else g)")
-    parser.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
-    parser.add_argument("--accept-peak", action="store_true",
-                        help="accept a peak acceleration outside 1e-4 g .. 10 g (else an error: wrong units?)")
 
 
 # ---- commands ---------------------------------------------------------------
@@ -189,7 +183,7 @@ def _newmark(args):
     result = checked(lambda: newmark(record, ky, g=args.g), f"{args.record}")
     table = result.to_dataframe()
     if args.json:
-        print(json.dumps({**_record_fields(record), "g_m_s2": args.g,
+        print(json.dumps({**record_fields(record), "g_m_s2": args.g,
                           "results": table.to_dict(orient="records")}, indent=2))
         return 0
     print(f"record: {describe_record(record)}")
@@ -326,16 +320,6 @@ def _save_plot(args, solution, record, block):
     save_figure(plot(solution, record, block, title=f"{record.name}: mu = {args.mu}"), args.plot)
 
 
-def _clean(x):
-    """A float without the noise of its last bits (12 significant digits)."""
-    return float(f"{x:.12g}")
-
-
-def _record_fields(record):
-    return {"record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": _clean(record.dt),
-            "start_time_s": record.start_time, "peak_acceleration_m_s2": record.peak_acceleration}
-
-
 def _block_fields(block):
     return {"mu": block.mu, "mu_kinetic": block.friction_kinetic, "bias": block.bias, "g_m_s2": block.g,
             "direction": block.direction}
@@ -343,9 +327,9 @@ def _block_fields(block):
 
 def _run_json(record, block, solution, wall):
     return {
-        **_record_fields(record), **_block_fields(block), "backend": solution.backend,
+        **record_fields(record), **_block_fields(block), "backend": solution.backend,
         "displacement_m": solution.displacement, "max_abs_displacement_m": solution.max_abs_displacement,
-        "t_end_s": _clean(solution.t_end), "wall_time_s": wall,
+        "t_end_s": clean(solution.t_end), "wall_time_s": wall,
         "events": [{"t_s": e.t, "from": e.mode_before.name, "to": e.mode_after.name, "u_m": e.u, "v_m_s": e.v}
                    for e in solution.events],
     }
@@ -353,10 +337,10 @@ def _run_json(record, block, solution, wall):
 
 def _batch_rows(record, block, result):
     return [{
-        **_record_fields(record), **_block_fields(block.item(i)), "backend": result.backend,
+        **record_fields(record), **_block_fields(block.item(i)), "backend": result.backend,
         "displacement_m": float(result.displacement[i]),
         "max_abs_displacement_m": float(result.max_abs_displacement[i]),
-        "n_events": int(result.n_events[i]), "t_end_s": _clean(float(result.t_end[i])),
+        "n_events": int(result.n_events[i]), "t_end_s": clean(float(result.t_end[i])),
     } for i in range(block.batch_shape[0])]
 
 

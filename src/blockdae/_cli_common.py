@@ -1,6 +1,6 @@
 """Pieces every ``blockdae`` command shares: argument types that name their flag, the
-usage error (``blockdae: error: ...``, exit status 2), reading a record argument,
-writing CSV and saving figures."""
+usage error (``blockdae: error: ...``, exit status 2), reading a record argument
+(its flags, its description and its JSON fields), writing CSV and saving figures."""
 
 import argparse
 import csv
@@ -45,6 +45,16 @@ def checked(action, where):
         raise UsageError(message if not where or where in message else f"{where}: {message}") from None
 
 
+def record_arguments(parser):
+    """--units, --dt and --accept-peak: how :func:`read` reads a command's record files."""
+    parser.add_argument("--units", default=None,
+                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header "
+                             "says, else g)")
+    parser.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
+    parser.add_argument("--accept-peak", action="store_true",
+                        help="accept a peak acceleration outside 1e-4 g .. 10 g (else an error: wrong units?)")
+
+
 def read(path, args):
     """The record at ``path`` with the command's --units, --dt, --g (and --accept-peak)."""
     if not path.is_file():
@@ -80,3 +90,14 @@ def describe_record(record) -> str:
               if record.start_time else "")
     return (f"{record.name} ({record.acceleration_samples.size} samples, dt = {record.dt:g} s, "
             f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} m/s²{origin})")
+
+
+def clean(x):
+    """A float without the noise of its last bits (12 significant digits)."""
+    return float(f"{x:.12g}")
+
+
+def record_fields(record) -> dict:
+    """A record's name, samples, dt [s], start time [s] and peak [m/s²], for JSON and CSV rows."""
+    return {"record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": clean(record.dt),
+            "start_time_s": record.start_time, "peak_acceleration_m_s2": record.peak_acceleration}
