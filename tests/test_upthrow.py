@@ -287,6 +287,20 @@ def test_a_damped_short_flight_lands_rising_where_n_returns_to_zero():
     assert sol.flights[0].height == pytest.approx(landing.height, rel=1e-15)
 
 
+def test_a_flight_cut_by_t_end_has_no_landing_and_no_height_before_its_top():
+    """Constant y'' = -0.55 g, 5 Hz: liftoff where u = u0 on the step response,
+    u = (c / w²)(1 - cos w t) with c = 0.55 g (closed form); t_end just after it."""
+    block = bd.SpringSupportedMass(5.0)
+    c = 0.55 * G
+    t_lift = math.acos(1 - block.static_deflection * block.omega**2 / c) / block.omega
+    motion = bd.Record(np.full(3, -c), dt=0.5)
+    rising = bd.simulate(block, motion, t_end=t_lift + 1e-3).flights
+    assert len(rising) == 1 and rising[0].liftoff == pytest.approx(t_lift, abs=1e-13)
+    assert np.isnan(rising[0].landing) and np.isnan(rising[0].height) and np.isnan(rising[0].duration)
+    falling = bd.simulate(block, motion, t_end=t_lift + 0.03).flights[0]  # past the top at ~0.022 s
+    assert np.isnan(falling.landing) and falling.height > 0
+
+
 def test_dense_output_gap_and_force(kobe_vertical):
     block = bd.SpringSupportedMass(5.0, 0.05)
     sol = bd.simulate(block, kobe_vertical, t_end=8.0)

@@ -45,7 +45,7 @@ class Flight:
         liftoff, landing: times [s] (landing nan if still flying at the end).
         liftoff_velocity: u' at liftoff [m/s]; impact_velocity: u' at landing [m/s].
         height: largest u - u0 during the flight [m] (< 0 for a damped flight that
-            lands still rising, below u0).
+            lands still rising, below u0; nan if still rising at the end).
     """
 
     liftoff: float
@@ -102,7 +102,7 @@ class UpthrowSolution(DriverSolution):
                 flights.append(Flight(start.t, event.t, start.u_rate, event.u_rate, height))
                 start = None
         if start is not None:
-            flights.append(Flight(start.t, np.nan, start.u_rate, np.nan, height))
+            flights.append(Flight(start.t, np.nan, start.u_rate, np.nan, height if height > -np.inf else np.nan))
         return tuple(flights)
 
     def __call__(self, t):
