@@ -652,7 +652,7 @@ for frame, label, marker in ((trains, "sine trains", "o"), (records, "records", 
 lim = [0, 1.1 * flying.v12_m_s.max()]
 ax.plot(lim, lim, "k-", lw=0.8)
 ax.set(xlabel="exact liftoff velocity [m/s]", ylabel="eq. 12 [m/s]", title="Eq. 12 against exact liftoffs")
-ax.legend(fontsize="small")"""),
+ax.legend(fontsize="small");"""),
     ("md", """## Where eq. 12 errs
 
 * **The first liftoff is governed by the response before it**, not by the largest
