@@ -717,13 +717,13 @@ def flight_events(sol):
 
 def flight_table(sol):
     \"\"\"Each flight: times, height above the unloaded spring (max w - u0, dense output), speed
-    relative to the ground at liftoff, and the horizontal travel relative to the ground.\"\"\"
+    relative to the ground at liftoff (horizontal), and the horizontal travel relative to the ground.\"\"\"
     rows = []
     for lift, land in flight_events(sol):
         w = sol(np.linspace(lift.t, land.t, 2001))[4]
         dx, dy = land.u_x - lift.u_x, land.u_y - lift.u_y
         rows.append({"liftoff [s]": lift.t, "landing [s]": land.t, "height [mm]": 1e3 * (w.max() - u0),
-                     "speed at liftoff [mm/s]": 1e3 * math.hypot(lift.v_x, lift.v_y),
+                     "horizontal speed at liftoff [mm/s]": 1e3 * math.hypot(lift.v_x, lift.v_y),
                      "travel x [mm]": 1e3 * dx, "travel y [mm]": 1e3 * dy, "|travel| [mm]": 1e3 * math.hypot(dx, dy)})
     return pd.DataFrame(rows)
 
