@@ -8,7 +8,7 @@ import numpy as np
 from ._sensitivities import finite_differences, sensitivities, unit
 from ._simulate import simulate
 from .backends import make_backend
-from .model import AbstractHybridModel, SlidingBlock
+from .model import AbstractHybridModel, SlidingBlock, SpringSupportedMass
 
 #: the backends a cross-check runs by default, those that run the block, in this order
 DEFAULT_BACKENDS = ("exact", "cvode", "ida", "jax")
@@ -70,7 +70,8 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
             those of "exact", "cvode", "ida", "jax" that run the block, in this order.
         t_end: final time [s], or None (until rest after a finite excitation).
         wrt: parameters to differentiate u(t_end) by (see :func:`blockdae.sensitivities`),
-            e.g. ("mu", "mu_kinetic", "bias", "A"); none by default.
+            e.g. ("mu", "mu_kinetic", "bias", "A"); none by default (none for a
+            SpringSupportedMass, whose derivatives are those of its flights).
         **options: settings passed to every backend that has them (e.g. ``rtol``).
 
     Returns:
@@ -85,6 +86,9 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
     unknown = set(options) - set().union(*accepted.values())
     if unknown:
         raise TypeError(f"no backend in {tuple(backends)} takes the option(s) {sorted(unknown)}")
+    if wrt and isinstance(block, SpringSupportedMass):
+        raise ValueError("crosscheck's wrt differentiates u(t_end); for a SpringSupportedMass use "
+                         "bd.sensitivities(block, motion, t_end, wrt=..., of=...) (its flights)")
     if block.batch_shape:
         return [crosscheck(block.item(i), motion, backends, t_end, wrt, **options)
                 for i in range(block.batch_shape[0])]

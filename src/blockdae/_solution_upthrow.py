@@ -84,6 +84,12 @@ class UpthrowSolution(DriverSolution):
         """u' at the knots [m/s], shape (n,)."""
         return self.state[:, 1]
 
+    @property
+    def displacement(self) -> float:
+        """u at t_end [m]: the mass relative to the ground, from its static position (what
+        :func:`blockdae.crosscheck` compares; not a permanent offset, the mass oscillates)."""
+        return float(self.state[-1, 0])
+
     def events_of(self, kind: str) -> tuple:
         """The events of one kind ("liftoff", "top", "landing", "bottom")."""
         return tuple(e for e in self.events if e.kind == kind)
