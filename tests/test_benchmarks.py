@@ -77,3 +77,11 @@ def test_planar_quick(monkeypatch, capsys):
     assert {row[4] for row in rows} >= {"ida", "cvode"}
     for row in rows:
         assert float(row[7]) == pytest.approx(exact, abs=1e-6) and float(row[8]) == 0.0
+
+
+def test_upthrow_quick(monkeypatch, capsys):
+    assert _load("upthrow", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "ida max|dt| [s]" in out and "Kobe_1995_TAK-090, 5 Hz 5 %" in out
+    assert out.count("bar 1e-09 s and 1e-07") == 3  # every backend reported, met or not
+    assert "cvode: worst event time" in out and "jax: worst event time" in out

@@ -18,7 +18,8 @@ INCH = 0.0254  # [m]
 # ---- model ---------------------------------------------------------------------------
 @pytest.mark.parametrize("field, kwargs", [
     ("frequency", dict(frequency=0.0)), ("frequency", dict(frequency=-1.0)),
-    ("frequency", dict(frequency=math.nan)), ("damping", dict(frequency=5.0, damping=-0.01)),
+    ("frequency", dict(frequency=math.nan)), ("frequency", dict(frequency=1e-300)),
+    ("frequency", dict(frequency=1e300)), ("damping", dict(frequency=5.0, damping=-0.01)),
     ("damping", dict(frequency=5.0, damping=1.0)), ("damping", dict(frequency=5.0, damping=math.nan)),
     ("g", dict(frequency=5.0, g=0.0))])
 def test_bad_input_names_the_field(field, kwargs):
@@ -130,6 +131,54 @@ def test_exact_matches_dop853_on_sine_trains(frequency, damping, amplitude, peri
     assert len(sol.events) >= n_events
     assert [e.kind for e in sol.events] == [kind for kind, _ in reference]
     np.testing.assert_allclose(sol.t_events, [t for _, t in reference], rtol=0, atol=1e-12)
+
+
+def test_a_grazing_liftoff_is_no_liftoff():
+    """y'' = -g/2 from rest, 5 Hz, undamped: u = (g / 2 w²)(1 - cos w t) touches u0 with
+    u' = 0 at w t = pi (closed form): n touches 0 and returns, no liftoff (as CVODE's
+    downward roots say). It was a RecursionError in the root search."""
+    block = bd.SpringSupportedMass(5.0)
+    pulse = bd.RectangularPulse(-G / 2, 10.0)
+    exact = bd.simulate(block, pulse, t_end=0.6)
+    assert exact.events == () and bd.simulate(block, pulse, t_end=0.6, backend="cvode").events == ()
+    expected = G / (2 * block.omega**2) * (1 - math.cos(block.omega * 0.6))
+    assert exact.u[-1] == pytest.approx(expected, rel=1e-12, abs=1e-15)
+
+
+def test_sine_forcing_at_resonance_to_one_ulp():
+    """f = 13 Hz under a sine of period 1/13 s: 2 pi / (1/13) and 2 pi 13 differ by one
+    ulp, which made the particular and free parts huge and cancelling (the root search
+    did not settle). Taken as resonance, it matches DOP853 on the seed's rules."""
+    block = bd.SpringSupportedMass(13.0)
+    train = bd.Harmonic(0.1 * G, 1 / 13, cycles=4)
+    sol = bd.simulate(block, train, t_end=train.duration)
+    w = 2 * np.pi * 13
+    reference = dop853_events(block, lambda t: 0.1 * G * math.sin(w * t), train.duration, 3)
+    assert [e.kind for e in sol.events] == [kind for kind, _ in reference] and sol.events
+    np.testing.assert_allclose(sol.t_events, [t for _, t in reference], rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("block, motion, match", [
+    (bd.SpringSupportedMass(5.0), bd.Harmonic(0.1 * G, 0.2 * (1 + 1e-9), cycles=2), "resonance"),
+    (bd.SpringSupportedMass(5.0, 1e-9), bd.Harmonic(0.1 * G, 0.2, cycles=2), "resonance"),
+    (bd.SpringSupportedMass(5.0, 1 - 1e-10), bd.RectangularPulse(-1.5 * G, 0.1), "critical")])
+def test_the_exact_backend_refuses_where_its_closed_form_loses_digits(block, motion, match):
+    """Within 1e-6 of resonance (but not at it) and within 5e-9 of critical damping the
+    closed form's parts cancel; a clear error points to the solver backends, which run."""
+    with pytest.raises(ValueError, match=match):
+        bd.simulate(block, motion, t_end=0.4)
+    assert bd.simulate(block, motion, t_end=0.4, backend="cvode").t_end == 0.4
+
+
+def test_damping_close_to_critical_matches_dop853():
+    """zeta = 1 - 1e-8, the closest to critical the closed form takes: a ground falling at
+    1.5 g for 0.1 s throws the mass (liftoff, top, landing) as DOP853 says."""
+    block = bd.SpringSupportedMass(5.0, 1 - 1e-8)
+    pulse = bd.RectangularPulse(-1.5 * G, 0.1)
+    sol = bd.simulate(block, pulse, t_end=0.6)
+    reference = dop853_events(block, lambda t: -1.5 * G if t < 0.1 else 0.0, 0.6, 3)
+    assert [e.kind for e in sol.events] == [kind for kind, _ in reference] == ["liftoff", "top", "landing"]
+    np.testing.assert_allclose(sol.t_events, [t for _, t in reference], rtol=0, atol=1e-9)
 
 
 def test_a_ground_falling_faster_than_g_turns_the_flight_up_again():
@@ -353,6 +402,10 @@ def test_estimate_validation():
         bd.upthrow_estimate(block, response_acceleration=-1.0)
     below = bd.upthrow_estimate(block, response_acceleration=0.9)
     assert not below.lifts_off and below.liftoff_velocity == 0
+    with pytest.raises(ValueError, match="response_acceleration"):
+        bd.upthrow_estimate(block, response_acceleration=True)
+    single = bd.upthrow_estimate(block, response_acceleration=np.float32(2.0))  # numpy floats are numbers
+    assert single.height == pytest.approx(block.static_deflection * 1.5, rel=1e-15)  # eq. 13: u0 (A² - 1) / 2
 
 
 def test_plot_flight_history():

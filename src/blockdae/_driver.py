@@ -26,13 +26,12 @@ import math
 import numpy as np
 
 from .excitation._pieces import accel, accel_rate
-from .model._base import SCALAR
+from .model._base import KNOTS_PER_RADIAN, SCALAR
 
 
 _EPS = np.finfo(float).eps
 _TURN_BISECTIONS = 60  # halves a piece below 1e-18 of its length
 _ULPS = 8  # intervals shorter than this many ulps are not integrated
-_KNOTS_PER_RADIAN = 32  # dense-output knots on sine pieces
 # global error of v in local tolerances: |v'| |t_stop - t_exact| / (rtol max|v| + atol)
 # at every stop on the 18 sample records (two-way mu 0.15, f 0.12, bias 0.03 and
 # one-way mu 0.1) at rtol 1e-10 reaches 1.1 for CVODE and 9.2 for IDA
@@ -242,7 +241,7 @@ class _Run:
         error near 1e-9 of the amplitude (h^4 w^4 / 384); at most the model's own
         ``output_step`` (an oscillator's)."""
         w = self.piece_excitation.highest_frequency
-        return min(1.0 / (_KNOTS_PER_RADIAN * w) if w > 0 else math.inf, self.model.output_step())
+        return min(1.0 / (KNOTS_PER_RADIAN * w) if w > 0 else math.inf, self.model.output_step())
 
     def static_root(self, end):
         """The first guard root in (t, end] [s] of a static mode, located in t alone (the

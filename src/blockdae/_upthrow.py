@@ -2,6 +2,7 @@
 
 import dataclasses
 import math
+from numbers import Real
 
 from .model import SpringSupportedMass
 
@@ -58,10 +59,11 @@ def upthrow_estimate(block: SpringSupportedMass, motion=None, *, response_accele
 
         spectrum = response_spectrum(motion, 1 / block.frequency, block.damping, t_end=t_end)
         response_acceleration = float(spectrum.sa) / block.g
-    if isinstance(response_acceleration, bool) or not isinstance(response_acceleration, (int, float)) \
+    if isinstance(response_acceleration, bool) or not isinstance(response_acceleration, Real) \
             or not math.isfinite(response_acceleration) or response_acceleration < 0:
         raise ValueError(f"response_acceleration={response_acceleration!r} must be a finite number >= 0 [g]")
+    response_acceleration = float(response_acceleration)
     excess = max(response_acceleration**2 - 1, 0.0)
     u0 = block.static_deflection
     velocity = block.g * math.sqrt(excess) / block.omega
-    return UpthrowEstimate(u0, float(response_acceleration), velocity, u0 * excess / 2, velocity / block.g)
+    return UpthrowEstimate(u0, response_acceleration, velocity, u0 * excess / 2, velocity / block.g)

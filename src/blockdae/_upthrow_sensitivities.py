@@ -41,12 +41,21 @@ def _liftoff_velocity(mass, solution, events):
 
 
 def _height(mass, solution, events):
-    """The largest u - u0 of a flight [m]: at a top (u' = 0), or at the liftoff or
-    landing of a flight without one (as :attr:`~blockdae.UpthrowSolution.flights`)."""
-    candidates = [(event.height, i) for i, event in enumerate(solution.events)
-                  if event.kind in ("liftoff", "top", "landing")]
+    """The largest u - u0 over the flights [m], as :attr:`~blockdae.UpthrowSolution.flights`
+    has it: at a top (u' = 0), or at the liftoff or landing of a flight that lands still
+    rising; a flight still rising at t_end has no height yet."""
+    candidates, liftoff = [], None
+    for i, event in enumerate(solution.events):
+        if event.kind == "liftoff":
+            liftoff = i
+        elif event.kind == "top":
+            candidates.append((event.height, i))
+        elif event.kind == "landing" and liftoff is not None:
+            candidates += [(solution.events[liftoff].height, liftoff), (event.height, i)]
+            liftoff = None
     if not candidates:
-        raise ValueError(f"the mass never lifts off before t_end = {solution.t_end:.6g} s: it has no flight height")
+        raise ValueError(f"no flight reaches its top or lands before t_end = {solution.t_end:.6g} s: there is no "
+                         "flight height (a later t_end may give one)")
     _, i = max(candidates)
     return events[i].dy_dp_after[_U] - _static_deflection_gradient(mass)
 

@@ -31,6 +31,15 @@ _EPS = np.finfo(float).eps
 #: most intervals one root search may examine (a degenerate touch of zero by the guard
 #: and its first two derivatives at once); more raises instead of looping
 _MAX_INTERVALS = 10_000
+#: sine forcing closer to resonance than this, sqrt((k - w²)² + (c w)²) / k [-], is taken as
+#: undamped resonance (the particular solution is then off by about this times (w tau)²)
+_AT_RESONANCE = 1e-12
+#: between that and this distance from resonance the particular and free parts cancel and
+#: the closed form would lose about 2e-16 / distance of its digits: refused
+_NEAR_RESONANCE = 1e-6
+#: damped frequency / undamped one below which (damping ratio within 5e-9 of 1) the free
+#: part's D = (...) / w_d loses about 2e-16 / ratio of its digits: refused
+_NEAR_CRITICAL = 1e-4
 
 
 @dataclasses.dataclass(frozen=True)
@@ -70,7 +79,9 @@ class ClosedForm:
                                    D=-self.sigma * self.D - self.w_d * self.C)
 
     def bound(self, a, b) -> float:
-        """An upper bound of |f| on [a, b], 0 <= a <= b [s]."""
+        """An upper bound of |f| on [a, b], 0 <= a <= b [s], term by term: loose where the
+        terms cancel, which :func:`solve_linear` keeps from happening (it refuses forcing
+        near resonance and damping near critical)."""
         poly = sum(abs(c) * b**i for i, c in enumerate(self.poly))
         return (poly + math.hypot(self.A, self.B) + b * math.hypot(self.E, self.F)
                 + math.hypot(self.C, self.D) * math.exp(-self.sigma * a)) * (1 + 8 * _EPS)
@@ -90,21 +101,32 @@ class ClosedForm:
 def solve_linear(k, c, b, coefficients, u, u_rate) -> ClosedForm:
     """u(tau) of u'' + c u' + k u = b - a(tau) from (u, u') at tau = 0, a(tau) =
     p0 + p1 tau + s sin(w tau + phi) (``coefficients``); k > 0 with c² < 4 k (an
-    underdamped oscillator) or k = c = 0 (free flight)."""
+    underdamped oscillator) or k = c = 0 (free flight). Raises ValueError where the
+    parts of the solution would cancel to lose digits: sine forcing within
+    ``_NEAR_RESONANCE`` of resonance but not within ``_AT_RESONANCE`` of it (taken as
+    resonance), and damping within ``_NEAR_CRITICAL`` of critical (as w_d / omega)."""
     p0, p1, s, w, phi = coefficients
     if s != 0 and w == 0:
         p0, s = p0 + s * math.sin(phi), 0.0
     if k > 0:
         A = B = E = F = 0.0
-        det = (k - w**2) ** 2 + (c * w) ** 2
-        if s != 0 and det > 0:
-            A, B = -s * (k - w**2) / det, s * c * w / det
-        elif s != 0:  # undamped resonance: u = s tau cos(w tau + phi) / (2 w)
-            F = s / (2 * w)
-        a1 = -p1 / k
-        a0 = (b - p0 - c * a1) / k
         sigma = 0.5 * c
         w_d = math.sqrt(k - sigma**2)
+        if w_d < _NEAR_CRITICAL * math.sqrt(k):
+            raise ValueError(f"damping ratio {sigma / math.sqrt(k)!r} is within 5e-9 of critical: the exact "
+                             "backend's closed form loses digits there; use backend 'cvode' or 'ida'")
+        det = (k - w**2) ** 2 + (c * w) ** 2
+        distance = math.sqrt(det) / k
+        if s != 0 and distance <= _AT_RESONANCE:  # undamped resonance: u = s tau cos(w tau + phi) / (2 w)
+            F = s / (2 * w)
+        elif s != 0 and distance < _NEAR_RESONANCE:
+            raise ValueError(f"sine forcing at {w!r} rad/s is within {distance:.1e} of the resonance at "
+                             f"{math.sqrt(k)!r} rad/s: the exact backend's closed form loses digits there; "
+                             "use backend 'cvode' or 'ida'")
+        elif s != 0:
+            A, B = -s * (k - w**2) / det, s * c * w / det
+        a1 = -p1 / k
+        a0 = (b - p0 - c * a1) / k
         C = u - (a0 + A * math.sin(phi) + B * math.cos(phi))
         D = (u_rate - (a1 + F * math.cos(phi) + w * (A * math.cos(phi) - B * math.sin(phi))) + sigma * C) / w_d
         return ClosedForm((a0, a1), A, B, w, phi, C, D, sigma, w_d, E, F)
@@ -134,17 +156,24 @@ def _signed(values_a, values_b, bound, length):
     return 0
 
 
-def first_down_crossing(guard: _Guard, a: float, b: float) -> float | None:
-    """The first tau in (a, b] [s] where the guard reaches <= 0 from > 0; None if it
-    does not (a touch of zero that does not go below it is no crossing)."""
+def first_down_crossing(guard: _Guard, a: float, b: float, origin: float = 0.0) -> float | None:
+    """The first tau in [a, b] [s] where the guard reaches <= 0 from > 0; None if it
+    does not. A touch of zero at a minimum that does not go below it is no crossing; a
+    guard already <= 0 at a and heading down (f' < 0, or f' = 0 and f'' < 0) crosses at
+    a. ``origin``: the time [s] at tau = 0, which sets the resolution of the search."""
     f, f1, f2, f3 = guard.f
     budget = [_MAX_INTERVALS]
+    resolution = 4 * _EPS * max(abs(origin) + abs(b), 1.0)  # [s]: a few ulps of the time
+    if f(a) <= 0 and (f1(a) < 0 or (f1(a) == 0 and f2(a) < 0)):
+        return a
 
-    def monotone_part(lo, f_lo, hi, f_hi, decreasing):
+    def monotone_part(lo, f_lo, hi, f_hi, decreasing, minimum_at_hi):
+        """The crossing on [lo, hi] where f is monotone; at a minimum at hi, f = 0 is a
+        touch, no crossing."""
         if not decreasing or not (f_lo > 0 >= f_hi):
             return None
         if f_hi == 0:
-            return hi
+            return None if minimum_at_hi else hi
         root = brentq(f, lo, hi, xtol=1e-300, rtol=4 * _EPS)
         while f(root) > 0 and root < hi:  # the first point past the crossing
             root = min(np.nextafter(root, math.inf), hi)
@@ -160,13 +189,15 @@ def first_down_crossing(guard: _Guard, a: float, b: float) -> float | None:
         d_lo, d_hi = f1(lo), f1(hi)
         slope_sign = _signed(d_lo, d_hi, f2.bound(lo, hi), length)
         if slope_sign:
-            return monotone_part(lo, f_lo, hi, f_hi, slope_sign < 0)
-        if _signed(f2(lo), f2(hi), f3.bound(lo, hi), length) and d_lo * d_hi < 0:
+            return monotone_part(lo, f_lo, hi, f_hi, slope_sign < 0, d_hi == 0 and f2(hi) > 0)
+        if _signed(f2(lo), f2(hi), f3.bound(lo, hi), length):  # f' monotone
+            if d_lo * d_hi >= 0:  # f' of one sign inside: f monotone
+                return monotone_part(lo, f_lo, hi, f_hi, d_lo + d_hi < 0, d_hi == 0)
             turn = brentq(f1, lo, hi, xtol=1e-300, rtol=4 * _EPS)
             f_turn = f(turn)
-            first = monotone_part(lo, f_lo, turn, f_turn, d_lo < 0)
-            return first if first is not None else monotone_part(turn, f_turn, hi, f_hi, d_hi < 0)
-        if length <= 4 * _EPS * max(hi, 1e-300):
+            first = monotone_part(lo, f_lo, turn, f_turn, d_lo < 0, True)
+            return first if first is not None else monotone_part(turn, f_turn, hi, f_hi, d_hi < 0, False)
+        if length <= resolution:
             return hi if f_lo > 0 >= f_hi else None
         mid = lo + 0.5 * length
         f_mid = f(mid)
@@ -201,7 +232,7 @@ class ClosedFormIntegrator(AbstractIntegrator):
         a, b = self.t - self.t_start, t_out - self.t_start
         best, index = None, None
         for i, guard in enumerate(self.guards):
-            root = first_down_crossing(guard, a, b if best is None else best)
+            root = first_down_crossing(guard, a, b if best is None else best, self.t_start)
             if root is not None and (best is None or root < best):
                 best, index = root, i
         tau = b if best is None else best

@@ -37,14 +37,11 @@ import math
 import numpy as np
 
 from .._units import STANDARD_GRAVITY
-from ._base import SCALAR, AbstractHybridModel
+from ._base import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
 from ._checks import set_real_fields
 from ._support import SpringSupport
 
 _U, _V = range(2)
-#: dense-output knots per radian of the support's oscillation (cubic Hermite error near
-#: 1e-9 of the amplitude: h^4 omega^4 / 384 with h = 1 / (32 omega))
-_KNOTS_PER_RADIAN = 32
 
 
 class UpthrowMode(enum.IntEnum):
@@ -222,7 +219,7 @@ class SpringSupportedMass(AbstractHybridModel):
 
     def output_step(self):
         """Largest gap between dense-output knots [s]: 1 / (32 omega)."""
-        return 1.0 / (_KNOTS_PER_RADIAN * self.omega)
+        return 1.0 / (KNOTS_PER_RADIAN * self.omega)
 
     def guard_rates(self, mode, guard_index, t, y, excitation):
         """(rate, curvature) of the guard from u', u'' and u''' of the flow."""

@@ -64,6 +64,9 @@ class SpringSupport:
         set_real_fields(self, ("frequency", "damping"))
         if self.frequency <= 0:
             raise ValueError(f"frequency={self.frequency!r} must be > 0 [Hz]")
+        if not 0 < self.omega * self.omega < math.inf:
+            raise ValueError(f"frequency={self.frequency!r} Hz is out of range: omega² = (2 pi f)² [1/s²] "
+                             "must be a finite number > 0")
         if not 0 <= self.damping < 1:
             raise ValueError(f"damping={self.damping!r} must lie in [0, 1)")
 
