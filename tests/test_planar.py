@@ -42,6 +42,20 @@ def test_x_only_motion_reduces_to_the_1d_block(example):
     assert np.all(sol.u_y == 0.0)  # nothing pushes it off the x axis, not even rounding
 
 
+@pytest.mark.parametrize("backend", ["cvode", "ida", "jax"])
+@pytest.mark.parametrize("a1", [-0.5729396696, -0.5630396696])
+def test_a_slide_whose_speed_dips_below_zero_within_a_sample_stops(backend, a1):
+    """g = 1, mu 0.5, f 0.3 under a_x = (0, a1, -0.1, -0.4, 0, 0), dt 0.1 s: the speed of
+    the slide without a stop would dip below zero (to -9e-6 and -9e-4 m/s) and come back
+    within the third sample; the block must stop where the exact 1-D closed forms say
+    (0.264 s, 0.242 s). Every backend stepped over it (stop 0.1 s late, u 15 % large)."""
+    record = bd.Record(np.array([0.0, a1, -0.1, -0.4, 0.0, 0.0]), 0.1)
+    ref = bd.simulate(bd.SlidingBlock(mu=0.5, mu_kinetic=0.3, g=1.0), record, t_end=0.5)
+    sol = bd.simulate(bd.PlanarBlock(mu=0.5, mu_kinetic=0.3, g=1.0), bd.BaseMotion(record), t_end=0.5,
+                      backend=backend)
+    assert_reduces(sol, ref)
+
+
 @pytest.mark.parametrize("stem", ["Kobe_1995_TAK-090", "Northridge_1994_PAC-175"])
 def test_a_record_along_x_reduces_to_the_1d_block(stem):
     record = load_sample_record(stem)
