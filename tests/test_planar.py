@@ -56,6 +56,22 @@ def test_a_slide_whose_speed_dips_below_zero_within_a_sample_stops(backend, a1):
     assert_reduces(sol, ref)
 
 
+@pytest.mark.parametrize("backend", ["cvode", "ida"])
+def test_guards_that_only_touch_zero_at_a_sample_are_no_events(backend):
+    """g = 1. a_x = (0, 0.5, 0, 0), mu 0.5: the demand touches the friction circle at
+    0.1 s and falls back (the exact 1-D backend: no events; it was a slip and a stop at
+    0.1 s). a_z = (0, -1, 0, 0): n = g + a_z touches 0 at 0.1 s and rises again, so the
+    block stays on the base (it was a flight that never landed, the gap going to -0.012 m)."""
+    touch = bd.Record(np.array([0.0, 0.5, 0.0, 0.0]), 0.1)
+    assert bd.simulate(bd.SlidingBlock(mu=0.5, g=1.0), touch).events == ()
+    assert bd.simulate(bd.SlidingBlock(mu=0.5, g=1.0), touch, backend=backend).events == ()
+    assert bd.simulate(bd.PlanarBlock(mu=0.5, g=1.0), bd.BaseMotion(touch), backend=backend).events == ()
+    still = bd.Record(np.zeros(4), 0.1)
+    unload = bd.BaseMotion(still, None, bd.Record(np.array([0.0, -1.0, 0.0, 0.0]), 0.1))
+    sol = bd.simulate(bd.PlanarBlock(mu=0.5, g=1.0), unload, t_end=0.3, backend=backend)
+    assert sol.events == () and np.all(sol(np.linspace(0.0, 0.3, 31))[4] == 0.0)
+
+
 @pytest.mark.parametrize("stem", ["Kobe_1995_TAK-090", "Northridge_1994_PAC-175"])
 def test_a_record_along_x_reduces_to_the_1d_block(stem):
     record = load_sample_record(stem)

@@ -247,13 +247,16 @@ class _Run:
         """The first guard root in (t, end] [s] of a static mode, located in t alone (the
         state is constant): (time, guard index), or None. The model's ``turn_rate``
         splits the piece where a guard may turn, so that each guard is monotone on
-        both parts and a root is bracketed where it goes from > 0 to <= 0."""
+        both parts and a root is bracketed where it goes from > 0 to < 0."""
         guards = lambda t: self.model.guards(self.mode, t, self.y, self.piece_excitation, SCALAR)
         turn = self.turning_point(end)
         times = (self.t, end) if turn is None else (self.t, turn, end)
         for a, b in zip(times[:-1], times[1:]):
             at_a, at_b = guards(a), guards(b)
-            crossing = [i for i in range(len(at_b)) if at_a[i] > 0 >= at_b[i]]
+            # strictly below zero at b: a guard that only reaches zero at the turn touches
+            # it; one that reaches zero at the end of the piece is left to the next
+            # piece's right-hand limits (enter_piece's mode at rest)
+            crossing = [i for i in range(len(at_b)) if at_a[i] > 0 > at_b[i]]
             if crossing:
                 return min((_bracketed_root(lambda t: guards(t)[i], a, b), i) for i in crossing)
         return None

@@ -269,14 +269,15 @@ class PlanarBlock(AbstractHybridModel):
         return PlanarMode.STICK
 
     def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
-        """Stick or slip: n reaching zero -> flight; stick: the circle reached -> slip
+        """Stick or slip: n reaching zero and falling -> flight (a touch of zero keeps the
+        mode); stick: the circle reached -> slip
         (flight where the demand is zero);
         a stop -> stick, unless the demand leaves the circle within ``time_tol`` [s]
         (it then slides on along the demand). Landing -> a rebound (flight) while it is
         above ``bounce_threshold`` (on a rigid support), else slip if still moving, else
         the mode at rest."""
-        if mode != PlanarMode.FLIGHT and guard_index == 0:
-            return PlanarMode.FLIGHT
+        if mode != PlanarMode.FLIGHT and guard_index == 0:  # n reached zero: falling on, or a touch
+            return PlanarMode.FLIGHT if self.lifts_off(t, excitation, y) else mode
         if mode == PlanarMode.STICK:
             (sx, sy), _ = self.demand(t, excitation)
             # with no demand the circle shrinks to its centre only as n reaches zero: that
