@@ -251,12 +251,14 @@ class _Run:
         guards = lambda t: self.model.guards(self.mode, t, self.y, self.piece_excitation, SCALAR)
         turn = self.turning_point(end)
         times = (self.t, end) if turn is None else (self.t, turn, end)
+        at_end = guards(end)
         for a, b in zip(times[:-1], times[1:]):
             at_a, at_b = guards(a), guards(b)
-            # strictly below zero at b: a guard that only reaches zero at the turn touches
-            # it; one that reaches zero at the end of the piece is left to the next
-            # piece's right-hand limits (enter_piece's mode at rest)
-            crossing = [i for i in range(len(at_b)) if at_a[i] > 0 > at_b[i]]
+            # zero at b is a crossing only at the turn, and only if the guard goes on below
+            # zero (else it touches zero there); zero at the end of the piece is left to
+            # the next piece's right-hand limits (enter_piece's mode at rest)
+            crossing = [i for i in range(len(at_b))
+                        if at_a[i] > 0 and (at_b[i] < 0 or (at_b[i] == 0 and b < end and at_end[i] < 0))]
             if crossing:
                 return min((_bracketed_root(lambda t: guards(t)[i], a, b), i) for i in crossing)
         return None
@@ -264,7 +266,7 @@ class _Run:
     def turning_point(self, end):
         """The time in (t, end) [s] where the model's ``turn_rate`` changes sign (it is
         monotone on a piece), so that the guards are monotone between stops; None if
-        there is none or the mode has no turn rate."""
+        there is none or the mode has no turn rate there (None at any time asked)."""
         rate = lambda t: self.model.turn_rate(self.mode, t, self.y, self.piece_excitation, SCALAR)
         lo, hi = self.t, end
         first = rate(lo)
@@ -273,14 +275,16 @@ class _Run:
         sign_lo = math.copysign(1.0, first)
         # before the turn: the rate strictly of the sign at lo (a zero of either sign,
         # +0.0 or -0.0, counts as turned, so that a(t) -> -a(t) mirrors the turn exactly)
-        before = lambda t: sign_lo * rate(t) > 0
-        if before(hi):
+        signed = lambda t: None if (value := rate(t)) is None else sign_lo * value > 0
+        at_end = signed(hi)
+        if at_end is None or at_end:
             return None
         for _ in range(_TURN_BISECTIONS):
             mid = 0.5 * (lo + hi)
-            if mid in (lo, hi):
-                break
-            lo, hi = (mid, hi) if before(mid) else (lo, mid)
+            before = signed(mid)
+            if mid in (lo, hi) or before is None:
+                return None if before is None else (hi if hi < end else None)
+            lo, hi = (mid, hi) if before else (lo, mid)
         return hi if hi < end else None
 
     def on_guard(self, index):

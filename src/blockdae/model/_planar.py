@@ -394,11 +394,11 @@ class PlanarBlock(AbstractHybridModel):
 
     def turn_rate(self, mode, t, y, excitation, xp=np):
         """Stick: the rate of (mu n)² - |sigma|² (linear in t on a linear piece), where
-        the stick guards may turn. Flight: w' (the gap turns at its top). Slip: s' with
-        the slip direction held (linear in t on a linear piece), so that s, which may
-        dip below zero and come back within one sample, is stopped at its minimum (exact
-        for a slide along a line; for a turning slide, a split near it). On a spring:
-        none (the guards follow the oscillating state; :meth:`output_step` resolves it)."""
+        the stick guards may turn. Flight: w' (the gap turns at its top). Slip along a
+        line (the direction does not turn): s' (linear in t on a linear piece), so that
+        s, which may dip below zero and come back within one sample, is stopped at its
+        minimum; a turning slide: none. On a spring: none (the guards follow the
+        oscillating state; :meth:`output_step` resolves it)."""
         if self.support.compliant:
             return None
         if mode == PlanarMode.STICK:
@@ -407,7 +407,8 @@ class PlanarBlock(AbstractHybridModel):
             return 2 * (self.mu**2 * n * n_rate - (sx * rx + sy * ry))
         if mode == PlanarMode.FLIGHT:
             return y[_WD]
-        return self.flow(mode, t, y, excitation, xp)[_S]
+        rate = self.flow(mode, t, y, excitation, xp)
+        return rate[_S] if rate[_CX] == rate[_CY] == 0 else None
 
     def output_step(self):
         """1 / (32 omega) [s] on a spring (its oscillation), else inf."""
