@@ -251,14 +251,13 @@ class _Run:
         guards = lambda t: self.model.guards(self.mode, t, self.y, self.piece_excitation, SCALAR)
         turn = self.turning_point(end)
         times = (self.t, end) if turn is None else (self.t, turn, end)
-        at_end = guards(end)
         for a, b in zip(times[:-1], times[1:]):
             at_a, at_b = guards(a), guards(b)
             # zero at b is a crossing only at the turn, and only if the guard goes on below
             # zero (else it touches zero there); zero at the end of the piece is left to
             # the next piece's right-hand limits (enter_piece's mode at rest)
             crossing = [i for i in range(len(at_b))
-                        if at_a[i] > 0 and (at_b[i] < 0 or (at_b[i] == 0 and b < end and at_end[i] < 0))]
+                        if at_a[i] > 0 and (at_b[i] < 0 or (at_b[i] == 0 and b < end and guards(end)[i] < 0))]
             if crossing:
                 return min((_bracketed_root(lambda t: guards(t)[i], a, b), i) for i in crossing)
         return None
@@ -281,9 +280,11 @@ class _Run:
             return None
         for _ in range(_TURN_BISECTIONS):
             mid = 0.5 * (lo + hi)
+            if mid in (lo, hi):
+                break
             before = signed(mid)
-            if mid in (lo, hi) or before is None:
-                return None if before is None else (hi if hi < end else None)
+            if before is None:
+                return None
             lo, hi = (mid, hi) if before else (lo, mid)
         return hi if hi < end else None
 

@@ -36,7 +36,7 @@ import math
 import numpy as np
 
 from .._units import STANDARD_GRAVITY
-from ._base import SCALAR, AbstractHybridModel
+from ._base import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
 from ._checks import set_real_fields
 from ._support import RigidSupport, SpringSupport, parse_support
 
@@ -413,7 +413,7 @@ class PlanarBlock(AbstractHybridModel):
     def output_step(self):
         """1 / (32 omega) [s] on a spring (its oscillation), else inf."""
         if self.support.compliant:
-            return 1.0 / (32 * self.support.omega)
+            return 1.0 / (KNOTS_PER_RADIAN * self.support.omega)
         return math.inf
 
     def guard_rates(self, mode, guard_index, t, y, excitation):
