@@ -5,6 +5,7 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
 from ._crosscheck import CrossCheck, crosscheck
+from ._driver import InconsistentStateError, SolverError
 from ._examples import SeedExample, seed_examples
 from ._final import FinalNumbers, simulate_final
 from ._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
@@ -32,7 +33,7 @@ from .studies import load_study, save_study, study, summary as study_summary
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
-    "check_peak_acceleration", "read_motion", "read_record", "simulate",
+    "check_peak_acceleration", "read_motion", "read_record", "simulate", "InconsistentStateError", "SolverError",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",
     "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",
     "upthrow_estimate",

@@ -22,10 +22,12 @@ every :class:`~blockdae.model.AbstractHybridModel`.
 
 import abc
 import math
+import sys
+import time
 
 import numpy as np
 
-from .excitation._pieces import accel, accel_rate
+from .excitation._pieces import accel, accel_rate, monotone_rate, piece_direction
 from .model._base import KNOTS_PER_RADIAN, SCALAR
 
 
@@ -36,6 +38,11 @@ _ULPS = 8  # intervals shorter than this many ulps are not integrated
 # at every stop on the 18 sample records (two-way mu 0.15, f 0.12, bias 0.03 and
 # one-way mu 0.1) at rtol 1e-10 reaches 1.1 for CVODE and 9.2 for IDA
 _V_ERROR_FACTOR = 10.0
+# a state contradicts its mode only beyond the velocity error and this much of the
+# largest speed [-]: closed forms (the exact upthrow backend, tolerance 0) round
+_ROUNDING = 1e-12
+#: a run shows its progress on a terminal after this long [s], refreshed this often [s]
+PROGRESS_DELAY, PROGRESS_INTERVAL = 2.0, 0.5
 
 
 class PieceExcitation:
@@ -44,23 +51,40 @@ class PieceExcitation:
     rules inside solver callbacks. ``acceleration``/``acceleration_rate`` give the first
     component (a 1-D motion), ``component``/``component_rate`` any of them."""
 
-    __slots__ = ("t0", "coefficients")
+    __slots__ = ("t0", "h", "coefficients", "directions", "project_rates")
 
-    def __init__(self, n_components=1):
-        self.t0, self.coefficients = 0.0, ((0.0,) * 5,) * n_components
+    def __init__(self, n_components=1, project_rates=True):
+        self.t0, self.h, self.coefficients = 0.0, math.inf, ((0.0,) * 5,) * n_components
+        self.directions, self.project_rates = (0.0,) * n_components, project_rates
 
-    def set(self, t0, coefficients):
-        """Switch to the piece starting at ``t0`` [s] with one (p0, p1, s, w, phi) per component."""
-        self.t0 = float(t0)
+    def set(self, t0, coefficients, h=math.inf):
+        """Switch to the piece [t0, t0 + h] [s] with one (p0, p1, s, w, phi) per component."""
+        self.t0, self.h = float(t0), float(h)
         self.coefficients = tuple(tuple(float(c) for c in component) for component in coefficients)
+        project = self.project_rates and self.h < math.inf
+        self.directions = tuple(float(piece_direction(c, self.h)) if project else 0.0 for c in self.coefficients)
+
+    def local_time(self, t):
+        """``t`` [s] from the piece's start, at most its length: the piece's end ``t0 +
+        h`` may round to a time whose distance from ``t0`` exceeds ``h`` (0.05 - 0.04 =
+        0.010000000000000002), where a(t) would overshoot the next sample by an ulp, as
+        the exact backend's local times never do."""
+        return min(t - self.t0, self.h)
 
     def component(self, index, t):
         """Component ``index`` of the base acceleration at ``t`` [m/s²]."""
-        return accel(*self.coefficients[index], t - self.t0, math)
+        return accel(*self.coefficients[index], self.local_time(t), math)
 
     def component_rate(self, index, t):
-        """Its rate just after ``t`` [m/s³]."""
-        return accel_rate(*self.coefficients[index], t - self.t0, math)
+        """Its rate just after ``t`` [m/s³], with rounding projected out (unless built with
+        ``project_rates=False``): a component is monotone on a piece, so a rate against
+        its direction (a cosine that rounds to 6e-17 at an extremum) is zero, and a
+        demand that touches a threshold at an extremum turns back, as the exact backend
+        decides. The integrators' callbacks get the rates as the closed form gives
+        them: a flow is no decision (IDA's consistent start moves its events by 1e-9 s
+        on Elms's pulse with vertical shaking when F' is 1e-14 instead of 0)."""
+        rate = accel_rate(*self.coefficients[index], self.local_time(t), math)
+        return monotone_rate(rate, self.directions[index], SCALAR)
 
     def acceleration(self, t):
         return self.component(0, t)
@@ -76,6 +100,11 @@ class PieceExcitation:
 
 class SolverError(RuntimeError):
     """An integrator failed (negative flag); the message names time, mode and flag."""
+
+
+class InconsistentStateError(RuntimeError):
+    """The integrated state contradicts its mode (a slide moving against its direction):
+    a missed event; the message names the time, the mode and the values."""
 
 
 class AbstractIntegrator(abc.ABC):
@@ -133,11 +162,46 @@ def drive(model, excitation, horizon, integrator_factory, backend_name, max_even
                velocity_tolerance, trace)
     t0, h = components[0].t0, components[0].h
     starts = np.append(t0[1:], t0[-1] + h[-1])
-    for k in range(len(t0)):
-        run.piece(t0[k], starts[k], tuple(tuple(c[k] for c in p[2:]) for p in components))
-    if horizon.until_rest:
-        run.tail_to_rest(float(starts[-1]))
+    progress = Progress(backend_name, float(starts[-1]))
+    try:
+        for k in range(len(t0)):
+            run.piece(t0[k], starts[k], h[k], tuple(tuple(c[k] for c in p[2:]) for p in components))
+            progress.update(run.t, len(run.events))
+        if horizon.until_rest:
+            run.tail_to_rest(float(starts[-1]))
+    finally:
+        progress.close()
     return run.solution(backend_name)
+
+
+class Progress:
+    """One line on a terminal (stderr) for a long run: the time reached, the events and
+    the wall time, shown once a run has taken :data:`PROGRESS_DELAY` [s] and refreshed
+    every :data:`PROGRESS_INTERVAL` [s]; nothing where stderr is not a terminal."""
+
+    def __init__(self, label, t_end):
+        self.label, self.t_end = label, t_end
+        self.show = sys.stderr.isatty()
+        self.start = self.last = time.monotonic()
+        self.shown = False
+
+    def update(self, t, n_events):
+        """The run has reached ``t`` [s] with ``n_events`` events."""
+        if not self.show:
+            return
+        now = time.monotonic()
+        if now - self.start < PROGRESS_DELAY or (self.shown and now - self.last < PROGRESS_INTERVAL):
+            return
+        self.last, self.shown = now, True
+        share = f" ({100 * t / self.t_end:.0f} %)" if self.t_end > 0 else ""
+        sys.stderr.write(f"\r{self.label}: t = {t:.6g} s of {self.t_end:.6g} s{share}, {n_events:,} events, "
+                         f"{now - self.start:.0f} s elapsed")
+        sys.stderr.flush()
+
+    def close(self):
+        """End the line, if one was shown."""
+        if self.shown:
+            sys.stderr.write("\n")
 
 
 class _Run:
@@ -147,8 +211,9 @@ class _Run:
                  velocity_tolerance, trace=None):
         self.model, self.resolution, self.trace = model, event_resolution, trace
         self.velocity_tolerance, self.v_max = velocity_tolerance, 0.0
-        self.piece_excitation = PieceExcitation(n_components)
-        self.integrator = integrator_factory(model, self.piece_excitation)
+        self.piece_excitation = PieceExcitation(n_components)  # the driver's decisions
+        self.flow_excitation = PieceExcitation(n_components, project_rates=False)  # the integrator's
+        self.integrator = integrator_factory(model, self.flow_excitation)
         self.cap = max_events_at_one_instant
         self.n_states = len(model.state_names)
         self.mode, self.y = model.initial_mode, np.zeros(self.n_states)
@@ -176,9 +241,9 @@ class _Run:
             self.trace.append(step)
 
     # ---- the loop ----------------------------------------------------------
-    def enter_piece(self, t0, coefficients):
-        """Switch to the piece starting at ``t0`` [s]; a block at rest re-takes the mode
-        the right-hand limits of the excitation give.
+    def enter_piece(self, t0, h, coefficients):
+        """Switch to the piece [t0, t0 + h] [s]; a block at rest re-takes the mode the
+        right-hand limits of the excitation give.
 
         The integrator restarts at every piece, in every mode: a multistep history
         carried across a kink or jump of a(t) fits one polynomial to two pieces
@@ -187,7 +252,8 @@ class _Run:
         slope jumps there (from IDA's own first step: 8.8e-9 s restarting in stick
         only, 1.0e-9 s in every mode).
         """
-        self.piece_excitation.set(t0, coefficients)
+        self.piece_excitation.set(t0, coefficients, h)
+        self.flow_excitation.set(t0, coefficients, h)
         self.knots.set_right_rate(self.rate(self.mode, self.t, self.y))
         self.restarted = True
         if self.model.at_rest(self.mode, self.y):
@@ -196,9 +262,9 @@ class _Run:
                 self.y = self.model.rest_state(self.y)
                 self.log_event(float(t0), rest)
 
-    def piece(self, t0, end, coefficients):
-        """Integrate over one piece [t0, end] [s] of the excitation."""
-        self.enter_piece(t0, coefficients)
+    def piece(self, t0, end, h, coefficients):
+        """Integrate over one piece [t0, end] [s] of the excitation, of local length ``h`` [s]."""
+        self.enter_piece(t0, h, coefficients)
         self.advance_to(float(end))
 
     def advance_to(self, end, until_rest=False):
@@ -215,6 +281,13 @@ class _Run:
                 turn = self.turning_point(end)
                 continue
             if self.restarted:
+                index = self.guard_left_at_once()
+                if index is not None:
+                    before = self.mode
+                    self.on_guard(index)
+                    turn = self.turning_point(end)
+                    if self.mode != before:
+                        continue
                 self.integrator.restart(self.mode, self.t, self.y)
                 self.restarted = False
             target = end if turn is None or turn <= self.t else turn
@@ -224,16 +297,36 @@ class _Run:
                 continue
             t_out = min(target, self.t + self.output_step())
             t, y, root = self.integrator.step(t_out, target)
+            if root is not None and float(t) >= end:
+                # a guard reaching zero at the end of the piece is left to the next piece's
+                # right-hand limits (``guard_left_at_once``), as in a static mode: n
+                # touching zero at a sample where a_z turns is no liftoff
+                root, t_out = None, end
             t_from, y_from = self.t, self.y
             self.t, self.y = (t_out if root is None else float(t)), np.array(y[:self.n_states], dtype=float)
             self.record("flow", self.mode, t_from, y_from, self.t, self.current_piece())
             self.v_max = max(self.v_max, self.model.speed(self.y))
+            self.check_consistent(t_from)
             if root is None:
                 rate = self.rate(self.mode, self.t, self.y)
                 self.knots.add(self.t, self.y, self.mode, rate, rate)
             else:
                 self.on_guard(root)
                 turn = self.turning_point(end)
+
+    def guard_left_at_once(self):
+        """The first guard of the current mode that is at or below zero and falling as a
+        flow starts (a slide entered at a sample where its velocity turns against it at
+        once): it is reached now. An integrator would not see it: its roots are sign
+        changes, and a guard that starts at zero has none (SUNDIALS: "root functions
+        identically 0"). None if there is none."""
+        values = self.model.guards(self.mode, self.t, self.y, self.piece_excitation, SCALAR)
+        for index, value in enumerate(values):
+            if value <= 0:
+                rate, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
+                if rate < 0 or (rate == 0 and curvature < 0):
+                    return index
+        return None
 
     def output_step(self):
         """Largest gap between knots [s]: cubic Hermite is exact for the cubic u of a
@@ -300,14 +393,30 @@ class _Run:
         if after != before or model.guard_restarts(before, index):
             self.log_event(self.t, after)
 
+    def velocity_error(self):
+        """The error [m/s] of the integrated velocities: ``_V_ERROR_FACTOR`` local tolerances."""
+        rtol, atol = self.velocity_tolerance
+        return _V_ERROR_FACTOR * (rtol * self.v_max + atol)
+
+    def check_consistent(self, t_from):
+        """Raise :class:`InconsistentStateError` if the state just integrated from
+        ``t_from`` [s] contradicts its mode beyond the velocity error (the model's
+        ``contradiction``): a missed event must never become a returned result."""
+        tolerance = self.velocity_error() + _ROUNDING * self.v_max
+        problem = self.model.contradiction(self.mode, self.y, tolerance)
+        if problem is not None:
+            raise InconsistentStateError(
+                f"at t = {self.t:.12g} s (integrated from {t_from:.12g} s) the state contradicts mode "
+                f"{self.mode.name}: {problem} (beyond the velocity error {tolerance:.3g} m/s); "
+                f"state {dict(zip(self.model.state_names, map(float, self.y)))}: a missed event, please report")
+
     def stop_uncertainty(self, index):
         """How far [s] the located root of guard ``index`` may lie from the true one, at
         least the event resolution. With the error e of the guard (``_V_ERROR_FACTOR``
         local tolerances of the velocities) and the guard's rate g' and curvature g''
         from the model, the root moves by the d that solves |g'| d + |g''| d²/2 = e:
         e / |g'| at a crossing, sqrt(2 e / |g''|) at a graze."""
-        rtol, atol = self.velocity_tolerance
-        error = _V_ERROR_FACTOR * (rtol * self.v_max + atol)
+        error = self.velocity_error()
         slope, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
         slope, curvature = abs(slope), abs(curvature)
         if slope == curvature == 0:  # a guard that does not move: its root is where it was found
@@ -333,7 +442,7 @@ class _Run:
     def tail_to_rest(self, t_end):
         """After the excitation (zero acceleration): run until the model is at rest in a
         static mode, within the model's bound on the time that takes."""
-        self.enter_piece(t_end, ((0.0,) * 5,) * len(self.piece_excitation.coefficients))
+        self.enter_piece(t_end, math.inf, ((0.0,) * 5,) * len(self.piece_excitation.coefficients))
         if self.model.is_static(self.mode):
             return
         bound = self.t + self.model.time_to_rest(self.mode, self.y)

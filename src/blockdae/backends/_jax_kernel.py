@@ -20,7 +20,7 @@ import jax
 import jax.numpy as jnp
 import optimistix as optx
 
-from ..excitation._pieces import accel, accel_rate, rebase
+from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction, rebase
 from ..model import comes_to_rest, demand, relative_acceleration, slip_constant, stick_guards
 from ._exact_kernel import Params, _mode_after_stop, _Rules, onset_delta
 
@@ -73,25 +73,27 @@ class Flags(NamedTuple):
 
 def _rhs(tau, y, args):
     """dy/dtau = (v, dv/dtau) by the model's flow [m/s, m/s²]."""
-    cf, _, mode, (p, _, _) = args
+    cf, _, mode, (p, _, _), _ = args
     return y[1], relative_acceleration(mode, accel(*cf, tau, jnp), p.bias, p.f, p.g, jnp)
 
 
 def _stick_guards(tau, args):
     """(mu g - sigma, mu g + sigma) [m/s²]; a disallowed direction's guard is 1."""
-    cf, _, _, (p, allow_neg, allow_pos) = args
+    cf, _, _, (p, allow_neg, allow_pos), _ = args
     return stick_guards(demand(accel(*cf, tau, jnp), p.bias, p.g), p.mu, p.g, allow_neg, allow_pos, jnp)
 
 
 def _guard(t, y, args, **_):
     """The one guard of the current mode, left when it crosses zero downwards.
 
-    Stick: the nearer of its two thresholds (on a monotone piece at most one can be
-    reached); slip: mode * v [m/s].
+    Stick: the threshold a(t) moves towards (a is monotone on a piece, so at most that
+    one can be reached; a demand that starts on the other one, a touch, leaves it);
+    the nearer one on a flat piece; slip: mode * v [m/s].
     """
-    _, _, mode, _ = args
+    _, _, mode, _, direction = args
     to_neg, to_pos = _stick_guards(t, args)  # t: local time [s]
-    return jnp.where(mode == 0, jnp.minimum(to_neg, to_pos), mode * y[1])
+    stick = jnp.where(direction > 0, to_neg, jnp.where(direction < 0, to_pos, jnp.minimum(to_neg, to_pos)))
+    return jnp.where(mode == 0, stick, mode * y[1])
 
 
 def _segment_end(cfg, args, tau, h):
@@ -100,7 +102,7 @@ def _segment_end(cfg, args, tau, h):
     In slip, the turning point of v (dv/dt = c - a = 0) if it lies inside: v is then
     monotone on every segment, so no guard root can hide between two steps.
     """
-    cf, c, mode, _ = args
+    cf, c, mode, _, _ = args
     rate_start, rate_end = _rhs(tau, (0.0, 0.0), args)[1], _rhs(h, (0.0, 0.0), args)[1]
     d_turn = onset_delta(rebase(*cf, tau), h - tau, c, cfg.is_sine)
     turns = (mode != 0) & (rate_start * rate_end < 0) & (tau < tau + d_turn) & (tau + d_turn < h)
@@ -120,20 +122,30 @@ def _solve_segment(cfg, args, tau, h, y0):
 
 def _polish_onset(args, tau_root):
     """Newton step on the reached stick guard; returns (tau [s], mode after)."""
-    cf, _, _, (p, _, _) = args
+    cf, _, _, (p, _, _), _ = args
     sigma = demand(accel(*cf, tau_root, jnp), p.bias, p.g)
     to_neg = sigma > 0  # guard 0 (mu g - sigma) -> slip-, guard 1 (mu g + sigma) -> slip+
     active = lambda t: _stick_guards(t, args)[jnp.where(to_neg, 0, 1)]
     value, slope = jax.jvp(active, (tau_root,), (jnp.ones_like(tau_root),))
     step = jnp.where(slope != 0, value / jnp.where(slope != 0, slope, 1.0), 0.0)
-    return tau_root - step, jnp.where(to_neg, -1, 1)
+    return _newton(tau_root, step), jnp.where(to_neg, -1, 1)
 
 
 def _polish_stop(args, tau_root, u, v):
     """Newton step on v = 0 along the flow; returns (tau [s], u [m])."""
     _, rate = _rhs(tau_root, (u, v), args)
     step = jnp.where(rate != 0, v / jnp.where(rate != 0, rate, 1.0), 0.0)
-    return tau_root - step, u - 0.5 * v * step
+    return _newton(tau_root, step), u - 0.5 * v * step
+
+
+def _newton(tau_root, step):
+    """``tau_root`` [s] moved by the Newton ``step`` [s], its value kept within the
+    bisection's tolerance (at a graze the slope vanishes and a full step would leave
+    the bracket: 1.6e-7 s off at a demand one ulp over mu g) and its derivative (the
+    implicit function theorem at the guard) whole."""
+    bracket = _ROOT_FINDER.atol + _ROOT_FINDER.rtol * jnp.abs(tau_root)
+    value = jnp.clip(jax.lax.stop_gradient(step), -bracket, bracket)
+    return tau_root - value - (step - jax.lax.stop_gradient(step))
 
 
 def _segment(cfg, rules, cf, t0, h, tau, u, v, mode):
@@ -144,7 +156,7 @@ def _segment(cfg, rules, cf, t0, h, tau, u, v, mode):
     """
     p = rules.params
     c = slip_constant(mode, p.bias, p.f, p.g)
-    args = (cf, c, mode, (p, rules.allow_neg, rules.allow_pos))
+    args = (cf, c, mode, (p, rules.allow_neg, rules.allow_pos), piece_direction(cf, h, jnp))
     t_stop = _segment_end(cfg, args, tau, h)
     sol = _solve_segment(cfg, args, tau, t_stop, (u, v))
     tau_e, u_e, v_e = sol.ts[-1], sol.ys[0][-1], sol.ys[1][-1]
@@ -188,7 +200,7 @@ def _advance_piece(cfg, rules, carry, piece, emit_end=True):
     cf = tuple(x * p.scale for x in piece[2:5]) + tuple(piece[5:7])
     # at the piece start a block at rest takes the mode the right-hand limits of a give
     sigma0 = demand(accel(*cf, 0.0, jnp), p.bias, p.g)
-    rate0 = accel_rate(*cf, 0.0, jnp)
+    rate0 = monotone_rate(accel_rate(*cf, 0.0, jnp), piece_direction(cf, h, jnp), jnp)
     at_rest = (state.mode == 0) | (state.v == 0)
     mode = jnp.where(at_rest, rules.at_rest(sigma0, rate0), state.mode)
     changed = mode != state.mode

@@ -63,6 +63,19 @@ def accel_rate(p0, p1, s, w, phi, tau, xp=np):
     return p1 if s is None else p1 + s * w * xp.cos(w * tau + phi)
 
 
+def piece_direction(coefficients, h, xp=np):
+    """Which way a, monotone on a piece of length ``h`` [s], moves: the sign of
+    a(h) - a(0) [-] (0: flat, or a change below rounding)."""
+    return xp.sign(accel(*coefficients, h, xp) - accel(*coefficients, 0.0, xp))
+
+
+def monotone_rate(rate, direction, xp=np):
+    """``rate`` [m/s³] of a monotone a with rounding projected out: zero where it points
+    against the piece's ``direction`` (:func:`piece_direction`), e.g. the cosine of a
+    sine piece at its extremum, which rounds to ±6e-17 instead of 0."""
+    return xp.where(rate * direction < 0, 0.0 * rate, rate)
+
+
 def accel_int1(p0, p1, s, w, phi, tau, xp=np):
     """Integral of a over [0, tau] [m/s]."""
     linear = (p0 + 0.5 * p1 * tau) * tau

@@ -128,8 +128,18 @@ class AbstractHybridModel(abc.ABC):
 
     @abc.abstractmethod
     def guard_rates(self, mode, guard_index, t, y, excitation):
-        """(rate, curvature) of the guard in time near ``t`` [unit/s, unit/s²], for
-        the uncertainty of its located root."""
+        """(rate, curvature) of the guard in time near ``t`` [unit/s, unit/s²], with
+        their signs (a guard at zero that falls, by its rate or, at a zero rate, by its
+        curvature, is left at once); a model that knows only a bound on the curvature
+        gives it as a non-negative number (the uncertainty of a located root needs
+        only its size)."""
+
+    def contradiction(self, mode, y, velocity_error) -> str | None:
+        """Why the state ``y`` cannot be in ``mode`` (a slide moving against its
+        direction, a rising flight falling, ...) by more than ``velocity_error`` [m/s],
+        as a phrase with values and units; None where it can (the default: no check).
+        The driver raises :class:`~blockdae.InconsistentStateError` on it."""
+        return None
 
     @abc.abstractmethod
     def speed(self, y) -> float:

@@ -290,8 +290,14 @@ class SlidingBlock(AbstractHybridModel):
         return None if mode == Mode.STICK else self.flow(mode, t, y, excitation, xp)[1]
 
     def guard_rates(self, mode, guard_index, t, y, excitation):
-        """The stop guard's rate dv/dt and curvature -da/dt [m/s², m/s³]."""
-        return self.flow(mode, t, y, excitation, np)[1], excitation.acceleration_rate(t)
+        """The stop guard's (mode v) rate mode dv/dt and curvature -mode da/dt [m/s², m/s³]."""
+        return mode * self.flow(mode, t, y, excitation, np)[1], -mode * excitation.acceleration_rate(t)
+
+    def contradiction(self, mode, y, velocity_error):
+        """A slide whose velocity points against it: v [m/s] of the other sign."""
+        if mode != Mode.STICK and mode * y[1] < -velocity_error:
+            return f"v = {y[1]:+.6g} m/s points against the slide"
+        return None
 
     def speed(self, y):
         return abs(y[1])

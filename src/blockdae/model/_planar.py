@@ -426,11 +426,17 @@ class PlanarBlock(AbstractHybridModel):
             _, (rx, ry) = self.demand(t, excitation)
             rate = self.flow(mode, t, y, excitation, SCALAR)[_S]
             return rate, math.hypot(rx, ry) + self.friction_kinetic * abs(n_rate)
-        if mode == PlanarMode.FLIGHT:
-            return y[_WD], n
+        if mode == PlanarMode.FLIGHT:  # w'' = -n
+            return y[_WD], -n
         if mode == PlanarMode.STICK and guard_index == 1:
             return self.circle_margin(t, excitation, y)[1] * self.guard_scale, 0.0
         return n_rate * self.guard_scale, 0.0
+
+    def contradiction(self, mode, y, velocity_error):
+        """A slide with a negative speed s [m/s]."""
+        if mode == PlanarMode.SLIP and y[_S] < -velocity_error:
+            return f"the slide's speed s = {y[_S]:+.6g} m/s is negative"
+        return None
 
     def speed(self, y):
         if self.support.compliant:  # horizontal and vertical

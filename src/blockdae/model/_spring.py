@@ -229,6 +229,14 @@ class SpringSupportedMass(AbstractHybridModel):
         jerk = -k * y[_V] - c * accel - excitation.acceleration_rate(t)
         return alpha * y[_V] + beta * accel, alpha * accel + beta * jerk
 
+    def contradiction(self, mode, y, velocity_error):
+        """A rising flight that falls, or a falling one that rises: u' [m/s] of the
+        wrong sign."""
+        side = {UpthrowMode.FLIGHT_UP: 1, UpthrowMode.FLIGHT_DOWN: -1}.get(mode, 0)
+        if side * y[_V] < -velocity_error:
+            return f"u' = {y[_V]:+.6g} m/s points against {mode.name}"
+        return None
+
     def speed(self, y):
         return abs(float(y[_V]))
 
