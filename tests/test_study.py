@@ -1,7 +1,11 @@
 """bd.study: rows against independent simulations, local == Dask, errors before work,
-the seed-002 summaries, save and reload, the command and the benchmark's smoke run."""
+a Dask cluster that loses its workers, the seed-002 summaries, save and reload, the
+command and the benchmark's smoke run."""
 
 import concurrent.futures
+import re
+import threading
+import time
 
 import numpy as np
 import pandas as pd
@@ -9,6 +13,7 @@ import pytest
 
 import blockdae as bd
 from blockdae._cli import main
+from blockdae.studies import _command as command_module
 from blockdae.studies import _study as study_module
 from conftest import load_sample_record, sample_record_paths
 from test_benchmarks import _load as _load_benchmark
@@ -18,6 +23,8 @@ FRAME = bd.ShearFrame(5, 0.3, 0.05)
 WHERE = ["ground", FRAME.floor(1), FRAME.floor(5)]
 MU = [0.1, 0.3]
 PGA = [0.2, 0.6]
+_RUN_TASK = study_module.run_task
+_RELEASE = threading.Event()  # lets the hung task of test_worker_lost_mid_study end
 
 
 @pytest.fixture(scope="module")
@@ -65,12 +72,66 @@ def test_scale_grid_is_the_pga_grid_by_other_names(records, table):
     np.testing.assert_allclose(by_scale["pga_g"], PGA, rtol=1e-14)
 
 
-def test_local_equals_dask(records, table):
+@pytest.mark.parametrize("no_worker_timeout", [None, 2.0])
+def test_local_equals_dask(records, table, no_worker_timeout):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None) \
             as cluster, distributed.Client(cluster) as client:
-        on_dask = bd.study(records, mu=MU, pga=PGA, where=WHERE, executor=client)
+        on_dask = bd.study(records, mu=MU, pga=PGA, where=WHERE, executor=client, no_worker_timeout=no_worker_timeout)
     pd.testing.assert_frame_equal(on_dask, table)
+
+
+def _one_thread_cluster(distributed):
+    """A LocalCluster of one worker thread in this process (no nanny to restart it)."""
+    return distributed.LocalCluster(n_workers=1, processes=False, threads_per_worker=1, dashboard_address=None)
+
+
+def test_no_worker_from_the_start_raises_after_the_timeout(records):
+    distributed = pytest.importorskip("distributed")
+    with _one_thread_cluster(distributed) as cluster, distributed.Client(cluster) as client:
+        cluster.scale(0)
+        while client.nthreads():
+            time.sleep(0.05)
+        start = time.monotonic()
+        with pytest.raises(bd.studies.NoWorkerError, match=r"no_worker_timeout=1 s\): 0 of 1 tasks finished, 1 "
+                                                            r"unfinished.*raise no_worker_timeout"):
+            bd.study(records, mu=MU, pga=PGA, executor=client, no_worker_timeout=1)
+        assert 1 <= time.monotonic() - start < 4
+
+
+def _task_losing_its_worker(records, grid):
+    """run_task; every task but the first record's first closes its worker and hangs until released."""
+    if records[0].name != SHORT[0]:
+        from distributed import get_worker
+        worker = get_worker()
+        worker.loop.add_callback(worker.close, executor_wait=False)
+        _RELEASE.wait(30)
+    return _RUN_TASK(records, grid)
+
+
+def test_worker_lost_mid_study(records, monkeypatch):
+    distributed = pytest.importorskip("distributed")
+    monkeypatch.setattr(study_module, "TASK_ANALYSES", 1)  # one task per record
+    monkeypatch.setattr(study_module, "run_task", _task_losing_its_worker)
+    _RELEASE.clear()
+    try:
+        with _one_thread_cluster(distributed) as cluster, distributed.Client(cluster) as client:
+            start = time.monotonic()
+            with pytest.raises(RuntimeError, match=r"no Dask worker alive for \d+\.\d s \(no_worker_timeout=1\.5 s\): "
+                                                   r"1 of 3 tasks finished, 2 unfinished"):
+                bd.study(records, mu=MU, pga=PGA, executor=client, no_worker_timeout=1.5)
+            assert time.monotonic() - start < 1.5 + 3
+            assert not client.nthreads()
+    finally:
+        _RELEASE.set()
+
+
+@pytest.mark.parametrize("value", [-1.0, 0, np.nan, np.inf, "60", True, [60]])
+def test_bad_no_worker_timeout_fails_before_work(records, value, monkeypatch):
+    monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
+    with pytest.raises(ValueError, match=rf"no_worker_timeout must be a positive finite number of seconds \[s\] "
+                                         rf"or None \(wait forever\), got {re.escape(repr(value))}"):
+        bd.study(records, mu=MU, pga=PGA, no_worker_timeout=value)
 
 
 def test_local_equals_executor(records, table, monkeypatch):
@@ -153,6 +214,47 @@ def test_command(tmp_path, records, capsys):
     assert main(["--no-cache", "study", str(folder), "--mu", "0.1", "--pga", "0.5", "--out", str(out)]) == 2
     assert "bad.csv" in capsys.readouterr().err
     assert main(["--no-cache", "study", str(tmp_path / "empty"), "--mu", "0.1", "--pga", "0.5", "--out", str(out)]) == 2
+
+
+def _one_record_folder(tmp_path):
+    folder = tmp_path / "records"
+    folder.mkdir()
+    path = next(p for p in sample_record_paths() if p.stem == SHORT[0])
+    (folder / path.name).write_bytes(path.read_bytes())
+    return folder
+
+
+def test_command_passes_no_worker_timeout(tmp_path, monkeypatch, capsys):
+    seen = []
+
+    def study(*args, no_worker_timeout, **kwargs):
+        seen.append(no_worker_timeout)
+        raise bd.studies.NoWorkerError("no Dask worker alive for 2.0 s")
+
+    monkeypatch.setattr(command_module, "study", study)
+    argv = ["--no-cache", "study", str(_one_record_folder(tmp_path)), "--mu", "0.1", "--pga", "0.5",
+            "--out", str(tmp_path / "r.csv")]
+    for flag in [[], ["--no-worker-timeout", "2.5"], ["--no-worker-timeout", "none"]]:
+        assert main(argv + flag) == 1
+        assert "blockdae: error: no Dask worker alive for 2.0 s" in capsys.readouterr().err
+    assert seen == [60.0, 2.5, None]
+    for bad in ["-1", "0", "nan", "soon"]:
+        assert main(argv + ["--no-worker-timeout", bad]) == 2
+        assert "argument --no-worker-timeout:" in capsys.readouterr().err
+    assert len(seen) == 3 and not (tmp_path / "r.csv").exists()  # bad values never reach study
+
+
+def test_command_on_a_cluster_without_workers(tmp_path, capsys):
+    distributed = pytest.importorskip("distributed")
+    with _one_thread_cluster(distributed) as cluster:
+        cluster.scale(0)
+        while cluster.scheduler.workers:
+            time.sleep(0.05)
+        status = main(["--no-cache", "study", str(_one_record_folder(tmp_path)), "--mu", "0.1", "--pga", "0.5",
+                       "--out", str(tmp_path / "r.csv"), "--scheduler", cluster.scheduler_address,
+                       "--no-worker-timeout", "1"])
+    assert status == 1
+    assert "no_worker_timeout=1 s): 0 of 1 tasks finished" in capsys.readouterr().err
 
 
 def test_benchmark_quick(monkeypatch, capsys):

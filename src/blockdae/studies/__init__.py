@@ -2,6 +2,6 @@
 summaries, saving and reloading, and the ``blockdae study`` command."""
 
 from ._io import load_study, save_study
-from ._study import study, summary
+from ._study import NoWorkerError, study, summary
 
-__all__ = ["load_study", "save_study", "study", "summary"]
+__all__ = ["NoWorkerError", "load_study", "save_study", "study", "summary"]

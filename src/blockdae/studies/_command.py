@@ -2,11 +2,13 @@
 
 ``blockdae._cli`` adds it with ``add_study_parser(sub)``; it sets ``command`` to
 :func:`run_study` (errors: :class:`UsageError`, one ``blockdae: error: ...`` line, exit
-status 2). Every file is read, and checked, before any analysis.
+status 2; no Dask worker alive for ``--no-worker-timeout`` [s]: such a line, exit status
+1). Every file is read, and checked, before any analysis.
 """
 
 import argparse
 import pathlib
+import sys
 import time
 
 import numpy as np
@@ -15,7 +17,7 @@ from .._cli_common import UsageError, number, positive, read
 from .._units import STANDARD_GRAVITY
 from ..structures import ShearFrame
 from ._io import save_study
-from ._study import study, summary
+from ._study import NoWorkerError, study, summary
 
 _SUFFIXES = (".csv", ".txt", ".dat", ".at2")
 
@@ -29,6 +31,11 @@ def _grid(text):
         return [float(text)]
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a number or START:STOP:N, got {text!r}") from None
+
+
+def _seconds_or_none(text):
+    """--no-worker-timeout: a positive number of seconds [s], or "none" (wait forever)."""
+    return None if text.strip().lower() == "none" else positive("--no-worker-timeout")(text)
 
 
 def add_study_parser(subparsers):
@@ -55,6 +62,9 @@ def add_study_parser(subparsers):
     p.add_argument("--summary", type=pathlib.Path, default=None, help="also the seed's summaries (.csv)")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="a Dask scheduler (e.g. tcp://host:8786) to run the tasks on")
+    p.add_argument("--no-worker-timeout", type=_seconds_or_none, default=60.0, metavar="SECONDS",
+                   help="with --scheduler: fail (exit status 1) after this long [s] with no worker alive; "
+                        "'none': wait forever (default 60)")
     p.set_defaults(command=run_study)
     return p
 
@@ -68,9 +78,13 @@ def run_study(args) -> int:
     client = _client(args.scheduler)
     start = time.perf_counter()
     try:
-        table = study(records, mu=args.mu, where=where, direction=args.direction, executor=client, g=args.g, **grid)
+        table = study(records, mu=args.mu, where=where, direction=args.direction, executor=client, g=args.g,
+                      no_worker_timeout=args.no_worker_timeout, **grid)
     except (ValueError, TypeError) as err:
         raise UsageError(str(err)) from None
+    except NoWorkerError as err:
+        print(f"blockdae: error: {err}", file=sys.stderr)
+        return 1
     finally:
         if client is not None:
             client.close()

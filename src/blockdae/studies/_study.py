@@ -10,9 +10,14 @@ Memory is O(records of a task × samples), never O(analyses × samples); tasks r
 after the other here (the engine uses every core) or on an executor (Dask).
 """
 
+import concurrent.futures
 import dataclasses
+import math
+import numbers
 import os
+import queue
 import sys
+import time
 
 import numpy as np
 
@@ -28,6 +33,12 @@ from ..structures import Floor
 TASK_ANALYSES = 2000
 #: bytes per row of the result table, with room for building it (measured ~150)
 ROW_BYTES = 400
+#: longest wait [s] for a finished Dask task before the workers are counted again
+WORKER_POLL = 1.0
+
+
+class NoWorkerError(RuntimeError):
+    """No Dask worker was alive for ``no_worker_timeout`` [s] while tasks of a study were unfinished."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -47,7 +58,8 @@ class _Grid:
 
 
 def study(records, mu, pga=None, scale=None, where=("ground",), direction="negative", *, executor=None,
-          progress=None, refine=4, sd_period=10.0, damping=0.05, t_end=None, g=STANDARD_GRAVITY):
+          no_worker_timeout=60.0, progress=None, refine=4, sd_period=10.0, damping=0.05, t_end=None,
+          g=STANDARD_GRAVITY):
     """Slide a block under every record, μ, intensity and location: one tidy table.
 
     Args:
@@ -62,6 +74,11 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
             ``concurrent.futures.Executor``: tasks of whole records are submitted to it
             (a ProcessPoolExecutor with ``mp_context=multiprocessing.get_context("spawn")``:
             forking a process that ran the engine's OpenMP threads aborts it).
+        no_worker_timeout: with a Dask client, the longest time [s] with no worker alive
+            (all lost, or the cluster scaled to 0) while tasks are unfinished; then
+            :class:`NoWorkerError` (how many tasks finished). None: wait for workers forever.
+            Not used by a ``concurrent.futures`` executor (a broken process pool raises
+            ``BrokenProcessPool`` by itself) nor by the local run.
         progress: a tqdm bar over the tasks; None: only when stderr is a terminal
             (and tqdm is installed).
         refine: floor motions sampled at dt/refine [s] (:meth:`bd.ShearFrame.floor_motions`).
@@ -86,11 +103,13 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
         t_end_s (final time [s]).
 
     Every check runs before any work (:class:`ValueError`): no records, a record that
-    is not a finite :class:`bd.Record`, μ or an intensity <= 0, a result table larger
-    than the free memory. Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu,
-    direction=direction), motion.scaled(scale))`` of the location's motion to rounding.
+    is not a finite :class:`bd.Record`, μ or an intensity <= 0, ``no_worker_timeout`` not
+    a positive finite number [s] or None, a result table larger than the free memory.
+    Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu, direction=direction),
+    motion.scaled(scale))`` of the location's motion to rounding.
     """
     records, grid = _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g)
+    no_worker_timeout = _timeout(no_worker_timeout)
     tasks = _tasks(records, len(grid.where) * grid.mu.size * grid.factors.size)
     bar = _progress_bar(progress, len(tasks))
     try:
@@ -100,7 +119,7 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
                 parts.append(run_task(chunk, grid))
                 bar.update()
         else:
-            parts = _on_executor(executor, tasks, grid, bar)
+            parts = _on_executor(executor, tasks, grid, bar, no_worker_timeout)
     finally:
         bar.close()
     return _table(parts, grid)
@@ -231,22 +250,66 @@ def _values(name, values, unit):
     return x
 
 
+def _timeout(value):
+    """``no_worker_timeout`` checked: a positive finite float [s], or None (wait forever)."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not (math.isfinite(value) and value > 0):
+        raise ValueError(f"no_worker_timeout must be a positive finite number of seconds [s] or None "
+                         f"(wait forever), got {value!r}")
+    return float(value)
+
+
 def _tasks(records, analyses_per_record):
     """Consecutive records in groups of about :data:`TASK_ANALYSES` analyses (at least one record)."""
     size = max(1, TASK_ANALYSES // analyses_per_record)
     return [records[i:i + size] for i in range(0, len(records), size)]
 
 
-def _on_executor(executor, tasks, grid, bar):
-    """Submit the tasks; their results in task order."""
+def _on_executor(executor, tasks, grid, bar, no_worker_timeout):
+    """Submit the tasks; their results in task order (Dask: see :func:`_wait_on_dask`)."""
     futures = [executor.submit(run_task, chunk, grid) for chunk in tasks]
     if hasattr(executor, "gather"):  # dask.distributed.Client
-        from distributed import as_completed
+        _wait_on_dask(executor, futures, bar, no_worker_timeout)
     else:
-        from concurrent.futures import as_completed
-    for _ in as_completed(futures):
-        bar.update()
+        for _ in concurrent.futures.as_completed(futures):
+            bar.update()
     return [f.result() for f in futures]
+
+
+def _wait_on_dask(client, futures, bar, no_worker_timeout):
+    """Wait until every future is done, counting them on ``bar``.
+
+    Blocks on a queue fed by the futures' callbacks for at most :data:`WORKER_POLL` [s]
+    (a quarter of ``no_worker_timeout`` [s] if shorter) at a time; only when no task
+    finished in that time is the scheduler asked for its workers. None alive for
+    ``no_worker_timeout`` [s]: the unfinished futures are cancelled and
+    :class:`NoWorkerError` is raised.
+    """
+    finished = queue.SimpleQueue()
+    for future in futures:
+        future.add_done_callback(finished.put)
+    poll = None if no_worker_timeout is None else min(WORKER_POLL, no_worker_timeout / 4)
+    n_done, lost_since = 0, None
+    while n_done < len(futures):
+        try:
+            finished.get(timeout=poll)
+        except queue.Empty:
+            lost_since = None if client.nthreads() else (lost_since or time.monotonic())
+            if lost_since is not None and time.monotonic() - lost_since >= no_worker_timeout:
+                client.cancel([f for f in futures if not f.done()])
+                raise _no_worker_error(n_done, len(futures), time.monotonic() - lost_since, no_worker_timeout)
+            continue
+        n_done, lost_since = n_done + 1, None
+        bar.update()
+
+
+def _no_worker_error(n_done, n_tasks, lost_s, no_worker_timeout):
+    """The :class:`NoWorkerError` of a study with ``n_done`` of ``n_tasks`` tasks finished."""
+    return NoWorkerError(
+        f"no Dask worker alive for {lost_s:.1f} s (no_worker_timeout={no_worker_timeout:g} s): "
+        f"{n_done} of {n_tasks} tasks finished, {n_tasks - n_done} unfinished (cancelled); start or scale up "
+        f"the workers, or raise no_worker_timeout [s] (None: wait forever; CLI: --no-worker-timeout SECONDS|none)")
 
 
 def _progress_bar(progress, total):
