@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae import _crosscheck
 from blockdae._driver import SolverError
 from blockdae.backends import make_backend
 from conftest import assert_same_events, load_sample_record
@@ -363,3 +364,53 @@ def test_crosscheck_table():
     assert "[m]" in text and "[s]" in text and "cvode" in text
     with pytest.raises(TypeError, match="rtoll"):
         bd.crosscheck(block, motion, t_end=t_end, rtoll=1e-10)
+
+
+def test_crosscheck_verdict_ok_within_the_bar():
+    """Every backend agrees with exact on seed example 3b at the default tolerances; the
+    exact reference's rtol is rounding, the others' 1e-10; the table prints the verdict."""
+    block, motion, t_end = SEED_CASES["ex3b"]
+    table = bd.crosscheck(block, motion, t_end=t_end)
+    assert table.agrees and table.disagreements == [] and table.span == t_end
+    assert table.row("exact")["rtol"] == _crosscheck.ROUNDING
+    assert all(table.row(name)["rtol"] == 1e-10 and table.row(name)["agrees"] for name in ("cvode", "ida", "jax"))
+    head, *rows, footer = str(table).splitlines()[:-1]
+    assert head.split()[-3:] == ["rtol", "[-]", "verdict"] and all(row.split()[-1] == "ok" for row in rows[1:])
+    assert "DISAGREES" in footer and "DISAGREES" not in "".join(rows)
+
+
+def test_crosscheck_bar_scales_with_rtol():
+    """A loose rtol moves the bar with it: CVODE at rtol 1e-4 is ~1e-5 s off, and agrees."""
+    table = bd.crosscheck(bd.SlidingBlock(0.3), bd.SinePulse(6.0, 0.5), backends=("exact", "cvode"), rtol=1e-4)
+    assert table.row("cvode")["max_dt"] > 1e-6 and table.row("cvode")["rtol"] == 1e-4 and table.agrees
+
+
+def test_crosscheck_flags_a_disagreement():
+    """A loose atol (1e-3 m, m/s) that rtol does not account for: CVODE's stop is ~1e-4 s
+    late, beyond 100 rtol x 1 s; the row says DISAGREES, the reference stays ok."""
+    table = bd.crosscheck(bd.SlidingBlock(0.3), bd.SinePulse(6.0, 0.5), backends=("exact", "cvode"), atol=1e-3)
+    assert not table.agrees and table.disagreements == [table.row("cvode")]
+    lines = str(table).splitlines()
+    assert lines[2].endswith(" ok") and lines[3].endswith(" DISAGREES")
+
+
+def _row(backend, max_dt=0.0, rel_du=0.0, rtol=1e-10):
+    row = dict(backend=backend, displacement=1.0, n_events=2, t_events=np.array([0.1, 0.5]), max_dt=max_dt,
+               rel_du=rel_du, first=0.01, warm=0.01, rtol=rtol)
+    return dict(row, agrees=_crosscheck.agrees(row, span=2.0))
+
+
+def test_verdict_of_hand_made_rows():
+    """The bars at rtol 1e-10 and a 2 s span: 100 rtol x 2 s = 2e-8 s, 1e4 rtol = 1e-6;
+    on a bar agrees, beyond it (or other events: inf) disagrees."""
+    bar_dt, bar_du = _crosscheck.TIME_BAR * 1e-10 * 2.0, _crosscheck.DISPLACEMENT_BAR * 1e-10
+    assert (bar_dt, bar_du) == pytest.approx((2e-8, 1e-6), rel=1e-12)
+    assert _row("on", bar_dt, bar_du)["agrees"]
+    late, off, other = _row("late", 1.01 * bar_dt), _row("off", rel_du=1.01 * bar_du), _row("other", np.inf)
+    assert not (late["agrees"] or off["agrees"] or other["agrees"])
+    assert _row("loose", 1.01 * bar_dt, rtol=1e-8)["agrees"]  # a looser rtol, a wider bar
+    table = bd.CrossCheck(rows=[_row("ref", rtol=_crosscheck.ROUNDING), late], reference="ref", span=2.0)
+    assert not table.agrees and table.disagreements == [late]
+    lines = str(table).splitlines()
+    assert lines[2].split()[-1] == "ok" and lines[3].split()[-1] == "DISAGREES"
+    assert "max |dt| [s] > 100 rtol × 2 s or rel |du| [-] > 10000 rtol" in lines[-1]

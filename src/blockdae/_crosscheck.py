@@ -13,6 +13,18 @@ from .model import AbstractHybridModel, SlidingBlock, SpringSupportedMass
 #: the backends a cross-check runs by default, those that run the block, in this order
 DEFAULT_BACKENDS = ("exact", "cvode", "ida", "jax")
 
+#: a row agrees while max |dt| <= TIME_BAR * rtol * max(1 s, t_end) and rel |du| <=
+#: DISPLACEMENT_BAR * rtol [-]. Measured worst over seed examples 1-6, two sine pulses,
+#: the spring-supported mass, Northridge PAC-175, Kobe TAK-090 and the README's planar
+#: wave, cvode/ida/jax at rtol 1e-12, 1e-10, 1e-7, 1e-4 and 1e-3: 9.95 rtol s (IDA,
+#: spring-supported mass, rtol 1e-12) and 1.7e3 rtol (IDA, seed example 1, rtol 1e-12:
+#: u_end is 3 % of max |u|, so its relative difference is large). Each bar is about ten
+#: times that, so no sample case disagrees; the tests' 1e-9 s and 1e-7 at rtol 1e-10 are tighter.
+TIME_BAR = 100
+DISPLACEMENT_BAR = 1e4
+#: the rtol [-] of a backend without one ("exact", "exact-jax": exact to rounding)
+ROUNDING = float(np.finfo(float).eps)
+
 
 @dataclasses.dataclass(frozen=True)
 class CrossCheck:
@@ -28,11 +40,30 @@ class CrossCheck:
     :func:`blockdae.sensitivities`: differentiated kernels for "exact" and "jax", finite
     differences for the others, one-sided at a bound such as mu_kinetic = mu) and
     rel_dsens [-] (largest relative difference of those against the reference's).
+
+    Each row also has rtol [-] (the looser of its backend's and the reference's relative
+    tolerance, :data:`ROUNDING` for an exact backend) and agrees (bool): the same events
+    and modes as the reference, max_dt <= :data:`TIME_BAR` * rtol * ``span`` and rel_du
+    <= :data:`DISPLACEMENT_BAR` * rtol (see :func:`agrees`); the reference row always
+    agrees. The derivatives are not judged (finite differences carry their own step
+    error), nor is ``atol``: a loose atol that governs the error shows as a disagreement.
+    ``span`` [s] is max(1 s, t_end of the reference).
     """
 
     rows: list
     reference: str
     wrt: tuple = ()
+    span: float = 1.0
+
+    @property
+    def agrees(self) -> bool:
+        """Whether every row agrees with the reference within its bar."""
+        return not self.disagreements
+
+    @property
+    def disagreements(self) -> list:
+        """The rows that disagree with the reference beyond their bar."""
+        return [row for row in self.rows if not row["agrees"]]
 
     def row(self, backend: str) -> dict:
         """The row of ``backend``."""
@@ -47,15 +78,20 @@ class CrossCheck:
         derivative_heads = "".join(f" {f'du/d{name} [{unit(name)}]':>{d_width}}" for name in self.wrt)
         head = (f"{'backend':<8} {'u_end [m]':>{width}} {'events':>6} {'max |dt| [s]':>13} "
                 f"{'rel |du| [-]':>13} {'first [s]':>9} {'warm [s]':>9}" + derivative_heads
-                + (f" {'rel |dS| [-]':>13}" if self.wrt else ""))
+                + (f" {'rel |dS| [-]':>13}" if self.wrt else "") + f" {'rtol [-]':>8} {'verdict':>9}")
         lines = [head, "-" * len(head)]
         for r in self.rows:
             derivatives = "".join(f" {_values(r['sensitivities'][name], '.10g'):>{d_width}}" for name in self.wrt)
             lines.append(f"{r['backend']:<8} {_values(r['displacement']):>{width}} {r['n_events']:>6d} "
                          f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['first']:>9.3f} {r['warm']:>9.3f}"
                          + derivatives
-                         + (f" {r['rel_dsens']:>13.2e}" if self.wrt else ""))
-        return "\n".join(lines) + f"\n(differences against {self.reference!r})"
+                         + (f" {r['rel_dsens']:>13.2e}" if self.wrt else "")
+                         + f" {r['rtol']:>8.1e} {'ok' if r['agrees'] else 'DISAGREES':>9}")
+        return "\n".join(lines) + "\n" + self._footer()
+
+    def _footer(self):
+        return (f"(differences against {self.reference!r}; a row DISAGREES where its events or modes differ,\n"
+                f" max |dt| [s] > {TIME_BAR:g} rtol × {self.span:.3g} s or rel |du| [-] > {DISPLACEMENT_BAR:g} rtol)")
 
 
 def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> CrossCheck | list[CrossCheck]:
@@ -92,31 +128,47 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
     if block.batch_shape:
         return [crosscheck(block.item(i), motion, backends, t_end, wrt, **options)
                 for i in range(block.batch_shape[0])]
+    mine = {name: {key: value for key, value in options.items() if key in accepted[name]} for name in backends}
     solutions = []
     for name in backends:
-        mine = {key: value for key, value in options.items() if key in accepted[name]}
         walls = []
         for _ in range(2):
             start = time.perf_counter()
-            solution = simulate(block, motion, t_end=t_end, backend=name, **mine)
+            solution = simulate(block, motion, t_end=t_end, backend=name, **mine[name])
             walls.append(time.perf_counter() - start)
         solutions.append((name, solution, walls))
     ref = solutions[0][1]
+    span = max(1.0, ref.t_end)
+    rtols = {name: _rtol(name, mine[name]) for name in backends}
     rows = [dict(backend=name, displacement=s.displacement, n_events=len(s.events), t_events=s.t_events,
                  max_dt=_max_event_dt(ref, s), rel_du=_relative(s.displacement, ref.displacement),
-                 first=first, warm=warm)
+                 first=first, warm=warm, rtol=max(rtols[name], rtols[backends[0]]))
             for name, s, (first, warm) in solutions]
+    for row in rows:
+        row["agrees"] = agrees(row, span)
     if wrt:
         wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
         for row in rows:
-            mine = {key: value for key, value in options.items() if key in accepted[row["backend"]]}
             differentiated = ("exact", "exact-jax", "jax") if isinstance(block, SlidingBlock) else ("jax",)
             derivative = sensitivities if row["backend"] in differentiated else finite_differences
-            row["sensitivities"] = derivative(block, motion, t_end=t_end, wrt=wrt, backend=row["backend"], **mine)
+            row["sensitivities"] = derivative(block, motion, t_end=t_end, wrt=wrt, backend=row["backend"],
+                                           **mine[row["backend"]])
         ref_sens = rows[0]["sensitivities"]
         for row in rows:
             row["rel_dsens"] = max(_relative(row["sensitivities"][n], ref_sens[n]) for n in wrt)
-    return CrossCheck(rows=rows, reference=backends[0], wrt=tuple(wrt))
+    return CrossCheck(rows=rows, reference=backends[0], wrt=tuple(wrt), span=span)
+
+
+def agrees(row: dict, span: float) -> bool:
+    """Whether ``row`` agrees with the reference: the same events and modes (max_dt [s]
+    finite), max_dt <= TIME_BAR * rtol * ``span`` [s] and rel_du [-] <= DISPLACEMENT_BAR
+    * rtol, with the row's rtol [-]; ``span`` [s]: max(1 s, t_end of the reference)."""
+    return bool(row["max_dt"] <= TIME_BAR * row["rtol"] * span and row["rel_du"] <= DISPLACEMENT_BAR * row["rtol"])
+
+
+def _rtol(name, options):
+    """The relative tolerance [-] of backend ``name`` under ``options``; ROUNDING for one without."""
+    return float(getattr(make_backend(name, **options), "rtol", ROUNDING))
 
 
 def _max_event_dt(ref, sol):
