@@ -58,7 +58,7 @@ X_ONLY = {  # planar block, its 1-D twin, motion, t_end
 
 
 def test_ida_runs_a_planar_block():
-    assert bd.PlanarBlock in make_backend("ida").models
+    assert make_backend("ida").runs(bd.PlanarBlock(mu=0.5))
     block, _, motion, _ = X_ONLY["pulse"]
     sol = bd.simulate(block, motion, backend="ida")
     assert isinstance(sol, bd.PlanarSolution) and sol.backend == "ida"

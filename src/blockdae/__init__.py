@@ -15,6 +15,7 @@ from ._plot import plot
 from ._sensitivities import sensitivities
 from ._simulate import simulate
 from ._solution import BatchSolution, Event, EventLog, Solution
+from ._solution_driver import DriverSolution, HybridEvent
 from ._solution_planar import PlanarEvent, PlanarSolution
 from ._solution_upthrow import Flight, UpthrowEvent, UpthrowSolution
 from ._sweep import SweepSolution, simulate_many
@@ -34,6 +35,7 @@ __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "check_peak_acceleration", "read_motion", "read_record", "simulate", "InconsistentStateError", "SolverError",
+    "DriverSolution", "HybridEvent",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",
     "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",
     "upthrow_estimate",

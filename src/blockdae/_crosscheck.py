@@ -8,7 +8,7 @@ import numpy as np
 from ._sensitivities import finite_differences, sensitivities, unit
 from ._simulate import simulate
 from .backends import make_backend
-from .model import AbstractHybridModel, SlidingBlock, SpringSupportedMass
+from .model import AbstractHybridModel
 
 #: the backends a cross-check runs by default, those that run the block, in this order
 DEFAULT_BACKENDS = ("exact", "cvode", "ida", "jax")
@@ -117,13 +117,13 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
         raise TypeError(f"block must be a model (SlidingBlock, PlanarBlock, SpringSupportedMass), "
                         f"got {type(block).__name__}")
     if backends is None:
-        backends = tuple(name for name in DEFAULT_BACKENDS if isinstance(block, make_backend(name).models))
+        backends = tuple(name for name in DEFAULT_BACKENDS if make_backend(name).runs(block))
     accepted = {name: {f.name for f in dataclasses.fields(type(make_backend(name)))} for name in backends}
     unknown = set(options) - set().union(*accepted.values())
     if unknown:
         raise TypeError(f"no backend in {tuple(backends)} takes the option(s) {sorted(unknown)}")
-    if wrt and isinstance(block, SpringSupportedMass):
-        raise ValueError("crosscheck's wrt differentiates u(t_end); for a SpringSupportedMass use "
+    if wrt and block.derivatives == "flights":
+        raise ValueError(f"crosscheck's wrt differentiates u(t_end); for a {type(block).__name__} use "
                          "bd.sensitivities(block, motion, t_end, wrt=..., of=...) (its flights)")
     if block.batch_shape:
         return [crosscheck(block.item(i), motion, backends, t_end, wrt, **options)
@@ -149,8 +149,7 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
     if wrt:
         wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
         for row in rows:
-            differentiated = ("exact", "exact-jax", "jax") if isinstance(block, SlidingBlock) else ("jax",)
-            derivative = sensitivities if row["backend"] in differentiated else finite_differences
+            derivative = sensitivities if row["backend"] in block.differentiated_backends else finite_differences
             row["sensitivities"] = derivative(block, motion, t_end=t_end, wrt=wrt, backend=row["backend"],
                                            **mine[row["backend"]])
         ref_sens = rows[0]["sensitivities"]

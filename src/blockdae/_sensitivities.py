@@ -28,7 +28,6 @@ from .backends import Horizon, make_backend
 from .backends._base import batch_params
 from .backends._results import check
 from .excitation import BaseMotion
-from .model import SlidingBlock, SpringSupportedMass
 
 #: parameter name -> unit of d u / d parameter (SlidingBlock)
 UNITS = {"mu": "m", "mu_kinetic": "m", "bias": "m", "A": "m/g", "scale": "m"}
@@ -81,12 +80,12 @@ def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: 
         per unit of the parameter (per Hz, per unit damping ratio, per g for "A",
         per m/s² for "g").
     """
-    if isinstance(block, SpringSupportedMass):
+    if block.derivatives == "flights":
         return _upthrow_sensitivities(block, motion, t_end, wrt, "jax" if backend is None else backend, of, options)
     if of is not None:
         raise ValueError(f"of={of!r} applies to a SpringSupportedMass only; a {type(block).__name__} has the "
                          "derivatives of its displacement")
-    if not isinstance(block, SlidingBlock):
+    if block.derivatives != "sliding":
         return _hybrid_sensitivities(block, motion, t_end, wrt, "jax" if backend is None else backend, options)
     backend = "exact" if backend is None else backend
     wrt = _names(DEFAULT_WRT if wrt is None else wrt)
@@ -137,7 +136,7 @@ def finite_differences(block, motion, t_end: float | None = None, wrt=DEFAULT_WR
         raise ValueError("finite_differences takes one parameter set; use block.item(i)")
     if not (np.isfinite(step) and 0 < step < 0.1):
         raise ValueError(f"step must be a relative step in (0, 0.1), got {step!r}")
-    if not isinstance(block, SlidingBlock):
+    if block.derivatives != "sliding":
         return _hybrid_differences(block, motion, t_end, wrt, backend, step, options)
     wrt = _names(wrt)
 

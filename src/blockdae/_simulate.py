@@ -2,33 +2,26 @@
 
 import dataclasses
 
-from ._solution import BatchSolution, Solution
 from .backends import Horizon, available, make_backend
-from ._solution_planar import PlanarSolution
-from .excitation import AbstractExcitation, BaseMotion
-from ._solution_upthrow import UpthrowSolution
-from .model import PlanarBlock, SlidingBlock, SpringSupportedMass
-
-#: the backend each model runs on unless told otherwise
-DEFAULT_BACKEND = {SlidingBlock: "exact", PlanarBlock: "ida", SpringSupportedMass: "exact"}
+from .model import AbstractHybridModel
 
 
-def simulate(block: SlidingBlock | PlanarBlock | SpringSupportedMass, motion: AbstractExcitation | BaseMotion,
-             t_end: float | None = None, backend: str | None = None,
-             **options) -> Solution | BatchSolution | PlanarSolution | UpthrowSolution:
+def simulate(block: AbstractHybridModel, motion, t_end: float | None = None, backend: str | None = None,
+             **options):
     """Slide ``block`` on a base moving with ``motion``.
 
     Args:
         block: a :class:`SlidingBlock` or a :class:`PlanarBlock` (a batch of
-            parameter sets if its parameters are 1-D arrays), or a
+            parameter sets if its parameters are 1-D arrays), a
             :class:`SpringSupportedMass` (``motion`` is then its vertical ground
-            acceleration; give ``t_end``).
+            acceleration; give ``t_end``), or any :class:`AbstractHybridModel`.
         motion: base excitation; for a PlanarBlock also a :class:`BaseMotion` (x, y, z
             components; a 1-D excitation is its x component).
         t_end: final time [s]. None: until the block has come to rest after a finite
             excitation ends.
-        backend: a name from ``blockdae.backends.available()``; None: "exact" (closed
-            form) for a SlidingBlock and a SpringSupportedMass, "ida" for a PlanarBlock.
+        backend: a name from ``blockdae.backends.available()``; None: the model's
+            ``default_backend`` ("exact" (closed form) for a SlidingBlock and a
+            SpringSupportedMass, "ida" for a PlanarBlock, "cvode" for other models).
         **options: settings of the backend, name=default: meaning [unit]
             (tests check this list against the backends' fields)
 
@@ -62,22 +55,20 @@ def simulate(block: SlidingBlock | PlanarBlock | SpringSupportedMass, motion: Ab
                 event_resolution=1e-9: events closer are one instant [s] (PlanarBlock).
 
     Returns:
-        A :class:`Solution` (SlidingBlock), :class:`PlanarSolution` or
-        :class:`UpthrowSolution` (SpringSupportedMass), or a :class:`BatchSolution` for
-        a batch; each keeps ``block`` and ``motion``. For several motions or scales: :func:`simulate_many`.
+        The model's solution (:class:`Solution` for a SlidingBlock,
+        :class:`PlanarSolution`, :class:`UpthrowSolution` for a SpringSupportedMass, a
+        :class:`DriverSolution` by default), or a :class:`BatchSolution` for a batch;
+        each keeps ``block`` and ``motion``. For several motions or scales: :func:`simulate_many`.
     """
-    if not isinstance(block, tuple(DEFAULT_BACKEND)):
-        raise TypeError(f"block must be a SlidingBlock, a PlanarBlock or a SpringSupportedMass, "
-                        f"got {type(block).__name__}")
-    planar = isinstance(block, PlanarBlock)
-    if not isinstance(motion, (AbstractExcitation, BaseMotion) if planar else AbstractExcitation):
-        kinds = "an excitation (Harmonic, Record, ...)" + (" or a BaseMotion" if planar else "")
-        raise TypeError(f"motion must be {kinds}, got {type(motion).__name__}")
+    if not isinstance(block, AbstractHybridModel):
+        raise TypeError(f"block must be a model (SlidingBlock, PlanarBlock, SpringSupportedMass or an "
+                        f"AbstractHybridModel), got {type(block).__name__}")
+    block.check_motion(motion)
     horizon = Horizon.resolve(motion, t_end)
-    backend = DEFAULT_BACKEND[type(block)] if backend is None else backend
+    backend = block.default_backend if backend is None else backend
     solver = make_backend(backend, **options)
-    if not isinstance(block, solver.models):
+    if not solver.runs(block):
         raise ValueError(f"backend={backend!r} does not run a {type(block).__name__}; choose one of "
-                         f"{[name for name in available() if isinstance(block, make_backend(name).models)]}")
+                         f"{[name for name in available() if make_backend(name).runs(block)]}")
     result = solver.solve_batch(block, motion, horizon) if block.batch_shape else solver.solve(block, motion, horizon)
     return dataclasses.replace(result, block=block, motion=motion)

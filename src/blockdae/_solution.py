@@ -7,7 +7,7 @@ from typing import Callable
 import numpy as np
 
 from .excitation import AbstractExcitation
-from .model import Mode, SlidingBlock
+from ._modes import Mode
 
 
 @dataclasses.dataclass(frozen=True)
@@ -109,7 +109,7 @@ class Solution:
     backend: str
     dense: Callable = dataclasses.field(repr=False)
     stats: dict = dataclasses.field(default_factory=dict)
-    block: SlidingBlock | None = dataclasses.field(default=None, repr=False)
+    block: object = dataclasses.field(default=None, repr=False)  # the SlidingBlock
     motion: AbstractExcitation | None = dataclasses.field(default=None, repr=False)
 
     @property
@@ -184,7 +184,7 @@ class BatchSolution:
     t_end: np.ndarray
     backend: str
     solve_one: Callable = dataclasses.field(repr=False)
-    block: SlidingBlock | None = dataclasses.field(default=None, repr=False)
+    block: object = dataclasses.field(default=None, repr=False)  # the SlidingBlock
     motion: AbstractExcitation | None = dataclasses.field(default=None, repr=False)
 
     def __len__(self):
@@ -213,7 +213,7 @@ class BatchSolution:
         columns = self.parameters()
         if self.block is not None:
             columns |= {"g_m_s2": float(self.block.g)}
-            if isinstance(self.block, SlidingBlock):
+            if hasattr(self.block, "direction"):  # the 1-D block's sliding directions
                 columns |= {"direction": self.block.direction}
         u = np.asarray(self.displacement, dtype=float)
         columns |= ({"displacement_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]})

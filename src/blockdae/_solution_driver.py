@@ -6,6 +6,26 @@ from typing import Callable
 import numpy as np
 
 
+@dataclasses.dataclass(frozen=True)
+class HybridEvent:
+    """A located mode change of any model run by the driver.
+
+    Attributes:
+        t: time [s].
+        mode_before, mode_after: the modes on either side.
+        state: the model's state at ``t`` (in the units of its ``state_names``).
+    """
+
+    t: float
+    mode_before: object
+    mode_after: object
+    state: tuple
+
+    def __str__(self):
+        values = "  ".join(f"{v:+.6g}" for v in self.state)
+        return f"t = {self.t:.6f} s  {self.mode_before.name:>8} -> {self.mode_after.name:<8}  state = {values}"
+
+
 @dataclasses.dataclass(frozen=True, eq=False)
 class DriverSolution:
     """Knots and located events of a model run by the hybrid driver.
@@ -49,3 +69,29 @@ class DriverSolution:
             raise ValueError(f"t must lie in [{self.t[0]}, {self.t[-1]}] s")
         mode = self.mode[np.clip(np.searchsorted(self.t, t, side="right") - 1, 0, len(self.t) - 1)]
         return np.stack(self.dense(t), axis=-1), mode
+
+    @property
+    def displacement(self):
+        """The model's displacement states at t_end (its ``displacement_states``): a float
+        for one, an array for several [their units]."""
+        values = self.state[-1, list(self.block.displacement_states)] if self.block is not None else self.state[-1, :1]
+        return float(values[0]) if len(values) == 1 else np.asarray(values, dtype=float)
+
+    def event_table(self, events=None) -> str:
+        """``events`` (default: all of them) as an aligned text table: time [s], modes
+        and the state (in the model's units)."""
+        events = self.events if events is None else events
+        names = self.block.state_names if self.block is not None else ()
+        lines = [f"{'t [s]':>12}  {'before':>10}  {'after':<10}  " + "  ".join(f"{n:>13}" for n in names)]
+        lines += [f"{e.t:12.6f}  {e.mode_before.name:>10}  {e.mode_after.name:<10}  "
+                  + "  ".join(f"{v:13.6e}" for v in e.state) for e in events]
+        return "\n".join(lines)
+
+    def to_dataframe(self):
+        """The events as a pandas DataFrame: t_s [s], mode_before, mode_after and one
+        column per state (the model's ``state_names``)."""
+        import pandas as pd
+
+        names = list(self.block.state_names) if self.block is not None else []
+        rows = [(e.t, e.mode_before.name, e.mode_after.name, *e.state) for e in self.events]
+        return pd.DataFrame(rows, columns=["t_s", "mode_before", "mode_after", *names])

@@ -7,7 +7,7 @@ import numpy as np
 
 from ._solution_driver import DriverSolution
 
-from .model._planar import PlanarMode, horizontal_velocity
+from ._modes import PlanarMode, horizontal_velocity
 
 
 @dataclasses.dataclass(frozen=True)

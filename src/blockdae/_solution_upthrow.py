@@ -6,7 +6,7 @@ import numpy as np
 
 from ._solution_driver import DriverSolution
 
-from .model._spring import UpthrowMode
+from ._modes import UpthrowMode
 
 
 @dataclasses.dataclass(frozen=True)
@@ -119,7 +119,7 @@ class UpthrowSolution(DriverSolution):
         u, u_rate = state[..., 0], state[..., 1]
         block = self.block
         flying = mode != UpthrowMode.CONTACT
-        law = block.omega**2 * (block.static_deflection - u) - 2 * block.damping * block.omega * u_rate
+        law = block.support.law(block.g, u, u_rate)
         gap = np.where(flying, np.maximum(u - block.static_deflection, 0.0), 0.0)
         return u, u_rate, gap, np.where(flying, 0.0, law)
 

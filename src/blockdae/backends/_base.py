@@ -7,9 +7,9 @@ import math
 
 import numpy as np
 
-from .._solution import BatchSolution, Solution
+from .._solution import BatchSolution
 from ..excitation import AbstractExcitation
-from ..model import SlidingBlock
+from ..model import AbstractHybridModel
 
 
 @dataclasses.dataclass(frozen=True)
@@ -39,7 +39,7 @@ class Horizon:
         return excitation.duration if self.t_end is None else self.t_end
 
 
-def batch_params(block: SlidingBlock) -> tuple[np.ndarray, ...]:
+def batch_params(block) -> tuple[np.ndarray, ...]:
     """(mu, f, bias, g, scale) as arrays of the block's batch shape, for compiled kernels."""
     shape = block.batch_shape
     params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
@@ -69,22 +69,32 @@ def check_window(window) -> None:
 
 
 class AbstractBackend(abc.ABC):
-    """Integrates a :class:`SlidingBlock` under an excitation to a :class:`Solution`.
+    """Integrates a hybrid model under an excitation to its solution.
 
     Backends are immutable settings objects; ``solve`` takes one parameter set,
-    ``solve_batch`` a batch (by default one ``solve`` per set).
+    ``solve_batch`` a batch (by default one ``solve`` per set). A backend knows engines,
+    never models: a model names the engine it runs on with each backend (its
+    ``engines``); a generic backend (``generic``) runs any other model on the hybrid
+    driver.
     """
 
     name: str
-    #: the model types this backend runs
-    models: tuple[type, ...] = (SlidingBlock,)
+    #: whether models without an engine of this backend run on the generic driver
+    generic: bool = True
+
+    def runs(self, model) -> bool:
+        """Whether this backend runs ``model``."""
+        return isinstance(model, AbstractHybridModel) and (self.generic or self.name in model.engines)
+
+    def engine(self, model) -> str | None:
+        """The engine ``model`` runs on here (its ``engines``), None: the generic driver."""
+        return model.engines.get(self.name)
 
     @abc.abstractmethod
-    def solve(self, block: SlidingBlock, excitation: AbstractExcitation, horizon: Horizon) -> Solution:
+    def solve(self, block, excitation: AbstractExcitation, horizon: Horizon):
         """One parameter set."""
 
-    def solve_batch(self, block: SlidingBlock, excitation: AbstractExcitation,
-                    horizon: Horizon) -> BatchSolution:
+    def solve_batch(self, block, excitation: AbstractExcitation, horizon: Horizon) -> BatchSolution:
         """A batch of parameter sets (``block.batch_shape == (n,)``)."""
         n = block.batch_shape[0]
         sols = [self.solve(block.item(i), excitation, horizon) for i in range(n)]

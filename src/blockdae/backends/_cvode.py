@@ -1,11 +1,10 @@
-"""CVODE backend: the ODE (u, v)' = flow(mode) on scikit-sundae, guards as root functions."""
+"""CVODE backend: the ODE y' = flow(mode) of any model on scikit-sundae, guards as root functions."""
 
 import dataclasses
 
 from sksundae.cvode import CVODE
 
 from .._driver import SCALAR
-from ..model import PlanarBlock, SlidingBlock, SpringSupportedMass
 from ._sundials import Guards, SundialsBackend, SundialsIntegrator
 
 #: CVODE's first step after every (re)start [s]. A restart begins at order 1, and
@@ -26,7 +25,6 @@ class CVODEBackend(SundialsBackend):
     every piece of a(t), each time from a first step of :data:`FIRST_STEP` [s]."""
 
     name = "cvode"
-    models = (SlidingBlock, PlanarBlock, SpringSupportedMass)
 
     def _integrator(self, block, piece):
         return _CVODEIntegrator(block, piece, self.solver_options())

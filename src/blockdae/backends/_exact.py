@@ -7,7 +7,6 @@ import numpy as np
 from .._solution import BatchSolution
 from ..excitation import Pieces
 from ..excitation._pieces import accel
-from ..model import SlidingBlock, SpringSupportedMass
 from . import _exact_numba as engine
 from ._base import AbstractBackend, cached_per_excitation, check_window
 from ._closed_form_linear import solve_closed_form
@@ -23,9 +22,10 @@ _PARALLEL_WORK = 3e7
 class ExactBackend(AbstractBackend):
     """Closed-form integration, compiled with numba (float64, parallel over cores for
     batches). ``backend="exact-jax"`` runs the same closed forms and rules compiled
-    with JAX, for derivatives and accelerators. A :class:`SpringSupportedMass` runs
-    on the generic driver with closed-form steps instead
-    (:mod:`blockdae.backends._closed_form_linear`; ``window`` is unused there).
+    with JAX, for derivatives and accelerators. Engines: "sliding" (the 1-D block's
+    kernel) and "linear" (closed-form steps of linear modes on the generic driver,
+    :mod:`blockdae.backends._closed_form_linear`; ``window`` is unused there), as the
+    model's ``engines`` name them.
 
     Args:
         window: pieces of a(t) per block of the onset search's bounds; a tuning knob
@@ -34,13 +34,13 @@ class ExactBackend(AbstractBackend):
 
     window: int = 64
     name = "exact"
-    models = (SlidingBlock, SpringSupportedMass)
+    generic = False
 
     def __post_init__(self):
         check_window(self.window)
 
     def solve(self, block, excitation, horizon):
-        if isinstance(block, SpringSupportedMass):  # closed-form steps on the generic driver
+        if self.engine(block) == "linear":  # closed-form steps on the generic driver
             return solve_closed_form(block, excitation, horizon, self.name)
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
         run_one, _, _ = engine.kernels()
@@ -56,7 +56,7 @@ class ExactBackend(AbstractBackend):
             t_end=out[:, 5], backend=self.name,
             solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
 
-    def solve_final(self, block: SlidingBlock, excitations, horizons, scale=(1.0,)) -> np.ndarray:
+    def solve_final(self, block, excitations, horizons, scale=(1.0,)) -> np.ndarray:
         """Final numbers only, for every excitation under every parameter set of
         ``block`` (a batch of m, or one) at every factor of ``scale`` on a(t) (s of
         them), in parallel over cores.

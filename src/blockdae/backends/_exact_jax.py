@@ -12,7 +12,6 @@ import numpy as np
 from .._jax_config import jax_context
 from .._solution import BatchSolution
 from ..excitation import Pieces
-from ..model import SlidingBlock
 from . import _exact_kernel as kernel
 from ._base import AbstractBackend, batch_params, cached_per_excitation, check_window
 from ._results import check, exact_solution, max_run
@@ -30,6 +29,7 @@ class ExactJaxBackend(AbstractBackend):
 
     window: int = 64
     name = "exact-jax"
+    generic = False  # engines: "sliding" (the 1-D block's closed forms)
 
     def __post_init__(self):
         check_window(self.window)
@@ -67,7 +67,7 @@ class ExactJaxBackend(AbstractBackend):
             return kernel.Summary(*map(np.asarray, out))  # ~100 us faster than jax.device_get here
 
 
-def _params(block: SlidingBlock, scale=1.0):
+def _params(block, scale=1.0):
     """(mu, f, bias, g, scale) as one array: one transfer to the device, not five."""
     return np.array([block.mu, block.friction_kinetic, block.bias, block.g, scale], dtype=np.float64)
 

@@ -1,7 +1,7 @@
 """The JAX twin: the hybrid automaton integrated with diffrax, events by root finding.
 
-A :class:`~blockdae.SlidingBlock` runs in one compiled kernel (:mod:`._jax_kernel`);
-any other model runs on the generic driver with a diffrax integrator per mode
+A model whose ``engines`` name "sliding" here (the 1-D block) runs in one compiled
+kernel (:mod:`._jax_kernel`); any other model runs on the generic driver with a diffrax integrator per mode
 (:mod:`._jax_hybrid`)."""
 
 import dataclasses
@@ -13,7 +13,7 @@ from .._driver import drive
 from .._jax_config import jax_context
 from .._solution import BatchSolution, EventLog, Solution
 from . import _jax_kernel as kernel
-from ..model import PlanarBlock, SlidingBlock, SpringSupportedMass, never_rests_error
+from ..model import never_rests_error
 from ._jax_hybrid import DiffraxIntegrator, Settings
 from ._base import AbstractBackend, batch_params
 from ._exact_jax import _device, _params
@@ -55,7 +55,6 @@ class JaxBackend(AbstractBackend):
     max_events_at_one_instant: int = 5
     event_resolution: float = 1e-9
     name = "jax"
-    models = (SlidingBlock, PlanarBlock, SpringSupportedMass)
 
     def __post_init__(self):
         for field in ("rtol", "atol"):
@@ -77,7 +76,7 @@ class JaxBackend(AbstractBackend):
                              float(self.rtol), float(self.atol), self.max_segments, self.max_steps)
 
     def solve(self, block, excitation, horizon):
-        if not isinstance(block, SlidingBlock):
+        if self.engine(block) != "sliding":
             return drive(block, excitation, horizon, self.integrator, self.name, self.max_events_at_one_instant,
                          self.event_resolution, (self.rtol, self.atol))
         pieces = excitation.pieces(horizon.integration_end(excitation))
@@ -94,7 +93,7 @@ class JaxBackend(AbstractBackend):
         return DiffraxIntegrator(model, piece, settings)
 
     def solve_batch(self, block, excitation, horizon):
-        if not isinstance(block, SlidingBlock):  # one driver run per parameter set
+        if self.engine(block) != "sliding":  # one driver run per parameter set
             return super().solve_batch(block, excitation, horizon)
         pieces = excitation.pieces(horizon.integration_end(excitation))
         params = batch_params(block)

@@ -10,11 +10,11 @@ import numpy as np
 from .._solution import EventLog, Solution
 from ..excitation import Pieces
 from ..excitation._pieces import evaluate
-from ..model import SlidingBlock, slip_constant
+from ..model import slip_constant
 from ..model import never_rests_error
 
 
-def exact_solution(block: SlidingBlock, pieces: Pieces, knots, max_run: int, backend: str) -> Solution:
+def exact_solution(block, pieces: Pieces, knots, max_run: int, backend: str) -> Solution:
     """The Solution of an exact engine, without a loop over events.
 
     ``knots``: (5, n_events + 2) rows of t [s], u [m], v [m/s], mode after and mode
@@ -33,7 +33,7 @@ def exact_solution(block: SlidingBlock, pieces: Pieces, knots, max_run: int, bac
                     stats={"max_events_at_one_instant": max_run, "n_events": n})
 
 
-def check(block: SlidingBlock, rests, finished, where: str = ""):
+def check(block, rests, finished, where: str = ""):
     """Raise if an exact engine stopped early (chatter) or the block never rests."""
     if not bool(finished):
         raise RuntimeError(f"the exact kernel stopped before the end of the excitation{where}: "
@@ -60,7 +60,7 @@ class DenseOutput:
     u = u_e + c (t - t_e)²/2 - (xb(t) - xb(t_e) - vb(t_e) (t - t_e)).
     """
 
-    block: SlidingBlock
+    block: object  # the 1-D block
     pieces: Pieces
     t_events: np.ndarray
     u_events: np.ndarray

@@ -1,12 +1,12 @@
 """Pure physics: modes, flows, guards and transition rules."""
 
-from ._base import AbstractHybridModel
-from ._block import (SlidingBlock, comes_to_rest, demand, never_rests_error, relative_acceleration, rest_mode,
+from ._base import AbstractHybridModel, ExplicitForm
+from ._block import (SlidingBlock, SlidingDAEForm, comes_to_rest, demand, never_rests_error, relative_acceleration, rest_mode,
                      slip_constant, stick_guards, stop_mode)
-from ._modes import Mode
-from ._planar import PlanarBlock, PlanarMode
-from ._spring import SpringSupportedMass, UpthrowMode
+from .._modes import Mode, PlanarMode, UpthrowMode
+from ._planar import PlanarBlock, PlanarDAEForm
+from ._spring import SpringDAEForm, SpringSupportedMass
 from ._support import RigidSupport, SpringSupport
 
-__all__ = ["AbstractHybridModel", "Mode", "PlanarBlock", "PlanarMode", "RigidSupport", "SlidingBlock", "SpringSupport", "SpringSupportedMass", "UpthrowMode", "comes_to_rest", "demand", "never_rests_error",
+__all__ = ["AbstractHybridModel", "ExplicitForm", "PlanarDAEForm", "SlidingDAEForm", "SpringDAEForm", "Mode", "PlanarBlock", "PlanarMode", "RigidSupport", "SlidingBlock", "SpringSupport", "SpringSupportedMass", "UpthrowMode", "comes_to_rest", "demand", "never_rests_error",
            "relative_acceleration", "rest_mode", "slip_constant", "stick_guards", "stop_mode"]

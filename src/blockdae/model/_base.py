@@ -7,6 +7,9 @@ import types
 
 import numpy as np
 
+from .._solution_driver import DriverSolution, HybridEvent
+from ..excitation import AbstractExcitation
+
 #: the array namespace of the model's xp-generic rules on Python floats (the driver's)
 SCALAR = types.SimpleNamespace(stack=tuple, sqrt=math.sqrt, where=lambda cond, a, b: a if cond else b)
 #: dense-output knots per radian of an oscillation, of a(t) on sine pieces or of a
@@ -37,6 +40,31 @@ class AbstractHybridModel(abc.ABC):
     component_names: tuple[str, ...] = ("x",)
     #: indices of the states that make up the displacement the solution reports
     displacement_states: tuple[int, ...] = (0,)
+    #: the backend :func:`blockdae.simulate` uses when none is named
+    default_backend: str = "cvode"
+    #: backend name -> the compiled or closed-form engine it runs this model on, by the
+    #: engine's name ("sliding" for the 1-D block's kernels, "linear" for closed-form
+    #: steps of linear modes); a backend not named here runs the model on the generic
+    #: driver ("cvode", "ida", "jax") or not at all ("exact", "exact-jax")
+    engines: dict = {}
+    #: backends whose kernels differentiate the model (others: finite differences)
+    differentiated_backends: tuple[str, ...] = ("jax",)
+    #: how :func:`blockdae.sensitivities` differentiates it: "trajectory" (u(t_end)
+    #: along the JAX twin's trajectory, variational equation and saltation jumps),
+    #: "sliding" (the 1-D block's compiled kernels) or "flights" (a spring-supported
+    #: mass's flight quantities)
+    derivatives: str = "trajectory"
+
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """() for one parameter set (models with array parameters override it)."""
+        return ()
+
+    def check_motion(self, motion) -> None:
+        """Raise TypeError unless ``motion`` is a base motion this model runs under (an
+        excitation, by default)."""
+        if not isinstance(motion, AbstractExcitation):
+            raise TypeError(f"motion must be an excitation (Harmonic, Record, ...), got {type(motion).__name__}")
 
     # ---- the automaton -------------------------------------------------------
     @abc.abstractmethod
@@ -150,11 +178,46 @@ class AbstractHybridModel(abc.ABC):
         """After the excitation ends: a time [s] within which the block comes to rest
         from ``y`` in ``mode``; raises ValueError if it never does."""
 
-    @abc.abstractmethod
     def event(self, t, mode_before, mode_after, y):
-        """The event record of a mode change at ``t`` [s] in state ``y``."""
+        """The event record of a mode change at ``t`` [s] in state ``y`` (a
+        :class:`~blockdae.HybridEvent` by default)."""
+        return HybridEvent(float(t), mode_before, mode_after, tuple(float(v) for v in y))
 
-    @abc.abstractmethod
     def solution(self, *, t, y, mode, events, backend, dense, stats):
         """The model's solution from the driver's knots: ``t`` (n,), ``y`` (n, k),
-        ``mode`` (n,), ``dense(t)`` -> k arrays."""
+        ``mode`` (n,), ``dense(t)`` -> k arrays (a :class:`~blockdae.DriverSolution` by
+        default)."""
+        return DriverSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
+
+    def dae_form(self, piece):
+        """The model as a DAE for IDA on the driver's excitation ``piece``: by default
+        the explicit ODE y' = flow (:class:`ExplicitForm`); a model with algebraic
+        variables (a friction force) returns its own form of the same interface."""
+        return ExplicitForm(self, piece)
+
+
+class ExplicitForm:
+    """A model's flow as the residual 0 = y' - flow(mode, t, y), no algebraic variable:
+    what IDA runs for a model without a DAE form of its own. ``force_scale`` [-] sets
+    the algebraic variables' tolerance (none here)."""
+
+    n_friction, force_scale = 0, 1.0
+
+    def __init__(self, model, piece):
+        self.block, self.piece = model, piece
+        self.n_states = len(model.state_names)
+
+    def residual(self, mode):
+        block, piece = self.block, self.piece
+
+        def residual(t, y, yp, res):
+            res[:] = yp - np.array(block.flow(mode, t, y, piece, SCALAR), dtype=float)
+
+        return residual
+
+    def guards(self, mode, t, y, out):
+        out[:] = self.block.guards(mode, t, y, self.piece, SCALAR)
+
+    def consistent(self, mode, t, y):
+        """(y, y') at ``t`` from the flow."""
+        return np.asarray(y, dtype=float), np.array(self.block.flow(mode, t, y, self.piece, SCALAR), dtype=float)

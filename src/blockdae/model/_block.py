@@ -16,8 +16,9 @@ import dataclasses
 import numpy as np
 
 from .._units import STANDARD_GRAVITY
-from ._base import AbstractHybridModel
-from ._modes import Mode
+from .._solution import Event, Solution
+from ._base import SCALAR, AbstractHybridModel
+from .._modes import Mode
 
 _DIRECTIONS = ("both", "positive", "negative")
 
@@ -127,6 +128,10 @@ class SlidingBlock(AbstractHybridModel):
     state_names = ("u", "v")
     modes = Mode
     initial_mode = Mode.STICK
+    default_backend = "exact"
+    engines = {"exact": "sliding", "exact-jax": "sliding", "jax": "sliding"}
+    differentiated_backends = ("exact", "exact-jax", "jax")
+    derivatives = "sliding"
 
     def __post_init__(self):
         for name in ("mu", "mu_kinetic", "bias"):
@@ -308,14 +313,14 @@ class SlidingBlock(AbstractHybridModel):
             raise never_rests_error(self)
         return 2.0 * abs(y[1] / slip_constant(mode, self.bias, self.friction_kinetic, self.g))
 
-    def event(self, t, mode_before, mode_after, y):
-        from .._solution import Event
+    def dae_form(self, piece):
+        """(u, v, F) with the friction force F as IDA's algebraic variable (:class:`SlidingDAEForm`)."""
+        return SlidingDAEForm(self, piece)
 
+    def event(self, t, mode_before, mode_after, y):
         return Event(t, mode_before, mode_after, float(y[0]), float(y[1]))
 
     def solution(self, *, t, y, mode, events, backend, dense, stats):
-        from .._solution import Solution
-
         return Solution(t=t, u=y[:, 0], v=y[:, 1], mode=mode, events=events, backend=backend, dense=dense,
                         stats=stats)
 
@@ -328,3 +333,39 @@ def _first(values, mask):
 def _check(bad, name, values, message):
     if np.any(bad):
         raise ValueError(f"{name}={_first(values, bad)!r} {message}")
+
+
+class SlidingDAEForm:
+    """:class:`SlidingBlock`: (u, v, F)."""
+
+    n_states, n_friction = 2, 1
+
+    def __init__(self, block, piece):
+        self.block, self.piece = block, piece
+        self.force_scale = block.mu * block.g
+
+    def residual(self, mode):
+        block, piece = self.block, self.piece
+
+        def residual(t, y, yp, res):
+            sigma = block.demand(t, piece, SCALAR)
+            res[0] = yp[0] - y[1]
+            res[1] = yp[1] - (y[2] - sigma)
+            res[2] = y[2] - sigma - block.flow(mode, t, y, piece, SCALAR)[1]
+
+        return residual
+
+    def guards(self, mode, t, y, out):
+        block = self.block
+        if mode == Mode.STICK:
+            out[:] = stick_guards(y[2], block.mu, block.g, block.allow_negative, block.allow_positive, SCALAR)
+        else:
+            out[:] = block.guards(mode, t, y, self.piece, SCALAR)
+
+    def consistent(self, mode, t, y):
+        """(y, y') at ``t``: F from the algebraic equation; F' = da/dt in stick
+        (F = sigma) and 0 in slip (F constant)."""
+        rate = self.block.flow(mode, t, y, self.piece, SCALAR)[1]
+        friction = self.block.demand(t, self.piece, SCALAR) + rate
+        friction_rate = self.piece.acceleration_rate(t) if mode == Mode.STICK else 0.0
+        return np.array([y[0], y[1], friction]), np.array([y[1], rate, friction_rate])

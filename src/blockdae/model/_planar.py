@@ -30,17 +30,18 @@ with a_y = b_y = 0 the motion stays exactly on the x axis.
 """
 
 import dataclasses
-import enum
 import math
 
 import numpy as np
 
 from .._units import STANDARD_GRAVITY
+from ..excitation import AbstractExcitation, BaseMotion
+from .._solution_planar import PlanarEvent, PlanarSolution
 from ._base import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
 from ._checks import set_real_fields
+from .._modes import _CX, _CY, _S, _UX, _UY, _W, _WD, PlanarMode, horizontal_velocity
 from ._support import RigidSupport, SpringSupport, parse_support
 
-_UX, _UY, _S, _CX, _CY, _W, _WD = range(7)
 #: below this speed [m/s] the direction relaxes towards the demand at the rate
 #: |sigma| / SLOW_SPEED instead of |sigma| / s. Just after an onset with f = mu,
 #: s ~ tau², and the exact rate |sigma| / s makes the slide so stiff that no solver
@@ -50,17 +51,6 @@ _UX, _UY, _S, _CX, _CY, _W, _WD = range(7)
 #: than omega SLOW_SPEED² tau / |sigma| ~ 1e-15 m (Elms's pulse: stops 2e-12 s,
 #: u 1e-11 off a reference with the exact rate, tests/test_planar_jax.py).
 SLOW_SPEED = 1e-6
-
-
-class PlanarMode(enum.IntEnum):
-    """Mode of the planar block relative to its base."""
-
-    STICK = 0
-    SLIP = 1  # sliding in the direction e, on the base
-    FLIGHT = 2  # off the base (n <= 0): no friction
-
-    def __str__(self):
-        return self.name
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -101,6 +91,7 @@ class PlanarBlock(AbstractHybridModel):
     initial_mode = PlanarMode.STICK
     component_names = ("x", "y", "z")
     displacement_states = (_UX, _UY)
+    default_backend = "ida"  # CVODE loses the sliding direction on turning slides
 
     def __post_init__(self):
         set_real_fields(self, ("g", "restitution", "bounce_threshold"))
@@ -295,10 +286,19 @@ class PlanarBlock(AbstractHybridModel):
         return rest
 
     # ---- what the hybrid driver asks -----------------------------------------
+    def check_motion(self, motion):
+        """An excitation (a_x alone) or a :class:`~blockdae.BaseMotion` (x, y, z)."""
+        if not isinstance(motion, (AbstractExcitation, BaseMotion)):
+            raise TypeError(f"motion must be an excitation (Harmonic, Record, ...) or a BaseMotion, "
+                            f"got {type(motion).__name__}")
+
+    def dae_form(self, piece):
+        """The states and the friction force (F_x, F_y) as IDA's algebraic variables
+        (:class:`PlanarDAEForm`)."""
+        return PlanarDAEForm(self, piece)
+
     def excitation_pieces(self, excitation, t_end):
         """(a_x, a_y, a_z) pieces on one partition; a 1-D excitation is a_x alone."""
-        from ..excitation import BaseMotion
-
         motion = excitation if isinstance(excitation, BaseMotion) else BaseMotion(excitation)
         return motion.aligned_pieces(t_end)
 
@@ -459,26 +459,13 @@ class PlanarBlock(AbstractHybridModel):
         return flight + 2.0 * (speed + b * g * flight) / ((f - b) * g) + 1e-12
 
     def event(self, t, mode_before, mode_after, y):
-        from .._solution_planar import PlanarEvent
-
         vx, vy = horizontal_velocity(mode_before, y)
         return PlanarEvent(t, mode_before, mode_after, float(y[_UX]), float(y[_UY]), float(vx), float(vy),
                            float(y[_WD]))
 
     def solution(self, *, t, y, mode, events, backend, dense, stats):
-        from .._solution_planar import PlanarSolution
-
         return PlanarSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense,
                               stats=stats)
-
-
-def horizontal_velocity(mode, y):
-    """(v_x, v_y) [m/s] from the state in ``mode`` (works on arrays of states)."""
-    y = np.asarray(y, dtype=float)
-    flying = np.asarray(mode) == PlanarMode.FLIGHT
-    size = np.hypot(y[..., _CX], y[..., _CY])
-    scale = np.where(flying, 1.0, y[..., _S] / np.where(size > 0, size, 1.0))
-    return y[..., _CX] * scale, y[..., _CY] * scale
 
 
 def _parameter(name, value):
@@ -520,3 +507,51 @@ def _unit(y, xp):
     moving = size > 0
     size = xp.where(moving, size, 1.0)
     return xp.where(moving, y[_CX] / size, 0.0), xp.where(moving, y[_CY] / size, 0.0)
+
+
+class PlanarDAEForm:
+    """:class:`PlanarBlock`: (u_x, u_y, s, c_x, c_y, w, w', F_x, F_y)."""
+
+    n_states, n_friction = 7, 2
+
+    def __init__(self, block, piece):
+        if block.state_names != ("u_x", "u_y", "s", "c_x", "c_y", "w", "w_rate"):
+            raise RuntimeError(f"the planar DAE form expects another state layout than {block.state_names}")
+        self.block, self.piece = block, piece
+        self.force_scale = block.mu * block.g
+
+    def residual(self, mode):
+        block, piece = self.block, self.piece
+
+        def residual(t, y, yp, res):
+            res[7:9] = y[7:9] - np.array(block.friction(mode, t, y, piece, SCALAR))
+            res[:7] = yp[:7] - np.array(block.flow(mode, t, y, piece, SCALAR, friction=(y[7], y[8])))
+            if mode == PlanarMode.SLIP:
+                res[3:5] *= max(y[2], SLOW_SPEED)
+
+        return residual
+
+    def guards(self, mode, t, y, out):
+        if mode == PlanarMode.STICK:
+            n, _ = self.block.normal(t, self.piece, y)
+            scale = self.block.guard_scale
+            out[0], out[1] = scale * n, scale * (self.block.mu * n - math.sqrt(y[7] ** 2 + y[8] ** 2))
+        else:
+            out[:] = self.block.guards(mode, t, y, self.piece, SCALAR)
+
+    def consistent(self, mode, t, y):
+        """(y, y') at ``t``: y' from the model's flow, F from its friction; F' = d sigma/dt
+        in stick, -f (n' e + n e') in slip, 0 in flight."""
+        block, piece = self.block, self.piece
+        rate = np.array(block.flow(mode, t, y, piece, SCALAR), dtype=float)
+        friction = block.friction(mode, t, y, piece, SCALAR)
+        if mode == PlanarMode.STICK:
+            friction_rate = block.demand(t, piece)[1]
+        elif mode == PlanarMode.SLIP:
+            n, n_rate = block.normal(t, piece, y)
+            size = math.sqrt(y[3] ** 2 + y[4] ** 2)
+            friction_rate = tuple(-block.friction_kinetic * (n_rate * c + n * c_rate) / size
+                                  for c, c_rate in ((y[3], rate[3]), (y[4], rate[4])))
+        else:
+            friction_rate = (0.0, 0.0)
+        return np.concatenate([y, friction]), np.concatenate([rate, friction_rate])

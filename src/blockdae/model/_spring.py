@@ -31,36 +31,18 @@ event like liftoff and landing.
 """
 
 import dataclasses
-import enum
 import math
 
 import numpy as np
 
 from .._units import STANDARD_GRAVITY
+from .._solution_upthrow import UpthrowEvent, UpthrowSolution
 from ._base import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
 from ._checks import set_real_fields
+from .._modes import EVENT_KINDS, UpthrowMode
 from ._support import SpringSupport
 
 _U, _V = range(2)
-
-
-class UpthrowMode(enum.IntEnum):
-    """Mode of a spring-supported mass."""
-
-    CONTACT = 0  # on the support: a damped oscillator
-    FLIGHT_UP = 1  # off the support, rising relative to the ground (u' > 0)
-    FLIGHT_DOWN = 2  # off the support, falling relative to the ground (u' <= 0)
-
-    def __str__(self):
-        return self.name
-
-
-#: event kind of each mode change (before, after)
-EVENT_KINDS = {(UpthrowMode.CONTACT, UpthrowMode.FLIGHT_UP): "liftoff",
-               (UpthrowMode.FLIGHT_UP, UpthrowMode.FLIGHT_DOWN): "top",
-               (UpthrowMode.FLIGHT_DOWN, UpthrowMode.FLIGHT_UP): "bottom",
-               (UpthrowMode.FLIGHT_UP, UpthrowMode.CONTACT): "landing",
-               (UpthrowMode.FLIGHT_DOWN, UpthrowMode.CONTACT): "landing"}
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -83,6 +65,9 @@ class SpringSupportedMass(AbstractHybridModel):
     state_names = ("u", "u_rate")
     modes = UpthrowMode
     initial_mode = UpthrowMode.CONTACT
+    default_backend = "exact"
+    engines = {"exact": "linear"}
+    derivatives = "flights"
 
     def __post_init__(self):
         set_real_fields(self, ("frequency", "damping", "g"))
@@ -243,14 +228,56 @@ class SpringSupportedMass(AbstractHybridModel):
     def time_to_rest(self, mode, y):
         raise ValueError("a mass on springs never comes to rest exactly after the excitation: give t_end [s]")
 
-    def event(self, t, mode_before, mode_after, y):
-        from .._solution_upthrow import UpthrowEvent
+    def dae_form(self, piece):
+        """(u, u', N) with the support force N as IDA's algebraic variable (:class:`SpringDAEForm`)."""
+        return SpringDAEForm(self, piece)
 
+    def event(self, t, mode_before, mode_after, y):
         return UpthrowEvent(EVENT_KINDS[(mode_before, mode_after)], float(t), float(y[_U]), float(y[_V]),
                             float(y[_U]) - self.static_deflection, mode_before, mode_after)
 
     def solution(self, *, t, y, mode, events, backend, dense, stats):
-        from .._solution_upthrow import UpthrowSolution
-
         return UpthrowSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense,
                                stats=stats)
+
+
+class SpringDAEForm:
+    """:class:`SpringSupportedMass`: (u, u', N), N the support force per unit mass
+    [m/s²] (the model's ``support_force``: its law in contact, 0 in flight)::
+
+        u' = u_rate,    u_rate' = relative_acceleration(t, N),    0 = N - support_force.
+
+    The contact guard is N itself; the flight guards are the model's.
+    """
+
+    n_states, n_friction = 2, 1
+
+    def __init__(self, block, piece):
+        self.block, self.piece = block, piece
+        self.force_scale = block.g
+
+    def residual(self, mode):
+        block, piece = self.block, self.piece
+
+        def residual(t, y, yp, res):
+            res[0] = yp[0] - y[1]
+            res[1] = yp[1] - block.relative_acceleration(t, y[2], piece)
+            res[2] = y[2] - block.support_force(mode, t, y, piece, SCALAR)
+
+        return residual
+
+    def guards(self, mode, t, y, out):
+        if mode == UpthrowMode.CONTACT:
+            out[0] = y[2]
+        else:
+            out[:] = self.block.guards(mode, t, y, self.piece, SCALAR)
+
+    def consistent(self, mode, t, y):
+        """(y, y') at ``t``: N from the model; N' from its law, affine in the state, at
+        the rate (u', u'') minus its value at zero."""
+        block, piece = self.block, self.piece
+        rate = np.array(block.flow(mode, t, y, piece, SCALAR), dtype=float)
+        force = block.support_force(mode, t, y, piece, SCALAR)
+        force_rate = block.support_force(mode, t, rate, piece, SCALAR) - block.support_force(
+            mode, t, np.zeros(2), piece, SCALAR)
+        return np.array([y[0], y[1], force]), np.array([y[1], rate[1], force_rate])
