@@ -17,7 +17,7 @@ import importlib.resources
 import numpy as np
 
 import blockdae as bd
-from blockdae import _elms as elms
+from blockdae.planar import _elms as elms
 from _common import G, print_table, timed
 
 #: backends that may run a PlanarBlock; IDA is the reference (it follows turning slides)

@@ -24,7 +24,7 @@ Eq. 14). Units: m, s, m/s²; g = 9.81 m/s² as in the paper."""),
 import numpy as np
 
 import blockdae as bd
-from blockdae._examples import rectangular_pulse_displacement
+from blockdae.sliding._examples import rectangular_pulse_displacement
 
 examples = {e.name: e for e in bd.seed_examples()}
 solutions = {name: bd.simulate(e.block, e.motion, e.t_end) for name, e in examples.items()}"""),

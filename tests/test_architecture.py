@@ -1,6 +1,7 @@
-"""The shape of the package (issue 20): no import cycle, and the core (driver, backends,
-simulate, crosscheck, sensitivities) names no concrete model; a model declares what it
-needs (its default backend, engines, DAE form, derivatives)."""
+"""The shape of the package (issue 20): no import cycle, and the core (the contract, the
+driver, simulate, crosscheck, sensitivities, the backend registry, the integrators)
+names no concrete model; a model declares what it needs (its default backend, engines,
+DAE form, derivatives)."""
 
 import ast
 import pathlib
@@ -8,7 +9,7 @@ import pathlib
 import blockdae as bd
 
 PACKAGE = pathlib.Path(bd.__file__).resolve().parent
-CORE = ["backends", "_driver.py", "_simulate.py", "_crosscheck.py", "_sensitivities.py"]
+CORE = ["core", "backends", "integrators"]
 MODELS = ("SlidingBlock", "PlanarBlock", "SpringSupportedMass")
 
 

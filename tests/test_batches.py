@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae import _crosscheck
-from blockdae._sensitivities import _difference, finite_differences
+from blockdae.core import _crosscheck
+from blockdae.core._sensitivities import _difference, finite_differences
 from blockdae.backends import _REGISTRY, available, make_backend
 
 G = 9.81

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 import pytest
 
-from blockdae._cli import main
+from blockdae.cli._main import main
 
 # seed 000, Example 5: triangular pulse A = 9 m/s², t0 = 0.5 s, sampled exactly by 3 samples
 TRIANGLE_CSV = "time [s], acceleration [m/s2]\n0.0, 0.0\n0.25, 9.0\n0.5, 0.0\n"
@@ -20,7 +20,7 @@ SEED_G = ["--g", "9.81", "--units", "m/s2"]
 def _cli(args, cache):
     """Run the console command in a fresh interpreter; returns (status, stdout, stderr)."""
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
-    done = subprocess.run([sys.executable, "-m", "blockdae._cli", "--cache-dir", str(cache), *args],
+    done = subprocess.run([sys.executable, "-m", "blockdae.cli", "--cache-dir", str(cache), *args],
                           capture_output=True, text=True, env=env, timeout=300)
     return done.returncode, done.stdout, done.stderr
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae._cli import main
+from blockdae.cli._main import main
 
 G = bd.STANDARD_GRAVITY
 F = 5.0  # [Hz]

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae._cli import main
+from blockdae.cli._main import main
 from conftest import sample_record_paths
 
 

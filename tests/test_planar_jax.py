@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae._sensitivities import finite_differences
+from blockdae.core._sensitivities import finite_differences
 from blockdae.backends import make_backend
 from conftest import load_sample_record
 from test_planar_ida import (PULSE, VERTICAL, X_ONLY, assert_agrees, assert_reduces, elms, slide_reference,

@@ -41,7 +41,8 @@ def test_bash_blocks_run_as_written(index, tmp_path, jax_cache_dir):
                BLOCKDAE_CACHE_DIR=str(jax_cache_dir), PATH=os.pathsep.join(
                    [str(pathlib.Path(sys.executable).parent), os.environ.get("PATH", "")]))
     repo = README.parent
-    script = f"set -euo pipefail\ncd {repo}\n" + code if "benchmarks/" in code else "set -euo pipefail\n" + code
+    in_repo = "benchmarks/" in code or "examples/" in code
+    script = f"set -euo pipefail\ncd {repo}\n" + code if in_repo else "set -euo pipefail\n" + code
     done = subprocess.run(["bash", "-c", script], cwd=tmp_path, env=env, capture_output=True, text=True,
                           timeout=900)
     assert done.returncode == 0, f"README block failed:\n{code}\n--- stderr:\n{done.stderr[-3000:]}"

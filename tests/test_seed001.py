@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae import _elms as elms
+from blockdae.planar import _elms as elms
 
 #: reading "almost / about / nearly X %" off the text: within 10 % of X (relative)
 WORDS = 0.10

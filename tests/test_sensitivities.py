@@ -167,7 +167,7 @@ def test_exact_derivative_of_an_onset_exactly_on_a_sample():
 def test_finite_differences_of_cvode_match_the_rectangular_pulse_closed_form():
     """u = A g t0²/2 (1 - A/mu) (seed Eq. 14, A in g): du/dmu = A² g t0²/(2 mu²),
     du/dA = g t0²/2 (1 - 2A/mu), here from central differences of the CVODE backend."""
-    from blockdae._sensitivities import finite_differences
+    from blockdae.core._sensitivities import finite_differences
 
     a_g, t0, mu, g = 0.9, 0.5, 0.6, 9.81
     block = bd.SlidingBlock(mu=mu, g=g)

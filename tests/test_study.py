@@ -12,7 +12,7 @@ import pandas as pd
 import pytest
 
 import blockdae as bd
-from blockdae._cli import main
+from blockdae.cli._main import main
 from blockdae.studies import _command as command_module
 from blockdae.studies import _study as study_module
 from conftest import load_sample_record, sample_record_paths

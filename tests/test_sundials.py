@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae import _crosscheck
-from blockdae._driver import SolverError
+from blockdae.core import _crosscheck
+from blockdae.core._driver import SolverError
 from blockdae.backends import make_backend
 from conftest import assert_same_events, load_sample_record
 

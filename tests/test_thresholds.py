@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae import _driver as driver
+from blockdae.core import _driver as driver
 from threshold_cases import G, MU, planar_cases, sliding_cases
 
 RTOL = 1e-10

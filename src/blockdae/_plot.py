@@ -6,11 +6,11 @@ import math
 
 import numpy as np
 
-from ._solution import BatchSolution, Solution
-from ._solution_planar import PlanarSolution
-from ._solution_upthrow import UpthrowSolution
+from .sliding._solution import BatchSolution, Solution
+from .planar._solution import PlanarSolution
+from .upthrow._solution import UpthrowSolution
 from .excitation import AbstractExcitation
-from .model import SlidingBlock
+from .sliding._model import SlidingBlock
 from .motions import RelativeMotion, ResponseSpectrum, plot_relative_motion, plot_spectrum
 
 _BASE = dict(color="0.3", lw=1.2, label="base")

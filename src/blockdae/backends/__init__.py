@@ -7,11 +7,11 @@ from ._base import AbstractBackend, Horizon
 
 # name -> "module:class", imported on first use so that unused solvers cost nothing
 _REGISTRY = {
-    "exact": "blockdae.backends._exact:ExactBackend",
-    "exact-jax": "blockdae.backends._exact_jax:ExactJaxBackend",
-    "cvode": "blockdae.backends._cvode:CVODEBackend",
-    "ida": "blockdae.backends._ida:IDABackend",
-    "jax": "blockdae.backends._jax:JaxBackend",
+    "exact": "blockdae.engines._exact:ExactBackend",
+    "exact-jax": "blockdae.engines._exact_jax:ExactJaxBackend",
+    "cvode": "blockdae.integrators._cvode:CVODEBackend",
+    "ida": "blockdae.integrators._ida:IDABackend",
+    "jax": "blockdae.integrators._jax:JaxBackend",
 }
 
 

@@ -7,9 +7,9 @@ import math
 
 import numpy as np
 
-from .._solution import BatchSolution
+from ..sliding._solution import BatchSolution
 from ..excitation import AbstractExcitation
-from ..model import AbstractHybridModel
+from ..core._model import AbstractHybridModel
 
 
 @dataclasses.dataclass(frozen=True)

@@ -2,7 +2,7 @@
 
 import pathlib
 
-from .._units import STANDARD_GRAVITY
+from ..core._units import STANDARD_GRAVITY
 from ._motion import BaseMotion
 from ._readers import read_record, read_samples
 from ._record import Record

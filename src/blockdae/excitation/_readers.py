@@ -6,7 +6,7 @@ import typing
 
 import numpy as np
 
-from .._units import STANDARD_GRAVITY
+from ..core._units import STANDARD_GRAVITY
 from ._record import Record
 
 #: plausible peak acceleration of a record [g]; outside it the units are likely wrong

@@ -1,6 +1,6 @@
 """``blockdae spectrum`` and ``blockdae two-point``: command functions for the CLI.
 
-``blockdae._cli`` adds them with ``add_spectrum_parser(sub)`` and
+``blockdae.cli`` adds them with ``add_spectrum_parser(sub)`` and
 ``add_two_point_parser(sub)``; each sets ``command`` to a function of the parsed args
 returning the exit status (errors: :class:`UsageError`, one ``blockdae: error: ...``
 line and status 2).
@@ -11,8 +11,8 @@ import pathlib
 
 import numpy as np
 
-from .._cli_common import UsageError, checked, number, positive, read, save_figure, write_csv
-from .._units import STANDARD_GRAVITY
+from ..cli._common import UsageError, checked, number, positive, read, save_figure, write_csv
+from ..core._units import STANDARD_GRAVITY
 
 SEED_LAGS = np.geomspace(0.05, 3.0, 20)  # seed 003: 20 lags from 0.05 to 3 s
 DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)

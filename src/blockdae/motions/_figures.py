@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from .._units import STANDARD_GRAVITY
+from ..core._units import STANDARD_GRAVITY
 
 
 def plot_spectrum(spectrum, *, quantity="psa", ax=None, title=None, label=None, tripartite=False,

@@ -11,7 +11,7 @@ import dataclasses
 
 import numpy as np
 
-from .._units import STANDARD_GRAVITY
+from ..core._units import STANDARD_GRAVITY
 from ..excitation._pieces import accel, accel_int1, accel_int2
 from . import _checks
 

@@ -1,6 +1,6 @@
 """``blockdae study``: the command function for the CLI.
 
-``blockdae._cli`` adds it with ``add_study_parser(sub)``; it sets ``command`` to
+``blockdae.cli`` adds it with ``add_study_parser(sub)``; it sets ``command`` to
 :func:`run_study` (errors: :class:`UsageError`, one ``blockdae: error: ...`` line, exit
 status 2; no Dask worker alive for ``--no-worker-timeout`` [s]: such a line, exit status
 1). Every file is read, and checked, before any analysis.
@@ -13,8 +13,8 @@ import time
 
 import numpy as np
 
-from .._cli_common import UsageError, number, positive, read
-from .._units import STANDARD_GRAVITY
+from ..cli._common import UsageError, number, positive, read
+from ..core._units import STANDARD_GRAVITY
 from ..structures import ShearFrame
 from ._io import save_study
 from ._study import NoWorkerError, study, summary

@@ -21,11 +21,11 @@ import time
 
 import numpy as np
 
-from .._final import simulate_final
-from .._formulas import AdjustmentFactor, newmark_rd_sd
-from .._units import STANDARD_GRAVITY
+from ..sliding._final import simulate_final
+from ..sliding._formulas import AdjustmentFactor, newmark_rd_sd
+from ..core._units import STANDARD_GRAVITY
 from ..excitation import Record
-from ..model import SlidingBlock
+from ..sliding._model import SlidingBlock
 from ..motions import response_spectrum
 from ..structures import Floor
 

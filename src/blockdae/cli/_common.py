@@ -1,0 +1,103 @@
+"""Pieces every ``blockdae`` command shares: argument types that name their flag, the
+usage error (``blockdae: error: ...``, exit status 2), reading a record argument
+(its flags, its description and its JSON fields), writing CSV and saving figures."""
+
+import argparse
+import csv
+
+import numpy as np
+
+from ..excitation import read_record
+
+
+class UsageError(Exception):
+    """A bad file or argument, reported as ``blockdae: error: ...`` with exit status 2."""
+
+
+def number(flag, ok, what):
+    """An argparse type for ``flag``: a float for which ``ok`` holds, else "must be ``what``"."""
+    def parse(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
+        if not ok(value):
+            raise argparse.ArgumentTypeError(f"must be {what}, got {text}")
+        return value
+    parse.__name__ = flag  # argparse names the argument in its message
+    return parse
+
+
+def finite(flag):
+    return number(flag, np.isfinite, "a finite number")
+
+
+def positive(flag):
+    return number(flag, lambda x: np.isfinite(x) and x > 0, "a positive finite number")
+
+
+def checked(action, where):
+    """Run ``action``; a ValueError/OSError becomes a usage error naming ``where``."""
+    try:
+        return action()
+    except (ValueError, OSError) as err:
+        message = str(err)
+        raise UsageError(message if not where or where in message else f"{where}: {message}") from None
+
+
+def record_arguments(parser):
+    """--units, --dt and --accept-peak: how :func:`read` reads a command's record files."""
+    parser.add_argument("--units", default=None,
+                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header "
+                             "says, else g)")
+    parser.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
+    parser.add_argument("--accept-peak", action="store_true",
+                        help="accept a peak acceleration outside 1e-4 g .. 10 g (else an error: wrong units?)")
+
+
+def read(path, args):
+    """The record at ``path`` with the command's --units, --dt, --g (and --accept-peak)."""
+    if not path.is_file():
+        raise UsageError(f"{path}: no such file")
+    units = {} if args.units is None else {"units": args.units}
+    check_peak = not getattr(args, "accept_peak", False)
+    return checked(lambda: read_record(path, dt=args.dt, g=args.g, check_peak=check_peak, **units), "")
+
+
+def write_csv(path, rows, fields=None):
+    """``rows`` (dicts) as CSV with a header (``fields``, default the first row's keys)."""
+    def write():
+        with open(path, "w", newline="") as stream:
+            writer = csv.DictWriter(stream, fieldnames=fields or list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+    checked(write, f"--csv {path}")
+
+
+def save_figure(figure, path):
+    """Save ``figure`` as PNG at ``path`` and close it."""
+    import matplotlib.pyplot as plt
+
+    try:
+        checked(lambda: figure.savefig(path, dpi=120), f"--plot {path}")
+    finally:
+        plt.close(figure)
+
+
+def describe_record(record) -> str:
+    """One line on a record: name, samples, dt [s], duration [s], peak [m/s²], start."""
+    origin = (f"; times from its first sample, at t = {record.start_time:g} s on the file's axis"
+              if record.start_time else "")
+    return (f"{record.name} ({record.acceleration_samples.size} samples, dt = {record.dt:g} s, "
+            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} m/s²{origin})")
+
+
+def clean(x):
+    """A float without the noise of its last bits (12 significant digits)."""
+    return float(f"{x:.12g}")
+
+
+def record_fields(record) -> dict:
+    """A record's name, samples, dt [s], start time [s] and peak [m/s²], for JSON and CSV rows."""
+    return {"record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": clean(record.dt),
+            "start_time_s": record.start_time, "peak_acceleration_m_s2": record.peak_acceleration}

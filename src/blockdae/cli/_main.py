@@ -1,0 +1,354 @@
+"""The ``blockdae`` command: run a record (or two or three components: a block on a
+plane, see ``blockdae.cli._planar``), Newmark's analysis, a mass on a spring support under a
+vertical record (``blockdae.cli._upthrow``), the seed-000 examples, a batch over a folder.
+
+Every error about a file or an argument ends the command with exit status 2 and one
+line ``blockdae: error: ...`` on stderr naming the file (and line) or the argument. A
+batch analyses every good file and lists the bad ones at the end (exit status 1).
+"""
+
+import argparse
+import importlib.metadata
+import itertools
+import json
+import os
+import pathlib
+import sys
+import time
+
+import numpy as np
+
+from .. import backends
+from ._common import (UsageError, checked, clean, describe_record, finite, positive, read, record_arguments,
+                      record_fields, save_figure, write_csv)
+from ._planar import is_planar, read_motion_argument, run_planar, x_record
+from ._upthrow import add_upthrow_parser
+from ..sliding._examples import seed_examples
+from ..core._jax_config import set_compilation_cache
+from ..sliding._newmark import newmark
+from ..core._simulate import simulate
+from ..core._units import STANDARD_GRAVITY
+from ..motions._commands import add_spectrum_parser, add_two_point_parser
+from ..studies._command import add_study_parser
+from ..excitation._readers import unit_factor
+from ..sliding._model import SlidingBlock
+
+_RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
+_CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
+               "g_m_s2", "direction", "backend", "displacement_m", "max_abs_displacement_m", "n_events",
+               "t_end_s")
+_EVENTS_SHOWN = 5  # events printed at each end of a long list by default
+
+
+def main(argv=None) -> int:
+    """Entry point of the ``blockdae`` console script; returns the exit status."""
+    parser = _parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exit_:
+        return int(exit_.code or 0)
+    try:
+        _compilation_cache(args)
+        return args.command(args)
+    except UsageError as err:
+        print(f"blockdae: error: {err}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:  # the reader of the output stopped early (e.g. `| head`)
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at exit
+        return 0
+
+
+def _parser():
+    parser = argparse.ArgumentParser(
+        prog="blockdae", description="Seismic sliding of a rigid block: exact event times.")
+    parser.add_argument("--version", action="version", version=f"blockdae {_version()}")
+    parser.add_argument("--cache-dir", type=pathlib.Path, default=None,
+                        help="JAX compilation cache, so that later runs skip compiling "
+                             "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
+    parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
+    sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,upthrow,examples,batch,study}")
+
+    run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
+                                     "plane under two or three components (u_x, u_y)")
+    run.add_argument("record", type=pathlib.Path,
+                     help="accelerogram (CSV t,a / one column / .AT2), the x component; or a table of "
+                          "time [s], a_x, a_y[, a_z] (a block on a plane)")
+    run.add_argument("--y", type=pathlib.Path, default=None, metavar="FILE",
+                     help="second horizontal component (a block on a plane)")
+    run.add_argument("--z", type=pathlib.Path, default=None, metavar="FILE",
+                     help="vertical component, upward positive (a block on a plane)")
+    _block_arguments(run, nargs=None, planar=True)
+    run.add_argument("--bias-y", type=finite("--bias-y"), default=0.0,
+                     help="on a plane: constant force / weight in +y [-] (--bias is the one in +x)")
+    record_arguments(run)
+    run.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure")
+    run.add_argument("--json", action="store_true", help="print the results as JSON")
+    run.add_argument("--events", choices=("summary", "all", "none"), default="summary",
+                     help=f"events to print: the first and last {_EVENTS_SHOWN} (default), all or none")
+    run.add_argument("--quiet", action="store_true", help="print only u(t_end) [m]")
+    run.set_defaults(command=_run)
+
+    newmark_ = sub.add_parser("newmark", help="Newmark's one-way analysis: downslope displacement "
+                                              "(positive) for both polarities")
+    newmark_.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
+    newmark_.add_argument("--ky", type=positive("--ky"), nargs="+", required=True,
+                          help="yield acceleration(s) [g]")
+    newmark_.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
+                          help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
+    record_arguments(newmark_)
+    newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
+    newmark_.set_defaults(command=_newmark)
+
+    add_spectrum_parser(sub)
+    add_two_point_parser(sub)
+    add_upthrow_parser(sub)
+
+    examples = sub.add_parser("examples", help="seed-000 Examples 1-6: exact vs the paper")
+    examples.set_defaults(command=_examples)
+
+    batch = sub.add_parser("batch", help="every record in a folder, over a parameter grid")
+    batch.add_argument("folder", type=pathlib.Path, help=f"folder of records ({', '.join(_RECORD_SUFFIXES)})")
+    _block_arguments(batch, nargs="+")
+    record_arguments(batch)
+    batch.add_argument("--csv", type=pathlib.Path, default=None, help="write the results as CSV")
+    batch.add_argument("--json", action="store_true", help="print the results as JSON")
+    batch.add_argument("--strict", action="store_true", help="stop at the first bad file")
+    batch.set_defaults(command=_batch)
+
+    add_study_parser(sub)
+    return parser
+
+
+def _block_arguments(parser, nargs, planar=False):
+    grid = " (several: a grid over every combination)" if nargs else ""
+    parser.add_argument("--mu", type=finite("--mu"), required=True, nargs=nargs,
+                        help="static friction coefficient [-]" + grid)
+    parser.add_argument("--mu-kinetic", type=finite("--mu-kinetic"), default=None, nargs=nargs,
+                        help="kinetic friction f [-] (default mu)" + grid)
+    parser.add_argument("--bias", type=finite("--bias"), default=[0.0] if nargs else 0.0, nargs=nargs,
+                        help="R/Q, constant force / weight in +x [-]" + grid)
+    parser.add_argument("--direction", choices=("both", "positive", "negative"), default="both",
+                        help="allowed sliding direction (negative + bias 0: one-way Newmark, u < 0; "
+                             "see `blockdae newmark` for positive downslope displacements)")
+    parser.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
+                        help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
+    parser.add_argument("--backend", default=None if planar else "exact",
+                        help=f"solver backend, one of {backends.available()} (default: exact"
+                             + ("; on a plane: ida)" if planar else ")"))
+    parser.add_argument("--t-end", type=positive("--t-end"), default=None,
+                        help="final time [s] (default: until the block rests after the record)")
+
+
+# ---- commands ---------------------------------------------------------------
+
+def _run(args):
+    _check_units_and_backend(args)
+    motion = read_motion_argument(args)
+    if is_planar(motion) or args.y is not None or args.z is not None:
+        return run_planar(args, motion, _print_events)
+    if args.bias_y:
+        raise UsageError("argument --bias-y: needs a second horizontal component (--y, or a table of "
+                         "time, a_x, a_y)")
+    block = _block(args, args.mu, args.mu_kinetic, args.bias)
+    record = x_record(motion, args.record)
+    start = time.perf_counter()
+    solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend or "exact"),
+                        f"{args.record}")
+    wall = time.perf_counter() - start
+    if args.plot is not None:
+        _save_plot(args, solution, record, block)
+    if args.json:
+        print(json.dumps(_run_json(record, block, solution, wall), indent=2))
+        return 0
+    if args.quiet:
+        print(f"{solution.displacement:+.6f} m")
+        return 0
+    print(f"record: {describe_record(record)}")
+    print(f"block: {_describe_block(block)}; backend {solution.backend}")
+    print(f"final time t_end = {solution.t_end:.4f} s"
+          + (" (block at rest after the record)" if args.t_end is None else ""))
+    print(f"permanent displacement u(t_end) = {solution.displacement:+.6f} m")
+    print(f"max |u| = {solution.max_abs_displacement:.6f} m")
+    print(f"events: {len(solution.events)}")
+    _print_events(solution, args.events)
+    print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
+    if args.plot is not None:
+        print(f"figure: {args.plot}")
+    return 0
+
+
+def _newmark(args):
+    record = read(args.record, args)
+    ky = np.asarray(args.ky, dtype=float)
+    result = checked(lambda: newmark(record, ky, g=args.g), f"{args.record}")
+    table = result.to_dataframe()
+    if args.json:
+        print(json.dumps({**record_fields(record), "g_m_s2": args.g,
+                          "results": table.to_dict(orient="records")}, indent=2))
+        return 0
+    print(f"record: {describe_record(record)}")
+    print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
+    print(f"{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}")
+    for row in table.itertuples(index=False):
+        print(f"{row.ky_g:8.4f} {row.normal_m:12.6f} {row.inverse_m:12.6f} {row.mean_m:12.6f} {row.max_m:12.6f}")
+    return 0
+
+
+def _examples(args):
+    print("Seed 000, Examples 1-6: exact event times [s] and displacements [m] (g = 9.81 m/s², "
+          "as in the paper)")
+    for example in seed_examples():
+        solution = simulate(example.block, example.motion, t_end=example.t_end)
+        print(f"\n{example.name}: {example.description}; "
+              + (f"t_end = {example.t_end:g} s" if example.t_end else "until rest"))
+        print(f"  {'#':>2}  {'t exact [s]':>12}  {'t paper [s]':>11}  {'from':>8} -> {'to':<8}  {'u [m]':>10}")
+        for i, event in enumerate(solution.events):
+            paper = example.paper_event_times[i] if i < len(example.paper_event_times) else None
+            paper = f"{paper:11.4f}" if paper is not None else f"{'-':>11}"
+            print(f"  {i + 1:2d}  {event.t:12.6f}  {paper}  {event.mode_before.name:>8} -> "
+                  f"{event.mode_after.name:<8}  {event.u:+10.6f}")
+        paper_u = "" if example.paper_displacement is None else f" (paper: {example.paper_displacement:+.4f} m)"
+        print(f"  u(t_end) = {solution.displacement:+.6f} m{paper_u}; "
+              f"max |u| = {solution.max_abs_displacement:.6f} m; t_end = {solution.t_end:.6f} s")
+        if example.note:
+            print(f"  note: {example.note}")
+    return 0
+
+
+def _batch(args):
+    grid = list(itertools.product(args.mu, args.mu_kinetic or [None], args.bias))
+    mu, f, bias = (np.array([np.nan if x is None else x for x in column]) for column in zip(*grid))
+    block = _block(args, mu, None if args.mu_kinetic is None else f, bias)
+    if not args.folder.is_dir():
+        raise UsageError(f"{args.folder}: not a folder")
+    paths = sorted(p for p in args.folder.iterdir() if p.suffix.lower() in _RECORD_SUFFIXES)
+    if not paths:
+        raise UsageError(f"{args.folder}: no record files ({', '.join(_RECORD_SUFFIXES)})")
+    rows, failed = [], []
+    start = time.perf_counter()
+    for k, path in enumerate(paths):
+        _progress(k, len(paths), path.name)
+        try:
+            record = read(path, args)
+            result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
+        except UsageError as err:
+            if args.strict:
+                raise
+            failed.append(str(err))
+            continue
+        rows += _batch_rows(record, block, result)
+    wall = time.perf_counter() - start
+    _progress(len(paths), len(paths), "done")
+    if args.json:
+        print(json.dumps({"rows": rows, "failed": failed}, indent=2))
+    else:
+        print(f"{'record':<32} {'mu [-]':>7} {'f [-]':>7} {'bias [-]':>8} {'u [m]':>11} {'max|u| [m]':>11} "
+              f"{'events':>7}")
+        for row in rows:
+            print(f"{row['record']:<32} {row['mu']:7.4f} {row['mu_kinetic']:7.4f} {row['bias']:+8.4f} "
+                  f"{row['displacement_m']:+11.6f} {row['max_abs_displacement_m']:11.6f} {row['n_events']:7d}")
+        print(f"{len(rows)} analyses of {len(paths) - len(failed)} records in {wall:.2f} s (wall clock)")
+    if args.csv is not None:
+        checked(lambda: write_csv(args.csv, rows, _CSV_FIELDS), f"--csv {args.csv}")
+        print(f"results: {args.csv}", file=sys.stderr if args.json else sys.stdout)
+    if failed:
+        print(f"blockdae: {len(failed)} of {len(paths)} files failed:", file=sys.stderr)
+        for reason in failed:
+            print(f"  {reason}", file=sys.stderr)
+        return 1
+    return 0
+
+
+# ---- helpers ------------------------------------------------------------------
+
+def _version():
+    try:
+        return importlib.metadata.version("blockdae")
+    except importlib.metadata.PackageNotFoundError:  # run from a source tree
+        return "unknown"
+
+
+def _compilation_cache(args):
+    """--no-cache / --cache-dir override the default JAX compilation cache (this process)."""
+    if args.no_cache or args.cache_dir is not None:
+        set_compilation_cache(None if args.no_cache else args.cache_dir)
+
+
+#: the command-line flag of each SlidingBlock field, for errors that name the argument
+_FLAGS = {"mu_kinetic": "--mu-kinetic", "mu": "--mu", "bias": "--bias", "g": "--g"}
+
+
+def _check_units_and_backend(args):
+    if args.units is not None:
+        checked(lambda: unit_factor(args.units), "--units")
+    if args.backend is not None and args.backend not in backends.available():
+        raise UsageError(f"--backend {args.backend!r} is unknown; choose one of {backends.available()}")
+
+
+def _block(args, mu, mu_kinetic, bias):
+    _check_units_and_backend(args)
+    try:
+        return SlidingBlock(mu=mu, mu_kinetic=mu_kinetic, bias=bias, g=args.g, direction=args.direction)
+    except ValueError as err:
+        message = str(err)
+        flag = next((flag for field, flag in _FLAGS.items() if message.startswith(f"{field}=")), None)
+        raise UsageError(f"argument {flag}: {message}" if flag else message) from None
+
+
+def _describe_block(block):
+    return (f"mu = {block.mu:g}, f = {block.friction_kinetic:g}, R/Q = {block.bias:g}, "
+            f"direction {block.direction}, g = {block.g:g} m/s²")
+
+
+def _print_events(solution, which):
+    """The event table: all events, none, or the first and last few of a long list."""
+    events = solution.events
+    if which == "none" or not events:
+        return
+    if which == "all" or len(events) <= 2 * _EVENTS_SHOWN:
+        print(solution.event_table())
+        return
+    lines = solution.event_table(events[:_EVENTS_SHOWN]).splitlines()
+    lines.append(f"{'...':>12}  ({len(events) - 2 * _EVENTS_SHOWN} more events; --events all prints them)")
+    lines += solution.event_table(events[-_EVENTS_SHOWN:]).splitlines()[1:]
+    print("\n".join(lines))
+
+
+def _save_plot(args, solution, record, block):
+    from .._plot import plot
+
+    save_figure(plot(solution, record, block, title=f"{record.name}: mu = {args.mu}"), args.plot)
+
+
+def _block_fields(block):
+    return {"mu": block.mu, "mu_kinetic": block.friction_kinetic, "bias": block.bias, "g_m_s2": block.g,
+            "direction": block.direction}
+
+
+def _run_json(record, block, solution, wall):
+    return {
+        **record_fields(record), **_block_fields(block), "backend": solution.backend,
+        "displacement_m": solution.displacement, "max_abs_displacement_m": solution.max_abs_displacement,
+        "t_end_s": clean(solution.t_end), "wall_time_s": wall,
+        "events": [{"t_s": e.t, "from": e.mode_before.name, "to": e.mode_after.name, "u_m": e.u, "v_m_s": e.v}
+                   for e in solution.events],
+    }
+
+
+def _batch_rows(record, block, result):
+    return [{
+        **record_fields(record), **_block_fields(block.item(i)), "backend": result.backend,
+        "displacement_m": float(result.displacement[i]),
+        "max_abs_displacement_m": float(result.max_abs_displacement[i]),
+        "n_events": int(result.n_events[i]), "t_end_s": clean(float(result.t_end[i])),
+    } for i in range(block.batch_shape[0])]
+
+
+def _progress(done, total, label, width=30):
+    """A progress bar on stderr, only when it is a terminal."""
+    if not sys.stderr.isatty():
+        return
+    filled = width * done // total
+    print(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} {label[:40]:<40}",
+          end="\n" if done == total else "", file=sys.stderr, flush=True)
+

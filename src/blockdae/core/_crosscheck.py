@@ -1,0 +1,190 @@
+"""Run one case on several backends and compare them with the exact one."""
+
+import dataclasses
+import time
+
+import numpy as np
+
+from ._sensitivities import finite_differences, sensitivities, unit
+from ._simulate import simulate
+from ..backends import make_backend
+from ._model import AbstractHybridModel
+
+#: the backends a cross-check runs by default, those that run the block, in this order
+DEFAULT_BACKENDS = ("exact", "cvode", "ida", "jax")
+
+#: a row agrees while max |dt| <= TIME_BAR * rtol * max(1 s, t_end) and rel |du| <=
+#: DISPLACEMENT_BAR * rtol [-]. Measured worst over seed examples 1-6, two sine pulses,
+#: the spring-supported mass, Northridge PAC-175, Kobe TAK-090 and the README's planar
+#: wave, cvode/ida/jax at rtol 1e-12, 1e-10, 1e-7, 1e-4 and 1e-3: 9.95 rtol s (IDA,
+#: spring-supported mass, rtol 1e-12) and 1.7e3 rtol (IDA, seed example 1, rtol 1e-12:
+#: u_end is 3 % of max |u|, so its relative difference is large). Each bar is about ten
+#: times that, so no sample case disagrees; the tests' 1e-9 s and 1e-7 at rtol 1e-10 are tighter.
+TIME_BAR = 100
+DISPLACEMENT_BAR = 1e4
+#: the rtol [-] of a backend without one ("exact", "exact-jax": exact to rounding)
+ROUNDING = float(np.finfo(float).eps)
+
+
+@dataclasses.dataclass(frozen=True)
+class CrossCheck:
+    """Per-backend results of one case; ``rows`` is a list of dicts with keys
+
+    backend, displacement [m] (a float, or the model's displacement vector, e.g.
+    (u_x, u_y) for a PlanarBlock), n_events, t_events [s] (array), max_dt [s] (largest
+    event-time difference against the reference, inf if the event lists differ in
+    length or modes), rel_du [-] (|u - u_ref| / |u_ref| (Euclidean norms), or the
+    absolute difference [m] when u_ref = 0), first [s] (wall time of the first call, which includes JIT
+    compilation when this process has not compiled that shape yet) and warm [s] (of a
+    second, identical call); with ``wrt``, also sensitivities (name -> d u / d p, see
+    :func:`blockdae.sensitivities`: differentiated kernels for "exact" and "jax", finite
+    differences for the others, one-sided at a bound such as mu_kinetic = mu) and
+    rel_dsens [-] (largest relative difference of those against the reference's).
+
+    Each row also has rtol [-] (the looser of its backend's and the reference's relative
+    tolerance, :data:`ROUNDING` for an exact backend) and agrees (bool): the same events
+    and modes as the reference, max_dt <= :data:`TIME_BAR` * rtol * ``span`` and rel_du
+    <= :data:`DISPLACEMENT_BAR` * rtol (see :func:`agrees`); the reference row always
+    agrees. The derivatives are not judged (finite differences carry their own step
+    error), nor is ``atol``: a loose atol that governs the error shows as a disagreement.
+    ``span`` [s] is max(1 s, t_end of the reference).
+    """
+
+    rows: list
+    reference: str
+    wrt: tuple = ()
+    span: float = 1.0
+
+    @property
+    def agrees(self) -> bool:
+        """Whether every row agrees with the reference within its bar."""
+        return not self.disagreements
+
+    @property
+    def disagreements(self) -> list:
+        """The rows that disagree with the reference beyond their bar."""
+        return [row for row in self.rows if not row["agrees"]]
+
+    def row(self, backend: str) -> dict:
+        """The row of ``backend``."""
+        for row in self.rows:
+            if row["backend"] == backend:
+                return row
+        raise KeyError(f"backend {backend!r} is not in this cross-check")
+
+    def __str__(self):
+        width = max(16, max(len(_values(r["displacement"])) for r in self.rows))
+        d_width = max([17] + [len(_values(r["sensitivities"][n])) for r in self.rows for n in self.wrt])
+        derivative_heads = "".join(f" {f'du/d{name} [{unit(name)}]':>{d_width}}" for name in self.wrt)
+        head = (f"{'backend':<8} {'u_end [m]':>{width}} {'events':>6} {'max |dt| [s]':>13} "
+                f"{'rel |du| [-]':>13} {'first [s]':>9} {'warm [s]':>9}" + derivative_heads
+                + (f" {'rel |dS| [-]':>13}" if self.wrt else "") + f" {'rtol [-]':>8} {'verdict':>9}")
+        lines = [head, "-" * len(head)]
+        for r in self.rows:
+            derivatives = "".join(f" {_values(r['sensitivities'][name], '.10g'):>{d_width}}" for name in self.wrt)
+            lines.append(f"{r['backend']:<8} {_values(r['displacement']):>{width}} {r['n_events']:>6d} "
+                         f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['first']:>9.3f} {r['warm']:>9.3f}"
+                         + derivatives
+                         + (f" {r['rel_dsens']:>13.2e}" if self.wrt else "")
+                         + f" {r['rtol']:>8.1e} {'ok' if r['agrees'] else 'DISAGREES':>9}")
+        return "\n".join(lines) + "\n" + self._footer()
+
+    def _footer(self):
+        return (f"(differences against {self.reference!r}; a row DISAGREES where its events or modes differ,\n"
+                f" max |dt| [s] > {TIME_BAR:g} rtol × {self.span:.3g} s or rel |du| [-] > {DISPLACEMENT_BAR:g} rtol)")
+
+
+def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> CrossCheck | list[CrossCheck]:
+    """Solve ``block`` under ``motion`` with each backend (twice: first and warm call)
+    and compare with the first backend.
+
+    Args:
+        block: the block (a SlidingBlock or another model, e.g. a PlanarBlock); for a
+            batch of n parameter sets, each is checked on its own.
+        motion: base excitation (for a PlanarBlock also a BaseMotion).
+        backends: backend names; the first is the reference (normally "exact"); None:
+            those of "exact", "cvode", "ida", "jax" that run the block, in this order.
+        t_end: final time [s], or None (until rest after a finite excitation).
+        wrt: parameters to differentiate u(t_end) by (see :func:`blockdae.sensitivities`),
+            e.g. ("mu", "mu_kinetic", "bias", "A"); none by default (none for a
+            SpringSupportedMass, whose derivatives are those of its flights).
+        **options: settings passed to every backend that has them (e.g. ``rtol``).
+
+    Returns:
+        A :class:`CrossCheck`, or a list of n of them for a batch.
+    """
+    if not isinstance(block, AbstractHybridModel):
+        raise TypeError(f"block must be a model (SlidingBlock, PlanarBlock, SpringSupportedMass), "
+                        f"got {type(block).__name__}")
+    if backends is None:
+        backends = tuple(name for name in DEFAULT_BACKENDS if make_backend(name).runs(block))
+    accepted = {name: {f.name for f in dataclasses.fields(type(make_backend(name)))} for name in backends}
+    unknown = set(options) - set().union(*accepted.values())
+    if unknown:
+        raise TypeError(f"no backend in {tuple(backends)} takes the option(s) {sorted(unknown)}")
+    if wrt and block.derivatives == "flights":
+        raise ValueError(f"crosscheck's wrt differentiates u(t_end); for a {type(block).__name__} use "
+                         "bd.sensitivities(block, motion, t_end, wrt=..., of=...) (its flights)")
+    if block.batch_shape:
+        return [crosscheck(block.item(i), motion, backends, t_end, wrt, **options)
+                for i in range(block.batch_shape[0])]
+    mine = {name: {key: value for key, value in options.items() if key in accepted[name]} for name in backends}
+    solutions = []
+    for name in backends:
+        walls = []
+        for _ in range(2):
+            start = time.perf_counter()
+            solution = simulate(block, motion, t_end=t_end, backend=name, **mine[name])
+            walls.append(time.perf_counter() - start)
+        solutions.append((name, solution, walls))
+    ref = solutions[0][1]
+    span = max(1.0, ref.t_end)
+    rtols = {name: _rtol(name, mine[name]) for name in backends}
+    rows = [dict(backend=name, displacement=s.displacement, n_events=len(s.events), t_events=s.t_events,
+                 max_dt=_max_event_dt(ref, s), rel_du=_relative(s.displacement, ref.displacement),
+                 first=first, warm=warm, rtol=max(rtols[name], rtols[backends[0]]))
+            for name, s, (first, warm) in solutions]
+    for row in rows:
+        row["agrees"] = agrees(row, span)
+    if wrt:
+        wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
+        for row in rows:
+            derivative = sensitivities if row["backend"] in block.differentiated_backends else finite_differences
+            row["sensitivities"] = derivative(block, motion, t_end=t_end, wrt=wrt, backend=row["backend"],
+                                           **mine[row["backend"]])
+        ref_sens = rows[0]["sensitivities"]
+        for row in rows:
+            row["rel_dsens"] = max(_relative(row["sensitivities"][n], ref_sens[n]) for n in wrt)
+    return CrossCheck(rows=rows, reference=backends[0], wrt=tuple(wrt), span=span)
+
+
+def agrees(row: dict, span: float) -> bool:
+    """Whether ``row`` agrees with the reference: the same events and modes (max_dt [s]
+    finite), max_dt <= TIME_BAR * rtol * ``span`` [s] and rel_du [-] <= DISPLACEMENT_BAR
+    * rtol, with the row's rtol [-]; ``span`` [s]: max(1 s, t_end of the reference)."""
+    return bool(row["max_dt"] <= TIME_BAR * row["rtol"] * span and row["rel_du"] <= DISPLACEMENT_BAR * row["rtol"])
+
+
+def _rtol(name, options):
+    """The relative tolerance [-] of backend ``name`` under ``options``; ROUNDING for one without."""
+    return float(getattr(make_backend(name, **options), "rtol", ROUNDING))
+
+
+def _max_event_dt(ref, sol):
+    same = len(ref.events) == len(sol.events) and all(
+        (a.mode_before, a.mode_after) == (b.mode_before, b.mode_after) for a, b in zip(ref.events, sol.events))
+    if not same:
+        return np.inf
+    return float(np.max(np.abs(ref.t_events - sol.t_events), initial=0.0))
+
+
+def _relative(u, u_ref):
+    """|u - u_ref| / |u_ref| (Euclidean norms), or |u - u_ref| when u_ref = 0."""
+    difference, size = float(np.linalg.norm(np.subtract(u, u_ref))), float(np.linalg.norm(u_ref))
+    return difference / size if size != 0 else difference
+
+
+def _values(x, spec=".10f"):
+    """A number, or a vector as "(a, b)", formatted with ``spec``."""
+    x = np.asarray(x, dtype=float)
+    return format(float(x), spec) if x.ndim == 0 else "(" + ", ".join(format(v, spec) for v in x) + ")"

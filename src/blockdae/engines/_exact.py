@@ -1,0 +1,131 @@
+"""The exact backend: closed forms on every piece, events to machine precision."""
+
+import dataclasses
+
+import numpy as np
+
+from ..sliding._solution import BatchSolution
+from ..excitation import Pieces
+from ..excitation._pieces import accel
+from . import _exact_numba as engine
+from ..backends._base import AbstractBackend, cached_per_excitation, check_window
+from ._closed_form_linear import solve_closed_form
+from ._results import check, exact_solution
+
+
+#: pieces x parameter sets above which a batch runs in parallel (~30 ms on one core); below,
+#: waking the worker threads may cost more than they save (~8 ms a call on some VMs)
+_PARALLEL_WORK = 3e7
+
+
+@dataclasses.dataclass(frozen=True)
+class ExactBackend(AbstractBackend):
+    """Closed-form integration, compiled with numba (float64, parallel over cores for
+    batches). ``backend="exact-jax"`` runs the same closed forms and rules compiled
+    with JAX, for derivatives and accelerators. Engines: "sliding" (the 1-D block's
+    kernel) and "linear" (closed-form steps of linear modes on the generic driver,
+    :mod:`blockdae.engines._closed_form_linear`; ``window`` is unused there), as the
+    model's ``engines`` name them.
+
+    Args:
+        window: pieces of a(t) per block of the onset search's bounds; a tuning knob
+            that changes speed, never results.
+    """
+
+    window: int = 64
+    name = "exact"
+    generic = False
+
+    def __post_init__(self):
+        check_window(self.window)
+
+    def solve(self, block, excitation, horizon):
+        if self.engine(block) == "linear":  # closed-form steps on the generic driver
+            return solve_closed_form(block, excitation, horizon, self.name)
+        pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
+        run_one, _, _ = engine.kernels()
+        params = (float(block.mu), float(block.friction_kinetic), float(block.bias), float(block.g), 1.0)
+        outcome, knots = run_one(exc, self.window, params, _flags(block, horizon), 64)
+        check(block, outcome[6], outcome[7])
+        return exact_solution(block, pieces, knots, int(outcome[8]), self.name)
+
+    def solve_batch(self, block, excitation, horizon):
+        out = self.solve_final(block, [excitation], [horizon])[0]
+        return BatchSolution(
+            displacement=out[:, 0], max_abs_displacement=out[:, 3], n_events=out[:, 4].astype(int),
+            t_end=out[:, 5], backend=self.name,
+            solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
+
+    def solve_final(self, block, excitations, horizons, scale=(1.0,)) -> np.ndarray:
+        """Final numbers only, for every excitation under every parameter set of
+        ``block`` (a batch of m, or one) at every factor of ``scale`` on a(t) (s of
+        them), in parallel over cores.
+
+        Returns:
+            (len(excitations), m * s, 9), the engine's outcomes (``OUTCOME_FIELDS``);
+            parameter set j at factor k in column j * s + k.
+        """
+        inputs = [_engine_input(e, h.integration_end(e), self.window)[1] for e, h in zip(excitations, horizons)]
+        exc, offsets = _concatenated(inputs)
+        params = _batch_params(block, scale)
+        _, parallel, serial = engine.kernels()
+        run_batch = parallel if len(params) * len(exc[0]) >= _PARALLEL_WORK else serial
+        until_rest = np.array([h.until_rest for h in horizons])
+        out = run_batch(exc, offsets, self.window, params, (block.allow_negative, block.allow_positive, until_rest))
+        if not out[:, :, 6:8].all():  # rests, finished
+            for i, j in zip(*np.nonzero((out[:, :, 6] == 0) | (out[:, :, 7] == 0))):
+                where = f" (excitation {i}, parameter set {j})" if len(inputs) > 1 else f" (parameter set {j})"
+                j_set = j // len(scale)
+                check(block.item(j_set) if block.batch_shape else block, out[i, j, 6], out[i, j, 7], where)
+        return out
+
+
+def _batch_params(block, scale=(1.0,)):
+    """(m * s, 5) rows of (mu, f, bias, g, scale) for a batch of m parameter sets (or
+    one), each at the s factors of ``scale`` [-]."""
+    values = (block.mu, block.friction_kinetic, block.bias, block.g)
+    scale = np.asarray(scale, dtype=float).ravel()
+    m = max(np.size(x) for x in values)
+    params = np.empty((m, scale.size, 5))
+    for column, x in enumerate(values):
+        params[:, :, column] = np.reshape(x, (-1, 1))
+    params[:, :, 4] = scale
+    return params.reshape(m * scale.size, 5)
+
+
+def _flags(block, horizon):
+    return block.allow_negative, block.allow_positive, horizon.until_rest
+
+
+@cached_per_excitation
+def _engine_input(excitation, t_end, window):
+    """The pieces of ``excitation`` up to ``t_end`` [s] and the engine's input built from them."""
+    pieces = excitation.pieces(t_end)
+    return pieces, prepare(pieces, window)
+
+
+def prepare(pieces: Pieces, window: int) -> tuple:
+    """The engine's ``exc`` (see :mod:`._exact_numba`): the pieces (sine terms None if
+    there are none) and the range of a(t) per piece and per block of ``window`` pieces."""
+    sine = (pieces.s, pieces.w, pieces.phi) if pieces.has_sine else (None, None, None)
+    coefficients = (pieces.p0, pieces.p1, *sine)
+    ends = (accel(*coefficients, 0.0), accel(*coefficients, pieces.h))  # monotone: extrema at the ends
+    a_hi, a_lo = np.maximum(*ends), np.minimum(*ends)
+    pad = -len(pieces.t0) % window
+    per_block = lambda x, fill, reduce: reduce(np.append(x, np.full(pad, fill)).reshape(-1, window), axis=1)
+    return tuple(np.ascontiguousarray(x, dtype=float) if x is not None else None
+                 for x in (pieces.t0, pieces.h, *coefficients, a_hi, a_lo, per_block(a_hi, -np.inf, np.max),
+                           per_block(a_lo, np.inf, np.min)))
+
+
+def _concatenated(inputs):
+    """One ``exc`` from several and their (piece start, end, block start, end) offsets."""
+    if len(inputs) == 1:
+        return inputs[0], np.array([[0, len(inputs[0][0]), 0, len(inputs[0][9])]], dtype=np.int64)
+    if any(x[4] is not None for x in inputs):
+        inputs = [x if x[4] is not None else x[:4] + tuple(np.zeros_like(x[0]) for _ in range(3)) + x[7:]
+                  for x in inputs]
+    exc = tuple(None if inputs[0][f] is None else np.concatenate([x[f] for x in inputs]) for f in range(11))
+    pieces = np.cumsum([0] + [len(x[0]) for x in inputs])
+    blocks = np.cumsum([0] + [len(x[9]) for x in inputs])
+    return exc, np.stack([pieces[:-1], pieces[1:], blocks[:-1], blocks[1:]], axis=1).astype(np.int64)

@@ -1,0 +1,115 @@
+"""The exact solution compiled with JAX ("exact-jax"): for derivatives and accelerators.
+
+The same closed forms and rules as the numba engine of ``backend="exact"``; the two are
+cross-checked in the tests.
+"""
+
+import dataclasses
+
+import jax
+import numpy as np
+
+from ..core._jax_config import jax_context
+from ..sliding._solution import BatchSolution
+from ..excitation import Pieces
+from . import _exact_kernel as kernel
+from ..backends._base import AbstractBackend, batch_params, cached_per_excitation, check_window
+from ._results import check, exact_solution, max_run
+
+
+@dataclasses.dataclass(frozen=True)
+class ExactJaxBackend(AbstractBackend):
+    """Closed-form integration, compiled with JAX (float64); what
+    :func:`blockdae.sensitivities` differentiates.
+
+    Args:
+        window: pieces of a(t) examined per loop iteration; a tuning knob that
+            changes speed, never results.
+    """
+
+    window: int = 64
+    name = "exact-jax"
+    generic = False  # engines: "sliding" (the 1-D block's closed forms)
+
+    def __post_init__(self):
+        check_window(self.window)
+
+    def solve(self, block, excitation, horizon):
+        pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
+        capacity = _bucket(len(pieces.t0))  # one event per piece; grows if ever needed
+        while True:
+            out = self._run(kernel.run, _params(block), device, len(pieces.t0), horizon, block, pieces, capacity)
+            u, v, mode, max_abs_u, n_events, t_final, rests, finished = out.scalars
+            if n_events < capacity:  # a full log may have lost its last row
+                break
+            capacity *= 2
+        check(block, rests, finished)
+        log = out.log[: int(n_events)]
+        knots = _knots(log, (float(u), float(v), int(mode)), float(t_final))
+        return exact_solution(block, pieces, knots, max_run(log[:, 0]), self.name)
+
+    def solve_batch(self, block, excitation, horizon):
+        pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
+        params = batch_params(block)
+        out = self._run(kernel.run_batch, params, device, len(pieces.t0), horizon, block, pieces, 0)
+        u, _, _, max_abs_u, n_events, t_final, rests, finished = out.scalars.T
+        for i in np.flatnonzero(~(rests.astype(bool) & finished.astype(bool))):
+            check(block.item(i), rests[i], finished[i], f" (parameter set {i})")
+        return BatchSolution(
+            displacement=u, max_abs_displacement=max_abs_u, n_events=n_events.astype(int), t_end=t_final,
+            backend=self.name,
+            solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
+
+    def _run(self, fn, params, device, n_pieces, horizon, block, pieces, capacity):
+        with jax_context():
+            out = fn(params, (block.allow_negative, block.allow_positive), device, n_pieces,
+                     horizon.until_rest, window=self.window, log_capacity=capacity, is_sine=pieces.has_sine)
+            return kernel.Summary(*map(np.asarray, out))  # ~100 us faster than jax.device_get here
+
+
+def _params(block, scale=1.0):
+    """(mu, f, bias, g, scale) as one array: one transfer to the device, not five."""
+    return np.array([block.mu, block.friction_kinetic, block.bias, block.g, scale], dtype=np.float64)
+
+
+def _bucket(n: int) -> int:
+    """n rounded up to at least 64 and to one of four sizes per octave, so that few
+    distinct shapes get compiled (all short excitations share one)."""
+    n = max(n, 64)
+    step = 2 ** (int(np.log2(n)) - 2)
+    return int(-(-n // step) * step)
+
+
+@cached_per_excitation
+def _pieces_on_device(excitation, t_end, window):
+    """The pieces of ``excitation`` up to ``t_end`` [s], and the kernel's input built
+    from them on the JAX device (building it for a long record costs as much as a run)."""
+    pieces = excitation.pieces(t_end)
+    with jax_context():
+        return pieces, jax.device_put(_kernel_input(pieces, window))
+
+
+def _kernel_input(pieces: Pieces, window: int) -> kernel.Excitation:
+    return kernel.prepare(_device(pieces, window), window, pieces.has_sine)
+
+
+def _device(pieces: Pieces, window: int):
+    """Pieces padded with empty, zero-acceleration pieces to a bucketed length plus one
+    window, so that records of similar length share one compiled kernel."""
+    n = len(pieces.t0)
+    pad = _bucket(n) - n + window
+    zeros = np.zeros(pad)
+    padded = Pieces.concatenate([pieces, Pieces(zeros + pieces.t_end, *(zeros,) * 6)])
+    return tuple(padded)
+
+
+def _knots(log, final, t_final):
+    """The exact engines' knots (see :func:`._results.exact_solution`) from the kernel's
+    ``log`` ((n_events, 4) rows of t [s], mode before, mode after, u [m]) and the final
+    (u [m], v [m/s], mode) at ``t_final`` [s]."""
+    t_ev, before, after, u_ev = log.T
+    u_end, v_end, mode_end = final
+    n = t_ev.shape[0]
+    return np.stack([np.concatenate([[0.0], t_ev, [t_final]]), np.concatenate([[0.0], u_ev, [u_end]]),
+                     np.concatenate([np.zeros(n + 1), [v_end]]), np.concatenate([[0], after, [mode_end]]),
+                     np.concatenate([[0], before, [mode_end]])])

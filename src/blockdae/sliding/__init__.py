@@ -1,0 +1,8 @@
+"""The 1-D rigid block on an accelerating base (seed 000): its model, modes and
+solution; Newmark's conventions, seed-002 formulas, final numbers and sweeps."""
+
+from ._model import SlidingBlock, SlidingDAEForm
+from ._modes import Mode
+from ._solution import BatchSolution, Event, EventLog, Solution
+
+__all__ = ["BatchSolution", "Event", "EventLog", "Mode", "SlidingBlock", "SlidingDAEForm", "Solution"]

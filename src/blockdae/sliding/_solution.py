@@ -1,0 +1,223 @@
+"""Results of a simulation: located events, knots and dense output."""
+
+import collections.abc
+import dataclasses
+from typing import Callable
+
+import numpy as np
+
+from ..excitation import AbstractExcitation
+from ._modes import Mode
+
+
+@dataclasses.dataclass(frozen=True)
+class Event:
+    """A located mode change.
+
+    Attributes:
+        t: time [s].
+        mode_before, mode_after: the modes on either side.
+        u: relative displacement at ``t`` [m].
+        v: relative velocity at ``t`` [m/s] (0 at a stop, by definition).
+    """
+
+    t: float
+    mode_before: Mode
+    mode_after: Mode
+    u: float
+    v: float
+
+    def __str__(self):
+        return (f"t = {self.t:.6f} s  {self.mode_before.name:>8} -> {self.mode_after.name:<8}"
+                f"  u = {self.u:+.6f} m")
+
+
+class EventLog(collections.abc.Sequence):
+    """Events kept as arrays, each (n,); the :class:`Event` objects are built when first
+    read. Compares equal to any sequence of the same events (e.g. a tuple).
+
+    Attributes:
+        t: times [s]; mode_before, mode_after: ints (see :class:`Mode`); u: [m]; v: [m/s].
+    """
+
+    __slots__ = ("t", "mode_before", "mode_after", "u", "v", "_events")
+
+    def __init__(self, t, mode_before, mode_after, u, v):
+        fields = (("t", t, float), ("mode_before", mode_before, int), ("mode_after", mode_after, int),
+                  ("u", u, float), ("v", v, float))
+        for name, values, dtype in fields:
+            array = np.asarray(values, dtype=dtype)
+            if array.flags.writeable:  # a read-only view, never a copy
+                array = array.view()
+                array.flags.writeable = False
+            object.__setattr__(self, name, array)
+        object.__setattr__(self, "_events", None)
+
+    def __setattr__(self, name, value):
+        raise AttributeError("an EventLog is immutable")
+
+    def _built(self) -> tuple:
+        if self._events is None:
+            modes = {int(m): m for m in Mode}
+            object.__setattr__(self, "_events", tuple(
+                Event(t, modes[b], modes[a], u, v) for t, b, a, u, v in zip(
+                    self.t.tolist(), self.mode_before.tolist(), self.mode_after.tolist(), self.u.tolist(),
+                    self.v.tolist())))
+        return self._events
+
+    def __len__(self):
+        return self.t.shape[0]
+
+    def __getitem__(self, index):
+        return self._built()[index]
+
+    def __iter__(self):
+        return iter(self._built())
+
+    def __eq__(self, other):
+        if isinstance(other, collections.abc.Sequence) and not isinstance(other, str):
+            return self._built() == tuple(other)
+        return NotImplemented
+
+    __hash__ = None
+
+    def __repr__(self):
+        return f"EventLog({list(self._built())!r})"
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Solution:
+    """The motion of the block relative to its base.
+
+    Attributes:
+        t: knot times [s], shape (n,): the start, every event and the end, in time
+            order (a backend may add knots of its own); use ``sol(t)`` for any time.
+        u, v: relative displacement [m] and velocity [m/s] at the knots, shape (n,).
+        mode: mode right after each knot, shape (n,) of int (see :class:`Mode`).
+        events: located mode changes, in time order (a tuple or an :class:`EventLog`).
+        backend: name of the backend that produced it.
+        stats: counters, e.g. ``max_events_at_one_instant`` and solver statistics.
+        block, motion: the block and the base excitation it was computed for
+            (set by :func:`blockdae.simulate`; None if a backend was called directly).
+    """
+
+    t: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+    mode: np.ndarray
+    events: "tuple[Event, ...] | EventLog"
+    backend: str
+    dense: Callable = dataclasses.field(repr=False)
+    stats: dict = dataclasses.field(default_factory=dict)
+    block: object = dataclasses.field(default=None, repr=False)  # the SlidingBlock
+    motion: AbstractExcitation | None = dataclasses.field(default=None, repr=False)
+
+    @property
+    def t_end(self) -> float:
+        """Final time [s]."""
+        return float(self.t[-1])
+
+    @property
+    def displacement(self) -> float:
+        """Permanent relative displacement u(t_end) [m]."""
+        return float(self.u[-1])
+
+    @property
+    def max_abs_displacement(self) -> float:
+        """max |u(t)| over the whole run [m] (u has its extrema at knots)."""
+        return float(np.max(np.abs(self.u)))
+
+    @property
+    def t_events(self) -> np.ndarray:
+        """Event times [s], shape (n_events,)."""
+        if isinstance(self.events, EventLog):
+            return self.events.t.copy()
+        return np.array([e.t for e in self.events])
+
+    def __call__(self, t):
+        """(u(t) [m], v(t) [m/s]) at any times within [0, t_end], exactly."""
+        t = np.asarray(t, dtype=float)
+        if np.any((t < self.t[0]) | (t > self.t[-1])):
+            raise ValueError(f"t must lie in [{self.t[0]}, {self.t[-1]}] s")
+        return self.dense(t)
+
+    def event_table(self, events=None) -> str:
+        """``events`` (default: all of them) as an aligned text table with units."""
+        lines = [f"{'t [s]':>12}  {'from':>8}  {'to':<8}  {'u [m]':>12}"]
+        lines += [f"{e.t:12.6f}  {e.mode_before.name:>8}  {e.mode_after.name:<8}  {e.u:12.6f}"
+                  for e in (self.events if events is None else events)]
+        return "\n".join(lines)
+
+    def to_dataframe(self):
+        """The events as a pandas DataFrame, one row per event: t_s [s], mode_before,
+        mode_after (mode names), u_m [m], v_m_s [m/s]."""
+        import pandas as pd
+
+        return pd.DataFrame({
+            "t_s": pd.Series([e.t for e in self.events], dtype=float),
+            "mode_before": pd.Series([e.mode_before.name for e in self.events], dtype=object),
+            "mode_after": pd.Series([e.mode_after.name for e in self.events], dtype=object),
+            "u_m": pd.Series([e.u for e in self.events], dtype=float),
+            "v_m_s": pd.Series([e.v for e in self.events], dtype=float),
+        })
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class BatchSolution:
+    """Results for a batch of parameter sets over one excitation.
+
+    Attributes:
+        displacement: u(t_end) per parameter set [m], shape (n,); for a planar block
+            (u_x, u_y)(t_end), shape (n, 2).
+        max_abs_displacement: max |u| per parameter set [m], shape (n,).
+        n_events: number of events per parameter set, shape (n,).
+        t_end: final time per parameter set [s], shape (n,).
+        backend: name of the backend that produced it.
+        block: the parameter grid, a block whose parameters are arrays of shape (n,)
+            (set by :func:`blockdae.simulate`; None if a backend was called directly).
+        motion: the base excitation.
+    """
+
+    displacement: np.ndarray
+    max_abs_displacement: np.ndarray
+    n_events: np.ndarray
+    t_end: np.ndarray
+    backend: str
+    solve_one: Callable = dataclasses.field(repr=False)
+    block: object = dataclasses.field(default=None, repr=False)  # the SlidingBlock
+    motion: AbstractExcitation | None = dataclasses.field(default=None, repr=False)
+
+    def __len__(self):
+        return self.displacement.shape[0]
+
+    def __getitem__(self, index: int) -> Solution:
+        """The full :class:`Solution` (events, dense output) of one parameter set."""
+        solution = self.solve_one(index)
+        if self.block is None:
+            return solution
+        return dataclasses.replace(solution, block=self.block.item(index), motion=self.motion)
+
+    def parameters(self) -> dict:
+        """The grid, each of shape (n,): mu, mu_kinetic (the kinetic coefficient in
+        effect) and bias [-] (bias_x, bias_y for a planar block); empty if the block is
+        unknown."""
+        return {} if self.block is None else self.block.batch_parameters()
+
+    def to_dataframe(self):
+        """A pandas DataFrame, one row per parameter set: the grid (mu, mu_kinetic, bias
+        [-], g_m_s2 [m/s²], and the direction of a 1-D block; when the block is known),
+        displacement_m (displacement_x_m, displacement_y_m for a planar block),
+        max_abs_displacement_m [m], n_events, t_end_s [s]."""
+        import pandas as pd
+
+        columns = self.parameters()
+        if self.block is not None:
+            columns |= {"g_m_s2": float(self.block.g)}
+            if hasattr(self.block, "direction"):  # the 1-D block's sliding directions
+                columns |= {"direction": self.block.direction}
+        u = np.asarray(self.displacement, dtype=float)
+        columns |= ({"displacement_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]})
+        columns |= {"max_abs_displacement_m": np.asarray(self.max_abs_displacement, dtype=float),
+                    "n_events": np.asarray(self.n_events, dtype=int),
+                    "t_end_s": np.asarray(self.t_end, dtype=float)}
+        return pd.DataFrame(columns, index=pd.RangeIndex(len(self)))

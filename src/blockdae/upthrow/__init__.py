@@ -1,0 +1,10 @@
+"""A mass on a compliant support that can leave the ground (seed 004): the supports,
+the spring-supported mass, its solution and flights, the seed's estimates."""
+
+from ._model import SpringDAEForm, SpringSupportedMass
+from ._modes import UpthrowMode
+from ._solution import Flight, UpthrowEvent, UpthrowSolution
+from ._support import RigidSupport, SpringSupport
+
+__all__ = ["Flight", "RigidSupport", "SpringDAEForm", "SpringSupport", "SpringSupportedMass", "UpthrowEvent",
+           "UpthrowMode", "UpthrowSolution"]
