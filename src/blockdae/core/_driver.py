@@ -317,14 +317,14 @@ class _Run:
     def guard_left_at_once(self):
         """The first guard of the current mode that is at or below zero and falling as a
         flow starts (a slide entered at a sample where its velocity turns against it at
-        once): it is reached now. An integrator would not see it: its roots are sign
+        once; see :func:`_falls`): it is reached now. An integrator would not see it: its roots are sign
         changes, and a guard that starts at zero has none (SUNDIALS: "root functions
         identically 0"). None if there is none."""
         values = self.model.guards(self.mode, self.t, self.y, self.piece_excitation, SCALAR)
         for index, value in enumerate(values):
             if value <= 0:
                 rate, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
-                if rate < 0 or (rate == 0 and curvature < 0):
+                if _falls(rate, curvature, self.resolution):
                     return index
         return None
 
@@ -456,6 +456,16 @@ class _Run:
                  **self.integrator.stats}
         return self.model.solution(t=t, y=y, mode=mode, events=tuple(self.events), backend=backend_name,
                                    dense=HermiteDense(t, y, rate_start, rate_end), stats=stats)
+
+
+def _falls(rate, curvature, resolution):
+    """Whether a guard at zero with ``rate`` and ``curvature`` leaves its mode at once:
+    it falls (by its rate, or at a zero rate by its curvature) for longer than
+    ``resolution`` [s]. A rate that turns back within it (-rate / curvature, a rate of
+    rounding size at a located onset) is a graze: the mode holds."""
+    if rate == 0:
+        return curvature < 0
+    return rate < 0 and (curvature <= 0 or -rate / curvature > resolution)
 
 
 def _bracketed_root(fun, a, b):
