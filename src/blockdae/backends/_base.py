@@ -39,14 +39,6 @@ class Horizon:
         return excitation.duration if self.t_end is None else self.t_end
 
 
-def batch_params(block) -> tuple[np.ndarray, ...]:
-    """(mu, f, bias, g, scale) as arrays of the block's batch shape, for compiled kernels."""
-    shape = block.batch_shape
-    params = tuple(np.broadcast_to(np.asarray(p, dtype=float), shape)
-                   for p in (block.mu, block.friction_kinetic, block.bias))
-    return params + (np.full(shape, float(block.g)), np.ones(shape))
-
-
 def cached_per_excitation(build):
     """``build(excitation, t_end, window)`` kept for the last few excitations, which are
     immutable; an unhashable (user-defined) excitation is built afresh every call."""

@@ -25,7 +25,6 @@ import numpy as np
 from ._jax_config import jax_context
 from ._simulate import simulate
 from ..backends import Horizon, make_backend
-from ..backends._base import batch_params
 from ..engines._results import check
 from ..excitation import BaseMotion
 
@@ -100,7 +99,7 @@ def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: 
     kernel, static, device = _kernel(solver, block, pieces)
 
     shape = block.batch_shape
-    params = batch_params(block)
+    params = tuple(column.reshape(shape) for column in block.engine_parameters().T)
     with jax_context():
         jac, aux = _jacobian()(params, device, len(pieces.t0), (block.allow_negative, block.allow_positive),
                              kernel=kernel, static=static, until_rest=horizon.until_rest, batched=bool(shape))

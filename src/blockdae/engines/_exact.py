@@ -44,7 +44,7 @@ class ExactBackend(AbstractBackend):
             return solve_closed_form(block, excitation, horizon, self.name)
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
         run_one, _, _ = engine.kernels()
-        params = (float(block.mu), float(block.friction_kinetic), float(block.bias), float(block.g), 1.0)
+        params = tuple(float(p) for p in block.engine_parameters()[0])
         outcome, knots = run_one(exc, self.window, params, _flags(block, horizon), 64)
         check(block, outcome[6], outcome[7])
         return exact_solution(block, pieces, knots, int(outcome[8]), self.name)
@@ -67,7 +67,7 @@ class ExactBackend(AbstractBackend):
         """
         inputs = [_engine_input(e, h.integration_end(e), self.window)[1] for e, h in zip(excitations, horizons)]
         exc, offsets = _concatenated(inputs)
-        params = _batch_params(block, scale)
+        params = block.engine_parameters(scale)
         _, parallel, serial = engine.kernels()
         run_batch = parallel if len(params) * len(exc[0]) >= _PARALLEL_WORK else serial
         until_rest = np.array([h.until_rest for h in horizons])
@@ -78,19 +78,6 @@ class ExactBackend(AbstractBackend):
                 j_set = j // len(scale)
                 check(block.item(j_set) if block.batch_shape else block, out[i, j, 6], out[i, j, 7], where)
         return out
-
-
-def _batch_params(block, scale=(1.0,)):
-    """(m * s, 5) rows of (mu, f, bias, g, scale) for a batch of m parameter sets (or
-    one), each at the s factors of ``scale`` [-]."""
-    values = (block.mu, block.friction_kinetic, block.bias, block.g)
-    scale = np.asarray(scale, dtype=float).ravel()
-    m = max(np.size(x) for x in values)
-    params = np.empty((m, scale.size, 5))
-    for column, x in enumerate(values):
-        params[:, :, column] = np.reshape(x, (-1, 1))
-    params[:, :, 4] = scale
-    return params.reshape(m * scale.size, 5)
 
 
 def _flags(block, horizon):

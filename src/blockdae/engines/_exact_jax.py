@@ -13,7 +13,7 @@ from ..core._jax_config import jax_context
 from ..sliding._solution import BatchSolution
 from ..excitation import Pieces
 from . import _exact_kernel as kernel
-from ..backends._base import AbstractBackend, batch_params, cached_per_excitation, check_window
+from ..backends._base import AbstractBackend, cached_per_excitation, check_window
 from ._results import check, exact_solution, max_run
 
 
@@ -38,7 +38,7 @@ class ExactJaxBackend(AbstractBackend):
         pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
         capacity = _bucket(len(pieces.t0))  # one event per piece; grows if ever needed
         while True:
-            out = self._run(kernel.run, _params(block), device, len(pieces.t0), horizon, block, pieces, capacity)
+            out = self._run(kernel.run, block.engine_parameters()[0], device, len(pieces.t0), horizon, block, pieces, capacity)
             u, v, mode, max_abs_u, n_events, t_final, rests, finished = out.scalars
             if n_events < capacity:  # a full log may have lost its last row
                 break
@@ -50,7 +50,7 @@ class ExactJaxBackend(AbstractBackend):
 
     def solve_batch(self, block, excitation, horizon):
         pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
-        params = batch_params(block)
+        params = tuple(block.engine_parameters().T)
         out = self._run(kernel.run_batch, params, device, len(pieces.t0), horizon, block, pieces, 0)
         u, _, _, max_abs_u, n_events, t_final, rests, finished = out.scalars.T
         for i in np.flatnonzero(~(rests.astype(bool) & finished.astype(bool))):
@@ -65,11 +65,6 @@ class ExactJaxBackend(AbstractBackend):
             out = fn(params, (block.allow_negative, block.allow_positive), device, n_pieces,
                      horizon.until_rest, window=self.window, log_capacity=capacity, is_sine=pieces.has_sine)
             return kernel.Summary(*map(np.asarray, out))  # ~100 us faster than jax.device_get here
-
-
-def _params(block, scale=1.0):
-    """(mu, f, bias, g, scale) as one array: one transfer to the device, not five."""
-    return np.array([block.mu, block.friction_kinetic, block.bias, block.g, scale], dtype=np.float64)
 
 
 def _bucket(n: int) -> int:

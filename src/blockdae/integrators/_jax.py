@@ -15,8 +15,8 @@ from ..sliding._solution import BatchSolution, EventLog, Solution
 from ..engines import _jax_kernel as kernel
 from ..sliding._model import never_rests_error
 from ._diffrax import DiffraxIntegrator, Settings
-from ..backends._base import AbstractBackend, batch_params
-from ..engines._exact_jax import _device, _params
+from ..backends._base import AbstractBackend
+from ..engines._exact_jax import _device
 from ..engines._results import DenseOutput, max_run
 
 
@@ -81,7 +81,7 @@ class JaxBackend(AbstractBackend):
                          self.event_resolution, (self.rtol, self.atol))
         pieces = excitation.pieces(horizon.integration_end(excitation))
         with jax_context():
-            out = kernel.run(_params(block), _device(pieces, 1), cfg=self.config(block, pieces),
+            out = kernel.run(block.engine_parameters()[0], _device(pieces, 1), cfg=self.config(block, pieces),
                              until_rest=horizon.until_rest, full_output=True)
             final, t_final, rests, flags, knots = jax.device_get(out)
         self.check(block, rests, flags)
@@ -96,7 +96,7 @@ class JaxBackend(AbstractBackend):
         if self.engine(block) != "sliding":  # one driver run per parameter set
             return super().solve_batch(block, excitation, horizon)
         pieces = excitation.pieces(horizon.integration_end(excitation))
-        params = batch_params(block)
+        params = tuple(block.engine_parameters().T)
         with jax_context():
             out = kernel.run_batch(params, _device(pieces, 1), cfg=self.config(block, pieces),
                                    until_rest=horizon.until_rest, full_output=False)

@@ -224,6 +224,19 @@ class SlidingBlock(AbstractHybridModel):
         return {name: np.broadcast_to(np.asarray(p, dtype=float), self.batch_shape)
                 for name, p in zip(("mu", "mu_kinetic", "bias"), values)}
 
+    def engine_parameters(self, scale=(1.0,)) -> np.ndarray:
+        """The 1-D engines' one parameter packing: (m * s, 5) rows of (mu, f, bias [-],
+        g [m/s²], scale [-]) for the m parameter sets (1 for one set), each at the s
+        factors of ``scale`` on a(t); set j at factor k is row j * s + k."""
+        values = (self.mu, self.friction_kinetic, self.bias, self.g)
+        scale = np.asarray(scale, dtype=float).ravel()
+        m = max(np.size(x) for x in values)
+        rows = np.empty((m, scale.size, 5))
+        for column, x in enumerate(values):
+            rows[:, :, column] = np.reshape(x, (-1, 1))
+        rows[:, :, 4] = scale
+        return rows.reshape(m * scale.size, 5)
+
     def item(self, index: int) -> "SlidingBlock":
         """The ``index``-th parameter set of a batch, as a scalar block."""
         mu, f, bias = (np.broadcast_to(p, self.batch_shape)[index]
