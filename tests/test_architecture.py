@@ -86,3 +86,17 @@ def test_the_core_names_no_concrete_model():
             names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
             names |= {a.asname or a.name for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) for a in n.names}
             assert not names & set(MODELS), (path.name, names & set(MODELS))
+
+
+def test_one_event_shape_and_one_solution_base():
+    """Every system's events start with (t, mode_before, mode_after) and every solution
+    is an AbstractSolution with t_events, event_table and to_dataframe."""
+    import dataclasses
+
+    for event in (bd.Event, bd.PlanarEvent, bd.UpthrowEvent, bd.HybridEvent):
+        assert issubclass(event, bd.AbstractEvent)
+        assert [f.name for f in dataclasses.fields(event)][:3] == ["t", "mode_before", "mode_after"]
+    for solution in (bd.Solution, bd.PlanarSolution, bd.UpthrowSolution, bd.DriverSolution):
+        assert issubclass(solution, bd.AbstractSolution)
+    sol = bd.simulate(bd.SpringSupportedMass(frequency=5.0, damping=0.05), bd.Harmonic(-0.8 * 9.81, 0.2), t_end=0.5)
+    assert sol.events[0].kind == "liftoff" and sol.t_events[0] == sol.events[0].t

@@ -5,7 +5,8 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
 from ._plot import plot
-from .core import AbstractHybridModel, DriverSolution, HybridEvent, InconsistentStateError, SolverError
+from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, DriverSolution, HybridEvent,
+                   InconsistentStateError, SolverError)
 from .core._crosscheck import CrossCheck, crosscheck
 from .core._jax_config import set_compilation_cache
 from .core._sensitivities import sensitivities
@@ -33,7 +34,7 @@ __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "check_peak_acceleration", "read_motion", "read_record", "simulate", "InconsistentStateError", "SolverError",
-    "DriverSolution", "HybridEvent",
+    "AbstractEvent", "AbstractSolution", "DriverSolution", "HybridEvent",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",
     "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",
     "upthrow_estimate",

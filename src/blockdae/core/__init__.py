@@ -5,7 +5,7 @@ declares what the core needs."""
 
 from ._driver import InconsistentStateError, SolverError
 from ._model import SCALAR, AbstractHybridModel, ExplicitForm
-from ._solution import DriverSolution, HybridEvent
+from ._solution import AbstractEvent, AbstractSolution, DriverSolution, HybridEvent
 
-__all__ = ["AbstractHybridModel", "DriverSolution", "ExplicitForm", "HybridEvent", "InconsistentStateError", "SCALAR",
-           "SolverError"]
+__all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "DriverSolution", "ExplicitForm", "HybridEvent",
+           "InconsistentStateError", "SCALAR", "SolverError"]

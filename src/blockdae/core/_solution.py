@@ -1,5 +1,7 @@
-"""What the solutions of the driver's models share: knots, events and dense output."""
+"""What every solution shares (:class:`AbstractSolution`, :class:`AbstractEvent`), and the
+solution of any model run by the hybrid driver: knots, events and dense output."""
 
+import abc
 import dataclasses
 from typing import Callable
 
@@ -7,18 +9,21 @@ import numpy as np
 
 
 @dataclasses.dataclass(frozen=True)
-class HybridEvent:
-    """A located mode change of any model run by the driver.
-
-    Attributes:
-        t: time [s].
-        mode_before, mode_after: the modes on either side.
-        state: the model's state at ``t`` (in the units of its ``state_names``).
-    """
+class AbstractEvent:
+    """The one event shape: time [s] and the modes on either side, then the named values
+    each system adds (u, v for the 1-D block; u_x, ..., v_z on a plane; kind, u, u',
+    height for a mass on a spring; the whole state by default)."""
 
     t: float
     mode_before: object
     mode_after: object
+
+
+@dataclasses.dataclass(frozen=True)
+class HybridEvent(AbstractEvent):
+    """A located mode change of any model run by the driver; ``state``: the model's state
+    at ``t`` (in the units of its ``state_names``)."""
+
     state: tuple
 
     def __str__(self):
@@ -26,8 +31,34 @@ class HybridEvent:
         return f"t = {self.t:.6f} s  {self.mode_before.name:>8} -> {self.mode_after.name:<8}  state = {values}"
 
 
+class AbstractSolution(abc.ABC):
+    """What every solution has: knot times ``t`` [s], located ``events``, the ``backend``
+    that produced it; ``t_end``, ``t_events`` and, per system, ``event_table()`` (text with
+    units) and ``to_dataframe()`` (pandas, units in the column names), with named views
+    (u, v; u_x, u_y; flights) on top."""
+
+    @property
+    def t_end(self) -> float:
+        """Final time [s]."""
+        return float(self.t[-1])
+
+    @property
+    def t_events(self) -> np.ndarray:
+        """Event times [s], shape (n_events,)."""
+        times = getattr(self.events, "t", None)  # an event log keeps them as an array
+        return np.array(times, dtype=float) if times is not None else np.array([e.t for e in self.events])
+
+    @abc.abstractmethod
+    def event_table(self, events=None) -> str:
+        """``events`` (default: all of them) as an aligned text table with units."""
+
+    @abc.abstractmethod
+    def to_dataframe(self):
+        """A pandas DataFrame with units in the column names."""
+
+
 @dataclasses.dataclass(frozen=True, eq=False)
-class DriverSolution:
+class DriverSolution(AbstractSolution):
     """Knots and located events of a model run by the hybrid driver.
 
     Attributes:
@@ -50,16 +81,6 @@ class DriverSolution:
     stats: dict = dataclasses.field(default_factory=dict)
     block: object = dataclasses.field(default=None, repr=False)
     motion: object = dataclasses.field(default=None, repr=False)
-
-    @property
-    def t_end(self) -> float:
-        """Final time [s]."""
-        return float(self.t[-1])
-
-    @property
-    def t_events(self) -> np.ndarray:
-        """Event times [s], shape (n_events,)."""
-        return np.array([e.t for e in self.events])
 
     def dense_state(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(state of shape t.shape + (k,), mode of shape t.shape) at times ``t`` in

@@ -5,13 +5,13 @@ import math
 
 import numpy as np
 
-from ..core._solution import DriverSolution
+from ..core._solution import AbstractEvent, DriverSolution
 
 from ._modes import PlanarMode, horizontal_velocity
 
 
 @dataclasses.dataclass(frozen=True)
-class PlanarEvent:
+class PlanarEvent(AbstractEvent):
     """A located mode change of a :class:`~blockdae.PlanarBlock`.
 
     Attributes:

@@ -6,12 +6,13 @@ from typing import Callable
 
 import numpy as np
 
+from ..core._solution import AbstractEvent, AbstractSolution
 from ..excitation import AbstractExcitation
 from ._modes import Mode
 
 
 @dataclasses.dataclass(frozen=True)
-class Event:
+class Event(AbstractEvent):
     """A located mode change.
 
     Attributes:
@@ -86,7 +87,7 @@ class EventLog(collections.abc.Sequence):
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class Solution:
+class Solution(AbstractSolution):
     """The motion of the block relative to its base.
 
     Attributes:
@@ -113,11 +114,6 @@ class Solution:
     motion: AbstractExcitation | None = dataclasses.field(default=None, repr=False)
 
     @property
-    def t_end(self) -> float:
-        """Final time [s]."""
-        return float(self.t[-1])
-
-    @property
     def displacement(self) -> float:
         """Permanent relative displacement u(t_end) [m]."""
         return float(self.u[-1])
@@ -126,13 +122,6 @@ class Solution:
     def max_abs_displacement(self) -> float:
         """max |u(t)| over the whole run [m] (u has its extrema at knots)."""
         return float(np.max(np.abs(self.u)))
-
-    @property
-    def t_events(self) -> np.ndarray:
-        """Event times [s], shape (n_events,)."""
-        if isinstance(self.events, EventLog):
-            return self.events.t.copy()
-        return np.array([e.t for e in self.events])
 
     def __call__(self, t):
         """(u(t) [m], v(t) [m/s]) at any times within [0, t_end], exactly."""

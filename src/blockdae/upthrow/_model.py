@@ -233,8 +233,8 @@ class SpringSupportedMass(AbstractHybridModel):
         return SpringDAEForm(self, piece)
 
     def event(self, t, mode_before, mode_after, y):
-        return UpthrowEvent(EVENT_KINDS[(mode_before, mode_after)], float(t), float(y[_U]), float(y[_V]),
-                            float(y[_U]) - self.static_deflection, mode_before, mode_after)
+        return UpthrowEvent(float(t), mode_before, mode_after, EVENT_KINDS[(mode_before, mode_after)],
+                            float(y[_U]), float(y[_V]), float(y[_U]) - self.static_deflection)
 
     def solution(self, *, t, y, mode, events, backend, dense, stats):
         return UpthrowSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense,

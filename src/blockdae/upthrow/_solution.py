@@ -4,33 +4,29 @@ import dataclasses
 
 import numpy as np
 
-from ..core._solution import DriverSolution
-
+from ..core._solution import AbstractEvent, DriverSolution
 from ._modes import UpthrowMode
 
 
 @dataclasses.dataclass(frozen=True)
-class UpthrowEvent:
+class UpthrowEvent(AbstractEvent):
     """A located event of a :class:`~blockdae.SpringSupportedMass`.
 
     Attributes:
+        t: time [s].
+        mode_before, mode_after: the modes on either side.
         kind: "liftoff", "top", "landing" or "bottom" (a flight that rises again
             because the ground falls faster than g).
-        t: time [s].
         u: displacement relative to the ground from the static position [m].
         u_rate: u' [m/s] (at liftoff the seed's u'0; at landing the impact velocity).
         height: u - u0 [m], the height above the unloaded support (at a top: the
             flight's height; 0 at a falling landing).
-        mode_before, mode_after: the modes on either side.
     """
 
     kind: str
-    t: float
     u: float
     u_rate: float
     height: float
-    mode_before: UpthrowMode
-    mode_after: UpthrowMode
 
     def __str__(self):
         return (f"t = {self.t:.6f} s  {self.kind:<8} u = {self.u:+.6e} m  u' = {self.u_rate:+.6e} m/s  "
