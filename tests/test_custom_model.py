@@ -58,3 +58,16 @@ def test_a_custom_model_gets_the_default_backend_and_a_clear_refusal(example):
     with pytest.raises(ValueError, match=r"backend='exact' does not run a OscillatorOnStop; choose one of "
                                          r"\['cvode', 'ida', 'jax'\]"):
         bd.simulate(model, bd.RectangularPulse(1.0, 2.0), t_end=1.0, backend="exact")
+
+
+def test_a_custom_model_is_plotted_by_its_solution(example):
+    """bd.plot draws any DriverSolution as its states against time, events marked."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    model = example.OscillatorOnStop(omega=2 * np.pi, zeta=0.1, omega_c=8 * np.pi, gap=0.01)
+    sol = bd.simulate(model, bd.RectangularPulse(1.0, 2.0), t_end=1.0)
+    fig = bd.plot(sol, n_points=200)
+    assert [ax.get_ylabel() for ax in fig.axes] == ["u", "u_rate"]
+    events = fig.axes[0].lines[1]
+    np.testing.assert_array_equal(events.get_xdata(), sol.t_events)

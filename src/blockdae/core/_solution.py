@@ -108,6 +108,13 @@ class DriverSolution(AbstractSolution):
                   + "  ".join(f"{v:13.6e}" for v in e.state) for e in events]
         return "\n".join(lines)
 
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """Each state against time, events marked (``excitation`` and ``block``
+        unused); a matplotlib Figure."""
+        from ._figures import state_figure
+
+        return state_figure(self, n_points=n_points, title=title)
+
     def to_dataframe(self):
         """The events as a pandas DataFrame: t_s [s], mode_before, mode_after and one
         column per state (the model's ``state_names``)."""

@@ -123,6 +123,13 @@ class PlanarSolution(DriverSolution):
                   f"{e.u_y:12.6f}  {e.direction:15.3f}  {slides.get(e.t, math.nan):11.3f}" for e in chosen]
         return "\n".join(lines)
 
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """The path (u_x, u_y) [m], u_x and u_y [m] and |v| [m/s] against time, events
+        marked (``excitation`` and ``block`` unused); a matplotlib Figure."""
+        from ._figures import planar_figure
+
+        return planar_figure(self, n_points=n_points, title=title)
+
     def to_dataframe(self):
         """The events as a pandas DataFrame: t_s [s], mode_before, mode_after, u_x_m,
         u_y_m [m], v_x_m_s, v_y_m_s, v_z_m_s [m/s], direction_deg, slide_deg (see

@@ -130,6 +130,13 @@ class Solution(AbstractSolution):
             raise ValueError(f"t must lie in [{self.t[0]}, {self.t[-1]}] s")
         return self.dense(t)
 
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """Seed 000 Figures 3-5: v, u and the phase plane, with ``excitation`` also the
+        absolute motions (see :func:`blockdae.plot`); a matplotlib Figure."""
+        from ._figures import solution_figure
+
+        return solution_figure(self, excitation, block, n_points=n_points, title=title)
+
     def event_table(self, events=None) -> str:
         """``events`` (default: all of them) as an aligned text table with units."""
         lines = [f"{'t [s]':>12}  {'from':>8}  {'to':<8}  {'u [m]':>12}"]
@@ -191,6 +198,13 @@ class BatchSolution:
         effect) and bias [-] (bias_x, bias_y for a planar block); empty if the block is
         unknown."""
         return {} if self.block is None else self.block.batch_parameters()
+
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """u(t_end) and max |u| [m] against the parameter that varies (the arguments
+        besides ``title`` are unused); a matplotlib Figure."""
+        from ._figures import batch_figure
+
+        return batch_figure(self, title=title)
 
     def to_dataframe(self):
         """A pandas DataFrame, one row per parameter set: the grid (mu, mu_kinetic, bias

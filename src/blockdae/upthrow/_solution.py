@@ -126,6 +126,13 @@ class UpthrowSolution(DriverSolution):
                   for e in (self.events if events is None else events)]
         return "\n".join(lines)
 
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """A flight history: ground and mass [m], gap [m], support force [m/s²];
+        liftoffs and landings marked (``excitation`` and ``block`` unused); a matplotlib Figure."""
+        from ._figures import flight_figure
+
+        return flight_figure(self, n_points=n_points, title=title)
+
     def to_dataframe(self):
         """The events as a pandas DataFrame: kind, t_s [s], u_m [m], u_rate_m_s [m/s],
         height_m [m]."""

@@ -1,0 +1,45 @@
+"""What the figures of every system share: styles, a curve with its events marked, the
+time grid; matplotlib is imported by the figures themselves, on demand."""
+
+import numpy as np
+
+BASE = dict(color="0.3", lw=1.2, label="base")
+BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")
+EVENTS = dict(ls="none", marker="o", ms=4, mfc="none", color="C0", label="events")
+
+
+def time_grid(solution, n_points):
+    """``n_points`` times over [t_0, t_end] [s] and the solution's knots; n_points is
+    checked (an integer >= 2)."""
+    if not (isinstance(n_points, int) and n_points >= 2):
+        raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
+    return np.union1d(np.linspace(solution.t[0], solution.t_end, n_points), solution.t)
+
+
+def curve(ax, t, y, t_ev, y_ev, ylabel, style=None):
+    """``y`` against ``t`` with the events (``t_ev``, ``y_ev``) marked and a zero line."""
+    ax.plot(t, y, **(style or dict(color="C3", lw=1.2, label="block - base")))
+    if t_ev is not None:
+        ax.plot(t_ev, y_ev, **EVENTS)
+    if ylabel:
+        ax.set_ylabel(ylabel)
+    ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+
+
+def state_figure(solution, *, n_points, title=None):
+    """Any driver model's solution: each state [its unit] against time, events marked."""
+    import matplotlib.pyplot as plt
+
+    t = time_grid(solution, n_points)
+    state, _ = solution.dense_state(t)
+    names = solution.block.state_names if solution.block is not None else [f"y{i}" for i in range(state.shape[-1])]
+    t_ev = solution.t_events
+    fig, axes = plt.subplots(len(names), 1, sharex=True, figsize=(7, 2.2 * len(names)), squeeze=False,
+                             constrained_layout=True)
+    for i, (ax, name) in enumerate(zip(axes[:, 0], names)):
+        curve(ax, t, state[..., i], t_ev, np.array([e.state[i] for e in solution.events]), name,
+              style=dict(color="C3", lw=1.2, label=name))
+    axes[-1, 0].set_xlabel("t [s]")
+    if title:
+        fig.suptitle(title)
+    return fig
