@@ -266,7 +266,7 @@ def documented_options():
         if line.startswith(" " * 8 + "backend="):
             current = names
             for name in names:
-                options[name] = {}
+                options.setdefault(name, {})
         match = re.match(r" {12}(\w+)=(.+?): .*\[", line)
         if match:
             for name in current:

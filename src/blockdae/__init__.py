@@ -12,6 +12,7 @@ from .core._jax_config import set_compilation_cache
 from .core._sensitivities import sensitivities
 from .core._simulate import simulate
 from .core._units import STANDARD_GRAVITY
+from .engines._linear_solution import simulate_linear_final
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, check_peak_acceleration, read_motion, read_record)
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
@@ -39,7 +40,7 @@ __all__ = [
     "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",
     "upthrow_estimate",
     "SweepSolution", "simulate_many",
-    "FinalNumbers", "simulate_final",
+    "FinalNumbers", "simulate_final", "simulate_linear_final",
     "CrossCheck", "crosscheck",
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
     "sensitivities", "set_compilation_cache",

@@ -30,6 +30,9 @@ def simulate(block: AbstractHybridModel, motion, t_end: float | None = None, bac
             differentiates):
                 window=64: pieces of a(t) per block of the onset search [-]; changes
                     speed, never results.
+            backend="exact" for a model on its "linear" engine (a SpringSupportedMass):
+                linear="compiled": its path [-]: "compiled" (numba, records) or "python"
+                    (closed-form steps on the driver, the reference; sine excitations).
             backend="cvode" (ODE in u, v) and backend="ida" (DAE, with the friction
             force per unit mass F, for a PlanarBlock (F_x, F_y), as algebraic variables):
                 rtol=1e-10: relative tolerance [-], in [1e-14, 1e-2].

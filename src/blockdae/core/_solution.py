@@ -82,6 +82,11 @@ class DriverSolution(AbstractSolution):
     block: object = dataclasses.field(default=None, repr=False)
     motion: object = dataclasses.field(default=None, repr=False)
 
+    def __call__(self, t):
+        """The states at times ``t`` in [0, t_end] [s]: a tuple of arrays of t's shape, in
+        the model's ``state_names`` order."""
+        return tuple(np.moveaxis(self.dense_state(t)[0], -1, 0))
+
     def dense_state(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(state of shape t.shape + (k,), mode of shape t.shape) at times ``t`` in
         [0, t_end] [s]."""

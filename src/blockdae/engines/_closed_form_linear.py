@@ -24,7 +24,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from ..core._driver import AbstractIntegrator, drive
+from ..core._driver import AbstractIntegrator, _falls, drive
 from ..excitation._pieces import rebase
 
 _EPS = np.finfo(float).eps
@@ -77,6 +77,12 @@ class ClosedForm:
                                    E=-self.w * self.F, F=self.w * self.E,
                                    C=-self.sigma * self.C + self.w_d * self.D,
                                    D=-self.sigma * self.D - self.w_d * self.C)
+
+    def rounding(self, tau) -> float:
+        """The rounding error of f(tau): a few ulps of the sum of its terms' sizes."""
+        poly = sum(abs(c * tau**i) for i, c in enumerate(self.poly))
+        periodic = math.hypot(self.A, self.B) + abs(tau) * math.hypot(self.E, self.F)
+        return 8 * _EPS * (poly + periodic + math.exp(-self.sigma * tau) * (abs(self.C) + abs(self.D)))
 
     def bound(self, a, b) -> float:
         """An upper bound of |f| on [a, b], 0 <= a <= b [s], term by term: loose where the
@@ -158,22 +164,22 @@ def _signed(values_a, values_b, bound, length):
 
 def first_down_crossing(guard: _Guard, a: float, b: float, origin: float = 0.0) -> float | None:
     """The first tau in [a, b] [s] where the guard reaches <= 0 from > 0; None if it
-    does not. A touch of zero at a minimum that does not go below it is no crossing; a
-    guard already <= 0 at a and heading down (f' < 0, or f' = 0 and f'' < 0) crosses at
-    a. ``origin``: the time [s] at tau = 0, which sets the resolution of the search."""
+    does not. A touch of zero at a minimum that does not go below it (by more than
+    rounding) is no crossing; a guard already <= 0 at a and heading down (f' < 0, or f'
+    = 0 and f'' < 0; not turning back within the search's resolution) crosses at a.
+    ``origin``: the time [s] at tau = 0, which sets the resolution of the search."""
     f, f1, f2, f3 = guard.f
     budget = [_MAX_INTERVALS]
     resolution = 4 * _EPS * max(abs(origin) + abs(b), 1.0)  # [s]: a few ulps of the time
-    if f(a) <= 0 and (f1(a) < 0 or (f1(a) == 0 and f2(a) < 0)):
+    if f(a) <= 0 and _falls(f1(a), f2(a), resolution):  # heading down, not turning back within rounding
         return a
 
-    def monotone_part(lo, f_lo, hi, f_hi, decreasing, minimum_at_hi):
-        """The crossing on [lo, hi] where f is monotone; at a minimum at hi, f = 0 is a
-        touch, no crossing."""
-        if not decreasing or not (f_lo > 0 >= f_hi):
+    def monotone_part(lo, f_lo, hi, f_hi, decreasing):
+        """The crossing on [lo, hi] where f is monotone: f must fall below zero by more
+        than its rounding (a touch computed an ulp low is none; a crossing that goes on
+        falls past hi, where the next window finds it at once)."""
+        if not decreasing or not (f_lo > 0 > f_hi) or f_hi >= -f.rounding(hi):
             return None
-        if f_hi == 0:
-            return None if minimum_at_hi else hi
         root = brentq(f, lo, hi, xtol=1e-300, rtol=4 * _EPS)
         while f(root) > 0 and root < hi:  # the first point past the crossing
             root = min(np.nextafter(root, math.inf), hi)
@@ -189,16 +195,16 @@ def first_down_crossing(guard: _Guard, a: float, b: float, origin: float = 0.0) 
         d_lo, d_hi = f1(lo), f1(hi)
         slope_sign = _signed(d_lo, d_hi, f2.bound(lo, hi), length)
         if slope_sign:
-            return monotone_part(lo, f_lo, hi, f_hi, slope_sign < 0, d_hi == 0 and f2(hi) > 0)
+            return monotone_part(lo, f_lo, hi, f_hi, slope_sign < 0)
         if _signed(f2(lo), f2(hi), f3.bound(lo, hi), length):  # f' monotone
             if d_lo * d_hi >= 0:  # f' of one sign inside: f monotone
-                return monotone_part(lo, f_lo, hi, f_hi, d_lo + d_hi < 0, d_hi == 0)
+                return monotone_part(lo, f_lo, hi, f_hi, d_lo + d_hi < 0)
             turn = brentq(f1, lo, hi, xtol=1e-300, rtol=4 * _EPS)
             f_turn = f(turn)
-            first = monotone_part(lo, f_lo, turn, f_turn, d_lo < 0, True)
-            return first if first is not None else monotone_part(turn, f_turn, hi, f_hi, d_hi < 0, False)
+            first = monotone_part(lo, f_lo, turn, f_turn, d_lo < 0)
+            return first if first is not None else monotone_part(turn, f_turn, hi, f_hi, d_hi < 0)
         if length <= resolution:
-            return hi if f_lo > 0 >= f_hi else None
+            return hi if f_lo > 0 > f_hi and f_hi < -f.rounding(hi) else None
         mid = lo + 0.5 * length
         f_mid = f(mid)
         first = search(lo, f_lo, mid, f_mid)

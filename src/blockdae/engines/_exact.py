@@ -10,6 +10,7 @@ from ..excitation._pieces import accel
 from . import _exact_numba as engine
 from ..backends._base import AbstractBackend, cached_per_excitation, check_window
 from ._closed_form_linear import solve_closed_form
+from ._linear_solution import linear_pieces, solve_linear_compiled
 from ._results import check, exact_solution
 
 
@@ -30,18 +31,27 @@ class ExactBackend(AbstractBackend):
     Args:
         window: pieces of a(t) per block of the onset search's bounds; a tuning knob
             that changes speed, never results.
+        linear: the "linear" engine's path: "compiled" (numba, :mod:`._linear`, for
+            records) or "python" (closed-form steps on the generic driver, the reference;
+            sine excitations always take it).
     """
 
     window: int = 64
+    linear: str = "compiled"
     name = "exact"
     generic = False
 
     def __post_init__(self):
         check_window(self.window)
+        if self.linear not in ("compiled", "python"):
+            raise ValueError(f"linear must be 'compiled' or 'python', got {self.linear!r}")
 
     def solve(self, block, excitation, horizon):
-        if self.engine(block) == "linear":  # closed-form steps on the generic driver
-            return solve_closed_form(block, excitation, horizon, self.name)
+        if self.engine(block) == "linear":
+            found = linear_pieces(excitation, horizon.integration_end(excitation))
+            if self.linear == "python" or found is None or horizon.until_rest:  # closed-form steps on the driver
+                return solve_closed_form(block, excitation, horizon, self.name)
+            return solve_linear_compiled(block, *found, self.name)
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
         run_one, _, _ = engine.kernels()
         params = tuple(float(p) for p in block.engine_parameters()[0])

@@ -39,6 +39,7 @@ from ..core._units import STANDARD_GRAVITY
 from ._solution import UpthrowEvent, UpthrowSolution
 from ..core._model import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
 from ..core._checks import set_real_fields
+from ..core._linear_modes import LinearModes
 from ._modes import EVENT_KINDS, UpthrowMode
 from ._support import SpringSupport
 
@@ -131,6 +132,26 @@ class SpringSupportedMass(AbstractHybridModel):
         if mode == UpthrowMode.FLIGHT_UP:
             return ((0.0, 1.0, 0.0), rising_landing)
         return (falling_landing, (0.0, -1.0, 0.0))
+
+    def linear_modes(self) -> LinearModes:
+        """The modes as the compiled linear engine's tables: the flows of
+        :meth:`linear_flow`, the guards of :meth:`affine_guards`, the transitions of
+        :meth:`mode_after_guard` and the resets of :meth:`state_at_guard` (u' = 0 at a
+        top or bottom, u = u0 at a falling landing)."""
+        modes = list(UpthrowMode)
+        flows = np.array([self.linear_flow(mode) for mode in modes])
+        guards = np.tile([0.0, 0.0, 1.0], (len(modes), 2, 1))
+        next_mode = np.zeros((len(modes), 2), dtype=np.int64)
+        resets = np.tile([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], (len(modes), 2, 1, 1))
+        for mode in modes:
+            for j, row in enumerate(self.affine_guards(mode)):
+                guards[mode, j] = row
+                next_mode[mode, j] = self.mode_after_guard(mode, j, 0.0, None, None)
+                # state_at_guard is affine in y: its map from the images of 0 and the unit vectors
+                offset = np.asarray(self.state_at_guard(mode, j, np.zeros(2)), dtype=float)
+                columns = [np.asarray(self.state_at_guard(mode, j, e), dtype=float) - offset for e in np.eye(2)]
+                resets[mode, j] = np.column_stack([*columns, offset])
+        return LinearModes(flows[:, 0], flows[:, 1], flows[:, 2], guards, next_mode, resets, int(self.initial_mode))
 
     def support_force(self, mode, t, y, excitation, xp=np):
         """n [m/s²] the support exerts per unit mass (compression positive; 0 in flight)."""
