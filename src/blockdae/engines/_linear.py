@@ -219,14 +219,13 @@ def _falls(rate, curvature, resolution):
 def _left_at_once(mode, u, v, a, a_rate, k, c, b, guards):
     """The first guard of ``mode`` at or below zero and falling at (u, v) under a(t) =
     ``a`` with rate ``a_rate``; -1: none."""
-    accel = b[mode] - k[mode] * u - c[mode] * v - a
-    jerk = -k[mode] * v - c[mode] * accel - a_rate
     for j in range(guards.shape[1]):
         alpha, beta, gamma = guards[mode, j, 0], guards[mode, j, 1], guards[mode, j, 2]
-        if alpha == 0 and beta == 0:
+        if (alpha == 0 and beta == 0) or alpha * u + beta * v + gamma > 0:
             continue
-        if alpha * u + beta * v + gamma <= 0 and _falls(alpha * v + beta * accel, alpha * accel + beta * jerk,
-                                                        EVENT_RESOLUTION):
+        accel = b[mode] - k[mode] * u - c[mode] * v - a
+        jerk = -k[mode] * v - c[mode] * accel - a_rate
+        if _falls(alpha * v + beta * accel, alpha * accel + beta * jerk, EVENT_RESOLUTION):
             return j
     return -1
 
