@@ -145,7 +145,7 @@ def test_time_column_origin_is_kept_as_start_time(tmp_path):
     assert shifted.start_time == 5.0 and shifted.dt == 0.25
     assert "start_time=5 s" in repr(shifted)
     block = bd.SlidingBlock(mu=0.06, g=9.81)
-    ref = bd.simulate(block, bd.Record([0.0, 0.9, 0.0], 0.25))
+    ref = bd.simulate(block, bd.Record([0.0, 0.9, 0.0], 0.25, units="m/s2"))
     sol = bd.simulate(block, shifted)
     np.testing.assert_array_equal(sol.t_events, ref.t_events)
     assert sol.t_events[0] < 0.5  # solution times from the first sample; + 5 s on the file's axis

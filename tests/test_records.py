@@ -131,7 +131,7 @@ def test_start_time_is_kept_by_scaling_and_records_hash_by_identity():
     record = bd.Record([0.0, 2.0, -1.0], dt=0.5, name="r", start_time=5.0)
     for other in (record.scaled(2.0), record.inverted()):
         assert (other.name, other.start_time) == ("r", 5.0)
-    assert "start_time=5 s" in repr(record) and bd.Record([0.0, 1.0], 0.5).start_time == 0.0
+    assert "start_time=5 s" in repr(record) and bd.Record([0.0, 1.0], 0.5, units="m/s2").start_time == 0.0
     twin = bd.Record([0.0, 2.0, -1.0], dt=0.5, name="r", start_time=5.0)
     assert record != twin and len({record, twin}) == 2 and hash(record) == hash(record)
     with pytest.raises(ValueError, match="start_time must be finite"):

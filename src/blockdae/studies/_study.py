@@ -163,8 +163,8 @@ def run_task(records, grid: _Grid) -> dict:
             places.append(place)
     peak = np.array([m.peak_acceleration for m in motions])
     unit = grid.g if grid.by == "pga" else 1.0  # engine motions: peak 1 g, or as they are
-    engine_motions = [Record(m.acceleration_samples * (unit / p), m.dt, m.name) for m, p in zip(motions, peak)] \
-        if grid.by == "pga" else motions
+    engine_motions = [Record(m.acceleration_samples * (unit / p), m.dt, m.name, units="m/s2", check_peak=False)
+                      for m, p in zip(motions, peak)] if grid.by == "pga" else motions
     block = SlidingBlock(mu=grid.mu, direction=grid.direction, g=grid.g)
     out = simulate_final(block, engine_motions, grid.t_end, scale=grid.factors)
     sd = response_spectrum(motions, grid.sd_period, grid.damping).sd
