@@ -94,7 +94,7 @@ def check_pga(pga, name: str = "pga") -> np.ndarray:
 
 def pga_factor(peak, pga, g: float = STANDARD_GRAVITY, rounding: str = "exact", name: str = "pga"):
     """Factor(s) [-] on a motion of peak |a| ``peak`` [m/s²] that scale it to ``pga`` [g]
-    (a number or 1-D sequence; one g is ``g`` [m/s²]): ``pga / (peak / g)``.
+    (a number or 1-D sequence; one g is ``g`` [m/s²]): ``pga g / peak``.
 
     ``rounding``: "exact" (default) or "slammer", SLAMMER's convention for reproducing its
     tables: the record's own peak in g rounded to 0.001 g, ``pga / round(peak / g, 3)``.
@@ -103,11 +103,9 @@ def pga_factor(peak, pga, g: float = STANDARD_GRAVITY, rounding: str = "exact", 
     if rounding not in PGA_ROUNDINGS:
         raise ValueError(f"pga_rounding must be one of {PGA_ROUNDINGS}, got {rounding!r}")
     targets = check_pga(pga, name)
-    own = float(peak) / g
-    if rounding == "slammer":
-        own = round(own, 3)
+    own = round(float(peak) / g, 3) if rounding == "slammer" else float(peak)
     if not own > 0:
         raise ValueError(f"{name} needs a motion with a nonzero peak; this one's is {float(peak):.4g} m/s² "
                          f"(= {float(peak) / g:.4g} g{', 0 to 0.001 g' if rounding == 'slammer' else ''})")
-    factors = targets / own
+    factors = targets / own if rounding == "slammer" else targets * g / own
     return float(factors[0]) if np.ndim(pga) == 0 else factors

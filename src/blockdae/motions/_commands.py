@@ -13,6 +13,7 @@ import numpy as np
 
 from ..cli._common import UsageError, checked, number, positive, read, save_figure, write_csv
 from ..core._units import STANDARD_GRAVITY
+from ..excitation._units import pga_factor
 
 SEED_LAGS = np.geomspace(0.05, 3.0, 20)  # seed 003: 20 lags from 0.05 to 3 s
 DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)
@@ -73,9 +74,8 @@ def _record(args):
     rec = read(args.record, args)
     rec = checked(lambda: baseline_corrected(rec, args.baseline), str(args.record))
     if args.pga is not None:
-        if rec.peak_acceleration == 0:
-            raise UsageError(f"{args.record}: --pga cannot scale a record of zeros")
-        rec = rec.scaled(args.pga * args.g / rec.peak_acceleration)
+        rec = rec.scaled(checked(lambda: pga_factor(rec.peak_acceleration, args.pga, args.g, name="--pga"),
+                                 str(args.record)))
     return rec
 
 

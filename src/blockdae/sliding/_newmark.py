@@ -99,6 +99,9 @@ def newmark(motion: AbstractExcitation, ky, polarity: str = "both", g: float = S
     """
     if polarity not in _POLARITIES:
         raise ValueError(f"polarity must be one of {_POLARITIES}, got {polarity!r}")
+    if "target_pga" in options:
+        raise TypeError(f"newmark: target_pga={options['target_pga']!r} is called pga here: the target peak "
+                        "ground acceleration [g], newmark(motion, ky, pga=...)")
     ky_array = np.asarray(ky, dtype=float)
     _require(np.isfinite(ky_array) & (ky_array > 0), "ky", ky_array, "must be a positive yield acceleration [g]")
     if pga is not None:
