@@ -24,6 +24,7 @@ import numpy as np
 from ..sliding._final import simulate_final
 from ..sliding._formulas import AdjustmentFactor, newmark_rd_sd
 from ..core._units import STANDARD_GRAVITY
+from ..excitation._units import check_pga
 from ..excitation import Record
 from ..sliding._model import SlidingBlock
 from ..motions import response_spectrum
@@ -212,6 +213,8 @@ def _checked(records, mu, pga, scale, where, direction, refine, sd_period, dampi
         raise ValueError("give pga (target peaks [g]) or scale (factors [-]), one of the two")
     by = "pga" if pga is not None else "scale"
     factors = _values(by, pga if pga is not None else scale, "g" if by == "pga" else "-")
+    if by == "pga":
+        check_pga(factors)  # above 5 g: likely m/s²
     where = tuple([where] if isinstance(where, (str, Floor)) else where)
     if not where:
         raise ValueError('where is empty: give "ground" and/or floors (frame.floor(i))')
