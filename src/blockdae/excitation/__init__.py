@@ -10,6 +10,6 @@ from ._record import Record
 from ._units import (AMBIGUOUS_PEAK, MAX_PGA_G, PLAUSIBLE_PEAK_G, UnitsWarning, check_peak_acceleration,
                      pga_factor)
 
-__all__ = ["AMBIGUOUS_PEAK", "AbstractExcitation", "MAX_PGA_G", "UnitsWarning", "pga_factor", "BaseMotion", "Harmonic", "Pieces", "Record", "RectangularPulse",
-           "PLAUSIBLE_PEAK_G", "STANDARD_GRAVITY", "SinePulse", "TriangularPulse", "check_peak_acceleration",
-           "read_motion", "read_record"]
+__all__ = ["AMBIGUOUS_PEAK", "AbstractExcitation", "BaseMotion", "Harmonic", "MAX_PGA_G", "PLAUSIBLE_PEAK_G",
+           "Pieces", "Record", "RectangularPulse", "STANDARD_GRAVITY", "SinePulse", "TriangularPulse",
+           "UnitsWarning", "check_peak_acceleration", "pga_factor", "read_motion", "read_record"]
