@@ -162,14 +162,21 @@ def test_record_units_convert_to_m_s2():
 
 
 def test_array_in_g_without_units_warns_naming_the_peak_and_both_readings():
-    """An array in g given without units (read as m/s²: a 0.03 g record, D = 0 m) warns; the
-    same array with units="g" or "m/s2" says which, and is silent."""
+    """An array in g given without units (read as m/s²: a 0.03 g record, D = 0 m) warns, as
+    does one in cm/s² of a weak record (read as 5 g); the same arrays with units= say which,
+    and are silent; so is a peak of 0.2 g to 2 g in m/s² without units."""
     with pytest.warns(bd.UnitsWarning, match=re.escape(
             "Record 'r': peak acceleration 0.3 with no units= is read as 0.3 m/s² = 0.03059 g, but as 0.3 g it "
             "would be as plausible; pass units='m/s2' or units='g'")):
         bd.Record(IN_G, 0.01, "r")
+    weak_in_cm_s2 = IN_G / 6 * G0 * 100  # a 0.05 g record in cm/s²: 49 "m/s²" = 5 g, below the 10 g bound
+    with pytest.warns(bd.UnitsWarning, match=re.escape(
+            "Record: peak acceleration 49.03 with no units= is read as 49.03 m/s² = 5 g, but as 49.03 cm/s² = "
+            "0.05 g it would be as plausible; pass units='m/s2' or units='cm/s2'")):
+        bd.Record(weak_in_cm_s2, 0.01)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
+        bd.Record(weak_in_cm_s2, 0.01, units="cm/s2")
         bd.Record(IN_G, 0.01, units="g")
         bd.Record(IN_G, 0.01, units="m/s2")
         bd.Record(IN_G * G0, 0.01)  # 2.94 m/s²: as g it would be a 2.94 g record, not plausible alike

@@ -8,7 +8,7 @@ import numpy as np
 from ..core._units import STANDARD_GRAVITY
 from ._base import AbstractExcitation, check_finite, check_positive
 from ._pieces import Pieces
-from ._units import AMBIGUOUS_PEAK, UnitsWarning, check_peak_acceleration, unit_factor
+from ._units import UNSTATED_PEAK_M_S2, UnitsWarning, check_peak_acceleration, unit_factor
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -22,8 +22,9 @@ class Record(AbstractExcitation):
         name: label used in tables and plots.
         start_time: time of the first sample on the file's own axis [s]; kept as a label.
         units: units of ``acceleration``: "m/s2", "g", "cm/s2" or "gal"; None (default):
-            m/s², with a :class:`UnitsWarning` if the peak is below
-            :data:`AMBIGUOUS_PEAK` (2), where the numbers read as g would be as plausible.
+            m/s², with a :class:`UnitsWarning` if the peak is outside
+            :data:`UNSTATED_PEAK_M_S2` (2 to 19.6 m/s², 0.2 g to 2 g): below, the numbers
+            read as g would be as plausible; above, read as cm/s².
         g: the value of one "g" [m/s²], for ``units="g"``.
         check_peak: raise ValueError if a nonzero peak is implausible in ``units``
             (outside :data:`PLAUSIBLE_PEAK_G`: an array in cm/s² given as m/s², ...);
@@ -97,7 +98,11 @@ def _check_units(samples, units, g, name):
     source = f"Record {name!r}" if name else "Record"
     check_peak_acceleration(samples, "m/s2" if units is None else units, g, source)
     peak = float(np.max(np.abs(samples)))
-    if units is None and peak < AMBIGUOUS_PEAK:
-        warnings.warn(f"{source}: peak acceleration {peak:.4g} with no units= is read as {peak:.4g} m/s² "
-                      f"= {peak / STANDARD_GRAVITY:.4g} g, but as {peak:.4g} g it would be as plausible; "
-                      "pass units='m/s2' or units='g' (or 'cm/s2') to say which", UnitsWarning, stacklevel=3)
+    low, high = UNSTATED_PEAK_M_S2
+    if units is not None or low <= peak <= high:
+        return
+    other = "g" if peak < low else "cm/s2"
+    as_other = f"{peak:.4g} g" if other == "g" else f"{peak:.4g} cm/s² = {peak / 100 / STANDARD_GRAVITY:.4g} g"
+    warnings.warn(f"{source}: peak acceleration {peak:.4g} with no units= is read as {peak:.4g} m/s² "
+                  f"= {peak / STANDARD_GRAVITY:.4g} g, but as {as_other} it would be as plausible; "
+                  f"pass units='m/s2' or units='{other}' to say which", UnitsWarning, stacklevel=3)

@@ -10,9 +10,10 @@ from ..core._units import STANDARD_GRAVITY
 #: plausible peak acceleration of a record [g]; outside it the units are likely wrong
 PLAUSIBLE_PEAK_G = (1e-4, 10.0)
 
-#: a peak [m/s²] below which samples given without units may as well be in g: read as
-#: m/s² they are below 0.2 g, read as g below 2 g, both plausible (Record warns)
-AMBIGUOUS_PEAK = 2.0
+#: peaks [m/s²] that samples given without units may have silently: 0.2 g to 2 g. Below,
+#: the numbers read as g (under 2 g) are as plausible as m/s² (an array in g passed as m/s²);
+#: above, as cm/s² (under 0.02 g) they are (an array in cm/s² passed as m/s²): Record warns
+UNSTATED_PEAK_M_S2 = (2.0, 2.0 * STANDARD_GRAVITY)
 #: target peak ground accelerations [g] above this are refused: likely m/s² given as g
 MAX_PGA_G = 5.0
 
