@@ -22,7 +22,8 @@ DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)
 def _common(parser):
     parser.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
     parser.add_argument("--units", default=None,
-                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header says, else g)")
+                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header or a "
+                             "table's header line says, else g)")
     parser.add_argument("--dt", type=positive("--dt"),
                         default=None, help="sample step [s], for one-column files")
     parser.add_argument("--g", type=positive("--g"),
