@@ -34,7 +34,8 @@ from .upthrow._estimate import UpthrowEstimate, upthrow_estimate
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
-    "UnitsWarning", "check_peak_acceleration", "pga_factor", "read_motion", "read_record", "simulate", "InconsistentStateError", "SolverError",
+    "check_peak_acceleration", "read_motion", "read_record", "simulate", "InconsistentStateError", "SolverError",
+    "UnitsWarning", "pga_factor",
     "AbstractEvent", "AbstractSolution", "DriverSolution", "HybridEvent",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",
     "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",

@@ -92,7 +92,7 @@ class Record(AbstractExcitation):
 
 def _check_units(samples, units, g, name):
     """Refuse a nonzero peak implausible in ``units``; warn if ``units`` is None and the
-    peak [m/s²] is below :data:`AMBIGUOUS_PEAK`, where the samples may be in g."""
+    peak [m/s²] is outside :data:`UNSTATED_PEAK_M_S2`, where the samples may be in g or cm/s²."""
     if not np.any(samples):
         return  # a record of zeros: no units to get wrong
     source = f"Record {name!r}" if name else "Record"

@@ -1,8 +1,6 @@
 """Units of acceleration samples: names, factors to m/s², the peak plausibility check
 and the factor that scales a motion to a target peak ground acceleration [g]."""
 
-import warnings
-
 import numpy as np
 
 from ..core._units import STANDARD_GRAVITY
@@ -24,7 +22,9 @@ _SYMBOLS = {"g": "g", "m/s2": "m/s²", "cm/s2": "cm/s²"}
 
 
 class UnitsWarning(UserWarning):
-    """Acceleration samples whose units cannot be told from their values: say them."""
+    """A value whose units cannot be told from it (samples given without units), or that
+    gives a trivial result a unit mix-up often causes (a yield acceleration at or above the
+    motion's peak: D = 0): say the units, or check the value."""
 
 
 def canonical_units(units: str) -> str:
@@ -70,8 +70,6 @@ def _likely_units(peak, units):
     return min(plausible, key=lambda u: abs(np.log(in_g[u] / 0.3)), default=None)
 
 
-
-
 #: how :func:`pga_factor` takes a motion's own peak: "exact", or "slammer" (rounded to 0.001 g)
 PGA_ROUNDINGS = ("exact", "slammer")
 
@@ -93,6 +91,12 @@ def check_pga(pga, name: str = "pga") -> np.ndarray:
     return values
 
 
+def check_pga_rounding(rounding):
+    """ValueError unless ``rounding`` is one of :data:`PGA_ROUNDINGS`."""
+    if rounding not in PGA_ROUNDINGS:
+        raise ValueError(f"pga_rounding must be one of {PGA_ROUNDINGS}, got {rounding!r}")
+
+
 def pga_factor(peak, pga, g: float = STANDARD_GRAVITY, rounding: str = "exact", name: str = "pga"):
     """Factor(s) [-] on a motion of peak |a| ``peak`` [m/s²] that scale it to ``pga`` [g]
     (a number or 1-D sequence; one g is ``g`` [m/s²]): ``pga g / peak``.
@@ -101,8 +105,7 @@ def pga_factor(peak, pga, g: float = STANDARD_GRAVITY, rounding: str = "exact", 
     tables: the record's own peak in g rounded to 0.001 g, ``pga / round(peak / g, 3)``.
     Returns an array shaped like ``pga`` (a float for a number).
     """
-    if rounding not in PGA_ROUNDINGS:
-        raise ValueError(f"pga_rounding must be one of {PGA_ROUNDINGS}, got {rounding!r}")
+    check_pga_rounding(rounding)
     targets = check_pga(pga, name)
     own = round(float(peak) / g, 3) if rounding == "slammer" else float(peak)
     if not own > 0:

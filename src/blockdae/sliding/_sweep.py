@@ -8,6 +8,7 @@ import numpy as np
 from ..core._simulate import simulate
 from ._solution import BatchSolution
 from ..excitation import AbstractExcitation, pga_factor
+from ..excitation._units import check_pga, check_pga_rounding
 from ._model import SlidingBlock
 
 
@@ -132,11 +133,12 @@ def _factors(motions, scale, pga, g, rounding) -> np.ndarray:
     if pga is None:
         k = _values("scale", 1.0 if scale is None else scale)
         return np.tile(k, (len(motions), 1))
+    check_pga(pga), check_pga_rounding(rounding)  # before any motion
     rows = []
     for i, motion in enumerate(motions):
         try:
             rows.append(pga_factor(motion.peak_acceleration, np.atleast_1d(pga), float(g), rounding))
-        except ValueError as err:
+        except ValueError as err:  # a motion of zeros
             raise ValueError(f"motion {i}: {err}") from None
     return np.array(rows)
 
