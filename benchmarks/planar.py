@@ -36,7 +36,8 @@ def cases(quick=False):
     for x_stem, y_stem in PAIRS[1:] if quick else PAIRS:
         x, y = (bd.read_record(folder / f"{stem}.csv", units="g", g=G) for stem in (x_stem, y_stem))
         if quick:  # the first QUICK_SAMPLES samples of each
-            x, y = (bd.Record(r.acceleration_samples[:QUICK_SAMPLES], r.dt, r.name) for r in (x, y))
+            x, y = (bd.Record(r.acceleration_samples[:QUICK_SAMPLES], r.dt, r.name, units="m/s2", check_peak=False)
+                    for r in (x, y))
         mu = 0.5 * x.peak_acceleration / G
         block = bd.PlanarBlock(mu=mu, bias=(-0.25 * mu, 0.0), g=G)
         out.append((f"{x_stem.rsplit('_', 2)[0]} x + {y_stem.rsplit('_', 2)[0]} y", block, bd.BaseMotion(x, y)))

@@ -129,24 +129,27 @@ def test_scaling_inverting_and_scaling_components():
 
 
 def test_breakpoints_are_the_union():
-    motion = bd.BaseMotion(bd.Record([0.0, 1.0, 0.0], 0.5), bd.TriangularPulse(1.0, 0.8), bd.Harmonic(1.0, 1.0))
+    motion = bd.BaseMotion(bd.Record([0.0, 1.0, 0.0], 0.5, units="m/s2"), bd.TriangularPulse(1.0, 0.8),
+                           bd.Harmonic(1.0, 1.0))
     np.testing.assert_array_equal(motion.breakpoints, [0.0, 0.4, 0.5, 0.8, 1.0])
     assert motion.duration == np.inf
 
 
 def test_repr_names_the_components():
-    text = repr(bd.BaseMotion(bd.Harmonic(1.0, 2.0, cycles=1), z=bd.Record([0.0, 1.0], 0.01, "up")))
+    text = repr(bd.BaseMotion(bd.Harmonic(1.0, 2.0, cycles=1), z=bd.Record([0.0, 1.0], 0.01, "up", units="m/s2")))
     assert text.startswith("BaseMotion(x=Harmonic(amplitude=1.0, period=2.0, cycles=1.0), y=None, z=Record(name='up'")
 
 
 def test_records_with_different_steps_raise():
     with pytest.raises(ValueError, match=r"components x \('a'\) and z \('c'\) are Records with different dt "
                                          r"\(x: dt=0.01 s, z: dt=0.02 s\); resample them to one sample step first"):
-        bd.BaseMotion(bd.Record([0.0, 1.0], 0.01, "a"), bd.Harmonic(1.0, 0.7), bd.Record([0.0, 1.0], 0.02, "c"))
+        bd.BaseMotion(bd.Record([0.0, 1.0], 0.01, "a", units="m/s2"), bd.Harmonic(1.0, 0.7),
+                      bd.Record([0.0, 1.0], 0.02, "c", units="m/s2"))
     with pytest.raises(ValueError, match=r"components x and y are Records with different dt"):
-        bd.BaseMotion(bd.Record([0.0, 1.0], 0.01), bd.Record([0.0, 1.0], 0.005))
+        bd.BaseMotion(bd.Record([0.0, 1.0], 0.01, units="m/s2"), bd.Record([0.0, 1.0], 0.005, units="m/s2"))
     # other kinds mix with a record of any step
-    assert bd.BaseMotion(bd.Record([0.0, 1.0], 0.02), bd.SinePulse(1.0, 0.3), bd.Harmonic(1.0, 0.7)).duration == np.inf
+    motion = bd.BaseMotion(bd.Record([0.0, 1.0], 0.02, units="m/s2"), bd.SinePulse(1.0, 0.3), bd.Harmonic(1.0, 0.7))
+    assert motion.duration == np.inf
 
 
 @pytest.mark.parametrize("make, error, message", [

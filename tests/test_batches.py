@@ -114,17 +114,33 @@ def test_records_times_scales_times_grid_equal_one_by_one_runs():
 
 def test_target_pga_against_the_rectangular_pulse_closed_form():
     """Seed 000 Eq. 14 (f = mu, no bias): u = A g t0²/2 (1 - A/mu) for a pulse of A g;
-    the motions are scaled to each target peak A g whatever their own amplitude."""
+    the motions are scaled to each target peak A g (pga [g], one g = the block's g) whatever
+    their own amplitude."""
     t0, mu = 0.5, np.array([0.2, 0.3, 0.4])
     motions = {"small": bd.RectangularPulse(1.0, t0), "large": bd.RectangularPulse(-7.0, t0)}
     A = np.array([0.5, 0.8])
-    sweep = bd.simulate_many(bd.SlidingBlock(mu, g=G), motions, pga=A * G)
+    sweep = bd.simulate_many(bd.SlidingBlock(mu, g=G), motions, pga=A)
     assert sweep.names == ("small", "large")
     np.testing.assert_allclose(sweep.scale, [A * G / 1.0, A * G / 7.0], rtol=1e-15)
     expected = A[:, None] * G * t0**2 / 2 * (1 - A[:, None] / mu)
     np.testing.assert_allclose(sweep.displacement[0], expected, rtol=1e-12)
     np.testing.assert_allclose(sweep.displacement[1], -expected, rtol=1e-12)  # the pulse points the other way
     np.testing.assert_allclose(sweep.to_dataframe()["pga_m_s2"], np.repeat(np.tile(A * G, 2), 3), rtol=1e-15)
+
+
+def test_pga_is_in_g_and_equals_scaling_the_record():
+    """simulate_many(pga=[0.3]) is the record scaled to a peak of 0.3 g (was m/s²: 0 m);
+    pga_rounding="slammer" scales by 0.3 / (the record's peak rounded to 0.001 g)."""
+    record, block = synthetic_records(n=1)[0], bd.SlidingBlock(0.1, g=bd.STANDARD_GRAVITY)
+    sweep = bd.simulate_many(block, [record], pga=[0.3])
+    scaled = record.scaled(0.3 * bd.STANDARD_GRAVITY / record.peak_acceleration)
+    assert sweep.displacement[0, 0, 0] == bd.simulate(block, scaled).displacement != 0.0
+    assert sweep[0, 0].motion.peak_acceleration == pytest.approx(0.3 * bd.STANDARD_GRAVITY, rel=1e-15)
+    own = round(record.peak_acceleration / bd.STANDARD_GRAVITY, 3)
+    assert own != record.peak_acceleration / bd.STANDARD_GRAVITY  # the rounding matters here
+    slammer = bd.simulate_many(block, [record], pga=0.3, pga_rounding="slammer")
+    assert slammer.scale[0, 0] == 0.3 / own
+    assert slammer.displacement[0, 0, 0] == bd.simulate(block, record.scaled(0.3 / own)).displacement
 
 
 def test_one_parameter_set_is_a_grid_of_one():
@@ -143,7 +159,11 @@ def test_one_parameter_set_is_a_grid_of_one():
     (([bd.SinePulse(5.0, 0.5)],), dict(scale=1.0, pga=2.0), ValueError, "not both"),
     (([bd.SinePulse(5.0, 0.5)],), dict(pga=[2.0, -1.0]), ValueError, "positive"),
     (([bd.SinePulse(5.0, 0.5)],), dict(scale=[[1.0]]), ValueError, "1-D"),
-    (([bd.SinePulse(0.0, 0.5)],), dict(pga=2.0), ValueError, "nonzero peak"),
+    (([bd.SinePulse(0.0, 0.5)],), dict(pga=2.0), ValueError, "motion 0: pga needs a motion with a nonzero peak"),
+    (([bd.SinePulse(5.0, 0.5)],), dict(pga=[0.3, 9.81]), ValueError,
+     r"pga=9\.81 g is implausible .* looks like m/s² \(9\.81 m/s² = 1 g\): give pga in g"),
+    (([bd.SinePulse(5.0, 0.5)],), dict(pga=0.3, pga_rounding="nearest"), ValueError,
+     r"pga_rounding must be one of \('exact', 'slammer'\), got 'nearest'"),
 ])
 def test_bad_sweeps_are_named(args, kwargs, error, match):
     with pytest.raises(error, match=match):

@@ -185,6 +185,61 @@ def test_newmark_command_prints_positive_downslope_displacements(tmp_path, capsy
     assert "downslope displacement D >= 0 [m]" in capsys.readouterr().out
 
 
+def _sine_csv(tmp_path, header):
+    """A 2 Hz sine of 6 m/s² (about 0.61 g) over 1 s at 0.01 s, with ``header`` (or none), and its samples."""
+    t = 0.01 * np.arange(101)
+    a = 6.0 * np.sin(2 * np.pi * 2.0 * t)
+    path = tmp_path / ("with_header.csv" if header else "no_header.csv")
+    path.write_text((header + "\n" if header else "") + "".join(f"{x:.17g}, {y:.17g}\n" for x, y in zip(t, a)))
+    return path, a
+
+
+def test_newmark_reads_a_csv_header_in_m_s2_as_m_s2(tmp_path, capsys):
+    """A CSV whose header says m/s² gives D of the record built in m/s² directly (it was read
+    as g: a 6 g peak, D ~ 50 times too large); --units g contradicting it exits 2 naming the
+    file, the line and both units."""
+    import blockdae as bd
+
+    path, a = _sine_csv(tmp_path, "time (s),Acceleration (m/s2)")
+    direct = bd.newmark(bd.Record(a, 0.01, units="m/s2"), 0.1)
+    assert main(["--no-cache", "newmark", str(path), "--ky", "0.1", "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)["results"][0]
+    assert (row["normal_m"], row["inverse_m"]) == (direct.normal, direct.inverse) and direct.normal > 0
+    bare, _ = _sine_csv(tmp_path, None)  # the same numbers, no header: g, as before
+    assert main(["--no-cache", "newmark", str(bare), "--ky", "0.1", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["results"][0]["normal_m"] > 10 * direct.normal
+    assert main(["--no-cache", "newmark", str(path), "--ky", "0.1", "--units", "g"]) == 2
+    assert (f"blockdae: error: {path}: units='g' (g) contradicts the header, line 1: "
+            "'time (s),Acceleration (m/s2)', which says m/s²") in capsys.readouterr().err
+
+
+def test_newmark_pga_and_ky_checks(tmp_path, capsys):
+    """--pga 0.3 [g] equals bd.newmark(record, ky, pga=0.3) (and --pga-rounding slammer its
+    SLAMMER twin); --ky 9.81 (m/s² for 1 g) exits 2 naming the value and unit; a ky at or above
+    the record's peak warns on stderr that D = 0."""
+    import blockdae as bd
+
+    path, a = _sine_csv(tmp_path, "time (s),Acceleration (m/s2)")
+    record = bd.read_record(path)
+    for rounding in ("exact", "slammer"):
+        assert main(["--no-cache", "newmark", str(path), "--ky", "0.05", "0.1", "--pga", "0.3",
+                     "--pga-rounding", rounding, "--json"]) == 0
+        out = json.loads(capsys.readouterr().out)
+        expected = bd.newmark(record, [0.05, 0.1], pga=0.3, pga_rounding=rounding)
+        assert [r["normal_m"] for r in out["results"]] == list(expected.normal)
+        assert (out["pga_g"], out["pga_rounding"]) == (0.3, rounding)
+    assert main(["--no-cache", "newmark", str(path), "--ky", "9.81"]) == 2
+    peak = f"{record.peak_acceleration / bd.STANDARD_GRAVITY:.4g}"
+    assert (f"blockdae: error: {path}: ky=9.81 g is above 1 g and the motion's peak ({peak} g): it looks like "
+            "m/s² (9.81 m/s² = 1 g); give ky in g") in capsys.readouterr().err
+    assert main(["--no-cache", "newmark", str(path), "--ky", "0.1", "0.7"]) == 0
+    captured = capsys.readouterr()
+    assert (f"blockdae: warning: {path}: ky=0.7 g >= PGA = {peak} g: the block does not slide, D = 0 m"
+            in captured.err)
+    assert main(["--no-cache", "newmark", str(path), "--ky", "0.1", "--pga", "9.81"]) == 2
+    assert "pga=9.81 g is implausible" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("argv, message", [
     (["--units", "furlong"], "units='furlong' is unknown"),
     (["--mu-kinetic", "0.5"], "mu_kinetic="),

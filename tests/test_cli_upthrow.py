@@ -99,8 +99,11 @@ def test_kobe_as_vertical_motion_prints_the_apis_numbers(tmp_path, capsys):
     flights = solution.flights
     assert len(flights) == 5 and all(math.isfinite(f.landing) for f in flights)
 
-    argv = [path, "--frequency", F, "--damping", 0.05, "--scale-to", 0.6]
+    argv = [path, "--frequency", F, "--damping", 0.05, "--pga", 0.6]
     result = _json(argv, capsys)
+    old = _upthrow([path, "--frequency", F, "--damping", 0.05, "--scale-to", 0.6, "--json"], capsys)
+    assert json.loads(old.out)["flights"] == result["flights"] and json.loads(old.out)["scale"] == result["scale"]
+    assert "blockdae: warning: --scale-to is deprecated; use --pga" in old.err
     assert result["peak_acceleration_g"] == pytest.approx(0.6, rel=1e-15)
     assert result["t_end_s"] == record.duration and result["backend"] == "exact"
     assert result["static_deflection_m"] == block.static_deflection
@@ -186,6 +189,8 @@ def test_cvode_backend_agrees_with_the_closed_forms(tmp_path, capsys):
     (["--frequency", "5", "--scale", "0"], "argument --scale: must be a finite nonzero number, got 0"),
     (["--frequency", "5", "--scale-to", "-1"], "argument --scale-to: must be a positive finite number, got -1"),
     (["--frequency", "5", "--scale", "2", "--scale-to", "1"], "argument --scale-to: not allowed with argument --scale"),
+    (["--frequency", "5", "--pga", "-1"], "argument --pga: must be a positive finite number, got -1"),
+    (["--frequency", "5", "--pga", "1", "--scale-to", "1"], "argument --scale-to: not allowed with argument --pga"),
     (["--frequency", "5", "--backend", "exact-jax"], "argument --backend: invalid choice: 'exact-jax'"),
     (["--frequency", "5", "--units", "furlong"], "--units: units='furlong' is unknown"),
     (["--damping", "0.05"], "the following arguments are required: --frequency"),
@@ -203,5 +208,10 @@ def test_bad_files_exit_2_naming_the_file_and_line(tmp_path, capsys):
     assert f"{missing}: no such file" in _upthrow([missing, "--frequency", F], capsys, status=2).err
     zeros = tmp_path / "zeros.csv"
     zeros.write_text("0.0, 0.0\n0.01, 0.0\n")
-    err = _upthrow([zeros, "--frequency", F, "--scale-to", 0.5, "--accept-peak"], capsys, status=2).err
-    assert err.startswith("blockdae: error: ") and f"{zeros}: --scale-to cannot scale a record of zeros" in err
+    err = _upthrow([zeros, "--frequency", F, "--pga", 0.5, "--accept-peak"], capsys, status=2).err
+    assert err.startswith("blockdae: error: ") and f"{zeros}: --pga needs a motion with a nonzero peak" in err
+    good = tmp_path / "good.csv"
+    good.write_text("0.0, 0.0\n0.01, 0.3\n0.02, 0.0\n")
+    err = _upthrow([good, "--frequency", F, "--pga", 9.81], capsys, status=2).err
+    assert (f"{good}: --pga=9.81 g is implausible for a peak ground acceleration [g] (above 5 g); it looks like "
+            "m/s² (9.81 m/s² = 1 g): give --pga in g") in err

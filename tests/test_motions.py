@@ -36,7 +36,7 @@ def test_histories_match_trapezoid_and_exact_cubic_sums(kobe):
 def test_peaks_are_located_between_samples():
     """a = 0, 1, -1, 0 (dt = 1 s): v peaks at t = 1.5 s with 0.75 m/s (0.5 m/s at the samples);
     d peaks where v = 0 inside the last steps (closed form of the cubic pieces)."""
-    rec = bd.Record([0.0, 1.0, -1.0, 0.0], 1.0)
+    rec = bd.Record([0.0, 1.0, -1.0, 0.0], 1.0, units="m/s2")
     m = intensity_measures(rec, t_end=3.0)
     assert m.pga == 1.0 and m.t_pga in (1.0, 2.0)
     assert m.pgv == pytest.approx(0.75, rel=1e-15) and m.t_pgv == pytest.approx(1.5, rel=1e-15)
@@ -156,19 +156,19 @@ def test_baseline_mean_and_none():
 ])
 def test_baseline_bad_input(kwargs, match):
     with pytest.raises(ValueError, match=match):
-        baseline_corrected(bd.Record([0.0, 1.0, 0.0], 0.01), **kwargs)
+        baseline_corrected(bd.Record([0.0, 1.0, 0.0], 0.01, units="m/s2"), **kwargs)
 
 
 def test_motion_bad_input():
     with pytest.raises(ValueError, match="t_end is required"):
         intensity_measures(bd.Harmonic(1.0, 1.0))
     with pytest.raises(ValueError, match="t_end must be a positive"):
-        intensity_measures(bd.Record([0.0, 1.0], 0.01), t_end=-1)
+        intensity_measures(bd.Record([0.0, 1.0], 0.01, units="m/s2"), t_end=-1)
     with pytest.raises(ValueError, match=r"t\[1\] = -1.0"):
-        motion_histories(bd.Record([0.0, 1.0], 0.01), [0.0, -1.0])
+        motion_histories(bd.Record([0.0, 1.0], 0.01, units="m/s2"), [0.0, -1.0])
     with pytest.raises(ValueError, match="t is empty"):
-        motion_histories(bd.Record([0.0, 1.0], 0.01), [])
+        motion_histories(bd.Record([0.0, 1.0], 0.01, units="m/s2"), [])
     with pytest.raises(ValueError, match="band"):
-        intensity_measures(bd.Record([0.0, 1.0], 0.01), band=(0.9, 0.1))
+        intensity_measures(bd.Record([0.0, 1.0], 0.01, units="m/s2"), band=(0.9, 0.1))
     with pytest.raises(TypeError, match="motion must be an excitation"):
         intensity_measures([1.0, 2.0])

@@ -65,6 +65,41 @@ def test_block_on_incline_yields_at_the_jibson_acceleration():
     assert held.events == ()
 
 
+def test_pga_scales_the_record_to_a_peak_in_g(kobe):
+    """newmark(rec, ky, pga=0.3) is newmark on the record scaled to a peak of 0.3 g; with
+    pga_rounding="slammer" the record's own peak is first rounded to 0.001 g (SLAMMER)."""
+    ky = np.array([0.05, 0.1])
+    scaled = bd.newmark(kobe, ky, pga=0.3)
+    direct = bd.newmark(kobe.scaled(0.3 * G / kobe.peak_acceleration), ky)
+    np.testing.assert_array_equal(scaled.normal, direct.normal)
+    np.testing.assert_array_equal(scaled.inverse, direct.inverse)
+    assert np.all(scaled.normal > 0)
+    own = round(kobe.peak_acceleration / G, 3)
+    assert own != kobe.peak_acceleration / G  # the rounding changes the factor here
+    slammer = bd.newmark(kobe, ky, pga=0.3, pga_rounding="slammer")
+    np.testing.assert_array_equal(slammer.normal, bd.newmark(kobe.scaled(0.3 / own), ky).normal)
+    assert not np.array_equal(slammer.normal, scaled.normal)
+    with pytest.raises(TypeError, match=r"target_pga=0\.3 is called pga here: the target peak ground "
+                                        r"acceleration \[g\], newmark\(motion, ky, pga=\.\.\.\)"):
+        bd.newmark(kobe, 0.1, target_pga=0.3)
+    with pytest.raises(ValueError, match=r"pga=9\.81 g is implausible .*looks like m/s² \(9\.81 m/s² = 1 g\)"):
+        bd.newmark(kobe, 0.1, pga=9.81)
+
+
+def test_ky_in_m_s2_is_refused_and_ky_above_the_peak_warns():
+    """ky = 9.81 (m/s² meant as 1 g) under a 0.4 g pulse is refused; ky = 0.5 g >= PGA 0.4 g
+    warns that D = 0 (and D is 0); ky = 1.5 g under a 2 g pulse slides, no warning."""
+    pulse = bd.RectangularPulse(0.4 * G, 0.5)
+    with pytest.raises(ValueError, match=r"ky=9\.81 g is above 1 g and the motion's peak \(0\.4 g\): it looks "
+                                         r"like m/s² \(9\.81 m/s² = 1 g\); give ky in g"):
+        bd.newmark(pulse, ky=[0.1, 9.81])
+    with pytest.warns(bd.UnitsWarning, match=r"ky=0\.4, 0\.5 g >= PGA = 0\.4 g: the block does not slide, D = 0 m"):
+        result = bd.newmark(pulse, ky=[0.1, 0.4, 0.5])
+    assert result.maximum[0] > 0 and result.maximum[1] == result.maximum[2] == 0.0
+    strong = bd.newmark(bd.RectangularPulse(2.0 * G, 0.5), ky=1.5, polarity="normal")
+    assert strong.normal == pytest.approx(rectangular_pulse_downslope(2.0 * G, 0.5, 1.5), rel=1e-14)
+
+
 @pytest.mark.parametrize("kwargs, message", [
     ({"ky": 0.0}, r"ky=0\.0 must be a positive yield acceleration \[g\]"),
     ({"ky": 0.1, "polarity": "up"}, r"polarity must be one of"),

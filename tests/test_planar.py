@@ -49,7 +49,7 @@ def test_a_slide_whose_speed_dips_below_zero_within_a_sample_stops(backend, a1):
     the slide without a stop would dip below zero (to -9e-6 and -9e-4 m/s) and come back
     within the third sample; the block must stop where the exact 1-D closed forms say
     (0.264 s, 0.242 s). Every backend stepped over it (stop 0.1 s late, u 15 % large)."""
-    record = bd.Record(np.array([0.0, a1, -0.1, -0.4, 0.0, 0.0]), 0.1)
+    record = bd.Record(np.array([0.0, a1, -0.1, -0.4, 0.0, 0.0]), 0.1, units="m/s2")
     ref = bd.simulate(bd.SlidingBlock(mu=0.5, mu_kinetic=0.3, g=1.0), record, t_end=0.5)
     sol = bd.simulate(bd.PlanarBlock(mu=0.5, mu_kinetic=0.3, g=1.0), bd.BaseMotion(record), t_end=0.5,
                       backend=backend)
@@ -62,12 +62,12 @@ def test_guards_that_only_touch_zero_at_a_sample_are_no_events(backend):
     0.1 s and falls back (the exact 1-D backend: no events; it was a slip and a stop at
     0.1 s). a_z = (0, -1, 0, 0): n = g + a_z touches 0 at 0.1 s and rises again, so the
     block stays on the base (it was a flight that never landed, the gap going to -0.012 m)."""
-    touch = bd.Record(np.array([0.0, 0.5, 0.0, 0.0]), 0.1)
+    touch = bd.Record(np.array([0.0, 0.5, 0.0, 0.0]), 0.1, units="m/s2")
     assert bd.simulate(bd.SlidingBlock(mu=0.5, g=1.0), touch).events == ()
     assert bd.simulate(bd.SlidingBlock(mu=0.5, g=1.0), touch, backend=backend).events == ()
     assert bd.simulate(bd.PlanarBlock(mu=0.5, g=1.0), bd.BaseMotion(touch), backend=backend).events == ()
     still = bd.Record(np.zeros(4), 0.1)
-    unload = bd.BaseMotion(still, None, bd.Record(np.array([0.0, -1.0, 0.0, 0.0]), 0.1))
+    unload = bd.BaseMotion(still, None, bd.Record(np.array([0.0, -1.0, 0.0, 0.0]), 0.1, units="m/s2"))
     sol = bd.simulate(bd.PlanarBlock(mu=0.5, g=1.0), unload, t_end=0.3, backend=backend)
     assert sol.events == () and np.all(sol(np.linspace(0.0, 0.3, 31))[4] == 0.0)
 

@@ -77,7 +77,7 @@ def test_plot_draws_spectra_and_relative_motion():
     spectrum's own psa), a RelativeMotion is R against tau."""
     import matplotlib.pyplot as plt
 
-    record = bd.Record(np.sin(np.linspace(0, 30, 1501)), 0.01)
+    record = bd.Record(np.sin(np.linspace(0, 30, 1501)), 0.01, units="m/s2")
     spectrum = bd.response_spectrum(record, np.geomspace(0.05, 5, 30))
     fig = bd.plot(spectrum)
     try:

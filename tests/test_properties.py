@@ -7,6 +7,7 @@ from hypothesis.extra.numpy import arrays
 
 import blockdae as bd
 
+# samples [m/s²] of any peak, tiny ones included: the units are stated and the peak check is off
 samples = arrays(np.float64, 48, elements=st.floats(-8.0, 8.0, allow_nan=False, width=64))
 mus = st.floats(0.05, 0.6)
 SETTINGS = settings(max_examples=25, deadline=None)
@@ -16,7 +17,7 @@ SETTINGS = settings(max_examples=25, deadline=None)
 @given(samples, mus, st.floats(0.0, 1.0))
 def test_inverting_the_record_flips_u(a, mu, f_ratio):
     block = bd.SlidingBlock(mu=mu, mu_kinetic=f_ratio * mu)
-    record = bd.Record(a, dt=0.02)
+    record = bd.Record(a, dt=0.02, units="m/s2", check_peak=False)
     u = bd.simulate(block, record, t_end=1.5).displacement
     u_inv = bd.simulate(block, record.inverted(), t_end=1.5).displacement
     assert abs(u + u_inv) <= 1e-12 * max(abs(u), 1e-3)
@@ -27,7 +28,7 @@ def test_inverting_the_record_flips_u(a, mu, f_ratio):
 def test_scaling_accelerations_scales_u(a, mu, bias_ratio, k):
     """a -> k a, mu g -> k mu g, bias g -> k bias g (i.e. g -> k g) gives u -> k u."""
     block = bd.SlidingBlock(mu=mu, mu_kinetic=0.7 * mu, bias=bias_ratio * mu)
-    record = bd.Record(a, dt=0.02)
+    record = bd.Record(a, dt=0.02, units="m/s2", check_peak=False)
     u = bd.simulate(block, record, t_end=2.0).displacement
     u_k = bd.simulate(block.replace(g=block.g * k), record.scaled(k), t_end=2.0).displacement
     assert abs(u_k - k * u) <= 1e-11 * max(abs(k * u), 1e-3)
@@ -40,7 +41,7 @@ def test_no_sliding_below_the_thresholds(a, mu, bias_ratio):
     bias = bias_ratio * mu
     limit = (mu - abs(bias)) * bd.STANDARD_GRAVITY
     a = a / np.max(np.abs(a)) * limit * 0.999 if np.any(a) else a
-    sol = bd.simulate(bd.SlidingBlock(mu=mu, bias=bias), bd.Record(a, dt=0.02))
+    sol = bd.simulate(bd.SlidingBlock(mu=mu, bias=bias), bd.Record(a, dt=0.02, units="m/s2", check_peak=False))
     assert sol.events == () and sol.displacement == 0.0
 
 
@@ -48,7 +49,7 @@ def test_no_sliding_below_the_thresholds(a, mu, bias_ratio):
 @given(samples, mus, mus)
 def test_one_way_displacement_is_monotone_in_mu(a, mu1, mu2):
     low, high = sorted((mu1, mu2))
-    record = bd.Record(a, dt=0.02)
+    record = bd.Record(a, dt=0.02, units="m/s2", check_peak=False)
     u_low = bd.simulate(bd.SlidingBlock(mu=low, direction="negative"), record).displacement
     u_high = bd.simulate(bd.SlidingBlock(mu=high, direction="negative"), record).displacement
     assert u_low <= u_high + 1e-15 <= 1e-15

@@ -74,6 +74,39 @@ def test_files_without_units_statement_default_to_g(tmp_path):
     assert bd.read_record(path, units="m/s2").peak_acceleration == pytest.approx(0.2)
 
 
+@pytest.mark.parametrize("header, factor", [
+    ("time (s),Acceleration (m/s2)", 1.0), ("t [s], acc [cm/s2]", 0.01), ("time, a (gal)", 0.01),
+    ("time (sec), a (g)", STANDARD_GRAVITY), ("Time [s]\tAcceleration [m/s^2]", 1.0), ("t, a (m/s²)", 1.0),
+    ("t (s), a [CM/SEC/SEC]", 0.01),
+])
+def test_table_header_units_are_read(tmp_path, header, factor):
+    """A table's header line naming the acceleration's units in brackets is read in them (was
+    read as g: an m/s² file of peak 6 passed as 6 g)."""
+    path = write(tmp_path, "r.csv", f"{header}\n0.0, 0.0\n0.01, 6.0\n0.02, -3.0\n")
+    np.testing.assert_array_equal(bd.read_record(path).acceleration_samples, np.array([0.0, 6.0, -3.0]) * factor)
+
+
+def test_table_header_units_contradicted_or_not_acceleration_are_refused(tmp_path):
+    path = write(tmp_path, "r.csv", "# a comment\ntime (s),Acceleration (m/s2)\n0.0, 0.0\n0.01, 6.0\n")
+    with pytest.raises(ValueError, match=re.escape(
+            f"{path}: units='g' (g) contradicts the header, line 2: 'time (s),Acceleration (m/s2)', which says m/s²")):
+        bd.read_record(path, units="g")
+    assert bd.read_record(path, units="m/s2").peak_acceleration == 6.0
+    velocity = write(tmp_path, "v.csv", "t (s), v (m/s)\n0.0, 0.0\n0.01, 0.1\n")
+    with pytest.raises(ValueError, match=re.escape(f"{velocity}, line 1: 't (s), v (m/s)': the header names units "
+                                                   "'m/s', not an acceleration in g, m/s2, cm/s2 or gal")):
+        bd.read_record(velocity)
+    mixed = write(tmp_path, "m.csv", "t (s), ax (g), ay (m/s2)\n0.0, 0.0, 0.0\n0.01, 0.1, 0.1\n")
+    with pytest.raises(ValueError, match=re.escape(f"{mixed}: the header names different units, g, m/s²")):
+        bd.read_motion(mixed)
+
+
+def test_table_header_units_blame_the_header_for_an_implausible_peak(tmp_path):
+    path = write(tmp_path, "r.csv", "time (s), a (cm/s2)\n0.0, 0.0\n0.01, 0.005\n")
+    with pytest.raises(ValueError, match=r"looks like .* read as cm/s²: correct the file \(the header's line 1: "):
+        bd.read_record(path)
+
+
 def test_sample_records_read_as_g_by_default():
     """pySLAMMER's CSVs state no units: the default reads them in g and all pass the peak check."""
     for path in sample_record_paths():
@@ -145,7 +178,7 @@ def test_time_column_origin_is_kept_as_start_time(tmp_path):
     assert shifted.start_time == 5.0 and shifted.dt == 0.25
     assert "start_time=5 s" in repr(shifted)
     block = bd.SlidingBlock(mu=0.06, g=9.81)
-    ref = bd.simulate(block, bd.Record([0.0, 0.9, 0.0], 0.25))
+    ref = bd.simulate(block, bd.Record([0.0, 0.9, 0.0], 0.25, units="m/s2"))
     sol = bd.simulate(block, shifted)
     np.testing.assert_array_equal(sol.t_events, ref.t_events)
     assert sol.t_events[0] < 0.5  # solution times from the first sample; + 5 s on the file's axis

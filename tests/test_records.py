@@ -1,5 +1,8 @@
 """Recorded ground motions: an independent integrator, closed forms and batching."""
 
+import re
+import warnings
+
 import numpy as np
 import pytest
 from conftest import assert_same_events, load_sample_record
@@ -131,8 +134,78 @@ def test_start_time_is_kept_by_scaling_and_records_hash_by_identity():
     record = bd.Record([0.0, 2.0, -1.0], dt=0.5, name="r", start_time=5.0)
     for other in (record.scaled(2.0), record.inverted()):
         assert (other.name, other.start_time) == ("r", 5.0)
-    assert "start_time=5 s" in repr(record) and bd.Record([0.0, 1.0], 0.5).start_time == 0.0
+    assert "start_time=5 s" in repr(record) and bd.Record([0.0, 1.0], 0.5, units="m/s2").start_time == 0.0
     twin = bd.Record([0.0, 2.0, -1.0], dt=0.5, name="r", start_time=5.0)
     assert record != twin and len({record, twin}) == 2 and hash(record) == hash(record)
     with pytest.raises(ValueError, match="start_time must be finite"):
         bd.Record([0.0, 1.0], 0.5, start_time=float("nan"))
+
+
+# ---- units of an array -----------------------------------------------------------------
+
+G0 = bd.STANDARD_GRAVITY
+IN_G = np.array([0.0, 0.3, -0.2, 0.1, 0.0])  # a 0.3 g record, in g
+
+
+def test_record_units_convert_to_m_s2():
+    """units="g", "cm/s2", "gal", "m/s2" convert the samples to m/s² (g from ``g``)."""
+    reference = IN_G * G0
+    np.testing.assert_array_equal(bd.Record(IN_G, 0.01, units="g").acceleration_samples, reference)
+    np.testing.assert_array_equal(bd.Record(IN_G, 0.01, units="g", g=9.81).acceleration_samples, IN_G * 9.81)
+    np.testing.assert_allclose(bd.Record(reference * 100, 0.01, units="cm/s2").acceleration_samples, reference,
+                               rtol=1e-15)
+    np.testing.assert_allclose(bd.Record(reference * 100, 0.01, units="gal").acceleration_samples, reference,
+                               rtol=1e-15)
+    np.testing.assert_array_equal(bd.Record(reference, 0.01, units="m/s2").acceleration_samples, reference)
+    with pytest.raises(ValueError, match=r"units='ft/s2' is unknown"):
+        bd.Record(IN_G, 0.01, units="ft/s2")
+
+
+def test_array_in_g_without_units_warns_naming_the_peak_and_both_readings():
+    """An array in g given without units (read as m/s²: a 0.03 g record, D = 0 m) warns, as
+    does one in cm/s² of a weak record (read as 5 g); the same arrays with units= say which,
+    and are silent; so is a peak of 0.2 g to 2 g in m/s² without units."""
+    with pytest.warns(bd.UnitsWarning, match=re.escape(
+            "Record 'r': peak acceleration 0.3 with no units= is read as 0.3 m/s² = 0.03059 g, but as 0.3 g it "
+            "would be as plausible; pass units='m/s2' or units='g'")):
+        bd.Record(IN_G, 0.01, "r")
+    weak_in_cm_s2 = IN_G / 6 * G0 * 100  # a 0.05 g record in cm/s²: 49 "m/s²" = 5 g, below the 10 g bound
+    with pytest.warns(bd.UnitsWarning, match=re.escape(
+            "Record: peak acceleration 49.03 with no units= is read as 49.03 m/s² = 5 g, but as 49.03 cm/s² = "
+            "0.05 g it would be as plausible; pass units='m/s2' or units='cm/s2'")):
+        bd.Record(weak_in_cm_s2, 0.01)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        bd.Record(weak_in_cm_s2, 0.01, units="cm/s2")
+        bd.Record(IN_G, 0.01, units="g")
+        bd.Record(IN_G, 0.01, units="m/s2")
+        bd.Record(IN_G * G0, 0.01)  # 2.94 m/s²: as g it would be a 2.94 g record, not plausible alike
+        bd.Record(np.zeros(3), 0.01)  # no peak, no units to get wrong
+        bd.Record(IN_G, 0.01, check_peak=False)
+
+
+@pytest.mark.parametrize("samples, units, message", [
+    (IN_G * G0 * 100, None, r"Record: peak acceleration 294\.2 m/s² = 30 g is implausible \(outside 0\.0001 g to "
+                            r"10 g\); looks like cm/s² read as m/s²: pass units='cm/s2', or check_peak=False"),
+    (IN_G * G0 * 100, "g", r"Record: peak acceleration 294\.2 g is implausible .* looks like cm/s² read as g: "
+                           r"pass units='cm/s2'"),
+    (IN_G / 1000, "m/s2", r"peak acceleration 0\.0003 m/s² = 3\.059e-05 g is implausible .* looks like g read "
+                          r"as m/s²: pass units='g'"),
+])
+def test_implausible_array_peak_is_refused_naming_the_value_and_unit(samples, units, message):
+    """An array in cm/s² given as m/s² (peak > 10 g), ..., is an error naming peak and units."""
+    with pytest.raises(ValueError, match=message):
+        bd.Record(samples, 0.01, units=units)
+    assert bd.Record(samples, 0.01, units=units, check_peak=False).acceleration_samples.size == 5
+
+
+def test_derived_records_are_not_rechecked_and_from_samples_takes_units():
+    """scaled/inverted keep m/s² without a warning; BaseMotion.from_samples passes units on."""
+    record = bd.Record(IN_G, 0.01, units="g")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert record.scaled(0.01).peak_acceleration == pytest.approx(0.003 * G0, rel=1e-15)
+        motion = bd.BaseMotion.from_samples(IN_G, IN_G, dt=0.01, units="g")
+    np.testing.assert_array_equal(motion.x.acceleration_samples, record.acceleration_samples)
+    with pytest.warns(bd.UnitsWarning, match="Record 'x': peak acceleration 0.3 with no units="):
+        bd.BaseMotion.from_samples(IN_G, dt=0.01)

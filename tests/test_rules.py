@@ -146,7 +146,7 @@ def test_onset_at_start_wins_over_a_later_crossing_in_the_same_piece():
     v returns to 0 (f = 0: v = t - 50 t², at t = 0.02 s with u = 2/30000 m), and the
     result mirrors the inverted record (found by the SUNDIALS backends' tests)."""
     block = bd.SlidingBlock(mu=0.0625, mu_kinetic=0.0)
-    record = bd.Record([-1.0] + [1.0] * 47, dt=0.02)
+    record = bd.Record([-1.0] + [1.0] * 47, dt=0.02, units="m/s2")
     sol = bd.simulate(block, record, t_end=1.5)
     inv = bd.simulate(block, record.inverted(), t_end=1.5)
     assert [(e.t, e.mode_after) for e in sol.events] == [(0.0, bd.Mode.SLIP_POS), (0.02, bd.Mode.SLIP_NEG)]

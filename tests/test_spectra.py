@@ -145,7 +145,7 @@ def test_maxima_between_samples_exceed_the_sampled_ones(kobe):
     slopes = np.diff(kobe.acceleration_samples) / kobe.dt
     jump = np.abs(np.diff(np.concatenate([[0.0], slopes, [0.0]]))).max()
     assert kobe.peak_acceleration <= spec.sa[0] <= kobe.peak_acceleration + jump / (2 * np.pi / 1e-4)
-    rec = bd.Record([0.0, 1.0, 0.0, 0.0], 0.02)
+    rec = bd.Record([0.0, 1.0, 0.0, 0.0], 0.02, units="m/s2")
     located = response_spectrum(rec, 0.012, 0.0, t_end=0.06)
     u = _rect_like(rec, 0.012)
     t = np.linspace(0, 0.06, 600_001)
@@ -210,7 +210,7 @@ def test_batch_shapes_and_consistency(sample_records):
 ])
 def test_bad_input(kwargs, match):
     with pytest.raises(ValueError, match=match):
-        response_spectrum(bd.Record([0.0, 1.0, 0.0], 0.01), **kwargs)
+        response_spectrum(bd.Record([0.0, 1.0, 0.0], 0.01, units="m/s2"), **kwargs)
 
 
 def test_bad_motion():

@@ -147,6 +147,7 @@ def test_local_equals_executor(records, table, monkeypatch):
     (dict(mu=[-0.1]), "mu must be positive"),
     (dict(pga=[0.5, -1.0]), "pga must be positive"),
     (dict(pga=[np.nan]), "pga must be positive"),
+    (dict(pga=[0.3, 9.81]), r"pga=9\.81 g is implausible .* looks like m/s² \(9\.81 m/s² = 1 g\): give pga in g"),
     (dict(pga=None), "give pga"),
     (dict(scale=[1.0]), "give pga"),
     (dict(where=["roof"]), "where must hold"),
@@ -161,7 +162,7 @@ def test_bad_input_fails_before_work(records, kwargs, match, monkeypatch):
 
 
 def test_a_record_with_nan_fails_before_work(records, monkeypatch):
-    bad = bd.Record(np.ones(3), 0.01, name="nan")
+    bad = bd.Record(np.ones(3), 0.01, name="nan", units="m/s2")
     object.__setattr__(bad, "acceleration_samples", np.array([0.0, np.nan, 1.0]))  # past Record's own check
     monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
     with pytest.raises(ValueError, match="not finite"):

@@ -297,7 +297,7 @@ def test_inverting_the_record_flips_u(backend):
     coasting (a = 0) to 1.5 s: u = 2/30000 - 0.92²/2 - 0.92 * 0.56 = -0.9383333 m.
     (The exact backend misses the slip+ at t = 0 on this record.)"""
     block = bd.SlidingBlock(mu=0.0625, mu_kinetic=0.0)
-    record = bd.Record([-1.0] + [1.0] * 47, dt=0.02)
+    record = bd.Record([-1.0] + [1.0] * 47, dt=0.02, units="m/s2")
     sol = bd.simulate(block, record, t_end=1.5, backend=backend)
     inv = bd.simulate(block, record.inverted(), t_end=1.5, backend=backend)
     assert [(e.t, e.mode_after) for e in sol.events] == [(0.0, bd.Mode.SLIP_POS), (pytest.approx(0.02), bd.Mode.SLIP_NEG)]

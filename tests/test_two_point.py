@@ -109,7 +109,7 @@ def test_el_centro_table_one_layout():
 
 
 def test_zero_lag_and_shapes():
-    rec = bd.Record([0.0, 1.0, -1.0, 0.5, 0.0], 0.1)
+    rec = bd.Record([0.0, 1.0, -1.0, 0.5, 0.0], 0.1, units="m/s2")
     rm = relative_motion(rec, [0.0, 0.1])
     assert rm.r[0] == 0.0 and rm.r.shape == (2,) and rm.fourier[0] == 0.0
     assert relative_motion(rec, 0.1).r.shape == ()
@@ -122,4 +122,4 @@ def test_zero_lag_and_shapes():
 ])
 def test_bad_lags(lags, match):
     with pytest.raises(ValueError, match=match):
-        relative_motion(bd.Record([0.0, 1.0, 0.0], 0.01), lags)
+        relative_motion(bd.Record([0.0, 1.0, 0.0], 0.01, units="m/s2"), lags)

@@ -48,8 +48,8 @@ def checked(action, where):
 def record_arguments(parser):
     """--units, --dt and --accept-peak: how :func:`read` reads a command's record files."""
     parser.add_argument("--units", default=None,
-                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header "
-                             "says, else g)")
+                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header or a "
+                             "table's header line, e.g. 'time (s), acc (m/s2)', says, else g)")
     parser.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
     parser.add_argument("--accept-peak", action="store_true",
                         help="accept a peak acceleration outside 1e-4 g .. 10 g (else an error: wrong units?)")

@@ -15,6 +15,7 @@ import os
 import pathlib
 import sys
 import time
+import warnings
 
 import numpy as np
 
@@ -31,6 +32,7 @@ from ..core._units import STANDARD_GRAVITY
 from ..motions._commands import add_spectrum_parser, add_two_point_parser
 from ..studies._command import add_study_parser
 from ..excitation._readers import unit_factor
+from ..excitation._units import PGA_ROUNDINGS, UnitsWarning
 from ..sliding._model import SlidingBlock
 
 _RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
@@ -93,6 +95,11 @@ def _parser():
     newmark_.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
     newmark_.add_argument("--ky", type=positive("--ky"), nargs="+", required=True,
                           help="yield acceleration(s) [g]")
+    newmark_.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
+                          help="scale the record so that its peak |a| is PGA_G [g] (default: as read)")
+    newmark_.add_argument("--pga-rounding", choices=PGA_ROUNDINGS, default="exact",
+                          help="with --pga: 'slammer' rounds the record's own peak to 0.001 g before "
+                               "scaling, as SLAMMER does (default exact)")
     newmark_.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                           help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
     record_arguments(newmark_)
@@ -180,13 +187,21 @@ def _run(args):
 def _newmark(args):
     record = read(args.record, args)
     ky = np.asarray(args.ky, dtype=float)
-    result = checked(lambda: newmark(record, ky, g=args.g), f"{args.record}")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", UnitsWarning)
+        result = checked(lambda: newmark(record, ky, g=args.g, pga=args.pga, pga_rounding=args.pga_rounding),
+                         f"{args.record}")
+    for warning in caught:
+        print(f"blockdae: warning: {args.record}: {warning.message}", file=sys.stderr)
     table = result.to_dataframe()
+    scale = {} if args.pga is None else {"pga_g": args.pga, "pga_rounding": args.pga_rounding}
     if args.json:
-        print(json.dumps({**record_fields(record), "g_m_s2": args.g,
+        print(json.dumps({**record_fields(record), **scale, "g_m_s2": args.g,
                           "results": table.to_dict(orient="records")}, indent=2))
         return 0
     print(f"record: {describe_record(record)}")
+    if args.pga is not None:
+        print(f"scaled to a peak of {args.pga:g} g (pga rounding: {args.pga_rounding})")
     print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
     print(f"{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}")
     for row in table.itertuples(index=False):

@@ -40,7 +40,8 @@ def is_planar(motion) -> bool:
 def x_record(motion, path):
     """The x component of a one-component motion as :func:`read_record` names it (the file stem)."""
     x = motion.x
-    return Record(x.acceleration_samples, x.dt, pathlib.Path(path).stem, x.start_time)
+    return Record(x.acceleration_samples, x.dt, pathlib.Path(path).stem, x.start_time, units="m/s2",
+                  check_peak=False)
 
 
 def planar_block(args):

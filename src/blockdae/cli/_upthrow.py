@@ -4,6 +4,7 @@
 import json
 import math
 import pathlib
+import sys
 import time
 
 from ._common import (UsageError, checked, clean, describe_record, number, positive, read, record_arguments,
@@ -12,6 +13,7 @@ from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..upthrow._estimate import upthrow_estimate
 from ..excitation._readers import unit_factor
+from ..excitation._units import pga_factor
 from ..upthrow._model import SpringSupportedMass
 
 #: the backends that run a SpringSupportedMass
@@ -30,8 +32,10 @@ def add_upthrow_parser(subparsers):
     p.add_argument("--damping", type=number("--damping", lambda x: 0 <= x < 1, "in [0, 1)"), default=0.0,
                    help="damping ratio zeta of the support [-] (default 0)")
     size = p.add_mutually_exclusive_group()
+    size.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
+                      help="scale the record so that its peak |a| is PGA_G [g]")
     size.add_argument("--scale-to", type=positive("--scale-to"), default=None, metavar="PGA_G",
-                      help="scale the record so that its peak |a| is PGA_G g")
+                      help="deprecated: the old name of --pga")
     size.add_argument("--scale", type=number("--scale", lambda x: math.isfinite(x) and x != 0,
                                              "a finite nonzero number"), default=None, metavar="K",
                       help="factor on the record [-] (negative: upside down)")
@@ -88,14 +92,15 @@ def run_upthrow(args) -> int:
 
 
 def _scaled(record, args):
-    """The record scaled as --scale-to or --scale say, and the factor [-]."""
+    """The record scaled as --pga (or its deprecated name --scale-to) or --scale say, and the factor [-]."""
     if args.scale is not None:
         return record.scaled(args.scale), args.scale
-    if args.scale_to is None:
+    if args.scale_to is not None:
+        print("blockdae: warning: --scale-to is deprecated; use --pga (the same target peak [g])", file=sys.stderr)
+    flag, pga = ("--scale-to", args.scale_to) if args.scale_to is not None else ("--pga", args.pga)
+    if pga is None:
         return record, 1.0
-    if record.peak_acceleration == 0:
-        raise UsageError(f"{args.record}: --scale-to cannot scale a record of zeros")
-    factor = args.scale_to * args.g / record.peak_acceleration
+    factor = checked(lambda: pga_factor(record.peak_acceleration, pga, args.g, name=flag), str(args.record))
     return record.scaled(factor), factor
 
 

@@ -5,9 +5,11 @@ from ._base import AbstractExcitation
 from ._motion import BaseMotion
 from ._pieces import Pieces
 from ._read_motion import read_motion
-from ._readers import PLAUSIBLE_PEAK_G, STANDARD_GRAVITY, check_peak_acceleration, read_record
+from ._readers import STANDARD_GRAVITY, read_record
 from ._record import Record
+from ._units import (MAX_PGA_G, PLAUSIBLE_PEAK_G, UNSTATED_PEAK_M_S2, UnitsWarning, check_peak_acceleration,
+                     pga_factor)
 
-__all__ = ["AbstractExcitation", "BaseMotion", "Harmonic", "Pieces", "Record", "RectangularPulse",
-           "PLAUSIBLE_PEAK_G", "STANDARD_GRAVITY", "SinePulse", "TriangularPulse", "check_peak_acceleration",
-           "read_motion", "read_record"]
+__all__ = ["AbstractExcitation", "BaseMotion", "Harmonic", "MAX_PGA_G", "PLAUSIBLE_PEAK_G",
+           "Pieces", "Record", "RectangularPulse", "STANDARD_GRAVITY", "SinePulse", "TriangularPulse",
+           "UNSTATED_PEAK_M_S2", "UnitsWarning", "check_peak_acceleration", "pga_factor", "read_motion", "read_record"]

@@ -4,6 +4,7 @@ import dataclasses
 
 import numpy as np
 
+from ..core._units import STANDARD_GRAVITY
 from ._base import AbstractExcitation
 from ._pieces import Pieces, rebase
 from ._record import Record
@@ -45,10 +46,13 @@ class BaseMotion:
                                  "resample them to one sample step first")
 
     @classmethod
-    def from_samples(cls, ax, ay=None, az=None, *, dt: float, name: str = "") -> "BaseMotion":
-        """Records of samples ``ax``, ``ay``, ``az`` [m/s²] at step ``dt`` [s], named
-        "<name> x", "<name> y", "<name> z"; a missing component stays None."""
-        return cls(*(None if a is None else Record(a, dt, f"{name} {axis}".lstrip())
+    def from_samples(cls, ax, ay=None, az=None, *, dt: float, name: str = "", units=None, g=STANDARD_GRAVITY,
+                     check_peak=True) -> "BaseMotion":
+        """Records of samples ``ax``, ``ay``, ``az`` (in ``units``; m/s² by default) at step
+        ``dt`` [s], named "<name> x", "<name> y", "<name> z"; a missing component stays None.
+        ``units``, ``g``, ``check_peak``: as for :class:`Record`, for each component."""
+        return cls(*(None if a is None else Record(a, dt, f"{name} {axis}".lstrip(), units=units, g=g,
+                                                   check_peak=check_peak)
                      for a, axis in zip((ax, ay, az), _NAMES)))
 
     @property

@@ -36,7 +36,8 @@ def read_motion(x, y=None, z=None, *, units=None, dt=None, g=STANDARD_GRAVITY, n
         path = pathlib.Path(x)
         samples, step, start_time = read_samples(path, columns=_COMPONENTS, **options)
         label = path.stem if name is None else name
-        return BaseMotion(*(Record(a, step, f"{label} {axis}", start_time) for a, axis in zip(samples.T, _AXES)))
+        return BaseMotion(*(Record(a, step, f"{label} {axis}", start_time, units="m/s2",
+                                                check_peak=False) for a, axis in zip(samples.T, _AXES)))
     labels = (None,) * 3 if name is None else tuple(f"{name} {axis}" for axis in _AXES)
     return BaseMotion(*(None if path is None else read_record(path, name=label, **options)
                         for path, label in zip((x, y, z), labels)))

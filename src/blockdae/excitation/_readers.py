@@ -8,66 +8,19 @@ import numpy as np
 
 from ..core._units import STANDARD_GRAVITY
 from ._record import Record
+from ._units import _SYMBOLS, canonical_units, check_peak_acceleration, unit_factor
 
-#: plausible peak acceleration of a record [g]; outside it the units are likely wrong
-PLAUSIBLE_PEAK_G = (1e-4, 10.0)
-
-_UNITS = {"g": "g", "m/s2": "m/s2", "m/s^2": "m/s2", "m/s²": "m/s2",
-          "cm/s2": "cm/s2", "cm/s^2": "cm/s2", "cm/s²": "cm/s2", "gal": "cm/s2"}
-_FACTORS = {"m/s2": 1.0, "cm/s2": 0.01}
-_SYMBOLS = {"g": "g", "m/s2": "m/s²", "cm/s2": "cm/s²"}
 # an AT2 header's "IN UNITS OF ..." text, squeezed by _squeeze_units
 _HEADER_UNITS = {"G": "g", "M/S2": "m/s2", "CM/S2": "cm/s2", "GAL": "cm/s2", "GALS": "cm/s2"}
 _NPTS = re.compile(r"\bNPTS\s*=\s*(\d+)", re.IGNORECASE)
 _DT = re.compile(r"\bDT\s*=\s*([0-9.eE+-]+)", re.IGNORECASE)
 _OLD_HEADER = re.compile(r"^\s*(\d+)\s+([0-9.eE+-]+)\s+NPTS", re.IGNORECASE)
+_BRACKETED = re.compile(r"[(\[]\s*([^()\[\]]+?)\s*[)\]]")  # "(m/s2)", "[cm/s^2]" in a table's header
+_TIME_UNITS = {"s", "sec", "secs", "second", "seconds"}
 _UNITS_OF = re.compile(r"UNITS\s+OF\s+(.*?)[\s.]*$", re.IGNORECASE)
 _HEADER_LINES = 10  # where the NPTS/DT line of an AT2 file is looked for
 #: the table read_record reads: (most columns, their description for errors)
 ONE_COMPONENT = (2, "1 or 2 columns (time [s], acceleration)")
-
-
-def canonical_units(units: str) -> str:
-    """The name "g", "m/s2" or "cm/s2" of ``units`` (also "gal", "m/s^2", "cm/s²", ...)."""
-    key = str(units).strip().lower()
-    if key not in _UNITS:
-        raise ValueError(f"units={units!r} is unknown; use one of {sorted(_UNITS)}")
-    return _UNITS[key]
-
-
-def unit_factor(units: str, g: float = STANDARD_GRAVITY) -> float:
-    """Factor converting ``units`` to m/s² ("g", "m/s2", "cm/s2" or "gal"); one g is ``g`` [m/s²]."""
-    return _FACTORS.get(canonical_units(units), g)
-
-
-def check_peak_acceleration(samples, units: str, g: float = STANDARD_GRAVITY, source: str = "record",
-                            units_from: str | None = None):
-    """Raise ValueError if the peak of ``samples`` (in ``units``; one g is ``g`` [m/s²]) is
-    outside :data:`PLAUSIBLE_PEAK_G` in standard g, naming the peak and the likely unit mix-up.
-
-    ``units_from`` says where ``units`` came from (e.g. a file's header line), if not the caller.
-    """
-    units = canonical_units(units)
-    peak = float(np.max(np.abs(samples), initial=0.0))
-    peak_g = peak * unit_factor(units, g) / STANDARD_GRAVITY
-    low, high = PLAUSIBLE_PEAK_G
-    if low <= peak_g <= high:
-        return
-    in_g = "" if units == "g" else f" = {peak_g:.4g} g"
-    mix_up = _likely_units(peak, units)
-    fix = f"correct the file ({units_from} sets the units)" if units_from else f"pass units={mix_up!r}"
-    hint = (f"looks like {_SYMBOLS[mix_up]} read as {_SYMBOLS[units]}: {fix}" if mix_up
-            else "check the file's values and units")
-    raise ValueError(f"{source}: peak acceleration {peak:.4g} {_SYMBOLS[units]}{in_g} is implausible "
-                     f"(outside {low:g} g to {high:g} g); {hint}, or check_peak=False to accept it")
-
-
-def _likely_units(peak, units):
-    """The other units that make ``peak`` plausible, nearest 0.3 g; None if none do."""
-    low, high = PLAUSIBLE_PEAK_G
-    in_g = {u: peak * unit_factor(u) / STANDARD_GRAVITY for u in _SYMBOLS if u != units}
-    plausible = [u for u, p in in_g.items() if low <= p <= high]
-    return min(plausible, key=lambda u: abs(np.log(in_g[u] / 0.3)), default=None)
 
 
 def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_peak=True) -> Record:
@@ -77,7 +30,8 @@ def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_
       * two columns (time [s], acceleration), separated by commas, blanks or semicolons
         (semicolons with decimal commas, ``0,01;0,5``, too), '#' comments, optional
         header line and UTF-8 BOM; the time column must be uniform and increasing, and
-        its first value is kept as ``Record.start_time``;
+        its first value is kept as ``Record.start_time``; units in brackets in the header
+        line (``time (s), acceleration (m/s2)``, ``acc [cm/s2]``, ``(gal)``, ``(g)``) are read;
       * one column of accelerations, with the sample step ``dt`` [s] given;
       * PEER NGA AT2 (any file name: found by its ``NPTS=..., DT=...`` header line, in
         either order, or the older ``5000  0.0050  NPTS, DT`` line); its
@@ -86,7 +40,8 @@ def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_
     Args:
         path: file path.
         units: units of the values: "g", "m/s2", "cm/s2" or "gal"; None: as the AT2
-            header says, "g" for files that do not say. Contradicting the header raises.
+            header or the table's header line says, "g" for files that do not say.
+            Contradicting the header raises, naming the line and both units.
         dt: sample step [s]; required for one-column files only, checked against the
             file's step otherwise.
         g: the value of one "g" [m/s²].
@@ -98,7 +53,8 @@ def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_
     """
     path = pathlib.Path(path)
     samples, dt, start_time = read_samples(path, units, dt, g, check_peak, ONE_COMPONENT)
-    return Record(samples[:, 0], dt, path.stem if name is None else name, start_time)
+    return Record(samples[:, 0], dt, path.stem if name is None else name, start_time, units="m/s2",
+                  check_peak=False)  # read_samples checked the peak in the file's units
 
 
 def read_samples(path, units, dt, g, check_peak, columns):
@@ -120,7 +76,8 @@ def read_samples(path, units, dt, g, check_peak, columns):
         units = _resolve_units(units, header_units, statement, path)
     else:
         samples, file_dt, start_time = _read_columns(path, layout, columns)
-        units, statement = "g" if units is None else canonical_units(units), None
+        header_units, statement = _table_units(_lines(path)[:layout.start], path)
+        units = _resolve_units(units, header_units, statement, path)
     dt = _sample_step(dt, file_dt, path)
     if check_peak:
         check_peak_acceleration(samples, units, g, str(path), statement and f"the header's {statement}")
@@ -248,6 +205,28 @@ def _raise_first_bad_value(body, first_line, path):
 
 
 # --- tables: one column, or time and accelerations ---------------------------------
+
+def _table_units(header_lines, path):
+    """(units or None, "line N: '...'") that a table's header line of column names states in
+    brackets, e.g. ``time (s), acceleration (m/s2)`` or ``acc [cm/s2]``; (None, None) if it names
+    none. Time units are skipped; a bracketed ratio that is no acceleration unit is refused."""
+    found = {}
+    for n, line in enumerate(header_lines, start=1):
+        text = line.split("#", 1)[0].strip()
+        for token in _BRACKETED.findall(text):
+            if token.strip().lower() in _TIME_UNITS:
+                continue
+            units, statement = _HEADER_UNITS.get(_squeeze_units(token)), f"line {n}: {text!r}"
+            if units is None and "/" in token:
+                raise ValueError(f"{path}, {statement}: the header names units {token!r}, not an acceleration "
+                                 "in g, m/s2, cm/s2 or gal; convert the file")
+            if units is not None:
+                found.setdefault(units, statement)
+    if len(found) > 1:
+        raise ValueError(f"{path}: the header names different units, {', '.join(_SYMBOLS[u] for u in found)} "
+                         f"({'; '.join(found.values())}); one file holds one unit")
+    return next(iter(found.items()), (None, None))
+
 
 def _read_columns(path, layout, columns):
     """(samples, shape (n, k), step [s] or None for one column, start time [s]) of a table of one

@@ -1,11 +1,14 @@
 """Recorded accelerograms: samples joined by straight lines."""
 
 import dataclasses
+import warnings
 
 import numpy as np
 
+from ..core._units import STANDARD_GRAVITY
 from ._base import AbstractExcitation, check_finite, check_positive
 from ._pieces import Pieces
+from ._units import UNSTATED_PEAK_M_S2, UnitsWarning, check_peak_acceleration, unit_factor
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -13,10 +16,19 @@ class Record(AbstractExcitation):
     """Accelerogram sampled at t = k dt, linear between samples, zero after the last.
 
     Args:
-        acceleration: samples [m/s²], shape (n,), n >= 2.
+        acceleration: samples in ``units``, shape (n,), n >= 2; kept in m/s²
+            (``acceleration_samples``).
         dt: sample step [s].
         name: label used in tables and plots.
         start_time: time of the first sample on the file's own axis [s]; kept as a label.
+        units: units of ``acceleration``: "m/s2", "g", "cm/s2" or "gal"; None (default):
+            m/s², with a :class:`UnitsWarning` if the peak is outside
+            :data:`UNSTATED_PEAK_M_S2` (2 to 19.6 m/s², 0.2 g to 2 g): below, the numbers
+            read as g would be as plausible; above, read as cm/s².
+        g: the value of one "g" [m/s²], for ``units="g"``.
+        check_peak: raise ValueError if a nonzero peak is implausible in ``units``
+            (outside :data:`PLAUSIBLE_PEAK_G`: an array in cm/s² given as m/s², ...);
+            False accepts any peak (and skips the warning).
 
     The excitation starts at t = 0 whatever ``start_time`` is (the base is at rest
     there): an event time t of a Solution is ``start_time + t`` on the file's axis.
@@ -28,7 +40,8 @@ class Record(AbstractExcitation):
     name: str = ""
     start_time: float = 0.0
 
-    def __init__(self, acceleration, dt, name="", start_time=0.0):
+    def __init__(self, acceleration, dt, name="", start_time=0.0, *, units=None, g=STANDARD_GRAVITY,
+                 check_peak=True):
         samples = np.array(acceleration, dtype=float)
         if samples.ndim != 1:
             raise ValueError(f"acceleration must be a 1-D array of samples, got shape {samples.shape}")
@@ -38,11 +51,15 @@ class Record(AbstractExcitation):
         if bad.size:
             raise ValueError(f"acceleration sample {bad[0]} (0-based) is {float(samples[bad[0]])}; "
                              "samples must be finite")
-        samples.setflags(write=False)
-        object.__setattr__(self, "acceleration_samples", samples)
         object.__setattr__(self, "dt", check_positive("dt", dt, "s"))
         object.__setattr__(self, "name", str(name))
         object.__setattr__(self, "start_time", check_finite("start_time", start_time, "s"))
+        if check_peak:
+            _check_units(samples, units, g, self.name)
+        if units is not None:
+            samples = samples * unit_factor(units, g)
+        samples.setflags(write=False)
+        object.__setattr__(self, "acceleration_samples", samples)
 
     @property
     def duration(self) -> float:
@@ -58,7 +75,8 @@ class Record(AbstractExcitation):
         return float(np.max(np.abs(self.acceleration_samples)))
 
     def scaled(self, factor):
-        return Record(self.acceleration_samples * float(factor), self.dt, self.name, self.start_time)
+        return Record(self.acceleration_samples * float(factor), self.dt, self.name, self.start_time,
+                      units="m/s2", check_peak=False)
 
     def _pieces_until(self, t_end):
         a = self.acceleration_samples
@@ -70,3 +88,21 @@ class Record(AbstractExcitation):
     def __repr__(self):
         return (f"Record(name={self.name!r}, n={self.acceleration_samples.size}, dt={self.dt} s, "
                 f"peak={self.peak_acceleration:.4g} m/s², start_time={self.start_time:g} s)")
+
+
+def _check_units(samples, units, g, name):
+    """Refuse a nonzero peak implausible in ``units``; warn if ``units`` is None and the
+    peak [m/s²] is outside :data:`UNSTATED_PEAK_M_S2`, where the samples may be in g or cm/s²."""
+    if not np.any(samples):
+        return  # a record of zeros: no units to get wrong
+    source = f"Record {name!r}" if name else "Record"
+    check_peak_acceleration(samples, "m/s2" if units is None else units, g, source)
+    peak = float(np.max(np.abs(samples)))
+    low, high = UNSTATED_PEAK_M_S2
+    if units is not None or low <= peak <= high:
+        return
+    other = "g" if peak < low else "cm/s2"
+    as_other = f"{peak:.4g} g" if other == "g" else f"{peak:.4g} cm/s² = {peak / 100 / STANDARD_GRAVITY:.4g} g"
+    warnings.warn(f"{source}: peak acceleration {peak:.4g} with no units= is read as {peak:.4g} m/s² "
+                  f"= {peak / STANDARD_GRAVITY:.4g} g, but as {as_other} it would be as plausible; "
+                  f"pass units='m/s2' or units='{other}' to say which", UnitsWarning, stacklevel=3)

@@ -43,17 +43,18 @@ def baseline_corrected(record, method="polynomial", degree=6, pre_event=None) ->
         raise ValueError(f"method = {method!r}; method must be one of {METHODS}")
     a = np.array(record.acceleration_samples, dtype=float)
     if method == "none":
-        return Record(a, record.dt, record.name)
+        return Record(a, record.dt, record.name, units="m/s2", check_peak=False)
     if method == "mean":
         if pre_event is None:
             window = a
         else:
             pre_event = float(_checks.array("pre_event", pre_event, "s", low=0.0, low_open=True))
             window = a[: int(np.floor(pre_event / record.dt + 1e-9)) + 1]
-        return Record(a - window.mean(), record.dt, record.name)
+        return Record(a - window.mean(), record.dt, record.name, units="m/s2", check_peak=False)
     if not (isinstance(degree, (int, np.integer)) and 2 <= degree <= 12):
         raise ValueError(f"degree = {degree!r}; degree must be an integer from 2 to 12 [-]")
-    return Record(a - polynomial_trend(record, degree)[0], record.dt, record.name)
+    return Record(a - polynomial_trend(record, degree)[0], record.dt, record.name, units="m/s2",
+                  check_peak=False)
 
 
 def polynomial_trend(record, degree=6):

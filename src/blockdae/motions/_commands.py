@@ -13,6 +13,7 @@ import numpy as np
 
 from ..cli._common import UsageError, checked, number, positive, read, save_figure, write_csv
 from ..core._units import STANDARD_GRAVITY
+from ..excitation._units import pga_factor
 
 SEED_LAGS = np.geomspace(0.05, 3.0, 20)  # seed 003: 20 lags from 0.05 to 3 s
 DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)
@@ -21,7 +22,8 @@ DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)
 def _common(parser):
     parser.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
     parser.add_argument("--units", default=None,
-                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header says, else g)")
+                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header or a "
+                             "table's header line says, else g)")
     parser.add_argument("--dt", type=positive("--dt"),
                         default=None, help="sample step [s], for one-column files")
     parser.add_argument("--g", type=positive("--g"),
@@ -73,9 +75,8 @@ def _record(args):
     rec = read(args.record, args)
     rec = checked(lambda: baseline_corrected(rec, args.baseline), str(args.record))
     if args.pga is not None:
-        if rec.peak_acceleration == 0:
-            raise UsageError(f"{args.record}: --pga cannot scale a record of zeros")
-        rec = rec.scaled(args.pga * args.g / rec.peak_acceleration)
+        rec = rec.scaled(checked(lambda: pga_factor(rec.peak_acceleration, args.pga, args.g, name="--pga"),
+                                 str(args.record)))
     return rec
 
 

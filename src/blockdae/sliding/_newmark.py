@@ -9,12 +9,13 @@ the downslope displacement is D = -u(t_end).
 """
 
 import dataclasses
+import warnings
 
 import numpy as np
 
 from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
-from ..excitation import AbstractExcitation
+from ..excitation import AbstractExcitation, UnitsWarning, pga_factor
 from ._model import SlidingBlock
 
 _POLARITIES = ("both", "normal", "inverse")
@@ -72,18 +73,25 @@ class NewmarkResult:
 
 
 def newmark(motion: AbstractExcitation, ky, polarity: str = "both", g: float = STANDARD_GRAVITY,
-            t_end: float | None = None, backend: str = "exact", **options) -> NewmarkResult:
+            t_end: float | None = None, backend: str = "exact", *, pga: float | None = None,
+            pga_rounding: str = "exact", **options) -> NewmarkResult:
     """Newmark's rigid-block (one-way) downslope displacement, positive downslope.
 
     Args:
         motion: ground acceleration along the slope [m/s²] (e.g. a :class:`Record`).
         ky: yield acceleration [g], scalar or 1-D array (a batch, one compiled call);
-            see :func:`yield_acceleration` and :meth:`SlidingBlock.on_incline`.
+            see :func:`yield_acceleration` and :meth:`SlidingBlock.on_incline`. A ky at
+            or above the motion's peak [g] slides nowhere (D = 0): a :class:`UnitsWarning`
+            says so; one also above 1 g is refused (likely m/s², e.g. ``ky=9.81``).
         polarity: "both" (default, as SLAMMER reports), "normal" (the record as given:
             sliding while a(t) > ky g) or "inverse" (the record inverted).
         g: the value of one g [m/s²]; standard gravity by default.
         t_end: final time [s]; None: until the block rests after the record.
         backend, **options: as for :func:`blockdae.simulate`.
+        pga: target peak ground acceleration [g]: the motion is scaled so that its peak
+            |a| is ``pga`` g (see :func:`blockdae.pga_factor`); None: as given.
+        pga_rounding: "exact" (default) or "slammer": the motion's own peak rounded to
+            0.001 g before scaling, as SLAMMER scales (to reproduce its tables).
 
     Returns:
         A :class:`NewmarkResult`; ``D = -u(t_end)`` of ``SlidingBlock(mu=ky,
@@ -91,8 +99,16 @@ def newmark(motion: AbstractExcitation, ky, polarity: str = "both", g: float = S
     """
     if polarity not in _POLARITIES:
         raise ValueError(f"polarity must be one of {_POLARITIES}, got {polarity!r}")
+    if "target_pga" in options:
+        raise TypeError(f"newmark: target_pga={options['target_pga']!r} is called pga here: the target peak "
+                        "ground acceleration [g], newmark(motion, ky, pga=...)")
     ky_array = np.asarray(ky, dtype=float)
     _require(np.isfinite(ky_array) & (ky_array > 0), "ky", ky_array, "must be a positive yield acceleration [g]")
+    if pga is not None:
+        if np.ndim(pga) != 0:
+            raise ValueError(f"pga must be one target peak [g], got {pga!r}; run newmark once per target")
+        motion = motion.scaled(pga_factor(motion.peak_acceleration, pga, g, pga_rounding))
+    _check_ky(ky_array, motion.peak_acceleration / g)
     block = SlidingBlock(mu=ky, direction="negative", g=g)
 
     def downslope(excitation):
@@ -102,6 +118,26 @@ def newmark(motion: AbstractExcitation, ky, polarity: str = "both", g: float = S
     normal = downslope(motion) if polarity in ("both", "normal") else None
     inverse = downslope(motion.inverted()) if polarity in ("both", "inverse") else None
     return NewmarkResult(ky=block.mu, normal=normal, inverse=inverse, g=block.g)
+
+
+#: a yield acceleration [g] above this that no motion exceeds is refused: likely m/s²
+MAX_KY_G = 1.0
+
+
+def _check_ky(ky, pga):
+    """Refuse a ky [g] above :data:`MAX_KY_G` and at or above the motion's peak ``pga`` [g]
+    (it reads as m/s²); warn of one below 1 g at or above ``pga``: no sliding, D = 0."""
+    still = np.atleast_1d(ky)[np.atleast_1d(ky) >= pga]
+    if still.size == 0:
+        return
+    high = still[still > MAX_KY_G]
+    if high.size:
+        k = float(high[0])
+        raise ValueError(f"ky={k:g} g is above {MAX_KY_G:g} g and the motion's peak ({pga:.4g} g): it looks "
+                         f"like m/s² ({k:g} m/s² = {k / STANDARD_GRAVITY:.4g} g); give ky in g")
+    shown = ", ".join(f"{k:g}" for k in still)
+    warnings.warn(f"ky={shown} g >= PGA = {pga:.4g} g: the block does not slide, D = 0 m", UnitsWarning,
+                  stacklevel=3)
 
 
 def _combine(op, normal, inverse):

@@ -7,7 +7,8 @@ import numpy as np
 
 from ..core._simulate import simulate
 from ._solution import BatchSolution
-from ..excitation import AbstractExcitation
+from ..excitation import AbstractExcitation, pga_factor
+from ..excitation._units import check_pga, check_pga_rounding
 from ._model import SlidingBlock
 
 
@@ -80,7 +81,7 @@ class SweepSolution:
 
 
 def simulate_many(block: SlidingBlock, motions, t_end: float | None = None, backend: str = "exact", *,
-                  scale=None, pga=None, **options) -> SweepSolution:
+                  scale=None, pga=None, pga_rounding: str = "exact", **options) -> SweepSolution:
     """Slide every parameter set of ``block`` under every motion, at every amplitude scale.
 
     Args:
@@ -91,8 +92,11 @@ def simulate_many(block: SlidingBlock, motions, t_end: float | None = None, back
         t_end: final time [s]; None: until the block rests after each motion ends.
         backend, **options: as for :func:`blockdae.simulate`.
         scale: factor(s) on a(t) [-], a number or a 1-D sequence (default 1; -1 inverts).
-        pga: instead of ``scale``, target peak acceleration(s) [m/s²]: each motion is
-            scaled so that max |a(t)| equals each value.
+        pga: instead of ``scale``, target peak ground acceleration(s) [g], a number or a
+            1-D sequence: each motion is scaled so that max |a(t)| is each value times the
+            block's g (see :func:`blockdae.pga_factor`; values above 5, likely m/s², are refused).
+        pga_rounding: "exact" (default) or "slammer": each motion's own peak rounded to
+            0.001 g before scaling, as SLAMMER scales.
 
     Returns:
         A :class:`SweepSolution` of shape (n_motions, n_scales, n_sets).
@@ -100,7 +104,7 @@ def simulate_many(block: SlidingBlock, motions, t_end: float | None = None, back
     if not isinstance(block, SlidingBlock):
         raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
     names, motions = _labelled(motions)
-    factors = _factors(motions, scale, pga)
+    factors = _factors(motions, scale, pga, block.g, pga_rounding)
     grid = block if block.batch_shape else block.replace(mu=np.atleast_1d(block.mu))
     batches = tuple(tuple(simulate(grid, motion.scaled(k), t_end, backend, **options) for k in row)
                     for motion, row in zip(motions, factors))
@@ -122,20 +126,21 @@ def _labelled(motions):
     return tuple(str(name) for name, _ in items), [m for _, m in items]
 
 
-def _factors(motions, scale, pga) -> np.ndarray:
-    """Factor on a(t) per (motion, scale) [-], shape (n_motions, n_scales)."""
+def _factors(motions, scale, pga, g, rounding) -> np.ndarray:
+    """Factor on a(t) per (motion, scale) [-], shape (n_motions, n_scales); ``pga`` [g], one g = ``g`` [m/s²]."""
     if scale is not None and pga is not None:
         raise ValueError("give scale or pga, not both")
     if pga is None:
         k = _values("scale", 1.0 if scale is None else scale)
         return np.tile(k, (len(motions), 1))
-    targets = _values("pga", pga)
-    if np.any(targets <= 0):
-        raise ValueError(f"pga must be positive peak accelerations [m/s²], got {pga!r}")
-    peaks = np.array([m.peak_acceleration for m in motions])
-    if np.any(peaks <= 0):
-        raise ValueError(f"pga needs motions with a nonzero peak; motion {int(np.argmin(peaks))} has none")
-    return targets / peaks[:, None]
+    check_pga(pga), check_pga_rounding(rounding)  # before any motion
+    rows = []
+    for i, motion in enumerate(motions):
+        try:
+            rows.append(pga_factor(motion.peak_acceleration, np.atleast_1d(pga), float(g), rounding))
+        except ValueError as err:  # a motion of zeros
+            raise ValueError(f"motion {i}: {err}") from None
+    return np.array(rows)
 
 
 def _values(name, values) -> np.ndarray:

@@ -167,7 +167,8 @@ class ShearFrame:
             _kernels.history(h, p0, p1, zero, zero, zero, om, self.damping, us, vs)
             modal[j] = -2.0 * self.damping * om * vs - om * om * us
         floors = (self._modes[1] * self.participation) @ modal
-        return [Record(f, dt, name=f"{record.name} floor {i + 1}", start_time=record.start_time)
+        return [Record(f, dt, name=f"{record.name} floor {i + 1}", start_time=record.start_time,
+                       units="m/s2", check_peak=False)
                 for i, f in enumerate(floors)]
 
 

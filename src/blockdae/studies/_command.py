@@ -54,7 +54,7 @@ def add_study_parser(subparsers):
     p.add_argument("--direction", choices=("negative", "positive", "both"), default="negative",
                    help="allowed sliding direction (default negative: one-way)")
     p.add_argument("--units", default=None, help="acceleration units of the files: g, m/s2, cm/s2 or gal "
-                                                 "(default: as an AT2 header says, else g)")
+                                                 "(default: as an AT2 header or a table's header line says, else g)")
     p.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                    help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")

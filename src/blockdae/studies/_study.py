@@ -24,6 +24,7 @@ import numpy as np
 from ..sliding._final import simulate_final
 from ..sliding._formulas import AdjustmentFactor, newmark_rd_sd
 from ..core._units import STANDARD_GRAVITY
+from ..excitation._units import check_pga
 from ..excitation import Record
 from ..sliding._model import SlidingBlock
 from ..motions import response_spectrum
@@ -163,8 +164,8 @@ def run_task(records, grid: _Grid) -> dict:
             places.append(place)
     peak = np.array([m.peak_acceleration for m in motions])
     unit = grid.g if grid.by == "pga" else 1.0  # engine motions: peak 1 g, or as they are
-    engine_motions = [Record(m.acceleration_samples * (unit / p), m.dt, m.name) for m, p in zip(motions, peak)] \
-        if grid.by == "pga" else motions
+    engine_motions = [Record(m.acceleration_samples * (unit / p), m.dt, m.name, units="m/s2", check_peak=False)
+                      for m, p in zip(motions, peak)] if grid.by == "pga" else motions
     block = SlidingBlock(mu=grid.mu, direction=grid.direction, g=grid.g)
     out = simulate_final(block, engine_motions, grid.t_end, scale=grid.factors)
     sd = response_spectrum(motions, grid.sd_period, grid.damping).sd
@@ -212,6 +213,8 @@ def _checked(records, mu, pga, scale, where, direction, refine, sd_period, dampi
         raise ValueError("give pga (target peaks [g]) or scale (factors [-]), one of the two")
     by = "pga" if pga is not None else "scale"
     factors = _values(by, pga if pga is not None else scale, "g" if by == "pga" else "-")
+    if by == "pga":
+        check_pga(factors)  # above 5 g: likely m/s²
     where = tuple([where] if isinstance(where, (str, Floor)) else where)
     if not where:
         raise ValueError('where is empty: give "ground" and/or floors (frame.floor(i))')
