@@ -105,7 +105,8 @@ class OscillatorOnStop(bd.AbstractHybridModel):
 def record(duration=6.0, dt=0.01):
     """A decaying 1.5 Hz shake sampled at ``dt`` [s], peak about 0.5 g, as a bd.Record."""
     t = np.arange(0.0, duration, dt)
-    return bd.Record(0.5 * 9.81 * np.exp(-0.4 * t) * np.sin(2 * np.pi * 1.5 * t), dt, name="decaying 1.5 Hz")
+    return bd.Record(0.5 * 9.81 * np.exp(-0.4 * t) * np.sin(2 * np.pi * 1.5 * t), dt, name="decaying 1.5 Hz",
+                     units="m/s2")
 
 
 def main():

@@ -32,7 +32,8 @@ def import_graph():
         targets = set()
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.ImportFrom) and node.level:
-                base = ".".join(package[:len(package) - node.level + 1] + (node.module.split(".") if node.module else []))
+                module = node.module.split(".") if node.module else []
+                base = ".".join(package[:len(package) - node.level + 1] + module)
                 targets |= {f"{base}.{a.name}" if f"{base}.{a.name}" in modules else base for a in node.names}
             elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("blockdae"):
                 targets.add(node.module)

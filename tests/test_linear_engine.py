@@ -58,8 +58,8 @@ def test_long_undamped_bouncing_matches_the_closed_form():
     flight is the same ballistic arc and every contact arc the same (17 bounces): the
     liftoff times are equally spaced, the first one exact to 1e-12 s."""
     mass = bd.SpringSupportedMass(5.0)
-    sol = bd.simulate(mass, bd.Record(np.full(8, -0.55 * G), dt=0.5), t_end=3.5)
-    python = bd.simulate(mass, bd.Record(np.full(8, -0.55 * G), dt=0.5), t_end=3.5, linear="python")
+    sol = bd.simulate(mass, bd.Record(np.full(8, -0.55 * G), dt=0.5, units="m/s2"), t_end=3.5)
+    python = bd.simulate(mass, bd.Record(np.full(8, -0.55 * G), dt=0.5, units="m/s2"), t_end=3.5, linear="python")
     assert_same_run(sol, python)
     w, c = mass.omega, 0.55 * G
     first = math.acos(1 - (G / w**2) * w**2 / c) / w
@@ -74,7 +74,7 @@ def test_a_grazing_touch_and_events_at_samples():
     record sample (dt = the touch's time / 2)."""
     mass = bd.SpringSupportedMass(5.0)
     touch = math.pi / mass.omega
-    for motion in (bd.RectangularPulse(-G / 2, 10.0), bd.Record(np.full(13, -G / 2), dt=touch / 2)):
+    for motion in (bd.RectangularPulse(-G / 2, 10.0), bd.Record(np.full(13, -G / 2), dt=touch / 2, units="m/s2")):
         sol = bd.simulate(mass, motion, t_end=0.55)
         assert sol.events == ()
         expected = G / (2 * mass.omega**2) * (1 - math.cos(mass.omega * 0.55))
@@ -189,7 +189,7 @@ def test_chatter_is_capped_and_reported():
             return tables
 
     with pytest.raises(RuntimeError, match="chatter"):
-        bd.simulate(Switching(0.0, 0.0, 0.0), bd.Record([1.0, 1.0], dt=0.1), t_end=0.1)
+        bd.simulate(Switching(0.0, 0.0, 0.0), bd.Record([1.0, 1.0], dt=0.1, units="m/s2"), t_end=0.1)
 
 
 @pytest.mark.parametrize("change, match", [
@@ -226,6 +226,6 @@ def test_final_numbers_equal_full_runs(kobe_vertical):
 
 def test_final_numbers_refuse_other_models_and_sine_motions():
     with pytest.raises(ValueError, match="models on the linear engine"):
-        bd.simulate_linear_final([bd.SlidingBlock(0.2)], [bd.Record([0.0, 1.0], 0.1)], 0.1)
+        bd.simulate_linear_final([bd.SlidingBlock(0.2)], [bd.Record([0.0, 1.0], 0.1, units="m/s2")], 0.1)
     with pytest.raises(ValueError, match="has sine pieces"):
         bd.simulate_linear_final([bd.SpringSupportedMass(5.0)], [bd.Harmonic(1.0, 0.2)], 0.5)

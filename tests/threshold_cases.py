@@ -75,10 +75,10 @@ def _records():
         "one ulp over at a sample": [0.0, ulps(limit, 1), 0.0, -ulps(limit, 1), 0.0],
     }
     for name, a in samples.items():
-        yield Case(f"record {name}", bd.SlidingBlock(mu=MU, g=G), bd.Record(a, dt), (len(a) - 1) * dt,
+        yield Case(f"record {name}", bd.SlidingBlock(mu=MU, g=G), bd.Record(a, dt, units="m/s2"), (len(a) - 1) * dt,
                    fast=name.startswith(("touch at a sample", "touch at the start")))
     yield Case("record touch with bias", bd.SlidingBlock(mu=0.4, bias=0.1, g=G),
-               bd.Record([0.0, limit, 0.0, -limit, 0.0], dt), 0.04)
+               bd.Record([0.0, limit, 0.0, -limit, 0.0], dt, units="m/s2"), 0.04)
 
 
 def sliding_cases():
