@@ -386,7 +386,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import blockdae as bd
-from blockdae import _elms as elms
+from blockdae.planar import _elms as elms
 
 start = time.perf_counter()"""),
     ("md", """## Figures 4-6: N/A = 0.5, mu = 0.8, R = 0, 0.4, 0.8

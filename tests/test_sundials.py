@@ -14,6 +14,7 @@ import blockdae as bd
 from blockdae.core import _crosscheck
 from blockdae.core._driver import SolverError
 from blockdae.backends import make_backend
+from blockdae.sliding._model import stop_mode
 from conftest import assert_same_events, load_sample_record
 
 SUNDIALS = ("cvode", "ida")
@@ -266,8 +267,8 @@ def test_stop_mode_within_time_tolerance(slip_rate, sigma_rate, allow_pos, after
     """The model's stop rule for a slip- stop with f = mu = 0.6: sigma = f g - dv/dt.
     A threshold crossed outwards within time_tol counts as at the threshold."""
     args = (-1, slip_rate, sigma_rate, 1.0, 0.6, 0.6, G, True, allow_pos, np)
-    assert bd.model.stop_mode(*args, time_tol=0.0) == after_exact
-    assert bd.model.stop_mode(*args, time_tol=1e-8) == after_tol
+    assert stop_mode(*args, time_tol=0.0) == after_exact
+    assert stop_mode(*args, time_tol=1e-8) == after_tol
 
 
 def test_trap7_chatter_cap_raises_instead_of_looping():
