@@ -183,7 +183,7 @@ def test_summary_follows_the_formulas(table):
 
 
 def test_save_and_load_round_trip(table, tmp_path):
-    pd.testing.assert_frame_equal(bd.load_study(bd.save_study(table, tmp_path / "s.csv")), table)
+    pd.testing.assert_frame_equal(bd.load_study(bd.save_study(table, tmp_path / "s.csv")), table, check_exact=True)
     with pytest.raises(ValueError, match=".csv or .parquet"):
         bd.save_study(table, tmp_path / "s.xlsx")
     try:
