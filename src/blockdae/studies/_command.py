@@ -62,6 +62,9 @@ def add_study_parser(subparsers):
                    help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")
     p.add_argument("--out", type=pathlib.Path, required=True, help="results table (.csv or .parquet)")
     p.add_argument("--summary", type=pathlib.Path, default=None, help="also the seed's summaries (.csv)")
+    p.add_argument("--checkpoint", type=pathlib.Path, default=None, metavar="FOLDER",
+                   help="save each finished task in FOLDER (new, empty, or this study's checkpoint): a rerun "
+                        "with the same arguments runs only the tasks not saved yet")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="a Dask scheduler (e.g. tcp://host:8786) to run the tasks on")
     p.add_argument("--no-worker-timeout", type=_seconds_or_none, default=60.0, metavar="SECONDS",
@@ -81,7 +84,7 @@ def run_study(args) -> int:
     start = time.perf_counter()
     try:
         table = study(records, mu=args.mu, where=where, direction=args.direction, executor=client, g=args.g,
-                      no_worker_timeout=args.no_worker_timeout, **grid)
+                      no_worker_timeout=args.no_worker_timeout, checkpoint=args.checkpoint, **grid)
     except (ValueError, TypeError) as err:
         raise UsageError(str(err)) from None
     except NoWorkerError as err:
