@@ -109,12 +109,12 @@ def test_dask_resumes_a_local_checkpoint(records, table, tmp_path, one_record_pe
     assert _saved(folder) == ["manifest.json", "task-000000.csv", "task-000001.csv", "task-000002.csv"]
 
 
-def _task_losing_its_worker(chunk, grid, saved):
+def _task_losing_its_worker(chunk, grid, saved=None):
     """run_task; every task but the first record's waits until the first is ``saved`` (a
-    path), then closes its worker and hangs until released."""
+    path; None: no wait), then closes its worker and hangs until released."""
     if chunk[0].name != SHORT[0]:
         from distributed import get_worker
-        while not saved.exists():
+        while saved is not None and not saved.exists():
             time.sleep(0.01)
         worker = get_worker()
         worker.loop.add_callback(worker.close, executor_wait=False)
@@ -139,6 +139,23 @@ def test_dask_worker_lost_then_resumed(records, table, tmp_path, monkeypatch, on
     ran = _counting_tasks(monkeypatch)
     pd.testing.assert_frame_equal(bd.study(records, **GRID, checkpoint=folder), table, check_exact=True)
     assert ran == [[SHORT[1]], [SHORT[2]]]
+
+
+def test_a_result_lost_with_its_worker_is_no_hang(records, tmp_path, monkeypatch, one_record_per_task):
+    """The worker closes as soon as the first task finished: its result may go with it; the
+    study still stops after no_worker_timeout [s] (it used to wait for that result forever)."""
+    distributed = pytest.importorskip("distributed")
+    monkeypatch.setattr(study_module, "run_task", _task_losing_its_worker)
+    _RELEASE.clear()
+    try:
+        with distributed.LocalCluster(n_workers=1, processes=False, threads_per_worker=1,
+                                      dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+            start = time.monotonic()
+            with pytest.raises(bd.studies.NoWorkerError, match="[01] of 3 tasks finished"):
+                bd.study(records, **GRID, executor=client, checkpoint=tmp_path / "ck", no_worker_timeout=1.5)
+            assert time.monotonic() - start < 1.5 + 3
+    finally:
+        _RELEASE.set()
 
 
 def test_another_study_is_refused(records, tmp_path, monkeypatch, one_record_per_task):
