@@ -13,6 +13,7 @@ import textwrap
 import threading
 import time
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -73,6 +74,13 @@ def test_rerun_skips_saved_tasks_and_is_bit_identical(records, table, tmp_path, 
     (folder / "task-000001.csv").unlink()
     pd.testing.assert_frame_equal(bd.study(records, **GRID, checkpoint=folder), table, check_exact=True)
     assert ran == [[SHORT[1]]]
+
+
+def test_numpy_settings_are_written(records, table, tmp_path):
+    got = bd.study(records, **dict(GRID, mu=np.array(GRID["mu"])), refine=np.int64(4), g=np.float64(9.80665),
+                   checkpoint=tmp_path / "ck")
+    pd.testing.assert_frame_equal(got, table, check_exact=True)
+    assert json.loads((tmp_path / "ck" / "manifest.json").read_text())["refine"] == 4
 
 
 def test_an_executor_saves_what_finished_before_a_task_failed(records, table, tmp_path, monkeypatch,

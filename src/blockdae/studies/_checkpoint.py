@@ -87,7 +87,14 @@ def _manifest(records, grid, tasks) -> dict:
     settings[grid.by] = settings.pop("factors")  # "pga" or "scale", as study names them
     manifest = {"format": FORMAT, "blockdae": _version(), **settings,
                 "records_per_task": len(tasks[0]), "records": [_fingerprint(r) for r in records]}
-    return json.loads(json.dumps(manifest))  # tuples as lists, as read back
+    return json.loads(json.dumps(manifest, default=_number))  # tuples as lists, as read back
+
+
+def _number(value):
+    """A NumPy scalar (e.g. ``refine=np.int64(4)``) as the Python number json writes."""
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"{value!r} ({type(value).__name__}) has no JSON form")
 
 
 def _plain(value):
