@@ -166,6 +166,29 @@ def test_a_result_lost_with_its_worker_is_no_hang(records, tmp_path, monkeypatch
         _RELEASE.set()
 
 
+def _task_killing_its_worker_once(chunk, grid, marker):
+    """run_task; the second record's task first SIGKILLs its worker process (once: ``marker``)."""
+    if chunk[0].name == SHORT[1] and not marker.exists():
+        marker.touch()
+        os.kill(os.getpid(), signal.SIGKILL)
+    return _RUN_TASK(chunk, grid)
+
+
+def test_a_worker_killed_mid_study_changes_nothing(records, table, tmp_path, monkeypatch, one_record_per_task):
+    """Two worker processes, one SIGKILLed in a task: the task runs again elsewhere and the
+    table (and its checkpoint) equal the uninterrupted run's."""
+    distributed = pytest.importorskip("distributed")
+    marker = tmp_path / "killed"
+    monkeypatch.setattr(study_module, "run_task", functools.partial(_task_killing_its_worker_once, marker=marker))
+    with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None) \
+            as cluster, distributed.Client(cluster) as client:
+        got = bd.study(records, **GRID, executor=client, checkpoint=tmp_path / "ck")
+    assert marker.exists()
+    pd.testing.assert_frame_equal(got, table, check_exact=True)
+    monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
+    pd.testing.assert_frame_equal(bd.study(records, **GRID, checkpoint=tmp_path / "ck"), table, check_exact=True)
+
+
 def test_another_study_is_refused(records, tmp_path, monkeypatch, one_record_per_task):
     folder = tmp_path / "ck"
     bd.study(records[:2], **GRID, checkpoint=folder)
