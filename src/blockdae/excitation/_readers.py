@@ -136,15 +136,15 @@ def read_samples(path, units, dt, g, check_peak, columns):
     if units is not None:
         canonical_units(units)  # an unknown name fails before the file is read
     text = _text(path)
-    lines = text.split("\n")
-    layout = _scan(lines, path)
+    layout = _scan(text, path)
     if layout.at2 is not None:
+        lines = text.split("\n")
         samples, file_dt, start_time = _read_at2(lines, layout.at2, path)
         samples = samples[:, None]
         header_units, statement = _at2_units(lines[:layout.at2[0]], path)
         units = _resolve_units(units, header_units, statement, path)
     else:
-        samples, file_dt, start_time = _read_columns(text, lines, layout, path, columns)
+        samples, file_dt, start_time = _read_columns(text, layout, path, columns)
         units, statement = "g" if units is None else canonical_units(units), None
     dt = _sample_step(dt, file_dt, path)
     if check_peak:
@@ -187,11 +187,11 @@ def _gunzip(data, path):
         raise ValueError(f"{path}: a damaged gzip file ({err})") from None
 
 
-def _scan(lines, path):
-    """The :class:`_Layout` of the file at ``path`` (its ``lines``), from its first lines
-    up to the AT2 header line or the first data line."""
+def _scan(text, path):
+    """The :class:`_Layout` of the file at ``path`` (its ``text``), read up to the AT2
+    header line or the first data line."""
     at2 = record_suffix(path) == ".at2"
-    for i, line in enumerate(lines):
+    for i, line in enumerate(io.StringIO(text)):
         header = _at2_header(line, i, path) if i < _HEADER_LINES else None
         if header is not None:
             return _Layout(header)
@@ -297,19 +297,19 @@ def _raise_first_bad_value(body, first_line, path):
 
 # --- tables: one column, or time and accelerations ---------------------------------
 
-def _read_columns(text, lines, layout, path, columns):
+def _read_columns(text, layout, path, columns):
     """(samples, shape (n, k), step [s] or None for one column, start time [s]) of a table of one
     column of accelerations or a time column [s] and k accelerations (the file at ``path``, its
-    ``text`` and ``lines``); ``columns`` as for read_samples."""
+    ``text``); ``columns`` as for read_samples."""
     source = io.StringIO(text)
     if layout.decimal_comma:
-        source = "\n".join(lines[layout.start:]).replace(",", ".").split("\n")
+        source = "\n".join(text.split("\n")[layout.start:]).replace(",", ".").split("\n")
     try:
         rows = np.loadtxt(source, delimiter=layout.delimiter, comments="#", ndmin=2,
                           skiprows=0 if layout.decimal_comma else layout.start)
     except ValueError:  # the line-by-line parser locates the error, or reads what loadtxt cannot
-        rows = _parse_rows(lines, layout, path)
-    return _check_rows(rows, lines, layout.start, path, columns)
+        rows = _parse_rows(text.split("\n"), layout, path)
+    return _check_rows(rows, text, layout.start, path, columns)
 
 
 def _decimal_comma(text, index, path):
@@ -360,16 +360,16 @@ def _data_line_numbers(lines, start):
     return [n for n, line in enumerate(lines[start:], start=start + 1) if line.split("#", 1)[0].strip()]
 
 
-def _check_rows(rows, lines, start, path, columns):
+def _check_rows(rows, text, start, path, columns):
     """(samples, step [s] or None, start time [s]) of the checked rows of the table at line index
-    ``start`` of the file's ``lines``."""
+    ``start`` of the file's ``text``."""
     def line_of(k):  # file line of data row k, counted only for an error
-        return _data_line_numbers(lines, start)[k]
+        return _data_line_numbers(text.split("\n"), start)[k]
 
     most, described = columns
     if rows.shape[1] > most:
-        raise ValueError(f"{path}, line {start + 1}: expected {described}, "
-                         f"found {rows.shape[1]}{_comma_hint(lines[start])}")
+        hint = _comma_hint(text.split("\n")[start])
+        raise ValueError(f"{path}, line {start + 1}: expected {described}, found {rows.shape[1]}{hint}")
     if not np.isfinite(rows).all():
         bad = np.flatnonzero(~np.all(np.isfinite(rows), axis=1))
         row = rows[bad[0]]
