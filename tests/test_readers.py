@@ -1,5 +1,8 @@
-"""Record files: units from AT2 headers, a plausible peak, the time origin, errors at file lines, speed."""
+"""Record files: units from AT2 headers, a plausible peak, the time origin, errors at file lines,
+gzip, binary and empty files, speed."""
 
+import csv
+import gzip
 import re
 
 import numpy as np
@@ -7,6 +10,7 @@ import pytest
 from conftest import sample_record_paths
 
 import blockdae as bd
+from blockdae.cli._main import main
 from blockdae.excitation._readers import STANDARD_GRAVITY, check_peak_acceleration
 
 AT2 = ("PEER NGA STRONG MOTION DATABASE RECORD\nTest 1994, Station, 090\n"
@@ -251,6 +255,79 @@ def test_blanks_tabs_crlf_and_trailing_separators(tmp_path):
     expected = np.array([0.5, 0.4]) * STANDARD_GRAVITY
     for body in ("0.0\t 0.5\r\n0.01\t0.4\r\n", "0.0, 0.5,\n0.01, 0.4,\n", "0.0;0.5\n0.01;0.4\n"):
         np.testing.assert_array_equal(bd.read_record(write(tmp_path, "r.csv", body)).acceleration_samples, expected)
+
+
+# --- what a file holds: gzip, BOM + CRLF, binary, other encodings, nothing (issue 27) ----
+
+TWO_COLUMNS = "time [s], a [g]\n0.0, 0.5\n0.01, 0.4\n0.02, -0.3\n"
+EXPECTED = np.array([0.5, 0.4, -0.3]) * STANDARD_GRAVITY
+
+
+@pytest.mark.parametrize("name", ["r.csv.gz", "r.CSV.GZ", "r.csv"])
+def test_gzip_records_are_read_and_named_without_their_suffixes(tmp_path, name):
+    path = tmp_path / name
+    path.write_bytes(gzip.compress(TWO_COLUMNS.encode()))  # found by its first bytes, whatever its name
+    record = bd.read_record(path)
+    np.testing.assert_array_equal(record.acceleration_samples, EXPECTED)
+    assert record.name == "r" and record.dt == 0.01
+
+
+def test_gzip_at2_is_read_as_at2(tmp_path):
+    plain = at2(tmp_path)
+    packed = tmp_path / "Y.AT2.gz"
+    packed.write_bytes(gzip.compress(plain.read_bytes()))
+    record = bd.read_record(packed)
+    np.testing.assert_array_equal(record.acceleration_samples, bd.read_record(plain).acceleration_samples)
+    assert record.name == "Y" and record.dt == 0.005
+
+
+def test_bom_and_crlf(tmp_path):
+    path = tmp_path / "r.csv"
+    path.write_bytes(b"\xef\xbb\xbf" + TWO_COLUMNS.replace("\n", "\r\n").encode())
+    np.testing.assert_array_equal(bd.read_record(path).acceleration_samples, EXPECTED)
+    path.write_bytes(b"\xef\xbb\xbf" + TWO_COLUMNS.replace("0.4", "x").replace("\n", "\r\n").encode())
+    with pytest.raises(ValueError, match=f"^{re.escape(str(path))}, line 3: not a number"):
+        bd.read_record(path)
+
+
+@pytest.mark.parametrize("data, message", [
+    (b"0.0, 0.5\n0.01, 0.4\n\x80\x81\x82", r", line 3: byte 0x80 is not UTF-8 text"),
+    (b"t, a\n0.0\x00, 0.5\n", r": a binary file \(a NUL byte at offset 8\)"),
+    ("# station Düsseldorf\n0.0, 0.5\n0.01, 0.4\n".encode("latin-1"), r", line 1: byte 0xfc is not UTF-8 text"),
+    (b"", r": no data rows"),
+    (b"\r\n\n# only a comment\n", r": no data rows"),
+    (gzip.compress(b"\x00\x01\x02"), r": a binary file"),
+    (gzip.compress(TWO_COLUMNS.encode())[:-6], r": a damaged gzip file"),
+])
+def test_unreadable_files_are_named(tmp_path, data, message):
+    path = tmp_path / "bad.dat"
+    path.write_bytes(data)
+    with pytest.raises(ValueError, match=f"^{re.escape(str(path))}{message}"):
+        bd.read_record(path, dt=0.01)
+
+
+def test_batch_over_a_folder_of_mixed_files(tmp_path, capsys):
+    """gzip, BOM + CRLF and comma-decimal files are analysed; binary, gzip-compressed binary and
+    empty ones are listed, each by its path, with exit status 1."""
+    folder = tmp_path / "records"
+    folder.mkdir()
+    (folder / "packed.csv.gz").write_bytes(gzip.compress(TWO_COLUMNS.encode()))
+    (folder / "bom.csv").write_bytes(b"\xef\xbb\xbf" + TWO_COLUMNS.replace("\n", "\r\n").encode())
+    (folder / "comma.csv").write_text("0,0;0,5\n0,01;0,4\n0,02;-0,3\n")
+    (folder / "binary.dat").write_bytes(bytes(range(256)) * 4)
+    (folder / "zipped.dat.gz").write_bytes(gzip.compress(bytes(range(256))))
+    (folder / "empty.txt").write_bytes(b"")
+    (folder / "notes.md").write_text("not a record suffix: skipped")
+    out = tmp_path / "r.csv"
+    assert main(["--no-cache", "batch", str(folder), "--mu", "0.1", "--csv", str(out)]) == 1
+    err = capsys.readouterr().err
+    assert "3 of 6 files failed" in err
+    for name in ("binary.dat", "zipped.dat.gz", "empty.txt"):
+        assert f"  {folder / name}: " in err
+    assert "codec can't decode" not in err
+    rows = list(csv.DictReader(out.open()))
+    assert [r["record"] for r in rows] == ["bom", "comma", "packed"]
+    assert {r["n_samples"] for r in rows} == {"3"}
 
 
 # --- speed -------------------------------------------------------------------------------

@@ -1,12 +1,14 @@
 """Pieces every ``blockdae`` command shares: argument types that name their flag, the
 usage error (``blockdae: error: ...``, exit status 2), reading a record argument
-(its flags, its description and its JSON fields), writing CSV and saving figures."""
+(its flags, its description and its JSON fields), writing CSV and saving figures (atomically)."""
 
 import argparse
 import csv
+import pathlib
 
 import numpy as np
 
+from ..core._atomic import atomic_path
 from ..excitation import read_record
 
 
@@ -65,9 +67,9 @@ def read(path, args):
 
 
 def write_csv(path, rows, fields=None):
-    """``rows`` (dicts) as CSV with a header (``fields``, default the first row's keys)."""
+    """``rows`` (dicts) as CSV with a header (``fields``, default the first row's keys), atomically."""
     def write():
-        with open(path, "w", newline="") as stream:
+        with atomic_path(path) as temporary, open(temporary, "w", newline="") as stream:
             writer = csv.DictWriter(stream, fieldnames=fields or list(rows[0]))
             writer.writeheader()
             writer.writerows(rows)
@@ -75,11 +77,14 @@ def write_csv(path, rows, fields=None):
 
 
 def save_figure(figure, path):
-    """Save ``figure`` as PNG at ``path`` and close it."""
+    """Save ``figure`` at ``path`` (its format from the suffix; PNG without one), atomically, and close it."""
     import matplotlib.pyplot as plt
 
+    def save():
+        with atomic_path(path) as temporary:
+            figure.savefig(temporary, dpi=120, format=pathlib.Path(path).suffix[1:] or "png")
     try:
-        checked(lambda: figure.savefig(path, dpi=120), f"--plot {path}")
+        checked(save, f"--plot {path}")
     finally:
         plt.close(figure)
 

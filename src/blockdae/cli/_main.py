@@ -31,7 +31,7 @@ from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..motions._commands import add_spectrum_parser, add_two_point_parser
 from ..studies._command import add_study_parser
-from ..excitation._readers import unit_factor
+from ..excitation._readers import record_suffix, unit_factor
 from ..excitation._units import PGA_ROUNDINGS, UnitsWarning
 from ..sliding._model import SlidingBlock
 
@@ -114,7 +114,8 @@ def _parser():
     examples.set_defaults(command=_examples)
 
     batch = sub.add_parser("batch", help="every record in a folder, over a parameter grid")
-    batch.add_argument("folder", type=pathlib.Path, help=f"folder of records ({', '.join(_RECORD_SUFFIXES)})")
+    batch.add_argument("folder", type=pathlib.Path,
+                       help=f"folder of records ({', '.join(_RECORD_SUFFIXES)}, each also gzip-compressed: .gz)")
     _block_arguments(batch, nargs="+")
     record_arguments(batch)
     batch.add_argument("--csv", type=pathlib.Path, default=None, help="write the results as CSV")
@@ -236,7 +237,7 @@ def _batch(args):
     block = _block(args, mu, None if args.mu_kinetic is None else f, bias)
     if not args.folder.is_dir():
         raise UsageError(f"{args.folder}: not a folder")
-    paths = sorted(p for p in args.folder.iterdir() if p.suffix.lower() in _RECORD_SUFFIXES)
+    paths = sorted(p for p in args.folder.iterdir() if record_suffix(p) in _RECORD_SUFFIXES)
     if not paths:
         raise UsageError(f"{args.folder}: no record files ({', '.join(_RECORD_SUFFIXES)})")
     rows, failed = [], []

@@ -2,12 +2,12 @@
 ``--y``/``--z`` files or a table of time [s], a_x, a_y[, a_z]."""
 
 import json
-import pathlib
 import time
 
 from ._common import UsageError, checked, describe_record, save_figure
 from ..core._simulate import simulate
 from ..excitation import Record, read_motion
+from ..excitation._readers import record_name
 from ..planar._model import PlanarBlock
 
 #: the backend of a planar run unless --backend names one: IDA follows turning slides
@@ -38,10 +38,9 @@ def is_planar(motion) -> bool:
 
 
 def x_record(motion, path):
-    """The x component of a one-component motion as :func:`read_record` names it (the file stem)."""
+    """The x component of a one-component motion as :func:`read_record` names it (:func:`record_name`)."""
     x = motion.x
-    return Record(x.acceleration_samples, x.dt, pathlib.Path(path).stem, x.start_time, units="m/s2",
-                  check_peak=False)
+    return Record(x.acceleration_samples, x.dt, record_name(path), x.start_time, units="m/s2", check_peak=False)
 
 
 def planar_block(args):

@@ -7,7 +7,7 @@ import pathlib
 import sys
 import time
 
-from ._common import (UsageError, checked, clean, describe_record, number, positive, read, record_arguments,
+from ._common import (checked, clean, describe_record, number, positive, read, record_arguments,
                       record_fields, save_figure)
 from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY

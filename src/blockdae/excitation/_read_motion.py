@@ -4,7 +4,7 @@ import pathlib
 
 from ..core._units import STANDARD_GRAVITY
 from ._motion import BaseMotion
-from ._readers import read_record, read_samples
+from ._readers import read_record, read_samples, record_name
 from ._record import Record
 
 _AXES = ("x", "y", "z")
@@ -26,7 +26,8 @@ def read_motion(x, y=None, z=None, *, units=None, dt=None, g=STANDARD_GRAVITY, n
         x, y, z: file paths; y, z None: absent.
         units, dt, g, check_peak: as for :func:`read_record`; one unit for all columns
             of a table, whose peak check covers them all.
-        name: label of the components; the file stems by default.
+        name: label of the components; by default the files' names less their suffixes
+            (:func:`~blockdae.excitation._readers.record_name`).
 
     Records of different lengths are fine (a component is zero after its last
     sample); different sample steps raise ValueError (see :class:`BaseMotion`).
@@ -35,9 +36,9 @@ def read_motion(x, y=None, z=None, *, units=None, dt=None, g=STANDARD_GRAVITY, n
     if y is None and z is None:
         path = pathlib.Path(x)
         samples, step, start_time = read_samples(path, columns=_COMPONENTS, **options)
-        label = path.stem if name is None else name
-        return BaseMotion(*(Record(a, step, f"{label} {axis}", start_time, units="m/s2",
-                                                check_peak=False) for a, axis in zip(samples.T, _AXES)))
+        label = record_name(path) if name is None else name
+        return BaseMotion(*(Record(a, step, f"{label} {axis}", start_time, units="m/s2", check_peak=False)
+                            for a, axis in zip(samples.T, _AXES)))
     labels = (None,) * 3 if name is None else tuple(f"{name} {axis}" for axis in _AXES)
     return BaseMotion(*(None if path is None else read_record(path, name=label, **options)
                         for path, label in zip((x, y, z), labels)))

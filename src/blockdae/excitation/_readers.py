@@ -1,8 +1,12 @@
-"""Readers for accelerogram files: two-column, one-column and PEER NGA .AT2 text."""
+"""Readers for accelerogram files: two-column, one-column and PEER NGA .AT2 text, each
+plain or gzip-compressed."""
 
+import gzip
+import io
 import pathlib
 import re
 import typing
+import zlib
 
 import numpy as np
 
@@ -19,6 +23,7 @@ _BRACKETED = re.compile(r"[(\[]\s*([^()\[\]]+?)\s*[)\]]")  # "(m/s2)", "[cm/s^2]
 _TIME_UNITS = {"s", "sec", "secs", "second", "seconds"}
 _UNITS_OF = re.compile(r"UNITS\s+OF\s+(.*?)[\s.]*$", re.IGNORECASE)
 _HEADER_LINES = 10  # where the NPTS/DT line of an AT2 file is looked for
+_GZIP_MAGIC = b"\x1f\x8b"  # the first bytes of a gzip file
 #: the table read_record reads: (most columns, their description for errors)
 ONE_COMPONENT = (2, "1 or 2 columns (time [s], acceleration)")
 
@@ -37,6 +42,9 @@ def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_
         either order, or the older ``5000  0.0050  NPTS, DT`` line); its
         ``... IN UNITS OF G`` (or ``CM/SEC/SEC``, ``M/SEC/SEC``, ``GAL``) line is read.
 
+    Any of them gzip-compressed (found by its first bytes; ``rec.AT2.gz`` is named
+    ``rec``). Text is UTF-8 (or ASCII), with or without a BOM, any line ends.
+
     Args:
         path: file path.
         units: units of the values: "g", "m/s2", "cm/s2" or "gal"; None: as the AT2
@@ -45,16 +53,32 @@ def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_
         dt: sample step [s]; required for one-column files only, checked against the
             file's step otherwise.
         g: the value of one "g" [m/s²].
-        name: record name; the file stem by default.
+        name: record name; by default the file's, less its suffix (:func:`record_name`).
         check_peak: raise if the peak acceleration is implausible (outside
             :data:`PLAUSIBLE_PEAK_G`), a sign of wrong units; False accepts any peak.
 
-    Errors are ValueErrors naming the file and, where there is one, its 1-based line.
+    Errors are ValueErrors naming the file and, where there is one, its 1-based line
+    (also for a binary file, a damaged gzip file or text that is not UTF-8).
     """
     path = pathlib.Path(path)
     samples, dt, start_time = read_samples(path, units, dt, g, check_peak, ONE_COMPONENT)
-    return Record(samples[:, 0], dt, path.stem if name is None else name, start_time, units="m/s2",
+    return Record(samples[:, 0], dt, record_name(path) if name is None else name, start_time, units="m/s2",
                   check_peak=False)  # read_samples checked the peak in the file's units
+
+
+def record_name(path) -> str:
+    """A record's default name: its file's name less ``.gz`` and the format's suffix."""
+    return _uncompressed(pathlib.Path(path)).stem
+
+
+def record_suffix(path) -> str:
+    """The format's suffix of a record file, lower case, ``.gz`` left out (".at2" for rec.AT2.gz)."""
+    return _uncompressed(pathlib.Path(path)).suffix.lower()
+
+
+def _uncompressed(path):
+    """``path`` less a final ``.gz``."""
+    return path.with_suffix("") if path.suffix.lower() == ".gz" else path
 
 
 def read_samples(path, units, dt, g, check_peak, columns):
@@ -67,16 +91,17 @@ def read_samples(path, units, dt, g, check_peak, columns):
     path = pathlib.Path(path)
     if units is not None:
         canonical_units(units)  # an unknown name fails before the file is read
-    layout = _scan(path)
+    text = _text(path)
+    layout = _scan(text, path)
     if layout.at2 is not None:
-        lines = _lines(path)
+        lines = text.split("\n")
         samples, file_dt, start_time = _read_at2(lines, layout.at2, path)
         samples = samples[:, None]
         header_units, statement = _at2_units(lines[:layout.at2[0]], path)
         units = _resolve_units(units, header_units, statement, path)
     else:
-        samples, file_dt, start_time = _read_columns(path, layout, columns)
-        header_units, statement = _table_units(_lines(path)[:layout.start], path)
+        samples, file_dt, start_time = _read_columns(text, layout, path, columns)
+        header_units, statement = _table_units(text.split("\n")[:layout.start], path)
         units = _resolve_units(units, header_units, statement, path)
     dt = _sample_step(dt, file_dt, path)
     if check_peak:
@@ -92,28 +117,51 @@ class _Layout(typing.NamedTuple):
     decimal_comma: bool = False
 
 
-def _scan(path):
-    """The :class:`_Layout` of ``path``, read up to the AT2 header line or the first data line."""
-    with open(path, encoding="utf-8-sig") as file:
-        for i, line in enumerate(file):
-            header = _at2_header(line, i, path) if i < _HEADER_LINES else None
-            if header is not None:
-                return _Layout(header)
-            text = line.split("#", 1)[0].strip()
-            if not text or _numbers(text, False) is None:
-                continue  # blank, or a header line of column names
-            if path.suffix.lower() == ".at2":
-                break
-            delimiter = ";" if ";" in text else "," if "," in text else None
-            return _Layout(None, i, delimiter, _decimal_comma(text, i, path))
-    if path.suffix.lower() == ".at2":
+def _text(path):
+    """The text of the file at ``path``, gunzipped if it is gzip-compressed, every line
+    end ``\\n``; ValueError naming the file for a binary file or text that is not UTF-8."""
+    data = path.read_bytes()
+    if data.startswith(_GZIP_MAGIC):
+        data = _gunzip(data, path)
+    nul = data.find(b"\0")
+    if nul >= 0:
+        raise ValueError(f"{path}: a binary file (a NUL byte at offset {nul}), not a record: "
+                         "records are text (two columns, one column or PEER AT2), plain or gzip-compressed")
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as err:
+        line = data[:err.start].count(b"\n") + 1
+        raise ValueError(f"{path}, line {line}: byte 0x{data[err.start]:02x} is not UTF-8 text (a binary file, "
+                         "or text in another encoding: save it as UTF-8)") from None
+    return text.replace("\r\n", "\n").replace("\r", "\n")
+
+
+def _gunzip(data, path):
+    """The bytes of the gzip-compressed ``data`` of the file at ``path``."""
+    try:
+        return gzip.decompress(data)
+    except (OSError, EOFError, zlib.error) as err:
+        raise ValueError(f"{path}: a damaged gzip file ({err})") from None
+
+
+def _scan(text, path):
+    """The :class:`_Layout` of the file at ``path`` (its ``text``), read up to the AT2
+    header line or the first data line."""
+    at2 = record_suffix(path) == ".at2"
+    for i, line in enumerate(io.StringIO(text)):
+        header = _at2_header(line, i, path) if i < _HEADER_LINES else None
+        if header is not None:
+            return _Layout(header)
+        text = line.split("#", 1)[0].strip()
+        if not text or _numbers(text, False) is None:
+            continue  # blank, or a header line of column names
+        if at2:
+            break
+        delimiter = ";" if ";" in text else "," if "," in text else None
+        return _Layout(None, i, delimiter, _decimal_comma(text, i, path))
+    if at2:
         raise ValueError(f"{path}: no 'NPTS=..., DT=...' line in the first {_HEADER_LINES} lines (AT2 header)")
     raise ValueError(f"{path}: no data rows")
-
-
-def _lines(path):
-    """The file's lines, split as ``open`` and ``np.loadtxt`` split them."""
-    return path.read_text(encoding="utf-8-sig").split("\n")
 
 
 def _sample_step(dt, file_dt, path):
@@ -228,18 +276,19 @@ def _table_units(header_lines, path):
     return next(iter(found.items()), (None, None))
 
 
-def _read_columns(path, layout, columns):
+def _read_columns(text, layout, path, columns):
     """(samples, shape (n, k), step [s] or None for one column, start time [s]) of a table of one
-    column of accelerations or a time column [s] and k accelerations; ``columns`` as for read_samples."""
-    source = path
+    column of accelerations or a time column [s] and k accelerations (the file at ``path``, its
+    ``text``); ``columns`` as for read_samples."""
+    source = io.StringIO(text)
     if layout.decimal_comma:
-        source = "\n".join(_lines(path)[layout.start:]).replace(",", ".").split("\n")
+        source = "\n".join(text.split("\n")[layout.start:]).replace(",", ".").split("\n")
     try:
-        rows = np.loadtxt(source, delimiter=layout.delimiter, comments="#", ndmin=2, encoding="utf-8-sig",
+        rows = np.loadtxt(source, delimiter=layout.delimiter, comments="#", ndmin=2,
                           skiprows=0 if layout.decimal_comma else layout.start)
     except ValueError:  # the line-by-line parser locates the error, or reads what loadtxt cannot
-        rows = _parse_rows(_lines(path), layout, path)
-    return _check_rows(rows, layout.start, path, columns)
+        rows = _parse_rows(text.split("\n"), layout, path)
+    return _check_rows(rows, text, layout.start, path, columns)
 
 
 def _decimal_comma(text, index, path):
@@ -290,15 +339,16 @@ def _data_line_numbers(lines, start):
     return [n for n, line in enumerate(lines[start:], start=start + 1) if line.split("#", 1)[0].strip()]
 
 
-def _check_rows(rows, start, path, columns):
-    """(samples, step [s] or None, start time [s]) of the checked rows of the table at line index ``start``."""
+def _check_rows(rows, text, start, path, columns):
+    """(samples, step [s] or None, start time [s]) of the checked rows of the table at line index
+    ``start`` of the file's ``text``."""
     def line_of(k):  # file line of data row k, counted only for an error
-        return _data_line_numbers(_lines(path), start)[k]
+        return _data_line_numbers(text.split("\n"), start)[k]
 
     most, described = columns
     if rows.shape[1] > most:
-        raise ValueError(f"{path}, line {start + 1}: expected {described}, "
-                         f"found {rows.shape[1]}{_comma_hint(_lines(path)[start])}")
+        hint = _comma_hint(text.split("\n")[start])
+        raise ValueError(f"{path}, line {start + 1}: expected {described}, found {rows.shape[1]}{hint}")
     if not np.isfinite(rows).all():
         bad = np.flatnonzero(~np.all(np.isfinite(rows), axis=1))
         row = rows[bad[0]]

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..cli._common import UsageError, number, positive, read
 from ..core._units import STANDARD_GRAVITY
+from ..excitation._readers import record_suffix
 from ..structures import ShearFrame
 from ._io import save_study
 from ._study import NoWorkerError, study, summary
@@ -41,7 +42,8 @@ def _seconds_or_none(text):
 def add_study_parser(subparsers):
     """The ``study`` sub-command on an argparse ``subparsers`` object."""
     p = subparsers.add_parser("study", help="every record of a folder × mu × PGA × ground and floors (seed 002)")
-    p.add_argument("folder", type=pathlib.Path, help=f"folder of records ({', '.join(_SUFFIXES)})")
+    p.add_argument("folder", type=pathlib.Path,
+                   help=f"folder of records ({', '.join(_SUFFIXES)}, each also gzip-compressed: .gz)")
     p.add_argument("--mu", type=positive("--mu"), nargs="+", required=True, help="friction coefficients [-]")
     size = p.add_mutually_exclusive_group(required=True)
     size.add_argument("--pga", type=_grid, nargs="+", help="target peak accelerations [g]: values or START:STOP:N")
@@ -60,6 +62,9 @@ def add_study_parser(subparsers):
                    help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")
     p.add_argument("--out", type=pathlib.Path, required=True, help="results table (.csv or .parquet)")
     p.add_argument("--summary", type=pathlib.Path, default=None, help="also the seed's summaries (.csv)")
+    p.add_argument("--checkpoint", type=pathlib.Path, default=None, metavar="FOLDER",
+                   help="save each finished task in FOLDER (new, empty, or this study's checkpoint): a rerun "
+                        "with the same arguments runs only the tasks not saved yet")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="a Dask scheduler (e.g. tcp://host:8786) to run the tasks on")
     p.add_argument("--no-worker-timeout", type=_seconds_or_none, default=60.0, metavar="SECONDS",
@@ -79,7 +84,7 @@ def run_study(args) -> int:
     start = time.perf_counter()
     try:
         table = study(records, mu=args.mu, where=where, direction=args.direction, executor=client, g=args.g,
-                      no_worker_timeout=args.no_worker_timeout, **grid)
+                      no_worker_timeout=args.no_worker_timeout, checkpoint=args.checkpoint, **grid)
     except (ValueError, TypeError) as err:
         raise UsageError(str(err)) from None
     except NoWorkerError as err:
@@ -101,7 +106,7 @@ def run_study(args) -> int:
 def _records(args):
     if not args.folder.is_dir():
         raise UsageError(f"{args.folder}: not a folder")
-    paths = sorted(p for p in args.folder.iterdir() if p.suffix.lower() in _SUFFIXES)
+    paths = sorted(p for p in args.folder.iterdir() if record_suffix(p) in _SUFFIXES)
     if not paths:
         raise UsageError(f"{args.folder}: no record files ({', '.join(_SUFFIXES)})")
     return [read(path, args) for path in paths]

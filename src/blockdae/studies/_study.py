@@ -7,7 +7,9 @@ records once (one frame response per record and frame), normalises each motion t
 peak of 1 g (``pga``) and runs every (motion, μ, intensity) in one call of the compiled
 engine, the intensity being the engine's factor on a(t) (no scaled copy of any motion).
 Memory is O(records of a task × samples), never O(analyses × samples); tasks run one
-after the other here (the engine uses every core) or on an executor (Dask).
+after the other here (the engine uses every core) or on an executor (Dask). With a
+checkpoint folder each finished task is saved as it completes and a rerun skips the
+saved ones (:mod:`._checkpoint`).
 """
 
 import concurrent.futures
@@ -29,6 +31,7 @@ from ..excitation import Record
 from ..sliding._model import SlidingBlock
 from ..motions import response_spectrum
 from ..structures import Floor
+from ._checkpoint import Checkpoint
 
 #: analyses per task aimed at (Dask: each task costs 0.2-1 ms of overhead; aim at 10³-10⁴)
 TASK_ANALYSES = 2000
@@ -59,8 +62,8 @@ class _Grid:
 
 
 def study(records, mu, pga=None, scale=None, where=("ground",), direction="negative", *, executor=None,
-          no_worker_timeout=60.0, progress=None, refine=4, sd_period=10.0, damping=0.05, t_end=None,
-          g=STANDARD_GRAVITY):
+          no_worker_timeout=60.0, checkpoint=None, progress=None, refine=4, sd_period=10.0, damping=0.05,
+          t_end=None, g=STANDARD_GRAVITY):
     """Slide a block under every record, μ, intensity and location: one tidy table.
 
     Args:
@@ -80,6 +83,14 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
             :class:`NoWorkerError` (how many tasks finished). None: wait for workers forever.
             Not used by a ``concurrent.futures`` executor (a broken process pool raises
             ``BrokenProcessPool`` by itself) nor by the local run.
+        checkpoint: a folder (new or empty, or the checkpoint of this same study): each
+            finished task is saved there as it completes (a CSV table, atomically, here
+            in the calling process also when the tasks run on an executor), and a rerun
+            with the same arguments runs only the tasks not saved yet; its table is
+            bit-identical to an uninterrupted run's. The folder's ``manifest.json``
+            holds the grid, the settings and the records' names and SHA-256 of their
+            samples: another study is refused (ValueError naming the folder and what
+            differs). None: nothing is saved.
         progress: a tqdm bar over the tasks; None: only when stderr is a terminal
             (and tqdm is installed).
         refine: floor motions sampled at dt/refine [s] (:meth:`bd.ShearFrame.floor_motions`).
@@ -105,25 +116,36 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
 
     Every check runs before any work (:class:`ValueError`): no records, a record that
     is not a finite :class:`bd.Record`, μ or an intensity <= 0, ``no_worker_timeout`` not
-    a positive finite number [s] or None, a result table larger than the free memory.
+    a positive finite number [s] or None, a result table larger than the free memory,
+    a checkpoint of another study. A task that raises on an executor lets the others
+    finish (and be saved) before its error is raised.
     Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu, direction=direction),
     motion.scaled(scale))`` of the location's motion to rounding.
     """
     records, grid = _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g)
     no_worker_timeout = _timeout(no_worker_timeout)
     tasks = _tasks(records, len(grid.where) * grid.mu.size * grid.factors.size)
+    store = None if checkpoint is None else Checkpoint.open(checkpoint, records, grid, tasks)
+    parts = {} if store is None else store.finished()
     bar = _progress_bar(progress, len(tasks))
+    bar.update(len(parts))
+
+    def finish(index, part):
+        if store is not None:
+            store.save(index, part)
+        parts[index] = part
+        bar.update()
+
+    todo = {i: chunk for i, chunk in enumerate(tasks) if i not in parts}
     try:
         if executor is None:
-            parts = []
-            for chunk in tasks:
-                parts.append(run_task(chunk, grid))
-                bar.update()
+            for i, chunk in todo.items():
+                finish(i, run_task(chunk, grid))
         else:
-            parts = _on_executor(executor, tasks, grid, bar, no_worker_timeout)
+            _on_executor(executor, todo, grid, finish, no_worker_timeout)
     finally:
         bar.close()
-    return _table(parts, grid)
+    return _table([parts[i] for i in range(len(tasks))], grid)
 
 
 def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
@@ -269,23 +291,34 @@ def _tasks(records, analyses_per_record):
     return [records[i:i + size] for i in range(0, len(records), size)]
 
 
-def _on_executor(executor, tasks, grid, bar, no_worker_timeout):
-    """Submit the tasks; their results in task order (Dask: see :func:`_wait_on_dask`)."""
-    futures = [executor.submit(run_task, chunk, grid) for chunk in tasks]
+def _on_executor(executor, tasks, grid, finish, no_worker_timeout):
+    """Submit the tasks (index -> records) and call ``finish(index, columns)`` for each as
+    it succeeds (Dask: see :func:`_wait_on_dask`); then raise the error of the first
+    failed task, in task order, if any."""
+    futures = {executor.submit(run_task, chunk, grid): i for i, chunk in tasks.items()}
+
+    def done(future, timeout=None):  # TimeoutError: no result within timeout [s]
+        if future.exception(timeout) is None:
+            finish(futures[future], future.result(timeout))
+
     if hasattr(executor, "gather"):  # dask.distributed.Client
-        _wait_on_dask(executor, futures, bar, no_worker_timeout)
+        _wait_on_dask(executor, list(futures), done, no_worker_timeout)
     else:
-        for _ in concurrent.futures.as_completed(futures):
-            bar.update()
-    return [f.result() for f in futures]
+        for future in concurrent.futures.as_completed(futures):
+            done(future)
+    for future in futures:
+        future.result()
 
 
-def _wait_on_dask(client, futures, bar, no_worker_timeout):
-    """Wait until every future is done, counting them on ``bar``.
+def _wait_on_dask(client, futures, done, no_worker_timeout):
+    """Wait until every future is done, calling ``done(future, timeout)`` on each as it
+    finishes (it fetches the result, within ``timeout`` [s] or TimeoutError).
 
     Blocks on a queue fed by the futures' callbacks for at most :data:`WORKER_POLL` [s]
-    (a quarter of ``no_worker_timeout`` [s] if shorter) at a time; only when no task
-    finished in that time is the scheduler asked for its workers. None alive for
+    (a quarter of ``no_worker_timeout`` [s] if shorter) at a time, and as long on the
+    result of a finished task (whose worker may have died since: then the scheduler
+    computes it again and the future is waited for again); only when no result came in
+    that time is the scheduler asked for its workers. None alive for
     ``no_worker_timeout`` [s]: the unfinished futures are cancelled and
     :class:`NoWorkerError` is raised.
     """
@@ -293,18 +326,23 @@ def _wait_on_dask(client, futures, bar, no_worker_timeout):
     for future in futures:
         future.add_done_callback(finished.put)
     poll = None if no_worker_timeout is None else min(WORKER_POLL, no_worker_timeout / 4)
-    n_done, lost_since = 0, None
-    while n_done < len(futures):
+    pending, lost_since = set(futures), None
+    while pending:
         try:
-            finished.get(timeout=poll)
-        except queue.Empty:
-            lost_since = None if client.nthreads() else (lost_since or time.monotonic())
-            if lost_since is not None and time.monotonic() - lost_since >= no_worker_timeout:
-                client.cancel([f for f in futures if not f.done()])
-                raise _no_worker_error(n_done, len(futures), time.monotonic() - lost_since, no_worker_timeout)
+            future = finished.get(timeout=poll)
+            done(future, poll)
+            pending.discard(future)
+            lost_since = None
             continue
-        n_done, lost_since = n_done + 1, None
-        bar.update()
+        except queue.Empty:
+            pass
+        except TimeoutError:  # its result went with its worker
+            future.add_done_callback(finished.put)
+        lost_since = None if client.nthreads() else (lost_since or time.monotonic())
+        if lost_since is not None and time.monotonic() - lost_since >= no_worker_timeout:
+            client.cancel(list(pending))
+            raise _no_worker_error(len(futures) - len(pending), len(futures), time.monotonic() - lost_since,
+                                   no_worker_timeout)
 
 
 def _no_worker_error(n_done, n_tasks, lost_s, no_worker_timeout):
