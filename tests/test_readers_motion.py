@@ -33,7 +33,11 @@ def test_four_column_table(tmp_path):
                                     "xyz"):
         np.testing.assert_array_equal(record.acceleration_samples, np.array(column) * G)
         assert (record.dt, record.start_time, record.name) == (0.01, 2.0, f"m {axis}")
-    cm = bd.read_motion(path, units="cm/s2", name="quake", check_peak=False)
+    with pytest.raises(ValueError, match=r"units='cm/s2' \(cm/s²\) contradicts the header, line 1"):
+        bd.read_motion(path, units="cm/s2")  # the header's units are honoured or the call refused (issue 23)
+    bare = write(tmp_path, "bare.csv", "time, a_x, a_y, a_z\n2.00, 0.1, -0.2, 0.05\n2.01, 0.3, 0.0, -0.05\n"
+                                       "2.02, 0.0, 0.1, 0.0\n")
+    cm = bd.read_motion(bare, units="cm/s2", name="quake", check_peak=False)
     assert cm.peak_acceleration == pytest.approx((0.003, 0.002, 0.0005), rel=1e-15)
     assert cm.y.name == "quake y"
     with pytest.raises(ValueError, match=r"dt=0.02 s contradicts the file's step 0.01 s"):
