@@ -50,7 +50,12 @@ def test_read_two_column_csv_with_bom_and_comments(tmp_path):
     rec = bd.read_record(path)
     assert rec.dt == pytest.approx(0.01) and rec.name == "rec"
     np.testing.assert_allclose(rec.acceleration_samples, np.array([0.1, -0.2, 0.05]) * STANDARD_GRAVITY)
-    rec_cm = bd.read_record(path, units="cm/s2")
+    with pytest.raises(ValueError, match=r"units='cm/s2' \(cm/s²\) contradicts the header, line 2"):
+        bd.read_record(path, units="cm/s2")  # the header's (g) is honoured or the call refused (issue 23)
+    bare = tmp_path / "bare.csv"
+    bare.write_text("\ufeff# a comment\nTime,Acceleration\n0.0,0.1\n0.01,-0.2 # inline\n0.02,0.05\n",
+                    encoding="utf-8")
+    rec_cm = bd.read_record(bare, units="cm/s2")
     np.testing.assert_allclose(rec_cm.acceleration_samples, [0.001, -0.002, 0.0005])
 
 
