@@ -384,3 +384,24 @@ def test_bad_planar_input_names_the_file_line_or_argument(tmp_path, capsys, extr
     err = capsys.readouterr().err
     assert err.startswith("blockdae: error: ")
     assert re.search(message.format(**{k: re.escape(str(v)) for k, v in files.items()}), err), err
+
+
+def test_resample_runs_components_of_mixed_steps(tmp_path, capsys):
+    """Issue 23 item 4: x at 0.01 s and y at 0.02 s fail with a pointer to --resample; with
+    --resample 0.01 they run, and give the same answer as y written at 0.01 s (0.01 divides
+    0.02, so resampling y changes no a(t)); y at 0.01 s is C_y linear between the 0.02 s samples."""
+    _, x, _ = _elms_files(tmp_path, ratio=0.8)
+    t = np.arange(0.0, 2.0 + 0.01, 0.02)
+    coarse, fine = tmp_path / "y_coarse.csv", tmp_path / "y_fine.csv"
+    np.savetxt(coarse, np.c_[t, 0.8 * np.sin(np.pi * t)], delimiter=",", fmt="%.17g")
+    t_fine = np.arange(0.0, 2.0 + 0.005, 0.01)
+    np.savetxt(fine, np.c_[t_fine, np.interp(t_fine, t, 0.8 * np.sin(np.pi * t))], delimiter=",", fmt="%.17g")
+    assert main(["--no-cache", "run", str(x), "--y", str(coarse), *ELMS]) == 2
+    assert "--resample DT on the command line" in capsys.readouterr().err
+    resampled = _planar_json([str(x), "--y", str(coarse), *ELMS, "--resample", "0.01"], capsys)
+    direct = _planar_json([str(x), "--y", str(fine), *ELMS], capsys)
+    assert resampled["components"]["y"]["dt_s"] == 0.01
+    np.testing.assert_allclose(resampled["displacement_m"], direct["displacement_m"], rtol=1e-12, atol=1e-15)
+    assert resampled["displacement_m"][1] < -0.05
+    assert main(["--no-cache", "run", str(x), "--y", str(coarse), *ELMS, "--resample", "0"]) == 2
+    assert "argument --resample" in capsys.readouterr().err

@@ -15,7 +15,7 @@ from .core._units import STANDARD_GRAVITY
 from .engines._linear_solution import simulate_linear_final
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RectangularPulse, SinePulse,
                          TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
-                         read_record)
+                         read_record, resample)
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
                       cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
                       relative_motion, response_spectrum)
@@ -36,7 +36,7 @@ __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "check_peak_acceleration", "read_motion", "read_record", "simulate", "InconsistentStateError", "SolverError",
-    "UnitsWarning", "pga_factor",
+    "UnitsWarning", "pga_factor", "resample",
     "AbstractEvent", "AbstractSolution", "DriverSolution", "HybridEvent",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",
     "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",

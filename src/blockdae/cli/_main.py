@@ -83,6 +83,9 @@ def _parser():
     run.add_argument("--bias-y", type=finite("--bias-y"), default=0.0,
                      help="on a plane: constant force / weight in +y [-] (--bias is the one in +x)")
     record_arguments(run)
+    run.add_argument("--resample", type=positive("--resample"), default=None, metavar="DT",
+                     help="resample every component to the step DT [s] first (linear a(t), exact at the "
+                          "new samples; see blockdae.resample): files of mixed steps make one motion")
     run.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure")
     run.add_argument("--json", action="store_true", help="print the results as JSON")
     run.add_argument("--events", choices=("summary", "all", "none"), default="summary",

@@ -16,7 +16,8 @@ PLANAR_BACKEND = "ida"
 
 def read_motion_argument(args):
     """The base motion of ``run``'s files: ``args.record`` (x, or a table of 2-3
-    components) with ``--y``, ``--z``; errors name the file (and line)."""
+    components) with ``--y``, ``--z``, resampled to ``--resample`` [s] if given;
+    errors name the file (and line)."""
     paths = {"record": args.record, "--y": args.y, "--z": args.z}
     for flag, path in paths.items():
         if path is not None and not path.is_file():
@@ -24,7 +25,7 @@ def read_motion_argument(args):
     units = {} if args.units is None else {"units": args.units}
     try:
         return read_motion(args.record, args.y, args.z, dt=args.dt, g=args.g, check_peak=not args.accept_peak,
-                           **units)
+                           resample_dt=args.resample, **units)
     except (ValueError, OSError) as err:
         message, named = str(err), [(path, axis) for path, axis in zip(paths.values(), "xyz") if path]
         if any(str(path) in message for path, _ in named):  # a reader's error names its file (and line)
