@@ -9,6 +9,18 @@ import numpy as np
 
 import blockdae as bd
 
+#: what a --quick run says where a full run judges a bar: too few cases, too short to judge
+SMOKE_RUN = "smoke run, not a measurement"
+
+
+def verdict(ok: bool, quick: bool, failed: str = "NOT met") -> str:
+    """"met" or ``failed`` for a bar in a full run; in a --quick run :data:`SMOKE_RUN`,
+    since its few short cases measure nothing a bar is about."""
+    if quick:
+        return SMOKE_RUN
+    return "met" if ok else failed
+
+
 #: pySLAMMER's gravity, also the value of the unit "g" in its sample records [m/s²]
 G = 9.80665
 

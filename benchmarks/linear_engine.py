@@ -23,7 +23,7 @@ import time
 import numpy as np
 
 import blockdae as bd
-from _common import G, print_table, sample_records, timed
+from _common import G, print_table, sample_records, timed, verdict
 from upthrow import cases, differences
 
 BAR_DT, BAR_RATIO, BAR_BATCH, BAR_FIRST = 1e-12, 500.0, 10.0, 3.0  # [s], [-], [s], [s]
@@ -48,9 +48,8 @@ def per_case(quick, repeat):
     print_table(("case", "events", "max |dt| vs Python [s]", "compiled [ms]", "Python [s]", "CVODE [s]",
                  "CVODE / compiled"), rows)
     median = statistics.median(ratios)
-    print(f"worst event-time difference {worst:.1e} s (bar {BAR_DT:g} s): {'met' if worst <= BAR_DT else 'NOT met'}")
-    verdict = "met" if median >= BAR_RATIO else "NOT met"
-    print(f"median CVODE / compiled {median:.0f}x (bar {BAR_RATIO:.0f}x): {verdict}")
+    print(f"worst event-time difference {worst:.1e} s (bar {BAR_DT:g} s): {verdict(worst <= BAR_DT, quick)}")
+    print(f"median CVODE / compiled {median:.0f}x (bar {BAR_RATIO:.0f}x): {verdict(median >= BAR_RATIO, quick)}")
 
 
 def batch(quick):
@@ -65,10 +64,10 @@ def batch(quick):
     wall = time.perf_counter() - start
     print(f"final numbers: {len(table)} analyses ({len(records)} records x {len(models)} masses x "
           f"{len(scales)} scales, first 15 s) in {wall:.2f} s "
-          f"(bar: 1e5 under {BAR_BATCH:g} s{'' if quick else (': met' if wall <= BAR_BATCH else ': NOT met')})")
+          f"(bar: 1e5 under {BAR_BATCH:g} s: {verdict(wall <= BAR_BATCH, quick)})")
 
 
-def first_calls():
+def first_calls(quick):
     """The first call in a fresh process [s]: numba's cache cold, then warm."""
     times = []
     with tempfile.TemporaryDirectory() as cache:
@@ -78,7 +77,7 @@ def first_calls():
                                  check=True).stdout
             times.append(float(out.split()[-1]))
     print(f"first call in a fresh process: {times[0]:.2f} s with numba's cache cold, {times[1]:.2f} s warm "
-          f"(bar {BAR_FIRST:g} s warm: {'met' if times[1] <= BAR_FIRST else 'NOT met'})")
+          f"(bar {BAR_FIRST:g} s warm: {verdict(times[1] <= BAR_FIRST, quick)})")
 
 
 def main(argv=None):
@@ -90,7 +89,7 @@ def main(argv=None):
         print("smoke run (--quick): not a measurement")
     per_case(args.quick, args.repeat)
     batch(args.quick)
-    first_calls()
+    first_calls(args.quick)
 
 
 if __name__ == "__main__":

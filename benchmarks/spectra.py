@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 import blockdae as bd
-from _common import print_table, sample_records, timed
+from _common import print_table, sample_records, timed, verdict
 
 BAR_SPEEDUP = 10.0  # vs eqsig at its accurate setting (dt/4), single thread
 BANDS = ((0.01, 0.1), (0.1, 1.0), (1.0, 10.0))
@@ -88,7 +88,7 @@ def main(argv=None):
     # how far the located maxima are above the sampled ones
     speedup = results["eqsig (dt/4)"][1] / warm
     print(f"speed-up over eqsig (dt/4): {speedup:.1f}x (bar {BAR_SPEEDUP:g}x): "
-          f"{'met' if speedup >= BAR_SPEEDUP else 'NOT met'}; over eqsig (sample grid): "
+          f"{verdict(speedup >= BAR_SPEEDUP, args.quick)}; over eqsig (sample grid): "
           f"{results['eqsig (sample grid)'][1] / warm:.1f}x; over pyrotd: {results['pyrotd'][1] / warm:.1f}x "
           f"(blockdae on {numba.get_num_threads()} thread(s), the others single-threaded)")
 

@@ -17,7 +17,7 @@ import argparse
 import numpy as np
 
 import blockdae as bd
-from _common import G, print_table, sample_records, timed
+from _common import G, print_table, sample_records, timed, verdict
 
 BACKENDS = ("cvode", "ida", "jax")
 RTOL = 1e-10
@@ -86,7 +86,7 @@ def main(argv=None):
         speed = max(r[1] for r in results)
         over = [r[2] for r in results if r[0] > BAR_DT or r[1] > BAR_SPEED]
         print(f"{name}: worst event time {dt:.1e} s ({label}), worst speed {speed:.1e}; bar {BAR_DT:g} s and "
-              f"{BAR_SPEED:g}: " + ("met" if not over else f"NOT met in {len(over)} of {len(results)} cases"))
+              f"{BAR_SPEED:g}: " + verdict(not over, args.quick, f"NOT met in {len(over)} of {len(results)} cases"))
     return 0
 
 

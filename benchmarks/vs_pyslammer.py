@@ -26,7 +26,7 @@ import numpy as np
 import pyslammer
 
 import blockdae as bd
-from _common import G, print_table, sample_records, timed
+from _common import G, print_table, sample_records, timed, verdict
 
 #: bar name -> (bound, whether the value must be at least (True) or at most the bound)
 BARS = {
@@ -191,9 +191,8 @@ def _report_bars(measured, args):
     for name, (bound, at_least) in BARS.items():
         value = measured[name]
         ok = value >= bound if at_least else value <= bound
-        note = " (--quick: fewer analyses)" if args.quick and name.startswith("10^6") else ""
         print(f"  {name:<42} {value:10.2f}  bar {'>=' if at_least else '<='} {bound:g}: "
-              f"{'met' if ok else 'NOT met'}{note}")
+              f"{verdict(ok, args.quick)}")
 
 
 if __name__ == "__main__":

@@ -21,6 +21,7 @@ def test_vs_pyslammer_quick(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "pySLAMMER [ms]" in out and "first call [s]" in out
     assert out.count("bar ") == 6  # every bar reported, met or not
+    assert out.count("smoke run, not a measurement") == 6 and "NOT met" not in out and ": met" not in out
     table = out.split("\n\n")[1].splitlines()
     assert len(table) == 3  # header + the 2 shortest records
 
@@ -83,5 +84,13 @@ def test_upthrow_quick(monkeypatch, capsys):
     assert _load("upthrow", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "ida max|dt| [s]" in out and "Kobe_1995_TAK-090, 5 Hz 5 %" in out
-    assert out.count("bar 1e-09 s and 1e-07") == 3  # every backend reported, met or not
+    assert out.count("bar 1e-09 s and 1e-07: smoke run, not a measurement") == 3  # every backend, no verdict
+    assert "NOT met" not in out and ": met" not in out
     assert "cvode: worst event time" in out and "jax: worst event time" in out
+
+
+def test_bars_are_judged_in_full_runs_only(monkeypatch):
+    """Issue 23 item 7: --quick runs say they measure nothing instead of "NOT met"."""
+    verdict = _load("_common", monkeypatch).verdict
+    assert (verdict(True, False), verdict(False, False), verdict(False, False, "FAIL")) == ("met", "NOT met", "FAIL")
+    assert verdict(False, True) == verdict(True, True) == "smoke run, not a measurement"
