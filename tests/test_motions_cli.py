@@ -29,7 +29,14 @@ def test_two_point_table_and_plot(kobe_path, tmp_path, capsys):
     assert main(["two-point", str(kobe_path), "--lags", "0.05", "0.5", "--pga", "0.1", "--plot", str(png)]) == 0
     assert png.stat().st_size > 1000
     text = capsys.readouterr().out
-    assert "v_m τ" in text and len(text.splitlines()) == 4
+    assert "v_m τ" in text and len(text.splitlines()) == 4 + 4  # title, header, 2 lags, 4 legend lines
+    for column in ("τ [s]", "R [m]", "t_R [s]", "v_m τ [m]", "eq.1 − [m]", "eq.1 + [m]", "2 Fourier [m]",
+                   "2 Sd(2τ) [m]", "envelope [m]"):  # issue 23 item 5: every column says its unit
+        assert column in text.splitlines()[1], column
+    legend = " ".join(text.splitlines()[4:])
+    for words in ("eq.1 −, eq.1 +: Newmark's formula v_m τ − a_m τ²/2", "envelope: min(v_m τ, d_m)",
+                  "'for most earthquakes'", "R: largest |d(t) − d(t − τ)|"):
+        assert words in legend, words
 
 
 @pytest.mark.parametrize("argv, message", [

@@ -123,6 +123,30 @@ def _index(spec, j):
     return type(spec)(**fields)
 
 
+#: what each column of the two-point table holds (seed 003's words), printed under it
+TWO_POINT_LEGEND = (
+    "τ = b/c: time the wave takes from one point to the other; R: largest |d(t) − d(t − τ)|, computed "
+    "directly (at t_R);",
+    "v_m τ: first term of Newmark's formula, the bound |R| <= v_m b/c (eq. 2); eq.1 −, eq.1 +: Newmark's "
+    "formula v_m τ − a_m τ²/2 and v_m τ + a_m τ²/2 (eq. 1, Table I);",
+    "2 Fourier, 2 Sd(2τ): twice the Fourier amplitude of d and twice the spectral displacement at "
+    "T = 2τ (method d);",
+    "envelope: min(v_m τ, d_m), eqs. 2-3 (|R| <= d_m holds 'for most earthquakes', not always: R may "
+    "exceed it).",
+)
+
+
+def _print_two_point_table(rows):
+    """The two-point table: every column with its unit, then :data:`TWO_POINT_LEGEND`."""
+    estimates = ("velocity_bound_m", "eq1_minus_m", "eq1_plus_m", "fourier_m", "spectral_m", "envelope_m")
+    print(f"{'τ [s]':>8} {'R [m]':>10} {'t_R [s]':>8} {'v_m τ [m]':>10} {'eq.1 − [m]':>10} {'eq.1 + [m]':>10} "
+          f"{'2 Fourier [m]':>13} {'2 Sd(2τ) [m]':>12} {'envelope [m]':>12}")
+    for r in rows:
+        cells = [f"{r[key]:{width}.4g}" for key, width in zip(estimates, (10, 10, 10, 13, 12, 12))]
+        print(f"{r['lag_s']:8.4g} {r['r_m']:10.4g} {r['t_r_s']:8.3f} " + " ".join(cells))
+    print("\n".join(TWO_POINT_LEGEND))
+
+
 def run_two_point(args):
     from ._two_point import relative_motion
 
@@ -141,12 +165,7 @@ def run_two_point(args):
     else:
         print(f"{rec.name}: a_m = {rm.pga:.4g} m/s², v_m = {rm.pgv:.4g} m/s, d_m = {rm.pgd:.4g} m "
               f"(d from {rm.d_min:.4g} to {rm.d_max:.4g} m), baseline {args.baseline}")
-        print(f"{'τ [s]':>8} {'R [m]':>10} {'t_R [s]':>8} {'v_m τ':>10} {'eq.1 −':>10} {'eq.1 +':>10} "
-              f"{'2 Fourier':>10} {'2 Sd(2τ)':>10} {'envelope':>10}")
-        for r in rows:
-            print(f"{r['lag_s']:8.4g} {r['r_m']:10.4g} {r['t_r_s']:8.3f} {r['velocity_bound_m']:10.4g} "
-                  f"{r['eq1_minus_m']:10.4g} {r['eq1_plus_m']:10.4g} {r['fourier_m']:10.4g} "
-                  f"{r['spectral_m']:10.4g} {r['envelope_m']:10.4g}")
+        _print_two_point_table(rows)
     if args.plot:
         from ._figures import plot_relative_motion
 
