@@ -273,3 +273,25 @@ def test_slide_directions_start_on_the_friction_circle_and_end_with_the_last_vel
     assert slides[1] == pytest.approx(math.degrees(math.atan2(v_y, v_x)), abs=1e-2)
     assert math.isnan(onset.direction)  # the velocity before an onset is zero: no direction
     assert "slide [deg]" in sol.event_table() and list(sol.to_dataframe().slide_deg) == pytest.approx(list(slides))
+
+
+def test_event_table_fills_the_direction_only_where_the_block_moves():
+    """Issue 23 item 5: a push then a falling base (the README's flight); the velocity is
+    zero at the onset and the stop (blank cells, no "nan") and points along -x when the
+    block lifts off and lands sliding (180 deg, the event's own atan2(v_y, v_x))."""
+    g = bd.STANDARD_GRAVITY
+    ax, az = np.zeros(41), np.zeros(41)
+    ax[1:6], az[7:25] = 0.6 * g, -0.8 * g
+    motion = bd.BaseMotion.from_samples(ax, az=az, dt=0.01)
+    block = bd.PlanarBlock(0.3, support=bd.SpringSupport(8.0, damping=0.05))
+    sol = bd.simulate(block, motion, t_end=0.4, backend="cvode", rtol=1e-10)
+    table = sol.event_table().splitlines()
+    assert "nan" not in sol.event_table() and len(table) == len(sol.events) + 1
+    start = table[0].index("direction [deg]")
+    cells = [line[start:start + len("direction [deg]")].strip() for line in table[1:]]
+    for event, cell in zip(sol.events, cells):
+        moving = event.v_x != 0.0 or event.v_y != 0.0
+        assert (cell != "") == moving, (event, cell)
+        if moving:
+            assert float(cell) == pytest.approx(math.degrees(math.atan2(event.v_y, event.v_x)), abs=5e-4)
+    assert cells[0] == "" and cells[-1] == "" and any(cells)  # onset and stop blank, the flight's filled

@@ -113,15 +113,17 @@ class PlanarSolution(DriverSolution):
 
     def event_table(self, events=None) -> str:
         """``events`` (default: all of them) as an aligned text table with units:
-        direction: of the relative velocity just before the event (nan at rest); slide:
-        of the slide it starts or ends (see :meth:`slide_directions`)."""
+        direction: of the relative velocity just before the event [deg], blank where the
+        block is at rest then (an onset, a stop); slide: of the slide it starts or ends
+        [deg] (see :meth:`slide_directions`), blank where none is defined."""
         chosen = self.events if events is None else events
         slides = dict(zip((e.t for e in self.events), self.slide_directions()))
         lines = [f"{'t [s]':>12}  {'from':>6}  {'to':<6}  {'u_x [m]':>12}  {'u_y [m]':>12}  "
                  f"{'direction [deg]':>15}  {'slide [deg]':>11}"]
         lines += [f"{e.t:12.6f}  {e.mode_before.name:>6}  {e.mode_after.name:<6}  {e.u_x:12.6f}  "
-                  f"{e.u_y:12.6f}  {e.direction:15.3f}  {slides.get(e.t, math.nan):11.3f}" for e in chosen]
-        return "\n".join(lines)
+                  f"{e.u_y:12.6f}  {_angle_cell(e.direction, 15)}  {_angle_cell(slides.get(e.t, math.nan), 11)}"
+                  for e in chosen]
+        return "\n".join(line.rstrip() for line in lines)
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
         """The path (u_x, u_y) [m], u_x and u_y [m] and |v| [m/s] against time, events
@@ -141,3 +143,9 @@ class PlanarSolution(DriverSolution):
         columns = ["t_s", "mode_before", "mode_after", "u_x_m", "u_y_m", "v_x_m_s", "v_y_m_s", "v_z_m_s",
                    "direction_deg", "slide_deg"]
         return pd.DataFrame(rows, columns=columns)
+
+
+def _angle_cell(degrees: float, width: int) -> str:
+    """An angle [deg] right-aligned in ``width`` characters with 3 decimals; blanks if
+    it is undefined (nan)."""
+    return " " * width if math.isnan(degrees) else f"{degrees:{width}.3f}"
