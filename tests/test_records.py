@@ -255,3 +255,12 @@ def test_resample_joins_records_of_mixed_steps_into_one_base_motion():
     np.testing.assert_array_equal(coarse.x.acceleration_samples, [0.0, 0.0, 0.0])
     with pytest.raises(TypeError, match=r"record must be a Record or a BaseMotion, got list"):
         bd.resample([0.0, 1.0], 0.01)
+
+
+def test_record_attributes_say_what_they_hold_and_in_which_unit():
+    """Issue 23 item 5: the samples by names with their units; acceleration(t) is a(t)."""
+    record = bd.Record([0.0, 0.25, -0.5], 0.02, "r", units="g")
+    assert record.acceleration_m_s2 is record.acceleration_samples
+    np.testing.assert_allclose(record.acceleration_g, [0.0, 0.25, -0.5], rtol=1e-15)
+    np.testing.assert_array_equal(record.sample_times, [0.0, 0.02, 0.04])
+    assert record.acceleration(0.01) == pytest.approx(0.125 * bd.STANDARD_GRAVITY, rel=1e-14)

@@ -17,7 +17,8 @@ class Record(AbstractExcitation):
 
     Args:
         acceleration: samples in ``units``, shape (n,), n >= 2; kept in m/s²
-            (``acceleration_samples``).
+            (``acceleration_samples``, also named ``acceleration_m_s2``; in g:
+            ``acceleration_g``; their times: ``sample_times`` [s]).
         dt: sample step [s].
         name: label used in tables and plots.
         start_time: time of the first sample on the file's own axis [s]; kept as a label.
@@ -69,6 +70,22 @@ class Record(AbstractExcitation):
     def times(self) -> np.ndarray:
         """Sample times from the first sample [s], shape (n,); add ``start_time`` for the file's axis."""
         return self.dt * np.arange(self.acceleration_samples.size)
+
+    @property
+    def sample_times(self) -> np.ndarray:
+        """Sample times from the first sample [s], shape (n,): the same as :attr:`times`."""
+        return self.times
+
+    @property
+    def acceleration_m_s2(self) -> np.ndarray:
+        """The samples [m/s²], shape (n,): :attr:`acceleration_samples` (read-only);
+        ``acceleration(t)`` is a(t) between them."""
+        return self.acceleration_samples
+
+    @property
+    def acceleration_g(self) -> np.ndarray:
+        """The samples in units of standard gravity (9.80665 m/s²) [g], shape (n,)."""
+        return self.acceleration_samples / STANDARD_GRAVITY
 
     @property
     def peak_acceleration(self) -> float:
