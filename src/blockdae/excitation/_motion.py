@@ -44,7 +44,7 @@ class BaseMotion:
             if not np.isclose(record.dt, other.dt, rtol=_SAME_DT, atol=0.0):
                 raise ValueError(f"components {_label(first, other)} and {_label(name, record)} are Records "
                                  f"with different dt ({first}: dt={other.dt:g} s, {name}: dt={record.dt:g} s); "
-                                 "resample them to one sample step first: blockdae.resample(motion, dt) "
+                                 "resample them to one sample step first: blockdae.resample(record, dt) on each "
                                  "in Python, --resample DT on the command line")
 
     @classmethod
