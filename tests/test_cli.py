@@ -345,6 +345,7 @@ def test_run_on_a_table_or_two_files_slides_a_block_on_a_plane(tmp_path, capsys)
     out = capsys.readouterr().out
     assert f"(u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) m" in out
     assert "max |u| = " in out and "slide [deg]" in out and "direction [deg]" in out
+    assert "nan" not in out and "blank where the block was at rest" in out  # issue 23 item 5
     assert main(["--no-cache", "run", str(table), *ELMS, "--quiet"]) == 0
     assert capsys.readouterr().out.strip() == f"({u_x:+.6f}, {u_y:+.6f}) m"
     png = tmp_path / "path.png"

@@ -85,8 +85,8 @@ def run_planar(args, motion, print_events):
           + (" (block at rest after the record)" if args.t_end is None else ""))
     print(f"permanent displacement (u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) m")
     print(f"max |u| = {solution.max_abs_displacement:.6f} m")
-    print(f"events: {len(solution.events)} (direction: of the relative velocity just before the event; "
-          "slide: of the slide it starts or ends; degrees from +x)")
+    print(f"events: {len(solution.events)} (direction: of the relative velocity just before the event, "
+          "blank where the block was at rest; slide: of the slide it starts or ends; degrees from +x)")
     print_events(solution, args.events)
     print(f"time: {wall:.3f} s (wall clock)")
     if args.plot is not None:
