@@ -92,7 +92,7 @@ def _bound(f, a, b):
     """An upper bound of |f| on [a, b], 0 <= a <= b, term by term."""
     poly = abs(f[0]) + abs(f[1]) * b + abs(f[2]) * b * b + abs(f[3]) * b * b * b
     decay = 1.0 if a == 0 else math.exp(-f[6] * a)
-    return (poly + math.hypot(f[4], f[5]) * decay) * (1 + 8 * _EPS)
+    return (poly + math.sqrt(f[4] * f[4] + f[5] * f[5]) * decay) * (1 + 8 * _EPS)
 
 
 @register_jitable
@@ -339,7 +339,8 @@ def _run_batch(t0, h, p0, p1, offsets, scales, tables):
     out = np.empty((n_exc, n_sets * n_scales, len(OUTCOME_FIELDS)))
     empty = np.empty((0, 6))
     for item in numba.prange(n_exc * n_sets * n_scales):
-        e, rest = item // (n_sets * n_scales), item % (n_sets * n_scales)
+        # excitations interleaved, so that each thread's share mixes long and short ones
+        e, rest = item % n_exc, item // n_exc
         j, s = rest // n_scales, rest % n_scales
         lo, hi = offsets[e], offsets[e + 1]
         outcome, _ = _run(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], scales[s], k[j], c[j], b[j], guards[j],
