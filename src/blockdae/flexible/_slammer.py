@@ -27,8 +27,8 @@ class SlammerFlexible:
 
     Attributes:
         displacement: one-way downslope sliding displacement at the last sample [m], as
-            SLAMMER prints it: |s| (its coupled scheme can end slightly below 0 after a slip
-            that stops in its first step: it adds dt s'/2 < 0 there).
+            SLAMMER prints it: |s| (its coupled scheme keeps the whole trapezoid step of a
+            slip that stops in its first step, which can leave s slightly below 0).
         kmax: max |HEA| / g at the samples of the no-sliding response [g].
         vs: shear-wave velocity after the equivalent-linear iteration [m/s].
         damping: total damping ratio after the iteration.
@@ -124,7 +124,7 @@ def _samples(acceleration_g) -> np.ndarray:
         raise ValueError(f"acceleration_g must be a 1-D array of samples [g], got shape {samples.shape}")
     bad = np.flatnonzero(~np.isfinite(samples))
     if bad.size:
-        raise ValueError(f"acceleration_g must be finite, got {samples[bad[0]]!r} at sample {bad[0]}")
+        raise ValueError(f"acceleration_g must be finite, got {float(samples[bad[0]])!r} at sample {bad[0]}")
     return samples
 
 
