@@ -13,7 +13,8 @@ import pytest
 from blockdae.flexible._column import ShearColumn, equivalent_linear
 from blockdae.flexible._slammer import slammer_flexible, slammer_scale
 
-TABLE = pathlib.Path("/work/shared/slammer/slammer_1.1_results_part.json.gz")
+#: half of SLAMMER 1.1's results table, in ../shared beside the repository
+TABLE = pathlib.Path(__file__).resolve().parents[2] / "shared" / "slammer" / "slammer_1.1_results_part.json.gz"
 #: the table's printed digits: displacements [cm], kmax [g], vs [m/s], damping ratio
 TOLERANCES = {"displacement_cm": 2e-5, "kmax": 1e-5, "vs_mps": 1e-4, "damping": 1e-5}
 #: coupled rows whose slip stops in its first step, leaving SLAMMER's s below 0 (it prints |s|)
