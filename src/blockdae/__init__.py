@@ -17,7 +17,7 @@ from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, Recta
                          TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
                          read_record, resample)
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
-                      cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
+                      cumulative_arias, fourier_amplitude, intensity_measures, mean_period, motion_histories,
                       relative_motion, response_spectrum)
 from .planar import PlanarBlock, PlanarEvent, PlanarMode, PlanarSolution
 from .sliding import BatchSolution, Event, EventLog, Mode, SlidingBlock, Solution
@@ -47,7 +47,8 @@ __all__ = [
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
     "sensitivities", "set_compilation_cache",
     "NewmarkResult", "newmark", "yield_acceleration",
-    "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
+    "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "mean_period",
+    "motion_histories",
     "ResponseSpectrum", "response_spectrum", "RelativeMotion", "fourier_amplitude", "relative_motion",
     "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
     "Floor", "ShearFrame",
