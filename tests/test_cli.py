@@ -1,6 +1,7 @@
 """The ``blockdae`` command line: examples table, runs on files, batches, errors."""
 
 import csv
+import io
 import json
 import re
 import os
@@ -81,6 +82,22 @@ def test_batch_writes_one_csv_row_per_record_and_mu(tmp_path, capsys):
     u = [float(r["displacement_m"]) for r in rows]
     assert u[0] == pytest.approx(-0.0453, abs=5e-5) and u[2] == pytest.approx(0.0453, abs=5e-5)
     assert u[1] == 0.0 and u[3] == 0.0
+
+
+class _Terminal(io.StringIO):
+    def isatty(self):
+        return True
+
+
+def test_batch_shows_a_tqdm_bar_over_the_records_on_a_terminal(tmp_path, monkeypatch, capsys):
+    folder = tmp_path / "records"
+    folder.mkdir()
+    (folder / "a.csv").write_text(TRIANGLE_CSV)
+    (folder / "b.txt").write_text(TRIANGLE_CSV)
+    terminal = _Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    assert main(["--no-cache", "batch", str(folder), "--mu", "0.6", *SEED_G]) == 0
+    assert re.search(r"batch: 100%.*\| 2/2 \[.*record/s", terminal.getvalue())
 
 
 @pytest.mark.parametrize("content, line", [("0.0, 0.0\n0.01, 0.1\n0.02, abc\n", 3),

@@ -31,11 +31,11 @@ from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..motions._commands import add_spectrum_parser, add_two_point_parser
 from ..studies._command import add_study_parser
-from ..excitation._readers import record_suffix, unit_factor
+from ..core._progress import progress_bar
+from ..excitation._readers import RECORD_SUFFIXES, record_files, unit_factor
 from ..excitation._units import PGA_ROUNDINGS, UnitsWarning
 from ..sliding._model import SlidingBlock
 
-_RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
 _CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
                "g_m_s2", "direction", "backend", "displacement_m", "max_abs_displacement_m", "n_events",
                "t_end_s")
@@ -118,7 +118,7 @@ def _parser():
 
     batch = sub.add_parser("batch", help="every record in a folder, over a parameter grid")
     batch.add_argument("folder", type=pathlib.Path,
-                       help=f"folder of records ({', '.join(_RECORD_SUFFIXES)}, each also gzip-compressed: .gz)")
+                       help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz)")
     _block_arguments(batch, nargs="+")
     record_arguments(batch)
     batch.add_argument("--csv", type=pathlib.Path, default=None, help="write the results as CSV")
@@ -238,26 +238,23 @@ def _batch(args):
     grid = list(itertools.product(args.mu, args.mu_kinetic or [None], args.bias))
     mu, f, bias = (np.array([np.nan if x is None else x for x in column]) for column in zip(*grid))
     block = _block(args, mu, None if args.mu_kinetic is None else f, bias)
-    if not args.folder.is_dir():
-        raise UsageError(f"{args.folder}: not a folder")
-    paths = sorted(p for p in args.folder.iterdir() if record_suffix(p) in _RECORD_SUFFIXES)
-    if not paths:
-        raise UsageError(f"{args.folder}: no record files ({', '.join(_RECORD_SUFFIXES)})")
+    paths = checked(lambda: record_files(args.folder), "")
     rows, failed = [], []
     start = time.perf_counter()
-    for k, path in enumerate(paths):
-        _progress(k, len(paths), path.name)
-        try:
-            record = read(path, args)
-            result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
-        except UsageError as err:
-            if args.strict:
-                raise
-            failed.append(str(err))
-            continue
-        rows += _batch_rows(record, block, result)
+    with progress_bar(len(paths), "batch", "record") as bar:
+        for path in paths:
+            bar.set_postfix_str(path.name, refresh=False)
+            try:
+                record = read(path, args)
+                result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
+            except UsageError as err:
+                if args.strict:
+                    raise
+                failed.append(str(err))
+            else:
+                rows += _batch_rows(record, block, result)
+            bar.update()
     wall = time.perf_counter() - start
-    _progress(len(paths), len(paths), "done")
     if args.json:
         print(json.dumps({"rows": rows, "failed": failed}, indent=2))
     else:
@@ -361,13 +358,3 @@ def _batch_rows(record, block, result):
         "max_abs_displacement_m": float(result.max_abs_displacement[i]),
         "n_events": int(result.n_events[i]), "t_end_s": clean(float(result.t_end[i])),
     } for i in range(block.batch_shape[0])]
-
-
-def _progress(done, total, label, width=30):
-    """A progress bar on stderr, only when it is a terminal."""
-    if not sys.stderr.isatty():
-        return
-    filled = width * done // total
-    print(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} {label[:40]:<40}",
-          end="\n" if done == total else "", file=sys.stderr, flush=True)
-
