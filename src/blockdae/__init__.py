@@ -24,7 +24,7 @@ from .sliding import BatchSolution, Event, EventLog, Mode, SlidingBlock, Solutio
 from .sliding._examples import SeedExample, seed_examples
 from .sliding._final import FinalNumbers, simulate_final
 from .sliding._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
-from .sliding._newmark import NewmarkResult, newmark, yield_acceleration
+from .sliding._newmark import NewmarkResult, NewmarkSweep, newmark, yield_acceleration
 from .sliding._sweep import SweepSolution, simulate_many
 from .structures import Floor, ShearFrame
 from .studies import load_study, save_study, study, summary as study_summary
@@ -46,7 +46,7 @@ __all__ = [
     "CrossCheck", "crosscheck",
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
     "sensitivities", "set_compilation_cache",
-    "NewmarkResult", "newmark", "yield_acceleration",
+    "NewmarkResult", "NewmarkSweep", "newmark", "yield_acceleration",
     "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
     "ResponseSpectrum", "response_spectrum", "RelativeMotion", "fourier_amplitude", "relative_motion",
     "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
