@@ -77,15 +77,15 @@ def batch_figure(batch, *, title=None):
 
 
 
-def newmark_figure(ky, displacement, labels, polarity, *, title=None):
+def newmark_figure(ky, displacement, labels, *, polarity=None, title=None):
     """Newmark's D [m] against k_y [g]: one curve per row of ``displacement`` (shape
-    (n_curves, n_ky)), labelled by ``labels``; ``polarity`` says which D is drawn."""
+    (n_curves, n_ky)), labelled by ``labels``; ``polarity``, if given, says which D is drawn."""
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
     for label, d in zip(labels, displacement):
         ax.plot(ky, d, marker="o", ms=3.5, label=label)
-    ax.set(xlabel="yield acceleration k_y [g]", ylabel=f"downslope displacement D [m] ({polarity})", title=title)
+    ax.set(xlabel="yield acceleration k_y [g]", ylabel="downslope displacement D [m]" + (f" ({polarity})" if polarity else ""), title=title)
     ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
     if len(labels) <= _LEGEND_ENTRIES:
         ax.legend(loc="best", fontsize="small")

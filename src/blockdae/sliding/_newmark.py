@@ -84,6 +84,16 @@ class NewmarkResult(_Polarities):
         columns = {"ky_g": self.ky, **self._columns()}
         return pd.DataFrame({k: np.atleast_1d(v) for k, v in columns.items() if v is not None})
 
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """D [m] of each polarity run against k_y [g] (the other arguments are unused); a
+        matplotlib Figure."""
+        from ._figures import newmark_figure
+
+        runs = [(f"{name} polarity", d) for name, d in (("normal", self.normal), ("inverse", self.inverse))
+                if d is not None]
+        return newmark_figure(np.atleast_1d(self.ky), [np.atleast_1d(d) for _, d in runs], [n for n, _ in runs],
+                              title=title)
+
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class NewmarkSweep(_Polarities):
@@ -140,7 +150,8 @@ class NewmarkSweep(_Polarities):
                   for name, row in zip(self.records, pga) for p in row]
         polarity = "larger of the polarities" if self.normal is not None and self.inverse is not None else \
             ("normal polarity" if self.inverse is None else "inverse polarity")
-        return newmark_figure(self.ky, self.maximum.reshape(-1, self.ky.size), labels, polarity, title=title)
+        return newmark_figure(self.ky, self.maximum.reshape(-1, self.ky.size), labels, polarity=polarity,
+                              title=title)
 
 
 def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_end: float | None = None,
