@@ -8,7 +8,7 @@ from ._plot import plot
 from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, DriverSolution, HybridEvent,
                    InconsistentStateError, SolverError)
 from .core._crosscheck import CrossCheck, crosscheck
-from .core._jax_config import set_compilation_cache
+from .core._jax_config import CompileNotice, set_compilation_cache
 from .core._sensitivities import sensitivities
 from .core._simulate import simulate
 from .core._units import STANDARD_GRAVITY
@@ -45,7 +45,7 @@ __all__ = [
     "FinalNumbers", "simulate_final", "simulate_linear_final",
     "CrossCheck", "crosscheck",
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
-    "sensitivities", "set_compilation_cache",
+    "sensitivities", "set_compilation_cache", "CompileNotice",
     "NewmarkResult", "NewmarkSweep", "newmark", "yield_acceleration",
     "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
     "ResponseSpectrum", "response_spectrum", "RelativeMotion", "fourier_amplitude", "relative_motion",
