@@ -420,11 +420,12 @@ def test_run_on_a_table_or_two_files_slides_a_block_on_a_plane(tmp_path, capsys)
 
     assert main(["--no-cache", "run", str(table), *ELMS]) == 0
     out = capsys.readouterr().out
-    assert f"(u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) m" in out
+    assert f"(u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) g s²" in out  # --g 1: lengths in g s², not m
+    assert "u_x [g s²]" in out and "[m]" not in out
     assert "max |u| = " in out and "slide [deg]" in out and "direction [deg]" in out
     assert "nan" not in out and "blank where the block was at rest" in out  # issue 23 item 5
     assert main(["--no-cache", "run", str(table), *ELMS, "--quiet"]) == 0
-    assert capsys.readouterr().out.strip() == f"({u_x:+.6f}, {u_y:+.6f}) m"
+    assert capsys.readouterr().out.strip() == f"({u_x:+.6f}, {u_y:+.6f}) g s²"
     png = tmp_path / "path.png"
     assert main(["--no-cache", "run", str(table), *ELMS, "--plot", str(png), "--events", "none"]) == 0
     assert f"figure: {png}" in capsys.readouterr().out and png.stat().st_size > 10_000
