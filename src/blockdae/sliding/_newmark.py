@@ -122,21 +122,20 @@ class NewmarkSweep(_Polarities):
         """(n_records, n_pga, n_ky)."""
         return (len(self.records), 1 if self.pga is None else self.pga.size, self.ky.size)
 
-    def pga_of(self) -> np.ndarray:
+    @property
+    def analysed_pga(self) -> np.ndarray:
         """The peak of each (record, pga) analysed [g], shape (n_records, n_pga): the
         target, or the record's own peak where the records run as given."""
-        n_records, n_pga, _ = self.shape
-        return np.broadcast_to(self.peak[:, None] if self.pga is None else self.pga[None, :], (n_records, n_pga))
+        return np.broadcast_to(self.peak[:, None] if self.pga is None else self.pga[None, :], self.shape[:2])
 
     def to_dataframe(self):
         """One row per (record, pga, k_y): record, pga_g (the target peak, or the record's
         own where it ran as given) [g], ky_g [g], normal_m, inverse_m, mean_m, max_m [m] (pandas)."""
         import pandas as pd
 
-        n_records, n_pga, n_ky = self.shape
         index = np.indices(self.shape).reshape(3, -1)
         columns = {"record": np.asarray(self.records, dtype=object)[index[0]],
-                   "pga_g": self.pga_of()[index[0], index[1]], "ky_g": self.ky[index[2]],
+                   "pga_g": self.analysed_pga[index[0], index[1]], "ky_g": self.ky[index[2]],
                    **{k: v.reshape(-1) for k, v in self._columns().items() if v is not None}}
         return pd.DataFrame(columns)
 
@@ -145,9 +144,8 @@ class NewmarkSweep(_Polarities):
         (record, pga) (the other arguments are unused); a matplotlib Figure."""
         from ._figures import newmark_figure
 
-        pga = self.pga_of()
-        labels = [f"{name}" + ("" if self.pga is None else f", PGA {p:g} g")
-                  for name, row in zip(self.records, pga) for p in row]
+        labels = [name + ("" if self.pga is None else f", PGA {p:g} g")
+                  for name, row in zip(self.records, self.analysed_pga) for p in row]
         polarity = "larger of the polarities" if self.normal is not None and self.inverse is not None else \
             ("normal polarity" if self.inverse is None else "inverse polarity")
         return newmark_figure(self.ky, self.maximum.reshape(-1, self.ky.size), labels, polarity=polarity,
@@ -239,14 +237,16 @@ def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress
                 peak = scaled.peak_acceleration / g
                 if shown := _not_sliding(ky, peak, where=f"{name}: "):
                     still.append(f"{name} (PGA {peak:.4g} g): ky={shown} g")
-                normal[i, j], inverse[i, j] = _downslope(scaled, ky, polarity, g, t_end, backend, options)
+                for table, d in zip((normal, inverse), _downslope(scaled, ky, polarity, g, t_end, backend, options)):
+                    if d is not None:
+                        table[i, j] = d
             bar.update()
     if still:
         more = f"; and {len(still) - _CASES_SHOWN} more" if len(still) > _CASES_SHOWN else ""
         warnings.warn(f"ky >= PGA in {len(still)} of {shape[0] * shape[1]} (record, PGA) cases: the block does not "
                       f"slide there, D = 0 m: {'; '.join(still[:_CASES_SHOWN])}{more}", UnitsWarning, stacklevel=3)
     peak = np.array([m.peak_acceleration / g for m in motions])
-    return NewmarkSweep(records=names, peak=peak, pga=targets, ky=ky, g=g,
+    return NewmarkSweep(records=names, peak=peak, pga=targets, ky=ky, g=float(g),
                         normal=normal if polarity in ("both", "normal") else None,
                         inverse=inverse if polarity in ("both", "inverse") else None)
 
