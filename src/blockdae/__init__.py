@@ -8,7 +8,7 @@ from ._plot import plot
 from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, DriverSolution, HybridEvent,
                    InconsistentStateError, SolverError)
 from .core._crosscheck import CrossCheck, crosscheck
-from .core._jax_config import set_compilation_cache
+from .core._jax_config import CompileNotice, set_compilation_cache
 from .core._sensitivities import sensitivities
 from .core._simulate import simulate
 from .core._units import STANDARD_GRAVITY
@@ -24,7 +24,7 @@ from .sliding import BatchSolution, Event, EventLog, Mode, SlidingBlock, Solutio
 from .sliding._examples import SeedExample, seed_examples
 from .sliding._final import FinalNumbers, simulate_final
 from .sliding._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
-from .sliding._newmark import NewmarkResult, newmark, yield_acceleration
+from .sliding._newmark import NewmarkResult, NewmarkSweep, newmark, yield_acceleration
 from .sliding._sweep import SweepSolution, simulate_many
 from .structures import Floor, ShearFrame
 from .studies import load_study, save_study, study, summary as study_summary
@@ -45,8 +45,8 @@ __all__ = [
     "FinalNumbers", "simulate_final", "simulate_linear_final",
     "CrossCheck", "crosscheck",
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
-    "sensitivities", "set_compilation_cache",
-    "NewmarkResult", "newmark", "yield_acceleration",
+    "sensitivities", "set_compilation_cache", "CompileNotice",
+    "NewmarkResult", "NewmarkSweep", "newmark", "yield_acceleration",
     "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "mean_period",
     "motion_histories",
     "ResponseSpectrum", "response_spectrum", "RelativeMotion", "fourier_amplitude", "relative_motion",

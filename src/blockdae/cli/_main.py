@@ -31,11 +31,11 @@ from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..motions._commands import add_spectrum_parser, add_two_point_parser
 from ..studies._command import add_study_parser
-from ..excitation._readers import record_suffix, unit_factor
-from ..excitation._units import PGA_ROUNDINGS, UnitsWarning
+from ..core._progress import progress_bar
+from ..excitation._readers import RECORD_SUFFIXES, record_files, unit_factor
+from ..excitation._units import PGA_ROUNDINGS, UnitsWarning, pga_factor
 from ..sliding._model import SlidingBlock
 
-_RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
 _CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
                "g_m_s2", "direction", "backend", "displacement_m", "max_abs_displacement_m", "n_events",
                "t_end_s")
@@ -94,18 +94,26 @@ def _parser():
     run.set_defaults(command=_run)
 
     newmark_ = sub.add_parser("newmark", help="Newmark's one-way analysis: downslope displacement "
-                                              "(positive) for both polarities")
-    newmark_.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
+                                              "(positive) for both polarities, over records x ky x PGA")
+    newmark_.add_argument("records", type=pathlib.Path, nargs="+", metavar="RECORD",
+                          help="accelerogram files (CSV t,a / one column / .AT2) or folders of them "
+                               f"({', '.join(RECORD_SUFFIXES)}, each also .gz; sorted by name)")
     newmark_.add_argument("--ky", type=positive("--ky"), nargs="+", required=True,
                           help="yield acceleration(s) [g]")
-    newmark_.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
-                          help="scale the record so that its peak |a| is PGA_G [g] (default: as read)")
+    newmark_.add_argument("--pga", type=positive("--pga"), nargs="+", default=None, metavar="PGA_G",
+                          help="scale each record so that its peak |a| is PGA_G [g], each value in turn "
+                               "(default: as read)")
     newmark_.add_argument("--pga-rounding", choices=PGA_ROUNDINGS, default="exact",
                           help="with --pga: 'slammer' rounds the record's own peak to 0.001 g before "
                                "scaling, as SLAMMER does (default exact)")
     newmark_.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                           help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
     record_arguments(newmark_)
+    newmark_.add_argument("--csv", type=pathlib.Path, default=None, metavar="PATH",
+                          help="write the table (one row per record, PGA and ky) as CSV")
+    newmark_.add_argument("--plot", type=pathlib.Path, default=None, metavar="PATH",
+                          help="save a figure: D against ky per record; for one record and one ky, the "
+                               "history of the polarity with the larger D")
     newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
     newmark_.set_defaults(command=_newmark)
 
@@ -118,7 +126,7 @@ def _parser():
 
     batch = sub.add_parser("batch", help="every record in a folder, over a parameter grid")
     batch.add_argument("folder", type=pathlib.Path,
-                       help=f"folder of records ({', '.join(_RECORD_SUFFIXES)}, each also gzip-compressed: .gz)")
+                       help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz)")
     _block_arguments(batch, nargs="+")
     record_arguments(batch)
     batch.add_argument("--csv", type=pathlib.Path, default=None, help="write the results as CSV")
@@ -189,28 +197,77 @@ def _run(args):
 
 
 def _newmark(args):
-    record = read(args.record, args)
-    ky = np.asarray(args.ky, dtype=float)
+    paths = [p for arg in args.records for p in (checked(lambda: record_files(arg), "") if arg.is_dir() else [arg])]
+    records = [read(path, args) for path in paths]
+    pga = None if args.pga is None else args.pga[0] if len(args.pga) == 1 else args.pga
+    one = len(records) == 1 and np.ndim(pga) == 0  # one record at one PGA: a NewmarkResult
+    where = f"{paths[0]}" if len(paths) == 1 else ""
+    motions = records[0] if one else records
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", UnitsWarning)
-        result = checked(lambda: newmark(record, ky, g=args.g, pga=args.pga, pga_rounding=args.pga_rounding),
-                         f"{args.record}")
+        result = checked(lambda: newmark(motions, np.asarray(args.ky, dtype=float), g=args.g, pga=pga,
+                                         pga_rounding=args.pga_rounding), where)
     for warning in caught:
-        print(f"blockdae: warning: {args.record}: {warning.message}", file=sys.stderr)
+        print(f"blockdae: warning: {where + ': ' if where else ''}{warning.message}", file=sys.stderr)
     table = result.to_dataframe()
-    scale = {} if args.pga is None else {"pga_g": args.pga, "pga_rounding": args.pga_rounding}
-    if args.json:
-        print(json.dumps({**record_fields(record), **scale, "g_m_s2": args.g,
-                          "results": table.to_dict(orient="records")}, indent=2))
-        return 0
-    print(f"record: {describe_record(record)}")
-    if args.pga is not None:
-        print(f"scaled to a peak of {args.pga:g} g (pga rounding: {args.pga_rounding})")
-    print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
-    print(f"{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}")
-    for row in table.itertuples(index=False):
-        print(f"{row.ky_g:8.4f} {row.normal_m:12.6f} {row.inverse_m:12.6f} {row.mean_m:12.6f} {row.max_m:12.6f}")
+    if one:
+        table.insert(0, "pga_g", records[0].peak_acceleration / args.g if pga is None else pga)
+        table.insert(0, "record", records[0].name)
+    if args.csv is not None:
+        write_csv(args.csv, table.to_dict(orient="records"), list(table.columns))
+    if args.plot is not None:
+        _newmark_plot(args, records, pga, result)
+    _print_newmark(args, records, pga, one, table)
+    saved = [f"{what}: {path}" for what, path in (("results", args.csv), ("figure", args.plot)) if path is not None]
+    for line in saved:
+        print(line, file=sys.stderr if args.json else sys.stdout)
     return 0
+
+
+def _print_newmark(args, records, pga, one, table):
+    """The Newmark table (JSON with --json): one row per (record, PGA, ky)."""
+    scale = {} if pga is None else {"pga_g": pga, "pga_rounding": args.pga_rounding}
+    if args.json:
+        fields = record_fields(records[0]) if one else {"records": [record_fields(r) for r in records]}
+        print(json.dumps({**fields, **scale, "g_m_s2": args.g, "results": table.to_dict(orient="records")},
+                         indent=2))
+        return
+    if one:
+        print(f"record: {describe_record(records[0])}")
+    else:
+        print(f"{len(records)} records; PGA [g]: " + ("each record's own peak" if pga is None else "the target"))
+    if pga is not None:
+        print(f"scaled to a peak of {', '.join(f'{p:g}' for p in np.atleast_1d(pga))} g "
+              f"(pga rounding: {args.pga_rounding})")
+    print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
+    width = 0 if one else max(len("record"), *(len(r.name) for r in records))
+    head = "" if one else f"{'record':<{width}} {'PGA [g]':>8} "
+    print(f"{head}{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}")
+    for row in table.itertuples(index=False):
+        head = "" if one else f"{row.record:<{width}} {row.pga_g:8.4f} "
+        print(f"{head}{row.ky_g:8.4f} {row.normal_m:12.6f} {row.inverse_m:12.6f} {row.mean_m:12.6f} "
+              f"{row.max_m:12.6f}")
+
+
+def _newmark_plot(args, records, pga, result):
+    """--plot: D against ky per record; one record at one PGA and one ky: the history (base,
+    block, relative motion) of the polarity with the larger D."""
+    from .._plot import plot
+
+    if len(records) > 1 or np.ndim(pga) != 0 or len(args.ky) > 1:
+        save_figure(plot(result), args.plot)
+        return
+    record = records[0]
+    if pga is not None:
+        record = record.scaled(pga_factor(record.peak_acceleration, pga, args.g, args.pga_rounding))
+    normal, inverse = (float(np.ravel(d)[0]) for d in (result.normal, result.inverse))
+    inverse, d = inverse > normal, max(normal, inverse)
+    motion = record.inverted() if inverse else record
+    block = SlidingBlock(mu=args.ky[0], direction="negative", g=args.g)
+    solution = simulate(block, motion, t_end=None)
+    title = (f"{record.name}, {'inverse' if inverse else 'normal'} polarity: ky = {args.ky[0]:g} g, "
+             f"D = {d:.4g} m")
+    save_figure(plot(solution, motion, block, title=title), args.plot)
 
 
 def _examples(args):
@@ -238,26 +295,23 @@ def _batch(args):
     grid = list(itertools.product(args.mu, args.mu_kinetic or [None], args.bias))
     mu, f, bias = (np.array([np.nan if x is None else x for x in column]) for column in zip(*grid))
     block = _block(args, mu, None if args.mu_kinetic is None else f, bias)
-    if not args.folder.is_dir():
-        raise UsageError(f"{args.folder}: not a folder")
-    paths = sorted(p for p in args.folder.iterdir() if record_suffix(p) in _RECORD_SUFFIXES)
-    if not paths:
-        raise UsageError(f"{args.folder}: no record files ({', '.join(_RECORD_SUFFIXES)})")
+    paths = checked(lambda: record_files(args.folder), "")
     rows, failed = [], []
     start = time.perf_counter()
-    for k, path in enumerate(paths):
-        _progress(k, len(paths), path.name)
-        try:
-            record = read(path, args)
-            result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
-        except UsageError as err:
-            if args.strict:
-                raise
-            failed.append(str(err))
-            continue
-        rows += _batch_rows(record, block, result)
+    with progress_bar(len(paths), "batch", "record") as bar:
+        for path in paths:
+            bar.set_postfix_str(path.name, refresh=False)
+            try:
+                record = read(path, args)
+                result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
+            except UsageError as err:
+                if args.strict:
+                    raise
+                failed.append(str(err))
+            else:
+                rows += _batch_rows(record, block, result)
+            bar.update()
     wall = time.perf_counter() - start
-    _progress(len(paths), len(paths), "done")
     if args.json:
         print(json.dumps({"rows": rows, "failed": failed}, indent=2))
     else:
@@ -361,13 +415,3 @@ def _batch_rows(record, block, result):
         "max_abs_displacement_m": float(result.max_abs_displacement[i]),
         "n_events": int(result.n_events[i]), "t_end_s": clean(float(result.t_end[i])),
     } for i in range(block.batch_shape[0])]
-
-
-def _progress(done, total, label, width=30):
-    """A progress bar on stderr, only when it is a terminal."""
-    if not sys.stderr.isatty():
-        return
-    filled = width * done // total
-    print(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} {label[:40]:<40}",
-          end="\n" if done == total else "", file=sys.stderr, flush=True)
-

@@ -5,16 +5,25 @@ The cache folder is ``$BLOCKDAE_CACHE_DIR``, else ``$XDG_CACHE_HOME/blockdae/jax
 ``~/.cache/blockdae/jax``. Set ``BLOCKDAE_CACHE_DIR=off`` (or call
 ``set_compilation_cache(None)``) to keep none. A cache folder the user set in JAX's own
 configuration is left as it is. Nothing is configured at import: only on the first
-compiled call.
+compiled call, which a one-line :class:`CompileNotice` announces (once per process).
 """
 
 import contextlib
 import os
 import pathlib
+import sys
+import warnings
 
 _OFF = ("", "off", "none", "0")
 _DEFAULT = object()  # no folder chosen: the environment's, unless JAX has one set
-_state = {"folder": _DEFAULT, "applied": False}
+_state = {"folder": _DEFAULT, "applied": False, "noticed": False}
+_PACKAGE = str(pathlib.Path(__file__).resolve().parents[1])  # the blockdae folder
+
+
+class CompileNotice(UserWarning):
+    """Said once per process, before blockdae's first JAX call compiles its kernels (a
+    pause of a few seconds). Silence it with
+    ``warnings.filterwarnings("ignore", category=blockdae.CompileNotice)``."""
 
 
 def default_cache_dir() -> pathlib.Path | None:
@@ -47,6 +56,11 @@ def jax_context():
     """float64 for the calls inside; sets the compilation cache on first use."""
     import jax
 
+    if not _state["noticed"]:
+        _state["noticed"] = True
+        warnings.warn("blockdae: compiling its JAX kernels (the first JAX call in this process; a few seconds). "
+                      "Silence: warnings.filterwarnings('ignore', category=blockdae.CompileNotice)", CompileNotice,
+                      stacklevel=_callers_level())
     if not _state["applied"]:
         if _state["folder"] is not _DEFAULT:
             _apply(_state["folder"])
@@ -55,3 +69,13 @@ def jax_context():
         _state["applied"] = True
     with jax.enable_x64(True):
         yield
+
+
+def _callers_level() -> int:
+    """The ``stacklevel`` that names the first caller outside blockdae and contextlib (the
+    user's line), counted from the function that calls this one."""
+    frame, level = sys._getframe(2), 2
+    while frame.f_back is not None and (frame.f_code.co_filename.startswith(_PACKAGE)
+                                        or frame.f_code.co_filename == contextlib.__file__):
+        frame, level = frame.f_back, level + 1
+    return level

@@ -66,6 +66,22 @@ def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_
                   check_peak=False)  # read_samples checked the peak in the file's units
 
 
+#: format suffixes of the record files found in a folder (each also gzip-compressed: .gz)
+RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
+
+
+def record_files(folder) -> list[pathlib.Path]:
+    """The record files in ``folder`` (suffixes :data:`RECORD_SUFFIXES`, each also ``.gz``),
+    sorted by name; a ValueError naming the folder if it is none or holds none."""
+    folder = pathlib.Path(folder)
+    if not folder.is_dir():
+        raise ValueError(f"{folder}: not a folder")
+    paths = sorted(p for p in folder.iterdir() if p.is_file() and record_suffix(p) in RECORD_SUFFIXES)
+    if not paths:
+        raise ValueError(f"{folder}: no record files ({', '.join(RECORD_SUFFIXES)}, each also .gz)")
+    return paths
+
+
 def record_name(path) -> str:
     """A record's default name: its file's name less ``.gz`` and the format's suffix."""
     return _uncompressed(pathlib.Path(path)).stem

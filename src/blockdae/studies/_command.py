@@ -15,12 +15,10 @@ import numpy as np
 
 from ..cli._common import UsageError, number, positive, read
 from ..core._units import STANDARD_GRAVITY
-from ..excitation._readers import record_suffix
+from ..excitation._readers import RECORD_SUFFIXES, record_files
 from ..structures import ShearFrame
 from ._io import save_study
 from ._study import NoWorkerError, study, summary
-
-_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
 
 
 def _grid(text):
@@ -43,7 +41,7 @@ def add_study_parser(subparsers):
     """The ``study`` sub-command on an argparse ``subparsers`` object."""
     p = subparsers.add_parser("study", help="every record of a folder × mu × PGA × ground and floors (seed 002)")
     p.add_argument("folder", type=pathlib.Path,
-                   help=f"folder of records ({', '.join(_SUFFIXES)}, each also gzip-compressed: .gz)")
+                   help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz)")
     p.add_argument("--mu", type=positive("--mu"), nargs="+", required=True, help="friction coefficients [-]")
     size = p.add_mutually_exclusive_group(required=True)
     size.add_argument("--pga", type=_grid, nargs="+", help="target peak accelerations [g]: values or START:STOP:N")
@@ -104,11 +102,10 @@ def run_study(args) -> int:
 
 
 def _records(args):
-    if not args.folder.is_dir():
-        raise UsageError(f"{args.folder}: not a folder")
-    paths = sorted(p for p in args.folder.iterdir() if record_suffix(p) in _SUFFIXES)
-    if not paths:
-        raise UsageError(f"{args.folder}: no record files ({', '.join(_SUFFIXES)})")
+    try:
+        paths = record_files(args.folder)
+    except ValueError as err:
+        raise UsageError(str(err)) from None
     return [read(path, args) for path in paths]
 
 

@@ -18,13 +18,13 @@ import math
 import numbers
 import os
 import queue
-import sys
 import time
 
 import numpy as np
 
 from ..sliding._final import simulate_final
 from ..sliding._formulas import AdjustmentFactor, newmark_rd_sd
+from ..core._progress import progress_bar
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._units import check_pga
 from ..excitation import Record
@@ -91,8 +91,7 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
             holds the grid, the settings and the records' names and SHA-256 of their
             samples: another study is refused (ValueError naming the folder and what
             differs). None: nothing is saved.
-        progress: a tqdm bar over the tasks; None: only when stderr is a terminal
-            (and tqdm is installed).
+        progress: a tqdm bar over the tasks; None: only when stderr is a terminal.
         refine: floor motions sampled at dt/refine [s] (:meth:`bd.ShearFrame.floor_motions`).
         sd_period, damping: period [s] and damping ratio [-] of the oscillator whose
             displacement spectrum gives Sd (see ``sd_m``).
@@ -127,7 +126,7 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
     tasks = _tasks(records, len(grid.where) * grid.mu.size * grid.factors.size)
     store = None if checkpoint is None else Checkpoint.open(checkpoint, records, grid, tasks)
     parts = {} if store is None else store.finished()
-    bar = _progress_bar(progress, len(tasks))
+    bar = progress_bar(len(tasks), "study", "task", progress)
     bar.update(len(parts))
 
     def finish(index, part):
@@ -351,28 +350,6 @@ def _no_worker_error(n_done, n_tasks, lost_s, no_worker_timeout):
         f"no Dask worker alive for {lost_s:.1f} s (no_worker_timeout={no_worker_timeout:g} s): "
         f"{n_done} of {n_tasks} tasks finished, {n_tasks - n_done} unfinished (cancelled); start or scale up "
         f"the workers, or raise no_worker_timeout [s] (None: wait forever; CLI: --no-worker-timeout SECONDS|none)")
-
-
-def _progress_bar(progress, total):
-    """A tqdm bar over the tasks (tqdm: the ``study`` extra); a silent one if not shown."""
-    show = sys.stderr.isatty() if progress is None else bool(progress)
-    try:
-        from tqdm.auto import tqdm
-    except ImportError:
-        if progress:
-            raise ImportError("progress=True needs tqdm: pip install 'blockdae[study]'") from None
-        return _Silent()
-    return tqdm(total=total, disable=not show, desc="study", unit="task")
-
-
-class _Silent:
-    """The bar when tqdm is not installed."""
-
-    def update(self, n=1):
-        pass
-
-    def close(self):
-        pass
 
 
 def _table(parts, grid):
