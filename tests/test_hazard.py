@@ -147,3 +147,18 @@ def test_bad_study_tables_are_refused():
 
 def test_exported():
     assert bd.hazard.fit_fragility is fit_fragility and "hazard" in bd.__all__ and "empirical" in bd.__all__
+
+
+def test_benchmark_quick(monkeypatch, capsys):
+    """benchmarks/hazard.py --quick runs (a smoke run: it judges no bar)."""
+    import importlib.util
+    import pathlib
+
+    folder = pathlib.Path(__file__).parents[1] / "benchmarks"
+    monkeypatch.syspath_prepend(str(folder))
+    spec = importlib.util.spec_from_file_location("benchmark_hazard", folder / "hazard.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert module.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "Jibson 2007" in out and "smoke run, not a measurement" in out and "NOT met" not in out

@@ -20,6 +20,7 @@ from scipy.special import log_ndtr
 from scipy.stats import norm
 
 MIN_RECORDS = 10
+_LN_SQRT_2PI = 0.5 * np.log(2.0 * np.pi)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -111,19 +112,21 @@ def _fit(u, slid, ln_d):
     return np.array([b0, b1, c0, c1, sigma])
 
 
-def _probit(u, y, iterations=100):
-    """Maximum-likelihood probit P(y) = Φ(b0 + b1 u) by Newton's method (concave)."""
+def _probit(u, y, iterations=50):
+    """Maximum-likelihood probit P(y) = Φ(b0 + b1 u) by Newton's method (concave); stops
+    when the step or the gradient vanishes (with separated classes the slope grows until
+    the gradient does)."""
     X = np.column_stack([np.ones_like(u), u])
     s = np.where(y, 1.0, -1.0)
     beta = np.zeros(2)
     for _ in range(iterations):
         z = s * (X @ beta)
-        ratio = np.exp(norm.logpdf(z) - log_ndtr(z))  # φ/Φ, stable in the tails
+        ratio = np.exp(-0.5 * z * z - _LN_SQRT_2PI - log_ndtr(z))  # φ/Φ, stable in the tails
         grad = X.T @ (s * ratio)
         weight = ratio * (z + ratio)
         step = np.linalg.solve((X * weight[:, None]).T @ X + 1e-12 * np.eye(2), grad)
         beta += step
-        if np.max(np.abs(step)) < 1e-10:
+        if np.max(np.abs(step)) < 1e-10 or np.max(np.abs(grad)) < 1e-9 * u.size:
             break
     return float(beta[0]), float(beta[1])
 
