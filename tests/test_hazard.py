@@ -162,3 +162,21 @@ def test_benchmark_quick(monkeypatch, capsys):
     assert module.main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "Jibson 2007" in out and "smoke run, not a measurement" in out and "NOT met" not in out
+
+
+def test_plots_draw_the_fit_its_band_and_the_others():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from blockdae.hazard import plot_displacement_hazard, plot_fragility
+
+    fit = fit_fragility(synthetic_table(np.random.default_rng(6)), d0_m=1e-9, n_boot=20)
+    jibson = EmpiricalFragility(em.jibson_2007, "pga_g", {"ky_g": 0.1})
+    x = np.geomspace(0.05, 1.5, 30)
+    ax = plot_fragility(fit, 0.05, x, others={"Jibson 2007": jibson})
+    assert len(ax.lines) == 2 and len(ax.collections) == 1  # the fit, Jibson; the band
+    np.testing.assert_allclose(ax.lines[1].get_ydata(), jibson.exceedance(0.05, x))
+    d = np.geomspace(0.01, 1.0, 10)
+    curve = HazardCurve(x, 1e-4 * x**-2.5)
+    ax = plot_displacement_hazard(d, {"fit": displacement_hazard(curve, fit, d)})
+    assert ax.get_xscale() == ax.get_yscale() == "log" and len(ax.lines) == 1
