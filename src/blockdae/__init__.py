@@ -4,6 +4,7 @@ Exact event times, solver backends that check each other, and derivatives of the
 answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
+from . import empirical, hazard
 from ._plot import plot
 from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, DriverSolution, HybridEvent,
                    InconsistentStateError, SolverError)
@@ -53,4 +54,5 @@ __all__ = [
     "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
     "Floor", "ShearFrame",
     "load_study", "save_study", "study", "study_summary",
+    "empirical", "hazard",
 ]
