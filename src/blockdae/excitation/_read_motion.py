@@ -7,7 +7,8 @@ import warnings
 from ..core._units import STANDARD_GRAVITY
 from ._motion import BaseMotion
 from ._formats import FORMAT_OPTIONS, read_channels
-from ._readers import read_record, read_samples, record_name
+from ._read_record import read_record
+from ._readers import read_samples, record_name
 from ._record import Record
 from ._resample import resample
 

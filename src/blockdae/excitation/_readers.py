@@ -1,5 +1,6 @@
 """Readers for accelerogram files: two-column, one-column and PEER NGA .AT2 text, each
-plain or gzip-compressed; :func:`read_record` hands the formats with a header to ``_formats``."""
+plain or gzip-compressed (what :func:`~._read_record.read_record` reads itself; the formats
+with a header are ``_formats``'), and the file helpers those formats share."""
 
 import gzip
 import io
@@ -10,8 +11,7 @@ import zlib
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
-from ._record import Record
+from ..core._units import STANDARD_GRAVITY  # noqa: F401 (imported from here by blockdae.excitation)
 from ._units import _SYMBOLS, canonical_units, check_peak_acceleration, unit_factor
 
 # an AT2 header's "IN UNITS OF ..." text, squeezed by _squeeze_units
@@ -26,71 +26,6 @@ _HEADER_LINES = 10  # where the NPTS/DT line of an AT2 file is looked for
 _GZIP_MAGIC = b"\x1f\x8b"  # the first bytes of a gzip file
 #: the table read_record reads: (most columns, their description for errors)
 ONE_COMPONENT = (2, "1 or 2 columns (time [s], acceleration)")
-
-
-def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_peak=True, *,
-                remove_mean=False, gain=None) -> Record:
-    """Read an accelerogram file into a :class:`Record` [m/s²].
-
-    Formats, found by content whatever the file's name:
-      * two columns (time [s], acceleration), separated by commas, blanks or semicolons
-        (semicolons with decimal commas, ``0,01;0,5``, too), '#' comments, optional
-        header line and UTF-8 BOM; the time column must be uniform and increasing, and
-        its first value is kept as ``Record.start_time``; units in brackets in the header
-        line (``time (s), acceleration (m/s2)``, ``acc [cm/s2]``, ``(gal)``, ``(g)``) are read;
-      * one column of accelerations, with the sample step ``dt`` [s] given;
-      * PEER NGA AT2 (found by its ``NPTS=..., DT=...`` header line, in
-        either order, or the older ``5000  0.0050  NPTS, DT`` line); its
-        ``... IN UNITS OF G`` (or ``CM/SEC/SEC``, ``M/SEC/SEC``, ``GAL``) line is read;
-      * COSMOS V1/V2 (CESMD), K-NET/KiK-net ASCII (NIED), ESM ASCII: the step and units
-        their headers state, checked against the data (see ``_cosmos``, ``_knet``, ``_esm``);
-      * SAC and miniSEED, through ObsPy (``pip install 'blockdae[seismo]'``): ``units=``
-        required, and ``gain=`` for counts (see ``_seismo``).
-
-    Any of them gzip-compressed (found by its first bytes; ``rec.AT2.gz`` is named
-    ``rec``). Text is UTF-8 (or ASCII), with or without a BOM, any line ends. A file of
-    several acceleration channels (a COSMOS file of three, a miniSEED file of three
-    traces) is refused here: :func:`blockdae.read_motion` groups them.
-    ``Record.metadata`` says what was read: format, units, and for the formats with a
-    header station, component and event.
-
-    Args:
-        path: file path.
-        units: units of the values: "g", "m/s2", "cm/s2" or "gal"; None: as the header
-            says, "g" for tables that do not say (SAC and miniSEED need it).
-            Contradicting the header raises, naming the line and both units.
-        dt: sample step [s]; required for one-column files only, checked against the
-            file's step otherwise.
-        g: the value of one "g" [m/s²].
-        name: record name; by default the file's, less its suffix (:func:`record_name`).
-        check_peak: raise if the peak acceleration is implausible (outside
-            :data:`PLAUSIBLE_PEAK_G`), a sign of wrong units; False accepts any peak.
-        remove_mean: K-NET/KiK-net only: subtract the samples' mean (NIED's practice);
-            off by default, the samples are the counts times the scale factor.
-        gain: SAC/miniSEED only: counts per unit of ``units`` [counts/(units)].
-
-    Errors are ValueErrors naming the file and, where there is one, its 1-based line
-    (also for a binary file, a damaged gzip file or text that is not UTF-8).
-    """
-    from ._formats import read_channels  # the format modules use this module's helpers
-
-    path = pathlib.Path(path)
-    options = {key: value for key, value in (("remove_mean", remove_mean), ("gain", gain)) if value not in (None, False)}
-    records, text = read_channels(path, units, dt, g, check_peak, name, options)
-    if records is not None:
-        return only_record(records, path)
-    samples, dt, start_time, metadata = _read_table(path, units, dt, g, check_peak, ONE_COMPONENT, text)
-    return Record(samples[:, 0], dt, record_name(path) if name is None else name, start_time, units="m/s2",
-                  check_peak=False, metadata=metadata)  # _read_table checked the peak in the file's units
-
-
-def only_record(records, path):
-    """The one Record of ``records`` read from ``path``; ValueError naming the channels if several."""
-    if len(records) > 1:
-        names = ", ".join(repr(r.metadata.get("component", r.name)) for r in records)
-        raise ValueError(f"{path}: {len(records)} acceleration channels ({names}); read_record reads one: "
-                         "bd.read_motion(path) groups them into a BaseMotion")
-    return records[0]
 
 
 def record_name(path) -> str:
@@ -116,10 +51,10 @@ def read_samples(path, units, dt, g, check_peak, columns):
     ``columns``: (most columns of a table, their description for errors), e.g. :data:`ONE_COMPONENT`.
     The peak check covers all k columns at once (one file, one unit).
     """
-    return _read_table(path, units, dt, g, check_peak, columns)[:3]
+    return read_table(path, units, dt, g, check_peak, columns)[:3]
 
 
-def _read_table(path, units, dt, g, check_peak, columns, text=None):
+def read_table(path, units, dt, g, check_peak, columns, text=None):
     """read_samples' result and the metadata (format, units as read) of a table or AT2 file
     (its ``text``, read if None)."""
     path = pathlib.Path(path)
