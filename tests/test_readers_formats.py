@@ -305,3 +305,23 @@ def test_format_options_are_refused_for_other_formats(tmp_path):
         bd.read_record(path, remove_mean=True)
     with pytest.raises(ValueError, match=r"r.csv: gain= is an option for SAC/miniSEED files; this one is a table"):
         bd.read_record(write(tmp_path, "r.csv", "0, 0.1\n0.01, 0.2\n"), gain=2.0)
+
+
+def test_knet_station_files_grouped_and_resampled_to_the_smallest_step(tmp_path):
+    ud = write(tmp_path, "s.UD", knet(COUNTS[::2], direction="U-D", frequency="50Hz"))
+    ew = write(tmp_path, "s.EW", knet(direction="E-W"))
+    ns = write(tmp_path, "s.NS", knet(direction="N-S"))
+    with pytest.warns(UserWarning, match=r"channels of steps 0.01, 0.02 s resampled to 0.01 s"):
+        motion = bd.read_motion(ud, ew, ns)
+    assert [c.metadata["component"] for c in motion.components] == ["N-S", "E-W", "U-D"]
+    assert motion.z.dt == 0.01
+    a = COUNTS[::2] * 3920.0 / 6182761.0 * CM
+    np.testing.assert_allclose(motion.z.acceleration_samples[::2], a[:motion.z.acceleration_samples[::2].size],
+                               rtol=1e-12)  # the old samples, kept at the new step
+
+
+def test_channels_of_two_stations_are_refused(tmp_path):
+    a = write(tmp_path, "a.NS", knet(direction="N-S"))
+    b = write(tmp_path, "b.EW", knet(direction="E-W", station="IWT010"))
+    with pytest.raises(ValueError, match=r"channels of different stations \('IWT010', 'MYG004'\)"):
+        bd.read_motion(a, b)
