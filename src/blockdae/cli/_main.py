@@ -23,6 +23,7 @@ from .. import backends
 from ._common import (UsageError, checked, clean, describe_record, finite, positive, read, record_arguments,
                       record_fields, save_figure, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
+from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
 from ..sliding._examples import seed_examples
 from ..core._jax_config import set_compilation_cache
@@ -68,7 +69,7 @@ def _parser():
                         help="JAX compilation cache, so that later runs skip compiling "
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
-    sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,upthrow,examples,batch,study}")
+    sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,upthrow,examples,batch,study,info}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
                                      "plane under two or three components (u_x, u_y)")
@@ -135,6 +136,7 @@ def _parser():
     batch.set_defaults(command=_batch)
 
     add_study_parser(sub)
+    add_info_parser(sub)
     return parser
 
 

@@ -5,7 +5,8 @@ from ._base import AbstractExcitation
 from ._motion import BaseMotion
 from ._pieces import Pieces
 from ._read_motion import read_motion
-from ._readers import STANDARD_GRAVITY, read_record
+from ._read_record import read_record
+from ._readers import STANDARD_GRAVITY
 from ._record import Record
 from ._resample import resample
 from ._units import (MAX_PGA_G, PLAUSIBLE_PEAK_G, UNSTATED_PEAK_M_S2, UnitsWarning, check_peak_acceleration,
