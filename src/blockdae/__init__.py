@@ -14,9 +14,9 @@ from .core._sensitivities import sensitivities
 from .core._simulate import simulate
 from .core._units import STANDARD_GRAVITY
 from .engines._linear_solution import simulate_linear_final
-from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RectangularPulse, SinePulse,
-                         TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
-                         read_record, resample)
+from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RecordSet, RectangularPulse,
+                         SinePulse, TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
+                         read_record, read_records, resample)
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
                       cumulative_arias, fourier_amplitude, intensity_measures, mean_period, motion_histories,
                       relative_motion, response_spectrum)
@@ -36,7 +36,8 @@ from .upthrow._estimate import UpthrowEstimate, upthrow_estimate
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
-    "check_peak_acceleration", "read_motion", "read_record", "simulate", "InconsistentStateError", "SolverError",
+    "check_peak_acceleration", "read_motion", "read_record", "read_records", "RecordSet", "simulate",
+    "InconsistentStateError", "SolverError",
     "UnitsWarning", "pga_factor", "resample",
     "AbstractEvent", "AbstractSolution", "DriverSolution", "HybridEvent",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",

@@ -53,13 +53,23 @@ def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_
     (also for a binary file, a damaged gzip file or text that is not UTF-8).
     """
     path = pathlib.Path(path)
+    return only_record(read_file_records(path, units, dt, g, check_peak, name, remove_mean=remove_mean, gain=gain),
+                       path)
+
+
+def read_file_records(path, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=True, name=None, *,
+                      remove_mean=False, gain=None) -> list[Record]:
+    """Every acceleration channel of the file at ``path`` as a Record [m/s²] (one for a table or
+    AT2 file; a COSMOS or miniSEED file may hold several, named "<name> <component>");
+    the arguments as for :func:`read_record`."""
+    path = pathlib.Path(path)
     options = {key: value for key, value in (("remove_mean", remove_mean), ("gain", gain)) if value not in (None, False)}
     records, text = read_channels(path, units, dt, g, check_peak, name, options)
     if records is not None:
-        return only_record(records, path)
+        return records
     samples, dt, start_time, metadata = read_table(path, units, dt, g, check_peak, ONE_COMPONENT, text)
-    return Record(samples[:, 0], dt, record_name(path) if name is None else name, start_time, units="m/s2",
-                  check_peak=False, metadata=metadata)  # _read_table checked the peak in the file's units
+    return [Record(samples[:, 0], dt, record_name(path) if name is None else name, start_time, units="m/s2",
+                   check_peak=False, metadata=metadata)]  # _read_table checked the peak in the file's units
 
 
 def only_record(records, path):

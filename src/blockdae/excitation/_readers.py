@@ -28,8 +28,12 @@ _GZIP_MAGIC = b"\x1f\x8b"  # the first bytes of a gzip file
 ONE_COMPONENT = (2, "1 or 2 columns (time [s], acceleration)")
 
 
-#: format suffixes of the record files found in a folder (each also gzip-compressed: .gz)
-RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
+#: format suffixes of the record files found in a folder (each also gzip-compressed: .gz): tables,
+#: PEER AT2, COSMOS V1/V2 (CESMD's .V1C/.V2C too), K-NET (.NS/.EW/.UD) and KiK-net (1: borehole,
+#: 2: surface), ESM ASCII, SAC and miniSEED; the format itself is found by content
+RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2", ".v1", ".v2", ".v1c", ".v2c",
+                   ".ns", ".ew", ".ud", ".ns1", ".ew1", ".ud1", ".ns2", ".ew2", ".ud2",
+                   ".asc", ".sac", ".mseed", ".miniseed")
 
 
 def record_files(folder) -> list[pathlib.Path]:
