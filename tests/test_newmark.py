@@ -160,7 +160,8 @@ def test_a_folder_is_every_record_file_in_it_by_name_and_an_empty_one_is_refused
         np.testing.assert_array_equal(sweep.normal[i, 0], bd.newmark(record, [0.1, 0.2]).normal)
     empty = tmp_path / "empty"
     empty.mkdir()
-    with pytest.raises(ValueError, match=rf"{empty}: no record files \(\.csv, \.txt, \.dat, \.at2, each also \.gz\)"):
+    with pytest.raises(ValueError, match=rf"{empty}: no record files \(\.csv, \.txt, \.dat, \.at2, \.v1, .*, \.mseed, "
+                                         r"\.miniseed, each also \.gz\)"):
         bd.newmark(empty, 0.1)
     with pytest.raises(ValueError, match=r"motions is empty"):
         bd.newmark([], 0.1)

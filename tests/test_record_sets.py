@@ -45,7 +45,7 @@ def test_read_records_table_from_the_headers_and_the_failed_file_listed_once(tmp
     row = table.set_index("name")
     assert row.loc["s.NS", "format"] == "K-NET" and row.loc["s.NS", "component"] == "N-S"
     assert row.loc["s.NS", "station"] == "MYG004" and row.loc["s.NS", "magnitude"] == 9.0
-    assert row.loc["e", "format"] == "ESM" and row.loc["e", "component"] == "HNE" and row.loc["e", "station"] == "IT.NRC"
+    assert (row.loc["e", "format"], row.loc["e", "component"], row.loc["e", "station"]) == ("ESM", "HNE", "IT.NRC")
     assert row.loc["c", "station"] == "CE.12345" and row.loc["c", "component"] == "360"
     assert math.isnan(row.loc["c", "magnitude"]) and math.isnan(row.loc["t", "vs30_m_s"])  # not in their headers
     assert row.loc["t", "format"] == "table" and row.loc["t", "pga_g"] == pytest.approx(0.25)

@@ -9,7 +9,11 @@ import pathlib
 import numpy as np
 
 from ..core._atomic import atomic_path
-from ..excitation import read_record
+from ..excitation import RecordSet, read_record
+from ..excitation._fema import SETS as FEMA_SETS
+
+#: the record sets of --set: name -> the name of bd.RecordSet.fema_p695
+RECORD_SETS = {f"fema-p695-{name}": name for name in FEMA_SETS}
 
 
 class UsageError(Exception):
@@ -64,6 +68,27 @@ def read(path, args):
     units = {} if args.units is None else {"units": args.units}
     check_peak = not getattr(args, "accept_peak", False)
     return checked(lambda: read_record(path, dt=args.dt, g=args.g, check_peak=check_peak, **units), "")
+
+
+def set_argument(parser):
+    """--set NAME: a ready record set (bd.RecordSet.fema_p695) instead of files."""
+    parser.add_argument("--set", choices=list(RECORD_SETS), default=None, metavar="NAME",
+                        help=f"a ready record set instead of files, one of {', '.join(RECORD_SETS)} "
+                             "(pip install 'blockdae[sets]'); its magnitude, distances and Vs30 join the results")
+
+
+def files_or_set(args, files):
+    """The record set of --set (read with --g), or None where the command's ``files`` (its
+    positional argument: a path, a list or None) are given; exactly one of the two."""
+    given = files not in (None, [])
+    if given == (args.set is not None):
+        raise UsageError("give record files or a folder, or --set NAME, one of the two")
+    if args.set is None:
+        return None
+    try:
+        return RecordSet.fema_p695(RECORD_SETS[args.set], g=args.g)
+    except (ImportError, ValueError) as err:
+        raise UsageError(f"--set {args.set}: {err}") from None
 
 
 def write_csv(path, rows, fields=None):

@@ -20,8 +20,8 @@ import warnings
 import numpy as np
 
 from .. import backends
-from ._common import (UsageError, checked, clean, describe_record, finite, positive, read, record_arguments,
-                      record_fields, save_figure, write_csv)
+from ._common import (UsageError, checked, clean, describe_record, files_or_set, finite, positive, read,
+                      record_arguments, record_fields, save_figure, set_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
@@ -96,9 +96,9 @@ def _parser():
 
     newmark_ = sub.add_parser("newmark", help="Newmark's one-way analysis: downslope displacement "
                                               "(positive) for both polarities, over records x ky x PGA")
-    newmark_.add_argument("records", type=pathlib.Path, nargs="+", metavar="RECORD",
-                          help="accelerogram files (CSV t,a / one column / .AT2) or folders of them "
-                               f"({', '.join(RECORD_SUFFIXES)}, each also .gz; sorted by name)")
+    newmark_.add_argument("records", type=pathlib.Path, nargs="*", metavar="RECORD",
+                          help="accelerogram files or folders of them "
+                               f"({', '.join(RECORD_SUFFIXES)}, each also .gz; sorted by name); or --set NAME")
     newmark_.add_argument("--ky", type=positive("--ky"), nargs="+", required=True,
                           help="yield acceleration(s) [g]")
     newmark_.add_argument("--pga", type=positive("--pga"), nargs="+", default=None, metavar="PGA_G",
@@ -110,6 +110,7 @@ def _parser():
     newmark_.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                           help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
     record_arguments(newmark_)
+    set_argument(newmark_)
     newmark_.add_argument("--csv", type=pathlib.Path, default=None, metavar="PATH",
                           help="write the table (one row per record, PGA and ky) as CSV")
     newmark_.add_argument("--plot", type=pathlib.Path, default=None, metavar="PATH",
@@ -126,10 +127,12 @@ def _parser():
     examples.set_defaults(command=_examples)
 
     batch = sub.add_parser("batch", help="every record in a folder, over a parameter grid")
-    batch.add_argument("folder", type=pathlib.Path,
-                       help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz)")
+    batch.add_argument("folder", type=pathlib.Path, nargs="?",
+                       help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz); "
+                            "or --set NAME")
     _block_arguments(batch, nargs="+")
     record_arguments(batch)
+    set_argument(batch)
     batch.add_argument("--csv", type=pathlib.Path, default=None, help="write the results as CSV")
     batch.add_argument("--json", action="store_true", help="print the results as JSON")
     batch.add_argument("--strict", action="store_true", help="stop at the first bad file")
@@ -199,12 +202,14 @@ def _run(args):
 
 
 def _newmark(args):
-    paths = [p for arg in args.records for p in (checked(lambda: record_files(arg), "") if arg.is_dir() else [arg])]
-    records = [read(path, args) for path in paths]
+    record_set = files_or_set(args, args.records)
+    paths = [] if record_set is not None else \
+        [p for arg in args.records for p in (checked(lambda: record_files(arg), "") if arg.is_dir() else [arg])]
+    records = list(record_set) if record_set is not None else [read(path, args) for path in paths]
     pga = None if args.pga is None else args.pga[0] if len(args.pga) == 1 else args.pga
-    one = len(records) == 1 and np.ndim(pga) == 0  # one record at one PGA: a NewmarkResult
+    one = len(paths) == 1 and np.ndim(pga) == 0  # one record file at one PGA: a NewmarkResult
     where = f"{paths[0]}" if len(paths) == 1 else ""
-    motions = records[0] if one else records
+    motions = records[0] if one else records if record_set is None else record_set
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", UnitsWarning)
         result = checked(lambda: newmark(motions, np.asarray(args.ky, dtype=float), g=args.g, pga=pga,
@@ -297,21 +302,24 @@ def _batch(args):
     grid = list(itertools.product(args.mu, args.mu_kinetic or [None], args.bias))
     mu, f, bias = (np.array([np.nan if x is None else x for x in column]) for column in zip(*grid))
     block = _block(args, mu, None if args.mu_kinetic is None else f, bias)
-    paths = checked(lambda: record_files(args.folder), "")
+    record_set = files_or_set(args, args.folder)
+    sources = [(name, lambda name=name: record_set[name]) for name in record_set.names] if record_set is not None \
+        else [(path, lambda path=path: read(path, args)) for path in checked(lambda: record_files(args.folder), "")]
+    metadata = {} if record_set is None else record_set.metadata.to_dict("index")
     rows, failed = [], []
     start = time.perf_counter()
-    with progress_bar(len(paths), "batch", "record") as bar:
-        for path in paths:
-            bar.set_postfix_str(path.name, refresh=False)
+    with progress_bar(len(sources), "batch", "record") as bar:
+        for label, source in sources:
+            bar.set_postfix_str(getattr(label, "name", label), refresh=False)
             try:
-                record = read(path, args)
-                result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
+                record = source()
+                result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{label}")
             except UsageError as err:
                 if args.strict:
                     raise
                 failed.append(str(err))
             else:
-                rows += _batch_rows(record, block, result)
+                rows += [{**row, **metadata.get(record.name, {})} for row in _batch_rows(record, block, result)]
             bar.update()
     wall = time.perf_counter() - start
     if args.json:
@@ -322,12 +330,13 @@ def _batch(args):
         for row in rows:
             print(f"{row['record']:<32} {row['mu']:7.4f} {row['mu_kinetic']:7.4f} {row['bias']:+8.4f} "
                   f"{row['displacement_m']:+11.6f} {row['max_abs_displacement_m']:11.6f} {row['n_events']:7d}")
-        print(f"{len(rows)} analyses of {len(paths) - len(failed)} records in {wall:.2f} s (wall clock)")
+        print(f"{len(rows)} analyses of {len(sources) - len(failed)} records in {wall:.2f} s (wall clock)")
     if args.csv is not None:
-        checked(lambda: write_csv(args.csv, rows, _CSV_FIELDS), f"--csv {args.csv}")
+        fields = [*_CSV_FIELDS[:1], *next(iter(metadata.values()), {}), *_CSV_FIELDS[1:]]
+        checked(lambda: write_csv(args.csv, rows, fields), f"--csv {args.csv}")
         print(f"results: {args.csv}", file=sys.stderr if args.json else sys.stdout)
     if failed:
-        print(f"blockdae: {len(failed)} of {len(paths)} files failed:", file=sys.stderr)
+        print(f"blockdae: {len(failed)} of {len(sources)} files failed:", file=sys.stderr)
         for reason in failed:
             print(f"  {reason}", file=sys.stderr)
         return 1

@@ -243,17 +243,15 @@ def _number(value, field, source):
     return number
 
 
-def with_metadata(table, records, column="record"):
-    """``table`` (a DataFrame with the records' names in ``column``) with the
-    :attr:`RecordSet.metadata` columns of the set ``records`` after that column; ``table``
-    itself if ``records`` is no RecordSet."""
-    if not isinstance(records, RecordSet):
+def with_metadata(table, metadata, column="record"):
+    """``table`` (a DataFrame with the records' names in ``column``) with the columns of
+    ``metadata`` (a :attr:`RecordSet.metadata`, indexed by name) after that column; ``table``
+    itself if ``metadata`` is None."""
+    if metadata is None:
         return table
-    metadata = records.metadata
     clash = sorted(set(metadata.columns) & set(table.columns))
     if clash:
         raise ValueError(f"the set's columns {clash} are also result columns; rename them in the set's table")
-    joined = table.join(metadata, on=column)
     at = list(table.columns).index(column) + 1
     order = list(table.columns[:at]) + list(metadata.columns) + list(table.columns[at:])
-    return joined[order]
+    return table.join(metadata, on=column)[order]

@@ -21,6 +21,7 @@ from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, UnitsWarning, pga_factor, read_record
 from ..excitation._readers import record_files
+from ..excitation._record_set import RecordSet, with_metadata
 from ..excitation._units import check_pga, check_pga_rounding
 from ._model import SlidingBlock
 from ._sweep import _labelled
@@ -107,6 +108,8 @@ class NewmarkSweep(_Polarities):
         normal: D >= 0 for the records as given [m], shape (n_records, n_pga, n_ky) (None if not run).
         inverse: D for the records inverted [m], same shape (None if not run).
         g: the value of one g used [m/s²].
+        metadata: for a :class:`RecordSet`, its :attr:`~RecordSet.metadata` (magnitude,
+            distance, Vs30, ...; pandas, indexed by name), carried into :meth:`to_dataframe`; else None.
     """
 
     records: tuple[str, ...]
@@ -116,6 +119,7 @@ class NewmarkSweep(_Polarities):
     normal: np.ndarray | None
     inverse: np.ndarray | None
     g: float
+    metadata: object = None
 
     @property
     def shape(self) -> tuple[int, int, int]:
@@ -129,15 +133,16 @@ class NewmarkSweep(_Polarities):
         return np.broadcast_to(self.peak[:, None] if self.pga is None else self.pga[None, :], self.shape[:2])
 
     def to_dataframe(self):
-        """One row per (record, pga, k_y): record, pga_g (the target peak, or the record's
-        own where it ran as given) [g], ky_g [g], normal_m, inverse_m, mean_m, max_m [m] (pandas)."""
+        """One row per (record, pga, k_y): record, the set's :attr:`metadata` columns if any,
+        pga_g (the target peak, or the record's own where it ran as given) [g], ky_g [g],
+        normal_m, inverse_m, mean_m, max_m [m] (pandas)."""
         import pandas as pd
 
         index = np.indices(self.shape).reshape(3, -1)
         columns = {"record": np.asarray(self.records, dtype=object)[index[0]],
                    "pga_g": self.analysed_pga[index[0], index[1]], "ky_g": self.ky[index[2]],
                    **{k: v.reshape(-1) for k, v in self._columns().items() if v is not None}}
-        return pd.DataFrame(columns)
+        return with_metadata(pd.DataFrame(columns), self.metadata)
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
         """D [m] (the larger of the polarities run) against k_y [g], one curve per
@@ -160,8 +165,9 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
     Args:
         motion: ground acceleration along the slope [m/s²]: one excitation (e.g. a
             :class:`Record`); or many: a sequence of them, a mapping name -> excitation,
-            or a path to a folder (every record file in it, sorted by name; see
-            :func:`blockdae.read_record`, units as the files say, else g) or to one file.
+            a :class:`RecordSet` (its metadata carried into the table), or a path to a
+            folder (every record file in it, sorted by name; see :func:`blockdae.read_record`,
+            units as the files say, else g) or to one file.
         ky: yield acceleration(s) [g], a number or 1-D array (a batch, one compiled
             call); see :func:`yield_acceleration` and :meth:`SlidingBlock.on_incline`. A ky
             at or above the motion's peak [g] slides nowhere (D = 0): a :class:`UnitsWarning`
@@ -219,6 +225,7 @@ def _downslope(motion, ky, polarity, g, t_end, backend, options):
 
 def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress, options):
     """:func:`newmark` over many motions × target peaks ``pga`` [g] × ``ky`` [g]."""
+    metadata = motions.metadata if isinstance(motions, RecordSet) else None
     names, motions = _labelled(_motions(motions, g))
     if ky.ndim > 1:
         raise ValueError(f"ky must be a number or a 1-D sequence of yield accelerations [g], got shape {ky.shape}")
@@ -246,7 +253,7 @@ def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress
         warnings.warn(f"ky >= PGA in {len(still)} of {shape[0] * shape[1]} (record, PGA) cases: the block does not "
                       f"slide there, D = 0 m: {'; '.join(still[:_CASES_SHOWN])}{more}", UnitsWarning, stacklevel=3)
     peak = np.array([m.peak_acceleration / g for m in motions])
-    return NewmarkSweep(records=names, peak=peak, pga=targets, ky=ky, g=float(g),
+    return NewmarkSweep(records=names, peak=peak, pga=targets, ky=ky, g=float(g), metadata=metadata,
                         normal=normal if polarity in ("both", "normal") else None,
                         inverse=inverse if polarity in ("both", "inverse") else None)
 
@@ -256,6 +263,8 @@ def _motions(motions, g):
     (one excitation: a list of it)."""
     if isinstance(motions, AbstractExcitation):
         return [motions]
+    if isinstance(motions, RecordSet):
+        return list(motions)
     if not isinstance(motions, (str, os.PathLike)):
         return motions
     path = pathlib.Path(motions)

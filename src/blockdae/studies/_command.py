@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from ..cli._common import UsageError, number, positive, read
+from ..cli._common import UsageError, files_or_set, number, positive, read, set_argument
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._readers import RECORD_SUFFIXES, record_files
 from ..structures import ShearFrame
@@ -40,8 +40,9 @@ def _seconds_or_none(text):
 def add_study_parser(subparsers):
     """The ``study`` sub-command on an argparse ``subparsers`` object."""
     p = subparsers.add_parser("study", help="every record of a folder × mu × PGA × ground and floors (seed 002)")
-    p.add_argument("folder", type=pathlib.Path,
-                   help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz)")
+    p.add_argument("folder", type=pathlib.Path, nargs="?",
+                   help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz); "
+                        "or --set NAME")
     p.add_argument("--mu", type=positive("--mu"), nargs="+", required=True, help="friction coefficients [-]")
     size = p.add_mutually_exclusive_group(required=True)
     size.add_argument("--pga", type=_grid, nargs="+", help="target peak accelerations [g]: values or START:STOP:N")
@@ -58,6 +59,7 @@ def add_study_parser(subparsers):
     p.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                    help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")
+    set_argument(p)
     p.add_argument("--out", type=pathlib.Path, required=True, help="results table (.csv or .parquet)")
     p.add_argument("--summary", type=pathlib.Path, default=None, help="also the seed's summaries (.csv)")
     p.add_argument("--checkpoint", type=pathlib.Path, default=None, metavar="FOLDER",
@@ -102,6 +104,10 @@ def run_study(args) -> int:
 
 
 def _records(args):
+    """The records of the folder, or the set of --set (a RecordSet: its metadata join the table)."""
+    record_set = files_or_set(args, args.folder)
+    if record_set is not None:
+        return record_set
     try:
         paths = record_files(args.folder)
     except ValueError as err:

@@ -28,6 +28,7 @@ from ..core._progress import progress_bar
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._units import check_pga
 from ..excitation import Record
+from ..excitation._record_set import RecordSet, with_metadata
 from ..sliding._model import SlidingBlock
 from ..motions import response_spectrum
 from ..structures import Floor
@@ -67,7 +68,9 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
     """Slide a block under every record, μ, intensity and location: one tidy table.
 
     Args:
-        records: ground accelerograms (:class:`bd.Record` [m/s²], distinct names).
+        records: ground accelerograms (:class:`bd.Record` [m/s²], distinct names), or a
+            :class:`bd.RecordSet`: its :attr:`~bd.RecordSet.metadata` columns (magnitude,
+            epicentral_distance_km, vs30_m_s, ...) follow ``record`` in the table, to group by.
         mu: friction coefficients μ > 0 [-].
         pga: target peak accelerations A > 0 [g]: the motion at each location (ground
             or floor) is scaled so that its peak |a| is A g (seed 002).
@@ -121,6 +124,7 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
     Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu, direction=direction),
     motion.scaled(scale))`` of the location's motion to rounding.
     """
+    metadata = records.metadata if isinstance(records, RecordSet) else None
     records, grid = _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g)
     no_worker_timeout = _timeout(no_worker_timeout)
     tasks = _tasks(records, len(grid.where) * grid.mu.size * grid.factors.size)
@@ -144,7 +148,7 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
             _on_executor(executor, todo, grid, finish, no_worker_timeout)
     finally:
         bar.close()
-    return _table([parts[i] for i in range(len(tasks))], grid)
+    return with_metadata(_table([parts[i] for i in range(len(tasks))], grid), metadata)
 
 
 def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
