@@ -25,6 +25,7 @@ from ._common import (UsageError, checked, clean, describe_record, finite, posit
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._upthrow import add_upthrow_parser
 from ..sliding._examples import seed_examples
+from ..core._compile_notice import CompileNotice
 from ..core._jax_config import set_compilation_cache
 from ..sliding._newmark import newmark
 from ..core._simulate import simulate
@@ -51,13 +52,37 @@ def main(argv=None) -> int:
         return int(exit_.code or 0)
     try:
         _compilation_cache(args)
-        return args.command(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _one_line_notices(warnings.showwarning)
+            return args.command(args)
     except UsageError as err:
         print(f"blockdae: error: {err}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # the reader of the output stopped early (e.g. `| head`)
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at exit
         return 0
+
+
+def _one_line_notices(show):
+    """``warnings.showwarning`` that prints a :class:`CompileNotice` as its one line on
+    stderr (not the caller's file and line) and leaves other warnings to ``show``."""
+    def showwarning(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, CompileNotice):
+            print(message, file=sys.stderr, flush=True)
+        else:
+            show(message, category, filename, lineno, file, line)
+    return showwarning
+
+
+def _prefixed(show, where):
+    """``warnings.showwarning`` that prints a warning as ``blockdae: warning: <where>:
+    ...`` on stderr, and leaves a :class:`CompileNotice` to ``show``."""
+    def showwarning(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, CompileNotice):
+            show(message, category, filename, lineno, file, line)
+        else:
+            print(f"blockdae: warning: {where + ': ' if where else ''}{message}", file=sys.stderr)
+    return showwarning
 
 
 def _parser():
@@ -203,12 +228,11 @@ def _newmark(args):
     one = len(records) == 1 and np.ndim(pga) == 0  # one record at one PGA: a NewmarkResult
     where = f"{paths[0]}" if len(paths) == 1 else ""
     motions = records[0] if one else records
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings():
         warnings.simplefilter("always", UnitsWarning)
+        warnings.showwarning = _prefixed(warnings.showwarning, where)
         result = checked(lambda: newmark(motions, np.asarray(args.ky, dtype=float), g=args.g, pga=pga,
                                          pga_rounding=args.pga_rounding), where)
-    for warning in caught:
-        print(f"blockdae: warning: {where + ': ' if where else ''}{warning.message}", file=sys.stderr)
     table = result.to_dataframe()
     if one:
         table.insert(0, "pga_g", records[0].peak_acceleration / args.g if pga is None else pga)
