@@ -2,9 +2,11 @@
 outputs (figures, tables) stored so that they show when browsing the repository (run
 after editing them; the tests execute them again).
 
-    python notebooks/make_notebooks.py
+    python notebooks/make_notebooks.py                    # every notebook
+    python notebooks/make_notebooks.py 04_planar.ipynb    # only those named
 """
 
+import argparse
 import os
 import pathlib
 
@@ -805,10 +807,17 @@ def execute(notebook: nbformat.NotebookNode) -> nbformat.NotebookNode:
     return notebook
 
 
-def main():
+def main(argv=None):
+    parser = argparse.ArgumentParser(description="Write the notebooks of this folder, executed.")
+    parser.add_argument("names", nargs="*", metavar="NAME",
+                        help=f"notebooks to write (default: all): {', '.join(NOTEBOOKS)}")
+    names = parser.parse_args(argv).names or list(NOTEBOOKS)
+    unknown = [name for name in names if name not in NOTEBOOKS]
+    if unknown:
+        parser.error(f"no notebook {', '.join(unknown)}; choose from {', '.join(NOTEBOOKS)}")
     os.environ.setdefault("MPLBACKEND", "module://matplotlib_inline.backend_inline")
-    for name, cells in NOTEBOOKS.items():
-        nbformat.write(execute(build(cells)), HERE / name)
+    for name in names:
+        nbformat.write(execute(build(NOTEBOOKS[name])), HERE / name)
         print(f"wrote {HERE / name} (executed)")
 
 

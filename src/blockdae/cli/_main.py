@@ -20,7 +20,7 @@ import warnings
 import numpy as np
 
 from .. import backends
-from ._common import (UsageError, checked, clean, describe_record, finite, positive, read, record_arguments,
+from ._common import (UsageError, checked, clean, describe_gravity, describe_record, finite, positive, read, record_arguments,
                       record_fields, save_figure, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._upthrow import add_upthrow_parser
@@ -29,7 +29,7 @@ from ..core._compile_notice import CompileNotice
 from ..core._jax_config import set_compilation_cache
 from ..sliding._newmark import newmark
 from ..core._simulate import simulate
-from ..core._units import STANDARD_GRAVITY
+from ..core._units import STANDARD_GRAVITY, length_units
 from ..motions._commands import add_spectrum_parser, add_two_point_parser
 from ..studies._command import add_study_parser
 from ..core._progress import progress_bar
@@ -204,15 +204,16 @@ def _run(args):
     if args.json:
         print(json.dumps(_run_json(record, block, solution, wall), indent=2))
         return 0
+    length = length_units(block.g)[0]  # g s² where --g is 1, a dimensionless set-up
     if args.quiet:
-        print(f"{solution.displacement:+.6f} m")
+        print(f"{solution.displacement:+.6f} {length}")
         return 0
-    print(f"record: {describe_record(record)}")
+    print(f"record: {describe_record(record, block.g)}")
     print(f"block: {_describe_block(block)}; backend {solution.backend}")
     print(f"final time t_end = {solution.t_end:.4f} s"
           + (" (block at rest after the record)" if args.t_end is None else ""))
-    print(f"permanent displacement u(t_end) = {solution.displacement:+.6f} m")
-    print(f"max |u| = {solution.max_abs_displacement:.6f} m")
+    print(f"permanent displacement u(t_end) = {solution.displacement:+.6f} {length}")
+    print(f"max |u| = {solution.max_abs_displacement:.6f} {length}")
     print(f"events: {len(solution.events)}")
     _print_events(solution, args.events)
     print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
@@ -394,7 +395,7 @@ def _block(args, mu, mu_kinetic, bias):
 
 def _describe_block(block):
     return (f"mu = {block.mu:g}, f = {block.friction_kinetic:g}, R/Q = {block.bias:g}, "
-            f"direction {block.direction}, g = {block.g:g} m/s²")
+            f"direction {block.direction}, {describe_gravity(block.g)}")
 
 
 def _print_events(solution, which):
