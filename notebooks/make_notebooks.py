@@ -877,12 +877,13 @@ for k in ky:
         medians = {"Jibson 2007": em.jibson_2007(**fixed).median_m,
                    "Saygili & Rathje 2008": em.saygili_rathje_2008_pga(**fixed).median_m,
                    "Rathje & Saygili 2009": em.rathje_saygili_2009_pga_m(**fixed, magnitude=magnitude).median_m,
-                   "Bray & Travasarou 2007": em.bray_travasarou_2007(ky_g=k, ts_s=0.0, sa_g=a, magnitude=magnitude).median_m}
+                   "Bray & Travasarou 2007": em.bray_travasarou_2007(ky_g=k, ts_s=0.0, sa_g=a,
+                                                                     magnitude=magnitude).median_m}
         if median > 0:
             ratios[k, a] = {name: float(m) / median for name, m in medians.items()}
         rows.append({"ky [g]": k, "PGA [g]": a, "time histories [cm]": f"{100 * median:.2f}",
-                     **{f"{name} [cm]": f"{100 * float(m):.2f}" + (f" (×{float(m) / median:.2f})" if median > 0 else "")
-                        for name, m in medians.items()}})
+                     **{f"{name} [cm]": f"{100 * float(m):.2f}"
+                        + (f" (×{float(m) / median:.2f})" if median > 0 else "") for name, m in medians.items()}})
 print("\\nmedian D [cm]: over the records, and the regressions' medians (× their ratio to the records'; "
       "Bray & Travasarou: where D is not negligible)")
 print(pd.DataFrame(rows).to_string(index=False))"""),

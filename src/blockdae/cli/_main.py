@@ -20,8 +20,8 @@ import warnings
 import numpy as np
 
 from .. import backends
-from ._common import (UsageError, checked, clean, describe_gravity, describe_record, finite, positive, read, record_arguments,
-                      record_fields, save_figure, write_csv)
+from ._common import (UsageError, checked, clean, describe_gravity, describe_record, finite, positive, read,
+                      record_arguments, record_fields, save_figure, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._upthrow import add_upthrow_parser
 from ..sliding._examples import seed_examples
