@@ -66,6 +66,21 @@ def test_run_on_a_csv_file_matches_seed_example_5(tmp_path, capsys):
     assert png.stat().st_size > 10_000
 
 
+def test_run_of_a_g_1_set_up_gives_lengths_in_g_s2(tmp_path, capsys):
+    """Example 5 with accelerations as coefficients of g (--g 1): the same event times, u
+    = -0.04526 m / 9.81 m/s² = -0.004614 g s², printed in g s², never in m (issue 23 item 5)."""
+    path = tmp_path / "triangle_g.csv"
+    path.write_text(f"time [s], acceleration [g]\n0.0, 0.0\n0.25, {9.0 / 9.81!r}\n0.5, 0.0\n")
+    assert main(["--no-cache", "run", str(path), "--mu", "0.6", "--g", "1", "--units", "g"]) == 0
+    out = capsys.readouterr().out
+    assert "permanent displacement u(t_end) = -0.004614 g s²" in out and "max |u| = 0.004614 g s²" in out
+    assert "u [g s²]" in out and "[m]" not in out and " m\n" not in out and "m/s²" not in out
+    assert "peak 0.9174 g)" in out and "g = 1 (accelerations in g)" in out
+    assert "    0.163500     STICK  SLIP_NEG" in out and "    0.458829  SLIP_NEG  STICK        -0.004614" in out
+    assert main(["--no-cache", "run", str(path), "--mu", "0.6", "--g", "1", "--units", "g", "--quiet"]) == 0
+    assert capsys.readouterr().out == "-0.004614 g s²\n"
+
+
 def test_batch_writes_one_csv_row_per_record_and_mu(tmp_path, capsys):
     """A mu above the pulse's peak (9 m/s² < 1.0 g) never slides; mu = 0.6 is seed Example 5."""
     folder = tmp_path / "records"

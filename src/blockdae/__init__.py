@@ -9,7 +9,8 @@ from ._plot import plot
 from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, DriverSolution, HybridEvent,
                    InconsistentStateError, SolverError)
 from .core._crosscheck import CrossCheck, crosscheck
-from .core._jax_config import CompileNotice, set_compilation_cache
+from .core._compile_notice import CompileNotice
+from .core._jax_config import set_compilation_cache
 from .core._sensitivities import sensitivities
 from .core._simulate import simulate
 from .core._units import STANDARD_GRAVITY

@@ -9,6 +9,7 @@ import pathlib
 import numpy as np
 
 from ..core._atomic import atomic_path
+from ..core._units import STANDARD_GRAVITY
 from ..excitation import RecordSet, read_record
 from ..excitation._fema import SETS as FEMA_SETS
 
@@ -114,12 +115,19 @@ def save_figure(figure, path):
         plt.close(figure)
 
 
-def describe_record(record) -> str:
-    """One line on a record: name, samples, dt [s], duration [s], peak [m/s²], start."""
+def describe_gravity(g) -> str:
+    """``g = 9.80665 m/s²``, or ``g = 1 (accelerations in g)`` for a dimensionless set-up."""
+    return "g = 1 (accelerations in g)" if g == 1 else f"g = {g:g} m/s²"
+
+
+def describe_record(record, g=STANDARD_GRAVITY) -> str:
+    """One line on a record: name, samples, dt [s], duration [s], peak [m/s²; in g where
+    ``g`` [m/s²] is 1, a dimensionless set-up], start."""
+    unit = "g" if g == 1 else "m/s²"
     origin = (f"; times from its first sample, at t = {record.start_time:g} s on the file's axis"
               if record.start_time else "")
     return (f"{record.name} ({record.acceleration_samples.size} samples, dt = {record.dt:g} s, "
-            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} m/s²{origin})")
+            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} {unit}{origin})")
 
 
 def clean(x):

@@ -20,16 +20,17 @@ import warnings
 import numpy as np
 
 from .. import backends
-from ._common import (UsageError, checked, clean, describe_record, files_or_set, finite, positive, read,
-                      record_arguments, record_fields, save_figure, set_argument, write_csv)
+from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, positive,
+                      read, record_arguments, record_fields, save_figure, set_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
 from ..sliding._examples import seed_examples
+from ..core._compile_notice import CompileNotice
 from ..core._jax_config import set_compilation_cache
 from ..sliding._newmark import newmark
 from ..core._simulate import simulate
-from ..core._units import STANDARD_GRAVITY
+from ..core._units import STANDARD_GRAVITY, length_units
 from ..motions._commands import add_spectrum_parser, add_two_point_parser
 from ..studies._command import add_study_parser
 from ..core._progress import progress_bar
@@ -52,13 +53,37 @@ def main(argv=None) -> int:
         return int(exit_.code or 0)
     try:
         _compilation_cache(args)
-        return args.command(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _one_line_notices(warnings.showwarning)
+            return args.command(args)
     except UsageError as err:
         print(f"blockdae: error: {err}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # the reader of the output stopped early (e.g. `| head`)
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at exit
         return 0
+
+
+def _one_line_notices(show):
+    """``warnings.showwarning`` that prints a :class:`CompileNotice` as its one line on
+    stderr (not the caller's file and line) and leaves other warnings to ``show``."""
+    def showwarning(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, CompileNotice):
+            print(message, file=sys.stderr, flush=True)
+        else:
+            show(message, category, filename, lineno, file, line)
+    return showwarning
+
+
+def _prefixed(show, where):
+    """``warnings.showwarning`` that prints a warning as ``blockdae: warning: <where>:
+    ...`` on stderr, and leaves a :class:`CompileNotice` to ``show``."""
+    def showwarning(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, CompileNotice):
+            show(message, category, filename, lineno, file, line)
+        else:
+            print(f"blockdae: warning: {where + ': ' if where else ''}{message}", file=sys.stderr)
+    return showwarning
 
 
 def _parser():
@@ -184,15 +209,16 @@ def _run(args):
     if args.json:
         print(json.dumps(_run_json(record, block, solution, wall), indent=2))
         return 0
+    length = length_units(block.g)[0]  # g s² where --g is 1, a dimensionless set-up
     if args.quiet:
-        print(f"{solution.displacement:+.6f} m")
+        print(f"{solution.displacement:+.6f} {length}")
         return 0
-    print(f"record: {describe_record(record)}")
+    print(f"record: {describe_record(record, block.g)}")
     print(f"block: {_describe_block(block)}; backend {solution.backend}")
     print(f"final time t_end = {solution.t_end:.4f} s"
           + (" (block at rest after the record)" if args.t_end is None else ""))
-    print(f"permanent displacement u(t_end) = {solution.displacement:+.6f} m")
-    print(f"max |u| = {solution.max_abs_displacement:.6f} m")
+    print(f"permanent displacement u(t_end) = {solution.displacement:+.6f} {length}")
+    print(f"max |u| = {solution.max_abs_displacement:.6f} {length}")
     print(f"events: {len(solution.events)}")
     _print_events(solution, args.events)
     print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
@@ -210,12 +236,11 @@ def _newmark(args):
     one = len(paths) == 1 and np.ndim(pga) == 0  # one record file at one PGA: a NewmarkResult
     where = f"{paths[0]}" if len(paths) == 1 else ""
     motions = records[0] if one else records if record_set is None else record_set
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings():
         warnings.simplefilter("always", UnitsWarning)
+        warnings.showwarning = _prefixed(warnings.showwarning, where)
         result = checked(lambda: newmark(motions, np.asarray(args.ky, dtype=float), g=args.g, pga=pga,
                                          pga_rounding=args.pga_rounding), where)
-    for warning in caught:
-        print(f"blockdae: warning: {where + ': ' if where else ''}{warning.message}", file=sys.stderr)
     table = result.to_dataframe()
     if one:
         table.insert(0, "pga_g", records[0].peak_acceleration / args.g if pga is None else pga)
@@ -381,7 +406,7 @@ def _block(args, mu, mu_kinetic, bias):
 
 def _describe_block(block):
     return (f"mu = {block.mu:g}, f = {block.friction_kinetic:g}, R/Q = {block.bias:g}, "
-            f"direction {block.direction}, g = {block.g:g} m/s²")
+            f"direction {block.direction}, {describe_gravity(block.g)}")
 
 
 def _print_events(solution, which):

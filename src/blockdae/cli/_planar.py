@@ -4,7 +4,7 @@
 import json
 import time
 
-from ._common import UsageError, checked, describe_record, save_figure
+from ._common import UsageError, checked, describe_gravity, describe_record, save_figure
 from ..core._simulate import simulate
 from ..core._units import length_units
 from ..excitation import Record, read_motion
@@ -81,9 +81,9 @@ def run_planar(args, motion, print_events):
         return 0
     for axis, component in zip("xyz", motion.components):
         if component is not None:
-            print(f"record {axis}: {describe_record(component)}")
+            print(f"record {axis}: {describe_record(component, block.g)}")
     print(f"block on a plane: mu = {block.mu:g}, f = {block.friction_kinetic:g}, bias (b_x, b_y) = "
-          f"({block.bias[0]:g}, {block.bias[1]:g}) [-], g = {block.g:g} m/s²; backend {solution.backend}")
+          f"({block.bias[0]:g}, {block.bias[1]:g}) [-], {describe_gravity(block.g)}; backend {solution.backend}")
     print(f"final time t_end = {solution.t_end:.4f} s"
           + (" (block at rest after the record)" if args.t_end is None else ""))
     print(f"permanent displacement (u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) {length}")

@@ -11,19 +11,12 @@ compiled call, which a one-line :class:`CompileNotice` announces (once per proce
 import contextlib
 import os
 import pathlib
-import sys
-import warnings
+
+from ._compile_notice import notice
 
 _OFF = ("", "off", "none", "0")
 _DEFAULT = object()  # no folder chosen: the environment's, unless JAX has one set
-_state = {"folder": _DEFAULT, "applied": False, "noticed": False}
-_PACKAGE = str(pathlib.Path(__file__).resolve().parents[1])  # the blockdae folder
-
-
-class CompileNotice(UserWarning):
-    """Said once per process, before blockdae's first JAX call compiles its kernels (a
-    pause of a few seconds). Silence it with
-    ``warnings.filterwarnings("ignore", category=blockdae.CompileNotice)``."""
+_state = {"folder": _DEFAULT, "applied": False}
 
 
 def default_cache_dir() -> pathlib.Path | None:
@@ -56,11 +49,7 @@ def jax_context():
     """float64 for the calls inside; sets the compilation cache on first use."""
     import jax
 
-    if not _state["noticed"]:
-        _state["noticed"] = True
-        warnings.warn("blockdae: compiling its JAX kernels (the first JAX call in this process; a few seconds). "
-                      "Silence: warnings.filterwarnings('ignore', category=blockdae.CompileNotice)", CompileNotice,
-                      stacklevel=_callers_level())
+    notice("JAX", "its JAX kernels (the first JAX call in this process; a few seconds)")
     if not _state["applied"]:
         if _state["folder"] is not _DEFAULT:
             _apply(_state["folder"])
@@ -70,12 +59,3 @@ def jax_context():
     with jax.enable_x64(True):
         yield
 
-
-def _callers_level() -> int:
-    """The ``stacklevel`` that names the first caller outside blockdae and contextlib (the
-    user's line), counted from the function that calls this one."""
-    frame, level = sys._getframe(2), 2
-    while frame.f_back is not None and (frame.f_code.co_filename.startswith(_PACKAGE)
-                                        or frame.f_code.co_filename == contextlib.__file__):
-        frame, level = frame.f_back, level + 1
-    return level

@@ -13,6 +13,10 @@ def show_progress(progress=None) -> bool:
 def progress_bar(total: int, desc: str, unit: str, progress=None):
     """A tqdm bar on stderr over ``total`` ``unit`` s, labelled ``desc``; a disabled one
     (updates do nothing) where :func:`show_progress` says no."""
-    from tqdm.auto import tqdm
+    show = show_progress(progress)
+    if show:
+        from tqdm.auto import tqdm
+    else:  # plain tqdm: tqdm.auto in a notebook without ipywidgets warns even for a bar never shown
+        from tqdm import tqdm
 
-    return tqdm(total=total, desc=desc, unit=unit, disable=not show_progress(progress), file=sys.stderr)
+    return tqdm(total=total, desc=desc, unit=unit, disable=not show, file=sys.stderr)

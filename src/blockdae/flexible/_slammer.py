@@ -15,6 +15,7 @@ import numpy as np
 from numba import njit
 
 from ..core._checks import set_real_fields
+from ..core._compile_notice import notice_numba
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn, equivalent_linear
 
 METHODS = ("coupled", "decoupled")
@@ -85,6 +86,8 @@ def slammer_flexible(acceleration_g, dt: float, *, scale: float, ky: float, colu
     if not isinstance(column, ShearColumn):
         raise ValueError(f"column must be a ShearColumn, got {column!r}")
     ground = samples * (checked.scale * checked.g)
+    notice_numba("SLAMMER's flexible analyses", 1, _stick_response,
+                 _decoupled_sliding if method == "decoupled" else _coupled)
     vs, damping, passes = column.vs, column.total_damping, 0
     if reference_strain is not None:
         def peak(vs_pass, damping_pass):
