@@ -158,7 +158,7 @@ class NewmarkSweep(_Polarities):
 
 
 def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_end: float | None = None,
-            backend: str = "exact", *, pga=None, pga_rounding: str = "exact", progress=None,
+            backend: str = "exact", *, pga=None, target_pga=None, pga_rounding: str = "exact", progress=None,
             **options) -> NewmarkResult | NewmarkSweep:
     """Newmark's rigid-block (one-way) downslope displacement, positive downslope.
 
@@ -180,6 +180,7 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         pga: target peak ground acceleration(s) [g], a number or a 1-D sequence: the motion
             is scaled so that its peak |a| is each ``pga`` g (see :func:`blockdae.pga_factor`);
             None: as given.
+        target_pga: the same as ``pga`` (the name :func:`blockdae.flexible` uses); give one.
         pga_rounding: "exact" (default) or "slammer": the motion's own peak rounded to
             0.001 g before scaling, as SLAMMER scales (to reproduce its tables).
         progress: over many motions, a tqdm bar over them on stderr; None (default): only
@@ -192,9 +193,11 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
     """
     if polarity not in _POLARITIES:
         raise ValueError(f"polarity must be one of {_POLARITIES}, got {polarity!r}")
-    if "target_pga" in options:
-        raise TypeError(f"newmark: target_pga={options['target_pga']!r} is called pga here: the target peak "
-                        "ground acceleration [g], newmark(motion, ky, pga=...)")
+    if target_pga is not None:
+        if pga is not None:
+            raise ValueError(f"newmark: pga={pga!r} and target_pga={target_pga!r} name the same target peak [g]; "
+                             "give one")
+        pga = target_pga
     ky_array = np.asarray(ky, dtype=float)
     _require(np.isfinite(ky_array) & (ky_array > 0), "ky", ky_array, "must be a positive yield acceleration [g]")
     if isinstance(motion, AbstractExcitation) and np.ndim(pga) == 0:
