@@ -5,7 +5,7 @@ The coefficients are SciPy's (``scipy.integrate._ivp.dop853_coefficients``), rea
 not copied; the step, the error norm, the step-size controller and the dense output
 follow ``scipy.integrate.DOP853`` line by line, as plain functions that numba compiles
 where a compiled engine calls them (``register_jitable``). The right-hand side is a
-compiled function ``fun(t, y, args) -> dy/dt`` (:func:`for_flow` closes the steps over
+compiled function ``fun(t, y, args, out)`` writing dy/dt (:func:`for_flow` closes the steps over
 it, which keeps numba's disk cache usable), so nothing here knows a model.
 """
 
@@ -69,55 +69,55 @@ def dense_value(F, y, x, i):
 
 
 @register_jitable
-def dense_state(F, y, x):
-    """The whole state at x (see :func:`dense_value`)."""
-    out = np.empty(y.shape[0])
+def dense_state(F, y, x, out):
+    """The whole state at x into ``out`` (see :func:`dense_value`)."""
     for i in range(y.shape[0]):
         out[i] = dense_value(F, y, x, i)
-    return out
 
 
 def for_flow(fun):
     """(step, initial_step, dense_coefficients) for the compiled right-hand side
-    ``fun(t, y, args) -> dy/dt``, each taking ``args`` first."""
+    ``fun(t, y, args, out)`` (writes dy/dt into ``out``), each taking ``args`` first;
+    they allocate nothing: ``K`` (16, n) holds the stages, ``work`` (n,) a stage's state."""
 
     @register_jitable
-    def step(args, t, y, f, h, K):
-        """One step of size ``h`` [s] from (t, y) with f = fun(t, y): (y_new, f_new); the
-        stages are left in ``K`` (16, n) (rows 0-12; row 12 is f_new)."""
+    def step(args, t, y, h, K, y_new, work):
+        """One step of size ``h`` [s] from (t, y) with K[0] = fun(t, y): y_new; the
+        stages are left in ``K`` (rows 0-12; row 12 is f at the new state)."""
         n = y.shape[0]
-        K[0, :] = f
         for s in range(1, N_STAGES):
-            dy = np.zeros(n)
-            for j in range(s):
-                if A[s, j] != 0.0:
-                    dy += A[s, j] * K[j]
-            K[s, :] = fun(t + C[s] * h, y + h * dy, args)
-        incr = np.zeros(n)
-        for j in range(N_STAGES):
-            incr += B[j] * K[j]
-        y_new = y + h * incr
-        f_new = fun(t + h, y_new, args)
-        K[N_STAGES, :] = f_new
-        return y_new, f_new
-
+            for i in range(n):
+                acc = 0.0
+                for j in range(s):
+                    acc += A[s, j] * K[j, i]
+                work[i] = y[i] + h * acc
+            fun(t + C[s] * h, work, args, K[s])
+        for i in range(n):
+            acc = 0.0
+            for j in range(N_STAGES):
+                acc += B[j] * K[j, i]
+            y_new[i] = y[i] + h * acc
+        fun(t + h, y_new, args, K[N_STAGES])
 
     @register_jitable
-    def initial_step(args, t, y, f, bound, rtol, atol):
-        """Hairer's first step [s] (SciPy's ``select_initial_step``), at most ``bound`` [s]."""
+    def initial_step(args, t, y, bound, rtol, atol, K, work):
+        """Hairer's first step [s] (SciPy's ``select_initial_step``), at most ``bound``
+        [s]; K[0] = fun(t, y) (row 1 is overwritten)."""
         n = y.shape[0]
         d0, d1 = 0.0, 0.0
         for i in range(n):
             scale = atol + abs(y[i]) * rtol
             d0 += (y[i] / scale) ** 2
-            d1 += (f[i] / scale) ** 2
+            d1 += (K[0, i] / scale) ** 2
         d0, d1 = math.sqrt(d0 / n), math.sqrt(d1 / n)
         h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
         h0 = min(h0, bound)
-        f1 = fun(t + h0, y + h0 * f, args)
+        for i in range(n):
+            work[i] = y[i] + h0 * K[0, i]
+        fun(t + h0, work, args, K[1])
         d2 = 0.0
         for i in range(n):
-            d2 += ((f1[i] - f[i]) / (atol + abs(y[i]) * rtol)) ** 2
+            d2 += ((K[1, i] - K[0, i]) / (atol + abs(y[i]) * rtol)) ** 2
         d2 = math.sqrt(d2 / n) / h0
         if d1 <= 1e-15 and d2 <= 1e-15:
             h1 = max(1e-6, h0 * 1e-3)
@@ -125,29 +125,28 @@ def for_flow(fun):
             h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
         return min(100.0 * h0, h1, bound)
 
-
     @register_jitable
-    def dense_coefficients(args, t, y, y_new, f_new, h, K):
-        """The 7 rows F of the continuous extension of the step (t, y) -> (t + h, y_new)
-        whose stages are in ``K`` (fills rows 13-15)."""
+    def dense_coefficients(args, t, y, y_new, h, K, F, work):
+        """The 7 rows ``F`` (7, n) of the continuous extension of the step (t, y) ->
+        (t + h, y_new) whose stages are in ``K`` (fills rows 13-15)."""
         n = y.shape[0]
         for e in range(A_EXTRA.shape[0]):
             s = N_STAGES + 1 + e
-            dy = np.zeros(n)
-            for j in range(s):
-                if A_EXTRA[e, j] != 0.0:
-                    dy += A_EXTRA[e, j] * K[j]
-            K[s, :] = fun(t + C_EXTRA[e] * h, y + h * dy, args)
-        F = np.empty((7, n))
-        delta = y_new - y
-        F[0] = delta
-        F[1] = h * K[0] - delta
-        F[2] = 2.0 * delta - h * (f_new + K[0])
-        for r in range(4):
-            row = np.zeros(n)
-            for j in range(N_STAGES_EXTENDED):
-                row += D[r, j] * K[j]
-            F[3 + r] = h * row
-        return F
+            for i in range(n):
+                acc = 0.0
+                for j in range(s):
+                    acc += A_EXTRA[e, j] * K[j, i]
+                work[i] = y[i] + h * acc
+            fun(t + C_EXTRA[e] * h, work, args, K[s])
+        for i in range(n):
+            delta = y_new[i] - y[i]
+            F[0, i] = delta
+            F[1, i] = h * K[0, i] - delta
+            F[2, i] = 2.0 * delta - h * (K[N_STAGES, i] + K[0, i])
+            for r in range(4):
+                acc = 0.0
+                for j in range(N_STAGES_EXTENDED):
+                    acc += D[r, j] * K[j, i]
+                F[3 + r, i] = h * acc
 
     return step, initial_step, dense_coefficients

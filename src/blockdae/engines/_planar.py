@@ -78,6 +78,8 @@ _V_ERROR_FACTOR, _ROUNDING = 10.0, 1e-12  # the driver's
 def _a(pe, i, t):
     """Component ``i`` of the base acceleration at ``t`` [m/s²] (the driver's local time)."""
     P = pe[2]
+    if P[i, 2] == 0:  # a linear piece: no sine to evaluate
+        return accel(P[i, 0], P[i, 1], None, None, None, min(t - pe[0], pe[1]), xp)
     return accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
 
 
@@ -170,13 +172,21 @@ def _state_on_entry(before, after, t, y, pe, p):
 def _flow(mode, t, y, pe, p):
     """dy/dt (``PlanarBlock.flow``, rigid support) and the path's rate s in slip."""
     out = np.zeros(N_STATE)
+    _flow_into(mode, t, y, pe, p, out)
+    return out
+
+
+def _flow_into(mode, t, y, pe, p, out):
+    """:func:`_flow` into ``out`` (N_STATE,)."""
+    for i in range(N_STATE):
+        out[i] = 0.0
     if mode == STICK:
-        return out
+        return
     rx, ry = -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4])
     if mode == FLIGHT:
         out[_UX], out[_UY], out[_CX], out[_CY] = y[_CX], y[_CY], rx, ry
         out[_W], out[_WD] = y[_WD], -(p[4] + _a(pe, 2, t))
-        return out
+        return
     n = p[4] + _a(pe, 2, t)
     size = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
     ex, ey = y[_CX] / size, y[_CY] / size
@@ -186,12 +196,11 @@ def _flow(mode, t, y, pe, p):
     turn = across / (s if s > SLOW_SPEED else SLOW_SPEED)
     out[_UX], out[_UY], out[_S], out[_CX], out[_CY] = s * ex, s * ey, along, -ey * turn * size, ex * turn * size
     out[_PATH] = s
-    return out
 
 
-def _slip_rhs(t, y, args):
+def _slip_rhs(t, y, args, out):
     """The slip flow as DOP853's right-hand side (``args``: (pe, p))."""
-    return _flow(SLIP, t, y, args[0], args[1])
+    _flow_into(SLIP, t, y, args[0], args[1], out)
 
 
 def _guards(mode, t, y, pe, p):
@@ -426,14 +435,17 @@ _step, _initial_step, _dense_coefficients = _dop853.for_flow(_slip_rhs)
 _dense_value, _dense_state = _dop853.dense_value, _dop853.dense_state
 
 
-def _slip_to(t, y, h, stop, pe, p, rtol, atol, K, K2, cnt):
+def _slip_to(t, y, h, stop, pe, p, rtol, atol, B, cnt):
     """Slide from (t, y) to ``stop`` [s] or to the first stop before it: (time, state,
-    1 if a stop else -1, next step [s]). ``h``: the step to try (0: choose one)."""
+    1 if a stop else -1, next step [s]). ``h``: the step to try (0: choose one); ``B``:
+    the work buffers (:func:`_buffers`)."""
+    K, K2, F, work, y_new, z, y_cur = B
     args = (pe, p)
-    f = _slip_rhs(t, y, args)
+    y_cur[:] = y
+    _slip_rhs(t, y_cur, args, K[0])
     cnt[C_RHS] += 1
     if h <= 0:
-        h = _initial_step(args, t, y, f, stop - t, rtol, atol)
+        h = _initial_step(args, t, y_cur, stop - t, rtol, atol, K, work)
         cnt[C_RHS] += 1
     while t < stop:
         rest = stop - t
@@ -441,10 +453,10 @@ def _slip_to(t, y, h, stop, pe, p, rtol, atol, K, K2, cnt):
         hh = rest if last else h
         if not last and hh <= _ULPS * _EPS * max(1.0, abs(t)):
             cnt[C_STATUS] = STEP_TOO_SMALL
-            return t, y, -1, h
-        y_new, f_new = _step(args, t, y, f, hh, K)
+            return t, y_cur.copy(), -1, h
+        _step(args, t, y_cur, hh, K, y_new, work)
         cnt[C_RHS] += 12
-        err = _dop853.error_norm(K, hh, y, y_new, rtol, atol)
+        err = _dop853.error_norm(K, hh, y_cur, y_new, rtol, atol)
         if err > 1.0:
             h = hh * _dop853.factor(err, False)
             cnt[C_REJECTED] += 1
@@ -452,29 +464,39 @@ def _slip_to(t, y, h, stop, pe, p, rtol, atol, K, K2, cnt):
         cnt[C_STEPS] += 1
         t_new = stop if last else t + hh
         upper, dense = math.nan, False
-        F = np.empty((7, N_STATE))
-        if y[_S] > 0 and y_new[_S] <= 0:
+        f_start, f_end = K[0, _S], K[_dop853.N_STAGES, _S]
+        if y_cur[_S] > 0 and y_new[_S] <= 0:
             upper = t_new
-        elif y[_S] > 0 and f[_S] < 0 and f_new[_S] > 0:  # s may dip below zero and come back
-            F, dense = _dense_coefficients(args, t, y, y_new, f_new, hh, K), True
+        elif y_cur[_S] > 0 and f_start < 0 and f_end > 0:  # s may dip below zero and come back
+            _dense_coefficients(args, t, y_cur, y_new, hh, K, F, work)
+            dense = True
             cnt[C_RHS] += 3
-            x_min = _dense_minimum(F, y, t, hh, args)
-            if _dense_value(F, y, x_min, _S) <= 0:
+            x_min = _dense_minimum(F, y_cur, t, hh, args, work, z)
+            if _dense_value(F, y_cur, x_min, _S) <= 0:
                 upper = t + x_min * hh
         if not math.isnan(upper):
             if not dense:
-                F = _dense_coefficients(args, t, y, y_new, f_new, hh, K)
+                _dense_coefficients(args, t, y_cur, y_new, hh, K, F, work)
                 cnt[C_RHS] += 3
-            root, z = _stop_on_flow(F, args, t, y, f, hh, upper, K2, cnt)
+            root = _stop_on_flow(F, args, t, y_cur, hh, upper, K, K2, work, z, cnt)
             if root > 0:
-                return root, z, 1, h
+                return root, z.copy(), 1, h
         h_next = hh * _dop853.factor(err, True)
         h = max(h, h_next) if last else h_next
-        t, y, f = t_new, y_new, f_new
-    return t, y, -1, h
+        t = t_new
+        y_cur[:] = y_new
+        K[0, :] = K[_dop853.N_STAGES]
+    return t, y_cur.copy(), -1, h
 
 
-def _dense_minimum(F, y, t, hh, args):
+def _buffers():
+    """Work arrays of the slip's steps: K, K2 (16, 8), F (7, 8), then four (8,)."""
+    n = _dop853.N_STAGES_EXTENDED
+    return (np.empty((n, N_STATE)), np.empty((n, N_STATE)), np.empty((7, N_STATE)), np.empty(N_STATE),
+            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE))
+
+
+def _dense_minimum(F, y, t, hh, args, work, rate):
     """x in [0, 1] where the dense s is least (its rate from the flow at the dense state
     goes from < 0 to > 0), by bisection."""
     lo, hi = 0.0, 1.0
@@ -482,17 +504,27 @@ def _dense_minimum(F, y, t, hh, args):
         mid = 0.5 * (lo + hi)
         if mid == lo or mid == hi:
             break
-        if _slip_rhs(t + mid * hh, _dense_state(F, y, mid), args)[_S] < 0:
+        _dense_state(F, y, mid, work)
+        _slip_rhs(t + mid * hh, work, args, rate)
+        if rate[_S] < 0:
             lo = mid
         else:
             hi = mid
     return hi
 
 
-def _stop_on_flow(F, args, t, y, f, hh, upper, K2, cnt):
+def _s_after(args, t, y, d, K, K2, work, z):
+    """s [m/s] after a DOP853 step of ``d`` [s] from (t, y) (K[0]: the rate there),
+    the state left in ``z``."""
+    K2[0, :] = K[0]
+    _step(args, t, y, d, K2, z, work)
+    return z[_S]
+
+
+def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt):
     """The stop in (t, upper]: the first float where the dense s is <= 0, confirmed on
     the flow (a step from t to it has s <= 0, to the float before it s > 0); else the
-    same bisection on steps from t. (time, state), time 0 if the flow has none."""
+    same bisection on steps from t. The time (0 if the flow has none), the state in ``z``."""
     a, b = t, upper
     while True:  # on the dense output
         mid = 0.5 * (a + b)
@@ -502,21 +534,21 @@ def _stop_on_flow(F, args, t, y, f, hh, upper, K2, cnt):
             a = mid
         else:
             b = mid
-    z, _ = _step(args, t, y, f, b - t, K2)
     before = np.nextafter(b, -math.inf)
     cnt[C_RHS] += 24
-    if z[_S] <= 0 and (before <= t or _step(args, t, y, f, before - t, K2)[0][_S] > 0):
-        return b, z
+    if before <= t or _s_after(args, t, y, before - t, K, K2, work, z) > 0:
+        if _s_after(args, t, y, b - t, K, K2, work, z) <= 0:
+            return b
     a, b = t, upper  # on the flow
-    z, _ = _step(args, t, y, f, b - t, K2)
-    if z[_S] > 0:
-        return 0.0, z
+    if _s_after(args, t, y, b - t, K, K2, work, z) > 0:
+        return 0.0
     while True:
         mid = 0.5 * (a + b)
         if mid <= a or mid >= b:
-            return b, _step(args, t, y, f, b - t, K2)[0]
+            _s_after(args, t, y, b - t, K, K2, work, z)
+            return b
         cnt[C_RHS] += 12
-        if _step(args, t, y, f, mid - t, K2)[0][_S] > 0:
+        if _s_after(args, t, y, mid - t, K, K2, work, z) > 0:
             a = mid
         else:
             b = mid
@@ -622,7 +654,7 @@ def _output_step(pe):
     return 1.0 / (KNOTS_PER_RADIAN * w) if w > 0 else math.inf
 
 
-def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, K, K2):
+def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
     """The driver's ``advance_to``: from ``fl[F_T]`` to ``end`` [s]."""
     turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
     while fl[F_T] < end and not (until_rest and cnt[C_MODE] == STICK):
@@ -658,7 +690,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, K, K2):
         else:
             lift = _liftoff_time(t, t_out, pe, p)
             stop = t_out if math.isnan(lift) else lift
-            t_new, z, root, fl[F_H] = _slip_to(t, y, fl[F_H], stop, pe, p, opt[0], opt[1], K, K2, cnt)
+            t_new, z, root, fl[F_H] = _slip_to(t, y, fl[F_H], stop, pe, p, opt[0], opt[1], B, cnt)
             if cnt[C_STATUS] != FINISHED:
                 return kb, eb
             if root < 0 and not math.isnan(lift):
@@ -706,7 +738,7 @@ def _run(T0, H, CF, p, opt, log):
     y = np.zeros(N_STATE)
     kb = np.empty((256 if log else 1, KNOT_WIDTH))
     eb = np.empty((64 if log else 1, EVENT_WIDTH))
-    K, K2 = np.empty((_dop853.N_STAGES_EXTENDED, N_STATE)), np.empty((_dop853.N_STAGES_EXTENDED, N_STATE))
+    B = _buffers()
     zero = np.zeros(N_STATE)
     kb = _add_knot(kb, cnt, fl, log, 0.0, y, STICK, zero, zero)
     until_rest = opt[4] != 0
@@ -736,7 +768,7 @@ def _run(T0, H, CF, p, opt, log):
                 cnt[C_STATUS] = NEVER_RESTS
                 break
             end = fl[F_T] + bound
-        kb, eb = _advance(kb, eb, cnt, fl, log, y, end, k == n, pe, p, opt, K, K2)
+        kb, eb = _advance(kb, eb, cnt, fl, log, y, end, k == n, pe, p, opt, B)
         if cnt[C_STATUS] != FINISHED:
             break
         if k == n and cnt[C_MODE] != STICK:
