@@ -47,7 +47,7 @@ def main(argv=None):
     parser.add_argument("--cache-dir", default=None, help="JAX persistent compilation cache folder")
     args = parser.parse_args(argv)
     enable_compilation_cache(args.cache_dir)
-    available = bd.backends.available()
+    available = bd.backends.available(bd.SlidingBlock(0.2))
     names = tuple(args.backends or available)
     missing = [n for n in (*names, *PLANNED) if n not in available]
     if missing:

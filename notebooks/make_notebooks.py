@@ -194,8 +194,8 @@ import numpy as np
 
 import blockdae as bd
 
-names = bd.backends.available()
-print("available backends:", ", ".join(names))
+names = bd.backends.available(bd.SlidingBlock(0.2))
+print("backends of the 1-D block:", ", ".join(names))
 G = 9.80665
 folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
 kobe = bd.read_record(folder / "Kobe_1995_TAK-090.csv", units="g", g=G)

@@ -222,7 +222,7 @@ def test_planar_solution_tables_and_dense_output():
     np.testing.assert_allclose(np.hypot(v_x, v_y)[sol.mode == bd.PlanarMode.STICK], 0.0, atol=1e-15)
     table = sol.to_dataframe()
     assert list(table.mode_after) == ["SLIP", "STICK"] and "direction_deg" in table
-    assert "u_x [m]" in sol.event_table()
+    assert "u_x [g s²]" in sol.event_table()  # g = 1: lengths in g s²
     with pytest.raises(ValueError, match="t must lie"):
         sol(sol.t_end + 1.0)
 

@@ -16,9 +16,9 @@ _REGISTRY = {
 }
 
 
-def available() -> tuple[str, ...]:
-    """Names accepted by ``simulate(..., backend=...)``."""
-    return tuple(_REGISTRY)
+def available(model=None) -> tuple[str, ...]:
+    """Names accepted by ``simulate(..., backend=...)``; with ``model``, those that run it."""
+    return tuple(name for name in _REGISTRY if model is None or make_backend(name).runs(model))
 
 
 def make_backend(name: str, **options) -> AbstractBackend:

@@ -79,6 +79,6 @@ def simulate(block: AbstractHybridModel, motion, t_end: float | None = None, bac
     solver = make_backend(backend, **options)
     if not solver.runs(block):
         raise ValueError(f"backend={backend!r} does not run a {type(block).__name__}; choose one of "
-                         f"{[name for name in available() if make_backend(name).runs(block)]}")
+                         f"{list(available(block))}")
     result = solver.solve_batch(block, motion, horizon) if block.batch_shape else solver.solve(block, motion, horizon)
     return dataclasses.replace(result, block=block, motion=motion)

@@ -6,6 +6,7 @@ from ..core._units import STANDARD_GRAVITY
 from ._formats import read_channels
 from ._readers import ONE_COMPONENT, read_table, record_name
 from ._record import Record
+from ._units import canonical_units
 
 
 def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_peak=True, *,
@@ -63,6 +64,8 @@ def read_file_records(path, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=
     AT2 file; a COSMOS or miniSEED file may hold several, named "<name> <component>");
     the arguments as for :func:`read_record`."""
     path = pathlib.Path(path)
+    if units is not None:
+        canonical_units(units)  # an unknown name fails before the file is read
     options = {key: value for key, value in (("remove_mean", remove_mean), ("gain", gain)) if value not in (None, False)}
     records, text = read_channels(path, units, dt, g, check_peak, name, options)
     if records is not None:
