@@ -1,0 +1,167 @@
+"""The flexible sliding mass (issue 22): the exact engine against an independent
+DOP853 integration of the formulation note's section 8 (written here from the
+equations, restarted at every sample and every event), against closed forms, and
+CVODE, IDA and the JAX twin on the same model; the entry point ``bd.flexible``."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+import blockdae as bd
+from blockdae.flexible import FlexibleMode, FlexibleSlidingMass, ShearColumn
+from conftest import load_sample_record
+
+G = bd.STANDARD_GRAVITY
+GAMMA, MASS, D1 = 4 / math.pi, 2 / math.pi, 1 - 8 / math.pi**2
+STICK, SLIP = FlexibleMode.STICK, FlexibleMode.SLIP
+
+
+# ---- the independent reference: DOP853 on section 8, restarted at samples and events ----
+def reference(samples, dt, omega, xi, kyg, coupled, t_end, slide=True):
+    """Section 8 integrated by DOP853 (rtol 1e-12, atol 1e-15) from rest at t = 0 under
+    a(t) linear between ``samples`` [m/s²] at k dt, restarted at every sample and event.
+
+    Returns (events [(t, before, after)], final state (u, u', s, w), HEA at the samples
+    [m/s²], sup |HEA| [m/s²], sup |u| [m]); the sups from the dense output, extrema
+    refined by brentq on HEA' and u'."""
+    k, c = omega**2, 2 * xi * omega
+
+    def piece(i):
+        a0, rate = samples[i], (samples[i + 1] - samples[i]) / dt
+        return lambda t: a0 + rate * (t - i * dt), rate
+
+    mode, y, t, events = STICK, np.zeros(4), 0.0, []
+    hea_samples, hea_sup, u_sup = [0.0], 0.0, 0.0
+    for i in range(int(round(t_end / dt))):
+        a, rate = piece(i)
+        if slide and t == 0.0 and _section8(mode, a, k, c, kyg, coupled)[1](0.0, y) < 0:
+            events.append((0.0, STICK, SLIP))  # an excess at rest slides at once
+            mode = SLIP
+        end = (i + 1) * dt
+        while t < end:
+            rhs, guard = _section8(mode, a, k, c, kyg, coupled)
+            sol = solve_ivp(rhs, (t, end), y, method="DOP853", rtol=1e-12, atol=1e-15,
+                            events=guard if slide else None, dense_output=not slide)
+            if not slide:
+                hea_sup, u_sup = _sups(sol.sol, t, end, a, rate, k, c, hea_sup, u_sup)
+            if slide and sol.t_events[0].size:
+                t, y = float(sol.t_events[0][0]), sol.y_events[0][0].copy()
+                y[3] = 0.0
+                events.append((t, mode, SLIP if mode == STICK else STICK))
+                mode = SLIP if mode == STICK else STICK
+            else:
+                t, y = end, sol.y[:, -1]
+        if not slide:
+            hea_samples.append(abs(a(end) + MASS * (-GAMMA * a(end) - c * y[1] - k * y[0])))
+    return events, y, np.array(hea_samples), hea_sup, u_sup
+
+
+def _section8(mode, a, k, c, kyg, coupled):
+    """(rhs, guard) of section 8 in ``mode`` under a(t): STICK's guard ky g - HEA, SLIP's w,
+    both terminal as they fall through 0."""
+    def modal(t, y):
+        elastic = c * y[1] + k * y[0]
+        stick = -GAMMA * a(t) - elastic
+        return stick, ((-GAMMA * kyg - elastic) / D1 if (mode == SLIP and coupled) else stick)
+
+    def rhs(t, y):
+        udd = modal(t, y)[1]
+        return [y[1], udd, 0.0, 0.0] if mode == STICK else [y[1], udd, y[3], a(t) - kyg + MASS * udd]
+
+    def guard(t, y):
+        return kyg - (a(t) + MASS * modal(t, y)[0]) if mode == STICK else y[3]
+
+    guard.terminal, guard.direction = True, -1
+    return rhs, guard
+
+
+def _sups(dense, t0, t1, a, rate, k, c, hea_sup, u_sup):
+    """The running sup |HEA| and |u| over [t0, t1] from DOP853's dense output: extrema
+    where HEA' (or u') changes sign on a grid of 64, refined by brentq."""
+    hea = lambda t: a(t) + MASS * (-GAMMA * a(t) - c * dense(t)[1] - k * dense(t)[0])
+
+    def hea_rate(t):
+        u, v = dense(t)[:2]
+        udd = -GAMMA * a(t) - c * v - k * u
+        return rate + MASS * (-GAMMA * rate - c * udd - k * v)
+
+    grid = np.linspace(t0, t1, 65)
+    for value, rate_of in ((hea, hea_rate), (lambda t: dense(t)[0], lambda t: dense(t)[1])):
+        rates = np.array([rate_of(s) for s in grid])
+        best = max(abs(value(t0)), abs(value(t1)))
+        for j in np.flatnonzero(rates[:-1] * rates[1:] < 0):
+            best = max(best, abs(value(brentq(rate_of, grid[j], grid[j + 1], xtol=1e-15, rtol=4e-16))))
+        if value is hea:
+            hea_sup = max(hea_sup, best)
+        else:
+            u_sup = max(u_sup, best)
+    return hea_sup, u_sup
+
+
+def _record(stem, duration=None):
+    """A pySLAMMER sample record, its first ``duration`` [s] (all of it: None)."""
+    record = load_sample_record(stem)
+    if duration is None:
+        return record
+    return bd.Record(record.acceleration_samples[:int(round(duration / record.dt)) + 1], record.dt, name=stem,
+                     units="m/s2")
+
+
+def _compare_with_reference(record, model, t_end, min_events=4):
+    """Exact vs DOP853: the same onsets and stops within 1e-10 s, s(t_end) within 1e-9
+    relative, u(t_end) within 1e-9 of max |u|; returns (exact solution, reference events)."""
+    sol = bd.simulate(model, record, t_end=t_end)
+    events, y, *_ = reference(record.acceleration_samples, record.dt, model.omega, model.damping,
+                              model.yield_acceleration, model.coupled, t_end)
+    assert [(e.mode_before, e.mode_after) for e in sol.events] == [(b, a) for _, b, a in events]
+    assert len(events) >= min_events
+    np.testing.assert_allclose(sol.t_events, [t for t, _, _ in events], rtol=0, atol=1e-10)
+    assert sol.displacement == pytest.approx(y[2], rel=1e-9)
+    assert abs(sol.state[-1, 0] - y[0]) <= 1e-9 * np.abs(sol.state[:, 0]).max()
+    return sol, events
+
+
+@pytest.mark.parametrize("method", ["coupled", "decoupled"])
+@pytest.mark.parametrize("stem, ky, height, vs", [("Northridge_1994_PAC-175", 0.1, 10.0, 250.0),
+                                                  ("Cape_Mendocino_1992_PET-090", 0.15, 5.0, 300.0)])
+def test_exact_matches_dop853_on_records(stem, ky, height, vs, method):
+    """Reference: the DOP853 integration above. Two records at dt = 0.02 s, where
+    omega dt is 0.8 to 1.9 (the fixed-step peers are far off there)."""
+    record = _record(stem, duration=12.0)
+    model = FlexibleSlidingMass(ShearColumn(height, vs, damping=0.05), ky=ky, method=method)
+    sol, _ = _compare_with_reference(record, model, 12.0)
+    assert sol.displacement > 1e-3 and len(sol.episodes) >= 2
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("method", ["coupled", "decoupled"])
+def test_exact_matches_dop853_on_a_whole_record(method):
+    """Reference: DOP853 (above), Kobe TAK-090 to its end (40 s), a 20 m column."""
+    record = _record("Kobe_1995_TAK-090")
+    model = FlexibleSlidingMass(ShearColumn(20.0, 300.0, damping=0.05), ky=0.12, method=method)
+    _compare_with_reference(record, model, record.duration)
+
+
+def test_a_record_ending_while_sliding():
+    """t_end inside an episode: the last episode has no stop and s(t_end) is DOP853's."""
+    record = _record("Northridge_1994_PAC-175", duration=12.0)
+    model = FlexibleSlidingMass(ShearColumn(10.0, 250.0), ky=0.1, method="coupled")
+    full = bd.simulate(model, record, t_end=12.0)
+    episode = max(full.episodes, key=lambda e: e.stop - e.onset)
+    t_end = round((episode.onset + episode.stop) / 2 / record.dt) * record.dt  # a sample inside it
+    assert episode.onset < t_end < episode.stop
+    sol, events = _compare_with_reference(record, model, t_end, min_events=1)
+    assert sol.mode[-1] == SLIP and np.isnan(sol.episodes[-1].stop) and sol.state[-1, 3] > 0
+
+
+def test_onset_at_t0_under_a_large_first_sample():
+    """a(0) = 0.5 g > ky g / d1 at rest: HEA(0) = d1 a(0) exceeds ky g, sliding from t = 0
+    (both the exact engine and DOP853 take it as an onset at once)."""
+    samples = 0.5 * G * np.cos(np.linspace(0.0, 3 * np.pi, 151))
+    record = bd.Record(samples, 0.01, units="m/s2")
+    model = FlexibleSlidingMass(ShearColumn(8.0, 200.0), ky=0.05, method="coupled")
+    sol, events = _compare_with_reference(record, model, 1.5, min_events=2)
+    assert sol.events[0].t == 0.0 and sol.events[0].kind == "onset"
