@@ -12,7 +12,7 @@ from scipy.optimize import brentq
 
 import blockdae as bd
 from blockdae.flexible import FlexibleMode, FlexibleSlidingMass, ShearColumn
-from conftest import load_sample_record
+from conftest import assert_same_events, load_sample_record
 
 G = bd.STANDARD_GRAVITY
 GAMMA, MASS, D1 = 4 / math.pi, 2 / math.pi, 1 - 8 / math.pi**2
@@ -165,3 +165,99 @@ def test_onset_at_t0_under_a_large_first_sample():
     model = FlexibleSlidingMass(ShearColumn(8.0, 200.0), ky=0.05, method="coupled")
     sol, events = _compare_with_reference(record, model, 1.5, min_events=2)
     assert sol.events[0].t == 0.0 and sol.events[0].kind == "onset"
+
+
+@pytest.mark.parametrize("method", ["coupled", "decoupled"])
+def test_cvode_and_ida_agree_with_exact(method):
+    """The same model on the generic driver (rtol 1e-10): the same onsets and stops
+    within 1e-9 s and s(t_end) within 1e-8 relative (measured: 6.4e-11 s, 2.5e-10)."""
+    record = _record("Northridge_1994_PAC-175", duration=8.0)
+    model = FlexibleSlidingMass(ShearColumn(10.0, 250.0), ky=0.1, method=method)
+    exact = bd.simulate(model, record, t_end=8.0)
+    assert len(exact.events) >= 8
+    for backend in ("cvode", "ida"):
+        sol = bd.simulate(model, record, t_end=8.0, backend=backend, rtol=1e-10)
+        assert_same_events(sol, exact, 1e-9)
+        assert sol.displacement == pytest.approx(exact.displacement, rel=1e-8)
+
+
+@pytest.mark.parametrize("method", ["coupled", pytest.param("decoupled", marks=pytest.mark.slow)])
+def test_jax_twin_agrees_with_exact(method):
+    """The JAX twin (dopri8, rtol 1e-12, atol 1e-14) within 1e-10 s and 1e-10 relative
+    of exact (measured 3.4e-14 s, 1.9e-14); the two methods compile apart (their
+    parameters differ: coupled names d1)."""
+    record = _record("Northridge_1994_PAC-175", duration=4.0)
+    model = FlexibleSlidingMass(ShearColumn(10.0, 250.0), ky=0.1, method=method)
+    exact = bd.simulate(model, record, t_end=4.0)
+    sol = bd.simulate(model, record, t_end=4.0, backend="jax", rtol=1e-12, atol=1e-14)
+    assert len(exact.events) >= 4
+    assert_same_events(sol, exact, 1e-10)
+    assert sol.displacement == pytest.approx(exact.displacement, rel=1e-10)
+
+
+# ---- closed forms ------------------------------------------------------------------
+def step_response(force, omega, zeta, t):
+    """(u, u', u'') of u'' + 2 zeta omega u' + omega² u = force from rest (closed form)."""
+    sigma, wd = zeta * omega, omega * math.sqrt(1 - zeta**2)
+    decay, cos, sin = np.exp(-sigma * t), np.cos(wd * t), np.sin(wd * t)
+    static = force / omega**2
+    u = static * (1 - decay * (cos + sigma / wd * sin))
+    u_rate = static * omega**2 / wd * decay * sin
+    return u, u_rate, force - 2 * zeta * omega * u_rate - omega**2 * u
+
+
+def test_a_constant_acceleration_without_sliding_is_the_step_response():
+    """a = 0.3 g from t = 0 and ky = 1 g: u is the damped step response of
+    u'' + 2 xi omega u' + omega² u = -(4/pi) a and HEA = a + (2/pi) u'' (closed form),
+    to 1e-12 of their peaks on a dense grid."""
+    a = 0.3 * G
+    column = ShearColumn(12.0, 200.0, damping=0.02, impedance=False)
+    model = FlexibleSlidingMass(column, ky=1.0)
+    sol = bd.simulate(model, bd.Record(np.full(101, a), 0.01, units="m/s2"), t_end=1.0)
+    t = np.linspace(0.0, 0.99, 991)  # a(t) is the record's up to its last sample, 0 after it
+    u, _, udd = step_response(-GAMMA * a, column.omega, column.total_damping, t)
+    assert sol.events == ()
+    np.testing.assert_allclose(sol(t)[0], u, rtol=0, atol=1e-12 * abs(u).max())
+    hea = a + MASS * udd
+    np.testing.assert_allclose(sol.hea(t), hea, rtol=0, atol=1e-12 * abs(hea).max())
+
+
+@pytest.mark.parametrize("method", ["coupled", "decoupled"])
+def test_constant_acceleration_slides_from_t0_as_in_closed_form(method):
+    """a = 0.5 g from rest, ky = 0.05 g: d1 a > ky g, so sliding starts at t = 0 and never
+    stops; w = (a - ky g) t + (2/pi) u' and s = (a - ky g) t²/2 + (2/pi) u with u the step
+    response of STICK's oscillator (decoupled) or of SLIP's, d1 u'' + 2 xi omega u' +
+    omega² u = -(4/pi) ky g (coupled): closed forms, to 1e-12 of s(1 s)."""
+    a, ky = 0.5 * G, 0.05
+    column = ShearColumn(12.0, 200.0, damping=0.05)
+    model = FlexibleSlidingMass(column, ky=ky, method=method)
+    sol = bd.simulate(model, bd.Record(np.full(101, a), 0.01, units="m/s2"), t_end=1.0)
+    assert [(e.t, e.kind) for e in sol.events] == [(0.0, "onset")]
+    t = np.linspace(0.0, 1.0, 501)
+    omega, zeta = column.omega, column.total_damping
+    if method == "coupled":
+        u, u_rate, _ = step_response(-GAMMA * ky * G / D1, omega / math.sqrt(D1), zeta / math.sqrt(D1), t)
+    else:
+        u, u_rate, _ = step_response(-GAMMA * a, omega, zeta, t)
+    s = (a - ky * G) * t**2 / 2 + MASS * u
+    _, _, s_exact, w_exact = sol(t)
+    np.testing.assert_allclose(s_exact, s, rtol=0, atol=1e-12 * s[-1])
+    np.testing.assert_allclose(w_exact, (a - ky * G) * t + MASS * u_rate, rtol=0, atol=1e-12 * s[-1])
+
+
+def test_grazing_is_no_sliding():
+    """ky g = the first peak of HEA under a constant a (closed form: HEA = a + (2/pi) u''
+    of the step response, its peak where u''' = 0): HEA touches ky g and
+    turns back, no onset; ky 1e-6 lower slides once, briefly."""
+    a = 0.3 * G
+    column = ShearColumn(12.0, 200.0, damping=0.05)
+    omega, zeta = column.omega, column.total_damping
+    sigma, wd = zeta * omega, omega * math.sqrt(1 - zeta**2)
+    # u''' = (F / wd) e^(-sigma t) ((sigma² - wd²) sin wd t - 2 sigma wd cos wd t) is first 0 at
+    peak_time = (math.pi + math.atan(2 * sigma * wd / (sigma**2 - wd**2))) / wd
+    peak = a + MASS * step_response(-GAMMA * a, omega, zeta, peak_time)[2]
+    record = bd.Record(np.full(101, a), 0.01, units="m/s2")
+    sol = bd.simulate(FlexibleSlidingMass(column, ky=peak / G), record, t_end=1.0)
+    assert sol.events == () and sol.displacement == 0.0
+    lower = bd.simulate(FlexibleSlidingMass(column, ky=peak / G * (1 - 1e-6)), record, t_end=1.0)
+    assert len(lower.episodes) == 1 and 0 < lower.displacement < 1e-9

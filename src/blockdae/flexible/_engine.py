@@ -25,8 +25,8 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..engines._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT,
-                               MAX_INTERVALS, STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative, _eval,
-                               _eval_at, _falls, _first_down_crossing, _sign_change, _signed, _solve)
+                               MAX_INTERVALS, STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative,
+                               _down_crossing_search, _eval, _eval_at, _falls, _sign_change, _signed, _solve)
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
 
 _EPS = float(np.finfo(float).eps)
@@ -167,7 +167,7 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log):
                     event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
                 elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
                              _bound(g1, 0.0, span), span) <= 0:
-                    root = _first_down_crossing(guard, g1, g2, _derivative(g2), 0.0, span, t0[i] + tau, stack)
+                    root = _down_crossing_search(guard, g1, g2, _derivative(g2), 0.0, span, t0[i] + tau, stack)
                     if root == -math.inf:
                         status = UNSETTLED
                         break

@@ -76,6 +76,7 @@ class FlexibleSlidingMass(AbstractHybridModel):
             raise ValueError(f"method={self.method!r} is unknown; choose one of {METHODS}")
         object.__setattr__(self, "omega", self.column.omega)
         object.__setattr__(self, "damping", self.column.total_damping)
+        object.__setattr__(self, "slip_mass_fraction", SLIP_MASS_FRACTION)
 
     @property
     def coupled(self) -> bool:
@@ -96,14 +97,14 @@ class FlexibleSlidingMass(AbstractHybridModel):
         """u'' [m/s²] in ``mode`` at ground acceleration ``a`` [m/s²] in state ``y``."""
         elastic = 2 * self.damping * self.omega * y[_V] + self.omega**2 * y[_U]
         if mode == FlexibleMode.SLIP and self.coupled:
-            return (-MODE_PARTICIPATION * self.yield_acceleration - elastic) / SLIP_MASS_FRACTION
+            return (-MODE_PARTICIPATION * self.yield_acceleration - elastic) / self.slip_mass_fraction
         return -MODE_PARTICIPATION * a - elastic
 
     def modal_jerk(self, mode, a_rate, y, accel):
         """u''' [m/s³] from u'' = ``accel`` and a' = ``a_rate`` [m/s³] (a'' = 0)."""
         elastic = 2 * self.damping * self.omega * accel + self.omega**2 * y[_V]
         if mode == FlexibleMode.SLIP and self.coupled:
-            return -elastic / SLIP_MASS_FRACTION
+            return -elastic / self.slip_mass_fraction
         return -MODE_PARTICIPATION * a_rate - elastic
 
     def hea(self, mode, a, y):
@@ -184,8 +185,11 @@ class FlexibleSlidingMass(AbstractHybridModel):
 
     # ---- parameters, for JAX ------------------------------------------------------
     def parameters(self):
-        """omega [rad/s], damping (total ratio) [-], ky [g], g [m/s²]."""
-        return {"omega": self.omega, "damping": self.damping, "ky": self.ky, "g": self.g}
+        """omega [rad/s], damping (total ratio) [-], ky [g], g [m/s²]; coupled also d1 =
+        slip_mass_fraction [-], which only its slip reads (so that the compiled rules of
+        the two methods, cached by parameter names, differ)."""
+        named = {"omega": self.omega, "damping": self.damping, "ky": self.ky, "g": self.g}
+        return named | ({"slip_mass_fraction": self.slip_mass_fraction} if self.coupled else {})
 
     def with_parameters(self, values):
         model = object.__new__(FlexibleSlidingMass)
