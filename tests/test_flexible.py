@@ -11,7 +11,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 import blockdae as bd
-from blockdae.flexible import FlexibleMode, FlexibleSlidingMass, ShearColumn
+from blockdae.flexible import FlexibleMode, FlexibleSlidingMass, ShearColumn, equivalent_linear
 from conftest import assert_same_events, load_sample_record
 
 G = bd.STANDARD_GRAVITY
@@ -93,7 +93,7 @@ def _sups(dense, t0, t1, a, rate, k, c, hea_sup, u_sup):
         rates = np.array([rate_of(s) for s in grid])
         best = max(abs(value(t0)), abs(value(t1)))
         for j in np.flatnonzero(rates[:-1] * rates[1:] < 0):
-            best = max(best, abs(value(brentq(rate_of, grid[j], grid[j + 1], xtol=1e-15, rtol=4e-16))))
+            best = max(best, abs(value(brentq(rate_of, grid[j], grid[j + 1], xtol=1e-15, rtol=1e-15))))
         if value is hea:
             hea_sup = max(hea_sup, best)
         else:
@@ -261,3 +261,111 @@ def test_grazing_is_no_sliding():
     assert sol.events == () and sol.displacement == 0.0
     lower = bd.simulate(FlexibleSlidingMass(column, ky=peak / G * (1 - 1e-6)), record, t_end=1.0)
     assert len(lower.episodes) == 1 and 0 < lower.displacement < 1e-9
+
+
+# ---- the entry point -----------------------------------------------------------------
+def _with_zero_sample(record, sign=1.0):
+    """SLAMMER's input: a virtual zero sample at -dt (the reference's time axis starts there)."""
+    return np.concatenate([[0.0], sign * record.acceleration_samples])
+
+
+def test_flexible_matches_dop853_with_the_virtual_zero_sample():
+    """bd.flexible on 12 s of Northridge PAC-175: normal_m and inverse_m (the record
+    times +1 and -1, a zero sample at -dt) within 1e-9 relative of DOP853, their
+    episode counts equal; kmax_g (max |HEA| at the samples) and kmax_sup_g (over time)
+    of the no-sliding response within 1e-10 relative of DOP853's (extrema by brentq)."""
+    record = _record("Northridge_1994_PAC-175", duration=12.0)
+    result = bd.flexible(record, ky=0.1, height=10.0, vs=250.0, method="coupled")
+    row = result.to_dataframe().iloc[0]
+    model = FlexibleSlidingMass(ShearColumn(10.0, 250.0), ky=0.1)
+    args = (model.omega, model.damping, model.yield_acceleration, True, 12.0 + record.dt)
+    for sign, polarity in ((1.0, "normal"), (-1.0, "inverse")):
+        events, y, *_ = reference(_with_zero_sample(record, sign), record.dt, *args)
+        assert row[f"{polarity}_m"] == pytest.approx(y[2], rel=1e-9)
+        assert row[f"episodes_{polarity}"] == sum(1 for e in events if e[2] == SLIP) >= 2
+    _, _, hea_samples, hea_sup, _ = reference(_with_zero_sample(record), record.dt, *args, slide=False)
+    assert row["kmax_g"] == pytest.approx(hea_samples.max() / G, rel=1e-10)
+    assert row["kmax_sup_g"] == pytest.approx(hea_sup / G, rel=1e-10)
+    assert row["kmax_sup_g"] > row["kmax_g"]  # between samples HEA peaks higher
+    assert (row["vs_final_m_s"], row["damping_final"]) == (250.0, 0.25)
+
+
+def test_flexible_batch_table_and_polarities():
+    """Two motions x three parameter sets (ky, height, vs broadcast): one row each, in
+    order; each row equals the model's own run (bd.simulate on the record with its zero
+    sample); polarity="normal" leaves inverse_m nan; target_pga scales by the exact peak."""
+    records = {"pac": _record("Northridge_1994_PAC-175", duration=10.0),
+               "pet": _record("Cape_Mendocino_1992_PET-090", duration=10.0)}
+    ky, height = np.array([0.05, 0.1, 0.15]), np.array([5.0, 10.0, 20.0])
+    table = bd.flexible(records, ky=ky, height=height, vs=300.0, method="decoupled").to_dataframe()
+    assert list(table.columns) == ["record", "ky_g", "height_m", "vs_m_s", "normal_m", "inverse_m", "kmax_g",
+                                   "kmax_sup_g", "vs_final_m_s", "damping_final", "episodes_normal",
+                                   "episodes_inverse"]
+    assert list(table["record"]) == ["pac"] * 3 + ["pet"] * 3
+    np.testing.assert_array_equal(table["ky_g"], np.tile(ky, 2))
+    for i, (name, record) in enumerate(records.items()):
+        shifted = bd.Record(_with_zero_sample(record), record.dt, units="m/s2")
+        for j in range(3):
+            model = FlexibleSlidingMass(ShearColumn(height[j], 300.0), ky=ky[j], method="decoupled")
+            sol = bd.simulate(model, shifted, t_end=10.0 + record.dt)
+            assert table["normal_m"][3 * i + j] == pytest.approx(sol.displacement, rel=1e-13)
+            assert table["episodes_normal"][3 * i + j] == len(sol.episodes)
+    only = bd.flexible(records["pac"], ky=0.1, height=10.0, vs=300.0, polarity="normal").to_dataframe()
+    assert np.isnan(only["inverse_m"][0]) and only["episodes_inverse"].isna().all()
+    scaled = bd.flexible(records["pac"], ky=0.1, height=10.0, vs=300.0, target_pga=0.3)
+    factor = 0.3 * G / records["pac"].peak_acceleration
+    same = bd.flexible(records["pac"].scaled(factor), ky=0.1, height=10.0, vs=300.0)
+    assert scaled["normal_m"][0] == same["normal_m"][0] and scaled["kmax_g"][0] == same["kmax_g"][0]
+
+
+def test_equivalent_linear_on_the_exact_peak():
+    """equivalent_linear=True gives the column of the iteration run on the no-sliding
+    sup |u| (reference: the iteration with DOP853's sup |u|, to 1e-9 relative); the
+    degraded vs is below the initial one and kmax is that column's."""
+    record = _record("Northridge_1994_PAC-175", duration=6.0)
+    row = bd.flexible(record, ky=0.1, height=20.0, vs=300.0, equivalent_linear=True, reference_strain=5e-4,
+                      method="decoupled").to_dataframe().iloc[0]
+    samples = _with_zero_sample(record)
+
+    def peak(vs, xi):
+        return reference(samples, record.dt, math.pi * vs / 40.0, xi, 0.0, False, 6.0 + record.dt, slide=False)[4]
+
+    final = equivalent_linear(peak, ShearColumn(20.0, 300.0), 5e-4)
+    assert row["vs_final_m_s"] == pytest.approx(final.vs, rel=1e-9) and row["vs_final_m_s"] < 300.0
+    assert row["damping_final"] == pytest.approx(final.damping, rel=1e-9)
+    plain = bd.flexible(record, ky=0.1, height=20.0, vs=final.vs, damping=final.damping - 0.2,
+                        method="decoupled").to_dataframe().iloc[0]
+    assert row["kmax_g"] == pytest.approx(plain["kmax_g"], rel=1e-9)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(ky=-0.1), r"ky=-0\.1 must be a yield acceleration >= 0"),
+    (dict(method="rigid"), r"method='rigid' is unknown"),
+    (dict(integration="slammer"), r"integration='slammer' is unknown"),
+    (dict(polarity="up"), r"polarity='up' is unknown"),
+    (dict(height=0.0), r"height must be > 0 m, got 0\.0"),
+    (dict(vs=-5.0), r"vs must be > 0 m/s, got -5\.0"),
+    (dict(damping=-0.3), r"damping=-0\.3 gives a total damping ratio of -0\.0999"),
+    (dict(equivalent_linear=True), r"equivalent_linear=True needs reference_strain"),
+    (dict(reference_strain=0.0), r"reference_strain must be a fraction > 0, got 0\.0"),
+    (dict(t_end=100.0), r"t_end=100\.0 must lie in \(0, "),
+    (dict(ky=[0.1, 0.2], height=[5.0, 10.0, 20.0]), r"must broadcast together"),
+])
+def test_flexible_refuses_bad_input(kwargs, message):
+    record = _record("Northridge_1994_PAC-175", duration=2.0)
+    args = dict(ky=0.1, height=10.0, vs=250.0) | kwargs
+    with pytest.raises(ValueError, match=message):
+        bd.flexible(record, **args)
+
+
+def test_model_refuses_bad_input():
+    column = ShearColumn(10.0, 250.0)
+    with pytest.raises(ValueError, match=r"ky=-0\.01 must be a yield acceleration >= 0"):
+        FlexibleSlidingMass(column, ky=-0.01)
+    with pytest.raises(ValueError, match=r"method='Coupled' is unknown"):
+        FlexibleSlidingMass(column, ky=0.1, method="Coupled")
+    with pytest.raises(TypeError, match=r"column must be a ShearColumn"):
+        FlexibleSlidingMass(10.0, ky=0.1)
+    with pytest.raises(ValueError, match=r"coupled slip a damping ratio"):  # xi = 0.5 > sqrt(d1) = 0.435
+        bd.simulate(FlexibleSlidingMass(ShearColumn(10.0, 250.0, damping=0.3), ky=0.1),
+                    _record("Northridge_1994_PAC-175", duration=2.0), t_end=2.0)

@@ -2,10 +2,12 @@
 column above the slip surface, sliding when its average acceleration reaches ky g,
 decoupled or coupled (../shared/flexible_formulation.md)."""
 
+from ._analysis import Analysis, FlexibleResult, analyse_exact, flexible
 from ._column import EquivalentLinear, ShearColumn, equivalent_linear, impedance_damping
 from ._model import FlexibleSlidingMass
 from ._modes import FlexibleMode
 from ._solution import Episode, FlexibleEvent, FlexibleSolution
 
-__all__ = ["EquivalentLinear", "Episode", "FlexibleEvent", "FlexibleMode", "FlexibleSlidingMass", "FlexibleSolution",
-           "ShearColumn", "equivalent_linear", "impedance_damping"]
+__all__ = ["Analysis", "EquivalentLinear", "Episode", "FlexibleEvent", "FlexibleMode", "FlexibleResult",
+           "FlexibleSlidingMass", "FlexibleSolution", "ShearColumn", "analyse_exact", "equivalent_linear", "flexible",
+           "impedance_damping"]
