@@ -10,6 +10,7 @@ runs of a batch go to the compiled engine in one call, parallel over cores.
 """
 
 import dataclasses
+import functools
 
 import numpy as np
 
@@ -27,6 +28,9 @@ INTEGRATIONS = ("exact",)
 #: the result table's columns
 COLUMNS = ("record", "ky_g", "height_m", "vs_m_s", "normal_m", "inverse_m", "kmax_g", "kmax_sup_g", "vs_final_m_s",
            "damping_final", "episodes_normal", "episodes_inverse")
+#: pieces x runs above which a batch runs in parallel (~10 ms on one core); below, waking
+#: the worker threads may cost more than they save
+PARALLEL_WORK = 5e5
 _FIELD = {name: i for i, name in enumerate(_engine.OUTCOME_FIELDS)}
 
 
@@ -179,6 +183,7 @@ def _motions(motion):
     return names, records
 
 
+@functools.lru_cache(maxsize=64)
 def _engine_input(record, t_end):
     """The pieces of ``record`` with SLAMMER's virtual zero sample at -dt, on an axis
     shifted by dt, up to ``t_end`` [s] on the record's axis."""
@@ -195,14 +200,14 @@ def analyse_exact(analysis: Analysis) -> dict:
 def exact_rows(analyses: list[Analysis]) -> list[dict]:
     """The rows of ``analyses``, exact: equivalent-linear iterations one by one, then
     every no-sliding and sliding run in one parallel compiled call."""
-    run, run_jobs, _ = _engine.kernels()
+    _, response, parallel, serial, _ = _engine.kernels()
     inputs, index = [], {}
     for analysis in analyses:
         key = (id(analysis.record), analysis.t_end)
         if key not in index:
             index[key] = len(inputs)
             inputs.append(_engine_input(analysis.record, analysis.t_end))
-    finals = [_final_column(analysis, inputs[index[(id(analysis.record), analysis.t_end)]], run)
+    finals = [_final_column(analysis, inputs[index[(id(analysis.record), analysis.t_end)]], response)
               for analysis in analyses]
     jobs, response_of, slides = [], {}, []
     for analysis, ((omega, xi, kyg, coupled), _) in zip(analyses, finals):
@@ -217,6 +222,8 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     offsets = np.concatenate([[0], np.cumsum([len(x[0]) for x in inputs])]).astype(np.int64)
     arrays = [np.concatenate([x[k] for x in inputs]) for k in range(4)]
     columns = list(zip(*jobs))
+    work = sum(int(offsets[record + 1] - offsets[record]) for record, *_ in jobs)
+    run_jobs = parallel if work >= PARALLEL_WORK else serial
     out = run_jobs(*arrays, offsets, np.array(columns[0], dtype=np.int64),
                    *(np.array(c, dtype=float) for c in columns[1:5]), np.array(columns[5], dtype=np.bool_),
                    np.array(columns[6], dtype=np.bool_))
@@ -237,7 +244,7 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     return rows
 
 
-def _final_column(analysis, arrays, run):
+def _final_column(analysis, arrays, response):
     """The engine's settings (omega, xi, ky g, coupled) of ``analysis`` after its
     equivalent-linear iteration (on the exact no-sliding sup |u|), if any, and the
     column's vs then [m/s]."""
@@ -245,10 +252,9 @@ def _final_column(analysis, arrays, run):
     if analysis.reference_strain is None:
         return engine_settings(model), model.column.vs
     column = model.column
-    empty = np.empty((0, len(_engine.KNOT_FIELDS)))
 
     def peak_displacement(vs, xi):
-        outcome, _ = run(*arrays, 1.0, np.pi * vs / (2 * column.height), xi, 0.0, model.coupled, False, empty)
+        outcome = response(*arrays, 1.0, np.pi * vs / (2 * column.height), xi)
         check(outcome, f" ({analysis.name}, equivalent-linear pass at vs={vs!r} m/s)")
         return outcome[_FIELD["u_sup"]]
 

@@ -34,7 +34,8 @@ STICK, SLIP = 0, 1
 #: entries of a run's outcome: the state at the end, counts, the no-sliding peaks
 #: (|HEA| at the samples [m/s²], its supremum over time [m/s²], sup |u| [m]), status
 OUTCOME_FIELDS = ("u", "u_rate", "s", "w", "mode", "n_events", "n_episodes", "hea_samples", "hea_sup", "u_sup",
-                  "status", "max_events_at_one_instant", "t_last_event")
+                  "u_samples", "status", "max_events_at_one_instant", "t_last_event")
+_HEA_SAMPLES, _U_SAMPLES = OUTCOME_FIELDS.index("hea_samples"), OUTCOME_FIELDS.index("u_samples")
 #: columns of the knot log: time [s], u [m], u' [m/s], s [m], w [m/s], mode after, mode before, is an event
 KNOT_FIELDS = ("t", "u", "u_rate", "s", "w", "mode", "mode_before", "is_event")
 
@@ -55,25 +56,60 @@ def _damped(omega, xi, coupled):
 
 
 @register_jitable
+def _slip_polynomials(a, rate, kyg, u, v, s, w):
+    """The cubics of w and s in SLIP besides (2/pi) u' and (2/pi) u: from w' = a - ky g +
+    (2/pi) u'' and s' = w, w = w0 + (a - ky g) tau + rate tau²/2 + (2/pi)(u' - u'0) and
+    s = s0 + (w0 - (2/pi) u'0) tau + (a - ky g) tau²/2 + rate tau³/6 + (2/pi)(u - u0)."""
+    return ((w - MASS_PARTICIPATION * v, a - kyg, 0.5 * rate, 0.0),
+            (s - MASS_PARTICIPATION * u, w - MASS_PARTICIPATION * v, 0.5 * (a - kyg), rate / 6.0))
+
+
+@register_jitable
+def _oscillator(mode, coupled, omega, xi, kyg):
+    """(k [1/s²], c [1/s], b [m/s²], forced [-]) of u'' + c u' + k u = b - forced a(t) in
+    ``mode``: STICK and decoupled SLIP feel the ground, coupled SLIP the friction."""
+    k, c = omega * omega, 2.0 * xi * omega
+    if mode == SLIP and coupled:
+        return k / SLIP_MASS_FRACTION, c / SLIP_MASS_FRACTION, -MODE_PARTICIPATION * kyg / SLIP_MASS_FRACTION, 0.0
+    return k, c, 0.0, MODE_PARTICIPATION
+
+
+@register_jitable
 def _forms(mode, coupled, omega, xi, damped, kyg, a, rate, u, v, s, w):
     """(u, s, w, guard) as forms over tau from the state (u, v, s, w) in ``mode`` under
     a(tau) = a + rate tau [m/s²]; ``damped``: the mode's damped frequency [rad/s]."""
-    k, c = omega * omega, 2.0 * xi * omega
-    if mode == SLIP and coupled:
-        f = _solve(k / SLIP_MASS_FRACTION, c / SLIP_MASS_FRACTION, -MODE_PARTICIPATION * kyg / SLIP_MASS_FRACTION,
-                   damped, 0.0, 0.0, u, v)
-    else:
-        f = _solve(k, c, 0.0, damped, MODE_PARTICIPATION * a, MODE_PARTICIPATION * rate, u, v)
+    k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
+    f = _solve(k, c, b, damped, forced * a, forced * rate, u, v)
     f1 = _derivative(f)
     if mode == STICK:
         guard = _plus(_combine(MASS_PARTICIPATION * k, f, MASS_PARTICIPATION * c, f1, kyg - SLIP_MASS_FRACTION * a),
                       0.0, -SLIP_MASS_FRACTION * rate, 0.0, 0.0)
         constant = (s, 0.0, 0.0, 0.0, 0.0, 0.0, f[6], f[7])
         return f, constant, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, f[6], f[7]), guard
-    wf = _plus(_combine(MASS_PARTICIPATION, f1, 0.0, f1, w - MASS_PARTICIPATION * v), 0.0, a - kyg, 0.5 * rate, 0.0)
-    sf = _plus(_combine(MASS_PARTICIPATION, f, 0.0, f, s - MASS_PARTICIPATION * u), 0.0, w - MASS_PARTICIPATION * v,
-               0.5 * (a - kyg), rate / 6.0)
+    pw, ps = _slip_polynomials(a, rate, kyg, u, v, s, w)
+    wf = _plus(_combine(MASS_PARTICIPATION, f1, 0.0, f1, 0.0), pw[0], pw[1], pw[2], pw[3])
+    sf = _plus(_combine(MASS_PARTICIPATION, f, 0.0, f, 0.0), ps[0], ps[1], ps[2], ps[3])
     return f, sf, wf, wf
+
+
+@register_jitable
+def _cubic(p, tau):
+    """p0 + p1 tau + p2 tau² + p3 tau³."""
+    return ((p[3] * tau + p[2]) * tau + p[1]) * tau + p[0]
+
+
+@register_jitable
+def _step_maps(mode, coupled, omega, xi, damped, kyg, step):
+    """``mode``'s oscillator over a whole step [s] as a linear map, from the closed forms:
+    (u, u') at its end = [m0 m1; m2 m3] (u, u') + [m4 m5; m6 m7] (a, rate) at its start
+    + (m8, m9)."""
+    k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
+    maps = np.empty(10)
+    for j in range(5):  # unit u, u', a, rate; then b alone
+        f = _solve(k, c, b * (j == 4), damped, forced * (j == 2), forced * (j == 3), 1.0 * (j == 0), 1.0 * (j == 1))
+        row = (0, 1, 4, 5, 8)[j]
+        maps[row], maps[row + 2 if j < 4 else row + 1] = _eval(f, step), _eval(_derivative(f), step)
+    return maps
 
 
 @register_jitable
@@ -127,19 +163,27 @@ def _log(log, n_rows, t, u, v, s, w, mode, before, is_event):
 
 
 @register_jitable
-def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log):
+def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log, hea_floor=0.0, u_floor=0.0):
     """One run over the pieces (t0, h, p0, p1) [s, s, m/s², m/s³] of a(t) times ``scale``
     from rest: column omega [rad/s], xi [-], ky g [m/s²], coupled or decoupled; without
     ``slide`` the guards are off and the peaks of the no-sliding response are taken.
-    ``log``: (capacity, 8) knot rows (KNOT_FIELDS), or (0, 8) for the outcome only.
-    Returns (outcome (OUTCOME_FIELDS), rows logged)."""
+    ``log``: (capacity, 8) knot rows (KNOT_FIELDS), or (0, 8) for the outcome only;
+    ``hea_floor`` [m/s²], ``u_floor`` [m]: lower bounds of the sups (peaks below are not
+    searched). Returns (outcome (OUTCOME_FIELDS), rows logged)."""
     stack = np.empty((STACK_DEPTH, 4))
     damped = _damped(omega, xi, coupled)
+    # a whole step of a record, the common case: each mode's linear map over it, and
+    # bounds of |u'| and |u''| on it from the free oscillation's amplitude
+    step = h[0]
+    maps = (_step_maps(STICK, coupled, omega, xi, damped[STICK], kyg, step),
+            _step_maps(SLIP, coupled, omega, xi, damped[SLIP], kyg, step))
+    natural = (omega, omega / math.sqrt(SLIP_MASS_FRACTION) if coupled else omega)  # [rad/s]
+    widen = 1.0 + 8.0 * _EPS
     cached = np.full(6, math.nan)  # sigma [1/s], w [rad/s], span [s]; exp(-sigma span), cos, sin(w span)
     mode, u, v, s, w = STICK, 0.0, 0.0, 0.0, 0.0
     n_events, n_episodes, n_rows, run, max_run = 0, 0, 0, 0, 0
     last_event = -math.inf
-    hea_samples, hea_sup, u_sup = 0.0, 0.0, 0.0
+    hea_samples, hea_sup, u_sup, u_samples = 0.0, hea_floor, u_floor, 0.0
     status = FINISHED
     logging = log.shape[0] > 0
     for i in range(t0.shape[0]):
@@ -150,6 +194,39 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log):
             break
         n_rows += logging
         while True:
+            if tau == 0.0 and length == step:
+                # a guard kept positive (a peak kept below the best) by its values at the
+                # ends and a bound of its rate needs no closed form; else the general path
+                m = maps[mode]
+                u_end = m[0] * u + m[1] * v + m[4] * a0 + m[5] * rate + m[8]
+                v_end = m[2] * u + m[3] * v + m[6] * a0 + m[7] * rate + m[9]
+                k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
+                particular = -forced * rate / k  # the forced part's u' (_solve's a1)
+                free = u - (b - forced * a0 - c * particular) / k
+                amplitude = math.sqrt(free * free + ((v - particular + 0.5 * c * free) / damped[mode]) ** 2)
+                accel = natural[mode] ** 2 * amplitude  # bounds |u''| of the free part X
+                if mode == SLIP:  # w' = a - ky g + (2/pi) u''
+                    pw, ps = _slip_polynomials(a0, rate, kyg, u, v, s, w)
+                    w_end = _cubic(pw, step) + MASS_PARTICIPATION * v_end
+                    w_rate = (max(abs(a0 - kyg), abs(a0 + rate * step - kyg)) + MASS_PARTICIPATION * accel) * widen
+                    quick = _signed(w, w_end, w_rate, step) > 0
+                    if quick:
+                        s, w = _cubic(ps, step) + MASS_PARTICIPATION * u_end, w_end
+                else:  # HEA' = a' - (2/pi)(c X'' + k X'), |X^(n)| <= omega^n amplitude
+                    hea_rate = (abs(rate) + MASS_PARTICIPATION * natural[mode] * accel * (1.0 + 2.0 * xi)) * widen
+                    hea_start = SLIP_MASS_FRACTION * a0 - MASS_PARTICIPATION * (c * v + k * u)
+                    hea_end = SLIP_MASS_FRACTION * (a0 + rate * step) - MASS_PARTICIPATION * (c * v_end + k * u_end)
+                    if slide:
+                        quick = _signed(kyg - hea_start, kyg - hea_end, hea_rate, step) > 0
+                    else:
+                        u_rate = (abs(particular) + natural[mode] * amplitude) * widen
+                        quick = (max(abs(hea_start), abs(hea_end)) + 0.5 * hea_rate * step <= hea_sup
+                                 and max(abs(u), abs(u_end)) + 0.5 * u_rate * step <= u_sup)
+                        if quick:
+                            hea_samples, u_samples = max(hea_samples, abs(hea_end)), max(u_samples, abs(u_end))
+                if quick:
+                    u, v = u_end, v_end
+                    break
             a = a0 + rate * tau
             span = length - tau
             f, sf, wf, guard = _forms(mode, coupled, omega, xi, damped[mode], kyg, a, rate, u, v, s, w)
@@ -182,6 +259,7 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log):
                 if not slide:
                     hea = _combine(-1.0, guard, 0.0, guard, kyg)  # the guard is ky g - HEA
                     hea_samples = max(hea_samples, abs(_eval_at(hea, span, cached[3], cached[4], cached[5])))
+                    u_samples = max(u_samples, abs(u_end))
                     hea_sup = _peak(hea, span, hea_sup, t0[i] + tau, stack)
                     u_sup = _peak(f, span, u_sup, t0[i] + tau, stack)
                     if hea_sup == -math.inf or u_sup == -math.inf:
@@ -217,9 +295,21 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log):
             n_rows += 1
         else:
             status = LOG_FULL
-    outcome = np.array([u, v, s, w, mode, n_events, n_episodes, hea_samples, hea_sup, u_sup, status, max_run,
+    outcome = np.array([u, v, s, w, mode, n_events, n_episodes, hea_samples, hea_sup, u_sup, u_samples, status, max_run,
                         last_event], dtype=np.float64)
     return outcome, n_rows
+
+
+@register_jitable
+def _response(t0, h, p0, p1, scale, omega, xi):
+    """The no-sliding response's outcome (OUTCOME_FIELDS): a first pass takes max |HEA|
+    and |u| at the samples, a second the sups over time, searching only the pieces that
+    may exceed those."""
+    empty = np.empty((0, len(KNOT_FIELDS)))
+    first, _ = _run(t0, h, p0, p1, scale, omega, xi, 0.0, False, False, empty, math.inf, math.inf)
+    outcome, _ = _run(t0, h, p0, p1, scale, omega, xi, 0.0, False, False, empty, first[_HEA_SAMPLES],
+                      first[_U_SAMPLES])
+    return outcome
 
 
 def _run_jobs(t0, h, p0, p1, offsets, record, scale, omega, xi, kyg, coupled, slide):
@@ -227,12 +317,14 @@ def _run_jobs(t0, h, p0, p1, offsets, record, scale, omega, xi, kyg, coupled, sl
     ``offsets[record[j]]:offsets[record[j] + 1]`` of the concatenated arrays) with the
     j-th entries of the other (n_jobs,) arrays. Returns (n_jobs, len(OUTCOME_FIELDS))."""
     out = np.empty((record.shape[0], len(OUTCOME_FIELDS)))
-    empty = np.empty((0, 8))
+    empty = np.empty((0, len(KNOT_FIELDS)))
     for j in numba.prange(record.shape[0]):
         lo, hi = offsets[record[j]], offsets[record[j] + 1]
-        outcome, _ = _run(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], scale[j], omega[j], xi[j], kyg[j], coupled[j],
-                          slide[j], empty)
-        out[j] = outcome
+        if slide[j]:
+            out[j] = _run(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], scale[j], omega[j], xi[j], kyg[j], coupled[j],
+                          True, empty)[0]
+        else:
+            out[j] = _response(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], scale[j], omega[j], xi[j])
     return out
 
 
@@ -257,7 +349,9 @@ def _dense(knot_t, knots, knot_mode, t0, p0, p1, scale, omega, xi, kyg, coupled,
 
 @functools.cache
 def kernels():
-    """(run, run_jobs, dense) compiled with numba (on first use, then from the disk cache)."""
+    """(run, response, run_jobs parallel over cores, run_jobs serial, dense) compiled with
+    numba (on first use, then from the disk cache)."""
     options = dict(cache=True, error_model="numpy")
-    return (numba.njit(**options)(_run), numba.njit(parallel=True, **options)(_run_jobs),
+    return (numba.njit(**options)(_run), numba.njit(**options)(_response),
+            numba.njit(parallel=True, **options)(_run_jobs), numba.njit(**options)(_run_jobs),
             numba.njit(**options)(_dense))
