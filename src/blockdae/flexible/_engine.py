@@ -177,7 +177,10 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log, hea_floor=0.
     step = h[0]
     maps = (_step_maps(STICK, coupled, omega, xi, damped[STICK], kyg, step),
             _step_maps(SLIP, coupled, omega, xi, damped[SLIP], kyg, step))
-    natural = (omega, omega / math.sqrt(SLIP_MASS_FRACTION) if coupled else omega)  # [rad/s]
+    table = np.empty((2, 7))  # per mode: k, c, b, forced, 1/k, 1/damped, natural frequency
+    for mode in (STICK, SLIP):
+        k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
+        table[mode] = k, c, b, forced, 1.0 / k, 1.0 / damped[mode], math.sqrt(k)
     widen = 1.0 + 8.0 * _EPS
     cached = np.full(6, math.nan)  # sigma [1/s], w [rad/s], span [s]; exp(-sigma span), cos, sin(w span)
     mode, u, v, s, w = STICK, 0.0, 0.0, 0.0, 0.0
@@ -200,11 +203,11 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log, hea_floor=0.
                 m = maps[mode]
                 u_end = m[0] * u + m[1] * v + m[4] * a0 + m[5] * rate + m[8]
                 v_end = m[2] * u + m[3] * v + m[6] * a0 + m[7] * rate + m[9]
-                k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
-                particular = -forced * rate / k  # the forced part's u' (_solve's a1)
-                free = u - (b - forced * a0 - c * particular) / k
-                amplitude = math.sqrt(free * free + ((v - particular + 0.5 * c * free) / damped[mode]) ** 2)
-                accel = natural[mode] ** 2 * amplitude  # bounds |u''| of the free part X
+                k, c, b, forced, inverse_k, inverse_damped, natural = table[mode]
+                particular = -forced * rate * inverse_k  # the forced part's u' (_solve's a1)
+                free = u - (b - forced * a0 - c * particular) * inverse_k
+                amplitude = math.sqrt(free * free + ((v - particular + 0.5 * c * free) * inverse_damped) ** 2)
+                accel = k * amplitude  # bounds |u''| of the free part X
                 if mode == SLIP:  # w' = a - ky g + (2/pi) u''
                     pw, ps = _slip_polynomials(a0, rate, kyg, u, v, s, w)
                     w_end = _cubic(pw, step) + MASS_PARTICIPATION * v_end
@@ -213,13 +216,13 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log, hea_floor=0.
                     if quick:
                         s, w = _cubic(ps, step) + MASS_PARTICIPATION * u_end, w_end
                 else:  # HEA' = a' - (2/pi)(c X'' + k X'), |X^(n)| <= omega^n amplitude
-                    hea_rate = (abs(rate) + MASS_PARTICIPATION * natural[mode] * accel * (1.0 + 2.0 * xi)) * widen
+                    hea_rate = (abs(rate) + MASS_PARTICIPATION * natural * accel * (1.0 + 2.0 * xi)) * widen
                     hea_start = SLIP_MASS_FRACTION * a0 - MASS_PARTICIPATION * (c * v + k * u)
                     hea_end = SLIP_MASS_FRACTION * (a0 + rate * step) - MASS_PARTICIPATION * (c * v_end + k * u_end)
                     if slide:
                         quick = _signed(kyg - hea_start, kyg - hea_end, hea_rate, step) > 0
                     else:
-                        u_rate = (abs(particular) + natural[mode] * amplitude) * widen
+                        u_rate = (abs(particular) + natural * amplitude) * widen
                         quick = (max(abs(hea_start), abs(hea_end)) + 0.5 * hea_rate * step <= hea_sup
                                  and max(abs(u), abs(u_end)) + 0.5 * u_rate * step <= u_sup)
                         if quick:
