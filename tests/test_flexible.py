@@ -388,3 +388,26 @@ def test_pyslammer_converges_to_exact_as_its_step_shrinks():
             errors[method, r] = abs(peer(0.1, motion, 10.0, 300.0, 300.0, 0.05).max_sliding_disp / exact - 1)
     assert errors["coupled", 16] < 1e-3 and errors["coupled", 4] > 4 * errors["coupled", 16]
     assert errors["decoupled", 16] < 3e-4 and errors["decoupled", 4] > 16 * errors["decoupled", 16]
+
+
+def test_plot_shows_hea_against_ky_and_the_episodes(tmp_path):
+    """bd.plot draws the model's own figure: HEA with ±ky g [g], w [m/s], s [m], one
+    shaded span per episode; the s curve ends at the solution's displacement."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=True)
+    import matplotlib.pyplot as plt
+
+    record = _record("Northridge_1994_PAC-175", duration=6.0)
+    sol = bd.simulate(FlexibleSlidingMass(ShearColumn(10.0, 250.0), ky=0.1), record, t_end=6.0)
+    fig = bd.plot(sol)
+    try:
+        hea, velocity, displacement = fig.axes
+        assert [ax.get_ylabel() for ax in fig.axes] == ["HEA [g]", "sliding velocity w [m/s]",
+                                                         "sliding displacement s [m]"]
+        assert sorted(line.get_ydata()[0] for line in hea.lines[1:]) == [-0.1, 0.1]
+        assert len(displacement.patches) == len(sol.episodes) >= 2
+        assert displacement.lines[0].get_ydata()[-1] == pytest.approx(sol.displacement, rel=1e-3)
+        fig.savefig(tmp_path / "flexible.png")
+    finally:
+        plt.close(fig)

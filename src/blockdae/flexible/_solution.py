@@ -82,6 +82,13 @@ class FlexibleSolution(DriverSolution):
         slip = self.block.hea(FlexibleMode.SLIP, a, np.moveaxis(state, -1, 0))
         return np.where(mode == FlexibleMode.SLIP, slip, stick)
 
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """HEA against ±ky g [g], sliding velocity [m/s] and displacement [m] against
+        time, episodes shaded (``excitation`` and ``block`` unused); a matplotlib Figure."""
+        from ._figures import sliding_figure
+
+        return sliding_figure(self, n_points=n_points, title=title)
+
     def event_table(self, events=None) -> str:
         """``events`` (default: all of them) as an aligned text table with units."""
         lines = [f"{'t [s]':>12}  {'kind':<5}  {'u [m]':>13}  {'u_rate [m/s]':>13}  {'s [m]':>13}"]
