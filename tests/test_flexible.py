@@ -411,3 +411,26 @@ def test_plot_shows_hea_against_ky_and_the_episodes(tmp_path):
         fig.savefig(tmp_path / "flexible.png")
     finally:
         plt.close(fig)
+
+
+def test_cli_flexible_prints_the_rows_of_bd_flexible(capsys, tmp_path):
+    """``blockdae flexible RECORD --ky ... --height ... --vs ...``: one row per ky with
+    bd.flexible's numbers (JSON), a figure with --plot; a negative ky is a usage error."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=True)
+    from blockdae.cli import main
+    from conftest import sample_record_paths
+
+    path = next(p for p in sample_record_paths() if "PAC-175" in p.name)
+    args = ["flexible", str(path), "--units", "g", "--ky", "0.05", "0.1", "--height", "10", "--vs", "250"]
+    assert main(args + ["--json"]) == 0
+    rows = __import__("json").loads(capsys.readouterr().out)["rows"]
+    expected = bd.flexible(bd.read_record(path, units="g"), ky=[0.05, 0.1], height=10.0, vs=250.0).rows
+    assert [(r["normal_m"], r["inverse_m"], r["kmax_g"]) for r in rows] == \
+        [(r["normal_m"], r["inverse_m"], r["kmax_g"]) for r in expected]
+    assert main(args + ["--plot", str(tmp_path / "f.png")]) == 0
+    out = capsys.readouterr().out
+    assert "normal [m]" in out and "kmax sup [g]" in out and (tmp_path / "f.png").stat().st_size > 0
+    assert main(["flexible", str(path), "--ky", "-1", "--height", "10", "--vs", "250"]) == 2
+    assert "--ky: must be a yield acceleration >= 0 [g], got -1" in capsys.readouterr().err

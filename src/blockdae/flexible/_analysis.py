@@ -183,13 +183,18 @@ def _motions(motion):
     return names, records
 
 
+def with_zero_sample(record) -> Record:
+    """``record`` with SLAMMER's virtual zero sample at -dt: on an axis shifted by dt [s],
+    at rest at 0 and rising linearly to the first sample at dt."""
+    return Record(np.concatenate([[0.0], record.acceleration_samples]), record.dt, name=record.name, units="m/s2",
+                  check_peak=False)
+
+
 @functools.lru_cache(maxsize=64)
 def _engine_input(record, t_end):
-    """The pieces of ``record`` with SLAMMER's virtual zero sample at -dt, on an axis
-    shifted by dt, up to ``t_end`` [s] on the record's axis."""
-    shifted = Record(np.concatenate([[0.0], record.acceleration_samples]), record.dt, units="m/s2",
-                     check_peak=False)
-    return linear_pieces(shifted, t_end + record.dt)[1]
+    """The pieces of ``record`` with its virtual zero sample, up to ``t_end`` [s] on the
+    record's axis."""
+    return linear_pieces(with_zero_sample(record), t_end + record.dt)[1]
 
 
 def analyse_exact(analysis: Analysis) -> dict:
