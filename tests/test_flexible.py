@@ -464,3 +464,19 @@ def test_sensitivities_match_central_differences(method):
     peak_g = record.peak_acceleration / G
     central = (displacement(1 + 1e-5) - displacement(1 - 1e-5)) / (2e-5 * peak_g)
     assert d["A"] == pytest.approx(central, rel=1e-6)
+
+
+def test_benchmark_quick_run(monkeypatch, capsys):
+    """benchmarks/flexible.py --quick runs and reports every bar as a smoke run."""
+    import importlib.util
+    import pathlib
+
+    folder = pathlib.Path(__file__).parents[1] / "benchmarks"
+    monkeypatch.syspath_prepend(str(folder))
+    spec = importlib.util.spec_from_file_location("benchmark_flexible", folder / "flexible.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert module.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "pySLAMMER [ms]" in out and "SLAMMER's table shape: 80 analyses" in out
+    assert out.count("bar ") == 4 and out.count("smoke run, not a measurement") == 4
