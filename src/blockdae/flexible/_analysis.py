@@ -23,8 +23,6 @@ from ._exact import check, engine_settings
 from ._model import METHODS, FlexibleSlidingMass
 
 POLARITIES = ("both", "normal", "inverse")
-#: integration schemes: "exact" (continuous time, events located); "slammer" joins later
-INTEGRATIONS = ("exact",)
 #: the result table's columns
 COLUMNS = ("record", "ky_g", "height_m", "vs_m_s", "normal_m", "inverse_m", "kmax_g", "kmax_sup_g", "vs_final_m_s",
            "damping_final", "episodes_normal", "episodes_inverse")
@@ -125,14 +123,15 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     """
     analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga,
                     polarity, integration, g, t_end)
-    return FlexibleResult(rows=exact_rows(analyses), method=method, integration=integration)
+    rows_of, _ = INTEGRATIONS[integration]
+    return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration)
 
 
 def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga, polarity,
          integration, g, t_end) -> list[Analysis]:
     """The analyses of a :func:`flexible` call, every input checked before any work."""
     if integration not in INTEGRATIONS:
-        raise ValueError(f"integration={integration!r} is unknown; choose one of {INTEGRATIONS}")
+        raise ValueError(f"integration={integration!r} is unknown; choose one of {tuple(INTEGRATIONS)}")
     if method not in METHODS:
         raise ValueError(f"method={method!r} is unknown; choose one of {METHODS}")
     if polarity not in POLARITIES:
@@ -158,7 +157,8 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
     analyses = []
     for name, record in zip(names, records):
         if target_pga is not None:
-            record = record.scaled(pga_factor(record.peak_acceleration, target_pga, g, "exact", "target_pga"))
+            rounding = INTEGRATIONS[integration][1]
+            record = record.scaled(pga_factor(record.peak_acceleration, target_pga, g, rounding, "target_pga"))
         end = record.duration if t_end is None else float(t_end)
         if not 0 < end <= record.duration:
             raise ValueError(f"t_end={t_end!r} must lie in (0, {record.duration!r}] s (the record {name!r})")
@@ -267,3 +267,9 @@ def _final_column(analysis, arrays, response):
     settings = engine_settings(model.with_parameters({"omega": np.pi * final.vs / (2 * column.height),
                                                       "damping": final.damping}))
     return settings, final.vs
+
+
+#: integration scheme -> (rows of a list of :class:`Analysis`, the rounding of the
+#: motion's peak when scaling to ``target_pga``: see :func:`blockdae.pga_factor`);
+#: "exact": continuous time, events located, the exact peak
+INTEGRATIONS = {"exact": (exact_rows, "exact")}
