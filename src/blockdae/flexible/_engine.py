@@ -13,8 +13,10 @@ omega > 0) stays within the cubic. The onset guard ky g - HEA = ky g - d1 a(tau)
 downward crossings are located to adjacent floats by the linear engine's search. The
 driver's rules hold: a guard at zero and falling as a mode starts is left at once, one
 reaching zero at the end of a piece is left to the next, a guard below zero at rest
-(t = 0, a(0) > ky g / d1) is an onset at once. Without sliding (``slide`` False) the
-run gives max |HEA| at the samples and its supremum over time, and sup |u|.
+(t = 0, a(0) > ky g / d1) is an onset at once. The no-sliding response
+(:func:`_response`) gives max |HEA| at the samples, its supremum over time and sup |u|.
+On whole steps of a record each mode runs by its step map (from the closed forms) while
+bounds show that no guard can cross (no peak can exceed the best); else in closed form.
 """
 
 import functools
@@ -35,7 +37,8 @@ STICK, SLIP = 0, 1
 #: (|HEA| at the samples [m/s²], its supremum over time [m/s²], sup |u| [m]), status
 OUTCOME_FIELDS = ("u", "u_rate", "s", "w", "mode", "n_events", "n_episodes", "hea_samples", "hea_sup", "u_sup",
                   "u_samples", "status", "max_events_at_one_instant", "t_last_event")
-_HEA_SAMPLES, _U_SAMPLES = OUTCOME_FIELDS.index("hea_samples"), OUTCOME_FIELDS.index("u_samples")
+#: a bound of a rate, widened by a few ulps of its rounding
+_WIDEN = 1.0 + 8.0 * _EPS
 #: columns of the knot log: time [s], u [m], u' [m/s], s [m], w [m/s], mode after, mode before, is an event
 KNOT_FIELDS = ("t", "u", "u_rate", "s", "w", "mode", "mode_before", "is_event")
 
@@ -163,30 +166,58 @@ def _log(log, n_rows, t, u, v, s, w, mode, before, is_event):
 
 
 @register_jitable
-def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log, hea_floor=0.0, u_floor=0.0):
-    """One run over the pieces (t0, h, p0, p1) [s, s, m/s², m/s³] of a(t) times ``scale``
-    from rest: column omega [rad/s], xi [-], ky g [m/s²], coupled or decoupled; without
-    ``slide`` the guards are off and the peaks of the no-sliding response are taken.
-    ``log``: (capacity, 8) knot rows (KNOT_FIELDS), or (0, 8) for the outcome only;
-    ``hea_floor`` [m/s²], ``u_floor`` [m]: lower bounds of the sups (peaks below are not
-    searched). Returns (outcome (OUTCOME_FIELDS), rows logged)."""
-    stack = np.empty((STACK_DEPTH, 4))
-    damped = _damped(omega, xi, coupled)
-    # a whole step of a record, the common case: each mode's linear map over it, and
-    # bounds of |u'| and |u''| on it from the free oscillation's amplitude
-    step = h[0]
+def _step_tables(omega, xi, coupled, kyg, damped, step):
+    """For whole steps [s] of a record: each mode's step map (:func:`_step_maps`) and its
+    constants (k, c, b, forced, 1/k, 1/damped frequency, natural frequency)."""
     maps = (_step_maps(STICK, coupled, omega, xi, damped[STICK], kyg, step),
             _step_maps(SLIP, coupled, omega, xi, damped[SLIP], kyg, step))
-    table = np.empty((2, 7))  # per mode: k, c, b, forced, 1/k, 1/damped, natural frequency
+    table = np.empty((2, 7))
     for mode in (STICK, SLIP):
         k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
         table[mode] = k, c, b, forced, 1.0 / k, 1.0 / damped[mode], math.sqrt(k)
-    widen = 1.0 + 8.0 * _EPS
+    return maps, table
+
+
+@register_jitable
+def _whole_step(m, row, u, v, a0, rate):
+    """(u [m], u' [m/s]) at the end of a whole step from its map ``m`` and the mode's
+    constants ``row``; the free oscillation's amplitude [m] (|u' - forced| <= natural
+    frequency x amplitude, |u''| <= its square x amplitude) and the forced part's u' [m/s]."""
+    k, c, b, forced, inverse_k, inverse_damped, _ = row
+    u_end = m[0] * u + m[1] * v + m[4] * a0 + m[5] * rate + m[8]
+    v_end = m[2] * u + m[3] * v + m[6] * a0 + m[7] * rate + m[9]
+    particular = -forced * rate * inverse_k  # _solve's a1
+    free = u - (b - forced * a0 - c * particular) * inverse_k
+    return u_end, v_end, math.sqrt(free * free + ((v - particular + 0.5 * c * free) * inverse_damped) ** 2), particular
+
+
+@register_jitable
+def _hea_rate(rate, row, amplitude, xi):
+    """A bound of |HEA'| [m/s³] on a STICK step: HEA' = a' - (2/pi)(c X'' + k X') for the
+    free part X, |X^(n)| <= omega^n amplitude."""
+    return (abs(rate) + MASS_PARTICIPATION * row[6] * row[0] * amplitude * (1.0 + 2.0 * xi)) * _WIDEN
+
+
+@register_jitable
+def _stick_hea(a, u, v, row):
+    """HEA = d1 a - (2/pi)(c u' + k u) [m/s²] in STICK."""
+    return SLIP_MASS_FRACTION * a - MASS_PARTICIPATION * (row[1] * v + row[0] * u)
+
+
+@register_jitable
+def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, log):
+    """One sliding run over the pieces (t0, h, p0, p1) [s, s, m/s², m/s³] of a(t) times
+    ``scale`` from rest: column omega [rad/s], xi [-], ky g [m/s²], coupled or decoupled.
+    ``log``: (capacity, 8) knot rows (KNOT_FIELDS), or (0, 8) for the outcome only.
+    Returns (outcome (OUTCOME_FIELDS; no peaks), rows logged)."""
+    stack = np.empty((STACK_DEPTH, 4))
+    damped = _damped(omega, xi, coupled)
+    step = h[0]  # a whole step of a record, the common case, by its map
+    maps, table = _step_tables(omega, xi, coupled, kyg, damped, step)
     cached = np.full(6, math.nan)  # sigma [1/s], w [rad/s], span [s]; exp(-sigma span), cos, sin(w span)
     mode, u, v, s, w = STICK, 0.0, 0.0, 0.0, 0.0
     n_events, n_episodes, n_rows, run, max_run = 0, 0, 0, 0, 0
     last_event = -math.inf
-    hea_samples, hea_sup, u_sup, u_samples = 0.0, hea_floor, u_floor, 0.0
     status = FINISHED
     logging = log.shape[0] > 0
     for i in range(t0.shape[0]):
@@ -198,35 +229,21 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log, hea_floor=0.
         n_rows += logging
         while True:
             if tau == 0.0 and length == step:
-                # a guard kept positive (a peak kept below the best) by its values at the
-                # ends and a bound of its rate needs no closed form; else the general path
-                m = maps[mode]
-                u_end = m[0] * u + m[1] * v + m[4] * a0 + m[5] * rate + m[8]
-                v_end = m[2] * u + m[3] * v + m[6] * a0 + m[7] * rate + m[9]
-                k, c, b, forced, inverse_k, inverse_damped, natural = table[mode]
-                particular = -forced * rate * inverse_k  # the forced part's u' (_solve's a1)
-                free = u - (b - forced * a0 - c * particular) * inverse_k
-                amplitude = math.sqrt(free * free + ((v - particular + 0.5 * c * free) * inverse_damped) ** 2)
-                accel = k * amplitude  # bounds |u''| of the free part X
+                # a guard kept positive by its values at the ends and a bound of its rate
+                # needs no closed form; else the general path below
+                row = table[mode]
+                u_end, v_end, amplitude, _ = _whole_step(maps[mode], row, u, v, a0, rate)
                 if mode == SLIP:  # w' = a - ky g + (2/pi) u''
                     pw, ps = _slip_polynomials(a0, rate, kyg, u, v, s, w)
                     w_end = _cubic(pw, step) + MASS_PARTICIPATION * v_end
-                    w_rate = (max(abs(a0 - kyg), abs(a0 + rate * step - kyg)) + MASS_PARTICIPATION * accel) * widen
+                    w_rate = (max(abs(a0 - kyg), abs(a0 + rate * step - kyg))
+                              + MASS_PARTICIPATION * row[0] * amplitude) * _WIDEN
                     quick = _signed(w, w_end, w_rate, step) > 0
                     if quick:
                         s, w = _cubic(ps, step) + MASS_PARTICIPATION * u_end, w_end
-                else:  # HEA' = a' - (2/pi)(c X'' + k X'), |X^(n)| <= omega^n amplitude
-                    hea_rate = (abs(rate) + MASS_PARTICIPATION * natural * accel * (1.0 + 2.0 * xi)) * widen
-                    hea_start = SLIP_MASS_FRACTION * a0 - MASS_PARTICIPATION * (c * v + k * u)
-                    hea_end = SLIP_MASS_FRACTION * (a0 + rate * step) - MASS_PARTICIPATION * (c * v_end + k * u_end)
-                    if slide:
-                        quick = _signed(kyg - hea_start, kyg - hea_end, hea_rate, step) > 0
-                    else:
-                        u_rate = (abs(particular) + natural * amplitude) * widen
-                        quick = (max(abs(hea_start), abs(hea_end)) + 0.5 * hea_rate * step <= hea_sup
-                                 and max(abs(u), abs(u_end)) + 0.5 * u_rate * step <= u_sup)
-                        if quick:
-                            hea_samples, u_samples = max(hea_samples, abs(hea_end)), max(u_samples, abs(u_end))
+                else:
+                    quick = _signed(kyg - _stick_hea(a0, u, v, row), kyg - _stick_hea(a0 + rate * step, u_end, v_end, row),
+                                    _hea_rate(rate, row, amplitude, xi), step) > 0
                 if quick:
                     u, v = u_end, v_end
                     break
@@ -238,37 +255,25 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log, hea_floor=0.
                 cached[3], cached[4], cached[5] = math.exp(-f[6] * span), math.cos(f[7] * span), math.sin(
                     f[7] * span)
             event_tau = math.nan
-            if slide:
-                g1 = _derivative(guard)
-                g2 = _derivative(g1)
-                at_start = guard[0] + guard[4]
-                if at_start <= 0 and (_falls(_eval(g1, 0.0), _eval(g2, 0.0), EVENT_RESOLUTION) or (
-                        at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
-                    event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
-                elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
-                             _bound(g1, 0.0, span), span) <= 0:
-                    root = _down_crossing_search(guard, g1, g2, _derivative(g2), 0.0, span, t0[i] + tau, stack)
-                    if root == -math.inf:
-                        status = UNSETTLED
-                        break
-                    if root < span:  # a root at the end of the piece: the next piece decides
-                        event_tau = root
+            g1 = _derivative(guard)
+            g2 = _derivative(g1)
+            at_start = guard[0] + guard[4]
+            if at_start <= 0 and (_falls(_eval(g1, 0.0), _eval(g2, 0.0), EVENT_RESOLUTION) or (
+                    at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
+                event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
+            elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
+                         _bound(g1, 0.0, span), span) <= 0:
+                root = _down_crossing_search(guard, g1, g2, _derivative(g2), 0.0, span, t0[i] + tau, stack)
+                if root == -math.inf:
+                    status = UNSETTLED
+                    break
+                if root < span:  # a root at the end of the piece: the next piece decides
+                    event_tau = root
             if math.isnan(event_tau):
-                f1 = _derivative(f)
-                u_end = _eval_at(f, span, cached[3], cached[4], cached[5])
-                v_end = _eval_at(f1, span, cached[3], cached[4], cached[5])
+                u, v = _eval_at(f, span, cached[3], cached[4], cached[5]), _eval_at(
+                    _derivative(f), span, cached[3], cached[4], cached[5])
                 s = _eval_at(sf, span, cached[3], cached[4], cached[5])
                 w = _eval_at(wf, span, cached[3], cached[4], cached[5])
-                if not slide:
-                    hea = _combine(-1.0, guard, 0.0, guard, kyg)  # the guard is ky g - HEA
-                    hea_samples = max(hea_samples, abs(_eval_at(hea, span, cached[3], cached[4], cached[5])))
-                    u_samples = max(u_samples, abs(u_end))
-                    hea_sup = _peak(hea, span, hea_sup, t0[i] + tau, stack)
-                    u_sup = _peak(f, span, u_sup, t0[i] + tau, stack)
-                    if hea_sup == -math.inf or u_sup == -math.inf:
-                        status = UNSETTLED
-                        break
-                u, v = u_end, v_end
                 break
             f1 = _derivative(f)
             u, v = _eval(f, event_tau), _eval(f1, event_tau)
@@ -298,34 +303,67 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, slide, log, hea_floor=0.
             n_rows += 1
         else:
             status = LOG_FULL
-    outcome = np.array([u, v, s, w, mode, n_events, n_episodes, hea_samples, hea_sup, u_sup, u_samples, status, max_run,
-                        last_event], dtype=np.float64)
+    outcome = np.array([u, v, s, w, mode, n_events, n_episodes, 0.0, 0.0, 0.0, 0.0, status, max_run, last_event],
+                       dtype=np.float64)
     return outcome, n_rows
 
 
 @register_jitable
 def _response(t0, h, p0, p1, scale, omega, xi):
-    """The no-sliding response's outcome (OUTCOME_FIELDS): a first pass takes max |HEA|
-    and |u| at the samples, a second the sups over time, searching only the pieces that
-    may exceed those."""
-    empty = np.empty((0, len(KNOT_FIELDS)))
-    first, _ = _run(t0, h, p0, p1, scale, omega, xi, 0.0, False, False, empty, math.inf, math.inf)
-    outcome, _ = _run(t0, h, p0, p1, scale, omega, xi, 0.0, False, False, empty, first[_HEA_SAMPLES],
-                      first[_U_SAMPLES])
-    return outcome
+    """The no-sliding response's outcome (OUTCOME_FIELDS: the state at the end and the
+    peaks): a pass over the steps takes max |HEA| and |u| at the samples and a bound of
+    each on every step; the sups over time then search only the steps whose bound
+    exceeds the best so far."""
+    n = t0.shape[0]
+    stack = np.empty((STACK_DEPTH, 4))
+    damped = _damped(omega, xi, False)
+    step = h[0]
+    maps, table = _step_tables(omega, xi, False, 0.0, damped, step)
+    row = table[STICK]
+    starts, reach = np.empty((n, 2)), np.empty((n, 2))  # (u, u') at each start; bounds of |HEA|, |u| on it
+    u, v, hea_samples, u_samples = 0.0, 0.0, 0.0, 0.0
+    for i in range(n):
+        a0, rate = scale * p0[i], scale * p1[i]
+        starts[i, 0], starts[i, 1] = u, v
+        if h[i] == step:
+            u_end, v_end, amplitude, particular = _whole_step(maps[STICK], row, u, v, a0, rate)
+            hea_start, hea_end = _stick_hea(a0, u, v, row), _stick_hea(a0 + rate * step, u_end, v_end, row)
+            reach[i, 0] = max(abs(hea_start), abs(hea_end)) + 0.5 * _hea_rate(rate, row, amplitude, xi) * step
+            reach[i, 1] = max(abs(u), abs(u_end)) + 0.5 * (abs(particular) + row[6] * amplitude) * _WIDEN * step
+        else:
+            f, _, _, _ = _forms(STICK, False, omega, xi, damped[STICK], 0.0, a0, rate, u, v, 0.0, 0.0)
+            u_end, v_end = _eval(f, h[i]), _eval(_derivative(f), h[i])
+            hea_end = _stick_hea(a0 + rate * h[i], u_end, v_end, row)
+            reach[i, 0], reach[i, 1] = math.inf, math.inf
+        hea_samples, u_samples = max(hea_samples, abs(hea_end)), max(u_samples, abs(u_end))
+        u, v = u_end, v_end
+    hea_sup, u_sup, status = hea_samples, u_samples, FINISHED
+    for i in range(n):
+        if reach[i, 0] > hea_sup or reach[i, 1] > u_sup:
+            f, _, _, guard = _forms(STICK, False, omega, xi, damped[STICK], 0.0, scale * p0[i], scale * p1[i],
+                                    starts[i, 0], starts[i, 1], 0.0, 0.0)
+            if reach[i, 0] > hea_sup:  # the guard is ky g - HEA with ky g = 0
+                hea_sup = _peak(_combine(-1.0, guard, 0.0, guard, 0.0), h[i], hea_sup, t0[i], stack)
+            if reach[i, 1] > u_sup:
+                u_sup = _peak(f, h[i], u_sup, t0[i], stack)
+            if hea_sup == -math.inf or u_sup == -math.inf:
+                status = UNSETTLED
+                break
+    return np.array([u, v, 0.0, 0.0, STICK, 0.0, 0.0, hea_samples, hea_sup, u_sup, u_samples, status, 0.0, math.nan])
 
 
 def _run_jobs(t0, h, p0, p1, offsets, record, scale, omega, xi, kyg, coupled, slide):
     """Outcomes of many runs in parallel: job j runs excitation ``record[j]`` (pieces
     ``offsets[record[j]]:offsets[record[j] + 1]`` of the concatenated arrays) with the
-    j-th entries of the other (n_jobs,) arrays. Returns (n_jobs, len(OUTCOME_FIELDS))."""
+    j-th entries of the other (n_jobs,) arrays: a sliding run, or the no-sliding
+    response where ``slide[j]`` is False. Returns (n_jobs, len(OUTCOME_FIELDS))."""
     out = np.empty((record.shape[0], len(OUTCOME_FIELDS)))
     empty = np.empty((0, len(KNOT_FIELDS)))
     for j in numba.prange(record.shape[0]):
         lo, hi = offsets[record[j]], offsets[record[j] + 1]
         if slide[j]:
             out[j] = _run(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], scale[j], omega[j], xi[j], kyg[j], coupled[j],
-                          True, empty)[0]
+                          empty)[0]
         else:
             out[j] = _response(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], scale[j], omega[j], xi[j])
     return out

@@ -51,7 +51,7 @@ def solve_exact(model, excitation, horizon, name):
     capacity = _ROWS_PER_PIECE * len(pieces.t0) + 8
     while True:
         log = np.empty((capacity, len(_engine.KNOT_FIELDS)))
-        outcome, n_rows = run(*arrays, 1.0, *settings, True, log)
+        outcome, n_rows = run(*arrays, 1.0, *settings, log)
         if outcome[_engine.OUTCOME_FIELDS.index("status")] != _engine.LOG_FULL:
             break
         capacity *= 4
