@@ -480,3 +480,17 @@ def test_benchmark_quick_run(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "pySLAMMER [ms]" in out and "SLAMMER's table shape: 80 analyses" in out
     assert out.count("bar ") == 4 and out.count("smoke run, not a measurement") == 4
+
+
+def test_no_motion_at_ky_zero_does_not_slide():
+    """A record of zeros at ky = 0: HEA = ky g all along (the onset guard is identically
+    zero and never crosses), so no sliding and kmax = 0. A t_end between samples ends on
+    a shorter last piece: in STICK from 4.7 s on, s and the peaks equal those to the
+    next sample."""
+    zeros = bd.Record(np.zeros(50), 0.01, units="m/s2", check_peak=False)
+    row = bd.flexible(zeros, ky=0.0, height=10.0, vs=250.0).rows[0]
+    assert (row["normal_m"], row["inverse_m"], row["kmax_g"], row["episodes_normal"]) == (0.0, 0.0, 0.0, 0)
+    record = _record("Northridge_1994_PAC-175", duration=8.0)
+    cut = bd.flexible(record, ky=0.1, height=10.0, vs=250.0, t_end=7.333).rows[0]
+    whole = bd.flexible(record, ky=0.1, height=10.0, vs=250.0, t_end=7.34).rows[0]
+    assert cut["kmax_sup_g"] == whole["kmax_sup_g"] and cut["normal_m"] == whole["normal_m"] > 0

@@ -96,6 +96,13 @@ def _forms(mode, coupled, omega, xi, damped, kyg, a, rate, u, v, s, w):
 
 
 @register_jitable
+def _moves(f):
+    """Whether the form f is not identically zero (a guard that is cannot cross it:
+    HEA = ky g all along a step, e.g. ky = 0 under no motion)."""
+    return f[0] != 0.0 or f[1] != 0.0 or f[2] != 0.0 or f[3] != 0.0 or f[4] != 0.0 or f[5] != 0.0
+
+
+@register_jitable
 def _cubic(p, tau):
     """p0 + p1 tau + p2 tau² + p3 tau³."""
     return ((p[3] * tau + p[2]) * tau + p[1]) * tau + p[0]
@@ -242,8 +249,8 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, log):
                     if quick:
                         s, w = _cubic(ps, step) + MASS_PARTICIPATION * u_end, w_end
                 else:
-                    quick = _signed(kyg - _stick_hea(a0, u, v, row), kyg - _stick_hea(a0 + rate * step, u_end, v_end, row),
-                                    _hea_rate(rate, row, amplitude, xi), step) > 0
+                    hea_start, hea_end = _stick_hea(a0, u, v, row), _stick_hea(a0 + rate * step, u_end, v_end, row)
+                    quick = _signed(kyg - hea_start, kyg - hea_end, _hea_rate(rate, row, amplitude, xi), step) > 0
                 if quick:
                     u, v = u_end, v_end
                     break
@@ -262,7 +269,7 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, log):
                     at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
                 event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
             elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
-                         _bound(g1, 0.0, span), span) <= 0:
+                         _bound(g1, 0.0, span), span) <= 0 and _moves(guard):
                 root = _down_crossing_search(guard, g1, g2, _derivative(g2), 0.0, span, t0[i] + tau, stack)
                 if root == -math.inf:
                     status = UNSETTLED
