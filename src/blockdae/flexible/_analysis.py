@@ -235,7 +235,8 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     rows = []
     for analysis, ((_, xi, _, _), vs_final), (response, first) in zip(analyses, finals, slides):
         for j in [response] + list(range(first, first + len(analysis.polarities))):
-            check(out[j], f" ({analysis.name}, {analysis.model})")
+            if out[j, _FIELD["status"]] != _engine.FINISHED:
+                check(out[j], f" ({analysis.name}, {analysis.model})")
         row = {"record": analysis.name, "ky_g": analysis.model.ky, "height_m": analysis.model.column.height,
                "vs_m_s": analysis.model.column.vs, "normal_m": np.nan, "inverse_m": np.nan,
                "kmax_g": out[response, _FIELD["hea_samples"]] / analysis.model.g,
