@@ -5,7 +5,10 @@ pairs of pySLAMMER sample records with one sample step as (x, y) (not recorded
 together: a test of the solvers, not a real two-component motion), mu = 0.5 PGA_x / g,
 a bias 0.25 mu in -x, until rest. Per backend and case: wall time of a warm run [s]
 (median; the first call with --quick), events, final (u_x, u_y) [m] and the largest event-time difference from IDA
-[s] (where the event sequences match). "jax" is included where ``bd.simulate`` runs a
+[s] (where the event sequences match) and the speed-up over IDA and the JAX twin
+(bars for "compiled": >= 300x IDA, >= 30x JAX). Then a planar study on "compiled": the
+18 sample records as x with the next one as y x mu x factors, 10^4 analyses in one
+compiled call on every core (bar: < 60 s on 2 cores). "jax" is included where ``bd.simulate`` runs a
 PlanarBlock on it (it raises ValueError where not).
 
     python benchmarks/planar.py [--quick] [--repeat N]
@@ -13,6 +16,8 @@ PlanarBlock on it (it raises ValueError where not).
 
 import argparse
 import importlib.resources
+import os
+import time
 
 import numpy as np
 
@@ -21,7 +26,7 @@ from blockdae.planar import _elms as elms
 from _common import G, print_table, timed
 
 #: backends that may run a PlanarBlock; IDA is the reference (it follows turning slides)
-CANDIDATES = ("ida", "cvode", "jax")
+CANDIDATES = ("ida", "cvode", "jax", "compiled")
 #: (x, y) pairs of sample records with one sample step [file stems]
 PAIRS = (("Kobe_1995_TAK-090", "Duzce_1999_375-090"), ("N_Palm_Springs_1986_WWT-180", "Nahanni_1985_NS1-280"))
 RTOL = 1e-10
@@ -66,7 +71,7 @@ def main(argv=None):
     repeat = 0 if args.quick else args.repeat
     rows = []
     for label, block, motion in cases(args.quick):
-        reference = None
+        reference, times = None, {}
         for name in names:
             options = {"rtol": RTOL}
             try:
@@ -75,11 +80,42 @@ def main(argv=None):
                 rows.append((label, name, "-", "failed", "-", "-", str(err).split(":")[0]))
                 continue
             reference = reference or (sol if name == "ida" else None)
-            rows.append((label, name, f"{warm:.3f}", str(len(sol.events)), f"{sol.displacement[0]:+.6f}",
-                         f"{sol.displacement[1]:+.6f}", _event_difference(sol, reference)))
+            times[name] = warm
+            ratio = lambda other: f"{times[other] / warm:.0f}x" if other in times and other != name else "-"
+            rows.append((label, name, f"{warm:.4f}", str(len(sol.events)), f"{sol.displacement[0]:+.6f}",
+                         f"{sol.displacement[1]:+.6f}", _event_difference(sol, reference), ratio("ida"), ratio("jax")))
     print()
-    print_table(("case", "backend", "warm [s]", "events", "u_x [m]", "u_y [m]", "max |dt| vs ida [s]"), rows)
+    print_table(("case", "backend", "warm [s]", "events", "u_x [m]", "u_y [m]", "max |dt| vs ida [s]",
+                 "ida / this", "jax / this"), rows)
+    if "compiled" in names:
+        study(100 if args.quick else 10_000)
     return 0
+
+
+def study(n_analyses):
+    """Time ``n_analyses`` planar analyses (record pairs x mu x factors on a(t)) in one
+    compiled call, and print the table."""
+    from blockdae.backends import Horizon, make_backend
+    folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
+    records = [bd.read_record(p, units="g", g=G) for p in sorted(folder.iterdir()) if p.name.endswith(".csv")]
+    same_dt = [(x, y) for x, y in zip(records, records[1:] + records[:1]) if x.dt == y.dt]
+    motions = [bd.BaseMotion(x, y.scaled(x.peak_acceleration / y.peak_acceleration)) for x, y in same_dt]
+    mu = np.array([0.05, 0.1, 0.15, 0.2, 0.3])
+    n_scales = max(1, n_analyses // (len(motions) * len(mu)))
+    scales = np.linspace(0.2, 2.0, n_scales)  # factors on a(t) [-]
+    block = bd.PlanarBlock(mu=mu, mu_kinetic=0.8 * mu, bias=(-0.25 * mu, 0.0), g=G)
+    backend = make_backend("compiled")
+    horizons = [Horizon(None)] * len(motions)
+    backend.solve_final(block, motions[:1], horizons[:1], scale=scales[:1])  # compile or load
+    start = time.perf_counter()
+    out = backend.solve_final(block, motions, horizons, scale=tuple(scales))
+    seconds = time.perf_counter() - start
+    n = out.shape[0] * out.shape[1]
+    print()
+    print_table(("study", "analyses", "wall [s]", "per analysis [ms]", "cores", "median |u| [m]", "flights"),
+                [(f"{len(motions)} record pairs x {len(mu)} mu x {len(scales)} factors", f"{n:,}", f"{seconds:.1f}",
+                  f"{1e3 * seconds / n:.2f}", str(os.cpu_count()), f"{np.median(np.hypot(out[..., 0], out[..., 1])):.4f}",
+                  f"{int(out[..., 5].sum()):,}")])
 
 
 def _event_difference(sol, reference):

@@ -1,4 +1,5 @@
-"""Reading cost of the 18 sample CSVs: bd.read_record against numpy's own text parsing.
+"""Reading cost of the 18 sample CSVs: bd.read_record against numpy's own text parsing; and of
+the FEMA P695 far-field set (44 components, bd.RecordSet.fema_p695), whose bar is 2 s.
 
     python benchmarks/readers.py [--quick]
 """
@@ -10,7 +11,10 @@ import time
 import numpy as np
 
 import blockdae as bd
-from _common import print_table
+from _common import print_table, verdict
+
+#: the bar on reading the FEMA P695 far-field set [s] (issue 24)
+FEMA_BAR_S = 2.0
 
 
 def best(action, repeat):
@@ -39,7 +43,24 @@ def main(argv=None):
         rows.append((path.stem, f"{1e3 * t_ours:.2f}", f"{1e3 * t_numpy:.2f}", f"{t_ours / t_numpy:.2f}"))
     rows.append(("all", f"{1e3 * ours:.2f}", f"{1e3 * numpy:.2f}", f"{ours / numpy:.2f}"))
     print_table(["record", "read_record [ms]", "np.loadtxt [ms]", "ratio [-]"], rows)
+    fema_set(args.quick)
     return 0
+
+
+def fema_set(quick):
+    """Time reading the FEMA P695 far-field set: the first read (the HDF5 readers imported) and
+    the best of later ones; print its table and the verdict on the bar."""
+    start = time.perf_counter()
+    records = bd.RecordSet.fema_p695("far-field")
+    first = time.perf_counter() - start
+    later = best(lambda: bd.RecordSet.fema_p695("far-field"), 2 if quick else 5)
+    table = records.table
+    print(f"\nFEMA P695 far-field set: {len(records)} components of {table['record_id'].nunique()} records")
+    print_table(["name", "event", "M [-]", "R_epi [km]", "Vs30 [m/s]", "dt [s]", "samples", "PGA [g]"],
+                [(r.name, r.event, f"{r.magnitude:.1f}", f"{r.epicentral_distance_km:.1f}", f"{r.vs30_m_s:.0f}",
+                  f"{r.dt_s:g}", f"{r.samples}", f"{r.pga_g:.3f}") for r in table.itertuples()])
+    print(f"read: first {first:.3f} s, later {later:.3f} s (best); bar {FEMA_BAR_S:g} s: "
+          f"{verdict(first < FEMA_BAR_S, quick)}")
 
 
 if __name__ == "__main__":

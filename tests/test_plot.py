@@ -112,8 +112,8 @@ def test_planar_figure_draws_the_solutions_path_components_and_speed(elms_planar
     fig = bd.plot(sol, n_points=400, title="Elms R = 0.8")
     try:
         path, disp, speed = fig.axes
-        assert (path.get_xlabel(), path.get_ylabel()) == ("u_x [m]", "u_y [m]")
-        assert disp.get_ylabel() == "relative displacement [m]" and "[m/s]" in speed.get_ylabel()
+        assert (path.get_xlabel(), path.get_ylabel()) == ("u_x [g s²]", "u_y [g s²]")  # g = 1: lengths in g s²
+        assert disp.get_ylabel() == "relative displacement [g s²]" and "[g s]" in speed.get_ylabel()
         u_x, u_y = path.lines[0].get_xdata(), path.lines[0].get_ydata()
         t = next(line for line in disp.lines if line.get_label() == "u_x").get_xdata()
         knot_t, first = np.unique(sol.t, return_index=True)  # an event is a knot on either side

@@ -88,3 +88,15 @@ def test_r1_mu1_n_over_a_09_is_nearly_700_percent():
 def test_figs7_8_increase_is_monotone_in_r_on_a_fine_grid(n_over_a, mu):
     pct = elms.percent_increase(n_over_a, mu, np.linspace(0.0, 1.0, 11))
     assert np.all(np.diff(pct) > 0)
+
+
+def test_tables_of_g_1_cases_give_lengths_in_g_s2_not_m():
+    """Elms's set-up is dimensionless (g = 1): its event tables, planar and 1-D, label
+    lengths g s² (1 m at g = 1 m/s²); the same block at standard gravity says m."""
+    planar = bd.simulate(elms.elms_block(0.5, 0.8), elms.elms_motion(0.8))
+    one_d = bd.simulate(elms.elms_one_d(0.5, 0.8), elms.WAVE)
+    assert planar.event_table().splitlines()[0].split()[4:8] == ["u_x", "[g", "s²]", "u_y"]
+    assert "[m]" not in planar.event_table() and "u [g s²]" in one_d.event_table()
+    standard = bd.simulate(bd.PlanarBlock(mu=0.8, bias=(-0.3, 0.0)), elms.elms_motion(0.8).scaled(bd.STANDARD_GRAVITY))
+    assert "u_x [m]" in standard.event_table() and "[g s²]" not in standard.event_table()
+    assert "u [m]" in bd.simulate(bd.SlidingBlock(mu=0.8, bias=-0.3), elms.WAVE.scaled(bd.STANDARD_GRAVITY)).event_table()

@@ -4,29 +4,31 @@ Exact event times, solver backends that check each other, and derivatives of the
 answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
+from . import empirical, hazard
 from ._plot import plot
 from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, DriverSolution, HybridEvent,
                    InconsistentStateError, SolverError)
 from .core._crosscheck import CrossCheck, crosscheck
+from .core._compile_notice import CompileNotice
 from .core._jax_config import set_compilation_cache
 from .core._sensitivities import sensitivities
 from .core._simulate import simulate
 from .core._units import STANDARD_GRAVITY
 from .engines._linear_solution import simulate_linear_final
-from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RectangularPulse, SinePulse,
-                         TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
-                         read_record, resample)
+from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RecordSet, RectangularPulse,
+                         SinePulse, TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
+                         read_record, read_records, resample)
 from .flexible import (EquivalentLinear, FlexibleEvent, FlexibleMode, FlexibleResult, FlexibleSlidingMass,
                        FlexibleSolution, ShearColumn, flexible)
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
-                      cumulative_arias, fourier_amplitude, intensity_measures, motion_histories,
+                      cumulative_arias, fourier_amplitude, intensity_measures, mean_period, motion_histories,
                       relative_motion, response_spectrum)
 from .planar import PlanarBlock, PlanarEvent, PlanarMode, PlanarSolution
 from .sliding import BatchSolution, Event, EventLog, Mode, SlidingBlock, Solution
 from .sliding._examples import SeedExample, seed_examples
 from .sliding._final import FinalNumbers, simulate_final
 from .sliding._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
-from .sliding._newmark import NewmarkResult, newmark, yield_acceleration
+from .sliding._newmark import NewmarkResult, NewmarkSweep, newmark, yield_acceleration
 from .sliding._sweep import SweepSolution, simulate_many
 from .structures import Floor, ShearFrame
 from .studies import load_study, save_study, study, summary as study_summary
@@ -37,7 +39,8 @@ from .upthrow._estimate import UpthrowEstimate, upthrow_estimate
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
-    "check_peak_acceleration", "read_motion", "read_record", "simulate", "InconsistentStateError", "SolverError",
+    "check_peak_acceleration", "read_motion", "read_record", "read_records", "RecordSet", "simulate",
+    "InconsistentStateError", "SolverError",
     "UnitsWarning", "pga_factor", "resample",
     "AbstractEvent", "AbstractSolution", "DriverSolution", "HybridEvent",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",
@@ -47,13 +50,15 @@ __all__ = [
     "FinalNumbers", "simulate_final", "simulate_linear_final",
     "CrossCheck", "crosscheck",
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
-    "sensitivities", "set_compilation_cache",
-    "NewmarkResult", "newmark", "yield_acceleration",
+    "sensitivities", "set_compilation_cache", "CompileNotice",
+    "NewmarkResult", "NewmarkSweep", "newmark", "yield_acceleration",
     "EquivalentLinear", "FlexibleEvent", "FlexibleMode", "FlexibleResult", "FlexibleSlidingMass", "FlexibleSolution",
     "ShearColumn", "flexible",
-    "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "motion_histories",
+    "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "mean_period",
+    "motion_histories",
     "ResponseSpectrum", "response_spectrum", "RelativeMotion", "fourier_amplitude", "relative_motion",
     "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
     "Floor", "ShearFrame",
     "load_study", "save_study", "study", "study_summary",
+    "empirical", "hazard",
 ]

@@ -12,6 +12,7 @@ _REGISTRY = {
     "cvode": "blockdae.integrators._cvode:CVODEBackend",
     "ida": "blockdae.integrators._ida:IDABackend",
     "jax": "blockdae.integrators._jax:JaxBackend",
+    "compiled": "blockdae.engines._planar_backend:CompiledBackend",
 }
 
 

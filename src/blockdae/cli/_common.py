@@ -9,7 +9,12 @@ import pathlib
 import numpy as np
 
 from ..core._atomic import atomic_path
-from ..excitation import read_record
+from ..core._units import STANDARD_GRAVITY
+from ..excitation import RecordSet, read_record
+from ..excitation._fema import SETS as FEMA_SETS
+
+#: the record sets of --set: name -> the name of bd.RecordSet.fema_p695
+RECORD_SETS = {f"fema-p695-{name}": name for name in FEMA_SETS}
 
 
 class UsageError(Exception):
@@ -66,6 +71,27 @@ def read(path, args):
     return checked(lambda: read_record(path, dt=args.dt, g=args.g, check_peak=check_peak, **units), "")
 
 
+def set_argument(parser):
+    """--set NAME: a ready record set (bd.RecordSet.fema_p695) instead of files."""
+    parser.add_argument("--set", choices=list(RECORD_SETS), default=None, metavar="NAME",
+                        help=f"a ready record set instead of files, one of {', '.join(RECORD_SETS)} "
+                             "(pip install 'blockdae[sets]'); its magnitude, distances and Vs30 join the results")
+
+
+def files_or_set(args, files):
+    """The record set of --set (read with --g), or None where the command's ``files`` (its
+    positional argument: a path, a list or None) are given; exactly one of the two."""
+    given = files not in (None, [])
+    if given == (args.set is not None):
+        raise UsageError("give record files or a folder, or --set NAME, one of the two")
+    if args.set is None:
+        return None
+    try:
+        return RecordSet.fema_p695(RECORD_SETS[args.set], g=args.g)
+    except (ImportError, ValueError) as err:
+        raise UsageError(f"--set {args.set}: {err}") from None
+
+
 def write_csv(path, rows, fields=None):
     """``rows`` (dicts) as CSV with a header (``fields``, default the first row's keys), atomically."""
     def write():
@@ -89,12 +115,19 @@ def save_figure(figure, path):
         plt.close(figure)
 
 
-def describe_record(record) -> str:
-    """One line on a record: name, samples, dt [s], duration [s], peak [m/s²], start."""
+def describe_gravity(g) -> str:
+    """``g = 9.80665 m/s²``, or ``g = 1 (accelerations in g)`` for a dimensionless set-up."""
+    return "g = 1 (accelerations in g)" if g == 1 else f"g = {g:g} m/s²"
+
+
+def describe_record(record, g=STANDARD_GRAVITY) -> str:
+    """One line on a record: name, samples, dt [s], duration [s], peak [m/s²; in g where
+    ``g`` [m/s²] is 1, a dimensionless set-up], start."""
+    unit = "g" if g == 1 else "m/s²"
     origin = (f"; times from its first sample, at t = {record.start_time:g} s on the file's axis"
               if record.start_time else "")
     return (f"{record.name} ({record.acceleration_samples.size} samples, dt = {record.dt:g} s, "
-            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} m/s²{origin})")
+            f"duration {record.duration:.2f} s, peak {record.peak_acceleration:.4g} {unit}{origin})")
 
 
 def clean(x):

@@ -20,23 +20,25 @@ import warnings
 import numpy as np
 
 from .. import backends
-from ._common import (UsageError, checked, clean, describe_record, finite, positive, read, record_arguments,
-                      record_fields, save_figure, write_csv)
+from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, positive,
+                      read, record_arguments, record_fields, save_figure, set_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._flexible import add_flexible_parser
+from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
 from ..sliding._examples import seed_examples
+from ..core._compile_notice import CompileNotice
 from ..core._jax_config import set_compilation_cache
 from ..sliding._newmark import newmark
 from ..core._simulate import simulate
-from ..core._units import STANDARD_GRAVITY
+from ..core._units import STANDARD_GRAVITY, length_units
 from ..motions._commands import add_spectrum_parser, add_two_point_parser
 from ..studies._command import add_study_parser
-from ..excitation._readers import record_suffix, unit_factor
-from ..excitation._units import PGA_ROUNDINGS, UnitsWarning
+from ..core._progress import progress_bar
+from ..excitation._readers import RECORD_SUFFIXES, record_files, unit_factor
+from ..excitation._units import PGA_ROUNDINGS, UnitsWarning, pga_factor
 from ..sliding._model import SlidingBlock
 
-_RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
 _CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
                "g_m_s2", "direction", "backend", "displacement_m", "max_abs_displacement_m", "n_events",
                "t_end_s")
@@ -52,13 +54,37 @@ def main(argv=None) -> int:
         return int(exit_.code or 0)
     try:
         _compilation_cache(args)
-        return args.command(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _one_line_notices(warnings.showwarning)
+            return args.command(args)
     except UsageError as err:
         print(f"blockdae: error: {err}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # the reader of the output stopped early (e.g. `| head`)
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at exit
         return 0
+
+
+def _one_line_notices(show):
+    """``warnings.showwarning`` that prints a :class:`CompileNotice` as its one line on
+    stderr (not the caller's file and line) and leaves other warnings to ``show``."""
+    def showwarning(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, CompileNotice):
+            print(message, file=sys.stderr, flush=True)
+        else:
+            show(message, category, filename, lineno, file, line)
+    return showwarning
+
+
+def _prefixed(show, where):
+    """``warnings.showwarning`` that prints a warning as ``blockdae: warning: <where>:
+    ...`` on stderr, and leaves a :class:`CompileNotice` to ``show``."""
+    def showwarning(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, CompileNotice):
+            show(message, category, filename, lineno, file, line)
+        else:
+            print(f"blockdae: warning: {where + ': ' if where else ''}{message}", file=sys.stderr)
+    return showwarning
 
 
 def _parser():
@@ -69,7 +95,8 @@ def _parser():
                         help="JAX compilation cache, so that later runs skip compiling "
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
-    sub = parser.add_subparsers(required=True, metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study}")
+    sub = parser.add_subparsers(required=True, metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,"
+                                                       "info}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
                                      "plane under two or three components (u_x, u_y)")
@@ -95,18 +122,27 @@ def _parser():
     run.set_defaults(command=_run)
 
     newmark_ = sub.add_parser("newmark", help="Newmark's one-way analysis: downslope displacement "
-                                              "(positive) for both polarities")
-    newmark_.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
+                                              "(positive) for both polarities, over records x ky x PGA")
+    newmark_.add_argument("records", type=pathlib.Path, nargs="*", metavar="RECORD",
+                          help="accelerogram files or folders of them "
+                               f"({', '.join(RECORD_SUFFIXES)}, each also .gz; sorted by name); or --set NAME")
     newmark_.add_argument("--ky", type=positive("--ky"), nargs="+", required=True,
                           help="yield acceleration(s) [g]")
-    newmark_.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
-                          help="scale the record so that its peak |a| is PGA_G [g] (default: as read)")
+    newmark_.add_argument("--pga", type=positive("--pga"), nargs="+", default=None, metavar="PGA_G",
+                          help="scale each record so that its peak |a| is PGA_G [g], each value in turn "
+                               "(default: as read)")
     newmark_.add_argument("--pga-rounding", choices=PGA_ROUNDINGS, default="exact",
                           help="with --pga: 'slammer' rounds the record's own peak to 0.001 g before "
                                "scaling, as SLAMMER does (default exact)")
     newmark_.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                           help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
     record_arguments(newmark_)
+    set_argument(newmark_)
+    newmark_.add_argument("--csv", type=pathlib.Path, default=None, metavar="PATH",
+                          help="write the table (one row per record, PGA and ky) as CSV")
+    newmark_.add_argument("--plot", type=pathlib.Path, default=None, metavar="PATH",
+                          help="save a figure: D against ky per record; for one record and one ky, the "
+                               "history of the polarity with the larger D")
     newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
     newmark_.set_defaults(command=_newmark)
 
@@ -119,16 +155,19 @@ def _parser():
     examples.set_defaults(command=_examples)
 
     batch = sub.add_parser("batch", help="every record in a folder, over a parameter grid")
-    batch.add_argument("folder", type=pathlib.Path,
-                       help=f"folder of records ({', '.join(_RECORD_SUFFIXES)}, each also gzip-compressed: .gz)")
+    batch.add_argument("folder", type=pathlib.Path, nargs="?",
+                       help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz); "
+                            "or --set NAME")
     _block_arguments(batch, nargs="+")
     record_arguments(batch)
+    set_argument(batch)
     batch.add_argument("--csv", type=pathlib.Path, default=None, help="write the results as CSV")
     batch.add_argument("--json", action="store_true", help="print the results as JSON")
     batch.add_argument("--strict", action="store_true", help="stop at the first bad file")
     batch.set_defaults(command=_batch)
 
     add_study_parser(sub)
+    add_info_parser(sub)
     return parser
 
 
@@ -173,15 +212,16 @@ def _run(args):
     if args.json:
         print(json.dumps(_run_json(record, block, solution, wall), indent=2))
         return 0
+    length = length_units(block.g)[0]  # g s² where --g is 1, a dimensionless set-up
     if args.quiet:
-        print(f"{solution.displacement:+.6f} m")
+        print(f"{solution.displacement:+.6f} {length}")
         return 0
-    print(f"record: {describe_record(record)}")
+    print(f"record: {describe_record(record, block.g)}")
     print(f"block: {_describe_block(block)}; backend {solution.backend}")
     print(f"final time t_end = {solution.t_end:.4f} s"
           + (" (block at rest after the record)" if args.t_end is None else ""))
-    print(f"permanent displacement u(t_end) = {solution.displacement:+.6f} m")
-    print(f"max |u| = {solution.max_abs_displacement:.6f} m")
+    print(f"permanent displacement u(t_end) = {solution.displacement:+.6f} {length}")
+    print(f"max |u| = {solution.max_abs_displacement:.6f} {length}")
     print(f"events: {len(solution.events)}")
     _print_events(solution, args.events)
     print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
@@ -191,28 +231,78 @@ def _run(args):
 
 
 def _newmark(args):
-    record = read(args.record, args)
-    ky = np.asarray(args.ky, dtype=float)
-    with warnings.catch_warnings(record=True) as caught:
+    record_set = files_or_set(args, args.records)
+    paths = [] if record_set is not None else \
+        [p for arg in args.records for p in (checked(lambda: record_files(arg), "") if arg.is_dir() else [arg])]
+    records = list(record_set) if record_set is not None else [read(path, args) for path in paths]
+    pga = None if args.pga is None else args.pga[0] if len(args.pga) == 1 else args.pga
+    one = len(paths) == 1 and np.ndim(pga) == 0  # one record file at one PGA: a NewmarkResult
+    where = f"{paths[0]}" if len(paths) == 1 else ""
+    motions = records[0] if one else records if record_set is None else record_set
+    with warnings.catch_warnings():
         warnings.simplefilter("always", UnitsWarning)
-        result = checked(lambda: newmark(record, ky, g=args.g, pga=args.pga, pga_rounding=args.pga_rounding),
-                         f"{args.record}")
-    for warning in caught:
-        print(f"blockdae: warning: {args.record}: {warning.message}", file=sys.stderr)
+        warnings.showwarning = _prefixed(warnings.showwarning, where)
+        result = checked(lambda: newmark(motions, np.asarray(args.ky, dtype=float), g=args.g, pga=pga,
+                                         pga_rounding=args.pga_rounding), where)
     table = result.to_dataframe()
-    scale = {} if args.pga is None else {"pga_g": args.pga, "pga_rounding": args.pga_rounding}
-    if args.json:
-        print(json.dumps({**record_fields(record), **scale, "g_m_s2": args.g,
-                          "results": table.to_dict(orient="records")}, indent=2))
-        return 0
-    print(f"record: {describe_record(record)}")
-    if args.pga is not None:
-        print(f"scaled to a peak of {args.pga:g} g (pga rounding: {args.pga_rounding})")
-    print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
-    print(f"{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}")
-    for row in table.itertuples(index=False):
-        print(f"{row.ky_g:8.4f} {row.normal_m:12.6f} {row.inverse_m:12.6f} {row.mean_m:12.6f} {row.max_m:12.6f}")
+    if one:
+        table.insert(0, "pga_g", records[0].peak_acceleration / args.g if pga is None else pga)
+        table.insert(0, "record", records[0].name)
+    if args.csv is not None:
+        write_csv(args.csv, table.to_dict(orient="records"), list(table.columns))
+    if args.plot is not None:
+        _newmark_plot(args, records, pga, result)
+    _print_newmark(args, records, pga, one, table)
+    saved = [f"{what}: {path}" for what, path in (("results", args.csv), ("figure", args.plot)) if path is not None]
+    for line in saved:
+        print(line, file=sys.stderr if args.json else sys.stdout)
     return 0
+
+
+def _print_newmark(args, records, pga, one, table):
+    """The Newmark table (JSON with --json): one row per (record, PGA, ky)."""
+    scale = {} if pga is None else {"pga_g": pga, "pga_rounding": args.pga_rounding}
+    if args.json:
+        fields = record_fields(records[0]) if one else {"records": [record_fields(r) for r in records]}
+        print(json.dumps({**fields, **scale, "g_m_s2": args.g, "results": table.to_dict(orient="records")},
+                         indent=2))
+        return
+    if one:
+        print(f"record: {describe_record(records[0])}")
+    else:
+        print(f"{len(records)} records; PGA [g]: " + ("each record's own peak" if pga is None else "the target"))
+    if pga is not None:
+        print(f"scaled to a peak of {', '.join(f'{p:g}' for p in np.atleast_1d(pga))} g "
+              f"(pga rounding: {args.pga_rounding})")
+    print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
+    width = 0 if one else max(len("record"), *(len(r.name) for r in records))
+    head = "" if one else f"{'record':<{width}} {'PGA [g]':>8} "
+    print(f"{head}{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}")
+    for row in table.itertuples(index=False):
+        head = "" if one else f"{row.record:<{width}} {row.pga_g:8.4f} "
+        print(f"{head}{row.ky_g:8.4f} {row.normal_m:12.6f} {row.inverse_m:12.6f} {row.mean_m:12.6f} "
+              f"{row.max_m:12.6f}")
+
+
+def _newmark_plot(args, records, pga, result):
+    """--plot: D against ky per record; one record at one PGA and one ky: the history (base,
+    block, relative motion) of the polarity with the larger D."""
+    from .._plot import plot
+
+    if len(records) > 1 or np.ndim(pga) != 0 or len(args.ky) > 1:
+        save_figure(plot(result), args.plot)
+        return
+    record = records[0]
+    if pga is not None:
+        record = record.scaled(pga_factor(record.peak_acceleration, pga, args.g, args.pga_rounding))
+    normal, inverse = (float(np.ravel(d)[0]) for d in (result.normal, result.inverse))
+    inverse, d = inverse > normal, max(normal, inverse)
+    motion = record.inverted() if inverse else record
+    block = SlidingBlock(mu=args.ky[0], direction="negative", g=args.g)
+    solution = simulate(block, motion, t_end=None)
+    title = (f"{record.name}, {'inverse' if inverse else 'normal'} polarity: ky = {args.ky[0]:g} g, "
+             f"D = {d:.4g} m")
+    save_figure(plot(solution, motion, block, title=title), args.plot)
 
 
 def _examples(args):
@@ -240,26 +330,26 @@ def _batch(args):
     grid = list(itertools.product(args.mu, args.mu_kinetic or [None], args.bias))
     mu, f, bias = (np.array([np.nan if x is None else x for x in column]) for column in zip(*grid))
     block = _block(args, mu, None if args.mu_kinetic is None else f, bias)
-    if not args.folder.is_dir():
-        raise UsageError(f"{args.folder}: not a folder")
-    paths = sorted(p for p in args.folder.iterdir() if record_suffix(p) in _RECORD_SUFFIXES)
-    if not paths:
-        raise UsageError(f"{args.folder}: no record files ({', '.join(_RECORD_SUFFIXES)})")
+    record_set = files_or_set(args, args.folder)
+    sources = [(name, lambda name=name: record_set[name]) for name in record_set.names] if record_set is not None \
+        else [(path, lambda path=path: read(path, args)) for path in checked(lambda: record_files(args.folder), "")]
+    metadata = {} if record_set is None else record_set.metadata.to_dict("index")
     rows, failed = [], []
     start = time.perf_counter()
-    for k, path in enumerate(paths):
-        _progress(k, len(paths), path.name)
-        try:
-            record = read(path, args)
-            result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{path}")
-        except UsageError as err:
-            if args.strict:
-                raise
-            failed.append(str(err))
-            continue
-        rows += _batch_rows(record, block, result)
+    with progress_bar(len(sources), "batch", "record") as bar:
+        for label, source in sources:
+            bar.set_postfix_str(getattr(label, "name", label), refresh=False)
+            try:
+                record = source()
+                result = checked(lambda: simulate(block, record, t_end=args.t_end, backend=args.backend), f"{label}")
+            except UsageError as err:
+                if args.strict:
+                    raise
+                failed.append(str(err))
+            else:
+                rows += [{**row, **metadata.get(record.name, {})} for row in _batch_rows(record, block, result)]
+            bar.update()
     wall = time.perf_counter() - start
-    _progress(len(paths), len(paths), "done")
     if args.json:
         print(json.dumps({"rows": rows, "failed": failed}, indent=2))
     else:
@@ -268,12 +358,13 @@ def _batch(args):
         for row in rows:
             print(f"{row['record']:<32} {row['mu']:7.4f} {row['mu_kinetic']:7.4f} {row['bias']:+8.4f} "
                   f"{row['displacement_m']:+11.6f} {row['max_abs_displacement_m']:11.6f} {row['n_events']:7d}")
-        print(f"{len(rows)} analyses of {len(paths) - len(failed)} records in {wall:.2f} s (wall clock)")
+        print(f"{len(rows)} analyses of {len(sources) - len(failed)} records in {wall:.2f} s (wall clock)")
     if args.csv is not None:
-        checked(lambda: write_csv(args.csv, rows, _CSV_FIELDS), f"--csv {args.csv}")
+        fields = [*_CSV_FIELDS[:1], *next(iter(metadata.values()), {}), *_CSV_FIELDS[1:]]
+        checked(lambda: write_csv(args.csv, rows, fields), f"--csv {args.csv}")
         print(f"results: {args.csv}", file=sys.stderr if args.json else sys.stdout)
     if failed:
-        print(f"blockdae: {len(failed)} of {len(paths)} files failed:", file=sys.stderr)
+        print(f"blockdae: {len(failed)} of {len(sources)} files failed:", file=sys.stderr)
         for reason in failed:
             print(f"  {reason}", file=sys.stderr)
         return 1
@@ -318,7 +409,7 @@ def _block(args, mu, mu_kinetic, bias):
 
 def _describe_block(block):
     return (f"mu = {block.mu:g}, f = {block.friction_kinetic:g}, R/Q = {block.bias:g}, "
-            f"direction {block.direction}, g = {block.g:g} m/s²")
+            f"direction {block.direction}, {describe_gravity(block.g)}")
 
 
 def _print_events(solution, which):
@@ -363,13 +454,3 @@ def _batch_rows(record, block, result):
         "max_abs_displacement_m": float(result.max_abs_displacement[i]),
         "n_events": int(result.n_events[i]), "t_end_s": clean(float(result.t_end[i])),
     } for i in range(block.batch_shape[0])]
-
-
-def _progress(done, total, label, width=30):
-    """A progress bar on stderr, only when it is a terminal."""
-    if not sys.stderr.isatty():
-        return
-    filled = width * done // total
-    print(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} {label[:40]:<40}",
-          end="\n" if done == total else "", file=sys.stderr, flush=True)
-

@@ -4,8 +4,9 @@
 import json
 import time
 
-from ._common import UsageError, checked, describe_record, save_figure
+from ._common import UsageError, checked, describe_gravity, describe_record, save_figure
 from ..core._simulate import simulate
+from ..core._units import length_units
 from ..excitation import Record, read_motion
 from ..excitation._readers import record_name
 from ..planar._model import PlanarBlock
@@ -59,7 +60,8 @@ def planar_block(args):
 
 
 def run_planar(args, motion, print_events):
-    """Slide a PlanarBlock under ``motion``; print (u_x, u_y)(t_end) [m], max |u| [m] and the events."""
+    """Slide a PlanarBlock under ``motion``; print (u_x, u_y)(t_end) [m], max |u| [m] and the events
+    (lengths in g s² where --g is 1, a dimensionless set-up)."""
     block = planar_block(args)
     backend = args.backend or PLANAR_BACKEND
     start = time.perf_counter()
@@ -70,21 +72,22 @@ def run_planar(args, motion, print_events):
 
         save_figure(plot(solution, title=f"{args.record.name}: mu = {args.mu}"), args.plot)
     u_x, u_y = solution.displacement
+    length = length_units(block.g)[0]
     if args.json:
         print(json.dumps(_json(motion, block, solution, wall), indent=2))
         return 0
     if args.quiet:
-        print(f"({u_x:+.6f}, {u_y:+.6f}) m")
+        print(f"({u_x:+.6f}, {u_y:+.6f}) {length}")
         return 0
     for axis, component in zip("xyz", motion.components):
         if component is not None:
-            print(f"record {axis}: {describe_record(component)}")
+            print(f"record {axis}: {describe_record(component, block.g)}")
     print(f"block on a plane: mu = {block.mu:g}, f = {block.friction_kinetic:g}, bias (b_x, b_y) = "
-          f"({block.bias[0]:g}, {block.bias[1]:g}) [-], g = {block.g:g} m/s²; backend {solution.backend}")
+          f"({block.bias[0]:g}, {block.bias[1]:g}) [-], {describe_gravity(block.g)}; backend {solution.backend}")
     print(f"final time t_end = {solution.t_end:.4f} s"
           + (" (block at rest after the record)" if args.t_end is None else ""))
-    print(f"permanent displacement (u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) m")
-    print(f"max |u| = {solution.max_abs_displacement:.6f} m")
+    print(f"permanent displacement (u_x, u_y)(t_end) = ({u_x:+.6f}, {u_y:+.6f}) {length}")
+    print(f"max |u| = {solution.max_abs_displacement:.6f} {length}")
     print(f"events: {len(solution.events)} (direction: of the relative velocity just before the event, "
           "blank where the block was at rest; slide: of the slide it starts or ends; degrees from +x)")
     print_events(solution, args.events)

@@ -5,12 +5,14 @@ The cache folder is ``$BLOCKDAE_CACHE_DIR``, else ``$XDG_CACHE_HOME/blockdae/jax
 ``~/.cache/blockdae/jax``. Set ``BLOCKDAE_CACHE_DIR=off`` (or call
 ``set_compilation_cache(None)``) to keep none. A cache folder the user set in JAX's own
 configuration is left as it is. Nothing is configured at import: only on the first
-compiled call.
+compiled call, which a one-line :class:`CompileNotice` announces (once per process).
 """
 
 import contextlib
 import os
 import pathlib
+
+from ._compile_notice import notice
 
 _OFF = ("", "off", "none", "0")
 _DEFAULT = object()  # no folder chosen: the environment's, unless JAX has one set
@@ -47,6 +49,7 @@ def jax_context():
     """float64 for the calls inside; sets the compilation cache on first use."""
     import jax
 
+    notice("JAX", "its JAX kernels (the first JAX call in this process; a few seconds)")
     if not _state["applied"]:
         if _state["folder"] is not _DEFAULT:
             _apply(_state["folder"])
@@ -55,3 +58,4 @@ def jax_context():
         _state["applied"] = True
     with jax.enable_x64(True):
         yield
+

@@ -56,6 +56,13 @@ def simulate(block: AbstractHybridModel, motion, t_end: float | None = None, bac
                 max_events_at_one_instant=5: most events at one instant [-]
                     (PlanarBlock; more: chatter, an error).
                 event_resolution=1e-9: events closer are one instant [s] (PlanarBlock).
+            backend="compiled" (the compiled planar engine, numba: a PlanarBlock on a
+            rigid support; stick and flight in closed form, slip by DOP853):
+                rtol=1e-12: relative tolerance of the slip's steps [-], in [1e-14, 1e-2].
+                atol=1e-14: absolute tolerance [m, m/s].
+                max_events_at_one_instant=5: most consecutive events at one instant [-];
+                    more (chatter) raises an error.
+                event_resolution=1e-9: events closer than this are one instant [s].
 
     Returns:
         The model's solution (:class:`Solution` for a SlidingBlock,

@@ -4,6 +4,7 @@ import dataclasses
 
 import numpy as np
 
+from ..core._compile_notice import notice_numba
 from ..sliding._solution import BatchSolution
 from ..excitation import Pieces
 from ..excitation._pieces import accel
@@ -56,6 +57,7 @@ class ExactBackend(AbstractBackend):
             return solve_linear_compiled(block, *found, self.name)
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
         run_one, _, _ = engine.kernels()
+        notice_numba("the exact engine", 15, run_one)
         params = tuple(float(p) for p in block.engine_parameters()[0])
         outcome, knots = run_one(exc, self.window, params, _flags(block, horizon), 64)
         check(block, outcome[6], outcome[7])
@@ -82,6 +84,7 @@ class ExactBackend(AbstractBackend):
         params = block.engine_parameters(scale)
         _, parallel, serial = engine.kernels()
         run_batch = parallel if len(params) * len(exc[0]) >= _PARALLEL_WORK else serial
+        notice_numba("the exact engine", 15, run_batch)
         until_rest = np.array([h.until_rest for h in horizons])
         out = run_batch(exc, offsets, self.window, params, (block.allow_negative, block.allow_positive, until_rest))
         if not out[:, :, 6:8].all():  # rests, finished

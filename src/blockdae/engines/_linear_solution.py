@@ -4,6 +4,7 @@ many excitations, parameter sets and scales."""
 
 import numpy as np
 
+from ..core._compile_notice import notice_numba
 from ..core._driver import SolverError
 from . import _linear
 
@@ -25,6 +26,7 @@ def solve_linear_compiled(model, pieces, arrays, name):
     """``model`` (its ``linear_modes()``) over the linear ``pieces`` (``arrays`` from
     :func:`linear_pieces`): the model's solution, events located to adjacent floats."""
     run, _ = _linear.kernels()
+    notice_numba("the linear engine", 5, run)
     tables = model.linear_modes()
     capacity = _ROWS_PER_PIECE * len(pieces.t0) + 8
     while True:
@@ -121,6 +123,7 @@ def solve_linear_final(models, excitations, t_end, scale=(1.0,)):
                     for f in ("stiffness", "damping", "offset", "guards", "next_mode", "resets"))
     stacked += (np.array([tb.initial_mode for tb in tables], dtype=np.int64),)
     _, run_batch = _linear.kernels()
+    notice_numba("the linear engine", 5, run_batch)
     out = run_batch(*columns, offsets, np.asarray(scale, dtype=float).ravel(), stacked)
     for e, j in zip(*np.nonzero(out[:, :, 7] != _linear.FINISHED)):
         _check(out[e, j], models[j // len(scale)], f" (excitation {e}, column {j})")

@@ -1,5 +1,6 @@
 """Readers for accelerogram files: two-column, one-column and PEER NGA .AT2 text, each
-plain or gzip-compressed."""
+plain or gzip-compressed (what :func:`~._read_record.read_record` reads itself; the formats
+with a header are ``_formats``'), and the file helpers those formats share."""
 
 import gzip
 import io
@@ -10,8 +11,7 @@ import zlib
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
-from ._record import Record
+from ..core._units import STANDARD_GRAVITY  # noqa: F401 (imported from here by blockdae.excitation)
 from ._units import _SYMBOLS, canonical_units, check_peak_acceleration, unit_factor
 
 # an AT2 header's "IN UNITS OF ..." text, squeezed by _squeeze_units
@@ -28,42 +28,24 @@ _GZIP_MAGIC = b"\x1f\x8b"  # the first bytes of a gzip file
 ONE_COMPONENT = (2, "1 or 2 columns (time [s], acceleration)")
 
 
-def read_record(path, units=None, dt=None, g=STANDARD_GRAVITY, name=None, check_peak=True) -> Record:
-    """Read an accelerogram file into a :class:`Record` [m/s²].
+#: format suffixes of the record files found in a folder (each also gzip-compressed: .gz): tables,
+#: PEER AT2, COSMOS V1/V2 (CESMD's .V1C/.V2C too), K-NET (.NS/.EW/.UD) and KiK-net (1: borehole,
+#: 2: surface), ESM ASCII, SAC and miniSEED; the format itself is found by content
+RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2", ".v1", ".v2", ".v1c", ".v2c",
+                   ".ns", ".ew", ".ud", ".ns1", ".ew1", ".ud1", ".ns2", ".ew2", ".ud2",
+                   ".asc", ".sac", ".mseed", ".miniseed")
 
-    Formats:
-      * two columns (time [s], acceleration), separated by commas, blanks or semicolons
-        (semicolons with decimal commas, ``0,01;0,5``, too), '#' comments, optional
-        header line and UTF-8 BOM; the time column must be uniform and increasing, and
-        its first value is kept as ``Record.start_time``; units in brackets in the header
-        line (``time (s), acceleration (m/s2)``, ``acc [cm/s2]``, ``(gal)``, ``(g)``) are read;
-      * one column of accelerations, with the sample step ``dt`` [s] given;
-      * PEER NGA AT2 (any file name: found by its ``NPTS=..., DT=...`` header line, in
-        either order, or the older ``5000  0.0050  NPTS, DT`` line); its
-        ``... IN UNITS OF G`` (or ``CM/SEC/SEC``, ``M/SEC/SEC``, ``GAL``) line is read.
 
-    Any of them gzip-compressed (found by its first bytes; ``rec.AT2.gz`` is named
-    ``rec``). Text is UTF-8 (or ASCII), with or without a BOM, any line ends.
-
-    Args:
-        path: file path.
-        units: units of the values: "g", "m/s2", "cm/s2" or "gal"; None: as the AT2
-            header or the table's header line says, "g" for files that do not say.
-            Contradicting the header raises, naming the line and both units.
-        dt: sample step [s]; required for one-column files only, checked against the
-            file's step otherwise.
-        g: the value of one "g" [m/s²].
-        name: record name; by default the file's, less its suffix (:func:`record_name`).
-        check_peak: raise if the peak acceleration is implausible (outside
-            :data:`PLAUSIBLE_PEAK_G`), a sign of wrong units; False accepts any peak.
-
-    Errors are ValueErrors naming the file and, where there is one, its 1-based line
-    (also for a binary file, a damaged gzip file or text that is not UTF-8).
-    """
-    path = pathlib.Path(path)
-    samples, dt, start_time = read_samples(path, units, dt, g, check_peak, ONE_COMPONENT)
-    return Record(samples[:, 0], dt, record_name(path) if name is None else name, start_time, units="m/s2",
-                  check_peak=False)  # read_samples checked the peak in the file's units
+def record_files(folder) -> list[pathlib.Path]:
+    """The record files in ``folder`` (suffixes :data:`RECORD_SUFFIXES`, each also ``.gz``),
+    sorted by name; a ValueError naming the folder if it is none or holds none."""
+    folder = pathlib.Path(folder)
+    if not folder.is_dir():
+        raise ValueError(f"{folder}: not a folder")
+    paths = sorted(p for p in folder.iterdir() if p.is_file() and record_suffix(p) in RECORD_SUFFIXES)
+    if not paths:
+        raise ValueError(f"{folder}: no record files ({', '.join(RECORD_SUFFIXES)}, each also .gz)")
+    return paths
 
 
 def record_name(path) -> str:
@@ -83,15 +65,22 @@ def _uncompressed(path):
 
 def read_samples(path, units, dt, g, check_peak, columns):
     """(accelerations [m/s²], shape (n, k), sample step [s], start time [s]) of a file read
-    as :func:`read_record` reads it; a table may hold k > 1 accelerations after its time column.
+    as :func:`read_record` reads a table or an AT2 file; a table may hold k > 1 accelerations
+    after its time column.
 
     ``columns``: (most columns of a table, their description for errors), e.g. :data:`ONE_COMPONENT`.
     The peak check covers all k columns at once (one file, one unit).
     """
+    return read_table(path, units, dt, g, check_peak, columns)[:3]
+
+
+def read_table(path, units, dt, g, check_peak, columns, text=None):
+    """read_samples' result and the metadata (format, units as read) of a table or AT2 file
+    (its ``text``, read if None)."""
     path = pathlib.Path(path)
     if units is not None:
         canonical_units(units)  # an unknown name fails before the file is read
-    text = _text(path)
+    text = _text(path) if text is None else text
     layout = _scan(text, path)
     if layout.at2 is not None:
         lines = text.split("\n")
@@ -106,7 +95,8 @@ def read_samples(path, units, dt, g, check_peak, columns):
     dt = _sample_step(dt, file_dt, path)
     if check_peak:
         check_peak_acceleration(samples, units, g, str(path), statement and f"the header's {statement}")
-    return samples * unit_factor(units, g), dt, start_time
+    metadata = {"format": "PEER AT2" if layout.at2 is not None else "table", "units": units}
+    return samples * unit_factor(units, g), dt, start_time, metadata
 
 
 class _Layout(typing.NamedTuple):
@@ -120,9 +110,18 @@ class _Layout(typing.NamedTuple):
 def _text(path):
     """The text of the file at ``path``, gunzipped if it is gzip-compressed, every line
     end ``\\n``; ValueError naming the file for a binary file or text that is not UTF-8."""
-    data = path.read_bytes()
-    if data.startswith(_GZIP_MAGIC):
-        data = _gunzip(data, path)
+    return decode(file_bytes(path), path)
+
+
+def file_bytes(path):
+    """The bytes of the file at ``path``, gunzipped if it is gzip-compressed."""
+    data = pathlib.Path(path).read_bytes()
+    return _gunzip(data, path) if data.startswith(_GZIP_MAGIC) else data
+
+
+def decode(data, path):
+    """The text of a file's bytes ``data``, every line end ``\\n``; ValueError naming the
+    file at ``path`` for a binary file or text that is not UTF-8."""
     nul = data.find(b"\0")
     if nul >= 0:
         raise ValueError(f"{path}: a binary file (a NUL byte at offset {nul}), not a record: "

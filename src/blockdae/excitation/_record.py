@@ -1,6 +1,8 @@
 """Recorded accelerograms: samples joined by straight lines."""
 
 import dataclasses
+import types
+import typing
 import warnings
 
 import numpy as np
@@ -30,6 +32,8 @@ class Record(AbstractExcitation):
         check_peak: raise ValueError if a nonzero peak is implausible in ``units``
             (outside :data:`PLAUSIBLE_PEAK_G`: an array in cm/s² given as m/s², ...);
             False accepts any peak (and skips the warning).
+        metadata: what a reader found in the file's header (format, units as read,
+            station, component, event, ...), kept read-only; empty by default.
 
     The excitation starts at t = 0 whatever ``start_time`` is (the base is at rest
     there): an event time t of a Solution is ``start_time + t`` on the file's axis.
@@ -40,9 +44,10 @@ class Record(AbstractExcitation):
     dt: float
     name: str = ""
     start_time: float = 0.0
+    metadata: typing.Mapping = dataclasses.field(default_factory=dict, repr=False)
 
     def __init__(self, acceleration, dt, name="", start_time=0.0, *, units=None, g=STANDARD_GRAVITY,
-                 check_peak=True):
+                 check_peak=True, metadata=None):
         samples = np.array(acceleration, dtype=float)
         if samples.ndim != 1:
             raise ValueError(f"acceleration must be a 1-D array of samples, got shape {samples.shape}")
@@ -55,6 +60,7 @@ class Record(AbstractExcitation):
         object.__setattr__(self, "dt", check_positive("dt", dt, "s"))
         object.__setattr__(self, "name", str(name))
         object.__setattr__(self, "start_time", check_finite("start_time", start_time, "s"))
+        object.__setattr__(self, "metadata", types.MappingProxyType(dict(metadata or {})))
         if check_peak:
             _check_units(samples, units, g, self.name)
         if units is not None:
@@ -93,7 +99,7 @@ class Record(AbstractExcitation):
 
     def scaled(self, factor):
         return Record(self.acceleration_samples * float(factor), self.dt, self.name, self.start_time,
-                      units="m/s2", check_peak=False)
+                      units="m/s2", check_peak=False, metadata=self.metadata)
 
     def _pieces_until(self, t_end):
         a = self.acceleration_samples

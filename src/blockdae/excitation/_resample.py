@@ -20,7 +20,7 @@ def resample(record, dt):
         dt: the new sample step [s], finite and > 0.
 
     Returns:
-        A Record (or BaseMotion) with the same name and ``start_time``, samples in m/s²
+        A Record (or BaseMotion) with the same name, ``start_time`` and ``metadata``, samples in m/s²
         at t = k ``dt`` for every k with k ``dt`` <= the record's duration. Each new
         sample is exact: the old record's a(t) (linear between old samples) at that time.
         Between new samples the result is linear in the *new* samples, so it is not the
@@ -40,7 +40,8 @@ def resample(record, dt):
     new_dt = _checked_step(dt)
     times = new_dt * np.arange(_sample_count(record, new_dt))
     samples = np.interp(times, record.times, record.acceleration_samples)
-    return Record(samples, new_dt, record.name, record.start_time, units="m/s2", check_peak=False)
+    return Record(samples, new_dt, record.name, record.start_time, units="m/s2", check_peak=False,
+                  metadata=record.metadata)
 
 
 def _resampled_component(component, dt):

@@ -13,6 +13,7 @@ import dataclasses
 
 import numpy as np
 
+from ..core._compile_notice import notice_numba
 from ..excitation._pieces import accel_int1, accel_int2
 from . import _checks
 
@@ -121,6 +122,7 @@ def response_spectrum(motion, periods, damping=0.05, *, t_end=None) -> ResponseS
     when = np.zeros_like(best)
     from . import _kernels
 
+    notice_numba("the response kernels", 10, _kernels.spectra)
     _kernels.spectra(*cat, xg, vg, starts, omegas, zetas, best, when)
     shape = batch + zeta.shape + T.shape
     out = [best[..., q].reshape(shape) for q in range(4)] + [when[..., q].reshape(shape) for q in range(4)]

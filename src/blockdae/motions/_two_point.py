@@ -12,6 +12,7 @@ import dataclasses
 
 import numpy as np
 
+from ..core._compile_notice import notice_numba
 from ..excitation._pieces import accel_int1, accel_int2, rebase
 from . import _checks
 from ._intensity import _Chain, intensity_measures
@@ -194,6 +195,7 @@ def _max_lagged_difference(motion, lag, end):
     if cand.size:
         from . import _kernels
 
+        notice_numba("the response kernels", 10, _kernels.max_abs_many)
         params = np.zeros((cand.size, 4))
         params[:, 2], params[:, 3] = w1[cand], w2[cand]
         b, tb_ = _kernels.max_abs_many(np.ascontiguousarray(rows[cand]), params, np.ascontiguousarray(L[cand]),

@@ -5,12 +5,15 @@ import math
 import numpy as np
 
 from ..core._figures import EVENTS, curve, time_grid
+from ..core._units import STANDARD_GRAVITY, length_units
 
 
 def planar_figure(solution, *, n_points, title=None):
-    """Path (u_x, u_y) [m] in the plane; u_x, u_y [m] and |v| [m/s] against time; events marked."""
+    """Path (u_x, u_y) [m] in the plane; u_x, u_y [m] and |v| [m/s] against time; events
+    marked. A block with g = 1 (dimensionless) has lengths in g s² and speeds in g s."""
     import matplotlib.pyplot as plt
 
+    length, speed_unit = length_units(solution.block.g if solution.block is not None else STANDARD_GRAVITY)
     t = time_grid(solution, n_points)
     u_x, u_y, v_x, v_y, _ = solution(t)
     events = solution.events
@@ -21,16 +24,16 @@ def planar_figure(solution, *, n_points, title=None):
     fig, (path, disp, speed) = plt.subplots(1, 3, figsize=(15, 4.5), constrained_layout=True)
     path.plot(u_x, u_y, color="C3", lw=1.2, label="block - base")
     path.plot(ux_ev, uy_ev, **EVENTS)
-    path.set(xlabel="u_x [m]", ylabel="u_y [m]", title="path relative to the base")
+    path.set(xlabel=f"u_x [{length}]", ylabel=f"u_y [{length}]", title="path relative to the base")
     path.set_aspect("equal", adjustable="datalim")
     path.legend(loc="best", fontsize="small")
     disp.plot(t, u_x, color="C3", lw=1.2, label="u_x")
     disp.plot(t, u_y, color="C0", lw=1.2, ls="--", label="u_y")
     disp.plot(np.concatenate([t_ev, t_ev]), np.concatenate([ux_ev, uy_ev]), **EVENTS)
-    disp.set(xlabel="t [s]", ylabel="relative displacement [m]")
+    disp.set(xlabel="t [s]", ylabel=f"relative displacement [{length}]")
     disp.axhline(0.0, color="0.8", lw=0.8, zorder=0)
     disp.legend(loc="best", fontsize="small")
-    curve(speed, t, np.hypot(v_x, v_y), t_ev, speed_ev, "relative speed |v| [m/s]")
+    curve(speed, t, np.hypot(v_x, v_y), t_ev, speed_ev, f"relative speed |v| [{speed_unit}]")
     speed.set_xlabel("t [s]")
     if title:
         fig.suptitle(title)

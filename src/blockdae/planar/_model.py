@@ -92,6 +92,7 @@ class PlanarBlock(AbstractHybridModel):
     component_names = ("x", "y", "z")
     displacement_states = (_UX, _UY)
     default_backend = "ida"  # CVODE loses the sliding direction on turning slides
+    engines = {"compiled": "planar"}  # the compiled engine (rigid support), for studies
 
     def __post_init__(self):
         set_real_fields(self, ("g", "restitution", "bounce_threshold"))
@@ -143,6 +144,18 @@ class PlanarBlock(AbstractHybridModel):
         """The ``index``-th parameter set of a batch, as one block."""
         p = {name: float(value[index]) for name, value in self.batch_parameters().items()}
         return dataclasses.replace(self, mu=p["mu"], mu_kinetic=p["mu_kinetic"], bias=(p["bias_x"], p["bias_y"]))
+
+    def engine_parameters(self, scale=(1.0,)) -> np.ndarray:
+        """The compiled engine's parameter rows, (m * s, 8): (mu, mu_kinetic, bias_x,
+        bias_y [-], g [m/s²], restitution [-], bounce_threshold [m/s], factor on a(t)
+        [-]) for each of the m parameter sets (1 for one block) at each of the s
+        factors in ``scale``; set j at factor k in row j * s + k."""
+        p = {name: np.atleast_1d(value) for name, value in self.batch_parameters().items()}
+        rows = np.stack([p["mu"], p["mu_kinetic"], p["bias_x"], p["bias_y"], np.full_like(p["mu"], self.g),
+                         np.full_like(p["mu"], self.restitution), np.full_like(p["mu"], self.bounce_threshold)], axis=1)
+        factors = np.asarray(scale, dtype=float)
+        return np.ascontiguousarray(np.column_stack([np.repeat(rows, len(factors), axis=0),
+                                                     np.tile(factors, len(rows))]))
 
     def replace(self, **changes) -> "PlanarBlock":
         """A copy with some parameters changed (validated again)."""

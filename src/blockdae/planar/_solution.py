@@ -6,6 +6,7 @@ import math
 import numpy as np
 
 from ..core._solution import AbstractEvent, DriverSolution
+from ..core._units import STANDARD_GRAVITY, length_units
 
 from ._modes import PlanarMode, horizontal_velocity
 
@@ -115,10 +116,12 @@ class PlanarSolution(DriverSolution):
         """``events`` (default: all of them) as an aligned text table with units:
         direction: of the relative velocity just before the event [deg], blank where the
         block is at rest then (an onset, a stop); slide: of the slide it starts or ends
-        [deg] (see :meth:`slide_directions`), blank where none is defined."""
+        [deg] (see :meth:`slide_directions`), blank where none is defined. Lengths are in
+        m, or in g s² for a block with g = 1 (a dimensionless set-up, as Elms's)."""
         chosen = self.events if events is None else events
         slides = dict(zip((e.t for e in self.events), self.slide_directions()))
-        lines = [f"{'t [s]':>12}  {'from':>6}  {'to':<6}  {'u_x [m]':>12}  {'u_y [m]':>12}  "
+        length = length_units(self.block.g if self.block is not None else STANDARD_GRAVITY)[0]
+        lines = [f"{'t [s]':>12}  {'from':>6}  {'to':<6}  {f'u_x [{length}]':>12}  {f'u_y [{length}]':>12}  "
                  f"{'direction [deg]':>15}  {'slide [deg]':>11}"]
         lines += [f"{e.t:12.6f}  {e.mode_before.name:>6}  {e.mode_after.name:<6}  {e.u_x:12.6f}  "
                   f"{e.u_y:12.6f}  {_angle_cell(e.direction, 15)}  {_angle_cell(slides.get(e.t, math.nan), 11)}"
@@ -127,7 +130,8 @@ class PlanarSolution(DriverSolution):
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
         """The path (u_x, u_y) [m], u_x and u_y [m] and |v| [m/s] against time, events
-        marked (``excitation`` and ``block`` unused); a matplotlib Figure."""
+        marked (``excitation`` and ``block`` unused; g s² and g s for a block with g = 1);
+        a matplotlib Figure."""
         from ._figures import planar_figure
 
         return planar_figure(self, n_points=n_points, title=title)

@@ -5,6 +5,8 @@ import numpy as np
 
 from ..core._figures import BASE, BLOCK, EVENTS, curve, time_grid
 
+_LEGEND_ENTRIES = 12  # Newmark's figure has a legend for at most this many curves
+
 
 def solution_figure(solution, excitation=None, block=None, *, n_points, title=None):
     """Left column (only with ``excitation``): base (solid) and block (dashed)
@@ -73,3 +75,18 @@ def batch_figure(batch, *, title=None):
     ax.legend(loc="best", fontsize="small")
     return fig
 
+
+
+def newmark_figure(ky, displacement, labels, *, polarity=None, title=None):
+    """Newmark's D [m] against k_y [g]: one curve per row of ``displacement`` (shape
+    (n_curves, n_ky)), labelled by ``labels``; ``polarity``, if given, says which D is drawn."""
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
+    for label, d in zip(labels, displacement):
+        ax.plot(ky, d, marker="o", ms=3.5, label=label)
+    ax.set(xlabel="yield acceleration k_y [g]", ylabel="downslope displacement D [m]" + (f" ({polarity})" if polarity else ""), title=title)
+    ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    if len(labels) <= _LEGEND_ENTRIES:
+        ax.legend(loc="best", fontsize="small")
+    return fig

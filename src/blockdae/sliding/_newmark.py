@@ -5,18 +5,26 @@ acceleration k_y [g] and report the *downslope* displacement as a positive numbe
 the record as given ("normal" polarity) and for the record inverted ("inverse"). Here
 that is the signed 1-D block of seed 000 with ``mu = k_y`` sliding one way only
 (``direction="negative"``): it slides while the ground acceleration exceeds k_y g, and
-the downslope displacement is D = -u(t_end).
+the downslope displacement is D = -u(t_end). :func:`newmark` runs one record
+(:class:`NewmarkResult`) or many records × target PGAs × k_y (:class:`NewmarkSweep`).
 """
 
 import dataclasses
+import os
+import pathlib
 import warnings
 
 import numpy as np
 
+from ..core._progress import progress_bar
 from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
-from ..excitation import AbstractExcitation, UnitsWarning, pga_factor
+from ..excitation import AbstractExcitation, UnitsWarning, pga_factor, read_record
+from ..excitation._readers import record_files
+from ..excitation._record_set import RecordSet, with_metadata
+from ..excitation._units import check_pga, check_pga_rounding
 from ._model import SlidingBlock
+from ._sweep import _labelled
 
 _POLARITIES = ("both", "normal", "inverse")
 
@@ -37,8 +45,25 @@ def yield_acceleration(factor_of_safety, thrust_angle):
     return float(ky) if ky.ndim == 0 else ky
 
 
+class _Polarities:
+    """D of the polarities run: ``normal`` and ``inverse`` [m] (either None if not run)."""
+
+    @property
+    def maximum(self):
+        """The larger D of the polarities run [m] (the conservative value)."""
+        return _combine(np.maximum, self.normal, self.inverse)
+
+    @property
+    def mean(self):
+        """The mean D of the polarities run [m] (SLAMMER's "average")."""
+        return _combine(lambda a, b: 0.5 * (a + b), self.normal, self.inverse)
+
+    def _columns(self):
+        return {"normal_m": self.normal, "inverse_m": self.inverse, "mean_m": self.mean, "max_m": self.maximum}
+
+
 @dataclasses.dataclass(frozen=True, eq=False)
-class NewmarkResult:
+class NewmarkResult(_Polarities):
     """Downslope displacements of a rigid block, one value per yield acceleration.
 
     Attributes:
@@ -53,62 +78,143 @@ class NewmarkResult:
     inverse: float | np.ndarray | None
     g: float
 
-    @property
-    def maximum(self):
-        """The larger D of the polarities run [m] (the conservative value)."""
-        return _combine(np.maximum, self.normal, self.inverse)
-
-    @property
-    def mean(self):
-        """The mean D of the polarities run [m] (SLAMMER's "average")."""
-        return _combine(lambda a, b: 0.5 * (a + b), self.normal, self.inverse)
-
     def to_dataframe(self):
         """One row per k_y: ky_g, normal_m, inverse_m, mean_m, max_m (pandas)."""
         import pandas as pd
 
-        columns = {"ky_g": self.ky, "normal_m": self.normal, "inverse_m": self.inverse,
-                   "mean_m": self.mean, "max_m": self.maximum}
+        columns = {"ky_g": self.ky, **self._columns()}
         return pd.DataFrame({k: np.atleast_1d(v) for k, v in columns.items() if v is not None})
 
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """D [m] of each polarity run against k_y [g] (the other arguments are unused); a
+        matplotlib Figure."""
+        from ._figures import newmark_figure
 
-def newmark(motion: AbstractExcitation, ky, polarity: str = "both", g: float = STANDARD_GRAVITY,
-            t_end: float | None = None, backend: str = "exact", *, pga: float | None = None,
-            pga_rounding: str = "exact", **options) -> NewmarkResult:
+        runs = [(f"{name} polarity", d) for name, d in (("normal", self.normal), ("inverse", self.inverse))
+                if d is not None]
+        return newmark_figure(np.atleast_1d(self.ky), [np.atleast_1d(d) for _, d in runs], [n for n, _ in runs],
+                              title=title)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class NewmarkSweep(_Polarities):
+    """Downslope displacements of a rigid block over records × target PGAs × yield accelerations.
+
+    Attributes:
+        records: the records' names, length n_records.
+        peak: each record's own peak |a| [g], shape (n_records,).
+        pga: target peaks [g], shape (n_pga,); None: the records as given (n_pga = 1).
+        ky: yield accelerations [g], shape (n_ky,).
+        normal: D >= 0 for the records as given [m], shape (n_records, n_pga, n_ky) (None if not run).
+        inverse: D for the records inverted [m], same shape (None if not run).
+        g: the value of one g used [m/s²].
+        metadata: for a :class:`RecordSet`, its :attr:`~RecordSet.metadata` (magnitude,
+            distance, Vs30, ...; pandas, indexed by name), carried into :meth:`to_dataframe`; else None.
+    """
+
+    records: tuple[str, ...]
+    peak: np.ndarray
+    pga: np.ndarray | None
+    ky: np.ndarray
+    normal: np.ndarray | None
+    inverse: np.ndarray | None
+    g: float
+    metadata: object = None
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        """(n_records, n_pga, n_ky)."""
+        return (len(self.records), 1 if self.pga is None else self.pga.size, self.ky.size)
+
+    @property
+    def analysed_pga(self) -> np.ndarray:
+        """The peak of each (record, pga) analysed [g], shape (n_records, n_pga): the
+        target, or the record's own peak where the records run as given."""
+        return np.broadcast_to(self.peak[:, None] if self.pga is None else self.pga[None, :], self.shape[:2])
+
+    def to_dataframe(self):
+        """One row per (record, pga, k_y): record, the set's :attr:`metadata` columns if any,
+        pga_g (the target peak, or the record's own where it ran as given) [g], ky_g [g],
+        normal_m, inverse_m, mean_m, max_m [m] (pandas)."""
+        import pandas as pd
+
+        index = np.indices(self.shape).reshape(3, -1)
+        columns = {"record": np.asarray(self.records, dtype=object)[index[0]],
+                   "pga_g": self.analysed_pga[index[0], index[1]], "ky_g": self.ky[index[2]],
+                   **{k: v.reshape(-1) for k, v in self._columns().items() if v is not None}}
+        return with_metadata(pd.DataFrame(columns), self.metadata)
+
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """D [m] (the larger of the polarities run) against k_y [g], one curve per
+        (record, pga) (the other arguments are unused); a matplotlib Figure."""
+        from ._figures import newmark_figure
+
+        labels = [name + ("" if self.pga is None else f", PGA {p:g} g")
+                  for name, row in zip(self.records, self.analysed_pga) for p in row]
+        polarity = "larger of the polarities" if self.normal is not None and self.inverse is not None else \
+            ("normal polarity" if self.inverse is None else "inverse polarity")
+        return newmark_figure(self.ky, self.maximum.reshape(-1, self.ky.size), labels, polarity=polarity,
+                              title=title)
+
+
+def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_end: float | None = None,
+            backend: str = "exact", *, pga=None, target_pga=None, pga_rounding: str = "exact", progress=None,
+            **options) -> NewmarkResult | NewmarkSweep:
     """Newmark's rigid-block (one-way) downslope displacement, positive downslope.
 
     Args:
-        motion: ground acceleration along the slope [m/s²] (e.g. a :class:`Record`).
-        ky: yield acceleration [g], scalar or 1-D array (a batch, one compiled call);
-            see :func:`yield_acceleration` and :meth:`SlidingBlock.on_incline`. A ky at
-            or above the motion's peak [g] slides nowhere (D = 0): a :class:`UnitsWarning`
+        motion: ground acceleration along the slope [m/s²]: one excitation (e.g. a
+            :class:`Record`); or many: a sequence of them, a mapping name -> excitation,
+            a :class:`RecordSet` (its metadata carried into the table), or a path to a
+            folder (every record file in it, sorted by name; see :func:`blockdae.read_record`,
+            units as the files say, else g) or to one file.
+        ky: yield acceleration(s) [g], a number or 1-D array (a batch, one compiled
+            call); see :func:`yield_acceleration` and :meth:`SlidingBlock.on_incline`. A ky
+            at or above the motion's peak [g] slides nowhere (D = 0): a :class:`UnitsWarning`
             says so; one also above 1 g is refused (likely m/s², e.g. ``ky=9.81``).
         polarity: "both" (default, as SLAMMER reports), "normal" (the record as given:
             sliding while a(t) > ky g) or "inverse" (the record inverted).
         g: the value of one g [m/s²]; standard gravity by default.
         t_end: final time [s]; None: until the block rests after the record.
         backend, **options: as for :func:`blockdae.simulate`.
-        pga: target peak ground acceleration [g]: the motion is scaled so that its peak
-            |a| is ``pga`` g (see :func:`blockdae.pga_factor`); None: as given.
+        pga: target peak ground acceleration(s) [g], a number or a 1-D sequence: the motion
+            is scaled so that its peak |a| is each ``pga`` g (see :func:`blockdae.pga_factor`);
+            None: as given.
+        target_pga: the same as ``pga`` (the name :func:`blockdae.flexible` uses); give one.
         pga_rounding: "exact" (default) or "slammer": the motion's own peak rounded to
             0.001 g before scaling, as SLAMMER scales (to reproduce its tables).
+        progress: over many motions, a tqdm bar over them on stderr; None (default): only
+            when stderr is a terminal.
 
     Returns:
-        A :class:`NewmarkResult`; ``D = -u(t_end)`` of ``SlidingBlock(mu=ky,
-        direction="negative", g=g)`` for each polarity run.
+        For one excitation and at most one ``pga``, a :class:`NewmarkResult`; else a
+        :class:`NewmarkSweep` (records × pga × ky). ``D = -u(t_end)`` of
+        ``SlidingBlock(mu=ky, direction="negative", g=g)`` for each polarity run.
     """
     if polarity not in _POLARITIES:
         raise ValueError(f"polarity must be one of {_POLARITIES}, got {polarity!r}")
-    if "target_pga" in options:
-        raise TypeError(f"newmark: target_pga={options['target_pga']!r} is called pga here: the target peak "
-                        "ground acceleration [g], newmark(motion, ky, pga=...)")
+    if target_pga is not None:
+        if pga is not None:
+            raise ValueError(f"newmark: pga={pga!r} and target_pga={target_pga!r} name the same target peak [g]; "
+                             "give one")
+        pga = target_pga
     ky_array = np.asarray(ky, dtype=float)
     _require(np.isfinite(ky_array) & (ky_array > 0), "ky", ky_array, "must be a positive yield acceleration [g]")
-    if pga is not None:
-        if np.ndim(pga) != 0:
-            raise ValueError(f"pga must be one target peak [g], got {pga!r}; run newmark once per target")
-        motion = motion.scaled(pga_factor(motion.peak_acceleration, pga, g, pga_rounding))
-    _check_ky(ky_array, motion.peak_acceleration / g)
+    if isinstance(motion, AbstractExcitation) and np.ndim(pga) == 0:
+        if pga is not None:
+            motion = motion.scaled(pga_factor(motion.peak_acceleration, pga, g, pga_rounding))
+        peak = motion.peak_acceleration / g
+        if shown := _not_sliding(ky_array, peak):
+            warnings.warn(f"ky={shown} g >= PGA = {peak:.4g} g: the block does not slide, D = 0 m", UnitsWarning,
+                          stacklevel=2)
+        normal, inverse = _downslope(motion, ky, polarity, g, t_end, backend, options)
+        return NewmarkResult(ky=float(ky_array) if ky_array.ndim == 0 else ky_array, normal=normal, inverse=inverse,
+                             g=float(g))
+    return _sweep(motion, ky_array, polarity, g, t_end, backend, pga, pga_rounding, progress, options)
+
+
+def _downslope(motion, ky, polarity, g, t_end, backend, options):
+    """(D normal, D inverse) [m] of ``motion`` at yield acceleration(s) ``ky`` [g] (None where not run)."""
     block = SlidingBlock(mu=ky, direction="negative", g=g)
 
     def downslope(excitation):
@@ -117,27 +223,77 @@ def newmark(motion: AbstractExcitation, ky, polarity: str = "both", g: float = S
 
     normal = downslope(motion) if polarity in ("both", "normal") else None
     inverse = downslope(motion.inverted()) if polarity in ("both", "inverse") else None
-    return NewmarkResult(ky=block.mu, normal=normal, inverse=inverse, g=block.g)
+    return normal, inverse
+
+
+def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress, options):
+    """:func:`newmark` over many motions × target peaks ``pga`` [g] × ``ky`` [g]."""
+    metadata = motions.metadata if isinstance(motions, RecordSet) else None
+    names, motions = _labelled(_motions(motions, g))
+    if ky.ndim > 1:
+        raise ValueError(f"ky must be a number or a 1-D sequence of yield accelerations [g], got shape {ky.shape}")
+    ky = np.atleast_1d(ky)
+    targets = None if pga is None else check_pga(pga)
+    check_pga_rounding(pga_rounding)
+    shape = (len(motions), 1 if targets is None else targets.size, ky.size)
+    normal, inverse = np.full(shape, np.nan), np.full(shape, np.nan)
+    still = []  # (record, PGA) cases where some ky >= PGA
+    with progress_bar(len(motions), "newmark", "record", progress) as bar:
+        for i, (name, motion) in enumerate(zip(names, motions)):
+            factors = [1.0] if targets is None else pga_factor(motion.peak_acceleration, targets, g, pga_rounding,
+                                                               name=f"pga ({name})")
+            for j, factor in enumerate(factors):
+                scaled = motion.scaled(float(factor))
+                peak = scaled.peak_acceleration / g
+                if shown := _not_sliding(ky, peak, where=f"{name}: "):
+                    still.append(f"{name} (PGA {peak:.4g} g): ky={shown} g")
+                for table, d in zip((normal, inverse), _downslope(scaled, ky, polarity, g, t_end, backend, options)):
+                    if d is not None:
+                        table[i, j] = d
+            bar.update()
+    if still:
+        more = f"; and {len(still) - _CASES_SHOWN} more" if len(still) > _CASES_SHOWN else ""
+        warnings.warn(f"ky >= PGA in {len(still)} of {shape[0] * shape[1]} (record, PGA) cases: the block does not "
+                      f"slide there, D = 0 m: {'; '.join(still[:_CASES_SHOWN])}{more}", UnitsWarning, stacklevel=3)
+    peak = np.array([m.peak_acceleration / g for m in motions])
+    return NewmarkSweep(records=names, peak=peak, pga=targets, ky=ky, g=float(g), metadata=metadata,
+                        normal=normal if polarity in ("both", "normal") else None,
+                        inverse=inverse if polarity in ("both", "inverse") else None)
+
+
+def _motions(motions, g):
+    """Excitations from a folder or file path (read with one g = ``g`` [m/s²]), else ``motions``
+    (one excitation: a list of it)."""
+    if isinstance(motions, AbstractExcitation):
+        return [motions]
+    if isinstance(motions, RecordSet):
+        return list(motions)
+    if not isinstance(motions, (str, os.PathLike)):
+        return motions
+    path = pathlib.Path(motions)
+    paths = record_files(path) if path.is_dir() else [path]
+    return [read_record(p, g=g) for p in paths]
 
 
 #: a yield acceleration [g] above this that no motion exceeds is refused: likely m/s²
 MAX_KY_G = 1.0
 
 
-def _check_ky(ky, pga):
-    """Refuse a ky [g] above :data:`MAX_KY_G` and at or above the motion's peak ``pga`` [g]
-    (it reads as m/s²); warn of one below 1 g at or above ``pga``: no sliding, D = 0."""
+def _not_sliding(ky, pga, where=""):
+    """The ky [g] at or above the motion's peak ``pga`` [g] (no sliding, D = 0), as text
+    ("0.4, 0.5"), or "" if none; refuses one also above :data:`MAX_KY_G` (it reads as m/s²),
+    the message starting with ``where`` (e.g. the record's name)."""
     still = np.atleast_1d(ky)[np.atleast_1d(ky) >= pga]
-    if still.size == 0:
-        return
     high = still[still > MAX_KY_G]
     if high.size:
         k = float(high[0])
-        raise ValueError(f"ky={k:g} g is above {MAX_KY_G:g} g and the motion's peak ({pga:.4g} g): it looks "
+        raise ValueError(f"{where}ky={k:g} g is above {MAX_KY_G:g} g and the motion's peak ({pga:.4g} g): it looks "
                          f"like m/s² ({k:g} m/s² = {k / STANDARD_GRAVITY:.4g} g); give ky in g")
-    shown = ", ".join(f"{k:g}" for k in still)
-    warnings.warn(f"ky={shown} g >= PGA = {pga:.4g} g: the block does not slide, D = 0 m", UnitsWarning,
-                  stacklevel=3)
+    return ", ".join(f"{k:g}" for k in still)
+
+
+#: cases named in the warning of a sweep where some ky >= PGA
+_CASES_SHOWN = 5
 
 
 def _combine(op, normal, inverse):

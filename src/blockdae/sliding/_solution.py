@@ -7,6 +7,7 @@ from typing import Callable
 import numpy as np
 
 from ..core._solution import AbstractEvent, AbstractSolution
+from ..core._units import STANDARD_GRAVITY, length_units
 from ..excitation import AbstractExcitation
 from ._modes import Mode
 
@@ -138,8 +139,10 @@ class Solution(AbstractSolution):
         return solution_figure(self, excitation, block, n_points=n_points, title=title)
 
     def event_table(self, events=None) -> str:
-        """``events`` (default: all of them) as an aligned text table with units."""
-        lines = [f"{'t [s]':>12}  {'from':>8}  {'to':<8}  {'u [m]':>12}"]
+        """``events`` (default: all of them) as an aligned text table with units (u in m, or
+        in g s² for a block with g = 1, a dimensionless set-up)."""
+        length = length_units(self.block.g if self.block is not None else STANDARD_GRAVITY)[0]
+        lines = [f"{'t [s]':>12}  {'from':>8}  {'to':<8}  {f'u [{length}]':>12}"]
         lines += [f"{e.t:12.6f}  {e.mode_before.name:>8}  {e.mode_after.name:<8}  {e.u:12.6f}"
                   for e in (self.events if events is None else events)]
         return "\n".join(lines)

@@ -22,6 +22,7 @@ import operator
 
 import numpy as np
 
+from ..core._compile_notice import notice_numba
 from ..excitation import Record
 
 
@@ -163,6 +164,7 @@ class ShearFrame:
         us = np.empty(n_steps + 1)
         vs = np.empty(n_steps + 1)
         modal = np.empty((self.storeys, n_steps + 1))
+        notice_numba("the response kernels", 10, _kernels.history)
         for j, om in enumerate(self.omegas):
             _kernels.history(h, p0, p1, zero, zero, zero, om, self.damping, us, vs)
             modal[j] = -2.0 * self.damping * om * vs - om * om * us

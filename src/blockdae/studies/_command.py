@@ -13,14 +13,12 @@ import time
 
 import numpy as np
 
-from ..cli._common import UsageError, number, positive, read
+from ..cli._common import UsageError, files_or_set, number, positive, read, set_argument
 from ..core._units import STANDARD_GRAVITY
-from ..excitation._readers import record_suffix
+from ..excitation._readers import RECORD_SUFFIXES, record_files
 from ..structures import ShearFrame
 from ._io import save_study
 from ._study import NoWorkerError, study, summary
-
-_SUFFIXES = (".csv", ".txt", ".dat", ".at2")
 
 
 def _grid(text):
@@ -42,8 +40,9 @@ def _seconds_or_none(text):
 def add_study_parser(subparsers):
     """The ``study`` sub-command on an argparse ``subparsers`` object."""
     p = subparsers.add_parser("study", help="every record of a folder × mu × PGA × ground and floors (seed 002)")
-    p.add_argument("folder", type=pathlib.Path,
-                   help=f"folder of records ({', '.join(_SUFFIXES)}, each also gzip-compressed: .gz)")
+    p.add_argument("folder", type=pathlib.Path, nargs="?",
+                   help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz); "
+                        "or --set NAME")
     p.add_argument("--mu", type=positive("--mu"), nargs="+", required=True, help="friction coefficients [-]")
     size = p.add_mutually_exclusive_group(required=True)
     size.add_argument("--pga", type=_grid, nargs="+", help="target peak accelerations [g]: values or START:STOP:N")
@@ -60,6 +59,7 @@ def add_study_parser(subparsers):
     p.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                    help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")
+    set_argument(p)
     p.add_argument("--out", type=pathlib.Path, required=True, help="results table (.csv or .parquet)")
     p.add_argument("--summary", type=pathlib.Path, default=None, help="also the seed's summaries (.csv)")
     p.add_argument("--checkpoint", type=pathlib.Path, default=None, metavar="FOLDER",
@@ -104,11 +104,14 @@ def run_study(args) -> int:
 
 
 def _records(args):
-    if not args.folder.is_dir():
-        raise UsageError(f"{args.folder}: not a folder")
-    paths = sorted(p for p in args.folder.iterdir() if record_suffix(p) in _SUFFIXES)
-    if not paths:
-        raise UsageError(f"{args.folder}: no record files ({', '.join(_SUFFIXES)})")
+    """The records of the folder, or the set of --set (a RecordSet: its metadata join the table)."""
+    record_set = files_or_set(args, args.folder)
+    if record_set is not None:
+        return record_set
+    try:
+        paths = record_files(args.folder)
+    except ValueError as err:
+        raise UsageError(str(err)) from None
     return [read(path, args) for path in paths]
 
 

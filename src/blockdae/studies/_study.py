@@ -18,16 +18,17 @@ import math
 import numbers
 import os
 import queue
-import sys
 import time
 
 import numpy as np
 
 from ..sliding._final import simulate_final
 from ..sliding._formulas import AdjustmentFactor, newmark_rd_sd
+from ..core._progress import progress_bar
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._units import check_pga
 from ..excitation import Record
+from ..excitation._record_set import RecordSet, with_metadata
 from ..sliding._model import SlidingBlock
 from ..motions import response_spectrum
 from ..structures import Floor
@@ -67,7 +68,9 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
     """Slide a block under every record, μ, intensity and location: one tidy table.
 
     Args:
-        records: ground accelerograms (:class:`bd.Record` [m/s²], distinct names).
+        records: ground accelerograms (:class:`bd.Record` [m/s²], distinct names), or a
+            :class:`bd.RecordSet`: its :attr:`~bd.RecordSet.metadata` columns (magnitude,
+            epicentral_distance_km, vs30_m_s, ...) follow ``record`` in the table, to group by.
         mu: friction coefficients μ > 0 [-].
         pga: target peak accelerations A > 0 [g]: the motion at each location (ground
             or floor) is scaled so that its peak |a| is A g (seed 002).
@@ -91,8 +94,7 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
             holds the grid, the settings and the records' names and SHA-256 of their
             samples: another study is refused (ValueError naming the folder and what
             differs). None: nothing is saved.
-        progress: a tqdm bar over the tasks; None: only when stderr is a terminal
-            (and tqdm is installed).
+        progress: a tqdm bar over the tasks; None: only when stderr is a terminal.
         refine: floor motions sampled at dt/refine [s] (:meth:`bd.ShearFrame.floor_motions`).
         sd_period, damping: period [s] and damping ratio [-] of the oscillator whose
             displacement spectrum gives Sd (see ``sd_m``).
@@ -122,12 +124,13 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
     Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu, direction=direction),
     motion.scaled(scale))`` of the location's motion to rounding.
     """
+    metadata = records.metadata if isinstance(records, RecordSet) else None
     records, grid = _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g)
     no_worker_timeout = _timeout(no_worker_timeout)
     tasks = _tasks(records, len(grid.where) * grid.mu.size * grid.factors.size)
     store = None if checkpoint is None else Checkpoint.open(checkpoint, records, grid, tasks)
     parts = {} if store is None else store.finished()
-    bar = _progress_bar(progress, len(tasks))
+    bar = progress_bar(len(tasks), "study", "task", progress)
     bar.update(len(parts))
 
     def finish(index, part):
@@ -145,7 +148,7 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
             _on_executor(executor, todo, grid, finish, no_worker_timeout)
     finally:
         bar.close()
-    return _table([parts[i] for i in range(len(tasks))], grid)
+    return with_metadata(_table([parts[i] for i in range(len(tasks))], grid), metadata)
 
 
 def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
@@ -351,28 +354,6 @@ def _no_worker_error(n_done, n_tasks, lost_s, no_worker_timeout):
         f"no Dask worker alive for {lost_s:.1f} s (no_worker_timeout={no_worker_timeout:g} s): "
         f"{n_done} of {n_tasks} tasks finished, {n_tasks - n_done} unfinished (cancelled); start or scale up "
         f"the workers, or raise no_worker_timeout [s] (None: wait forever; CLI: --no-worker-timeout SECONDS|none)")
-
-
-def _progress_bar(progress, total):
-    """A tqdm bar over the tasks (tqdm: the ``study`` extra); a silent one if not shown."""
-    show = sys.stderr.isatty() if progress is None else bool(progress)
-    try:
-        from tqdm.auto import tqdm
-    except ImportError:
-        if progress:
-            raise ImportError("progress=True needs tqdm: pip install 'blockdae[study]'") from None
-        return _Silent()
-    return tqdm(total=total, disable=not show, desc="study", unit="task")
-
-
-class _Silent:
-    """The bar when tqdm is not installed."""
-
-    def update(self, n=1):
-        pass
-
-    def close(self):
-        pass
 
 
 def _table(parts, grid):

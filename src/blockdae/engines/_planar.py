@@ -1,0 +1,844 @@
+"""The compiled planar engine: the hybrid driver's loop for a block on a plane on a rigid
+support (:class:`~blockdae.PlanarBlock`), compiled with numba.
+
+Per mode:
+
+* stick: the state is constant (the block moves with the base); the guards
+  (n = g + a_z, mu n - |sigma|) are functions of time alone, located by bisection to
+  adjacent floats on the parts where they are monotone (split where the model's turn
+  rate changes sign), as :meth:`blockdae.core._driver._Run.static_root` does;
+* flight: a ballistic arc in closed form (the integrals of a(t) on the piece:
+  cubics under a linear piece); the landing (w = 0 falling) is bracketed on the
+  monotone parts of w (w'' = -n is monotone on a piece, so w' has at most one
+  extremum) and located by bisection to adjacent floats;
+* slip: DOP853 (:mod:`._dop853`), Dormand and Prince's explicit 8th-order pair with its
+  7th-order dense output. Explicit, because after an onset the flow is not stiff save
+  for the direction's relaxation at |sigma| / max(s, SLOW_SPEED) [1/s], which the
+  model's cap bounds (the JAX twin's Dopri8 steps through it too); 8th order, because
+  rtol 1e-12 on a smooth flow then takes one or two steps per sample of a record (a
+  Taylor method would need the flow's derivatives written out, a second statement of
+  the physics). A stop (s = 0 falling) is bracketed by the step (s > 0 -> s <= 0, or
+  a dip below zero between a falling and a rising end, found at the minimum of the dense
+  s), located by bisection on the dense output to adjacent floats, then confirmed on
+  the flow (a DOP853 step from the step's start to the located time and to the float
+  before it; else bisection on that step). A liftoff (n reaching 0) is a time alone.
+
+The rules (which mode follows a guard, what a mode starts with, the graze rule of
+``_falls``, events at the end of a piece left to the next, chatter, the stop's
+uncertainty from the tolerances, the tail to rest) are the driver's and the model's,
+restated here on floats; ``tests/test_planar_engine.py`` checks every restated rule
+against :class:`~blockdae.PlanarBlock`'s own methods. The knots (piece ends, events,
+1 / (32 w) apart on sine pieces) are the driver's, so the dense output is its cubic
+Hermite one.
+
+State (8,): the model's (u_x, u_y, s, c_x, c_y, w, w') and the slide's path length
+[m] (the integral of s while sliding).
+"""
+
+import functools
+import hashlib
+import inspect
+import math
+import pathlib
+import sys
+
+import numba
+import numpy as np
+from numba.extending import register_jitable
+
+from ..core._model import KNOTS_PER_RADIAN
+from ..excitation import _pieces
+from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
+from ..planar._model import SLOW_SPEED
+from . import _dop853
+from . import _xp_scalar as xp
+
+STICK, SLIP, FLIGHT = 0, 1, 2
+_UX, _UY, _S, _CX, _CY, _W, _WD, _PATH = range(8)
+N_STATE = 8
+#: entries of ``params``: mu, f [-], bias (x, y) [-], g [m/s²], restitution [-],
+#: bounce threshold [m/s], factor on a(t) [-]
+PARAM_FIELDS = ("mu", "mu_kinetic", "bias_x", "bias_y", "g", "restitution", "bounce_threshold", "scale")
+#: entries of ``options``: rtol [-], atol [m, m/s], event resolution [s], most events at
+#: one instant [-], until rest (1) or not (0)
+OPTION_FIELDS = ("rtol", "atol", "event_resolution", "max_events_at_one_instant", "until_rest")
+#: entries of a run's outcome
+OUTCOME_FIELDS = ("u_x", "u_y", "max_abs_u", "slide_distance", "n_events", "n_flights", "t_final", "mode",
+                  "status", "max_events_at_one_instant", "steps", "rejected_steps", "rhs_calls")
+#: outcome ``status``: finished; chatter; the state contradicts its mode; a step below
+#: rounding; no rest within the model's bound; f <= |bias| (never rests)
+FINISHED, CHATTER, INCONSISTENT, STEP_TOO_SMALL, NO_REST, NEVER_RESTS = range(6)
+_EPS = float(np.finfo(float).eps)
+_ULPS = 8  # the driver's: intervals shorter than this many ulps are not integrated
+_TURN_BISECTIONS = 60  # the driver's
+_V_ERROR_FACTOR, _ROUNDING = 10.0, 1e-12  # the driver's
+
+
+# ---- the piece's excitation: pe = (t0 [s], h [s], P (3, 5) scaled (p0, p1, s, w, phi), directions (3,))
+def _a(pe, i, t):
+    """Component ``i`` of the base acceleration at ``t`` [m/s²] (the driver's local time)."""
+    P = pe[2]
+    if P[i, 2] == 0:  # a linear piece: no sine to evaluate
+        return accel(P[i, 0], P[i, 1], None, None, None, min(t - pe[0], pe[1]), xp)
+    return accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
+
+
+def _a_rate(pe, i, t):
+    """Its rate [m/s³], rounding against the piece's direction projected out (as the
+    driver's decisions see it)."""
+    P = pe[2]
+    rate = accel_rate(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
+    return monotone_rate(rate, pe[3][i], xp)
+
+
+def _normal(pe, p, t):
+    """n = g + a_z [m/s²] and its rate [m/s³] (``PlanarBlock.normal``, rigid support)."""
+    return p[4] + _a(pe, 2, t), _a_rate(pe, 2, t)
+
+
+def _demand(pe, p, t):
+    """sigma = a_h - b g [m/s²] and its rate [m/s³] (``PlanarBlock.demand``)."""
+    return (_a(pe, 0, t) - p[2] * p[4], _a(pe, 1, t) - p[3] * p[4], _a_rate(pe, 0, t), _a_rate(pe, 1, t))
+
+
+def _circle_margin(pe, p, t):
+    """mu n - |sigma| [m/s²] and its rate [m/s³] (``PlanarBlock.circle_margin``)."""
+    n, n_rate = _normal(pe, p, t)
+    sx, sy, rx, ry = _demand(pe, p, t)
+    size = math.hypot(sx, sy)
+    rate = (sx * rx + sy * ry) / size if size > 0 else math.hypot(rx, ry)
+    return p[0] * n - size, p[0] * n_rate - rate
+
+
+def _lifts_off(pe, p, t):
+    n, n_rate = _normal(pe, p, t)
+    return n < 0 or (n == 0 and n_rate < 0)
+
+
+def _mode_at_rest(pe, p, t):
+    """``PlanarBlock.mode_at_rest`` (rigid support)."""
+    margin, margin_rate = _circle_margin(pe, p, t)
+    if _lifts_off(pe, p, t):
+        return FLIGHT
+    if margin < 0 or (margin == 0 and margin_rate < 0):
+        return SLIP
+    return STICK
+
+
+def _mode_after_guard(mode, index, t, y, pe, p, time_tol):
+    """``PlanarBlock.mode_after_guard`` (rigid support)."""
+    if mode != FLIGHT and index == 0:
+        return FLIGHT if _lifts_off(pe, p, t) else mode
+    if mode == STICK:
+        sx, sy, _, _ = _demand(pe, p, t)
+        return FLIGHT if sx == 0 and sy == 0 else SLIP
+    if mode == FLIGHT:
+        if -p[5] * y[_WD] > p[6]:
+            return FLIGHT
+        if y[_CX] != 0 or y[_CY] != 0:
+            return FLIGHT if _lifts_off(pe, p, t) else SLIP
+    rest = _mode_at_rest(pe, p, t)
+    margin, margin_rate = _circle_margin(pe, p, t)
+    if rest == STICK and margin_rate < 0 and (t + margin / -margin_rate) - t <= time_tol:
+        return SLIP
+    return rest
+
+
+def _state_on_entry(before, after, t, y, pe, p):
+    """``PlanarBlock.state_on_entry`` (rigid support); the path length is kept."""
+    z = y.copy()
+    if after == FLIGHT:
+        if before == FLIGHT:
+            z[_W], z[_WD] = 0.0, -p[5] * y[_WD]
+            return z
+        size = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
+        ex, ey = (y[_CX] / size, y[_CY] / size) if size > 0 else (0.0, 0.0)
+        z[_S], z[_CX], z[_CY], z[_W], z[_WD] = 0.0, y[_S] * ex, y[_S] * ey, 0.0, 0.0
+        return z
+    if before == FLIGHT:
+        z[_S], z[_W], z[_WD] = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2), 0.0, 0.0
+    if after == STICK:
+        z[_S] = 0.0
+        return z
+    if z[_S] == 0:  # along the demand, or where it is zero along its rate
+        sx, sy, rx, ry = _demand(pe, p, t)
+        size, rate_size = math.sqrt(sx**2 + sy**2), math.sqrt(rx**2 + ry**2)
+        x, y_, m = (sx, sy, size) if size > 0 else (rx, ry, rate_size)
+        if m > 0:
+            z[_CX], z[_CY] = -x / m, -y_ / m
+    return z
+
+
+def _flow(mode, t, y, pe, p):
+    """dy/dt (``PlanarBlock.flow``, rigid support) and the path's rate s in slip."""
+    out = np.zeros(N_STATE)
+    _flow_into(mode, t, y, pe, p, out)
+    return out
+
+
+def _flow_into(mode, t, y, pe, p, out):
+    """:func:`_flow` into ``out`` (N_STATE,)."""
+    for i in range(N_STATE):
+        out[i] = 0.0
+    if mode == STICK:
+        return
+    rx, ry = -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4])
+    if mode == FLIGHT:
+        out[_UX], out[_UY], out[_CX], out[_CY] = y[_CX], y[_CY], rx, ry
+        out[_W], out[_WD] = y[_WD], -(p[4] + _a(pe, 2, t))
+        return
+    n = p[4] + _a(pe, 2, t)
+    size = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
+    ex, ey = y[_CX] / size, y[_CY] / size
+    along = ex * rx + ey * ry - p[1] * n
+    across = ex * ry - ey * rx
+    s = y[_S]
+    turn = across / (s if s > SLOW_SPEED else SLOW_SPEED)
+    out[_UX], out[_UY], out[_S], out[_CX], out[_CY] = s * ex, s * ey, along, -ey * turn * size, ex * turn * size
+    out[_PATH] = s
+
+
+def _slip_rhs(t, y, args, out):
+    """The slip flow as DOP853's right-hand side (``args``: (pe, p))."""
+    _flow_into(SLIP, t, y, args[0], args[1], out)
+
+
+def _guards(mode, t, y, pe, p):
+    """(guard 0, guard 1) [m/s², m/s or m] (``PlanarBlock.guards``; flight has one: the
+    second is +inf)."""
+    if mode == FLIGHT:
+        return y[_W], math.inf
+    n, _ = _normal(pe, p, t)
+    if mode == STICK:
+        sx, sy, _, _ = _demand(pe, p, t)
+        return n, p[0] * n - math.sqrt(sx**2 + sy**2)
+    return n, y[_S]
+
+
+def _guard_rates(mode, index, t, y, pe, p):
+    """``PlanarBlock.guard_rates`` (rigid support): (rate, curvature)."""
+    n, n_rate = _normal(pe, p, t)
+    if mode == SLIP and index == 1:
+        _, _, rx, ry = _demand(pe, p, t)
+        return _flow(SLIP, t, y, pe, p)[_S], math.hypot(rx, ry) + p[1] * abs(n_rate)
+    if mode == FLIGHT:
+        return y[_WD], -n
+    if mode == STICK and index == 1:
+        return _circle_margin(pe, p, t)[1], 0.0
+    return n_rate, 0.0
+
+
+def _turn_rate(mode, t, y, pe, p):
+    """``PlanarBlock.turn_rate`` (rigid support): (value, defined)."""
+    if mode == STICK:
+        n, n_rate = _normal(pe, p, t)
+        sx, sy, rx, ry = _demand(pe, p, t)
+        return 2 * (p[0] ** 2 * n * n_rate - (sx * rx + sy * ry)), True
+    if mode == FLIGHT:
+        return y[_WD], True
+    rate = _flow(mode, t, y, pe, p)
+    return rate[_S], rate[_CX] == 0 and rate[_CY] == 0
+
+
+def _falls(rate, curvature, resolution):
+    """The driver's ``_falls``: a guard at zero leaves its mode at once."""
+    if rate == 0:
+        return curvature < 0
+    return rate < 0 and (curvature <= 0 or -rate / curvature > resolution)
+
+
+def _speed(y):
+    if y[_S] == 0:
+        return math.sqrt(y[_S] ** 2 + y[_CX] ** 2 + y[_CY] ** 2)
+    return math.hypot(y[_S], y[_WD])
+
+
+def _time_to_rest(mode, y, p):
+    """``PlanarBlock.time_to_rest`` [s] (rigid support); -1 where f <= |bias|."""
+    b, f, g = math.hypot(p[2], p[3]), p[1], p[4]
+    if f <= b:
+        return -1.0
+    flight = (y[_WD] + math.sqrt(y[_WD] ** 2 + 2 * g * y[_W])) / g if mode == FLIGHT else 0.0
+    speed = math.hypot(y[_CX], y[_CY]) if mode == FLIGHT else abs(y[_S])
+    return flight + 2.0 * (speed + b * g * flight) / ((f - b) * g) + 1e-12
+
+
+# ---- root finding in time --------------------------------------------------------
+def _bracketed_guard(mode, index, y, pe, p, a, b):
+    """The driver's ``_bracketed_root`` on guard ``index`` (> 0 at a, <= 0 at b)."""
+    while True:
+        mid = 0.5 * (a + b)
+        if mid <= a or mid >= b:
+            return b
+        if _guards(mode, mid, y, pe, p)[index] > 0:
+            a = mid
+        else:
+            b = mid
+
+
+def _turning_point(mode, t, y, end, pe, p):
+    """The driver's ``turning_point``: where the turn rate changes sign in (t, end),
+    else nan."""
+    first, defined = _turn_rate(mode, t, y, pe, p)
+    if not defined or mode == FLIGHT:  # in flight the rate is y's w', constant in t
+        return math.nan
+    sign_lo = math.copysign(1.0, first)
+    value, defined = _turn_rate(mode, end, y, pe, p)
+    if not defined or sign_lo * value > 0:
+        return math.nan
+    lo, hi = t, end
+    for _ in range(_TURN_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        if mid == lo or mid == hi:
+            break
+        value, defined = _turn_rate(mode, mid, y, pe, p)
+        if not defined:
+            return math.nan
+        if sign_lo * value > 0:
+            lo = mid
+        else:
+            hi = mid
+    return hi if hi < end else math.nan
+
+
+def _static_root(t, y, end, pe, p):
+    """The driver's ``static_root`` in stick: (time, guard) or (nan, -1)."""
+    turn = _turning_point(STICK, t, y, end, pe, p)
+    times = (t, end, end) if math.isnan(turn) else (t, turn, end)
+    for k in range(2 if not math.isnan(turn) else 1):
+        a, b = times[k], times[k + 1]
+        ga, gb = _guards(STICK, a, y, pe, p), _guards(STICK, b, y, pe, p)
+        best_t, best_i = math.inf, -1
+        for i in range(2):
+            crossing = ga[i] > 0 and (gb[i] < 0 or (gb[i] == 0 and b < end and _guards(STICK, end, y, pe, p)[i] < 0))
+            if crossing:
+                root = _bracketed_guard(STICK, i, y, pe, p, a, b)
+                if root < best_t:
+                    best_t, best_i = root, i
+        if best_i >= 0:
+            return best_t, best_i
+    return math.nan, -1
+
+
+def _first_nonpositive(fun_args, a, b):
+    """The first float in (a, b] where the monotone ``_time_function(*fun_args)`` is <= 0
+    (> 0 at a, <= 0 at b)."""
+    while True:
+        mid = 0.5 * (a + b)
+        if mid <= a or mid >= b:
+            return b
+        if _time_function(mid, fun_args) > 0:
+            a = mid
+        else:
+            b = mid
+
+
+def _time_function(t, fa):
+    """Functions of time the engine locates roots of: fa = (kind, t_from, y, pe, p):
+    kind 0: n; 1: the flight's w; 2: the flight's w'; 3: -n (w'')."""
+    kind, t_from, y, pe, p = fa
+    if kind == 0:
+        return _normal(pe, p, t)[0]
+    if kind == 3:
+        return -_normal(pe, p, t)[0]
+    z = _flight_state(t_from, y, t, pe, p)
+    return z[_W] if kind == 1 else z[_WD]
+
+
+def _liftoff_time(t, stop, pe, p):
+    """The first float in (t, stop) where n <= 0, n > 0 at t (monotone on the piece),
+    else nan (a root at ``stop`` is no root: the piece's end is left to the next)."""
+    fa = (0, t, np.zeros(N_STATE), pe, p)
+    if _time_function(t, fa) > 0 and _time_function(stop, fa) <= 0:
+        root = _first_nonpositive(fa, t, stop)
+        return root if root < stop else math.nan
+    return math.nan
+
+
+# ---- flight in closed form ------------------------------------------------------------
+def _flight_state(t_from, y, t, pe, p):
+    """The state at ``t`` [s] of a flight from (``t_from``, ``y``) on the piece ``pe``:
+    v' = -sigma, w'' = -(g + a_z), integrated in closed form."""
+    P = pe[2]
+    tau = min(t_from - pe[0], pe[1])
+    d = t - t_from
+    g = p[4]
+    z = y.copy()
+    i1 = np.empty(3)
+    i2 = np.empty(3)
+    for i in range(3):
+        p0, p1, s, w, phi = rebase(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], tau)
+        i1[i] = accel_int1(p0, p1, s, w, phi, d, xp)
+        i2[i] = accel_int2(p0, p1, s, w, phi, d, xp)
+    for i, (cu, cv) in enumerate(((_UX, _CX), (_UY, _CY))):
+        bg = p[2 + i] * g
+        z[cu] = y[cu] + y[cv] * d - i2[i] + 0.5 * bg * d * d
+        z[cv] = y[cv] - i1[i] + bg * d
+    z[_W] = y[_W] + y[_WD] * d - 0.5 * g * d * d - i2[2]
+    z[_WD] = y[_WD] - g * d - i1[2]
+    return z
+
+
+def _flight_to(t, y, stop, pe, p):
+    """Fly from (t, y) to ``stop`` [s] or to the landing before it: (time, state,
+    landed). w'' = -n is monotone on a piece: w' is split at its extremum (n = 0) and w
+    at the roots of w'; on each part where w is monotone a fall from > 0 to <= 0 is a
+    landing, located to adjacent floats."""
+    knots = np.empty(4)
+    knots[0] = t
+    m = 1
+    fa_n = (3, t, y, pe, p)
+    na, nb = _time_function(t, fa_n), _time_function(stop, fa_n)
+    if (na > 0) != (nb > 0) and na != 0 and nb != 0:
+        knots[m] = _root_between(fa_n, t, stop)
+        m += 1
+    knots[m] = stop
+    m += 1
+    parts = np.empty(6)
+    k = 0
+    fa_v = (2, t, y, pe, p)
+    for j in range(m - 1):
+        a, b = knots[j], knots[j + 1]
+        parts[k] = a
+        k += 1
+        va, vb = _time_function(a, fa_v), _time_function(b, fa_v)
+        if (va > 0 and vb < 0) or (va < 0 and vb > 0):
+            parts[k] = _root_between(fa_v, a, b)
+            k += 1
+    parts[k] = stop
+    k += 1
+    fa_w = (1, t, y, pe, p)
+    for j in range(k - 1):
+        a, b = parts[j], parts[j + 1]
+        if a < b and _time_function(a, fa_w) > 0 and _time_function(b, fa_w) <= 0:
+            root = _first_nonpositive(fa_w, a, b)
+            return root, _flight_state(t, y, root, pe, p), True
+    return stop, _flight_state(t, y, stop, pe, p), False
+
+
+def _root_between(fa, a, b):
+    """A sign change of the monotone ``_time_function(*fa)`` between a and b, to
+    adjacent floats."""
+    sign_a = _time_function(a, fa) > 0
+    while True:
+        mid = 0.5 * (a + b)
+        if mid <= a or mid >= b:
+            return b
+        if (_time_function(mid, fa) > 0) == sign_a:
+            a = mid
+        else:
+            b = mid
+
+
+# ---- slip: DOP853 with stops located on its dense output ------------------------------
+_step, _initial_step, _dense_coefficients = _dop853.for_flow(_slip_rhs)
+_dense_value, _dense_state = _dop853.dense_value, _dop853.dense_state
+
+
+def _slip_to(t, y, h, stop, pe, p, rtol, atol, B, cnt):
+    """Slide from (t, y) to ``stop`` [s] or to the first stop before it: (time, state,
+    1 if a stop else -1, next step [s]). ``h``: the step to try (0: choose one); ``B``:
+    the work buffers (:func:`_buffers`)."""
+    K, K2, F, work, y_new, z, y_cur = B
+    args = (pe, p)
+    y_cur[:] = y
+    _slip_rhs(t, y_cur, args, K[0])
+    cnt[C_RHS] += 1
+    if h <= 0:
+        h = _initial_step(args, t, y_cur, stop - t, rtol, atol, K, work)
+        cnt[C_RHS] += 1
+    while t < stop:
+        rest = stop - t
+        last = h >= rest
+        hh = rest if last else h
+        if not last and hh <= _ULPS * _EPS * max(1.0, abs(t)):
+            cnt[C_STATUS] = STEP_TOO_SMALL
+            return t, y_cur.copy(), -1, h
+        _step(args, t, y_cur, hh, K, y_new, work)
+        cnt[C_RHS] += 12
+        err = _dop853.error_norm(K, hh, y_cur, y_new, rtol, atol)
+        if err > 1.0:
+            h = hh * _dop853.factor(err, False)
+            cnt[C_REJECTED] += 1
+            continue
+        cnt[C_STEPS] += 1
+        t_new = stop if last else t + hh
+        upper, dense = math.nan, False
+        f_start, f_end = K[0, _S], K[_dop853.N_STAGES, _S]
+        if y_cur[_S] > 0 and y_new[_S] <= 0:
+            upper = t_new
+        elif y_cur[_S] > 0 and f_start < 0 and f_end > 0:  # s may dip below zero and come back
+            _dense_coefficients(args, t, y_cur, y_new, hh, K, F, work)
+            dense = True
+            cnt[C_RHS] += 3
+            x_min = _dense_minimum(F, y_cur, t, hh, args, work, z)
+            if _dense_value(F, y_cur, x_min, _S) <= 0:
+                upper = t + x_min * hh
+        if not math.isnan(upper):
+            if not dense:
+                _dense_coefficients(args, t, y_cur, y_new, hh, K, F, work)
+                cnt[C_RHS] += 3
+            root = _stop_on_flow(F, args, t, y_cur, hh, upper, K, K2, work, z, cnt)
+            if root > 0:
+                return root, z.copy(), 1, h
+        h_next = hh * _dop853.factor(err, True)
+        h = max(h, h_next) if last else h_next
+        t = t_new
+        y_cur[:] = y_new
+        K[0, :] = K[_dop853.N_STAGES]
+    return t, y_cur.copy(), -1, h
+
+
+def _buffers():
+    """Work arrays of the slip's steps: K, K2 (16, 8), F (7, 8), then four (8,)."""
+    n = _dop853.N_STAGES_EXTENDED
+    return (np.empty((n, N_STATE)), np.empty((n, N_STATE)), np.empty((7, N_STATE)), np.empty(N_STATE),
+            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE))
+
+
+def _dense_minimum(F, y, t, hh, args, work, rate):
+    """x in [0, 1] where the dense s is least (its rate from the flow at the dense state
+    goes from < 0 to > 0), by bisection."""
+    lo, hi = 0.0, 1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if mid == lo or mid == hi:
+            break
+        _dense_state(F, y, mid, work)
+        _slip_rhs(t + mid * hh, work, args, rate)
+        if rate[_S] < 0:
+            lo = mid
+        else:
+            hi = mid
+    return hi
+
+
+def _s_after(args, t, y, d, K, K2, work, z):
+    """s [m/s] after a DOP853 step of ``d`` [s] from (t, y) (K[0]: the rate there),
+    the state left in ``z``."""
+    K2[0, :] = K[0]
+    _step(args, t, y, d, K2, z, work)
+    return z[_S]
+
+
+def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt):
+    """The stop in (t, upper]: the first float where the dense s is <= 0, confirmed on
+    the flow (a step from t to it has s <= 0, to the float before it s > 0); else the
+    same bisection on steps from t. The time (0 if the flow has none), the state in ``z``."""
+    a, b = t, upper
+    while True:  # on the dense output
+        mid = 0.5 * (a + b)
+        if mid <= a or mid >= b:
+            break
+        if _dense_value(F, y, (mid - t) / hh, _S) > 0:
+            a = mid
+        else:
+            b = mid
+    before = np.nextafter(b, -math.inf)
+    cnt[C_RHS] += 24
+    if before <= t or _s_after(args, t, y, before - t, K, K2, work, z) > 0:
+        if _s_after(args, t, y, b - t, K, K2, work, z) <= 0:
+            return b
+    a, b = t, upper  # on the flow
+    if _s_after(args, t, y, b - t, K, K2, work, z) > 0:
+        return 0.0
+    while True:
+        mid = 0.5 * (a + b)
+        if mid <= a or mid >= b:
+            _s_after(args, t, y, b - t, K, K2, work, z)
+            return b
+        cnt[C_RHS] += 12
+        if _s_after(args, t, y, mid - t, K, K2, work, z) > 0:
+            a = mid
+        else:
+            b = mid
+
+
+# ---- the loop: the driver's, on floats ---------------------------------------------------
+#: counters (int64): knots, events, events in the current instant, most at one instant,
+#: liftoffs, status, steps, rejected steps, right-hand-side calls, mode, restarted
+C_NK, C_NE, C_RUN, C_MAX_RUN, C_FLIGHTS, C_STATUS, C_STEPS, C_REJECTED, C_RHS, C_MODE, C_RESTARTED = range(11)
+#: floats: time [s], largest speed [m/s], last event [s], step to try [s], largest |u| [m]
+F_T, F_VMAX, F_LAST, F_H, F_MAXU = range(5)
+#: knot rows: t, y (7), mode after, dy/dt after (7), dy/dt before (7)
+KNOT_WIDTH = 23
+#: event rows: t, mode before, mode after, y before the entry (7)
+EVENT_WIDTH = 10
+
+
+def _push(buf, n, width):
+    """``buf`` with room for row ``n`` (doubled when full)."""
+    if n < buf.shape[0]:
+        return buf
+    grown = np.empty((2 * buf.shape[0], width))
+    grown[: buf.shape[0]] = buf
+    return grown
+
+
+def _add_knot(kb, cnt, fl, log, t, y, mode, left, right):
+    fl[F_MAXU] = max(fl[F_MAXU], math.hypot(y[_UX], y[_UY]))
+    if not log:
+        return kb
+    n = cnt[C_NK]
+    kb = _push(kb, n, KNOT_WIDTH)
+    kb[n, 0], kb[n, 1:8], kb[n, 8], kb[n, 9:16], kb[n, 16:23] = t, y[:7], mode, right[:7], 0.0
+    if n > 0:
+        kb[n - 1, 16:23] = left[:7]
+    cnt[C_NK] = n + 1
+    return kb
+
+
+def _log_event(kb, eb, cnt, fl, log, y, t, after, pe, p, resolution, cap):
+    before = cnt[C_MODE]
+    same = cnt[C_NE] > 0 and abs(t - fl[F_LAST]) <= resolution
+    cnt[C_RUN] = cnt[C_RUN] + 1 if same else 1
+    cnt[C_MAX_RUN] = max(cnt[C_MAX_RUN], cnt[C_RUN])
+    if log:
+        n = cnt[C_NE]
+        eb = _push(eb, n, EVENT_WIDTH)
+        eb[n, 0], eb[n, 1], eb[n, 2], eb[n, 3:10] = t, before, after, y[:7]
+    cnt[C_NE] += 1
+    fl[F_LAST] = t
+    if after == FLIGHT and before != FLIGHT:
+        cnt[C_FLIGHTS] += 1
+    y[:] = _state_on_entry(before, after, t, y, pe, p)
+    if cnt[C_RUN] > cap:
+        cnt[C_STATUS] = CHATTER
+        return kb, eb
+    cnt[C_MODE], cnt[C_RESTARTED] = after, 1
+    fl[F_H] = 0.0  # a new mode: a fresh first step
+    kb = _add_knot(kb, cnt, fl, log, t, y, after, np.zeros(N_STATE), _flow(after, t, y, pe, p))
+    return kb, eb
+
+
+def _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt):
+    mode, t = cnt[C_MODE], fl[F_T]
+    if mode == SLIP and index == 1:
+        y[_S] = 0.0
+    elif mode == FLIGHT:
+        y[_W] = 0.0
+    after = _mode_after_guard(mode, index, t, y, pe, p, _stop_uncertainty(mode, index, t, y, pe, p, fl, opt))
+    rate = _flow(mode, t, y, pe, p)
+    kb = _add_knot(kb, cnt, fl, log, t, y, mode, rate, rate)
+    if after != mode or mode == FLIGHT or (mode == SLIP and index == 1):  # guard_restarts
+        kb, eb = _log_event(kb, eb, cnt, fl, log, y, t, after, pe, p, opt[2], int(opt[3]))
+    return kb, eb
+
+
+def _stop_uncertainty(mode, index, t, y, pe, p, fl, opt):
+    """The driver's ``stop_uncertainty`` [s] with (rtol, atol) of this engine."""
+    error = _V_ERROR_FACTOR * (opt[0] * fl[F_VMAX] + opt[1])
+    slope, curvature = _guard_rates(mode, index, t, y, pe, p)
+    slope, curvature = abs(slope), abs(curvature)
+    if slope == 0 and curvature == 0:
+        return opt[2]
+    return max(opt[2], 2 * error / (slope + math.sqrt(slope**2 + 2 * curvature * error)))
+
+
+def _guard_left_at_once(mode, t, y, pe, p, resolution):
+    values = _guards(mode, t, y, pe, p)
+    for index in range(1 if mode == FLIGHT else 2):
+        if values[index] <= 0:
+            rate, curvature = _guard_rates(mode, index, t, y, pe, p)
+            if _falls(rate, curvature, resolution):
+                return index
+    return -1
+
+
+def _output_step(pe):
+    """The driver's ``output_step`` [s]: 1 / (32 w) on a sine piece, else inf."""
+    w = 0.0
+    for i in range(3):
+        if pe[2][i, 2] != 0:
+            w = max(w, pe[2][i, 3])
+    return 1.0 / (KNOTS_PER_RADIAN * w) if w > 0 else math.inf
+
+
+def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
+    """The driver's ``advance_to``: from ``fl[F_T]`` to ``end`` [s]."""
+    turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+    while fl[F_T] < end and not (until_rest and cnt[C_MODE] == STICK):
+        if cnt[C_STATUS] != FINISHED:
+            return kb, eb
+        mode, t = cnt[C_MODE], fl[F_T]
+        if mode == STICK:
+            root, index = _static_root(t, y, end, pe, p)
+            if index < 0:
+                fl[F_T], cnt[C_RESTARTED] = end, 1
+                zero = np.zeros(N_STATE)
+                return _add_knot(kb, cnt, fl, log, end, y, mode, zero, zero), eb
+            fl[F_T] = root
+            kb, eb = _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt)
+            turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+            continue
+        if cnt[C_RESTARTED]:
+            index = _guard_left_at_once(mode, t, y, pe, p, opt[2])
+            if index >= 0:
+                kb, eb = _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt)
+                turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+                if cnt[C_MODE] != mode:
+                    continue
+            cnt[C_RESTARTED] = 0
+        target = end if math.isnan(turn) or turn <= t else turn
+        if target - t <= _ULPS * _EPS * max(1.0, abs(target)):
+            fl[F_T], cnt[C_RESTARTED] = target, 1
+            continue
+        t_out = min(target, t + _output_step(pe))
+        if mode == FLIGHT:
+            t_new, z, landed = _flight_to(t, y, t_out, pe, p)
+            root = 0 if landed else -1
+        else:
+            lift = _liftoff_time(t, t_out, pe, p)
+            stop = t_out if math.isnan(lift) else lift
+            t_new, z, root, fl[F_H] = _slip_to(t, y, fl[F_H], stop, pe, p, opt[0], opt[1], B, cnt)
+            if cnt[C_STATUS] != FINISHED:
+                return kb, eb
+            if root < 0 and not math.isnan(lift):
+                root = 0
+        if root >= 0 and t_new >= end:  # left to the next piece's right-hand limits
+            root, t_new = -1, t_out
+        fl[F_T] = t_new
+        y[:] = z
+        fl[F_VMAX] = max(fl[F_VMAX], _speed(y))
+        if mode == SLIP:
+            error = _V_ERROR_FACTOR * (opt[0] * fl[F_VMAX] + opt[1])
+            if y[_S] < -(error + _ROUNDING * fl[F_VMAX]):
+                cnt[C_STATUS] = INCONSISTENT
+                return kb, eb
+        if root < 0:
+            rate = _flow(mode, t_new, y, pe, p)
+            kb = _add_knot(kb, cnt, fl, log, t_new, y, mode, rate, rate)
+        else:
+            kb, eb = _on_guard(kb, eb, cnt, fl, log, y, root, pe, p, opt)
+            turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+    return kb, eb
+
+
+def _piece_excitation(T0, H, CF, scale, k):
+    """(t0, h, P, directions) of piece k with a(t) times ``scale``."""
+    P = np.empty((3, 5))
+    D = np.empty(3)
+    for i in range(3):
+        P[i, 0], P[i, 1], P[i, 2] = CF[i, 0, k] * scale, CF[i, 1, k] * scale, CF[i, 2, k] * scale
+        P[i, 3], P[i, 4] = CF[i, 3, k], CF[i, 4, k]
+        D[i] = np.sign(accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], H[k], xp)
+                       - accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], 0.0, xp))
+    return (T0[k], H[k], P, D)
+
+
+def _run(T0, H, CF, p, opt, log):
+    """One run: the pieces (t0 (n,), h (n,) [s], CF (3, 5, n): (p0, p1, s, w, phi) per
+    component and piece), ``p`` (``PARAM_FIELDS``), ``opt`` (``OPTION_FIELDS``), with the
+    knot and event logs if ``log``. Returns (outcome, knots (k, 23), events (e, 10))."""
+    n = T0.shape[0]
+    cnt = np.zeros(11, dtype=np.int64)
+    fl = np.zeros(5)
+    fl[F_LAST] = math.nan
+    cnt[C_MODE], cnt[C_RESTARTED] = STICK, 1
+    y = np.zeros(N_STATE)
+    kb = np.empty((256 if log else 1, KNOT_WIDTH))
+    eb = np.empty((64 if log else 1, EVENT_WIDTH))
+    B = _buffers()
+    zero = np.zeros(N_STATE)
+    kb = _add_knot(kb, cnt, fl, log, 0.0, y, STICK, zero, zero)
+    until_rest = opt[4] != 0
+    t_end = T0[n - 1] + H[n - 1]
+    for k in range(n + 1 if until_rest else n):
+        if k < n:
+            pe = _piece_excitation(T0, H, CF, p[7], k)
+            end = T0[k + 1] if k + 1 < n else t_end
+        else:  # after the excitation: a = 0
+            pe = (t_end, math.inf, np.zeros((3, 5)), np.zeros(3))
+            end = t_end
+        if log and cnt[C_NK] > 0:  # enter_piece: dy/dt after the last knot on this piece
+            kb[cnt[C_NK] - 1, 9:16] = _flow(cnt[C_MODE], fl[F_T], y, pe, p)[:7]
+        cnt[C_RESTARTED] = 1
+        if cnt[C_MODE] == STICK or (cnt[C_MODE] == SLIP and y[_S] == 0):
+            rest = _mode_at_rest(pe, p, pe[0])
+            if rest != cnt[C_MODE]:
+                y[_S], y[_W], y[_WD] = 0.0, 0.0, 0.0
+                kb, eb = _log_event(kb, eb, cnt, fl, log, y, pe[0], rest, pe, p, opt[2], int(opt[3]))
+                if cnt[C_STATUS] != FINISHED:
+                    break
+        if k == n:
+            if cnt[C_MODE] == STICK:
+                break
+            bound = _time_to_rest(cnt[C_MODE], y, p)
+            if bound < 0:
+                cnt[C_STATUS] = NEVER_RESTS
+                break
+            end = fl[F_T] + bound
+        kb, eb = _advance(kb, eb, cnt, fl, log, y, end, k == n, pe, p, opt, B)
+        if cnt[C_STATUS] != FINISHED:
+            break
+        if k == n and cnt[C_MODE] != STICK:
+            cnt[C_STATUS] = NO_REST
+    out = np.empty(len(OUTCOME_FIELDS))
+    out[0], out[1], out[2], out[3], out[4] = y[_UX], y[_UY], fl[F_MAXU], y[_PATH], cnt[C_NE]
+    out[5], out[6], out[7], out[8], out[9] = cnt[C_FLIGHTS], fl[F_T], cnt[C_MODE], cnt[C_STATUS], cnt[C_MAX_RUN]
+    out[10], out[11], out[12] = cnt[C_STEPS], cnt[C_REJECTED], cnt[C_RHS]
+    if log and cnt[C_NK] > 0:
+        kb[cnt[C_NK] - 1, 16:23] = 0.0
+    return out, kb[: cnt[C_NK]], eb[: cnt[C_NE]]
+
+
+def _run_item(T0, H, CF, offsets, params, opt, until_rest, item, out):
+    """Item ``item`` of a batch (see :func:`kernels`) into ``out``."""
+    n_exc = offsets.shape[0]
+    i, j = item % n_exc, item // n_exc
+    a, b = offsets[i, 0], offsets[i, 1]
+    o = opt.copy()
+    o[4] = until_rest[i]
+    out[i, j], _, _ = _run(T0[a:b], H[a:b], CF[:, :, a:b], params[j], o, False)
+
+
+@functools.cache
+def kernels():
+    """(run_one, run_batch, run_batch_serial), compiled on first call (or loaded from
+    numba's disk cache, keyed by the sources of this module and of the ones it compiles).
+
+    ``run_one(T0, H, CF, params, options)``: :func:`_run` with its logs.
+    ``run_batch(T0, H, CF, offsets, params, options, until_rest)``: every excitation i
+    (pieces ``offsets[i, 0]:offsets[i, 1]``) under every parameter set j (rows of
+    ``params``, (m, 8)), final numbers only, in parallel over cores: (n_exc, m, 13)
+    (``OUTCOME_FIELDS``); ``until_rest`` (n_exc,) per excitation.
+    ``run_batch_serial``: the same on the calling thread.
+    """
+    _register()
+    fingerprint = hashlib.sha256(b"".join(pathlib.Path(m.__file__).read_bytes() for m in _SHARED)).hexdigest()
+
+    def run_one(T0, H, CF, params, options):
+        fingerprint  # noqa: B018 -- numba keys its disk cache by the closure's contents
+        return _run(T0, H, CF, params, options, True)
+
+    def run_batch(T0, H, CF, offsets, params, options, until_rest):
+        fingerprint  # noqa: B018
+        out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
+        for item in numba.prange(out.shape[0] * out.shape[1]):
+            _run_item(T0, H, CF, offsets, params, options, until_rest, item, out)
+        return out
+
+    def run_batch_serial(T0, H, CF, offsets, params, options, until_rest):
+        fingerprint  # noqa: B018
+        out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
+        for item in range(out.shape[0] * out.shape[1]):
+            _run_item(T0, H, CF, offsets, params, options, until_rest, item, out)
+        return out
+
+    return (numba.njit(cache=True, **_OPTIONS)(run_one),
+            numba.njit(cache=True, parallel=True, **_OPTIONS)(run_batch),
+            numba.njit(cache=True, **_OPTIONS)(run_batch_serial))
+
+
+_OPTIONS = dict(error_model="numpy")
+#: modules whose functions the engine compiles besides its own
+_SHARED = (_pieces, _dop853, xp, sys.modules[__name__])
+
+
+def _register():
+    """Let numba compile this module's plain functions and the excitation's closed forms
+    where the entry points call them (``register_jitable``; they stay plain Python)."""
+    for module in (_pieces, sys.modules[__name__]):
+        for _, fn in inspect.getmembers(module, inspect.isfunction):
+            if fn.__module__ == module.__name__ and fn.__name__ not in ("kernels", "_register"):
+                register_jitable(**_OPTIONS)(fn)

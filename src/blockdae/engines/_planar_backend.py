@@ -1,0 +1,139 @@
+"""The "compiled" backend: models whose ``engines`` name "planar" here (the block on a
+plane on a rigid support) run on the compiled planar engine (:mod:`._planar`).
+
+``solve`` returns the model's own solution (events, knots, the driver's cubic Hermite
+dense output); ``solve_final`` runs parameter sets x motions x factors on a(t) in one
+compiled call, in parallel over cores, and returns final numbers only.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..backends._base import AbstractBackend
+from ..core._driver import HermiteDense
+from ..integrators._sundials import _check_real
+from ..sliding._solution import BatchSolution
+from . import _planar as engine
+
+#: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)
+_PARALLEL_WORK = 1e5
+
+
+@dataclasses.dataclass(frozen=True)
+class CompiledBackend(AbstractBackend):
+    """The compiled planar engine (numba; batches parallel over cores).
+
+    Args:
+        rtol: relative tolerance of the slip's DOP853 steps [-], in [1e-14, 1e-2].
+        atol: absolute tolerance [m, m/s], > 0.
+        max_events_at_one_instant: most consecutive events at one instant [-]; more
+            (chatter) raises an error.
+        event_resolution: events closer than this are one instant [s] (as the driver's).
+    """
+
+    rtol: float = 1e-12
+    atol: float = 1e-14
+    max_events_at_one_instant: int = 5
+    event_resolution: float = 1e-9
+    name = "compiled"
+    generic = False
+
+    def __post_init__(self):
+        _check_real("rtol", self.rtol, lambda x: 1e-14 <= x <= 1e-2, "must lie in [1e-14, 1e-2]")
+        _check_real("atol", self.atol, lambda x: x > 0, "must be > 0")
+        _check_real("event_resolution", self.event_resolution, lambda x: x >= 0, "must be >= 0 [s]")
+        cap = self.max_events_at_one_instant
+        if not (isinstance(cap, int) and not isinstance(cap, bool) and cap >= 1):
+            raise ValueError(f"max_events_at_one_instant must be an integer >= 1, got {cap!r}")
+
+    def options(self, until_rest) -> np.ndarray:
+        """The engine's ``options`` (``OPTION_FIELDS``)."""
+        return np.array([self.rtol, self.atol, self.event_resolution, self.max_events_at_one_instant,
+                         float(until_rest)])
+
+    def solve(self, block, excitation, horizon):
+        _check_support(block)
+        T0, H, CF = engine_input(block, excitation, horizon)
+        run_one, _, _ = engine.kernels()
+        outcome, knots, events = run_one(T0, H, CF, block.engine_parameters()[0], self.options(horizon.until_rest))
+        _check(block, outcome, events, self.max_events_at_one_instant, horizon)
+        t, y, mode = knots[:, 0].copy(), knots[:, 1:8].copy(), knots[:, 8].astype(int)
+        logged = tuple(block.event(float(e[0]), block.modes(int(e[1])), block.modes(int(e[2])), e[3:10])
+                       for e in events)
+        stats = {"max_events_at_one_instant": int(outcome[9]), "n_events": len(logged),
+                 "n_steps": int(outcome[10]), "n_rejected_steps": int(outcome[11]), "n_rhs_evals": int(outcome[12])}
+        return block.solution(t=t, y=y, mode=mode, events=logged, backend=self.name,
+                              dense=HermiteDense(t, y, knots[:, 9:16].copy(), knots[:, 16:23].copy()), stats=stats)
+
+    def solve_batch(self, block, excitation, horizon):
+        out = self.solve_final(block, [excitation], [horizon])[0]
+        return BatchSolution(
+            displacement=out[:, 0:2], max_abs_displacement=out[:, 2], n_events=out[:, 4].astype(int),
+            t_end=out[:, 6], backend=self.name,
+            solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
+
+    def solve_final(self, block, excitations, horizons, scale=(1.0,)) -> np.ndarray:
+        """Final numbers of every excitation under every parameter set of ``block`` (a
+        batch of m, or one) at every factor of ``scale`` on a(t) (s of them), in one
+        compiled call, in parallel over cores.
+
+        Returns:
+            (len(excitations), m * s, 13): the engine's outcomes (``OUTCOME_FIELDS``:
+            u_x, u_y, max |u| [m], slide distance [m], events, liftoffs, t_final [s], ...);
+            parameter set j at factor k in column j * s + k.
+        """
+        _check_support(block)
+        inputs = [engine_input(block, e, h) for e, h in zip(excitations, horizons)]
+        lengths = np.cumsum([0] + [len(x[0]) for x in inputs])
+        T0, H = (np.concatenate([x[f] for x in inputs]) for f in (0, 1))
+        CF = np.ascontiguousarray(np.concatenate([x[2] for x in inputs], axis=2))
+        offsets = np.stack([lengths[:-1], lengths[1:]], axis=1).astype(np.int64)
+        params = block.engine_parameters(scale)
+        until_rest = np.array([float(h.until_rest) for h in horizons])
+        _, parallel, serial = engine.kernels()
+        run = parallel if len(params) * len(T0) >= _PARALLEL_WORK else serial
+        out = run(T0, H, CF, offsets, params, self.options(False), until_rest)
+        bad = np.argwhere(out[:, :, 8] != engine.FINISHED)
+        if len(bad):
+            i, j = bad[0]
+            one = block.item(j // len(scale)) if block.batch_shape else block
+            where = f" (excitation {i}, parameter set {j // len(scale)}, factor {scale[j % len(scale)]!r})"
+            _check(one, out[i, j], np.empty((0, 10)), self.max_events_at_one_instant, horizons[i], where)
+        return out
+
+
+def engine_input(block, excitation, horizon):
+    """(t0 (n,), h (n,) [s], coefficients (3, 5, n): p0, p1, s, w, phi of a_x, a_y, a_z)
+    on the model's common partition up to the end of the excitation (or ``t_end``)."""
+    pieces = block.excitation_pieces(excitation, horizon.integration_end(excitation))
+    CF = np.ascontiguousarray(np.stack([np.stack([p.p0, p.p1, p.s, p.w, p.phi]) for p in pieces]), dtype=float)
+    return np.ascontiguousarray(pieces[0].t0, dtype=float), np.ascontiguousarray(pieces[0].h, dtype=float), CF
+
+
+def _check_support(block):
+    if block.support.compliant:
+        raise ValueError("the compiled planar engine runs a block on a rigid support; for a SpringSupport use "
+                         "backend='ida', 'cvode' or 'jax'")
+
+
+def _check(block, outcome, events, cap, horizon, where=""):
+    """Raise as the driver does where the engine stopped early."""
+    status = int(outcome[8])
+    if status == engine.FINISHED:
+        return
+    t = outcome[6]
+    if status == engine.CHATTER:
+        modes = " -> ".join(block.modes(int(e[1])).name for e in events[-cap - 1:])
+        after = block.modes(int(events[-1][2])).name if len(events) else "?"
+        raise RuntimeError(f"{cap + 1} events at t = {t:.12g} s ({modes} -> {after}): chatter{where}; "
+                           f"raise max_events_at_one_instant={cap}")
+    if status == engine.NEVER_RESTS:
+        block.time_to_rest(block.modes(int(outcome[7])), np.zeros(7))  # raises the model's own error
+    if status == engine.NO_REST:
+        raise RuntimeError(f"{block.modes(int(outcome[7])).name} found no rest by t = {t:.6g} s after the "
+                           f"excitation{where}")
+    problem = {engine.INCONSISTENT: "the slide's speed turned negative beyond the tolerance (a missed stop)",
+               engine.STEP_TOO_SMALL: "the slip's step fell below rounding"}[status]
+    raise RuntimeError(f"the compiled planar engine stopped at t = {t:.12g} s{where}: {problem}; please report")

@@ -1,0 +1,182 @@
+"""Fragility fits (recovery, bias and bootstrap coverage on synthetic data), the hazard
+integral against its closed form, empirical fragilities, hazard curves and bad input."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from scipy.stats import norm
+
+import blockdae as bd
+from blockdae import empirical as em
+from blockdae.hazard import (Deaggregation, EmpiricalFragility, Fragility, HazardCurve, displacement_hazard,
+                             fit_fragility)
+
+TRUE = dict(b0=1.0, b1=1.2, c0=-1.5, c1=1.4, sigma=0.5)  # P(slide) = Φ(b0 + b1 ln x); ln D ~ N(c0 + c1 ln x, σ)
+D_CHECK, IM_CHECK = 0.05, 0.4  # [m], [g]
+
+
+def synthetic_table(rng, n_records=30, scales=8):
+    """Records × scales rows drawn from the fragility model TRUE (D = 0 where no slide)."""
+    x = np.exp(rng.uniform(np.log(0.05), np.log(1.5), (n_records, scales))).ravel()
+    u = np.log(x)
+    slides = rng.random(x.size) < norm.cdf(TRUE["b0"] + TRUE["b1"] * u)
+    d = np.where(slides, np.exp(TRUE["c0"] + TRUE["c1"] * u + TRUE["sigma"] * rng.standard_normal(x.size)), 0.0)
+    return pd.DataFrame({"record": np.repeat([f"r{i}" for i in range(n_records)], scales), "mu": 0.1,
+                         "pga_g": x, "max_abs_displacement_m": d})
+
+
+def true_exceedance(d, x):
+    return norm.cdf(TRUE["b0"] + TRUE["b1"] * np.log(x)) * \
+        norm.cdf((TRUE["c0"] + TRUE["c1"] * np.log(x) - np.log(d)) / TRUE["sigma"])
+
+
+def test_fit_recovers_the_parameters_of_a_large_sample():
+    fit = fit_fragility(synthetic_table(np.random.default_rng(1), n_records=400), d0_m=1e-9, n_boot=0)
+    for name, value in TRUE.items():
+        assert getattr(fit, name) == pytest.approx(value, abs=0.12), name
+    assert fit.n_records == 400 and fit.n_rows == 3200 and fit.boot.shape == (0, 5)
+
+
+def test_bias_and_bootstrap_coverage_over_repeated_draws():
+    """40 synthetic studies of 30 records × 8 scales, 100 bootstrap refits each: the mean
+    estimate of each parameter lies within 3 standard errors (+0.02) of the truth, and
+    the 90 % band of P(D > 5 cm | 0.4 g) covers the true value in >= 75 % of the draws."""
+    rng = np.random.default_rng(7)
+    estimates, covered, widths = [], [], []
+    truth = true_exceedance(D_CHECK, IM_CHECK)
+    for _ in range(40):
+        fit = fit_fragility(synthetic_table(rng), d0_m=1e-9, n_boot=100, seed=int(rng.integers(1 << 31)))
+        estimates.append(fit.params)
+        low, high = fit.band(D_CHECK, IM_CHECK)
+        covered.append(low <= truth <= high)
+        widths.append(high - low)
+    estimates = np.array(estimates)
+    bias = estimates.mean(axis=0) - np.array(list(TRUE.values()))
+    error = estimates.std(axis=0, ddof=1) / np.sqrt(len(estimates))
+    print(f"bias (b0, b1, c0, c1, sigma) = {np.round(bias, 3)}; standard errors {np.round(error, 3)}; "
+          f"coverage of the 90 % band {np.mean(covered):.2f}, mean width {np.mean(widths):.3f}")
+    assert np.all(np.abs(bias) <= 3 * error + 0.02)
+    assert np.mean(covered) >= 0.75
+
+
+def test_band_brackets_the_fit_and_is_seeded():
+    table = synthetic_table(np.random.default_rng(3))
+    a = fit_fragility(table, d0_m=1e-9, n_boot=50, seed=11)
+    b = fit_fragility(table, d0_m=1e-9, n_boot=50, seed=11)
+    np.testing.assert_array_equal(a.boot, b.boot)
+    x = np.array([0.1, 0.3, 0.9])
+    low, high = a.band(0.02, x)
+    p = a.exceedance(0.02, x)
+    assert np.all(low <= p + 1e-12) and np.all(p <= high + 1e-12) and np.all(high > low)
+
+
+def test_every_row_sliding_gives_a_lognormal_fragility():
+    table = synthetic_table(np.random.default_rng(4))
+    table = table[table.max_abs_displacement_m > 0]
+    fit = fit_fragility(table, d0_m=1e-9, n_boot=0)
+    assert np.isinf(fit.b0) and fit.b1 == 0.0
+    assert fit.exceedance(1e3, 0.5) < 1e-6 < fit.exceedance(1e-6, 0.5)
+
+
+def test_hazard_integral_matches_the_closed_form():
+    """A lognormal fragility P(D > d | x) = Φ((ln x - ln θ)/β) on λ(x) = k0 x^-k:
+    ∫ Φ(·) k k0 x^(-k-1) dx = E[k0 X^-k] over ln X ~ N(ln θ, β²) = k0 θ^-k exp(k² β² / 2)
+    (integrating by parts: the boundary terms vanish). With ln D | x ~ N(c0 + c1 ln x, σ),
+    ln θ = (ln d - c0)/c1 and β = σ/c1."""
+    c0, c1, sigma, k0, k = -1.5, 1.4, 0.5, 1e-4, 2.7
+    frag = Fragility("pga_g", 1e-9, np.inf, 0.0, c0, c1, sigma, 30, 240, np.empty((0, 5)))
+    x = np.logspace(-4, 2, 121)
+    curve = HazardCurve(x, k0 * x**-k)
+    d = np.array([0.005, 0.02, 0.1, 0.5])
+    theta, beta = np.exp((np.log(d) - c0) / c1), sigma / c1
+    exact = k0 * theta**-k * np.exp(0.5 * k**2 * beta**2)
+    np.testing.assert_allclose(displacement_hazard(curve, frag, d), exact, rtol=1e-6)
+
+
+def test_empirical_fragility_and_deaggregation():
+    one = EmpiricalFragility(em.jibson_2007_m, "pga_g", {"ky_g": 0.1}, magnitude=6.5)
+    deagg = Deaggregation([0.05, 1.0], [6.5], [[1.0], [1.0]])
+    same = EmpiricalFragility(em.jibson_2007_m, "pga_g", {"ky_g": 0.1}, magnitude=deagg)
+    x = np.array([0.15, 0.3, 0.6])
+    np.testing.assert_allclose(same.exceedance(0.05, x), one.exceedance(0.05, x), rtol=1e-14)
+    mixed = EmpiricalFragility(em.jibson_2007_m, "pga_g", {"ky_g": 0.1},
+                               magnitude=Deaggregation([0.05, 1.0], [6.0, 7.0], [[1.0, 0.0], [0.0, 1.0]]))
+    at = lambda m: em.jibson_2007_m(0.1, x, m).exceedance(0.05)
+    w7 = np.log(x / 0.05) / np.log(1.0 / 0.05)  # weights linear in ln im between the levels
+    np.testing.assert_allclose(mixed.exceedance(0.05, x), (1 - w7) * at(6.0) + w7 * at(7.0), rtol=1e-12)
+    curve = HazardCurve(np.logspace(-2, 0.5, 40), 1e-4 * np.logspace(-2, 0.5, 40) ** -2.5)
+    d = np.array([0.01, 0.05, 0.2])
+    rates = displacement_hazard(curve, one, d)
+    assert np.all(np.diff(rates) < 0) and np.all(rates > 0)
+    with pytest.raises(ValueError, match="magnitude"):
+        EmpiricalFragility(em.jibson_2007_m, "pga_g", {"ky_g": 0.1})
+
+
+def test_hazard_curve_from_csv_and_not_decreasing(tmp_path):
+    good = tmp_path / "curve.csv"
+    good.write_text("# site A\npga_g,annual_rate\n0.05,1e-2\n0.1,3e-3\n0.3,2e-4\n")
+    curve = HazardCurve.read_csv(good, "pga_g", "annual_rate")
+    np.testing.assert_array_equal(curve.rate, [1e-2, 3e-3, 2e-4])
+    bad = tmp_path / "bad.csv"
+    bad.write_text("pga_g,annual_rate\n0.05,1e-2\n0.1,3e-3\n0.3,4e-3\n")
+    with pytest.raises(ValueError, match=r"bad.csv, line 4: the hazard curve is not decreasing"):
+        HazardCurve.read_csv(bad)
+    with pytest.raises(ValueError, match="point 2: the hazard curve is not decreasing"):
+        HazardCurve([0.1, 0.2, 0.3], [1e-2, 1e-3, 1e-3])
+    with pytest.raises(ValueError, match="rate=-0.001"):
+        HazardCurve([0.1, 0.2], [1e-2, -1e-3])
+
+
+def test_bad_study_tables_are_refused():
+    rng = np.random.default_rng(5)
+    table = synthetic_table(rng)
+    with pytest.raises(ValueError, match="9 records, fewer than 10"):
+        fit_fragility(table[table.record.isin([f"r{i}" for i in range(9)])])
+    zero = table.copy()
+    zero.loc[5, "pga_g"] = 0.0
+    with pytest.raises(ValueError, match=r"pga_g must be positive and finite: row 5 \('r0'\) has pga_g=0.0"):
+        fit_fragility(zero)
+    two = pd.concat([table, table.assign(mu=0.2)])
+    with pytest.raises(ValueError, match="2 values of mu"):
+        fit_fragility(two)
+    with pytest.raises(ValueError, match="no column 'arias_m_s'"):
+        fit_fragility(table, im="arias_m_s")
+    with pytest.raises(ValueError, match="d0_m"):
+        fit_fragility(table, d0_m=-1.0)
+
+
+def test_exported():
+    assert bd.hazard.fit_fragility is fit_fragility and "hazard" in bd.__all__ and "empirical" in bd.__all__
+
+
+def test_benchmark_quick(monkeypatch, capsys):
+    """benchmarks/hazard.py --quick runs (a smoke run: it judges no bar)."""
+    import importlib.util
+    import pathlib
+
+    folder = pathlib.Path(__file__).parents[1] / "benchmarks"
+    monkeypatch.syspath_prepend(str(folder))
+    spec = importlib.util.spec_from_file_location("benchmark_hazard", folder / "hazard.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert module.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "Jibson 2007" in out and "smoke run, not a measurement" in out and "NOT met" not in out
+
+
+def test_plots_draw_the_fit_its_band_and_the_others():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from blockdae.hazard import plot_displacement_hazard, plot_fragility
+
+    fit = fit_fragility(synthetic_table(np.random.default_rng(6)), d0_m=1e-9, n_boot=20)
+    jibson = EmpiricalFragility(em.jibson_2007, "pga_g", {"ky_g": 0.1})
+    x = np.geomspace(0.05, 1.5, 30)
+    ax = plot_fragility(fit, 0.05, x, others={"Jibson 2007": jibson})
+    assert len(ax.lines) == 2 and len(ax.collections) == 1  # the fit, Jibson; the band
+    np.testing.assert_allclose(ax.lines[1].get_ydata(), jibson.exceedance(0.05, x))
+    d = np.geomspace(0.01, 1.0, 10)
+    curve = HazardCurve(x, 1e-4 * x**-2.5)
+    ax = plot_displacement_hazard(d, {"fit": displacement_hazard(curve, fit, d)})
+    assert ax.get_xscale() == ax.get_yscale() == "log" and len(ax.lines) == 1

