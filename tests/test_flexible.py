@@ -341,7 +341,7 @@ def test_equivalent_linear_on_the_exact_peak():
 @pytest.mark.parametrize("kwargs, message", [
     (dict(ky=-0.1), r"ky=-0\.1 must be a yield acceleration >= 0"),
     (dict(method="rigid"), r"method='rigid' is unknown"),
-    (dict(integration="slammer"), r"integration='slammer' is unknown"),
+    (dict(integration="newmark"), r"integration='newmark' is unknown"),
     (dict(polarity="up"), r"polarity='up' is unknown"),
     (dict(height=0.0), r"height must be > 0 m, got 0\.0"),
     (dict(vs=-5.0), r"vs must be > 0 m/s, got -5\.0"),
@@ -494,3 +494,16 @@ def test_no_motion_at_ky_zero_does_not_slide():
     cut = bd.flexible(record, ky=0.1, height=10.0, vs=250.0, t_end=7.333).rows[0]
     whole = bd.flexible(record, ky=0.1, height=10.0, vs=250.0, t_end=7.34).rows[0]
     assert cut["kmax_sup_g"] == whole["kmax_sup_g"] and cut["normal_m"] == whole["normal_m"] > 0
+
+
+def test_the_package_is_its_entry_point():
+    """``bd.flexible`` is the package (its classes reachable) and, called, the analysis."""
+    import inspect
+    import blockdae.flexible as package
+
+    assert package is bd.flexible and bd.flexible.ShearColumn is bd.ShearColumn
+    assert list(inspect.signature(bd.flexible).parameters)[:4] == ["motion", "ky", "height", "vs"]
+    record = bd.Record([0.0, 0.1, 0.3, -0.2, 0.1, 0.0], 0.01, units="g", check_peak=False)
+    called = bd.flexible(record, ky=0.05, height=10.0, vs=200.0).to_dataframe()
+    direct = package.flexible(record, ky=0.05, height=10.0, vs=200.0).to_dataframe()
+    assert called.equals(direct) and called["normal_m"].iloc[0] > 0

@@ -21,6 +21,7 @@ from . import _engine
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._exact import check, engine_settings
 from ._model import METHODS, FlexibleSlidingMass
+from ._slammer import slammer_flexible
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns
@@ -109,11 +110,16 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
         equivalent_linear: run SLAMMER's equivalent-linear iteration on the exact
             no-sliding peak |u| (needs ``reference_strain``).
         reference_strain: gamma_ref, a fraction (SLAMMER's GUI takes percent).
-        target_pga: scale each motion to this peak |a| [g] (its exact peak); None: as given.
+        target_pga: scale each motion to this peak |a| [g]; None: as given. "exact"
+            scales by the motion's exact peak, "slammer" by its peak rounded to 0.001 g, as
+            SLAMMER does.
         polarity: "both", "normal" (the record as given) or "inverse" (times -1).
-        integration: "exact".
+        integration: "exact" (continuous time, events located) or "slammer" (SLAMMER
+            1.1's fixed-step scheme at the record's dt, quirks included, to reproduce its
+            results to the printed digits; ``kmax_sup_g`` is then nan).
         g: the value of one g [m/s²].
-        t_end: end of each analysis on the record's axis [s]; None: its last sample.
+        t_end: end of each analysis on the record's axis [s]; None: its last sample (the
+            only end "slammer" has).
 
     ky, height, vs, vr and damping broadcast together to the parameter sets (use
     ``np.meshgrid`` for a grid); every motion runs every set.
@@ -160,6 +166,9 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
             rounding = INTEGRATIONS[integration][1]
             record = record.scaled(pga_factor(record.peak_acceleration, target_pga, g, rounding, "target_pga"))
         end = record.duration if t_end is None else float(t_end)
+        if integration == "slammer" and end != record.duration:
+            raise ValueError(f"t_end={t_end!r}: integration='slammer' runs to the record's last sample "
+                             f"({record.duration!r} s for {name!r}), as SLAMMER does; give t_end=None")
         if not 0 < end <= record.duration:
             raise ValueError(f"t_end={t_end!r} must lie in (0, {record.duration!r}] s (the record {name!r})")
         analyses += [Analysis(record, name, model, polarities, end, reference_strain if equivalent_linear else None)
@@ -270,7 +279,28 @@ def _final_column(analysis, arrays, response):
     return settings, final.vs
 
 
+def slammer_rows(analyses: list[Analysis]) -> list[dict]:
+    """The rows of ``analyses`` by SLAMMER 1.1's fixed-step scheme
+    (:func:`~._slammer.slammer_flexible`); ``kmax_sup_g`` is nan (SLAMMER looks at the
+    samples only)."""
+    rows = []
+    for analysis in analyses:
+        model, record = analysis.model, analysis.record
+        row = {"record": analysis.name, "ky_g": model.ky, "height_m": model.column.height,
+               "vs_m_s": model.column.vs, "normal_m": np.nan, "inverse_m": np.nan, "kmax_sup_g": np.nan,
+               "episodes_normal": None, "episodes_inverse": None}
+        for polarity in analysis.polarities:
+            result = slammer_flexible(record.acceleration_samples / model.g, record.dt,
+                                      scale=1.0 if polarity == "normal" else -1.0, ky=model.ky, column=model.column,
+                                      method=model.method, reference_strain=analysis.reference_strain, g=model.g)
+            row |= {f"{polarity}_m": result.displacement, f"episodes_{polarity}": result.episodes,
+                    "kmax_g": result.kmax, "vs_final_m_s": result.vs, "damping_final": result.damping}
+        rows.append(row)
+    return rows
+
+
 #: integration scheme -> (rows of a list of :class:`Analysis`, the rounding of the
 #: motion's peak when scaling to ``target_pga``: see :func:`blockdae.pga_factor`);
-#: "exact": continuous time, events located, the exact peak
-INTEGRATIONS = {"exact": (exact_rows, "exact")}
+#: "exact": continuous time, events located, the exact peak; "slammer": SLAMMER 1.1's
+#: fixed-step scheme and its peak rounded to 0.001 g
+INTEGRATIONS = {"exact": (exact_rows, "exact"), "slammer": (slammer_rows, "slammer")}
