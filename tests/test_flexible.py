@@ -434,6 +434,13 @@ def test_cli_flexible_prints_the_rows_of_bd_flexible(capsys, tmp_path):
     assert "normal [m]" in out and "kmax sup [g]" in out and (tmp_path / "f.png").stat().st_size > 0
     assert main(["flexible", str(path), "--ky", "-1", "--height", "10", "--vs", "250"]) == 2
     assert "--ky: must be a yield acceleration >= 0 [g], got -1" in capsys.readouterr().err
+    assert main(args + ["--pga", "0.3", "--integration", "slammer"]) == 0  # SLAMMER's scheme and scaling
+    lines = capsys.readouterr().out.splitlines()
+    slammer = bd.flexible(bd.read_record(path, units="g"), ky=[0.05, 0.1], height=10.0, vs=250.0, target_pga=0.3,
+                          integration="slammer").rows
+    assert [float(line.split()[1]) for line in lines[-2:]] == pytest.approx([r["normal_m"] for r in slammer],
+                                                                            rel=1e-5)  # printed to 6 digits
+    assert all(line.split()[4] == "-" for line in lines[-2:])  # kmax sup: SLAMMER looks at samples only
 
 
 @pytest.mark.slow

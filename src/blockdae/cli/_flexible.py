@@ -8,7 +8,7 @@ from ._common import (checked, describe_record, number, positive, read, record_a
                       save_figure)
 from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
-from ..flexible._analysis import POLARITIES, flexible, with_zero_sample
+from ..flexible._analysis import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
 from ..flexible._column import ShearColumn
 from ..flexible._model import METHODS, FlexibleSlidingMass
 
@@ -36,7 +36,11 @@ def add_flexible_parser(subparsers):
     p.add_argument("--reference-strain", type=positive("--reference-strain"), default=None, metavar="FRACTION",
                    help="run the equivalent-linear iteration with this reference strain (a fraction, e.g. 0.0005)")
     p.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
-                   help="scale the record so that its peak |a| is PGA_G [g] (its exact peak)")
+                   help="scale the record so that its peak |a| is PGA_G [g] (its exact peak; with --integration "
+                        "slammer its peak rounded to 0.001 g, as SLAMMER scales)")
+    p.add_argument("--integration", choices=tuple(INTEGRATIONS), default="exact",
+                   help="exact (continuous time, events located; default) or slammer (SLAMMER 1.1's fixed-step "
+                        "scheme, to reproduce its results)")
     p.add_argument("--polarity", choices=POLARITIES, default="both", help="record as given, inverted, or both")
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                    help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
@@ -44,7 +48,7 @@ def add_flexible_parser(subparsers):
                    help="end on the record's axis [s] (default: its last sample)")
     record_arguments(p)
     p.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG",
-                   help="save the figure of the first ky, normal polarity (bd.plot)")
+                   help="save the figure of the first ky, normal polarity (bd.plot; the exact solution)")
     p.add_argument("--json", action="store_true", help="print the rows as JSON (SI units)")
     p.set_defaults(command=run_flexible)
     return p
@@ -55,7 +59,7 @@ def run_flexible(args) -> int:
     record = read(args.record, args)
     result = checked(lambda: flexible(record, args.ky, args.height, args.vs, args.vr, args.damping, args.method,
                                       args.reference_strain is not None, args.reference_strain, args.pga,
-                                      args.polarity, "exact", args.g, args.t_end), str(args.record))
+                                      args.polarity, args.integration, args.g, args.t_end), str(args.record))
     rows = result.rows
     if args.plot is not None:
         from .._plot import plot
@@ -75,7 +79,8 @@ def run_flexible(args) -> int:
     print(f"{args.method} flexible sliding mass: H = {args.height:g} m, vs = {args.vs:g} m/s, "
           f"vr = {args.vr or args.vs:g} m/s, damping {args.damping:g} (+ impedance), "
           f"{'equivalent-linear' if args.reference_strain else 'linear-elastic'}")
-    table = [[fmt.format(row[key]) if row[key] is not None else "-" for key, _, fmt in _COLUMNS] for row in rows]
+    table = [[fmt.format(row[key]) if row[key] is not None and row[key] == row[key] else "-"  # None, nan: "-"
+              for key, _, fmt in _COLUMNS] for row in rows]
     widths = [max(len(head), *(len(line[i]) for line in table)) for i, (_, head, _) in enumerate(_COLUMNS)]
     print("  ".join(head.rjust(w) for (_, head, _), w in zip(_COLUMNS, widths)))
     for line in table:
