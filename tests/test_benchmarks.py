@@ -102,3 +102,11 @@ def test_bars_are_judged_in_full_runs_only(monkeypatch):
     verdict = _load("_common", monkeypatch).verdict
     assert (verdict(True, False), verdict(False, False), verdict(False, False, "FAIL")) == ("met", "NOT met", "FAIL")
     assert verdict(False, True) == verdict(True, True) == "smoke run, not a measurement"
+
+
+def test_flexible_quick(monkeypatch, capsys):
+    """Every bar of issue 22 reported, as a smoke run."""
+    assert _load("flexible", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert out.count("bar ") == 4 and out.count("smoke run, not a measurement") == 4 and "NOT met" not in out
+    assert "SLAMMER's table shape:" in out and "exact [ms]" in out

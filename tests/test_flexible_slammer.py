@@ -181,3 +181,39 @@ def test_equivalent_linear_of_a_steady_peak_converges_on_its_second_pass():
 def test_equivalent_linear_refuses_a_reference_strain_that_is_not_positive(strain):
     with pytest.raises(ValueError, match="reference_strain must be a fraction > 0"):
         equivalent_linear(lambda vs, damping: 0.01, ShearColumn(50.0, 600.0), strain)
+
+
+def test_bd_flexible_with_slammer_integration_reproduces_the_table():
+    """The entry point with integration="slammer" and target_pga (SLAMMER's rounded peak)
+    gives the table's numbers, every kind of row and both polarities in one row each."""
+    import blockdae as bd
+
+    kinds = {}
+    for row in _flexible_rows():
+        kinds.setdefault((row["analysis"]["method"], row["analysis"]["mode"]), row)
+    assert len(kinds) == 4
+    for (method, mode), row in kinds.items():
+        motion, site, table = row["ground_motion_parameters"], row["site_parameters"], row["results"]
+        acceleration, dt = _record(motion["ground_motion_file"])
+        record = bd.Record(acceleration, dt, name=motion["ground_motion_file"], units="g")
+        strain = site.get("reference_strain")
+        result = bd.flexible(record, ky=site["ky_g"], height=site["height_m"], vs=site["vs_slope_mps"],
+                             vr=site["vs_base_mps"], damping=site["damping_ratio"], method=method,
+                             equivalent_linear=strain is not None,
+                             reference_strain=None if strain is None else strain / 100.0,
+                             target_pga=motion["target_pga_g"], integration="slammer").to_dataframe().iloc[0]
+        for polarity in ("normal", "inverse"):
+            assert abs(100 * result[f"{polarity}_m"] - table[f"{polarity}_displacement_cm"]) <= \
+                TOLERANCES["displacement_cm"], (method, mode, polarity)
+        assert abs(result["kmax_g"] - table["kmax"]) <= TOLERANCES["kmax"]
+        assert abs(result["vs_final_m_s"] - table["vs_final_mps"]) <= TOLERANCES["vs_mps"]
+        assert abs(result["damping_final"] - table["damping_final"]) <= TOLERANCES["damping"]
+        assert np.isnan(result["kmax_sup_g"])
+
+
+def test_slammer_integration_runs_to_the_last_sample_only():
+    import blockdae as bd
+
+    record = bd.Record(np.sin(np.linspace(0, 20, 400)) * 0.3, 0.01, units="g")
+    with pytest.raises(ValueError, match="integration='slammer' runs to the record's last sample"):
+        bd.flexible(record, ky=0.1, height=10.0, vs=200.0, integration="slammer", t_end=2.0)

@@ -115,3 +115,15 @@ def test_displacement_hazard_notebook_runs(monkeypatch, jax_cache_dir):
     ratios = np.array([row[1:] for row in summary], dtype=float)  # [×]
     assert np.all((ratios > 0.2) & (ratios < 5)), ratios
     assert len(re.findall(r"^ +0\.(?:10|15|20) +time histories +[\d.]+e-0\d +[\d.]+ +1\.00$", text, re.M)) == 3
+
+
+def test_flexible_notebook_runs(monkeypatch, jax_cache_dir):
+    """Issue 22: a short column slides as the rigid block (median ratio within 5 % for
+    T_s/T_m < 0.1, the limit the model must reach), and SLAMMER's scheme run through
+    bd.flexible reproduces every flexible row of its table (|Δ| <= 2e-5 cm, its printed digits)."""
+    text = _text(_execute("08_flexible.ipynb", monkeypatch, jax_cache_dir))
+    short = re.search(r"^0-0\.1 +([\d.]+) +([\d.]+)$", text, re.M)
+    assert short and all(abs(float(x) - 1) < 0.05 for x in short.groups()), short
+    found = re.search(r"^2520 analyses; SLAMMER's scheme against its own table: largest difference ([\d.e+-]+) cm$",
+                      text, re.M)
+    assert found and float(found.group(1)) <= 2e-5

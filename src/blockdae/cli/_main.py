@@ -23,6 +23,7 @@ from .. import backends
 from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, positive,
                       read, record_arguments, record_fields, save_figure, set_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
+from ._flexible import add_flexible_parser
 from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
 from ..sliding._examples import seed_examples
@@ -94,7 +95,8 @@ def _parser():
                         help="JAX compilation cache, so that later runs skip compiling "
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
-    sub = parser.add_subparsers(required=True, metavar="{run,newmark,spectrum,two-point,upthrow,examples,batch,study,info}")
+    sub = parser.add_subparsers(required=True, metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,"
+                                                       "info}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
                                      "plane under two or three components (u_x, u_y)")
@@ -144,6 +146,7 @@ def _parser():
     newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
     newmark_.set_defaults(command=_newmark)
 
+    add_flexible_parser(sub)
     add_spectrum_parser(sub)
     add_two_point_parser(sub)
     add_upthrow_parser(sub)

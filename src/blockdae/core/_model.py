@@ -44,8 +44,9 @@ class AbstractHybridModel(abc.ABC):
     default_backend: str = "cvode"
     #: backend name -> the compiled or closed-form engine it runs this model on, by the
     #: engine's name ("sliding" for the 1-D block's kernels, "linear" for closed-form
-    #: steps of linear modes); a backend not named here runs the model on the generic
-    #: driver ("cvode", "ida", "jax") or not at all ("exact", "exact-jax")
+    #: steps of linear modes), or a callable ``(model, excitation, horizon, backend name)
+    #: -> solution``: the model's own engine; a backend not named here runs the model on
+    #: the generic driver ("cvode", "ida", "jax") or not at all ("exact", "exact-jax")
     engines: dict = {}
     #: backends whose kernels differentiate the model (others: finite differences)
     differentiated_backends: tuple[str, ...] = ("jax",)

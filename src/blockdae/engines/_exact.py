@@ -27,7 +27,7 @@ class ExactBackend(AbstractBackend):
     with JAX, for derivatives and accelerators. Engines: "sliding" (the 1-D block's
     kernel) and "linear" (closed-form steps of linear modes on the generic driver,
     :mod:`blockdae.engines._closed_form_linear`; ``window`` is unused there), as the
-    model's ``engines`` name them.
+    model's ``engines`` name them, or the model's own engine (a callable there).
 
     Args:
         window: pieces of a(t) per block of the onset search's bounds; a tuning knob
@@ -48,6 +48,8 @@ class ExactBackend(AbstractBackend):
             raise ValueError(f"linear must be 'compiled' or 'python', got {self.linear!r}")
 
     def solve(self, block, excitation, horizon):
+        if callable(self.engine(block)):  # the model's own engine: (model, excitation, horizon, name) -> solution
+            return self.engine(block)(block, excitation, horizon, self.name)
         if self.engine(block) == "linear":
             found = linear_pieces(excitation, horizon.integration_end(excitation))
             if self.linear == "python" or found is None or horizon.until_rest:  # closed-form steps on the driver

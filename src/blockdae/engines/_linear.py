@@ -158,6 +158,14 @@ def _first_down_crossing(f, f1, f2, f3, a, b, origin, stack):
     resolution = 4 * _EPS * max(abs(origin) + abs(b), 1.0)
     if _eval(f, a) <= 0 and _falls(_eval(f1, a), _eval(f2, a), resolution):
         return a
+    return _down_crossing_search(f, f1, f2, f3, a, b, origin, stack)
+
+
+@register_jitable
+def _down_crossing_search(f, f1, f2, f3, a, b, origin, stack):
+    """:func:`_first_down_crossing` without its test at ``a``: for a caller that has
+    decided with its own resolution whether a guard at zero there is left at once."""
+    resolution = 4 * _EPS * max(abs(origin) + abs(b), 1.0)
     top = 0
     stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3] = a, _eval(f, a), b, _eval(f, b)
     budget = MAX_INTERVALS

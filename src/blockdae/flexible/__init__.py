@@ -1,7 +1,33 @@
 """The flexible sliding mass (Bray & Rathje; Rathje & Bray): the first mode of a shear
 column above the slip surface, sliding when its average acceleration reaches ky g,
-decoupled or coupled (../shared/flexible_formulation.md)."""
+decoupled or coupled (../shared/flexible_formulation.md).
 
+This package is also its entry point: ``bd.flexible(motion, ky, height, vs, ...)`` calls
+:func:`~._analysis.flexible` (``help(bd.flexible.flexible)`` shows its arguments).
+"""
+
+import inspect
+import sys
+import types
+
+from ._analysis import Analysis, FlexibleResult, analyse_exact, flexible
 from ._column import EquivalentLinear, ShearColumn, equivalent_linear, impedance_damping
+from ._model import FlexibleSlidingMass
+from ._modes import FlexibleMode
+from ._sensitivities import displacement_sensitivities
+from ._solution import Episode, FlexibleEvent, FlexibleSolution
 
-__all__ = ["EquivalentLinear", "ShearColumn", "equivalent_linear", "impedance_damping"]
+__all__ = ["Analysis", "EquivalentLinear", "Episode", "FlexibleEvent", "FlexibleMode", "FlexibleResult",
+           "FlexibleSlidingMass", "FlexibleSolution", "ShearColumn", "analyse_exact", "displacement_sensitivities",
+           "equivalent_linear", "flexible", "impedance_damping"]
+
+
+class _CallablePackage(types.ModuleType):
+    """The package, called as its entry point :func:`flexible`."""
+
+    def __call__(self, *args, **kwargs) -> FlexibleResult:
+        return flexible(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CallablePackage
+__signature__ = inspect.signature(flexible)

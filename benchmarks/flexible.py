@@ -1,0 +1,109 @@
+"""The exact flexible sliding mass (``bd.flexible``) against pySLAMMER's ``Coupled`` and
+``Decoupled`` (0.2.2), and SLAMMER's 2,520-analysis table shape.
+
+1. One record (Imperial Valley BCR-230, 7,348 samples), H = 10 m, vs = vr = 300 m/s,
+   damping 0.05 (+ 0.20 impedance), ky = 0.1 g, normal polarity: warm time of one
+   analysis (median of repeats) for coupled, decoupled and equivalent-linear coupled
+   (reference strain 0.05 %), and pySLAMMER's displacement beside the exact one.
+2. The table shape: 18 records x (2 methods x 4 ky x 7 heights linear-elastic + 2 methods
+   x 7 heights equivalent-linear at ky = 0.1) x both polarities = 2,520 analyses, in four
+   ``bd.flexible`` calls; first call (compilation, or numba's disk cache) and warm.
+
+    python benchmarks/flexible.py [--quick]
+"""
+
+import argparse
+import time
+
+import numpy as np
+import pyslammer
+
+import blockdae as bd
+from _common import G, print_table, sample_records, timed, verdict
+
+BARS = {
+    "coupled speed-up [x]": (300.0, True),
+    "decoupled speed-up [x]": (300.0, True),
+    "equivalent-linear speed-up [x]": (100.0, True),
+    "2,520 analyses, warm [s]": (3.0, False),
+}
+KY = (0.05, 0.1, 0.15, 0.2)
+HEIGHTS = (5.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0)
+VS = 300.0
+REFERENCE_STRAIN = 5e-4  # a fraction (0.05 %)
+
+
+def _peer(kind, record, equivalent_linear=False):
+    """pySLAMMER's analysis of ``record`` (normal polarity): its displacement [m]."""
+    motion = pyslammer.GroundMotion(record.acceleration_samples / G, record.dt, record.name)
+    cls = pyslammer.Coupled if kind == "coupled" else pyslammer.Decoupled
+    options = dict(soil_model="equivalent_linear", ref_strain=REFERENCE_STRAIN) if equivalent_linear else {}
+    return cls(0.1, motion, 10.0, VS, VS, 0.05, **options).max_sliding_disp  # both run on construction
+
+
+def single(record, repeat):
+    """Rows of part 1 and the speed-ups by case."""
+    rows, speedups = [], {}
+    for kind, eq in (("coupled", False), ("decoupled", False), ("coupled", True)):
+        ours = lambda: bd.flexible(record, ky=0.1, height=10.0, vs=VS, method=kind, equivalent_linear=eq,
+                                   reference_strain=REFERENCE_STRAIN if eq else None, polarity="normal")
+        result, _, warm = timed(ours, repeat)
+        peer, _, peer_warm = timed(lambda: _peer(kind, record, eq), max(1, repeat // 10))
+        exact = result["normal_m"][0]
+        case = f"{kind}{', equivalent-linear' if eq else ''}"
+        speedups[case] = peer_warm / warm
+        rows.append((case, f"{exact * 100:.4f}", f"{peer * 100:.4f}", f"{(peer / exact - 1) * 100:+.2f}",
+                     f"{warm * 1e3:.3f}", f"{peer_warm * 1e3:.1f}", f"{peer_warm / warm:.0f}"))
+    return rows, speedups
+
+
+def table_shape(records, quick):
+    """(analyses, first [s], warm [s]) of the table shape over ``records``."""
+    heights = HEIGHTS[:2] if quick else HEIGHTS
+    ky, height = (np.ravel(x) for x in np.meshgrid(KY, heights, indexing="ij"))
+    motions = {r.name: r for r in records}
+
+    def run():
+        count = 0
+        for method in ("coupled", "decoupled"):
+            count += 2 * len(bd.flexible(motions, ky=ky, height=height, vs=VS, method=method).rows)
+            count += 2 * len(bd.flexible(motions, ky=0.1, height=np.array(heights), vs=VS, method=method,
+                                         equivalent_linear=True, reference_strain=REFERENCE_STRAIN).rows)
+        return count
+
+    start = time.perf_counter()
+    count = run()
+    first = time.perf_counter() - start
+    start = time.perf_counter()
+    run()
+    return count, first, time.perf_counter() - start
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="two short records, few repeats: a smoke run")
+    args = parser.parse_args(argv)
+    records = sample_records(args.quick)
+    record = records[0] if args.quick else next(r for r in records if r.name.startswith("Imperial"))
+    repeat = 3 if args.quick else 50
+    rows, speedups = single(record, repeat)
+    print(f"One analysis on {record.name} ({record.acceleration_samples.size} samples, dt = {record.dt} s), "
+          f"H = 10 m, vs = vr = {VS:g} m/s, damping 0.05, ky = 0.1 g, normal polarity; warm median of {repeat}\n")
+    print_table(("case", "exact [cm]", "pySLAMMER [cm]", "pySLAMMER - exact [%]", "exact [ms]", "pySLAMMER [ms]",
+                 "speed-up [x]"), rows)
+    count, first, warm = table_shape(records, args.quick)
+    print(f"\nSLAMMER's table shape: {count} analyses over {len(records)} records (linear-elastic 2 methods x "
+          f"{len(KY)} ky x heights, equivalent-linear 2 methods x heights, both polarities): first call "
+          f"{first:.2f} s, warm {warm:.2f} s ({warm / count * 1e3:.3f} ms an analysis)\n")
+    measured = {"coupled speed-up [x]": speedups["coupled"], "decoupled speed-up [x]": speedups["decoupled"],
+                "equivalent-linear speed-up [x]": speedups["coupled, equivalent-linear"],
+                "2,520 analyses, warm [s]": warm}
+    for name, (bound, at_least) in BARS.items():
+        ok = measured[name] >= bound if at_least else measured[name] <= bound
+        print(f"bar {name} {'>=' if at_least else '<='} {bound:g}: {measured[name]:.3g}: "
+              f"{verdict(ok, args.quick)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

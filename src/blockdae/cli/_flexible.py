@@ -1,0 +1,90 @@
+"""``blockdae flexible``: the flexible sliding-mass analyses (decoupled or coupled,
+linear-elastic or equivalent-linear, both polarities) of one record, exact in time."""
+
+import json
+import pathlib
+
+from ._common import (checked, describe_record, number, positive, read, record_arguments, record_fields,
+                      save_figure)
+from ..core._simulate import simulate
+from ..core._units import STANDARD_GRAVITY
+from ..flexible._analysis import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
+from ..flexible._column import ShearColumn
+from ..flexible._model import METHODS, FlexibleSlidingMass
+
+_COLUMNS = (("ky_g", "ky [g]", "{:.4g}"), ("normal_m", "normal [m]", "{:.6g}"), ("inverse_m", "inverse [m]", "{:.6g}"),
+            ("kmax_g", "kmax [g]", "{:.5f}"), ("kmax_sup_g", "kmax sup [g]", "{:.5f}"),
+            ("vs_final_m_s", "vs final [m/s]", "{:.2f}"), ("damping_final", "damping final", "{:.4f}"),
+            ("episodes_normal", "episodes n", "{}"), ("episodes_inverse", "episodes i", "{}"))
+
+
+def add_flexible_parser(subparsers):
+    """The ``flexible`` subcommand on an argparse ``subparsers`` object."""
+    p = subparsers.add_parser("flexible", help="flexible sliding mass (Bray & Rathje decoupled, Rathje & Bray "
+                                               "coupled): downslope displacement, exact in time")
+    p.add_argument("record", type=pathlib.Path, help="ground acceleration along the slope (CSV t,a / one column / "
+                                                     ".AT2)")
+    p.add_argument("--ky", type=number("--ky", lambda x: x >= 0, "a yield acceleration >= 0 [g]"), nargs="+",
+                   required=True, help="yield acceleration(s) [g]")
+    p.add_argument("--height", type=positive("--height"), required=True, help="height H of the sliding mass [m]")
+    p.add_argument("--vs", type=positive("--vs"), required=True, help="its shear-wave velocity [m/s]")
+    p.add_argument("--vr", type=positive("--vr"), default=None, help="shear-wave velocity below the slip surface "
+                                                                      "[m/s] (default: --vs)")
+    p.add_argument("--damping", type=number("--damping", lambda x: -1 < x < 1, "in (-1, 1)"), default=0.05,
+                   help="the soil's damping ratio [-]; impedance damping from vr/vs is added (default 0.05)")
+    p.add_argument("--method", choices=METHODS, default="coupled", help="slip equations (default coupled)")
+    p.add_argument("--reference-strain", type=positive("--reference-strain"), default=None, metavar="FRACTION",
+                   help="run the equivalent-linear iteration with this reference strain (a fraction, e.g. 0.0005)")
+    p.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
+                   help="scale the record so that its peak |a| is PGA_G [g] (its exact peak; with --integration "
+                        "slammer its peak rounded to 0.001 g, as SLAMMER scales)")
+    p.add_argument("--integration", choices=tuple(INTEGRATIONS), default="exact",
+                   help="exact (continuous time, events located; default) or slammer (SLAMMER 1.1's fixed-step "
+                        "scheme, to reproduce its results)")
+    p.add_argument("--polarity", choices=POLARITIES, default="both", help="record as given, inverted, or both")
+    p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
+                   help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
+    p.add_argument("--t-end", type=positive("--t-end"), default=None,
+                   help="end on the record's axis [s] (default: its last sample)")
+    record_arguments(p)
+    p.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG",
+                   help="save the figure of the first ky, normal polarity (bd.plot; the exact solution)")
+    p.add_argument("--json", action="store_true", help="print the rows as JSON (SI units)")
+    p.set_defaults(command=run_flexible)
+    return p
+
+
+def run_flexible(args) -> int:
+    """Run the analyses that ``args`` describe; print one row per ky; the exit status."""
+    record = read(args.record, args)
+    result = checked(lambda: flexible(record, args.ky, args.height, args.vs, args.vr, args.damping, args.method,
+                                      args.reference_strain is not None, args.reference_strain, args.pga,
+                                      args.polarity, args.integration, args.g, args.t_end), str(args.record))
+    rows = result.rows
+    if args.plot is not None:
+        from .._plot import plot
+
+        motion = record if args.pga is None else record.scaled(args.pga * args.g / record.peak_acceleration)
+        column = ShearColumn(args.height, rows[0]["vs_final_m_s"], args.vr or args.vs,
+                             args.damping if args.reference_strain is None else rows[0]["damping_final"],
+                             impedance=args.reference_strain is None)
+        model = FlexibleSlidingMass(column, args.ky[0], args.method, args.g)
+        end = (record.duration if args.t_end is None else args.t_end) + record.dt
+        solution = checked(lambda: simulate(model, with_zero_sample(motion), t_end=end), str(args.record))
+        save_figure(plot(solution, title=f"{record.name}: t from the virtual zero sample at -dt"), args.plot)
+    if args.json:
+        print(json.dumps({**record_fields(record), "method": args.method, "rows": rows}, indent=2, default=float))
+        return 0
+    print(f"record: {describe_record(record)}")
+    print(f"{args.method} flexible sliding mass: H = {args.height:g} m, vs = {args.vs:g} m/s, "
+          f"vr = {args.vr or args.vs:g} m/s, damping {args.damping:g} (+ impedance), "
+          f"{'equivalent-linear' if args.reference_strain else 'linear-elastic'}")
+    table = [[fmt.format(row[key]) if row[key] is not None and row[key] == row[key] else "-"  # None, nan: "-"
+              for key, _, fmt in _COLUMNS] for row in rows]
+    widths = [max(len(head), *(len(line[i]) for line in table)) for i, (_, head, _) in enumerate(_COLUMNS)]
+    print("  ".join(head.rjust(w) for (_, head, _), w in zip(_COLUMNS, widths)))
+    for line in table:
+        print("  ".join(cell.rjust(w) for cell, w in zip(line, widths)))
+    if args.plot is not None:
+        print(f"figure: {args.plot}")
+    return 0

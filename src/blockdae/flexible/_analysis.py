@@ -1,0 +1,306 @@
+"""``bd.flexible``: the flexible sliding-mass analyses of SLAMMER and pySLAMMER
+(decoupled and coupled, linear-elastic or equivalent-linear, both polarities), solved
+exactly in continuous time (the formulation note's section 8).
+
+As SLAMMER, the record gets a virtual zero sample at t = -dt (the system rests there
+and a(t) rises linearly to a_0 at t = 0); the analysis ends at the record's last
+sample. Each analysis (record, parameter set) runs the no-sliding response (kmax and,
+for the equivalent-linear iteration, sup |u|) and a sliding run per polarity; the
+runs of a batch go to the compiled engine in one call, parallel over cores.
+"""
+
+import dataclasses
+import functools
+
+import numpy as np
+
+from ..core._units import STANDARD_GRAVITY
+from ..engines._linear_solution import linear_pieces
+from ..excitation import Record, pga_factor
+from . import _engine
+from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
+from ._exact import check, engine_settings
+from ._model import METHODS, FlexibleSlidingMass
+from ._slammer import slammer_flexible
+
+POLARITIES = ("both", "normal", "inverse")
+#: the result table's columns
+COLUMNS = ("record", "ky_g", "height_m", "vs_m_s", "normal_m", "inverse_m", "kmax_g", "kmax_sup_g", "vs_final_m_s",
+           "damping_final", "episodes_normal", "episodes_inverse")
+#: pieces x runs above which a batch runs in parallel (~10 ms on one core); below, waking
+#: the worker threads may cost more than they save
+PARALLEL_WORK = 5e5
+_FIELD = {name: i for i, name in enumerate(_engine.OUTCOME_FIELDS)}
+
+
+@dataclasses.dataclass(frozen=True)
+class Analysis:
+    """One flexible sliding-mass analysis of a batch.
+
+    Attributes:
+        record: the ground motion along the slope [m/s²], scaled (``scale`` applied).
+        name: its label in the table.
+        model: the sliding mass with its initial (linear-elastic) column.
+        polarities: "normal" and/or "inverse".
+        t_end: the end on the record's axis [s] (its last sample by default).
+        reference_strain: gamma_ref of the equivalent-linear iteration (a fraction), or None.
+    """
+
+    record: Record
+    name: str
+    model: FlexibleSlidingMass
+    polarities: tuple
+    t_end: float
+    reference_strain: float | None
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class FlexibleResult:
+    """Results of :func:`flexible`: one row per (motion, parameter set).
+
+    Attributes:
+        rows: a list of dicts with the keys :data:`COLUMNS`: record, ky_g [g], height_m
+            [m], vs_m_s [m/s] (as given), normal_m and inverse_m (downslope displacement
+            at the end [m], nan where that polarity was not run), kmax_g (max |HEA| / g at
+            the samples of the no-sliding response, as SLAMMER reports it) and kmax_sup_g
+            (its supremum over time), vs_final_m_s [m/s] and damping_final [-] (after the
+            equivalent-linear iteration; the total damping), episodes_normal and
+            episodes_inverse (sliding episodes).
+        method, integration: as given.
+    """
+
+    rows: list
+    method: str
+    integration: str
+
+    def to_dataframe(self):
+        """The rows as a pandas DataFrame (units in the column names)."""
+        import pandas as pd
+
+        table = pd.DataFrame(self.rows, columns=list(COLUMNS))
+        for name in ("episodes_normal", "episodes_inverse"):
+            table[name] = table[name].astype("Int64")
+        return table
+
+    def __getitem__(self, column):
+        """One column over the rows as an array (e.g. ``result["normal_m"]``)."""
+        if column not in COLUMNS:
+            raise KeyError(f"{column!r} is no column; columns: {COLUMNS}")
+        return np.array([row[column] for row in self.rows])
+
+
+def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", equivalent_linear=False,
+             reference_strain=None, target_pga=None, polarity="both", integration="exact", g=STANDARD_GRAVITY,
+             t_end=None) -> FlexibleResult:
+    """Flexible sliding-mass analyses (Bray & Rathje 1998 decoupled; Rathje & Bray 1999
+    coupled), downslope displacement positive, as SLAMMER runs them but exact in time.
+
+    Args:
+        motion: a :class:`Record` of the ground acceleration along the slope, or a
+            sequence or dict (name -> record) of them (a batch).
+        ky: yield acceleration [g], >= 0.
+        height: height H of the sliding mass [m], > 0.
+        vs: its shear-wave velocity [m/s], > 0.
+        vr: shear-wave velocity below the slip surface [m/s]; None: vs.
+        damping: the soil's damping ratio [-]; the impedance damping from vr/vs
+            (min(0.55016 (vr/vs)^-0.9904, 0.20)) is added as SLAMMER does, the total must
+            stay in (0, 1) (to leave it out, give damping minus it, or use
+            :class:`FlexibleSlidingMass` with ``ShearColumn(..., impedance=False)``).
+        method: "coupled" or "decoupled".
+        equivalent_linear: run SLAMMER's equivalent-linear iteration on the exact
+            no-sliding peak |u| (needs ``reference_strain``).
+        reference_strain: gamma_ref, a fraction (SLAMMER's GUI takes percent).
+        target_pga: scale each motion to this peak |a| [g]; None: as given. "exact"
+            scales by the motion's exact peak, "slammer" by its peak rounded to 0.001 g, as
+            SLAMMER does.
+        polarity: "both", "normal" (the record as given) or "inverse" (times -1).
+        integration: "exact" (continuous time, events located) or "slammer" (SLAMMER
+            1.1's fixed-step scheme at the record's dt, quirks included, to reproduce its
+            results to the printed digits; ``kmax_sup_g`` is then nan).
+        g: the value of one g [m/s²].
+        t_end: end of each analysis on the record's axis [s]; None: its last sample (the
+            only end "slammer" has).
+
+    ky, height, vs, vr and damping broadcast together to the parameter sets (use
+    ``np.meshgrid`` for a grid); every motion runs every set.
+
+    Returns:
+        A :class:`FlexibleResult` (``.to_dataframe()``).
+    """
+    analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga,
+                    polarity, integration, g, t_end)
+    rows_of, _ = INTEGRATIONS[integration]
+    return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration)
+
+
+def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga, polarity,
+         integration, g, t_end) -> list[Analysis]:
+    """The analyses of a :func:`flexible` call, every input checked before any work."""
+    if integration not in INTEGRATIONS:
+        raise ValueError(f"integration={integration!r} is unknown; choose one of {tuple(INTEGRATIONS)}")
+    if method not in METHODS:
+        raise ValueError(f"method={method!r} is unknown; choose one of {METHODS}")
+    if polarity not in POLARITIES:
+        raise ValueError(f"polarity={polarity!r} is unknown; choose one of {POLARITIES}")
+    if equivalent_linear and reference_strain is None:
+        raise ValueError("equivalent_linear=True needs reference_strain (gamma_ref, a fraction, e.g. 0.0005)")
+    if reference_strain is not None and not (isinstance(reference_strain, (int, float)) and
+                                             not isinstance(reference_strain, bool) and reference_strain > 0):
+        raise ValueError(f"reference_strain must be a fraction > 0, got {reference_strain!r}")
+    names, records = _motions(motion)
+    vr_given = np.nan if vr is None else vr
+    try:
+        sets = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (ky, height, vs, vr_given, damping)))
+    except ValueError:
+        raise ValueError(f"ky, height, vs, vr and damping must broadcast together, got shapes "
+                         f"{[np.shape(x) for x in (ky, height, vs, vr_given, damping)]}") from None
+    if sets[0].ndim > 1:
+        raise ValueError(f"ky, height, vs, vr and damping must be numbers or 1-D arrays, got shape {sets[0].shape}")
+    models = [FlexibleSlidingMass(ShearColumn(float(h), float(v), None if np.isnan(r) else float(r), float(d)),
+                                  ky=float(k), method=method, g=g)
+              for k, h, v, r, d in zip(*(np.atleast_1d(x) for x in sets))]
+    polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
+    analyses = []
+    for name, record in zip(names, records):
+        if target_pga is not None:
+            rounding = INTEGRATIONS[integration][1]
+            record = record.scaled(pga_factor(record.peak_acceleration, target_pga, g, rounding, "target_pga"))
+        end = record.duration if t_end is None else float(t_end)
+        if integration == "slammer" and end != record.duration:
+            raise ValueError(f"t_end={t_end!r}: integration='slammer' runs to the record's last sample "
+                             f"({record.duration!r} s for {name!r}), as SLAMMER does; give t_end=None")
+        if not 0 < end <= record.duration:
+            raise ValueError(f"t_end={t_end!r} must lie in (0, {record.duration!r}] s (the record {name!r})")
+        analyses += [Analysis(record, name, model, polarities, end, reference_strain if equivalent_linear else None)
+                     for model in models]
+    return analyses
+
+
+def _motions(motion):
+    """(names, records) of one record, a sequence or a dict of them."""
+    if isinstance(motion, dict):
+        names, records = list(motion), list(motion.values())
+    else:
+        records = [motion] if isinstance(motion, Record) else list(motion)
+        names = [record.name if isinstance(record, Record) and record.name else f"motion {i}"
+                 for i, record in enumerate(records)]
+    for name, record in zip(names, records):
+        if not isinstance(record, Record):
+            raise TypeError(f"motion {name!r} must be a Record (samples at dt), got {type(record).__name__}")
+    if not records:
+        raise ValueError("motion must hold at least one record")
+    return names, records
+
+
+def with_zero_sample(record) -> Record:
+    """``record`` with SLAMMER's virtual zero sample at -dt: on an axis shifted by dt [s],
+    at rest at 0 and rising linearly to the first sample at dt."""
+    return Record(np.concatenate([[0.0], record.acceleration_samples]), record.dt, name=record.name, units="m/s2",
+                  check_peak=False)
+
+
+@functools.lru_cache(maxsize=64)
+def _engine_input(record, t_end):
+    """The pieces of ``record`` with its virtual zero sample, up to ``t_end`` [s] on the
+    record's axis."""
+    return linear_pieces(with_zero_sample(record), t_end + record.dt)[1]
+
+
+def analyse_exact(analysis: Analysis) -> dict:
+    """One analysis (a row of the table), exact."""
+    return exact_rows([analysis])[0]
+
+
+def exact_rows(analyses: list[Analysis]) -> list[dict]:
+    """The rows of ``analyses``, exact: equivalent-linear iterations one by one, then
+    every no-sliding and sliding run in one parallel compiled call."""
+    _, response, parallel, serial, _ = _engine.kernels()
+    inputs, index = [], {}
+    for analysis in analyses:
+        key = (id(analysis.record), analysis.t_end)
+        if key not in index:
+            index[key] = len(inputs)
+            inputs.append(_engine_input(analysis.record, analysis.t_end))
+    finals = [_final_column(analysis, inputs[index[(id(analysis.record), analysis.t_end)]], response)
+              for analysis in analyses]
+    jobs, response_of, slides = [], {}, []
+    for analysis, ((omega, xi, kyg, coupled), _) in zip(analyses, finals):
+        record = index[(id(analysis.record), analysis.t_end)]
+        key = (record, omega, xi)
+        if key not in response_of:
+            response_of[key] = len(jobs)
+            jobs.append((record, 1.0, omega, xi, 0.0, coupled, False))
+        for polarity in analysis.polarities:
+            jobs.append((record, 1.0 if polarity == "normal" else -1.0, omega, xi, kyg, coupled, True))
+        slides.append((response_of[key], len(jobs) - len(analysis.polarities)))
+    offsets = np.concatenate([[0], np.cumsum([len(x[0]) for x in inputs])]).astype(np.int64)
+    arrays = [np.concatenate([x[k] for x in inputs]) for k in range(4)]
+    columns = list(zip(*jobs))
+    work = sum(int(offsets[record + 1] - offsets[record]) for record, *_ in jobs)
+    run_jobs = parallel if work >= PARALLEL_WORK else serial
+    out = run_jobs(*arrays, offsets, np.array(columns[0], dtype=np.int64),
+                   *(np.array(c, dtype=float) for c in columns[1:5]), np.array(columns[5], dtype=np.bool_),
+                   np.array(columns[6], dtype=np.bool_))
+    rows = []
+    for analysis, ((_, xi, _, _), vs_final), (response, first) in zip(analyses, finals, slides):
+        for j in [response] + list(range(first, first + len(analysis.polarities))):
+            if out[j, _FIELD["status"]] != _engine.FINISHED:
+                check(out[j], f" ({analysis.name}, {analysis.model})")
+        row = {"record": analysis.name, "ky_g": analysis.model.ky, "height_m": analysis.model.column.height,
+               "vs_m_s": analysis.model.column.vs, "normal_m": np.nan, "inverse_m": np.nan,
+               "kmax_g": out[response, _FIELD["hea_samples"]] / analysis.model.g,
+               "kmax_sup_g": out[response, _FIELD["hea_sup"]] / analysis.model.g,
+               "vs_final_m_s": vs_final, "damping_final": xi,
+               "episodes_normal": None, "episodes_inverse": None}
+        for k, polarity in enumerate(analysis.polarities):
+            row[f"{polarity}_m"] = 0.0 + out[first + k, _FIELD["s"]]
+            row[f"episodes_{polarity}"] = int(out[first + k, _FIELD["n_episodes"]])
+        rows.append(row)
+    return rows
+
+
+def _final_column(analysis, arrays, response):
+    """The engine's settings (omega, xi, ky g, coupled) of ``analysis`` after its
+    equivalent-linear iteration (on the exact no-sliding sup |u|), if any, and the
+    column's vs then [m/s]."""
+    model = analysis.model
+    if analysis.reference_strain is None:
+        return engine_settings(model), model.column.vs
+    column = model.column
+
+    def peak_displacement(vs, xi):
+        outcome = response(*arrays, 1.0, np.pi * vs / (2 * column.height), xi)
+        check(outcome, f" ({analysis.name}, equivalent-linear pass at vs={vs!r} m/s)")
+        return outcome[_FIELD["u_sup"]]
+
+    final = iterate_equivalent_linear(peak_displacement, column, analysis.reference_strain)
+    settings = engine_settings(model.with_parameters({"omega": np.pi * final.vs / (2 * column.height),
+                                                      "damping": final.damping}))
+    return settings, final.vs
+
+
+def slammer_rows(analyses: list[Analysis]) -> list[dict]:
+    """The rows of ``analyses`` by SLAMMER 1.1's fixed-step scheme
+    (:func:`~._slammer.slammer_flexible`); ``kmax_sup_g`` is nan (SLAMMER looks at the
+    samples only)."""
+    rows = []
+    for analysis in analyses:
+        model, record = analysis.model, analysis.record
+        row = {"record": analysis.name, "ky_g": model.ky, "height_m": model.column.height,
+               "vs_m_s": model.column.vs, "normal_m": np.nan, "inverse_m": np.nan, "kmax_sup_g": np.nan,
+               "episodes_normal": None, "episodes_inverse": None}
+        for polarity in analysis.polarities:
+            result = slammer_flexible(record.acceleration_samples / model.g, record.dt,
+                                      scale=1.0 if polarity == "normal" else -1.0, ky=model.ky, column=model.column,
+                                      method=model.method, reference_strain=analysis.reference_strain, g=model.g)
+            row |= {f"{polarity}_m": result.displacement, f"episodes_{polarity}": result.episodes,
+                    "kmax_g": result.kmax, "vs_final_m_s": result.vs, "damping_final": result.damping}
+        rows.append(row)
+    return rows
+
+
+#: integration scheme -> (rows of a list of :class:`Analysis`, the rounding of the
+#: motion's peak when scaling to ``target_pga``: see :func:`blockdae.pga_factor`);
+#: "exact": continuous time, events located, the exact peak; "slammer": SLAMMER 1.1's
+#: fixed-step scheme and its peak rounded to 0.001 g
+INTEGRATIONS = {"exact": (exact_rows, "exact"), "slammer": (slammer_rows, "slammer")}

@@ -1,0 +1,72 @@
+"""The exact backend of the flexible sliding mass: its compiled engine (:mod:`._engine`)
+on a record's linear pieces, the solution with dense output in closed form."""
+
+import numpy as np
+
+from ..core._driver import SolverError
+from ..engines._linear_solution import linear_pieces
+from . import _engine
+from ._column import SLIP_MASS_FRACTION
+
+#: knot-log rows per piece of a(t) at the start (grown if a run needs more)
+_ROWS_PER_PIECE = 2
+
+
+def engine_settings(model):
+    """The engine's parameters of ``model``: omega [rad/s], xi [-], ky g [m/s²], coupled;
+    raises ValueError where a mode has no underdamped closed form."""
+    omega, xi, coupled = float(model.omega), float(model.damping), model.coupled
+    slip_ratio = xi / np.sqrt(SLIP_MASS_FRACTION) if coupled else xi
+    if not (0 < xi and slip_ratio < 1 - 5e-9):
+        raise ValueError(f"damping={xi!r} (total) gives the coupled slip a damping ratio xi / sqrt(d1) = "
+                         f"{slip_ratio!r}: the exact engine needs it below 1 - 5e-9 (an underdamped slip); "
+                         "use backend 'cvode' or 'ida'")
+    return omega, xi, float(model.yield_acceleration), coupled
+
+
+def check(outcome, where=""):
+    """Raise on a run that did not finish: chatter or a root search that did not settle."""
+    status = int(outcome[_engine.OUTCOME_FIELDS.index("status")])
+    last = outcome[_engine.OUTCOME_FIELDS.index("t_last_event")]
+    if status == _engine.CHATTER:
+        raise RuntimeError(f"more than {_engine.MAX_EVENTS_AT_ONE_INSTANT} events at t = {last:.12g} s within "
+                           f"{_engine.EVENT_RESOLUTION:g} s{where}: chatter of the flexible sliding mass")
+    if status == _engine.UNSETTLED:
+        raise SolverError(f"a root or peak search did not settle in {_engine.MAX_INTERVALS} intervals{where} "
+                          "(a degenerate touch of zero); use backend 'cvode' or 'ida'")
+
+
+def solve_exact(model, excitation, horizon, name):
+    """``model`` under ``excitation`` (a record) to ``horizon``: its solution, every onset
+    and stop located to adjacent floats."""
+    if horizon.until_rest:
+        raise ValueError("the column oscillates on after the record: give t_end [s]")
+    found = linear_pieces(excitation, horizon.t_end)
+    if found is None:
+        raise ValueError(f"the exact flexible engine takes records (linear pieces); {type(excitation).__name__} "
+                         "has sine pieces: use backend 'cvode'")
+    pieces, arrays = found
+    settings = engine_settings(model)
+    run, _, _, _, dense = _engine.kernels()
+    capacity = _ROWS_PER_PIECE * len(pieces.t0) + 8
+    while True:
+        log = np.empty((capacity, len(_engine.KNOT_FIELDS)))
+        outcome, n_rows = run(*arrays, 1.0, *settings, log)
+        if outcome[_engine.OUTCOME_FIELDS.index("status")] != _engine.LOG_FULL:
+            break
+        capacity *= 4
+    check(outcome)
+    log = log[:n_rows]
+    t, state = log[:, 0], log[:, 1:5]
+    mode, before = log[:, 5].astype(int), log[:, 6].astype(int)
+    events = tuple(model.event(float(t[i]), model.modes(before[i]), model.modes(mode[i]), state[i])
+                   for i in np.flatnonzero(log[:, 7]))
+
+    def dense_output(times):
+        times = np.asarray(times, dtype=float)
+        values = dense(t, state, mode.astype(float), arrays[0], arrays[2], arrays[3], 1.0, *settings, times.ravel())
+        return tuple(values[:, k].reshape(times.shape) for k in range(4))
+
+    stats = {"max_events_at_one_instant": int(outcome[_engine.OUTCOME_FIELDS.index("max_events_at_one_instant")]),
+             "n_events": len(events), "n_knots": len(t)}
+    return model.solution(t=t, y=state, mode=mode, events=events, backend=name, dense=dense_output, stats=stats)

@@ -1,0 +1,207 @@
+"""The flexible sliding mass as a hybrid automaton (the formulation note,
+``../shared/flexible_formulation.md``, section 8).
+
+The sliding mass is the first mode of a uniform shear column (:class:`ShearColumn`):
+u is the modal coordinate (the top relative to the base of the mass), omega its
+circular frequency and xi its total damping ratio. On a base acceleration a(t) [m/s²]
+(downslope = the +ky direction) its average acceleration is HEA = a + (2/pi) u''. With
+the sliding displacement s and velocity w = s' of the base (one-way: downslope only):
+
+    STICK:            u'' = -(4/pi) a - 2 xi omega u' - omega² u;    s' = w' = 0
+    SLIP, decoupled:  u'' as in STICK;                               s' = w,  w' = HEA - ky g
+    SLIP, coupled:    d1 u'' = -(4/pi) ky g - 2 xi omega u' - omega² u;  s' = w,  w' = a - ky g + (2/pi) u''
+
+with d1 = 1 - 8/pi². STICK is left when ky g - HEA falls through 0 (onset), SLIP when w
+falls through 0 (stop, w := 0). Every mode is linear in (u, u', s, w) with a forcing
+linear in t on each piece of a record: the exact backend (:mod:`._exact`) steps closed
+forms and locates every event to adjacent floats.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..core._checks import set_real_fields
+from ..core._model import KNOTS_PER_RADIAN, AbstractHybridModel
+from ..core._units import STANDARD_GRAVITY
+from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn
+from ._exact import solve_exact
+from ._modes import EVENT_KINDS, FlexibleMode
+from ._solution import FlexibleEvent, FlexibleSolution
+
+#: the slip equations: "coupled" (Rathje & Bray 1999) or "decoupled" (Bray & Rathje 1998)
+METHODS = ("coupled", "decoupled")
+_U, _V, _S, _W = range(4)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class FlexibleSlidingMass(AbstractHybridModel):
+    """A flexible sliding mass: a shear column on a slip surface of yield acceleration ky.
+
+    Args:
+        column: the sliding mass (:class:`ShearColumn`: height [m], vs, vr [m/s],
+            damping ratios).
+        ky: yield acceleration [g], >= 0; the base slides downslope (the +ky
+            direction) while it transmits ky g.
+        method: "coupled" (the column's response feels the sliding) or "decoupled"
+            (the stick response drives a rigid block).
+        g: the value of one g [m/s²].
+
+    The excitation's component 0 is the ground acceleration along the slope [m/s²].
+    State y = (u [m], u' [m/s], s [m], w [m/s]); the displacement is s, downslope positive.
+    """
+
+    column: ShearColumn
+    ky: float
+    method: str = "coupled"
+    g: float = STANDARD_GRAVITY
+
+    state_names = ("u", "u_rate", "s", "w")
+    modes = FlexibleMode
+    initial_mode = FlexibleMode.STICK
+    displacement_states = (_S,)
+    default_backend = "exact"
+    engines = {"exact": solve_exact}
+
+    def __post_init__(self):
+        if not isinstance(self.column, ShearColumn):
+            raise TypeError(f"column must be a ShearColumn(height, vs, ...), got {type(self.column).__name__}")
+        set_real_fields(self, ("ky", "g"))
+        if self.ky < 0:
+            raise ValueError(f"ky={self.ky!r} must be a yield acceleration >= 0 [g]")
+        if self.g <= 0:
+            raise ValueError(f"g={self.g!r} must be > 0 [m/s²]")
+        if self.method not in METHODS:
+            raise ValueError(f"method={self.method!r} is unknown; choose one of {METHODS}")
+        object.__setattr__(self, "omega", self.column.omega)
+        object.__setattr__(self, "damping", self.column.total_damping)
+        object.__setattr__(self, "slip_mass_fraction", SLIP_MASS_FRACTION)
+
+    @property
+    def coupled(self) -> bool:
+        """Whether the slip equations are the coupled ones."""
+        return self.method == "coupled"
+
+    @property
+    def yield_acceleration(self) -> float:
+        """ky g [m/s²]."""
+        return self.ky * self.g
+
+    def replace(self, **changes) -> "FlexibleSlidingMass":
+        """A copy with some of column, ky, method, g changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    # ---- the physics ------------------------------------------------------------
+    def modal_acceleration(self, mode, a, y):
+        """u'' [m/s²] in ``mode`` at ground acceleration ``a`` [m/s²] in state ``y``."""
+        elastic = 2 * self.damping * self.omega * y[_V] + self.omega**2 * y[_U]
+        if mode == FlexibleMode.SLIP and self.coupled:
+            return (-MODE_PARTICIPATION * self.yield_acceleration - elastic) / self.slip_mass_fraction
+        return -MODE_PARTICIPATION * a - elastic
+
+    def modal_jerk(self, mode, a_rate, y, accel):
+        """u''' [m/s³] from u'' = ``accel`` and a' = ``a_rate`` [m/s³] (a'' = 0)."""
+        elastic = 2 * self.damping * self.omega * accel + self.omega**2 * y[_V]
+        if mode == FlexibleMode.SLIP and self.coupled:
+            return -elastic / self.slip_mass_fraction
+        return -MODE_PARTICIPATION * a_rate - elastic
+
+    def hea(self, mode, a, y):
+        """The column's average acceleration a + (2/pi) u'' [m/s²] (the base shear per unit mass)."""
+        return a + MASS_PARTICIPATION * self.modal_acceleration(mode, a, y)
+
+    # ---- hybrid automaton ------------------------------------------------------
+    def flow(self, mode, t, y, excitation, xp=np):
+        """(u', u'', s', w') in ``mode``."""
+        a = excitation.acceleration(t)
+        accel = self.modal_acceleration(mode, a, y)
+        if mode == FlexibleMode.STICK:
+            return xp.stack([y[_V], accel, 0.0 * y[_W], 0.0 * y[_W]])
+        return xp.stack([y[_V], accel, y[_W], a - self.yield_acceleration + MASS_PARTICIPATION * accel])
+
+    def guards(self, mode, t, y, excitation, xp=np):
+        """STICK: ky g - HEA (onset as it falls through 0); SLIP: w (stop)."""
+        if mode == FlexibleMode.STICK:
+            return xp.stack([self.yield_acceleration - self.hea(mode, excitation.acceleration(t), y)])
+        return xp.stack([y[_W]])
+
+    def mode_at_rest(self, t, excitation, xp=np, y=None):
+        """At rest HEA = d1 a: SLIP where it exceeds ky g (or reaches it rising)."""
+        excess = SLIP_MASS_FRACTION * excitation.acceleration(t) - self.yield_acceleration
+        if excess > 0 or (excess == 0 and excitation.acceleration_rate(t) > 0):
+            return FlexibleMode.SLIP
+        return FlexibleMode.STICK
+
+    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
+        """STICK -> SLIP at an onset, SLIP -> STICK at a stop."""
+        return FlexibleMode.SLIP if mode == FlexibleMode.STICK else FlexibleMode.STICK
+
+    # ---- what the hybrid driver asks --------------------------------------------
+    def is_static(self, mode):
+        return False  # the column oscillates in both modes
+
+    def at_rest(self, mode, y):
+        """Only the initial state: nothing has moved yet."""
+        return mode == FlexibleMode.STICK and not np.any(np.asarray(y, dtype=float))
+
+    def rest_state(self, y):
+        return np.array([y[_U], 0.0, y[_S], 0.0])
+
+    def state_at_guard(self, mode, guard_index, y, xp=np):
+        """w = 0 exactly at a stop (it is 0 in STICK)."""
+        return xp.stack([y[_U], y[_V], y[_S], 0.0 * y[_W]])
+
+    def turn_rate(self, mode, t, y, excitation, xp=np):
+        return None  # the solvers' steps and the driver's knots resolve the oscillation
+
+    def guard_rates(self, mode, guard_index, t, y, excitation):
+        """(rate, curvature) of the guard [m/s³, m/s⁴ at STICK; m/s², m/s³ at SLIP] on a
+        linear piece of a(t)."""
+        a, a_rate = excitation.acceleration(t), excitation.acceleration_rate(t)
+        accel = self.modal_acceleration(mode, a, y)
+        jerk = self.modal_jerk(mode, a_rate, y, accel)
+        if mode == FlexibleMode.STICK:  # -(a + (2/pi) u'')
+            snap = -2 * self.damping * self.omega * jerk - self.omega**2 * accel
+            return -a_rate - MASS_PARTICIPATION * jerk, -MASS_PARTICIPATION * snap
+        return a - self.yield_acceleration + MASS_PARTICIPATION * accel, a_rate + MASS_PARTICIPATION * jerk
+
+    def contradiction(self, mode, y, velocity_error):
+        """A slide moving upslope: w [m/s] below zero."""
+        if mode == FlexibleMode.SLIP and y[_W] < -velocity_error:
+            return f"w = {y[_W]:+.6g} m/s points upslope"
+        return None
+
+    def output_step(self):
+        """Largest gap between dense-output knots [s]: 1 / (32 omega) of the fastest mode."""
+        fastest = self.omega / math.sqrt(SLIP_MASS_FRACTION) if self.coupled else self.omega
+        return 1.0 / (KNOTS_PER_RADIAN * fastest)
+
+    def speed(self, y):
+        return max(abs(float(y[_V])), abs(float(y[_W])))
+
+    def time_to_rest(self, mode, y):
+        raise ValueError("the column oscillates on after the record: give t_end [s]")
+
+    # ---- parameters, for JAX ------------------------------------------------------
+    def parameters(self):
+        """omega [rad/s], damping (total ratio) [-], ky [g], g [m/s²]; coupled also d1 =
+        slip_mass_fraction [-], which only its slip reads (so that the compiled rules of
+        the two methods, cached by parameter names, differ)."""
+        named = {"omega": self.omega, "damping": self.damping, "ky": self.ky, "g": self.g}
+        return named | ({"slip_mass_fraction": self.slip_mass_fraction} if self.coupled else {})
+
+    def with_parameters(self, values):
+        model = object.__new__(FlexibleSlidingMass)
+        for name in ("column", "method"):
+            object.__setattr__(model, name, getattr(self, name))
+        for name, value in {**self.parameters(), **values}.items():
+            object.__setattr__(model, name, value)
+        return model
+
+    def event(self, t, mode_before, mode_after, y):
+        return FlexibleEvent(float(t), mode_before, mode_after, EVENT_KINDS[(mode_before, mode_after)],
+                             *(float(v) for v in y[:4]))
+
+    def solution(self, *, t, y, mode, events, backend, dense, stats):
+        return FlexibleSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
