@@ -345,10 +345,10 @@ def _time_function(t, fa):
     return z[_W] if kind == 1 else z[_WD]
 
 
-def _liftoff_time(t, stop, pe, p):
+def _liftoff_time(t, stop, y, pe, p):
     """The first float in (t, stop) where n <= 0, n > 0 at t (monotone on the piece),
     else nan (a root at ``stop`` is no root: the piece's end is left to the next)."""
-    fa = (0, t, np.zeros(N_STATE), pe, p)
+    fa = (0, t, y, pe, p)  # n depends on time alone: y is not read
     if _time_function(t, fa) > 0 and _time_function(stop, fa) <= 0:
         root = _first_nonpositive(fa, t, stop)
         return root if root < stop else math.nan
@@ -439,7 +439,7 @@ def _slip_to(t, y, h, stop, pe, p, rtol, atol, B, cnt):
     """Slide from (t, y) to ``stop`` [s] or to the first stop before it: (time, state,
     1 if a stop else -1, next step [s]). ``h``: the step to try (0: choose one); ``B``:
     the work buffers (:func:`_buffers`)."""
-    K, K2, F, work, y_new, z, y_cur = B
+    K, K2, F, work, y_new, z, y_cur, _ = B
     args = (pe, p)
     _put(y_cur, y)
     _slip_rhs(t, y_cur, args, K[0])
@@ -490,10 +490,11 @@ def _slip_to(t, y, h, stop, pe, p, rtol, atol, B, cnt):
 
 
 def _buffers():
-    """Work arrays of the slip's steps: K, K2 (16, 8), F (7, 8), then four (8,)."""
+    """Work arrays: K, K2 (16, 8), F (7, 8), then four (8,) of the slip's steps, and a
+    zero state (8,) (read only)."""
     n = _dop853.N_STAGES_EXTENDED
     return (np.empty((n, N_STATE)), np.empty((n, N_STATE)), np.empty((7, N_STATE)), np.empty(N_STATE),
-            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE))
+            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE), np.zeros(N_STATE))
 
 
 def _dense_minimum(F, y, t, hh, args, work, rate):
@@ -677,8 +678,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
             root, index = _static_root(t, y, end, pe, p)
             if index < 0:
                 fl[F_T], cnt[C_RESTARTED] = end, 1
-                zero = np.zeros(N_STATE)
-                return _add_knot(kb, cnt, fl, log, end, y, mode, zero, zero), eb
+                return _add_knot(kb, cnt, fl, log, end, y, mode, B[7], B[7]), eb
             fl[F_T] = root
             kb, eb = _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt)
             turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
@@ -700,7 +700,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
             t_new, z, landed = _flight_to(t, y, t_out, pe, p)
             root = 0 if landed else -1
         else:
-            lift = _liftoff_time(t, t_out, pe, p)
+            lift = _liftoff_time(t, t_out, y, pe, p)
             stop = t_out if math.isnan(lift) else lift
             t_new, z, root, fl[F_H] = _slip_to(t, y, fl[F_H], stop, pe, p, opt[0], opt[1], B, cnt)
             if cnt[C_STATUS] != FINISHED:
@@ -726,10 +726,9 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
     return kb, eb
 
 
-def _piece_excitation(T0, H, CF, scale, k):
-    """(t0, h, P, directions) of piece k with a(t) times ``scale``."""
-    P = np.empty((3, 5))
-    D = np.empty(3)
+def _piece_excitation(T0, H, CF, scale, k, P, D):
+    """(t0, h, P, directions) of piece k with a(t) times ``scale``, written into ``P``
+    (3, 5) and ``D`` (3,) (no allocation per piece)."""
     for i in range(3):
         P[i, 0], P[i, 1], P[i, 2] = CF[k, i, 0] * scale, CF[k, i, 1] * scale, CF[k, i, 2] * scale
         P[i, 3], P[i, 4] = CF[k, i, 3], CF[k, i, 4]
@@ -751,13 +750,14 @@ def _run(T0, H, CF, p, opt, log):
     kb = np.empty((256 if log else 1, KNOT_WIDTH))
     eb = np.empty((64 if log else 1, EVENT_WIDTH))
     B = _buffers()
-    zero = np.zeros(N_STATE)
+    zero = B[7]
+    P, D = np.empty((3, 5)), np.empty(3)
     kb = _add_knot(kb, cnt, fl, log, 0.0, y, STICK, zero, zero)
     until_rest = opt[4] != 0
     t_end = T0[n - 1] + H[n - 1]
     for k in range(n + 1 if until_rest else n):
         if k < n:
-            pe = _piece_excitation(T0, H, CF, p[7], k)
+            pe = _piece_excitation(T0, H, CF, p[7], k, P, D)
             end = T0[k + 1] if k + 1 < n else t_end
         else:  # after the excitation: a = 0
             pe = (t_end, math.inf, np.zeros((3, 5)), np.zeros(3))
