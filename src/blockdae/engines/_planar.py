@@ -345,10 +345,10 @@ def _time_function(t, fa):
     return z[_W] if kind == 1 else z[_WD]
 
 
-def _liftoff_time(t, stop, pe, p):
+def _liftoff_time(t, stop, y, pe, p):
     """The first float in (t, stop) where n <= 0, n > 0 at t (monotone on the piece),
     else nan (a root at ``stop`` is no root: the piece's end is left to the next)."""
-    fa = (0, t, np.zeros(N_STATE), pe, p)
+    fa = (0, t, y, pe, p)  # n depends on time alone: y is not read
     if _time_function(t, fa) > 0 and _time_function(stop, fa) <= 0:
         root = _first_nonpositive(fa, t, stop)
         return root if root < stop else math.nan
@@ -439,9 +439,9 @@ def _slip_to(t, y, h, stop, pe, p, rtol, atol, B, cnt):
     """Slide from (t, y) to ``stop`` [s] or to the first stop before it: (time, state,
     1 if a stop else -1, next step [s]). ``h``: the step to try (0: choose one); ``B``:
     the work buffers (:func:`_buffers`)."""
-    K, K2, F, work, y_new, z, y_cur = B
+    K, K2, F, work, y_new, z, y_cur, _ = B
     args = (pe, p)
-    y_cur[:] = y
+    _put(y_cur, y)
     _slip_rhs(t, y_cur, args, K[0])
     cnt[C_RHS] += 1
     if h <= 0:
@@ -484,16 +484,17 @@ def _slip_to(t, y, h, stop, pe, p, rtol, atol, B, cnt):
         h_next = hh * _dop853.factor(err, True)
         h = max(h, h_next) if last else h_next
         t = t_new
-        y_cur[:] = y_new
-        K[0, :] = K[_dop853.N_STAGES]
+        _put(y_cur, y_new)
+        _put(K[0], K[_dop853.N_STAGES])
     return t, y_cur.copy(), -1, h
 
 
 def _buffers():
-    """Work arrays of the slip's steps: K, K2 (16, 8), F (7, 8), then four (8,)."""
+    """Work arrays: K, K2 (16, 8), F (7, 8), then four (8,) of the slip's steps, and a
+    zero state (8,) (read only)."""
     n = _dop853.N_STAGES_EXTENDED
     return (np.empty((n, N_STATE)), np.empty((n, N_STATE)), np.empty((7, N_STATE)), np.empty(N_STATE),
-            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE))
+            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE), np.zeros(N_STATE))
 
 
 def _dense_minimum(F, y, t, hh, args, work, rate):
@@ -516,7 +517,7 @@ def _dense_minimum(F, y, t, hh, args, work, rate):
 def _s_after(args, t, y, d, K, K2, work, z):
     """s [m/s] after a DOP853 step of ``d`` [s] from (t, y) (K[0]: the rate there),
     the state left in ``z``."""
-    K2[0, :] = K[0]
+    _put(K2[0], K[0])
     _step(args, t, y, d, K2, z, work)
     return z[_S]
 
@@ -566,12 +567,20 @@ KNOT_WIDTH = 23
 EVENT_WIDTH = 10
 
 
+def _put(dst, src):
+    """dst[i] = src[i] for i < len(dst) (a loop: numba's slice assignment compiles a
+    shape check whose error message alone takes seconds)."""
+    for i in range(dst.shape[0]):
+        dst[i] = src[i]
+
+
 def _push(buf, n, width):
     """``buf`` with room for row ``n`` (doubled when full)."""
     if n < buf.shape[0]:
         return buf
     grown = np.empty((2 * buf.shape[0], width))
-    grown[: buf.shape[0]] = buf
+    for i in range(buf.shape[0]):
+        _put(grown[i], buf[i])
     return grown
 
 
@@ -581,9 +590,12 @@ def _add_knot(kb, cnt, fl, log, t, y, mode, left, right):
         return kb
     n = cnt[C_NK]
     kb = _push(kb, n, KNOT_WIDTH)
-    kb[n, 0], kb[n, 1:8], kb[n, 8], kb[n, 9:16], kb[n, 16:23] = t, y[:7], mode, right[:7], 0.0
+    kb[n, 0], kb[n, 8] = t, mode
+    _put(kb[n, 1:8], y)
+    _put(kb[n, 9:16], right)
+    _put(kb[n, 16:23], np.zeros(7))
     if n > 0:
-        kb[n - 1, 16:23] = left[:7]
+        _put(kb[n - 1, 16:23], left)
     cnt[C_NK] = n + 1
     return kb
 
@@ -596,12 +608,13 @@ def _log_event(kb, eb, cnt, fl, log, y, t, after, pe, p, resolution, cap):
     if log:
         n = cnt[C_NE]
         eb = _push(eb, n, EVENT_WIDTH)
-        eb[n, 0], eb[n, 1], eb[n, 2], eb[n, 3:10] = t, before, after, y[:7]
+        eb[n, 0], eb[n, 1], eb[n, 2] = t, before, after
+        _put(eb[n, 3:10], y)
     cnt[C_NE] += 1
     fl[F_LAST] = t
     if after == FLIGHT and before != FLIGHT:
         cnt[C_FLIGHTS] += 1
-    y[:] = _state_on_entry(before, after, t, y, pe, p)
+    _put(y, _state_on_entry(before, after, t, y, pe, p))
     if cnt[C_RUN] > cap:
         cnt[C_STATUS] = CHATTER
         return kb, eb
@@ -665,8 +678,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
             root, index = _static_root(t, y, end, pe, p)
             if index < 0:
                 fl[F_T], cnt[C_RESTARTED] = end, 1
-                zero = np.zeros(N_STATE)
-                return _add_knot(kb, cnt, fl, log, end, y, mode, zero, zero), eb
+                return _add_knot(kb, cnt, fl, log, end, y, mode, B[7], B[7]), eb
             fl[F_T] = root
             kb, eb = _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt)
             turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
@@ -688,7 +700,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
             t_new, z, landed = _flight_to(t, y, t_out, pe, p)
             root = 0 if landed else -1
         else:
-            lift = _liftoff_time(t, t_out, pe, p)
+            lift = _liftoff_time(t, t_out, y, pe, p)
             stop = t_out if math.isnan(lift) else lift
             t_new, z, root, fl[F_H] = _slip_to(t, y, fl[F_H], stop, pe, p, opt[0], opt[1], B, cnt)
             if cnt[C_STATUS] != FINISHED:
@@ -698,7 +710,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
         if root >= 0 and t_new >= end:  # left to the next piece's right-hand limits
             root, t_new = -1, t_out
         fl[F_T] = t_new
-        y[:] = z
+        _put(y, z)
         fl[F_VMAX] = max(fl[F_VMAX], _speed(y))
         if mode == SLIP:
             error = _V_ERROR_FACTOR * (opt[0] * fl[F_VMAX] + opt[1])
@@ -714,21 +726,20 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
     return kb, eb
 
 
-def _piece_excitation(T0, H, CF, scale, k):
-    """(t0, h, P, directions) of piece k with a(t) times ``scale``."""
-    P = np.empty((3, 5))
-    D = np.empty(3)
+def _piece_excitation(T0, H, CF, scale, k, P, D):
+    """(t0, h, P, directions) of piece k with a(t) times ``scale``, written into ``P``
+    (3, 5) and ``D`` (3,) (no allocation per piece)."""
     for i in range(3):
-        P[i, 0], P[i, 1], P[i, 2] = CF[i, 0, k] * scale, CF[i, 1, k] * scale, CF[i, 2, k] * scale
-        P[i, 3], P[i, 4] = CF[i, 3, k], CF[i, 4, k]
+        P[i, 0], P[i, 1], P[i, 2] = CF[k, i, 0] * scale, CF[k, i, 1] * scale, CF[k, i, 2] * scale
+        P[i, 3], P[i, 4] = CF[k, i, 3], CF[k, i, 4]
         D[i] = np.sign(accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], H[k], xp)
                        - accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], 0.0, xp))
     return (T0[k], H[k], P, D)
 
 
 def _run(T0, H, CF, p, opt, log):
-    """One run: the pieces (t0 (n,), h (n,) [s], CF (3, 5, n): (p0, p1, s, w, phi) per
-    component and piece), ``p`` (``PARAM_FIELDS``), ``opt`` (``OPTION_FIELDS``), with the
+    """One run: the pieces (t0 (n,), h (n,) [s], CF (n, 3, 5): (p0, p1, s, w, phi) per
+    piece and component), ``p`` (``PARAM_FIELDS``), ``opt`` (``OPTION_FIELDS``), with the
     knot and event logs if ``log``. Returns (outcome, knots (k, 23), events (e, 10))."""
     n = T0.shape[0]
     cnt = np.zeros(11, dtype=np.int64)
@@ -739,19 +750,20 @@ def _run(T0, H, CF, p, opt, log):
     kb = np.empty((256 if log else 1, KNOT_WIDTH))
     eb = np.empty((64 if log else 1, EVENT_WIDTH))
     B = _buffers()
-    zero = np.zeros(N_STATE)
+    zero = B[7]
+    P, D = np.empty((3, 5)), np.empty(3)
     kb = _add_knot(kb, cnt, fl, log, 0.0, y, STICK, zero, zero)
     until_rest = opt[4] != 0
     t_end = T0[n - 1] + H[n - 1]
     for k in range(n + 1 if until_rest else n):
         if k < n:
-            pe = _piece_excitation(T0, H, CF, p[7], k)
+            pe = _piece_excitation(T0, H, CF, p[7], k, P, D)
             end = T0[k + 1] if k + 1 < n else t_end
         else:  # after the excitation: a = 0
             pe = (t_end, math.inf, np.zeros((3, 5)), np.zeros(3))
             end = t_end
         if log and cnt[C_NK] > 0:  # enter_piece: dy/dt after the last knot on this piece
-            kb[cnt[C_NK] - 1, 9:16] = _flow(cnt[C_MODE], fl[F_T], y, pe, p)[:7]
+            _put(kb[cnt[C_NK] - 1, 9:16], _flow(cnt[C_MODE], fl[F_T], y, pe, p))
         cnt[C_RESTARTED] = 1
         if cnt[C_MODE] == STICK or (cnt[C_MODE] == SLIP and y[_S] == 0):
             rest = _mode_at_rest(pe, p, pe[0])
@@ -778,56 +790,50 @@ def _run(T0, H, CF, p, opt, log):
     out[5], out[6], out[7], out[8], out[9] = cnt[C_FLIGHTS], fl[F_T], cnt[C_MODE], cnt[C_STATUS], cnt[C_MAX_RUN]
     out[10], out[11], out[12] = cnt[C_STEPS], cnt[C_REJECTED], cnt[C_RHS]
     if log and cnt[C_NK] > 0:
-        kb[cnt[C_NK] - 1, 16:23] = 0.0
+        _put(kb[cnt[C_NK] - 1, 16:23], np.zeros(7))
     return out, kb[: cnt[C_NK]], eb[: cnt[C_NE]]
 
 
-def _run_item(T0, H, CF, offsets, params, opt, until_rest, item, out):
-    """Item ``item`` of a batch (see :func:`kernels`) into ``out``."""
-    n_exc = offsets.shape[0]
-    i, j = item % n_exc, item // n_exc
-    a, b = offsets[i, 0], offsets[i, 1]
-    o = opt.copy()
-    o[4] = until_rest[i]
-    out[i, j], _, _ = _run(T0[a:b], H[a:b], CF[:, :, a:b], params[j], o, False)
-
-
 @functools.cache
-def kernels():
-    """(run_one, run_batch, run_batch_serial), compiled on first call (or loaded from
-    numba's disk cache, keyed by the sources of this module and of the ones it compiles).
+def kernel():
+    """The engine, compiled on first call (or loaded from numba's disk cache, keyed by
+    the sources of this module and of the ones it compiles):
 
-    ``run_one(T0, H, CF, params, options)``: :func:`_run` with its logs.
-    ``run_batch(T0, H, CF, offsets, params, options, until_rest)``: every excitation i
-    (pieces ``offsets[i, 0]:offsets[i, 1]``) under every parameter set j (rows of
-    ``params``, (m, 8)), final numbers only, in parallel over cores: (n_exc, m, 13)
-    (``OUTCOME_FIELDS``); ``until_rest`` (n_exc,) per excitation.
-    ``run_batch_serial``: the same on the calling thread.
+    ``run(T0, H, CF, offsets, params, options, until_rest, items, out, log)`` runs the
+    batch items ``items`` (int64) into ``out`` (n_exc, m, 13) (``OUTCOME_FIELDS``): item
+    k is excitation i = k % n_exc (pieces ``offsets[i, 0]:offsets[i, 1]``, until rest if
+    ``until_rest[i]``) under parameter set k // n_exc (rows of ``params``, (m, 8)), and
+    returns the knot and event logs of the last item if ``log``. It releases the GIL:
+    threads run parts of one batch in parallel. One entry point, no parallel loop of
+    numba's: each would be a second compilation of the whole engine.
     """
     _register()
     fingerprint = hashlib.sha256(b"".join(pathlib.Path(m.__file__).read_bytes() for m in _SHARED)).hexdigest()
 
-    def run_one(T0, H, CF, params, options):
+    def run(T0, H, CF, offsets, params, options, until_rest, items, out, log):
         fingerprint  # noqa: B018 -- numba keys its disk cache by the closure's contents
-        return _run(T0, H, CF, params, options, True)
+        n_exc = offsets.shape[0]
+        o = options.copy()
+        knots, events = np.empty((0, KNOT_WIDTH)), np.empty((0, EVENT_WIDTH))
+        for item in items:
+            i, j = item % n_exc, item // n_exc
+            a, b = offsets[i, 0], offsets[i, 1]
+            o[4] = until_rest[i]
+            outcome, knots, events = _run(T0[a:b], H[a:b], CF[a:b], params[j], o, log)
+            _put(out[i, j], outcome)
+        return knots, events
 
-    def run_batch(T0, H, CF, offsets, params, options, until_rest):
-        fingerprint  # noqa: B018
-        out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
-        for item in numba.prange(out.shape[0] * out.shape[1]):
-            _run_item(T0, H, CF, offsets, params, options, until_rest, item, out)
-        return out
+    return numba.njit(cache=True, nogil=True, **_OPTIONS)(run)
 
-    def run_batch_serial(T0, H, CF, offsets, params, options, until_rest):
-        fingerprint  # noqa: B018
-        out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
-        for item in range(out.shape[0] * out.shape[1]):
-            _run_item(T0, H, CF, offsets, params, options, until_rest, item, out)
-        return out
 
-    return (numba.njit(cache=True, **_OPTIONS)(run_one),
-            numba.njit(cache=True, parallel=True, **_OPTIONS)(run_batch),
-            numba.njit(cache=True, **_OPTIONS)(run_batch_serial))
+def run_one(T0, H, CF, p, options):
+    """One run with its logs: (outcome (13,), knots (k, 23), events (e, 10)) (see
+    :func:`_run`)."""
+    out = np.empty((1, 1, len(OUTCOME_FIELDS)))
+    offsets = np.array([[0, T0.shape[0]]], dtype=np.int64)
+    knots, events = kernel()(T0, H, CF, offsets, p[None, :], options, options[4:5].copy(),
+                             np.zeros(1, dtype=np.int64), out, True)
+    return out[0, 0], knots, events
 
 
 _OPTIONS = dict(error_model="numpy")
@@ -840,5 +846,5 @@ def _register():
     where the entry points call them (``register_jitable``; they stay plain Python)."""
     for module in (_pieces, sys.modules[__name__]):
         for _, fn in inspect.getmembers(module, inspect.isfunction):
-            if fn.__module__ == module.__name__ and fn.__name__ not in ("kernels", "_register"):
+            if fn.__module__ == module.__name__ and fn.__name__ not in ("kernel", "run_one", "_register"):
                 register_jitable(**_OPTIONS)(fn)

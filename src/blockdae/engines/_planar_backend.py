@@ -6,12 +6,14 @@ dense output); ``solve_final`` runs parameter sets x motions x factors on a(t) i
 compiled call, in parallel over cores, and returns final numbers only.
 """
 
+import concurrent.futures
 import dataclasses
-import math
 
+import numba
 import numpy as np
 
 from ..backends._base import AbstractBackend
+from ..core._compile_notice import notice_numba
 from ..core._driver import HermiteDense
 from ..integrators._sundials import _check_real
 from ..sliding._solution import BatchSolution
@@ -19,6 +21,10 @@ from . import _planar as engine
 
 #: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)
 _PARALLEL_WORK = 1e5
+#: the engine's name in the compile notice, and its compile time on one core [s]
+_ENGINE, _COMPILE_SECONDS = "the compiled planar engine", 25
+#: parts of a batch per thread (threads take the next part when done: balance)
+_PARTS_PER_THREAD = 8
 
 
 @dataclasses.dataclass(frozen=True)
@@ -56,8 +62,8 @@ class CompiledBackend(AbstractBackend):
     def solve(self, block, excitation, horizon):
         _check_support(block)
         T0, H, CF = engine_input(block, excitation, horizon)
-        run_one, _, _ = engine.kernels()
-        outcome, knots, events = run_one(T0, H, CF, block.engine_parameters()[0], self.options(horizon.until_rest))
+        notice_numba(_ENGINE, _COMPILE_SECONDS, engine.kernel())
+        outcome, knots, events = engine.run_one(T0, H, CF, block.engine_parameters()[0], self.options(horizon.until_rest))
         _check(block, outcome, events, self.max_events_at_one_instant, horizon)
         t, y, mode = knots[:, 0].copy(), knots[:, 1:8].copy(), knots[:, 8].astype(int)
         logged = tuple(block.event(float(e[0]), block.modes(int(e[1])), block.modes(int(e[2])), e[3:10])
@@ -88,13 +94,12 @@ class CompiledBackend(AbstractBackend):
         inputs = [engine_input(block, e, h) for e, h in zip(excitations, horizons)]
         lengths = np.cumsum([0] + [len(x[0]) for x in inputs])
         T0, H = (np.concatenate([x[f] for x in inputs]) for f in (0, 1))
-        CF = np.ascontiguousarray(np.concatenate([x[2] for x in inputs], axis=2))
+        CF = np.ascontiguousarray(np.concatenate([x[2] for x in inputs]))
         offsets = np.stack([lengths[:-1], lengths[1:]], axis=1).astype(np.int64)
         params = block.engine_parameters(scale)
         until_rest = np.array([float(h.until_rest) for h in horizons])
-        _, parallel, serial = engine.kernels()
-        run = parallel if len(params) * len(T0) >= _PARALLEL_WORK else serial
-        out = run(T0, H, CF, offsets, params, self.options(False), until_rest)
+        out = np.empty((len(inputs), len(params), len(engine.OUTCOME_FIELDS)))
+        _run_parallel(T0, H, CF, offsets, params, self.options(False), until_rest, out)
         bad = np.argwhere(out[:, :, 8] != engine.FINISHED)
         if len(bad):
             i, j = bad[0]
@@ -104,11 +109,28 @@ class CompiledBackend(AbstractBackend):
         return out
 
 
+def _run_parallel(T0, H, CF, offsets, params, options, until_rest, out):
+    """The engine's kernel over every item of ``out``, on numba's number of
+    threads (the kernel releases the GIL) where the work is large enough."""
+    run = engine.kernel()
+    notice_numba(_ENGINE, _COMPILE_SECONDS, run)
+    items = np.arange(out.shape[0] * out.shape[1], dtype=np.int64)
+    threads = numba.get_num_threads() if len(params) * len(T0) >= _PARALLEL_WORK else 1
+    if threads == 1:
+        run(T0, H, CF, offsets, params, options, until_rest, items, out, False)
+        return
+    # strided parts: neighbouring items (one motion at nearby factors) cost alike
+    parts = [items[k::threads * _PARTS_PER_THREAD] for k in range(threads * _PARTS_PER_THREAD)]
+    with concurrent.futures.ThreadPoolExecutor(threads) as pool:
+        list(pool.map(lambda part: run(T0, H, CF, offsets, params, options, until_rest, part, out, False), parts))
+
+
 def engine_input(block, excitation, horizon):
-    """(t0 (n,), h (n,) [s], coefficients (3, 5, n): p0, p1, s, w, phi of a_x, a_y, a_z)
+    """(t0 (n,), h (n,) [s], coefficients (n, 3, 5): p0, p1, s, w, phi of a_x, a_y, a_z)
     on the model's common partition up to the end of the excitation (or ``t_end``)."""
     pieces = block.excitation_pieces(excitation, horizon.integration_end(excitation))
-    CF = np.ascontiguousarray(np.stack([np.stack([p.p0, p.p1, p.s, p.w, p.phi]) for p in pieces]), dtype=float)
+    CF = np.ascontiguousarray(np.stack([np.stack([p.p0, p.p1, p.s, p.w, p.phi], axis=-1) for p in pieces], axis=1),
+                              dtype=float)
     return np.ascontiguousarray(pieces[0].t0, dtype=float), np.ascontiguousarray(pieces[0].h, dtype=float), CF
 
 

@@ -71,7 +71,7 @@ class Checkpoint:
         """The columns of task ``index`` as :func:`run_task` returned them (checked: its records, its rows)."""
         path = self.path(index)
         table = load_study(path)
-        names = [r.name for r in self._tasks[index]]
+        names = [motion_name(r) for r in self._tasks[index]]
         expected = np.repeat(np.asarray(names), self._rows_per_record)
         got = table.pop("record").fillna("").to_numpy(dtype=str)  # load_study reads "" as NaN
         if not np.array_equal(got, expected):
@@ -108,8 +108,19 @@ def _plain(value):
     return value
 
 
+def motion_name(motion) -> str:
+    """A record's name; a three-component motion's: its components' names joined by " + "."""
+    if hasattr(motion, "components"):
+        return " + ".join(c.name for c in motion.components if c is not None)
+    return motion.name
+
+
 def _fingerprint(record) -> dict:
-    """A record's name, sample step [s], sample count and the SHA-256 of its samples."""
+    """A record's name, sample step [s], sample count and the SHA-256 of its samples (a
+    three-component motion's: those of its components)."""
+    if hasattr(record, "components"):
+        return {"name": motion_name(record),
+                "components": [None if c is None else _fingerprint(c) for c in record.components]}
     samples = np.ascontiguousarray(record.acceleration_samples, dtype=np.float64)
     return {"name": record.name, "dt": record.dt, "samples": int(samples.size),
             "sha256": hashlib.sha256(samples.tobytes()).hexdigest()}

@@ -22,17 +22,16 @@ import time
 
 import numpy as np
 
-from ..sliding._final import simulate_final
 from ..sliding._formulas import AdjustmentFactor, newmark_rd_sd
 from ..core._progress import progress_bar
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._units import check_pga
-from ..excitation import Record
+from ..excitation import BaseMotion, Record
 from ..excitation._record_set import RecordSet, with_metadata
 from ..sliding._model import SlidingBlock
 from ..motions import response_spectrum
 from ..structures import Floor
-from ._checkpoint import Checkpoint
+from ._checkpoint import Checkpoint, motion_name as _name
 
 #: analyses per task aimed at (Dask: each task costs 0.2-1 ms of overhead; aim at 10³-10⁴)
 TASK_ANALYSES = 2000
@@ -60,11 +59,13 @@ class _Grid:
     damping: float
     t_end: float | None
     g: float
+    block: object  # the model at one μ: its study_columns(...) runs a task's analyses
+    rtol: float | None
 
 
 def study(records, mu, pga=None, scale=None, where=("ground",), direction="negative", *, executor=None,
           no_worker_timeout=60.0, checkpoint=None, progress=None, refine=4, sd_period=10.0, damping=0.05,
-          t_end=None, g=STANDARD_GRAVITY):
+          t_end=None, g=STANDARD_GRAVITY, block=None, rtol=None):
     """Slide a block under every record, μ, intensity and location: one tidy table.
 
     Args:
@@ -99,7 +100,15 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
         sd_period, damping: period [s] and damping ratio [-] of the oscillator whose
             displacement spectrum gives Sd (see ``sd_m``).
         t_end: final time [s]; None: until the block rests after each motion.
-        g: the value of one g [m/s²].
+        g: the value of one g [m/s²] (a ``block`` given brings its own).
+        block: the model to slide, any μ (the study sets μ): one with a
+            ``study_columns(motions, t_end, scale, rtol)`` method (its table columns, one
+            row per motion x μ x factor), e.g. ``bd.PlanarBlock(mu=0.1, bias=(-0.02, 0))``
+            on three-component records (``bd.BaseMotion``, named by their components;
+            ``pga`` scales the largest horizontal peak; ground only). None: the 1-D
+            ``bd.SlidingBlock(direction=direction, g=g)``.
+        rtol: relative tolerance [-] of a model that integrates (None: the model's
+            study default, 1e-10 for the block on a plane); the 1-D block's engine is exact.
 
     Returns:
         A DataFrame, one row per record × location × μ × intensity (in that order):
@@ -114,7 +123,9 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
         displacement_m (u at the end [m]); max_abs_displacement_m (R_c, max |u| [m]);
         n_events (mode changes); n_slips (slip episodes = slip onsets, one-way
         studies only: there stick and slip alternate, so n_slips = ⌈n_events / 2⌉);
-        t_end_s (final time [s]).
+        t_end_s (final time [s]). A ``block``'s own columns replace displacement_m ...
+        t_end_s (the block on a plane: displacement_x_m, displacement_y_m, displacement_m
+        = |u|, max_abs_displacement_m, slide_distance_m, n_events, n_flights, t_end_s).
 
     Every check runs before any work (:class:`ValueError`): no records, a record that
     is not a finite :class:`bd.Record`, μ or an intensity <= 0, ``no_worker_timeout`` not
@@ -125,7 +136,8 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
     motion.scaled(scale))`` of the location's motion to rounding.
     """
     metadata = records.metadata if isinstance(records, RecordSet) else None
-    records, grid = _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g)
+    records, grid = _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g, block,
+                             rtol)
     no_worker_timeout = _timeout(no_worker_timeout)
     tasks = _tasks(records, len(grid.where) * grid.mu.size * grid.factors.size)
     store = None if checkpoint is None else Checkpoint.open(checkpoint, records, grid, tasks)
@@ -187,24 +199,35 @@ def run_task(records, grid: _Grid) -> dict:
                     floors[place.frame] = place.frame.floor_motions(record, refine=grid.refine)
                 motions.append(floors[place.frame][place.level - 1])
             places.append(place)
-    peak = np.array([m.peak_acceleration for m in motions])
-    unit = grid.g if grid.by == "pga" else 1.0  # engine motions: peak 1 g, or as they are
-    engine_motions = [Record(m.acceleration_samples * (unit / p), m.dt, m.name, units="m/s2", check_peak=False)
-                      for m, p in zip(motions, peak)] if grid.by == "pga" else motions
-    block = SlidingBlock(mu=grid.mu, direction=grid.direction, g=grid.g)
-    out = simulate_final(block, engine_motions, grid.t_end, scale=grid.factors)
-    sd = response_spectrum(motions, grid.sd_period, grid.damping).sd
-    pgv = np.array([_peak_velocity(m) for m in motions])
+    leading = [_leading(m) for m in motions]  # the component whose peak is the motion's
+    peak = np.array([m.peak_acceleration for m in leading])
+    engine_motions = [_normalised(m, grid.g / p) for m, p in zip(motions, peak)] if grid.by == "pga" else motions
+    columns = grid.block.replace(mu=grid.mu).study_columns(engine_motions, grid.t_end, grid.factors, grid.rtol)
+    sd = response_spectrum(leading, grid.sd_period, grid.damping).sd
+    pgv = np.array([_peak_velocity(m) for m in leading])
     n_mu, n_f = grid.mu.size, grid.factors.size
     each = lambda x: np.repeat(np.asarray(x), n_mu * n_f)  # per motion -> per row
     factors = np.tile(grid.factors, len(motions) * n_mu)
     scale = factors * np.repeat(grid.g / peak, n_mu * n_f) if grid.by == "pga" else factors
-    return dict(record=each([m.name for m in records for _ in grid.where]),
+    return dict(record=each([_name(m) for m in records for _ in grid.where]),
                 place=each([grid.where.index(p) for p in places]),
                 mu=np.tile(np.repeat(grid.mu, n_f), len(motions)),
-                scale=scale, pga_m_s2=scale * each(peak), pgv_m_s=scale * each(pgv), sd_m=scale * each(sd),
-                displacement_m=out.displacement.ravel(), max_abs_displacement_m=out.max_abs_displacement.ravel(),
-                n_events=out.n_events.ravel(), t_end_s=out.t_end.ravel())
+                scale=scale, pga_m_s2=scale * each(peak), pgv_m_s=scale * each(pgv), sd_m=scale * each(sd), **columns)
+
+
+def _leading(motion) -> Record:
+    """The record whose peak is the motion's: itself, or a BaseMotion's horizontal
+    component of the larger peak |a|."""
+    if isinstance(motion, BaseMotion):
+        return motion.x if motion.y is None or motion.x.peak_acceleration >= motion.y.peak_acceleration else motion.y
+    return motion
+
+
+def _normalised(motion, factor):
+    """``motion`` times ``factor`` [-] (a Record with its samples multiplied, unchecked)."""
+    if isinstance(motion, BaseMotion):
+        return motion.scaled(factor)
+    return Record(motion.acceleration_samples * factor, motion.dt, motion.name, units="m/s2", check_peak=False)
 
 
 def _peak_velocity(record: Record) -> float:
@@ -218,18 +241,19 @@ def _peak_velocity(record: Record) -> float:
     return float(max(np.max(np.abs(v)), np.max(np.abs(inside), initial=0.0)))
 
 
-def _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g):
-    if isinstance(records, Record):
+def _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g, block, rtol):
+    if isinstance(records, (Record, BaseMotion)):
         records = [records]
     records = list(records)
     if not records:
         raise ValueError("records is empty: give at least one bd.Record")
     for i, record in enumerate(records):
-        if not isinstance(record, Record):
-            raise TypeError(f"records[{i}] must be a bd.Record, got {type(record).__name__}")
-        if not np.all(np.isfinite(record.acceleration_samples)):
-            raise ValueError(f"records[{i}] ({record.name!r}) has samples that are not finite (NaN or inf)")
-    names = [r.name for r in records]
+        parts = record.components if isinstance(record, BaseMotion) else (record,)
+        if not all(isinstance(c, Record) for c in parts if c is not None):
+            raise TypeError(f"records[{i}] must be a bd.Record or a bd.BaseMotion of Records, got {record!r:.80}")
+        if not all(np.all(np.isfinite(c.acceleration_samples)) for c in parts if c is not None):
+            raise ValueError(f"records[{i}] ({_name(record)!r}) has samples that are not finite (NaN or inf)")
+    names = [_name(r) for r in records]
     if len(set(names)) < len(names):
         raise ValueError(f"record names must be distinct (they label the rows); repeated: "
                          f"{sorted({n for n in names if names.count(n) > 1})}")
@@ -248,7 +272,14 @@ def _checked(records, mu, pga, scale, where, direction, refine, sd_period, dampi
             raise ValueError(f'where must hold "ground" or bd.Floor objects, got {place!r}')
     if len(set(where)) < len(where):
         raise ValueError(f"where repeats a location: {where!r}")
-    SlidingBlock(mu=mu, direction=direction, g=g)  # checks direction and g
+    if block is None:
+        block = SlidingBlock(mu=1.0, direction=direction, g=g)  # checks direction and g
+    if not callable(getattr(block, "study_columns", None)):
+        raise TypeError(f"block must be a model with a study_columns method (bd.SlidingBlock, bd.PlanarBlock), "
+                        f"got {type(block).__name__}")
+    block.replace(mu=mu)  # checks mu against the block's other parameters (|bias| < mu, ...)
+    if any(isinstance(r, BaseMotion) for r in records) and where != ("ground",):
+        raise ValueError("three-component motions (bd.BaseMotion) are studied on the ground only")
     _values("sd_period", sd_period, "s")
     if not (np.isfinite(damping) and 0 <= damping < 1):
         raise ValueError(f"damping must lie in [0, 1) [-], got {damping!r}")
@@ -256,15 +287,17 @@ def _checked(records, mu, pga, scale, where, direction, refine, sd_period, dampi
         raise ValueError(f"refine must be an integer >= 1 (floor samples per record step), got {refine!r}")
     if t_end is not None:
         _values("t_end", t_end, "s")
-    if by == "pga" and any(r.peak_acceleration == 0 for r in records):
-        raise ValueError(f"pga cannot normalise a record of zeros: {next(r.name for r in records if r.peak_acceleration == 0)!r}")
+    if by == "pga" and any(_leading(r).peak_acceleration == 0 for r in records):
+        zero = next(_name(r) for r in records if _leading(r).peak_acceleration == 0)
+        raise ValueError(f"pga cannot normalise a record of zeros: {zero!r}")
     rows = len(records) * len(where) * mu.size * factors.size
     free = os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
     if rows * ROW_BYTES > free:
         raise ValueError(f"the result table would have {rows:,} rows (~{rows * ROW_BYTES / 2**30:.1f} GiB), more "
                          f"than the free memory ({free / 2**30:.1f} GiB): split the study or shrink the grid")
     grid = _Grid(mu=mu, factors=factors, by=by, where=where, direction=direction, refine=refine,
-                 sd_period=float(sd_period), damping=float(damping), t_end=t_end, g=float(g))
+                 sd_period=float(sd_period), damping=float(damping), t_end=t_end, g=float(block.g), block=block,
+                 rtol=rtol)
     return records, grid
 
 
@@ -374,7 +407,7 @@ def _table(parts, grid):
         df["pga_g"] = np.tile(grid.factors, len(df) // grid.factors.size)
     for k, v in cols.items():
         df[k] = v
-    if grid.direction != "both":
+    if getattr(grid.block, "direction", "both") != "both":  # one-way: stick and slip alternate
         df.insert(df.columns.get_loc("n_events") + 1, "n_slips", (df["n_events"] + 1) // 2)
     return df
 
