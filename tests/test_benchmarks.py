@@ -110,3 +110,11 @@ def test_flexible_quick(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert out.count("bar ") == 4 and out.count("smoke run, not a measurement") == 4 and "NOT met" not in out
     assert "SLAMMER's table shape:" in out and "exact [ms]" in out
+
+
+def test_linear_engine_quick(monkeypatch, capsys):
+    """Every bar of the linear engine reported, as a smoke run."""
+    _load("linear_engine", monkeypatch).main(["--quick"])
+    out = capsys.readouterr().out
+    assert "worst event-time difference" in out and "median CVODE / compiled" in out
+    assert "NOT met" not in out and out.count("smoke run, not a measurement") >= 2

@@ -42,7 +42,16 @@ def test_python_blocks_run_alone_as_written(index, tmp_path, jax_cache_dir):
     assert done.returncode == 0, f"README block failed alone:\n{code}\n--- stderr:\n{done.stderr[-3000:]}"
 
 
-@pytest.mark.parametrize("index", range(len([b for b in _blocks("bash") if not _is_setup(b)])))
+def _only_benchmarks(block) -> bool:
+    """A block of ``python benchmarks/NAME.py --quick`` lines only."""
+    lines = [line for line in block.splitlines() if line.strip() and not line.lstrip().startswith("#")]
+    return all(line.startswith("python benchmarks/") for line in lines)
+
+
+# the block of benchmark smoke runs is slow (about 100 s); each of its commands also runs fast
+# in tests/test_benchmarks.py or tests/test_hazard.py
+@pytest.mark.parametrize("index", [pytest.param(i, marks=pytest.mark.slow) if _only_benchmarks(b) else i
+                                   for i, b in enumerate(b for b in _blocks("bash") if not _is_setup(b))])
 def test_bash_blocks_run_as_written(index, tmp_path, jax_cache_dir):
     code = [b for b in _blocks("bash") if not _is_setup(b)][index]
     env = _environment(jax_cache_dir)
