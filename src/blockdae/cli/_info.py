@@ -3,12 +3,11 @@ step, samples, duration, peak, component, station, event); bad files are listed 
 and make the exit status 1."""
 
 import pathlib
-import sys
 
 from ..core._units import STANDARD_GRAVITY
 from ..excitation import read_record
 from ..excitation._formats import read_channels
-from ._common import UsageError, checked
+from ._common import UsageError, checked, report_failures
 
 
 def add_info_parser(sub):
@@ -32,12 +31,7 @@ def _info(args):
             continue
         for record in records:
             print(_describe(path, record))
-    if failed:
-        print(f"blockdae: {len(failed)} of {len(args.files)} files failed:", file=sys.stderr)
-        for reason in failed:
-            print(f"  {reason}", file=sys.stderr)
-        return 1
-    return 0
+    return report_failures(failed, len(args.files))
 
 
 def _read(path, args):

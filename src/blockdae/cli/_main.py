@@ -21,7 +21,7 @@ import numpy as np
 
 from .. import backends
 from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, positive,
-                      read, record_arguments, record_fields, save_figure, set_argument, write_csv)
+                      read, report_failures, record_arguments, record_fields, save_figure, set_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._flexible import add_flexible_parser
 from ._info import add_info_parser
@@ -95,8 +95,8 @@ def _parser():
                         help="JAX compilation cache, so that later runs skip compiling "
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
-    sub = parser.add_subparsers(required=True, metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,"
-                                                       "info}")
+    sub = parser.add_subparsers(required=True,
+                                metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,info}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
                                      "plane under two or three components (u_x, u_y)")
@@ -363,12 +363,7 @@ def _batch(args):
         fields = [*_CSV_FIELDS[:1], *next(iter(metadata.values()), {}), *_CSV_FIELDS[1:]]
         checked(lambda: write_csv(args.csv, rows, fields), f"--csv {args.csv}")
         print(f"results: {args.csv}", file=sys.stderr if args.json else sys.stdout)
-    if failed:
-        print(f"blockdae: {len(failed)} of {len(sources)} files failed:", file=sys.stderr)
-        for reason in failed:
-            print(f"  {reason}", file=sys.stderr)
-        return 1
-    return 0
+    return report_failures(failed, len(sources))
 
 
 # ---- helpers ------------------------------------------------------------------
