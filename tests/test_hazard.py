@@ -145,6 +145,79 @@ def test_bad_study_tables_are_refused():
         fit_fragility(table, d0_m=-1.0)
 
 
+# ---- fragilities from the flexible mass and the block on a plane -------------------------
+
+STUDY_PGA = (0.1, 0.2, 0.3, 0.45, 0.6, 0.8)  # [g]
+
+
+@pytest.fixture(scope="module")
+def ten_records():
+    """Ten of pySLAMMER's sample records (the fewest a fragility takes)."""
+    from conftest import sample_record_paths
+
+    return [bd.read_record(path, units="g") for path in sample_record_paths()[:10]]
+
+
+def assert_maximum_likelihood(fit, x, d):
+    """The fit's first-order conditions, computed here from the table's values: the
+    probit's score vanishes, and the lognormal's residuals are orthogonal to (1, ln x)
+    with σ² their mean square."""
+    u, slid = np.log(x), d > fit.d0_m
+    z = np.where(slid, 1.0, -1.0) * (fit.b0 + fit.b1 * u)
+    ratio = norm.pdf(z) / norm.cdf(z)
+    score = np.array([np.sum(np.where(slid, ratio, -ratio)), np.sum(np.where(slid, ratio, -ratio) * u)])
+    assert np.all(np.abs(score) <= 1e-6 * u.size), score
+    residual = np.log(d[slid]) - fit.c0 - fit.c1 * u[slid]
+    assert abs(residual.sum()) < 1e-9 * slid.sum() and abs(residual @ u[slid]) < 1e-9 * slid.sum()
+    assert fit.sigma == pytest.approx(np.sqrt(np.mean(residual**2)), rel=1e-12)
+
+
+def test_fragility_from_a_flexible_study(ten_records):
+    """bd.flexible (coupled, ky = 0.1 g, H = 20 m, Vs = 300 m/s; 8 s of each record) at six
+    target PGA, concatenated with a pga_g column: the worse polarity of each row
+    (displacement=("normal_m", "inverse_m")) is the maximum likelihood fit's data."""
+    table = pd.concat([bd.flexible(ten_records, ky=0.1, height=20.0, vs=300.0, target_pga=a, t_end=8.0)
+                       .to_dataframe().assign(pga_g=a) for a in STUDY_PGA], ignore_index=True)
+    fit = fit_fragility(table, "pga_g", ("normal_m", "inverse_m"), d0_m=0.005, n_boot=20)
+    worse = np.maximum(table["normal_m"].abs(), table["inverse_m"].abs()).to_numpy()
+    assert fit.n_records == 10 and fit.n_rows == 60 and 0 < np.count_nonzero(worse > 0.005) < 60
+    assert_maximum_likelihood(fit, table["pga_g"].to_numpy(), worse)
+    same = fit_fragility(table.assign(worse_m=worse), "pga_g", "worse_m", d0_m=0.005, n_boot=0)
+    np.testing.assert_array_equal(same.params, fit.params)
+    one_polarity = table.assign(inverse_m=np.nan, normal_m=worse)  # a polarity not run: NaN, skipped
+    np.testing.assert_array_equal(fit_fragility(one_polarity, "pga_g", ("normal_m", "inverse_m"), d0_m=0.005,
+                                                n_boot=0).params, fit.params)
+    assert np.all(np.diff(fit.exceedance(0.05, np.array(STUDY_PGA))) > 0)
+    with pytest.raises(ValueError, match="2 values of ky_g"):
+        fit_fragility(pd.concat([table, table.assign(ky_g=0.2)]), "pga_g", ("normal_m", "inverse_m"))
+
+
+def test_fragility_from_a_planar_study(ten_records):
+    """bd.study(block=bd.PlanarBlock) of ten two-component motions at six PGA, two μ, 8 s:
+    the defaults (pga_g, max_abs_displacement_m) fit each μ; the plot draws it."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from blockdae.hazard import plot_fragility
+
+    motions = [bd.BaseMotion(record, record.scaled(0.5)) for record in ten_records]
+    table = bd.study(motions, mu=[0.15, 0.25], pga=STUDY_PGA, block=bd.PlanarBlock(mu=0.3, bias=(-0.03, 0.0)),
+                     t_end=8.0, progress=False)
+    with pytest.raises(ValueError, match="2 values of mu"):
+        fit_fragility(table)
+    weak = table[table.mu == 0.15]
+    fit = fit_fragility(weak, d0_m=0.005, n_boot=20)
+    assert fit.im == "pga_g" and fit.n_records == 10 and fit.n_rows == 60
+    assert_maximum_likelihood(fit, weak["pga_g"].to_numpy(), weak["max_abs_displacement_m"].to_numpy())
+    strong = fit_fragility(table[table.mu == 0.25], d0_m=0.005, n_boot=0)
+    assert strong.exceedance(0.05, 0.6) < fit.exceedance(0.05, 0.6)  # more friction, less sliding
+    x = np.geomspace(0.1, 0.8, 20)
+    ax = plot_fragility(fit, 0.05, x, others={"Jibson 2007": EmpiricalFragility(em.jibson_2007, "pga_g",
+                                                                                  {"ky_g": 0.15})})
+    np.testing.assert_allclose(ax.lines[0].get_ydata(), fit.exceedance(0.05, x))
+    assert len(ax.collections) == 1  # the bootstrap band
+
+
 def test_exported():
     assert bd.hazard.fit_fragility is fit_fragility and "hazard" in bd.__all__ and "empirical" in bd.__all__
 
