@@ -127,6 +127,105 @@ def test_hazard_curve_from_csv_and_not_decreasing(tmp_path):
         HazardCurve([0.1, 0.2], [1e-2, -1e-3])
 
 
+# ---- hazard curves in the formats hazard programs export -------------------------------
+
+OQ_RATES = np.array([2e-2, 5e-3, 1e-3, 2e-4])  # [1/yr], the curve the fixture's poe encode
+
+
+def openquake_fixture(folder, poe_rows=None, comment_imt="PGA"):
+    """An OpenQuake hazard-curve CSV written by hand after the engine's export
+    (openquake/calculators/export/hazard.py, export_hcurves_csv; the layout of a file
+    that OpenQuake engine 3.23.2 wrote): a '#' comment with investigation_time and imt, the
+    header lon,lat,depth,poe-<level>, a line per site. Levels 0.01 ... 1.0 g; the first
+    poe is 1 and the last 0 (left out), the others 1 - exp(-50 λ) of OQ_RATES (twice
+    OQ_RATES at the second site)."""
+    poe = [np.concatenate([[1.0], -np.expm1(-50.0 * k * OQ_RATES), [0.0]]) for k in (1, 2)]
+    rows = poe_rows or poe
+    levels = ["0.0100000", "0.0500000", "0.1000000", "0.2000000", "0.5000000", "1.0000000"]
+    text = (f'#,,,,,,,,"generated_by=\'OpenQuake engine 3.23.2\', kind=\'mean\', investigation_time=50.0, '
+            f'imt=\'{comment_imt}\'"\n' + "lon,lat,depth," + ",".join(f"poe-{v}" for v in levels) + "\n")
+    for (lon, lat), row in zip([(27.65010, -27.46020), (28.00000, -26.00000)], rows):
+        text += f"{lon:.5f},{lat:.5f},0.00000," + ",".join(f"{p:.6E}" if isinstance(p, float) else p
+                                                          for p in row) + "\n"
+    path = folder / "hazard_curve-mean-PGA_1.csv"
+    path.write_text(text)
+    return path
+
+
+def test_hazard_curve_from_openquake_csv(tmp_path):
+    path = openquake_fixture(tmp_path)
+    curve = HazardCurve.from_openquake_csv(path, site=0, imt="PGA")
+    np.testing.assert_array_equal(curve.im, [0.05, 0.1, 0.2, 0.5])
+    np.testing.assert_allclose(curve.rate, OQ_RATES, rtol=1e-6)  # the poe are printed to 7 digits
+    same = HazardCurve.from_openquake_csv(path, site=(27.6501, -27.4602))
+    np.testing.assert_array_equal(same.rate, curve.rate)
+    np.testing.assert_allclose(HazardCurve.from_openquake_csv(path, site=1).rate, 2 * OQ_RATES, rtol=1e-6)
+    with pytest.raises(ValueError, match="2 sites; choose one with site="):
+        HazardCurve.from_openquake_csv(path)
+    with pytest.raises(ValueError, match=r"line 1, field imt: the file holds imt='PGA', not 'SA\(0.2\)'"):
+        HazardCurve.from_openquake_csv(path, site=0, imt="SA(0.2)")
+    with pytest.raises(ValueError, match=r"no site at \(lon, lat\) = \(10, 10\)"):
+        HazardCurve.from_openquake_csv(path, site=(10.0, 10.0))
+    typo = openquake_fixture(tmp_path, poe_rows=[["1.0", "0.6", "0.2", "x", "0.01", "0.0"]])
+    with pytest.raises(ValueError, match=r"hazard_curve-mean-PGA_1.csv, line 3, field 'poe-0.2000000': 'x' is not"):
+        HazardCurve.from_openquake_csv(typo)
+    rising = openquake_fixture(tmp_path, poe_rows=[["1.0", "0.6", "0.2", "0.3", "0.01", "0.0"]])
+    with pytest.raises(ValueError, match=r"line 3, field 'poe-0.2000000': the hazard curve is not decreasing"):
+        HazardCurve.from_openquake_csv(rising)
+    beyond = openquake_fixture(tmp_path, poe_rows=[["1.0", "1.6", "0.2", "0.1", "0.01", "0.0"]])
+    with pytest.raises(ValueError, match=r"line 3, field 'poe-0.0500000': poe=1.6 is no probability"):
+        HazardCurve.from_openquake_csv(beyond)
+
+
+def usgs_fixture(folder, name="hazard.json", legacy=False, total=(3e-2, 8e-3, 1.5e-3, 2e-4, 0.0)):
+    """A USGS NSHMP hazard web-service response written by hand after nshmp-haz-ws's
+    HazardService (response[i].metadata.imt/xvalues, response[i].data[j].component/yvalues,
+    two IMTs, components Total and Fault); ``legacy``: the Unified Hazard Tool's static-curve
+    layout (xvals, one data entry with yvals; usgs/earthquake-hazard-tool etc/curve/data.json)."""
+    import json
+
+    def response(imt, x, y):
+        meta = {"latitude": 34.0, "longitude": -118.0, "imt": {"value": imt, "display": imt},
+                "xlabel": "Ground Motion (g)", "ylabel": "Annual Frequency of Exceedence"}
+        if legacy:
+            return {"metadata": {**meta, "xvals": x}, "data": [{"id": 1, "yvals": y}]}
+        return {"metadata": {**meta, "xvalues": x},
+                "data": [{"component": "Total", "yvalues": y}, {"component": "Fault", "yvalues": [v / 2 for v in y]}]}
+
+    document = {"status": "success", "date": "2019-01-01T00:00:00-07:00", "url": "...", "server": {},
+                "response": [response("PGA", [0.05, 0.1, 0.2, 0.5, 1.0], list(total)),
+                             response("SA1P0", [0.05, 0.1, 0.2, 0.5, 1.0], [2e-2, 5e-3, 1e-3, 1e-4, 1e-5])]}
+    path = folder / name
+    path.write_text(json.dumps(document, indent=2))
+    return path
+
+
+def test_hazard_curve_from_usgs_json(tmp_path):
+    path = usgs_fixture(tmp_path)
+    curve = HazardCurve.from_usgs_json(path, imt="PGA")
+    np.testing.assert_array_equal(curve.im, [0.05, 0.1, 0.2, 0.5])  # the level of rate 0 left out
+    np.testing.assert_array_equal(curve.rate, [3e-2, 8e-3, 1.5e-3, 2e-4])
+    fault = HazardCurve.from_usgs_json(path, imt="PGA", component="Fault")
+    np.testing.assert_array_equal(fault.rate, curve.rate / 2)
+    np.testing.assert_array_equal(HazardCurve.from_usgs_json(path, imt="SA1P0").rate[-1], 1e-5)
+    legacy = HazardCurve.from_usgs_json(usgs_fixture(tmp_path, "legacy.json", legacy=True), imt="PGA")
+    np.testing.assert_array_equal(legacy.rate, curve.rate)
+    with pytest.raises(ValueError, match=r"2 curves \(imt \['PGA', 'SA1P0'\]\); choose one with imt="):
+        HazardCurve.from_usgs_json(path)
+    with pytest.raises(ValueError, match="no curve of imt='SA0P2'"):
+        HazardCurve.from_usgs_json(path, imt="SA0P2")
+    with pytest.raises(ValueError, match=r"response\[0\].data: no component 'Slab'"):
+        HazardCurve.from_usgs_json(path, imt="PGA", component="Slab")
+    rising = usgs_fixture(tmp_path, "rising.json", total=(3e-2, 8e-3, 9e-3, 2e-4, 1e-5))
+    with pytest.raises(ValueError, match=r"rising.json: response\[0\].data\[0\].yvalues\[2\]: the hazard curve is "
+                                         r"not decreasing"):
+        HazardCurve.from_usgs_json(rising, imt="PGA")
+    broken = tmp_path / "broken.json"
+    broken.write_text('{"response": [\n  {"metadata": }\n]}')
+    with pytest.raises(ValueError, match=r"broken.json, line 2: not JSON"):
+        HazardCurve.from_usgs_json(broken)
+
+
 def test_bad_study_tables_are_refused():
     rng = np.random.default_rng(5)
     table = synthetic_table(rng)
