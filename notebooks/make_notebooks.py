@@ -896,8 +896,8 @@ HAZARD = [
 A slope whose sliding mass yields at ky = 0.10, 0.15 and 0.20 g (a rigid block, one-way
 downslope sliding), under a far-field record set scaled over PGA with `bd.study`; the
 fragility P(D > 5 cm | PGA) fitted to the time histories (maximum likelihood, 90 %
-bootstrap band over the records) against those of four regressions (Jibson 2007, Saygili &
-Rathje 2008, Rathje & Saygili 2009, Bray & Travasarou 2007); then the annual rate of
+bootstrap band over the records) against those of five regressions (Jibson 2007, Saygili &
+Rathje 2008, Rathje & Saygili 2009, Bray & Travasarou 2007, Bray & Macedo 2019); then the annual rate of
 D > d from a sample PGA hazard curve. D is max |u| of each analysis, one polarity of each
 record. Units: m (tables in cm), s, PGA and ky in g, rates in 1/yr.
 
@@ -942,13 +942,15 @@ print(f"{len(table):,} analyses ({len(records)} records × {ky.size} ky × {pga.
 
 
 def regressions(k):
-    \"\"\"The regressions' fragilities at ky = k [g] (rigid block: Bray & Travasarou's Sa(1.5 Ts) is the PGA).\"\"\"
+    \"\"\"The regressions' fragilities at ky = k [g] (rigid block: the Bray models' Sa is the PGA).\"\"\"
     return {"Jibson 2007": hz.EmpiricalFragility(em.jibson_2007, "pga_g", {"ky_g": k}),
             "Saygili & Rathje 2008": hz.EmpiricalFragility(em.saygili_rathje_2008_pga, "pga_g", {"ky_g": k}),
             "Rathje & Saygili 2009": hz.EmpiricalFragility(em.rathje_saygili_2009_pga_m, "pga_g", {"ky_g": k},
                                                            magnitude=magnitude),
             "Bray & Travasarou 2007": hz.EmpiricalFragility(em.bray_travasarou_2007, "sa_g",
-                                                            {"ky_g": k, "ts_s": 0.0}, magnitude=magnitude)}"""),
+                                                            {"ky_g": k, "ts_s": 0.0}, magnitude=magnitude),
+            "Bray & Macedo 2019": hz.EmpiricalFragility(em.bray_macedo_2019, "sa_g", {"ky_g": k, "ts_s": 0.0},
+                                                        magnitude=magnitude)}"""),
     ("md", """## Fragility: P(D > 5 cm | PGA)
 
 Solid: the time histories' fit with its 90 % bootstrap band; dashed: the regressions at
@@ -984,14 +986,15 @@ for k in ky:
                    "Saygili & Rathje 2008": em.saygili_rathje_2008_pga(**fixed).median_m,
                    "Rathje & Saygili 2009": em.rathje_saygili_2009_pga_m(**fixed, magnitude=magnitude).median_m,
                    "Bray & Travasarou 2007": em.bray_travasarou_2007(ky_g=k, ts_s=0.0, sa_g=a,
-                                                                     magnitude=magnitude).median_m}
+                                                                     magnitude=magnitude).median_m,
+                   "Bray & Macedo 2019": em.bray_macedo_2019(ky_g=k, ts_s=0.0, sa_g=a, magnitude=magnitude).median_m}
         if median > 0:
             ratios[k, a] = {name: float(m) / median for name, m in medians.items()}
         rows.append({"ky [g]": k, "PGA [g]": a, "time histories [cm]": f"{100 * median:.2f}",
                      **{f"{name} [cm]": f"{100 * float(m):.2f}"
                         + (f" (×{float(m) / median:.2f})" if median > 0 else "") for name, m in medians.items()}})
 print("\\nmedian D [cm]: over the records, and the regressions' medians (× their ratio to the records'; "
-      "Bray & Travasarou: where D is not negligible)")
+      "the Bray models: where D is not negligible)")
 print(pd.DataFrame(rows).to_string(index=False))"""),
     ("md", """## Displacement hazard from a sample PGA hazard curve
 
@@ -1057,12 +1060,17 @@ print(pd.DataFrame(rows).to_string(index=False))"""),
 - **Bray & Travasarou (2007)** agrees best in hazard (5-11 % above at 1/2475 per year)
   although its median is 0.6-0.7 of the records' at 0.8 g: its larger σ and its
   probability of negligible displacement make up for it.
-- Near the threshold (PGA twice ky) every regression puts P(D > 5 cm) above the time
-  histories' (0.07-0.18 against 0.04 at ky = 0.10 g, PGA 0.2 g).
+- **Bray & Macedo (2019)** (ordinary motions, its rigid-mass form at Ts = 0) is low, with
+  Jibson's: its median is 0.34-0.37 of the records' at PGA 0.8 g (0.59-1.43 at 0.4 g), its
+  P(D > 5 cm) 0.22 against 0.49-0.64 at ky = 0.15 g, PGA 0.4 g, and its displacement at
+  1/2475 per year 0.24-0.60 of the time histories'.
+- Near the threshold (PGA twice ky) every regression but Bray & Macedo puts P(D > 5 cm)
+  above the time histories' (0.07-0.18 against 0.04 at ky = 0.10 g, PGA 0.2 g; Bray &
+  Macedo 0.02).
 
 Here each record slides in one polarity (the study's default, downslope in −x) on a rigid
-block (Bray & Travasarou's model at Ts = 0); the regressions were fitted to other record
-sets, unscaled, and Bray & Travasarou's to a flexible mass."""),
+block (the Bray models at Ts = 0); the regressions were fitted to other record sets,
+unscaled, and the Bray models to a flexible mass."""),
 ]
 
 NOTEBOOKS = {"01_seed000.ipynb": SEED_000, "02_sensitivities.ipynb": SENSITIVITIES,
