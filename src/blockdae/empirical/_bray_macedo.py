@@ -31,7 +31,8 @@ def bray_macedo_2019(ky_g, ts_s, sa_g, magnitude):
 
     Args:
         ky_g: yield coefficient [g]; ts_s: initial fundamental period Ts >= 0 of the
-        sliding mass [s] (0: a rigid block); sa_g: 5 %-damped spectral acceleration
+        sliding mass [s] (0: a rigid block, with the Ts < 0.1 s coefficients, as
+        OpenSRA has it after the authors' spreadsheet); sa_g: 5 %-damped spectral acceleration
         (RotD50) at 1.3 Ts [g] (PGA for Ts = 0); magnitude: moment magnitude M [-].
         All broadcast. No range warning: the paper's range is not transcribed here.
 
