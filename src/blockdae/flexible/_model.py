@@ -205,3 +205,8 @@ class FlexibleSlidingMass(AbstractHybridModel):
 
     def solution(self, *, t, y, mode, events, backend, dense, stats):
         return FlexibleSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
+
+    # ---- bd.study ------------------------------------------------------------------
+    #: what :func:`bd.study` sweeps: its keyword, the table's column, the unit (the
+    #: mass's ``study_batch``, which runs ``bd.flexible``'s rows, is in :mod:`._study`)
+    study_parameter = ("ky", "ky_g", "g")
