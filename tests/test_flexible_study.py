@@ -51,10 +51,25 @@ def test_rows_are_bd_flexible_at_the_same_record_ky_and_pga(table, by_flexible):
                  "episodes_inverse"):
         np.testing.assert_array_equal(table[name].to_numpy(), by_flexible[name].to_numpy(), err_msg=name)
     # the study scales each record to a peak of 1 g, then by the PGA; bd.flexible by pga g / peak
-    # at once: the motions differ by rounding, the displacements by its size
-    for name in ("normal_m", "inverse_m", "kmax_g", "kmax_sup_g"):
-        np.testing.assert_allclose(table[name], by_flexible[name], rtol=1e-12, atol=0, err_msg=name)
+    # at once: the motions differ by rounding, the displacements by its size (a slide of
+    # 0.2 µm by 5e-19 m on the full benchmark grid)
+    for name in ("normal_m", "inverse_m"):
+        np.testing.assert_allclose(table[name], by_flexible[name], rtol=1e-12, atol=1e-15, err_msg=name)
+    for name in ("kmax_g", "kmax_sup_g"):
+        np.testing.assert_allclose(table[name], by_flexible[name], rtol=1e-14, atol=0, err_msg=name)
     assert (table["normal_m"] > 0.01).any() and (table["inverse_m"] <= 0.01).any()  # slides and near-zeros
+
+
+def test_scale_grid_gives_bd_flexible_bit_for_bit(records):
+    """With scale= the study's motion is bd.flexible's target_pga motion (the record times
+    pga g / peak): the same rows to the last bit."""
+    kobe = records[SHORT.index("Kobe_1995_TAK-090")]
+    factors = bd.pga_factor(kobe.peak_acceleration, PGA)
+    table = bd.study(kobe, ky=KY, scale=factors, block=MASS)
+    for (ky, pga), row in zip([(k, p) for k in KY for p in PGA], table.itertuples()):
+        ref = bd.flexible(kobe, ky=ky, height=COLUMN.height, vs=COLUMN.vs, target_pga=pga).rows[0]
+        assert [getattr(row, name) for name in FLEXIBLE] == [ref[name] for name in FLEXIBLE]
+        assert row.ky_g == ky and row.pga_g == pytest.approx(pga, rel=1e-15)
 
 
 def test_local_equals_dask(records, table):
@@ -120,3 +135,12 @@ def test_t_end_past_a_record_and_summary_are_refused(records, table):
     with pytest.raises(ValueError, match=r"summary takes a study of a block over mu.*no \['mu', "
                                          r"'max_abs_displacement_m'\] columns"):
         bd.studies.summary(table)
+
+
+def test_benchmark_quick(monkeypatch, capsys):
+    from test_benchmarks import _load
+
+    assert _load("flexible_study", monkeypatch).main(["--quick", "--no-dask"]) == 0
+    out = capsys.readouterr().out
+    assert "10 records × 2 ky × 3 PGA = 60 analyses" in out and "bar: the study no slower" in out
+    assert "smoke run, not a measurement" in out and "P(D > 5 cm | PGA 0.5 g)" in out
