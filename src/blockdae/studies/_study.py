@@ -1,7 +1,9 @@
-"""Studies of records × friction × intensity × location (seed 002), as one tidy table.
+"""Studies of records × friction (or yield acceleration) × intensity × location (seed
+002), as one tidy table.
 
 A study slides a one-way (by default) block on the ground and on floors of shear frames
-under every record, at every friction coefficient μ and every intensity. The work is
+under every record, at every friction coefficient μ and every intensity; another model
+sweeps the parameter it declares (``study_parameter``: the flexible mass's ky [g]). The work is
 split into tasks of whole records: a task computes the ground and floor motions of its
 records once (one frame response per record and frame), normalises each motion to a
 peak of 1 g (``pga``) and runs every (motion, μ, intensity) in one call of the compiled
@@ -147,7 +149,8 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction="
     model that sweeps ky or ``ky`` to one that sweeps μ, ``no_worker_timeout`` not
     a positive finite number [s] or None, a result table larger than the free memory,
     a checkpoint of another study. A task that raises on an executor lets the others
-    finish (and be saved) before its error is raised.
+    finish (and be saved) before its error is raised (the flexible mass's tasks refuse a
+    motion that is not a :class:`bd.Record` or ends before ``t_end``).
     Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu, direction=direction),
     motion.scaled(scale))`` of the location's motion to rounding.
     """
@@ -313,9 +316,9 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
     if rows * ROW_BYTES > free:
         raise ValueError(f"the result table would have {rows:,} rows (~{rows * ROW_BYTES / 2**30:.1f} GiB), more "
                          f"than the free memory ({free / 2**30:.1f} GiB): split the study or shrink the grid")
-    grid = _Grid(parameter=parameter, column=column, values=values, factors=factors, by=by, where=where, direction=direction, refine=refine,
-                 sd_period=float(sd_period), damping=float(damping), t_end=t_end, g=float(block.g), block=block,
-                 rtol=rtol)
+    grid = _Grid(parameter=parameter, column=column, values=values, factors=factors, by=by, where=where,
+                 direction=direction, refine=refine, sd_period=float(sd_period), damping=float(damping), t_end=t_end,
+                 g=float(block.g), block=block, rtol=rtol)
     return records, grid
 
 
