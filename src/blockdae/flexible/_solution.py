@@ -14,7 +14,7 @@ class FlexibleEvent(AbstractEvent):
 
     Attributes:
         t: time [s]; mode_before, mode_after: the modes on either side.
-        kind: "onset" or "stop".
+        kind: "onset", "stop" or "breakpoint" (s crossed a breakpoint of a ky table).
         u: modal displacement (top relative to base) [m]; u_rate: u' [m/s].
         s: sliding displacement, downslope positive [m]; w: sliding velocity [m/s] (0 at both).
     """
@@ -67,7 +67,7 @@ class FlexibleSolution(DriverSolution):
         for event in self.events:
             if event.kind == "onset":
                 start = event
-            elif start is not None:
+            elif event.kind == "stop" and start is not None:
                 found.append(Episode(start.t, event.t, event.s - start.s))
                 start = None
         if start is not None:
