@@ -41,11 +41,11 @@ class KyTable:
         if steps.size:
             i = int(steps[0])
             raise ValueError(f"KyTable: displacement_m must be strictly increasing; "
-                             f"displacement_m[{i}] = {d[i]!r} m, displacement_m[{i + 1}] = {d[i + 1]!r} m")
+                             f"displacement_m[{i}] = {float(d[i])!r} m, displacement_m[{i + 1}] = {float(d[i + 1])!r} m")
         negative = np.flatnonzero(ky < 0)
         if negative.size:
             i = int(negative[0])
-            raise ValueError(f"KyTable: ky_g[{i}] = {ky[i]!r} g; a yield coefficient must be >= 0 [g]")
+            raise ValueError(f"KyTable: ky_g[{i}] = {float(ky[i])!r} g; a yield coefficient must be >= 0 [g]")
         object.__setattr__(self, "displacement_m", tuple(float(x) for x in d))
         object.__setattr__(self, "ky_g", tuple(float(x) for x in ky))
 
@@ -89,7 +89,7 @@ def _finite_vector(values, name):
         raise ValueError(f"KyTable: {name} must be one-dimensional, got shape {array.shape}")
     bad = np.flatnonzero(~np.isfinite(array))
     if bad.size:
-        raise ValueError(f"KyTable: {name}[{int(bad[0])}] = {array[bad[0]]!r} is not a finite number")
+        raise ValueError(f"KyTable: {name}[{int(bad[0])}] = {float(array[bad[0]])!r} is not a finite number")
     return array
 
 

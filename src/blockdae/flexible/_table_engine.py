@@ -19,6 +19,7 @@ crossing is refined by bisection to adjacent floats. The next breakpoint minus s
 monotonically in SLIP (w >= 0): its crossing is bracketed by its values.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -269,3 +270,25 @@ def solve_table_exact(model, excitation, horizon, name):
         raise ValueError("the column oscillates on after the record: give t_end [s]")
     return drive(model, excitation, horizon, TableIntegrator, name, MAX_EVENTS_AT_ONE_INSTANT, EVENT_RESOLUTION,
                  (0.0, 0.0))
+
+
+def table_rows(analyses) -> list[dict]:
+    """The rows of :func:`~._analysis.flexible` analyses whose ky is a table: the
+    no-sliding response (kmax, the equivalent-linear iteration) as for a constant ky,
+    then each polarity's slide by :func:`solve_table_exact` on the record with its
+    virtual zero sample."""
+    from ..backends import Horizon
+    from ._analysis import exact_rows, with_zero_sample
+
+    rows = exact_rows([dataclasses.replace(a, model=a.model.replace(ky=a.model.ky_at(0.0)), polarities=())
+                       for a in analyses])
+    for analysis, row in zip(analyses, rows):
+        model = analysis.model.with_parameters({"omega": math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height),
+                                                "damping": row["damping_final"]})
+        record = with_zero_sample(analysis.record)
+        for polarity in analysis.polarities:
+            motion = record if polarity == "normal" else record.scaled(-1.0)
+            sol = solve_table_exact(model, motion, Horizon(analysis.t_end + analysis.record.dt), "exact")
+            row[f"{polarity}_m"] = 0.0 + sol.sliding_displacement
+            row[f"episodes_{polarity}"] = sum(event.kind == "onset" for event in sol.events)
+    return rows
