@@ -3,6 +3,7 @@ the exact backend against an independent DOP853 integration of section 8 with ky
 by np.interp (restarted at every sample, onset, stop and breakpoint), against the
 constant ky, CVODE, IDA, the JAX twin and pySLAMMER with the same table; bad tables."""
 
+import json
 import math
 
 import numpy as np
@@ -225,3 +226,20 @@ def test_bad_table_uses_are_refused_before_any_work():
         bd.flexible(record, ky=SOFTENING, height=10.0, vs=250.0, integration="slammer")
     with pytest.raises(ValueError, match="strictly increasing"):
         KyTable.from_pyslammer(([0.3, 0.2], [0.1, 0.1]))
+
+
+def test_cli_takes_a_ky_table(capsys, tmp_path):
+    """``blockdae flexible --ky-table D:ky ...`` prints bd.flexible's row for that table;
+    a row not increasing in D is a usage error naming it."""
+    from blockdae.cli import main
+
+    record = _record(4.0)
+    path = tmp_path / "record.csv"
+    np.savetxt(path, np.c_[record.sample_times, record.acceleration_samples / G], delimiter=",")
+    args = ["flexible", str(path), "--units", "g", "--height", "10", "--vs", "250", "--method", "decoupled"]
+    assert main(args + ["--ky-table", "0.005:0.1", "0.01:0.08", "0.02:0.05", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)["rows"]
+    expected = bd.flexible(bd.read_record(path, units="g"), ky=SOFTENING, height=10.0, vs=250.0, method="decoupled")
+    assert rows[0]["normal_m"] == pytest.approx(expected["normal_m"][0], rel=1e-12)
+    assert main(args + ["--ky-table", "0.01:0.1", "0.005:0.08"]) != 0
+    assert "displacement_m must be strictly increasing" in capsys.readouterr().err

@@ -91,8 +91,8 @@ class FlexibleSolution(DriverSolution):
 
     def event_table(self, events=None) -> str:
         """``events`` (default: all of them) as an aligned text table with units."""
-        lines = [f"{'t [s]':>12}  {'kind':<5}  {'u [m]':>13}  {'u_rate [m/s]':>13}  {'s [m]':>13}"]
-        lines += [f"{e.t:12.6f}  {e.kind:<5}  {e.u:13.6e}  {e.u_rate:13.6e}  {e.s:13.6e}"
+        lines = [f"{'t [s]':>12}  {'kind':<10}  {'u [m]':>13}  {'u_rate [m/s]':>13}  {'s [m]':>13}"]
+        lines += [f"{e.t:12.6f}  {e.kind:<10}  {e.u:13.6e}  {e.u_rate:13.6e}  {e.s:13.6e}"
                   for e in (self.events if events is None else events)]
         return "\n".join(lines)
 
