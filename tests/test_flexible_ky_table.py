@@ -86,7 +86,7 @@ def _record(duration):
 
 
 @pytest.mark.parametrize("method, table", [("coupled", SOFTENING), ("decoupled", SOFTENING),
-                                           ("coupled", HARDENING)])
+                                           pytest.param("coupled", HARDENING, marks=pytest.mark.slow)])
 def test_exact_matches_dop853_with_a_ky_table(method, table):
     """Reference: the DOP853 integration above, Northridge PAC-175 (dt 0.02 s), 6 s, a
     10 m column: the same onsets, stops and breakpoints within 1e-10 s, s(t_end) within
@@ -125,7 +125,7 @@ def test_a_one_row_table_is_the_constant_ky():
     assert_same_events(flat, a, 1e-12)
 
 
-@pytest.mark.parametrize("method", ["coupled", "decoupled"])
+@pytest.mark.parametrize("method", ["coupled", pytest.param("decoupled", marks=pytest.mark.slow)])
 def test_cvode_and_ida_agree_with_exact_on_a_ky_table(method):
     """The same model on the generic driver (rtol 1e-10): every onset, stop and
     breakpoint within 1e-9 s, s(t_end) within 1e-8 relative (measured: 8e-11 s, 1e-10)."""

@@ -125,6 +125,7 @@ def _lower(coefficients, length):
 
 
 def _upper(coefficients, length):
+    """An upper bound of sum c_k x^k over x in [0, length]."""
     bound = coefficients[-1]
     for c in coefficients[-2::-1]:
         bound = c + length * max(0.0, bound)
@@ -146,21 +147,22 @@ class _Search:
     def value(self, tau, order=0):
         return float(self.powers[order] @ self.state(tau))
 
-    def bisect(self, lo, hi, order=0):
-        """Adjacent floats (of t0 + tau) around the sign change of g^(order) on [lo,
-        hi], > 0 at lo: the first tau where it is <= 0."""
-        positive = lambda tau: self.value(tau, order) > 0
-        sign_lo = positive(lo)
+    def bisect(self, lo, hi):
+        """The first tau in (lo, hi] where g <= 0, to adjacent floats of t0 + tau, for g
+        > 0 at lo, <= 0 at hi and one crossing between."""
         while True:
             mid = lo + 0.5 * (hi - lo)
             if not (self.t0 + lo < self.t0 + mid < self.t0 + hi):
                 return hi
-            if positive(mid) == sign_lo:
+            if self.value(mid) > 0:
                 lo = mid
             else:
                 hi = mid
 
     def search(self, lo, z_lo, hi):
+        """The first crossing in (lo, hi] from the state ``z_lo`` at lo (None: none): an
+        interval where g' is shown >= 0, <= 0, or g'' of one sign is decided at once,
+        others are halved, the earlier half first."""
         self.budget -= 1
         if self.budget < 0:
             raise SolverError(f"the ky-table engine's root search did not settle by t = {self.t0 + lo:.12g} s "
