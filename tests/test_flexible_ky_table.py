@@ -36,6 +36,9 @@ def reference(samples, dt, omega, xi, table, coupled, t_end):
         a0, rate = samples[i], (samples[i + 1] - samples[i]) / dt
         a = lambda t, a0=a0, rate=rate, i=i: a0 + rate * (t - i * dt)
         end = (i + 1) * dt
+        if t == 0.0 and friction(0.0) - D1 * a(0.0) < 0:  # an excess at rest slides at once
+            mode = "slip"
+            events.append((0.0, "onset"))
         while t < end:
             ahead = d[d > y[2]]
             rhs, guards = _section8(mode, a, k, c, friction, coupled, ahead[0] if ahead.size else math.inf)
@@ -104,6 +107,37 @@ def test_exact_matches_dop853_with_a_ky_table(method, table):
     crossed = [e.s for e in sol.events if e.kind == "breakpoint"]
     np.testing.assert_allclose(crossed, [d for d in table.displacement_m if 0 < d <= sol.displacement][:len(crossed)],
                                rtol=1e-12)
+
+
+@pytest.mark.slow
+def test_a_nearly_flat_table_is_exact_too():
+    """A slope of -1e-6 g/m (the matrix exponential has no cancellation where the slow
+    modes merge): DOP853's events within 1e-10 s and s(t_end) within 1e-9 relative."""
+    record = _record(6.0)
+    table = KyTable([0.0, 1.0], [0.1, 0.1 - 1e-6])
+    model = FlexibleSlidingMass(ShearColumn(10.0, 250.0), ky=table, method="coupled")
+    sol = bd.simulate(model, record, t_end=6.0)
+    events, y = reference(record.acceleration_samples, record.dt, model.omega, model.damping, table, True, 6.0)
+    assert [e.kind for e in sol.events] == [kind for _, kind in events] and len(events) >= 8
+    np.testing.assert_allclose(sol.t_events, [t for t, _ in events], rtol=0, atol=1e-10)
+    assert sol.displacement == pytest.approx(y[2], rel=1e-9)
+
+
+@pytest.mark.parametrize("method", ["coupled", "decoupled"])
+def test_onset_at_t0_and_a_residual_ky_of_zero(method):
+    """HEA(0) = d1 a(0) = 0.095 g at rest exceeds ky(0) = 0.08 g: sliding from t = 0; the table falls to
+    ky = 0 (a residual strength of zero) over 5 cm: DOP853 (above) within 1e-10 s and
+    1e-9 relative."""
+    samples = 0.5 * G * np.cos(np.linspace(0.0, 3 * np.pi, 151))
+    record = bd.Record(samples, 0.01, units="m/s2")
+    table = KyTable([0.0, 0.05], [0.08, 0.0])
+    model = FlexibleSlidingMass(ShearColumn(8.0, 200.0), ky=table, method=method)
+    sol = bd.simulate(model, record, t_end=1.5)
+    events, y = reference(samples, 0.01, model.omega, model.damping, table, model.coupled, 1.5)
+    assert [e.kind for e in sol.events] == [kind for _, kind in events]
+    assert sol.events[0].t == 0.0 and sol.events[0].kind == "onset" and sol.events[1].kind == "breakpoint"
+    np.testing.assert_allclose(sol.t_events, [t for t, _ in events], rtol=0, atol=1e-10)
+    assert sol.displacement == pytest.approx(y[2], rel=1e-9)
 
 
 def test_a_one_row_table_is_the_constant_ky():
