@@ -125,9 +125,9 @@ def test_a_nearly_flat_table_is_exact_too():
 
 @pytest.mark.parametrize("method", ["coupled", "decoupled"])
 def test_onset_at_t0_and_a_residual_ky_of_zero(method):
-    """HEA(0) = d1 a(0) = 0.095 g at rest exceeds ky(0) = 0.08 g: sliding from t = 0; the table falls to
-    ky = 0 (a residual strength of zero) over 5 cm: DOP853 (above) within 1e-10 s and
-    1e-9 relative."""
+    """HEA(0) = d1 a(0) = 0.095 g at rest exceeds ky(0) = 0.08 g: sliding from t = 0; the
+    table falls to ky = 0 (a residual strength of zero) over 5 cm: DOP853 (above) within
+    1e-10 s and 1e-9 relative."""
     samples = 0.5 * G * np.cos(np.linspace(0.0, 3 * np.pi, 151))
     record = bd.Record(samples, 0.01, units="m/s2")
     table = KyTable([0.0, 0.05], [0.08, 0.0])

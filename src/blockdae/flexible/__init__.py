@@ -11,16 +11,16 @@ import sys
 import types
 
 from ._analysis import Analysis, FlexibleResult, analyse_exact, flexible
-from ._ky_table import KyTable
 from ._column import EquivalentLinear, ShearColumn, equivalent_linear, impedance_damping
+from ._ky_table import KyTable
 from ._model import FlexibleSlidingMass
 from ._modes import FlexibleMode
 from ._sensitivities import displacement_sensitivities
 from ._solution import Episode, FlexibleEvent, FlexibleSolution
 
 __all__ = ["Analysis", "EquivalentLinear", "Episode", "FlexibleEvent", "FlexibleMode", "FlexibleResult",
-           "FlexibleSlidingMass", "FlexibleSolution", "KyTable", "ShearColumn", "analyse_exact", "displacement_sensitivities",
-           "equivalent_linear", "flexible", "impedance_damping"]
+           "FlexibleSlidingMass", "FlexibleSolution", "KyTable", "ShearColumn", "analyse_exact",
+           "displacement_sensitivities", "equivalent_linear", "flexible", "impedance_damping"]
 
 
 class _CallablePackage(types.ModuleType):

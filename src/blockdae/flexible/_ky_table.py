@@ -40,8 +40,8 @@ class KyTable:
         steps = np.flatnonzero(np.diff(d) <= 0)
         if steps.size:
             i = int(steps[0])
-            raise ValueError(f"KyTable: displacement_m must be strictly increasing; "
-                             f"displacement_m[{i}] = {float(d[i])!r} m, displacement_m[{i + 1}] = {float(d[i + 1])!r} m")
+            raise ValueError(f"KyTable: displacement_m must be strictly increasing; displacement_m[{i}] = "
+                             f"{float(d[i])!r} m, displacement_m[{i + 1}] = {float(d[i + 1])!r} m")
         negative = np.flatnonzero(ky < 0)
         if negative.size:
             i = int(negative[0])

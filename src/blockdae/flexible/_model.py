@@ -11,9 +11,10 @@ the sliding displacement s and velocity w = s' of the base (one-way: downslope o
     SLIP, decoupled:  u'' as in STICK;                               s' = w,  w' = HEA - ky g
     SLIP, coupled:    d1 u'' = -(4/pi) ky g - 2 xi omega u' - omega² u;  s' = w,  w' = a - ky g + (2/pi) u''
 
-with d1 = 1 - 8/pi² (ky may be a table of s: :class:`KyTable`). STICK is left when ky g - HEA falls through 0 (onset), SLIP when w
-falls through 0 (stop, w := 0). Every mode is linear in (u, u', s, w) with a forcing
-linear in t on each piece of a record: the exact backend (:mod:`._exact`) steps closed
+with d1 = 1 - 8/pi² (ky may be a table of s: :class:`KyTable`). STICK is left when
+ky g - HEA falls through 0 (onset), SLIP when w falls through 0 (stop, w := 0). Every
+mode is linear in (u, u', s, w) with a forcing linear in t on each piece of a record:
+the exact backend (:mod:`._exact`; :mod:`._table_engine` for a ky table) steps closed
 forms and locates every event to adjacent floats.
 """
 

@@ -285,8 +285,8 @@ def table_rows(analyses) -> list[dict]:
     rows = exact_rows([dataclasses.replace(a, model=a.model.replace(ky=a.model.ky_at(0.0)), polarities=())
                        for a in analyses])
     for analysis, row in zip(analyses, rows):
-        model = analysis.model.with_parameters({"omega": math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height),
-                                                "damping": row["damping_final"]})
+        omega = math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height)
+        model = analysis.model.with_parameters({"omega": omega, "damping": row["damping_final"]})
         record = with_zero_sample(analysis.record)
         for polarity in analysis.polarities:
             motion = record if polarity == "normal" else record.scaled(-1.0)
