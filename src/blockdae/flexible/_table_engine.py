@@ -161,8 +161,8 @@ class _Search:
 
     def search(self, lo, z_lo, hi):
         """The first crossing in (lo, hi] from the state ``z_lo`` at lo (None: none): an
-        interval where g' is shown >= 0, <= 0, or g'' of one sign is decided at once,
-        others are halved, the earlier half first."""
+        interval where g is shown > 0, g' >= 0 or <= 0, or g'' of one sign is decided at
+        once, others are halved, the earlier half first."""
         self.budget -= 1
         if self.budget < 0:
             raise SolverError(f"the ky-table engine's root search did not settle by t = {self.t0 + lo:.12g} s "
@@ -173,7 +173,11 @@ class _Search:
         g_lo, g_hi = float(d[0]), float(self.powers[0] @ z_hi)
         if self.t0 + lo + length <= self.t0 + lo or length <= 4 * _EPS * max(abs(self.t0) + abs(hi), 1.0):
             return hi if g_lo > 0 >= g_hi else None
+        if g_lo == g_hi == 0 and not np.any(d[1:]):
+            return None  # a guard that stays at zero (HEA = ky g = 0 at rest): no fall through it
         b4 = self.system.fourth_bound(self.row4, z_lo, length)
+        if _lower([d[0], d[1], d[2] / 2, d[3] / 6, -b4 / 24], length) > 0:
+            return None  # positive all along
         if _lower([d[1], d[2], d[3] / 2, -b4 / 6], length) >= 0:
             return None  # rising all along: no fall through zero
         if _upper([d[1], d[2], d[3] / 2, b4 / 6], length) <= 0:  # falling all along
