@@ -268,7 +268,8 @@ def test_bad_tables_are_refused_naming_the_field(args, message):
 
 def test_bad_table_uses_are_refused_before_any_work():
     """pySLAMMER's pair with a bad row, and a table with integration='slammer' (SLAMMER
-    1.1 has none), fail in bd.flexible before any analysis runs."""
+    1.1 has none), fail in bd.flexible before any analysis runs; sensitivities refuse a
+    table (not done)."""
     record = _record(1.0)
     with pytest.raises(ValueError, match=r"ky_g\[0\] = -0.1 g"):
         bd.flexible(record, ky=([0.1, 0.2], [-0.1, 0.1]), height=10.0, vs=250.0)
@@ -276,6 +277,11 @@ def test_bad_table_uses_are_refused_before_any_work():
         bd.flexible(record, ky=SOFTENING, height=10.0, vs=250.0, integration="slammer")
     with pytest.raises(ValueError, match="strictly increasing"):
         KyTable.from_pyslammer(([0.3, 0.2], [0.1, 0.1]))
+    from blockdae.flexible import displacement_sensitivities
+
+    model = FlexibleSlidingMass(ShearColumn(10.0, 250.0), ky=SOFTENING)
+    with pytest.raises(ValueError, match="takes a constant ky"):
+        displacement_sensitivities(model, record, 1.0)
 
 
 def test_cli_takes_a_ky_table(capsys, tmp_path):
