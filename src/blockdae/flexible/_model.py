@@ -32,11 +32,10 @@ from ._ky_table import KyTable, next_breakpoint, piecewise_ky
 from ._modes import EVENT_KINDS, FlexibleMode
 from ._solution import FlexibleEvent, FlexibleSolution
 
+#: the slip equations: "coupled" (Rathje & Bray 1999) or "decoupled" (Bray & Rathje 1998)
+METHODS = ("coupled", "decoupled")
 #: a ky table's parameters: breakpoint_j [m], ky_intercept_j [g], ky_slope_j [g/m]
 _TABLE_PARAMETERS = ("breakpoint", "ky_intercept", "ky_slope")
-#: the slip equations: "coupled" (Rathje & Bray 1999) or "decoupled" (Bray & Rathje 1998)
-
-METHODS = ("coupled", "decoupled")
 _U, _V, _S, _W, _PASSED = range(5)
 #: the next breakpoint once all are passed [m]: a guard that is never reached
 _BEYOND = 1e30
