@@ -10,7 +10,7 @@ to the sliding, hardening ones (k1 > 0) a slow oscillation; the matrix exponenti
 needs no case for either, nor for k1 = 0 (a Jordan block).
 
 The generic driver (:mod:`blockdae.core._driver`) runs the modes, the events and the
-knots; this integrator steps it in closed form and finds the first root of each guard
+knots (at the record's samples and the events only); this integrator steps it in closed form and finds the first root of each guard
 (a linear form c z: the onset guard ky(s) g - HEA in STICK, w and the next breakpoint
 minus s in SLIP) on a step: an interval is dropped where bounds of the guard's
 derivatives (Taylor at its start, the fourth derivative bounded by the matrix norm in
@@ -25,6 +25,7 @@ import math
 import numpy as np
 
 from ..core._driver import AbstractIntegrator, SolverError, drive
+from ..engines._linear_solution import linear_pieces
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._modes import FlexibleMode
 
@@ -212,22 +213,30 @@ class _Search:
                 hi = mid
 
 
+class _Systems:
+    """The :class:`_System` of each (mode, breakpoints passed) of ``model``, built once."""
+
+    def __init__(self, model):
+        self.model = model
+        self.breakpoints, self.intercepts, self.slopes = (np.asarray(x, dtype=float) for x in model.table)
+        self.built = {}
+
+    def __call__(self, mode, passed):
+        key = (int(mode), passed)
+        if key not in self.built:
+            breakpoint = self.breakpoints[passed] if passed < len(self.breakpoints) else math.inf
+            self.built[key] = _System(self.model, mode, self.intercepts[passed], self.slopes[passed], breakpoint)
+        return self.built[key]
+
+
 class TableIntegrator(AbstractIntegrator):
     """Steps the driver's runs in closed form (see the module's docstring): a step
     returns at ``t_out`` or at the first guard crossing located to adjacent floats."""
 
     def __init__(self, model, piece):
         self.model, self.piece = model, piece
-        self.breakpoints, self.intercepts, self.slopes = (np.asarray(x, dtype=float) for x in model.table)
-        self.systems = {}
+        self.system = _Systems(model)
         self.counts = {"n_restarts": 0, "n_calls": 0}
-
-    def system(self, mode, passed):
-        key = (int(mode), passed)
-        if key not in self.systems:
-            breakpoint = self.breakpoints[passed] if passed < len(self.breakpoints) else math.inf
-            self.systems[key] = _System(self.model, mode, self.intercepts[passed], self.slopes[passed], breakpoint)
-        return self.systems[key]
 
     def restart(self, mode, t, y):
         self.mode, self.t, self.y = mode, float(t), np.array(y, dtype=float)
@@ -271,11 +280,43 @@ class TableIntegrator(AbstractIntegrator):
 
 def solve_table_exact(model, excitation, horizon, name):
     """``model`` (ky a table) under ``excitation`` (a record) to ``horizon``: its solution,
-    every onset, stop and breakpoint located to adjacent floats."""
+    every onset, stop and breakpoint located to adjacent floats. The driver's knots are
+    the pieces' ends and the events (steps in closed form need no others); the dense
+    output is the closed form from the last knot (:class:`ExactDense`)."""
     if horizon.until_rest:
         raise ValueError("the column oscillates on after the record: give t_end [s]")
-    return drive(model, excitation, horizon, TableIntegrator, name, MAX_EVENTS_AT_ONE_INSTANT, EVENT_RESOLUTION,
-                 (0.0, 0.0))
+    found = linear_pieces(excitation, horizon.t_end)
+    if found is None:
+        raise ValueError(f"the ky-table engine takes records (linear pieces); {type(excitation).__name__} has sine "
+                         "pieces: use backend 'cvode'")
+    coarse = model.with_parameters({})
+    object.__setattr__(coarse, "output_step", lambda: math.inf)  # knots at pieces and events only
+    solution = drive(coarse, excitation, horizon, TableIntegrator, name, MAX_EVENTS_AT_ONE_INSTANT,
+                     EVENT_RESOLUTION, (0.0, 0.0))
+    return dataclasses.replace(solution, dense=ExactDense(_Systems(model), solution, found[0]))
+
+
+class ExactDense:
+    """The states at any times [s]: from the last knot at or before each, z(t) = expm(M
+    (t - t_k)) z_k in the knot's mode and piece of ky, a(t) on the record's piece there."""
+
+    def __init__(self, systems, solution, pieces):
+        self.systems, self.t, self.y, self.mode = systems, solution.t, solution.state, solution.mode
+        self.pieces = pieces
+
+    def __call__(self, times):
+        times = np.asarray(times, dtype=float)
+        out = np.empty(times.shape + (self.y.shape[1],))
+        knots = np.clip(np.searchsorted(self.t, times.ravel(), side="right") - 1, 0, len(self.t) - 1)
+        flat = out.reshape(-1, self.y.shape[1])
+        for n, (t, k) in enumerate(zip(times.ravel(), knots)):
+            j = max(int(np.searchsorted(self.pieces.t0, self.t[k], side="right")) - 1, 0)
+            rate = self.pieces.p1[j]
+            a = self.pieces.p0[j] + rate * (self.t[k] - self.pieces.t0[j])
+            system = self.systems(self.mode[k], int(round(self.y[k, 4])))
+            z = system.exponential(t - self.t[k]) @ np.array([*self.y[k, :4], a, rate, 1.0])
+            flat[n] = [*z[:4], self.y[k, 4]]
+        return tuple(out[..., i] for i in range(out.shape[-1]))
 
 
 def table_rows(analyses) -> list[dict]:
