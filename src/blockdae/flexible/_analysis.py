@@ -61,7 +61,8 @@ class FlexibleResult:
     """Results of :func:`flexible`: one row per (motion, parameter set).
 
     Attributes:
-        rows: a list of dicts with the keys :data:`COLUMNS`: record, ky_g [g], height_m
+        rows: a list of dicts with the keys :data:`COLUMNS`: record, ky_g [g] (of a
+            :class:`KyTable`: ky at zero displacement), height_m
             [m], vs_m_s [m/s] (as given), normal_m and inverse_m (downslope displacement
             at the end [m], nan where that polarity was not run), kmax_g (max |HEA| / g at
             the samples of the no-sliding response, as SLAMMER reports it) and kmax_sup_g
