@@ -20,6 +20,8 @@ from ..excitation import Record, pga_factor
 from . import _engine
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._exact import check, engine_settings
+from ._ky_table import KyTable
+
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
 
@@ -59,7 +61,8 @@ class FlexibleResult:
     """Results of :func:`flexible`: one row per (motion, parameter set).
 
     Attributes:
-        rows: a list of dicts with the keys :data:`COLUMNS`: record, ky_g [g], height_m
+        rows: a list of dicts with the keys :data:`COLUMNS`: record, ky_g [g] (of a
+            :class:`KyTable`: ky at zero displacement), height_m
             [m], vs_m_s [m/s] (as given), normal_m and inverse_m (downslope displacement
             at the end [m], nan where that polarity was not run), kmax_g (max |HEA| / g at
             the samples of the no-sliding response, as SLAMMER reports it) and kmax_sup_g
@@ -98,7 +101,9 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     Args:
         motion: a :class:`Record` of the ground acceleration along the slope, or a
             sequence or dict (name -> record) of them (a batch).
-        ky: yield acceleration [g], >= 0.
+        ky: yield acceleration [g], >= 0; or a :class:`KyTable` (ky [g] against the
+            sliding displacement [m], linear between rows, constant beyond), also as
+            pySLAMMER's pair ``(disp_values [m], ky_values [g])`` of two sequences.
         height: height H of the sliding mass [m], > 0.
         vs: its shear-wave velocity [m/s], > 0.
         vr: shear-wave velocity below the slip surface [m/s]; None: vs.
@@ -130,6 +135,8 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga,
                     polarity, integration, g, t_end)
     rows_of, _ = INTEGRATIONS[integration]
+    if any(analysis.model.table is not None for analysis in analyses):
+        from ._table_engine import table_rows as rows_of
     return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration)
 
 
@@ -147,6 +154,14 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
     if reference_strain is not None and not (isinstance(reference_strain, (int, float)) and
                                              not isinstance(reference_strain, bool) and reference_strain > 0):
         raise ValueError(f"reference_strain must be a fraction > 0, got {reference_strain!r}")
+    table = as_ky_table(ky)
+    if table is not None and not table.constant:
+        if integration == "slammer":
+            raise ValueError(f"ky={table}: integration='slammer' takes a constant ky (SLAMMER 1.1 has no ky "
+                             "table); use integration='exact'")
+        ky = 0.0  # a placeholder in the broadcast: every model gets the table
+    elif table is not None:
+        ky, table = table.ky_g[0], None
     names, records = _motions(motion)
     vr_given = np.nan if vr is None else vr
     try:
@@ -157,7 +172,7 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
     if sets[0].ndim > 1:
         raise ValueError(f"ky, height, vs, vr and damping must be numbers or 1-D arrays, got shape {sets[0].shape}")
     models = [FlexibleSlidingMass(ShearColumn(float(h), float(v), None if np.isnan(r) else float(r), float(d)),
-                                  ky=float(k), method=method, g=g)
+                                  ky=float(k) if table is None else table, method=method, g=g)
               for k, h, v, r, d in zip(*(np.atleast_1d(x) for x in sets))]
     polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
     analyses = []
@@ -174,6 +189,16 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
         analyses += [Analysis(record, name, model, polarities, end, reference_strain if equivalent_linear else None)
                      for model in models]
     return analyses
+
+
+def as_ky_table(ky):
+    """``ky`` as a :class:`KyTable` if it is one or pySLAMMER's pair of two sequences
+    (displacements [m], ky [g]); None for a number or an array of them (a batch)."""
+    if isinstance(ky, KyTable):
+        return ky
+    if isinstance(ky, tuple) and len(ky) == 2 and all(np.ndim(part) == 1 for part in ky):
+        return KyTable(*ky)
+    return None
 
 
 def _motions(motion):
