@@ -11,9 +11,11 @@ runs of a batch go to the compiled engine in one call, parallel over cores.
 
 import dataclasses
 import functools
+import math
 
 import numpy as np
 
+from ..backends import Horizon
 from ..core._units import STANDARD_GRAVITY
 from ..engines._linear_solution import linear_pieces
 from ..excitation import Record, pga_factor
@@ -21,9 +23,9 @@ from . import _engine
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._exact import check, engine_settings
 from ._ky_table import KyTable
-
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
+from ._table_engine import solve_table_exact
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns
@@ -136,7 +138,7 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
                     polarity, integration, g, t_end)
     rows_of, _ = INTEGRATIONS[integration]
     if any(analysis.model.table is not None for analysis in analyses):
-        from ._table_engine import table_rows as rows_of
+        rows_of = table_rows
     return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration)
 
 
@@ -329,3 +331,22 @@ def slammer_rows(analyses: list[Analysis]) -> list[dict]:
 #: "exact": continuous time, events located, the exact peak; "slammer": SLAMMER 1.1's
 #: fixed-step scheme and its peak rounded to 0.001 g
 INTEGRATIONS = {"exact": (exact_rows, "exact"), "slammer": (slammer_rows, "slammer")}
+
+
+def table_rows(analyses) -> list[dict]:
+    """The rows of :func:`flexible` analyses whose ky is a table: the
+    no-sliding response (kmax, the equivalent-linear iteration) as for a constant ky,
+    then each polarity's slide by :func:`solve_table_exact` on the record with its
+    virtual zero sample."""
+    rows = exact_rows([dataclasses.replace(a, model=a.model.replace(ky=a.model.ky_at(0.0)), polarities=())
+                       for a in analyses])
+    for analysis, row in zip(analyses, rows):
+        omega = math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height)
+        model = analysis.model.with_parameters({"omega": omega, "damping": row["damping_final"]})
+        record = with_zero_sample(analysis.record)
+        for polarity in analysis.polarities:
+            motion = record if polarity == "normal" else record.scaled(-1.0)
+            sol = solve_table_exact(model, motion, Horizon(analysis.t_end + analysis.record.dt), "exact")
+            row[f"{polarity}_m"] = 0.0 + sol.sliding_displacement
+            row[f"episodes_{polarity}"] = sum(event.kind == "onset" for event in sol.events)
+    return rows

@@ -317,25 +317,3 @@ class ExactDense:
             z = system.exponential(t - self.t[k]) @ np.array([*self.y[k, :4], a, rate, 1.0])
             flat[n] = [*z[:4], self.y[k, 4]]
         return tuple(out[..., i] for i in range(out.shape[-1]))
-
-
-def table_rows(analyses) -> list[dict]:
-    """The rows of :func:`~._analysis.flexible` analyses whose ky is a table: the
-    no-sliding response (kmax, the equivalent-linear iteration) as for a constant ky,
-    then each polarity's slide by :func:`solve_table_exact` on the record with its
-    virtual zero sample."""
-    from ..backends import Horizon
-    from ._analysis import exact_rows, with_zero_sample
-
-    rows = exact_rows([dataclasses.replace(a, model=a.model.replace(ky=a.model.ky_at(0.0)), polarities=())
-                       for a in analyses])
-    for analysis, row in zip(analyses, rows):
-        omega = math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height)
-        model = analysis.model.with_parameters({"omega": omega, "damping": row["damping_final"]})
-        record = with_zero_sample(analysis.record)
-        for polarity in analysis.polarities:
-            motion = record if polarity == "normal" else record.scaled(-1.0)
-            sol = solve_table_exact(model, motion, Horizon(analysis.t_end + analysis.record.dt), "exact")
-            row[f"{polarity}_m"] = 0.0 + sol.sliding_displacement
-            row[f"episodes_{polarity}"] = sum(event.kind == "onset" for event in sol.events)
-    return rows
