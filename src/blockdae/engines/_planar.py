@@ -50,7 +50,7 @@ from ..core._model import KNOTS_PER_RADIAN
 from ..excitation import _pieces
 from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
 from ..planar._model import SLOW_SPEED
-from . import _dop853
+from . import _dop853, _rodas4
 from . import _xp_scalar as xp
 
 STICK, SLIP, FLIGHT = 0, 1, 2
@@ -430,74 +430,213 @@ def _root_between(fa, a, b):
             b = mid
 
 
-# ---- slip: DOP853 with stops located on its dense output ------------------------------
+# ---- slip: DOP853, RODAS where the direction's relaxation is stiff --------------------
+def _slip_derivatives(t, y, args, J, f_t):
+    """df/dy (8, 8) into ``J`` and df/dt (8,) into ``f_t`` of the slip flow
+    (:func:`_flow_into`; the kink of the direction's rate at s = SLOW_SPEED is taken
+    from the side of s)."""
+    pe, p = args
+    for i in range(N_STATE):
+        f_t[i] = 0.0
+        for j in range(N_STATE):
+            J[i, j] = 0.0
+    P = pe[2]
+    tau = min(t - pe[0], pe[1])
+    rx, ry = -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4])
+    drx = -accel_rate(P[0, 0], P[0, 1], P[0, 2], P[0, 3], P[0, 4], tau, xp)
+    dry = -accel_rate(P[1, 0], P[1, 1], P[1, 2], P[1, 3], P[1, 4], tau, xp)
+    dn = accel_rate(P[2, 0], P[2, 1], P[2, 2], P[2, 3], P[2, 4], tau, xp)
+    s, cx, cy = y[_S], y[_CX], y[_CY]
+    q = math.sqrt(cx**2 + cy**2)
+    q3 = q**3
+    ex, ey = cx / q, cy / q
+    x = cx * ry - cy * rx  # |c| times the rate across
+    fast = s > SLOW_SPEED
+    slow = s if fast else SLOW_SPEED
+    J[_UX, _S], J[_UX, _CX], J[_UX, _CY] = ex, s * cy * cy / q3, -s * cx * cy / q3
+    J[_UY, _S], J[_UY, _CX], J[_UY, _CY] = ey, -s * cx * cy / q3, s * cx * cx / q3
+    J[_S, _CX], J[_S, _CY] = -cy * x / q3, cx * x / q3
+    x_cx, x_cy = ry / q - x * cx / q3, -rx / q - x * cy / q3  # d(x / q)
+    J[_CX, _CX], J[_CX, _CY] = -cy * x_cx / slow, -(x / q + cy * x_cy) / slow
+    J[_CY, _CX], J[_CY, _CY] = (x / q + cx * x_cx) / slow, cx * x_cy / slow
+    if fast:
+        J[_CX, _S], J[_CY, _S] = cy * x / (q * s * s), -cx * x / (q * s * s)
+    J[_PATH, _S] = 1.0
+    x_t = cx * dry - cy * drx
+    f_t[_S] = ex * drx + ey * dry - p[1] * dn
+    f_t[_CX], f_t[_CY] = -cy * x_t / (q * slow), cx * x_t / (q * slow)
+
+
+def _error_scale(y, y_new, rtol, atol, out):
+    """Each component's error scale [m, m/s, -] into ``out``: atol + rtol max(|y|,
+    |y_new|) (SciPy's), save the direction c, whose error counts as the error of the
+    velocity v = s c / |c| it makes: both components get |c| (rtol + atol / s), s the
+    larger speed (the error is an angle, whatever the axes; at s = 0 it makes no
+    velocity: it relaxes at the model's capped rate and moves s to second order only)."""
+    for i in range(N_STATE):
+        out[i] = atol + rtol * max(abs(y[i]), abs(y_new[i]))
+    size = max(math.hypot(y[_CX], y[_CY]), math.hypot(y_new[_CX], y_new[_CY]))
+    speed = max(y[_S], y_new[_S])
+    out[_CX] = out[_CY] = size * (rtol + atol / speed) if speed > 0 else math.inf
+    return out
+
+
+def _slip_decompose(J, alpha, M):
+    """I alpha - J of the slip flow, for :func:`_slip_solve`: its only columns besides
+    the diagonal are s, c_x and c_y, so it is solved through the inverse of that 3 x 3
+    block (left in M[:3, :3])."""
+    a00, a01, a02 = alpha - J[_S, _S], -J[_S, _CX], -J[_S, _CY]  # the block, rows and columns (s, c_x, c_y)
+    a10, a11, a12 = -J[_CX, _S], alpha - J[_CX, _CX], -J[_CX, _CY]
+    a20, a21, a22 = -J[_CY, _S], -J[_CY, _CX], alpha - J[_CY, _CY]
+    M[0, 0], M[0, 1], M[0, 2] = a11 * a22 - a12 * a21, a02 * a21 - a01 * a22, a01 * a12 - a02 * a11
+    M[1, 0], M[1, 1], M[1, 2] = a12 * a20 - a10 * a22, a00 * a22 - a02 * a20, a02 * a10 - a00 * a12
+    M[2, 0], M[2, 1], M[2, 2] = a10 * a21 - a11 * a20, a01 * a20 - a00 * a21, a00 * a11 - a01 * a10
+    det = a00 * M[0, 0] + a01 * M[1, 0] + a02 * M[2, 0]
+    for i in range(3):
+        for j in range(3):
+            M[i, j] /= det
+
+
+def _slip_solve(J, alpha, M, x):
+    """x <- (I alpha - J)^-1 x (see :func:`_slip_decompose`)."""
+    b0, b1, b2 = x[_S], x[_CX], x[_CY]
+    for i in range(3):
+        x[_S + i] = M[i, 0] * b0 + M[i, 1] * b1 + M[i, 2] * b2
+    for i in range(N_STATE):
+        if i < _S or i > _CY:
+            x[i] = (x[i] + J[i, _S] * x[_S] + J[i, _CX] * x[_CX] + J[i, _CY] * x[_CY]) / alpha
+
+
+def _relaxation_rate(t, y, pe, p):
+    """|sigma| / max(s, SLOW_SPEED) [1/s]: the rate at which the slip's direction relaxes
+    towards the demand (the flow's stiff eigenvalue)."""
+    rx, ry = _a(pe, 0, t) - p[2] * p[4], _a(pe, 1, t) - p[3] * p[4]
+    return math.hypot(rx, ry) / max(y[_S], SLOW_SPEED)
+
+
 _step, _initial_step, _dense_coefficients = _dop853.for_flow(_slip_rhs)
-_dense_value, _dense_state = _dop853.dense_value, _dop853.dense_state
+_jacobian, _stiff_step, _stiff_dense_coefficients = _rodas4.for_flow(_slip_rhs, _slip_derivatives, _slip_decompose,
+                                                                         _slip_solve)
+#: DOP853 or RODAS for a step
+EXPLICIT, STIFF = 0, 1
+#: DOP853's longest step times the direction's relaxation rate [-]: its stability
+#: interval on the negative axis ends at -6.3 (|R| < 0.2 up to -5.5)
+STABLE_PRODUCT = 4.0
 
 
-def _slip_to(t, y, h, stop, pe, p, rtol, atol, B, cnt):
+def _dense_value(F, y, x, i, method):
+    """Component ``i`` of the step's dense output at x in [0, 1]."""
+    if method == STIFF:
+        return _rodas4.dense_value(F, y, x, i)
+    return _dop853.dense_value(F, y, x, i)
+
+
+def _dense_state(F, y, x, out, method):
+    for i in range(y.shape[0]):
+        out[i] = _dense_value(F, y, x, i, method)
+
+
+def _slip_to(t, y, stop, pe, p, rtol, atol, B, cnt, fl):
     """Slide from (t, y) to ``stop`` [s] or to the first stop before it: (time, state,
-    1 if a stop else -1, next step [s]). ``h``: the step to try (0: choose one); ``B``:
-    the work buffers (:func:`_buffers`)."""
-    K, K2, F, work, y_new, z, y_cur, _ = B
+    1 if a stop else -1). ``B``: the work buffers (:func:`_buffers`); ``fl``: the
+    steps to try (0: choose one) and the method, kept from call to call. DOP853 steps
+    while its step is stable (h times the direction's relaxation rate at most
+    :data:`STABLE_PRODUCT`); where the accuracy would allow a longer one, RODAS takes
+    over while its own steps are longer than DOP853's stable ones."""
+    K, K2, F, work, y_new, z, y_cur, _, J, M, scale = B
     args = (pe, p)
+    h, h_stiff, method = fl[F_H], fl[F_H_STIFF], int(fl[F_METHOD])
     _put(y_cur, y)
     _slip_rhs(t, y_cur, args, K[0])
     cnt[C_RHS] += 1
     if h <= 0:
         h = _initial_step(args, t, y_cur, stop - t, rtol, atol, K, work)
         cnt[C_RHS] += 1
+    jacobian_at = math.nan  # the time of the derivatives in J (at y_cur)
     while t < stop:
+        stable = STABLE_PRODUCT / _relaxation_rate(t, y_cur, pe, p)  # DOP853's longest stable step [s]
+        if method == EXPLICIT and h > stable:
+            if h_stiff > stable:
+                method, h = STIFF, min(h, h_stiff)
+            else:
+                h = stable
+        elif method == STIFF and h < stable:
+            method = EXPLICIT
         rest = stop - t
         last = h >= rest
         hh = rest if last else h
         if not last and hh <= _ULPS * _EPS * max(1.0, abs(t)):
             cnt[C_STATUS] = STEP_TOO_SMALL
-            return t, y_cur.copy(), -1, h
-        _step(args, t, y_cur, hh, K, y_new, work)
-        cnt[C_RHS] += 12
-        err = _dop853.error_norm(K, hh, y_cur, y_new, rtol, atol)
-        if err > 1.0:
-            h = hh * _dop853.factor(err, False)
+            break
+        if method == STIFF:
+            if jacobian_at != t:
+                _jacobian(args, t, y_cur, K, J)
+                jacobian_at = t
+                cnt[C_RHS] += 1
+            _stiff_step(args, t, y_cur, hh, K, y_new, work, J, M)
+            cnt[C_RHS] += 5
+            err = _rodas4.error_norm(K, _error_scale(y_cur, y_new, rtol, atol, scale))
+        else:
+            _step(args, t, y_cur, hh, K, y_new, work)
+            cnt[C_RHS] += 12
+            err = _dop853.error_norm(K, hh, _error_scale(y_cur, y_new, rtol, atol, scale))
+        accepted = err <= 1.0
+        h_next = hh * (_rodas4.factor(err, accepted) if method == STIFF else _dop853.factor(err, accepted))
+        if method == STIFF:
+            h_stiff = h_next
+        if not accepted:
+            h = h_next
             cnt[C_REJECTED] += 1
             continue
         cnt[C_STEPS] += 1
         t_new = stop if last else t + hh
+        if method == STIFF:  # the rate at the end (DOP853's step has it in K[12])
+            _slip_rhs(t_new, y_new, args, K[_dop853.N_STAGES])
+            cnt[C_RHS] += 1
         upper, dense = math.nan, False
         f_start, f_end = K[0, _S], K[_dop853.N_STAGES, _S]
         if y_cur[_S] > 0 and y_new[_S] <= 0:
             upper = t_new
         elif y_cur[_S] > 0 and f_start < 0 and f_end > 0:  # s may dip below zero and come back
-            _dense_coefficients(args, t, y_cur, y_new, hh, K, F, work)
+            cnt[C_RHS] += _dense_rows(args, t, y_cur, y_new, hh, K, F, work, method)
             dense = True
-            cnt[C_RHS] += 3
-            x_min = _dense_minimum(F, y_cur, t, hh, args, work, z)
-            if _dense_value(F, y_cur, x_min, _S) <= 0:
+            x_min = _dense_minimum(F, y_cur, t, hh, args, work, z, method)
+            if _dense_value(F, y_cur, x_min, _S, method) <= 0:
                 upper = t + x_min * hh
         if not math.isnan(upper):
             if not dense:
-                _dense_coefficients(args, t, y_cur, y_new, hh, K, F, work)
-                cnt[C_RHS] += 3
-            root = _stop_on_flow(F, args, t, y_cur, hh, upper, K, K2, work, z, cnt)
+                cnt[C_RHS] += _dense_rows(args, t, y_cur, y_new, hh, K, F, work, method)
+            root = _stop_on_flow(F, args, t, y_cur, hh, upper, K, K2, work, z, cnt, B, method)
             if root > 0:
-                return root, z.copy(), 1, h
-        h_next = hh * _dop853.factor(err, True)
+                fl[F_H], fl[F_H_STIFF], fl[F_METHOD] = h, h_stiff, method
+                return root, z.copy(), 1
         h = max(h, h_next) if last else h_next
         t = t_new
         _put(y_cur, y_new)
         _put(K[0], K[_dop853.N_STAGES])
-    return t, y_cur.copy(), -1, h
+    fl[F_H], fl[F_H_STIFF], fl[F_METHOD] = h, h_stiff, method
+    return t, y_cur.copy(), -1
+
+
+def _dense_rows(args, t, y, y_new, hh, K, F, work, method):
+    """The step's dense output into ``F``; the right-hand-side calls it took."""
+    if method == STIFF:
+        _stiff_dense_coefficients(y, y_new, K, F)
+        return 0
+    _dense_coefficients(args, t, y, y_new, hh, K, F, work)
+    return 3
 
 
 def _buffers():
-    """Work arrays: K, K2 (16, 8), F (7, 8), then four (8,) of the slip's steps, and a
-    zero state (8,) (read only)."""
+    """Work arrays: K, K2 (16, 8), F (7, 8), then four (8,) of the slip's steps, a
+    zero state (8,) (read only), J (8, 8) and M (3, 3) of RODAS's steps, the error scale (8,)."""
     n = _dop853.N_STAGES_EXTENDED
     return (np.empty((n, N_STATE)), np.empty((n, N_STATE)), np.empty((7, N_STATE)), np.empty(N_STATE),
-            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE), np.zeros(N_STATE))
+            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE), np.zeros(N_STATE),
+            np.empty((N_STATE, N_STATE)), np.empty((3, 3)), np.empty(N_STATE))
 
 
-def _dense_minimum(F, y, t, hh, args, work, rate):
+def _dense_minimum(F, y, t, hh, args, work, rate, method):
     """x in [0, 1] where the dense s is least (its rate from the flow at the dense state
     goes from < 0 to > 0), by bisection."""
     lo, hi = 0.0, 1.0
@@ -505,7 +644,7 @@ def _dense_minimum(F, y, t, hh, args, work, rate):
         mid = 0.5 * (lo + hi)
         if mid == lo or mid == hi:
             break
-        _dense_state(F, y, mid, work)
+        _dense_state(F, y, mid, work, method)
         _slip_rhs(t + mid * hh, work, args, rate)
         if rate[_S] < 0:
             lo = mid
@@ -514,42 +653,47 @@ def _dense_minimum(F, y, t, hh, args, work, rate):
     return hi
 
 
-def _s_after(args, t, y, d, K, K2, work, z):
-    """s [m/s] after a DOP853 step of ``d`` [s] from (t, y) (K[0]: the rate there),
-    the state left in ``z``."""
+def _s_after(args, t, y, d, K, K2, work, z, B, method):
+    """s [m/s] after a step of ``d`` [s] from (t, y) (K[0]: the rate there; for RODAS
+    K[7] and B's J: the derivatives there), the state left in ``z``."""
     _put(K2[0], K[0])
-    _step(args, t, y, d, K2, z, work)
+    if method == STIFF:
+        _put(K2[7], K[7])
+        _stiff_step(args, t, y, d, K2, z, work, B[8], B[9])
+    else:
+        _step(args, t, y, d, K2, z, work)
     return z[_S]
 
 
-def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt):
+def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt, B, method):
     """The stop in (t, upper]: the first float where the dense s is <= 0, confirmed on
     the flow (a step from t to it has s <= 0, to the float before it s > 0); else the
     same bisection on steps from t. The time (0 if the flow has none), the state in ``z``."""
+    calls = 6 if method == STIFF else 12
     a, b = t, upper
     while True:  # on the dense output
         mid = 0.5 * (a + b)
         if mid <= a or mid >= b:
             break
-        if _dense_value(F, y, (mid - t) / hh, _S) > 0:
+        if _dense_value(F, y, (mid - t) / hh, _S, method) > 0:
             a = mid
         else:
             b = mid
     before = np.nextafter(b, -math.inf)
-    cnt[C_RHS] += 24
-    if before <= t or _s_after(args, t, y, before - t, K, K2, work, z) > 0:
-        if _s_after(args, t, y, b - t, K, K2, work, z) <= 0:
+    cnt[C_RHS] += 2 * calls
+    if before <= t or _s_after(args, t, y, before - t, K, K2, work, z, B, method) > 0:
+        if _s_after(args, t, y, b - t, K, K2, work, z, B, method) <= 0:
             return b
     a, b = t, upper  # on the flow
-    if _s_after(args, t, y, b - t, K, K2, work, z) > 0:
+    if _s_after(args, t, y, b - t, K, K2, work, z, B, method) > 0:
         return 0.0
     while True:
         mid = 0.5 * (a + b)
         if mid <= a or mid >= b:
-            _s_after(args, t, y, b - t, K, K2, work, z)
+            _s_after(args, t, y, b - t, K, K2, work, z, B, method)
             return b
-        cnt[C_RHS] += 12
-        if _s_after(args, t, y, mid - t, K, K2, work, z) > 0:
+        cnt[C_RHS] += calls
+        if _s_after(args, t, y, mid - t, K, K2, work, z, B, method) > 0:
             a = mid
         else:
             b = mid
@@ -559,8 +703,9 @@ def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt):
 #: counters (int64): knots, events, events in the current instant, most at one instant,
 #: liftoffs, status, steps, rejected steps, right-hand-side calls, mode, restarted
 C_NK, C_NE, C_RUN, C_MAX_RUN, C_FLIGHTS, C_STATUS, C_STEPS, C_REJECTED, C_RHS, C_MODE, C_RESTARTED = range(11)
-#: floats: time [s], largest speed [m/s], last event [s], step to try [s], largest |u| [m]
-F_T, F_VMAX, F_LAST, F_H, F_MAXU = range(5)
+#: floats: time [s], largest speed [m/s], last event [s], step to try [s], largest |u| [m],
+#: RODAS's last step to try [s] (inf: none yet), the slip's method (EXPLICIT or STIFF)
+F_T, F_VMAX, F_LAST, F_H, F_MAXU, F_H_STIFF, F_METHOD = range(7)
 #: knot rows: t, y (7), mode after, dy/dt after (7), dy/dt before (7)
 KNOT_WIDTH = 23
 #: event rows: t, mode before, mode after, y before the entry (7)
@@ -619,7 +764,7 @@ def _log_event(kb, eb, cnt, fl, log, y, t, after, pe, p, resolution, cap):
         cnt[C_STATUS] = CHATTER
         return kb, eb
     cnt[C_MODE], cnt[C_RESTARTED] = after, 1
-    fl[F_H] = 0.0  # a new mode: a fresh first step
+    fl[F_H], fl[F_H_STIFF], fl[F_METHOD] = 0.0, math.inf, EXPLICIT  # a new mode: a fresh first step
     kb = _add_knot(kb, cnt, fl, log, t, y, after, np.zeros(N_STATE), _flow(after, t, y, pe, p))
     return kb, eb
 
@@ -702,7 +847,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
         else:
             lift = _liftoff_time(t, t_out, y, pe, p)
             stop = t_out if math.isnan(lift) else lift
-            t_new, z, root, fl[F_H] = _slip_to(t, y, fl[F_H], stop, pe, p, opt[0], opt[1], B, cnt)
+            t_new, z, root = _slip_to(t, y, stop, pe, p, opt[0], opt[1], B, cnt, fl)
             if cnt[C_STATUS] != FINISHED:
                 return kb, eb
             if root < 0 and not math.isnan(lift):
@@ -743,7 +888,8 @@ def _run(T0, H, CF, p, opt, log):
     knot and event logs if ``log``. Returns (outcome, knots (k, 23), events (e, 10))."""
     n = T0.shape[0]
     cnt = np.zeros(11, dtype=np.int64)
-    fl = np.zeros(5)
+    fl = np.zeros(7)
+    fl[F_H_STIFF] = math.inf
     fl[F_LAST] = math.nan
     cnt[C_MODE], cnt[C_RESTARTED] = STICK, 1
     y = np.zeros(N_STATE)
@@ -838,7 +984,7 @@ def run_one(T0, H, CF, p, options):
 
 _OPTIONS = dict(error_model="numpy")
 #: modules whose functions the engine compiles besides its own
-_SHARED = (_pieces, _dop853, xp, sys.modules[__name__])
+_SHARED = (_pieces, _dop853, _rodas4, xp, sys.modules[__name__])
 
 
 def _register():
