@@ -77,18 +77,28 @@ _V_ERROR_FACTOR, _ROUNDING = 10.0, 1e-12  # the driver's
 # ---- the piece's excitation: pe = (t0 [s], h [s], P (3, 5) scaled (p0, p1, s, w, phi), directions (3,))
 def _a(pe, i, t):
     """Component ``i`` of the base acceleration at ``t`` [m/s²] (the driver's local time)."""
-    P = pe[2]
+    return _a_local(pe[2], i, min(t - pe[0], pe[1]))
+
+
+def _a_local(P, i, tau):
+    """Component ``i`` at the piece's local time ``tau`` [s] (coefficients ``P``)."""
     if P[i, 2] == 0:  # a linear piece: no sine to evaluate
-        return accel(P[i, 0], P[i, 1], None, None, None, min(t - pe[0], pe[1]), xp)
-    return accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
+        return accel(P[i, 0], P[i, 1], None, None, None, tau, xp)
+    return accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], tau, xp)
 
 
 def _a_rate(pe, i, t):
     """Its rate [m/s³], rounding against the piece's direction projected out (as the
     driver's decisions see it)."""
+    return monotone_rate(_raw_rate(pe, i, t), pe[3][i], xp)
+
+
+def _raw_rate(pe, i, t):
+    """Component ``i``'s rate at ``t`` [m/s³] as is."""
     P = pe[2]
-    rate = accel_rate(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
-    return monotone_rate(rate, pe[3][i], xp)
+    if P[i, 2] == 0:  # a linear piece: no cosine to evaluate
+        return accel_rate(P[i, 0], P[i, 1], None, None, None, min(t - pe[0], pe[1]), xp)
+    return accel_rate(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
 
 
 def _normal(pe, p, t):
@@ -187,6 +197,14 @@ def _flow_into(mode, t, y, pe, p, out):
         out[_UX], out[_UY], out[_CX], out[_CY] = y[_CX], y[_CY], rx, ry
         out[_W], out[_WD] = y[_WD], -(p[4] + _a(pe, 2, t))
         return
+    ex, ey, along, turn_x, turn_y = _slip_rates(t, y, pe, p, rx, ry)
+    s = y[_S]
+    out[_UX], out[_UY], out[_S], out[_CX], out[_CY], out[_PATH] = s * ex, s * ey, along, turn_x, turn_y, s
+
+
+def _slip_rates(t, y, pe, p, rx, ry):
+    """The slip's e = c / |c| [-], s' [m/s²] and c' [1/s] (``PlanarBlock.flow``), with
+    -sigma = (rx, ry) [m/s²]: (e_x, e_y, s', c_x', c_y')."""
     n = p[4] + _a(pe, 2, t)
     size = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
     ex, ey = y[_CX] / size, y[_CY] / size
@@ -194,8 +212,12 @@ def _flow_into(mode, t, y, pe, p, out):
     across = ex * ry - ey * rx
     s = y[_S]
     turn = across / (s if s > SLOW_SPEED else SLOW_SPEED)
-    out[_UX], out[_UY], out[_S], out[_CX], out[_CY] = s * ex, s * ey, along, -ey * turn * size, ex * turn * size
-    out[_PATH] = s
+    return ex, ey, along, -ey * turn * size, ex * turn * size
+
+
+def _slip_rates_at(t, y, pe, p):
+    """:func:`_slip_rates` at ``t`` [s]."""
+    return _slip_rates(t, y, pe, p, -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4]))
 
 
 def _slip_rhs(t, y, args, out):
@@ -220,7 +242,7 @@ def _guard_rates(mode, index, t, y, pe, p):
     n, n_rate = _normal(pe, p, t)
     if mode == SLIP and index == 1:
         _, _, rx, ry = _demand(pe, p, t)
-        return _flow(SLIP, t, y, pe, p)[_S], math.hypot(rx, ry) + p[1] * abs(n_rate)
+        return _slip_rates_at(t, y, pe, p)[2], math.hypot(rx, ry) + p[1] * abs(n_rate)
     if mode == FLIGHT:
         return y[_WD], -n
     if mode == STICK and index == 1:
@@ -236,8 +258,8 @@ def _turn_rate(mode, t, y, pe, p):
         return 2 * (p[0] ** 2 * n * n_rate - (sx * rx + sy * ry)), True
     if mode == FLIGHT:
         return y[_WD], True
-    rate = _flow(mode, t, y, pe, p)
-    return rate[_S], rate[_CX] == 0 and rate[_CY] == 0
+    _, _, along, turn_x, turn_y = _slip_rates_at(t, y, pe, p)
+    return along, turn_x == 0 and turn_y == 0
 
 
 def _falls(rate, curvature, resolution):
@@ -301,8 +323,28 @@ def _turning_point(mode, t, y, end, pe, p):
     return hi if hi < end else math.nan
 
 
+def _is_linear(pe):
+    """Whether a(t) is linear on the piece (no sine in any component)."""
+    P = pe[2]
+    return P[0, 2] == 0 and P[1, 2] == 0 and P[2, 2] == 0
+
+
+def _next_turn(mode, t, y, end, pe, p):
+    """:func:`_turning_point` where the loop reads it: in slip and flight (stick finds
+    its own in :func:`_static_root`)."""
+    return math.nan if mode == STICK else _turning_point(mode, t, y, end, pe, p)
+
+
 def _static_root(t, y, end, pe, p):
-    """The driver's ``static_root`` in stick: (time, guard) or (nan, -1)."""
+    """The driver's ``static_root`` in stick: (time, guard) or (nan, -1). On a piece
+    where a(t) is linear, n is linear and mu n - |sigma| concave (|sigma| is the norm
+    of a linear function): both guards positive at t and ``end`` have no root between,
+    and the turning point is not needed."""
+    if _is_linear(pe):
+        g0, g1 = _guards(STICK, t, y, pe, p)
+        e0, e1 = _guards(STICK, end, y, pe, p)
+        if g0 > 0 and g1 > 0 and e0 > 0 and e1 > 0:
+            return math.nan, -1
     turn = _turning_point(STICK, t, y, end, pe, p)
     times = (t, end, end) if math.isnan(turn) else (t, turn, end)
     for k in range(2 if not math.isnan(turn) else 1):
@@ -440,12 +482,8 @@ def _slip_derivatives(t, y, args, J, f_t):
         f_t[i] = 0.0
         for j in range(N_STATE):
             J[i, j] = 0.0
-    P = pe[2]
-    tau = min(t - pe[0], pe[1])
     rx, ry = -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4])
-    drx = -accel_rate(P[0, 0], P[0, 1], P[0, 2], P[0, 3], P[0, 4], tau, xp)
-    dry = -accel_rate(P[1, 0], P[1, 1], P[1, 2], P[1, 3], P[1, 4], tau, xp)
-    dn = accel_rate(P[2, 0], P[2, 1], P[2, 2], P[2, 3], P[2, 4], tau, xp)
+    drx, dry, dn = -_raw_rate(pe, 0, t), -_raw_rate(pe, 1, t), _raw_rate(pe, 2, t)
     s, cx, cy = y[_S], y[_CX], y[_CY]
     q = math.sqrt(cx**2 + cy**2)
     q3 = q**3
@@ -469,12 +507,14 @@ def _slip_derivatives(t, y, args, J, f_t):
 
 def _error_scale(y, y_new, rtol, atol, out):
     """Each component's error scale [m, m/s, -] into ``out``: atol + rtol max(|y|,
-    |y_new|) (SciPy's), save the direction c, whose error counts as the error of the
-    velocity v = s c / |c| it makes: both components get |c| (rtol + atol / s), s the
-    larger speed (the error is an angle, whatever the axes; at s = 0 it makes no
-    velocity: it relaxes at the model's capped rate and moves s to second order only)."""
+    |y_new|) (SciPy's), save the vectors, whose errors are measured whatever the axes:
+    u's components share the larger |u|, and the direction c's error counts as the
+    error of the velocity v = s c / |c| it makes: both components get |c| (rtol + atol
+    / s), s the larger speed (at s = 0 it makes no velocity: it relaxes at the model's
+    capped rate and moves s to second order only)."""
     for i in range(N_STATE):
         out[i] = atol + rtol * max(abs(y[i]), abs(y_new[i]))
+    out[_UX] = out[_UY] = atol + rtol * max(math.hypot(y[_UX], y[_UY]), math.hypot(y_new[_UX], y_new[_UY]))
     size = max(math.hypot(y[_CX], y[_CY]), math.hypot(y_new[_CX], y_new[_CY]))
     speed = max(y[_S], y_new[_S])
     out[_CX] = out[_CY] = size * (rtol + atol / speed) if speed > 0 else math.inf
@@ -553,6 +593,8 @@ def _slip_to(t, y, stop, pe, p, rtol, atol, B, cnt, fl):
         h = _initial_step(args, t, y_cur, stop - t, rtol, atol, K, work)
         cnt[C_RHS] += 1
     jacobian_at = math.nan  # the time of the derivatives in J (at y_cur)
+    rejected = False
+    h_accepted, err_accepted = 0.0, 0.0  # DOP853's last accepted step [s] and its error [-]
     while t < stop:
         stable = STABLE_PRODUCT / _relaxation_rate(t, y_cur, pe, p)  # DOP853's longest stable step [s]
         if method == EXPLICIT and h > stable:
@@ -582,9 +624,17 @@ def _slip_to(t, y, stop, pe, p, rtol, atol, B, cnt, fl):
             err = _dop853.error_norm(K, hh, _error_scale(y_cur, y_new, rtol, atol, scale))
         accepted = err <= 1.0
         h_next = hh * (_rodas4.factor(err, accepted) if method == STIFF else _dop853.factor(err, accepted))
+        if accepted and rejected:  # no longer than the step just accepted after a rejection (SciPy's)
+            h_next = min(h_next, hh)
+        if accepted and method == EXPLICIT:
+            if h_accepted > 0 and err > 0 and err_accepted > 0:  # Gustafsson's predictive step
+                predicted = _dop853.SAFETY * (hh / h_accepted) * (err_accepted / err**2) ** (1.0 / 8.0)
+                h_next = min(h_next, hh * max(_dop853.MIN_FACTOR, predicted))
+            h_accepted, err_accepted = hh, err
         if method == STIFF:
             h_stiff = h_next
-        if not accepted:
+        rejected = not accepted
+        if rejected:
             h = h_next
             cnt[C_REJECTED] += 1
             continue
@@ -814,7 +864,7 @@ def _output_step(pe):
 
 def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
     """The driver's ``advance_to``: from ``fl[F_T]`` to ``end`` [s]."""
-    turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+    turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
     while fl[F_T] < end and not (until_rest and cnt[C_MODE] == STICK):
         if cnt[C_STATUS] != FINISHED:
             return kb, eb
@@ -826,13 +876,13 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
                 return _add_knot(kb, cnt, fl, log, end, y, mode, B[7], B[7]), eb
             fl[F_T] = root
             kb, eb = _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt)
-            turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+            turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
             continue
         if cnt[C_RESTARTED]:
             index = _guard_left_at_once(mode, t, y, pe, p, opt[2])
             if index >= 0:
                 kb, eb = _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt)
-                turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+                turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
                 if cnt[C_MODE] != mode:
                     continue
             cnt[C_RESTARTED] = 0
@@ -863,11 +913,11 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
                 cnt[C_STATUS] = INCONSISTENT
                 return kb, eb
         if root < 0:
-            rate = _flow(mode, t_new, y, pe, p)
+            rate = _flow(mode, t_new, y, pe, p) if log else B[7]
             kb = _add_knot(kb, cnt, fl, log, t_new, y, mode, rate, rate)
         else:
             kb, eb = _on_guard(kb, eb, cnt, fl, log, y, root, pe, p, opt)
-            turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+            turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
     return kb, eb
 
 
@@ -877,8 +927,7 @@ def _piece_excitation(T0, H, CF, scale, k, P, D):
     for i in range(3):
         P[i, 0], P[i, 1], P[i, 2] = CF[k, i, 0] * scale, CF[k, i, 1] * scale, CF[k, i, 2] * scale
         P[i, 3], P[i, 4] = CF[k, i, 3], CF[k, i, 4]
-        D[i] = np.sign(accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], H[k], xp)
-                       - accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], 0.0, xp))
+        D[i] = np.sign(_a_local(P, i, H[k]) - _a_local(P, i, 0.0))
     return (T0[k], H[k], P, D)
 
 
