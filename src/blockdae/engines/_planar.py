@@ -125,12 +125,20 @@ def _lifts_off(pe, p, t):
     return n < 0 or (n == 0 and n_rate < 0)
 
 
+def _forces(pe, p, t):
+    """(n, sigma_x, sigma_y) [m/s²] at ``t`` without their rates (the piece's local time
+    computed once)."""
+    P, tau = pe[2], min(t - pe[0], pe[1])
+    return p[4] + _a_local(P, 2, tau), _a_local(P, 0, tau) - p[2] * p[4], _a_local(P, 1, tau) - p[3] * p[4]
+
+
 def _mode_at_rest(pe, p, t):
-    """``PlanarBlock.mode_at_rest`` (rigid support)."""
-    margin, margin_rate = _circle_margin(pe, p, t)
-    if _lifts_off(pe, p, t):
+    """``PlanarBlock.mode_at_rest`` (rigid support); the rates only where a value is 0."""
+    n, sx, sy = _forces(pe, p, t)
+    if n < 0 or (n == 0 and _normal(pe, p, t)[1] < 0):
         return FLIGHT
-    if margin < 0 or (margin == 0 and margin_rate < 0):
+    margin = p[0] * n - math.hypot(sx, sy)
+    if margin < 0 or (margin == 0 and _circle_margin(pe, p, t)[1] < 0):
         return SLIP
     return STICK
 
@@ -197,15 +205,20 @@ def _flow_into(mode, t, y, pe, p, out):
         out[_UX], out[_UY], out[_CX], out[_CY] = y[_CX], y[_CY], rx, ry
         out[_W], out[_WD] = y[_WD], -(p[4] + _a(pe, 2, t))
         return
-    ex, ey, along, turn_x, turn_y = _slip_rates(t, y, pe, p, rx, ry)
+    _slip_into(y, p, rx, ry, p[4] + _a(pe, 2, t), out)
+
+
+def _slip_into(y, p, rx, ry, n, out):
+    """The slip flow into ``out`` with -sigma = (rx, ry) and n [m/s²]."""
+    ex, ey, along, turn_x, turn_y = _slip_rates(y, p, rx, ry, n)
     s = y[_S]
     out[_UX], out[_UY], out[_S], out[_CX], out[_CY], out[_PATH] = s * ex, s * ey, along, turn_x, turn_y, s
+    out[_W], out[_WD] = 0.0, 0.0
 
 
-def _slip_rates(t, y, pe, p, rx, ry):
+def _slip_rates(y, p, rx, ry, n):
     """The slip's e = c / |c| [-], s' [m/s²] and c' [1/s] (``PlanarBlock.flow``), with
-    -sigma = (rx, ry) [m/s²]: (e_x, e_y, s', c_x', c_y')."""
-    n = p[4] + _a(pe, 2, t)
+    -sigma = (rx, ry) and n [m/s²]: (e_x, e_y, s', c_x', c_y')."""
     size = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
     ex, ey = y[_CX] / size, y[_CY] / size
     along = ex * rx + ey * ry - p[1] * n
@@ -217,12 +230,16 @@ def _slip_rates(t, y, pe, p, rx, ry):
 
 def _slip_rates_at(t, y, pe, p):
     """:func:`_slip_rates` at ``t`` [s]."""
-    return _slip_rates(t, y, pe, p, -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4]))
+    return _slip_rates(y, p, -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4]), p[4] + _a(pe, 2, t))
 
 
 def _slip_rhs(t, y, args, out):
-    """The slip flow as DOP853's right-hand side (``args``: (pe, p))."""
-    _flow_into(SLIP, t, y, args[0], args[1], out)
+    """The slip flow as the steps' right-hand side (``args``: (pe, p)); :func:`_flow_into`
+    with the piece's local time computed once."""
+    pe, p = args
+    P, tau = pe[2], min(t - pe[0], pe[1])
+    rx, ry = -(_a_local(P, 0, tau) - p[2] * p[4]), -(_a_local(P, 1, tau) - p[3] * p[4])
+    _slip_into(y, p, rx, ry, p[4] + _a_local(P, 2, tau), out)
 
 
 def _guards(mode, t, y, pe, p):
@@ -230,9 +247,8 @@ def _guards(mode, t, y, pe, p):
     second is +inf)."""
     if mode == FLIGHT:
         return y[_W], math.inf
-    n, _ = _normal(pe, p, t)
+    n, sx, sy = _forces(pe, p, t)
     if mode == STICK:
-        sx, sy, _, _ = _demand(pe, p, t)
         return n, p[0] * n - math.sqrt(sx**2 + sy**2)
     return n, y[_S]
 
@@ -335,16 +351,22 @@ def _next_turn(mode, t, y, end, pe, p):
     return math.nan if mode == STICK else _turning_point(mode, t, y, end, pe, p)
 
 
+def _quiet_stick(pe, p, t, end, y):
+    """Whether stick certainly lasts from ``t`` to ``end`` [s]: a(t) is linear on the
+    piece, so n is linear and mu n - |sigma| concave (|sigma| is the norm of a linear
+    function), and both guards are positive at both ends (no root between, and the
+    turning point is not needed)."""
+    if not _is_linear(pe):
+        return False
+    g0, g1 = _guards(STICK, t, y, pe, p)
+    e0, e1 = _guards(STICK, end, y, pe, p)
+    return g0 > 0 and g1 > 0 and e0 > 0 and e1 > 0
+
+
 def _static_root(t, y, end, pe, p):
-    """The driver's ``static_root`` in stick: (time, guard) or (nan, -1). On a piece
-    where a(t) is linear, n is linear and mu n - |sigma| concave (|sigma| is the norm
-    of a linear function): both guards positive at t and ``end`` have no root between,
-    and the turning point is not needed."""
-    if _is_linear(pe):
-        g0, g1 = _guards(STICK, t, y, pe, p)
-        e0, e1 = _guards(STICK, end, y, pe, p)
-        if g0 > 0 and g1 > 0 and e0 > 0 and e1 > 0:
-            return math.nan, -1
+    """The driver's ``static_root`` in stick: (time, guard) or (nan, -1)."""
+    if _quiet_stick(pe, p, t, end, y):
+        return math.nan, -1
     turn = _turning_point(STICK, t, y, end, pe, p)
     times = (t, end, end) if math.isnan(turn) else (t, turn, end)
     for k in range(2 if not math.isnan(turn) else 1):
@@ -380,9 +402,9 @@ def _time_function(t, fa):
     kind 0: n; 1: the flight's w; 2: the flight's w'; 3: -n (w'')."""
     kind, t_from, y, pe, p = fa
     if kind == 0:
-        return _normal(pe, p, t)[0]
+        return _forces(pe, p, t)[0]
     if kind == 3:
-        return -_normal(pe, p, t)[0]
+        return -_forces(pe, p, t)[0]
     z = _flight_state(t_from, y, t, pe, p)
     return z[_W] if kind == 1 else z[_WD]
 
@@ -958,7 +980,8 @@ def _run(T0, H, CF, p, opt, log):
             pe = (t_end, math.inf, np.zeros((3, 5)), np.zeros(3))
             end = t_end
         if log and cnt[C_NK] > 0:  # enter_piece: dy/dt after the last knot on this piece
-            _put(kb[cnt[C_NK] - 1, 9:16], _flow(cnt[C_MODE], fl[F_T], y, pe, p))
+            _flow_into(cnt[C_MODE], fl[F_T], y, pe, p, B[3])
+            _put(kb[cnt[C_NK] - 1, 9:16], B[3])
         cnt[C_RESTARTED] = 1
         if cnt[C_MODE] == STICK or (cnt[C_MODE] == SLIP and y[_S] == 0):
             rest = _mode_at_rest(pe, p, pe[0])
@@ -975,6 +998,10 @@ def _run(T0, H, CF, p, opt, log):
                 cnt[C_STATUS] = NEVER_RESTS
                 break
             end = fl[F_T] + bound
+        if cnt[C_MODE] == STICK and k < n and fl[F_T] < end and _quiet_stick(pe, p, fl[F_T], end, y):  # _advance's, short
+            fl[F_T], cnt[C_RESTARTED] = end, 1
+            kb = _add_knot(kb, cnt, fl, log, end, y, STICK, zero, zero)
+            continue
         kb, eb = _advance(kb, eb, cnt, fl, log, y, end, k == n, pe, p, opt, B)
         if cnt[C_STATUS] != FINISHED:
             break
