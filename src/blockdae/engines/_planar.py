@@ -6,22 +6,27 @@ Per mode:
 * stick: the state is constant (the block moves with the base); the guards
   (n = g + a_z, mu n - |sigma|) are functions of time alone, located by bisection to
   adjacent floats on the parts where they are monotone (split where the model's turn
-  rate changes sign), as :meth:`blockdae.core._driver._Run.static_root` does;
+  rate changes sign), as :meth:`blockdae.core._driver._Run.static_root` does; a piece
+  with linear a(t) and both guards positive at both ends has none (:func:`_quiet_stick`);
 * flight: a ballistic arc in closed form (the integrals of a(t) on the piece:
   cubics under a linear piece); the landing (w = 0 falling) is bracketed on the
   monotone parts of w (w'' = -n is monotone on a piece, so w' has at most one
   extremum) and located by bisection to adjacent floats;
 * slip: DOP853 (:mod:`._dop853`), Dormand and Prince's explicit 8th-order pair with its
-  7th-order dense output. Explicit, because after an onset the flow is not stiff save
-  for the direction's relaxation at |sigma| / max(s, SLOW_SPEED) [1/s], which the
-  model's cap bounds (the JAX twin's Dopri8 steps through it too); 8th order, because
-  rtol 1e-12 on a smooth flow then takes one or two steps per sample of a record (a
-  Taylor method would need the flow's derivatives written out, a second statement of
-  the physics). A stop (s = 0 falling) is bracketed by the step (s > 0 -> s <= 0, or
-  a dip below zero between a falling and a rising end, found at the minimum of the dense
-  s), located by bisection on the dense output to adjacent floats, then confirmed on
-  the flow (a DOP853 step from the step's start to the located time and to the float
-  before it; else bisection on that step). A liftoff (n reaching 0) is a time alone.
+  7th-order dense output, where its step is stable; else RODAS (:mod:`._rodas4`), a
+  linearly implicit (Rosenbrock) method of order 4 with the flow's exact derivatives
+  (:func:`_slip_derivatives`). The flow is stiff only in the direction's relaxation at
+  |sigma| / max(s, SLOW_SPEED) [1/s] near a slide's start and end, where DOP853's step
+  would be bounded by stability (:data:`STABLE_PRODUCT`); RODAS takes over while its own
+  steps are longer. 8th order elsewhere, because rtol 1e-12 on a smooth flow then takes
+  one or two steps per sample of a record. The error is measured on the vectors whatever
+  the axes (:func:`_error_scale`): u by |u|, the direction by the velocity error s |dc|
+  it makes. A stop (s = 0 falling) is bracketed by the step (s > 0 -> s <= 0, or a dip
+  below zero between a falling and a rising end, found at the minimum of the dense s),
+  located by bisection on the step's dense output to adjacent floats, then confirmed on
+  the flow (a step of the same method from the step's start to the located time and to
+  the float before it; else bisection on that step). A liftoff (n reaching 0) is a time
+  alone.
 
 The rules (which mode follows a guard, what a mode starts with, the graze rule of
 ``_falls``, events at the end of a piece left to the next, chatter, the stop's

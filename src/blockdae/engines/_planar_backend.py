@@ -119,8 +119,9 @@ def _run_parallel(T0, H, CF, offsets, params, options, until_rest, out):
     if threads == 1:
         run(T0, H, CF, offsets, params, options, until_rest, items, out, False)
         return
-    # strided parts: neighbouring items (one motion at nearby factors) cost alike
-    parts = [items[k::threads * _PARTS_PER_THREAD] for k in range(threads * _PARTS_PER_THREAD)]
+    # strided parts: neighbouring items (one motion at nearby factors) cost alike; copied
+    # contiguous, so that the kernel runs with the serial call's types (one compile)
+    parts = [items[k::threads * _PARTS_PER_THREAD].copy() for k in range(threads * _PARTS_PER_THREAD)]
     with concurrent.futures.ThreadPoolExecutor(threads) as pool:
         list(pool.map(lambda part: run(T0, H, CF, offsets, params, options, until_rest, part, out, False), parts))
 
