@@ -22,7 +22,7 @@ from . import _planar as engine
 #: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)
 _PARALLEL_WORK = 1e5
 #: the engine's name in the compile notice, and its compile time on one core [s]
-_ENGINE, _COMPILE_SECONDS = "the compiled planar engine", 25
+_ENGINE, _COMPILE_SECONDS = "the compiled planar engine", 35
 #: parts of a batch per thread (threads take the next part when done: balance)
 _PARTS_PER_THREAD = 8
 
