@@ -541,8 +541,8 @@ def _error_scale(y, y_new, rtol, atol, out):
     capped rate and moves s to second order only)."""
     for i in range(N_STATE):
         out[i] = atol + rtol * max(abs(y[i]), abs(y_new[i]))
-    out[_UX] = out[_UY] = atol + rtol * max(math.hypot(y[_UX], y[_UY]), math.hypot(y_new[_UX], y_new[_UY]))
-    size = max(math.hypot(y[_CX], y[_CY]), math.hypot(y_new[_CX], y_new[_CY]))
+    out[_UX] = out[_UY] = atol + rtol * math.sqrt(max(y[_UX] ** 2 + y[_UY] ** 2, y_new[_UX] ** 2 + y_new[_UY] ** 2))
+    size = math.sqrt(max(y[_CX] ** 2 + y[_CY] ** 2, y_new[_CX] ** 2 + y_new[_CY] ** 2))
     speed = max(y[_S], y_new[_S])
     out[_CX] = out[_CY] = size * (rtol + atol / speed) if speed > 0 else math.inf
     return out
@@ -577,8 +577,8 @@ def _slip_solve(J, alpha, M, x):
 def _relaxation_rate(t, y, pe, p):
     """|sigma| / max(s, SLOW_SPEED) [1/s]: the rate at which the slip's direction relaxes
     towards the demand (the flow's stiff eigenvalue)."""
-    rx, ry = _a(pe, 0, t) - p[2] * p[4], _a(pe, 1, t) - p[3] * p[4]
-    return math.hypot(rx, ry) / max(y[_S], SLOW_SPEED)
+    _, sx, sy = _forces(pe, p, t)
+    return math.sqrt(sx * sx + sy * sy) / max(y[_S], SLOW_SPEED)
 
 
 _step, _initial_step, _dense_coefficients = _dop853.for_flow(_slip_rhs)
