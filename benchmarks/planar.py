@@ -10,7 +10,8 @@ a bias 0.25 mu in -x, until rest. Per backend and case: wall time of a warm run 
 compiled engine's cold compile (a fresh process, an empty numba cache) and a planar study
 on "compiled" at the study tolerance (``STUDY_RTOL``): the 18 sample records as x with
 the next one as y x mu x factors, 10^4 analyses in one batch on every core (bar: < 60 s
-on 2 cores). "jax" is included where ``bd.simulate`` runs a PlanarBlock on it (it raises
+on 2 cores; its CPU time [s] too, summed over threads, which other jobs on the machine
+change less than the wall time). "jax" is included where ``bd.simulate`` runs a PlanarBlock on it (it raises
 ValueError where not).
 
     python benchmarks/planar.py [--quick] [--repeat N]
@@ -138,15 +139,15 @@ def study(n_analyses, quick=False):
     backend = make_backend("compiled", rtol=STUDY_RTOL)
     horizons = [Horizon(None)] * len(motions)
     backend.solve_final(block, motions[:1], horizons[:1], scale=scales[:1])  # compile or load
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
     out = backend.solve_final(block, motions, horizons, scale=tuple(scales))
-    seconds = time.perf_counter() - start
+    seconds, cpu = time.perf_counter() - start, time.process_time() - cpu_start
     n = out.shape[0] * out.shape[1]
     print()
-    print_table(("study", "rtol", "analyses", "wall [s]", "per analysis [ms]", "cores", "median |u| [m]", "flights",
-                 "bar < 60 s / 10^4"),
+    print_table(("study", "rtol", "analyses", "wall [s]", "cpu [s]", "per analysis [ms]", "cores", "median |u| [m]",
+                 "flights", "bar < 60 s / 10^4"),
                 [(f"{len(motions)} record pairs x {len(mu)} mu x {len(scales)} factors", f"{STUDY_RTOL:g}", f"{n:,}",
-                  f"{seconds:.1f}", f"{1e3 * seconds / n:.2f}", str(os.cpu_count()),
+                  f"{seconds:.1f}", f"{cpu:.1f}", f"{1e3 * seconds / n:.2f}", str(os.cpu_count()),
                   f"{np.median(np.hypot(out[..., 0], out[..., 1])):.4f}", f"{int(out[..., 5].sum()):,}",
                   verdict(seconds * 1e4 / n < 60, quick))])
 

@@ -32,18 +32,18 @@ N_STAGES_EXTENDED = 16
 
 
 @register_jitable
-def error_norm(K, h, y, y_new, rtol, atol):
-    """SciPy's DOP853 error norm of the step just taken (< 1: accept)."""
-    n = y.shape[0]
+def error_norm(K, h, scale):
+    """SciPy's DOP853 error norm of the step just taken (< 1: accept), each component
+    over its ``scale`` (n,) (SciPy's: atol + rtol max(|y|, |y_new|))."""
+    n = scale.shape[0]
     e5, e3 = 0.0, 0.0
     for i in range(n):
-        scale = atol + max(abs(y[i]), abs(y_new[i])) * rtol
         a5, a3 = 0.0, 0.0
         for j in range(N_STAGES + 1):
             a5 += E5[j] * K[j, i]
             a3 += E3[j] * K[j, i]
-        e5 += (a5 / scale) ** 2
-        e3 += (a3 / scale) ** 2
+        e5 += (a5 / scale[i]) ** 2
+        e3 += (a3 / scale[i]) ** 2
     if e5 == 0.0 and e3 == 0.0:
         return 0.0
     return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)

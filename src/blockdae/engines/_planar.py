@@ -6,22 +6,27 @@ Per mode:
 * stick: the state is constant (the block moves with the base); the guards
   (n = g + a_z, mu n - |sigma|) are functions of time alone, located by bisection to
   adjacent floats on the parts where they are monotone (split where the model's turn
-  rate changes sign), as :meth:`blockdae.core._driver._Run.static_root` does;
+  rate changes sign), as :meth:`blockdae.core._driver._Run.static_root` does; a piece
+  with linear a(t) and both guards positive at both ends has none (:func:`_quiet_stick`);
 * flight: a ballistic arc in closed form (the integrals of a(t) on the piece:
   cubics under a linear piece); the landing (w = 0 falling) is bracketed on the
   monotone parts of w (w'' = -n is monotone on a piece, so w' has at most one
   extremum) and located by bisection to adjacent floats;
 * slip: DOP853 (:mod:`._dop853`), Dormand and Prince's explicit 8th-order pair with its
-  7th-order dense output. Explicit, because after an onset the flow is not stiff save
-  for the direction's relaxation at |sigma| / max(s, SLOW_SPEED) [1/s], which the
-  model's cap bounds (the JAX twin's Dopri8 steps through it too); 8th order, because
-  rtol 1e-12 on a smooth flow then takes one or two steps per sample of a record (a
-  Taylor method would need the flow's derivatives written out, a second statement of
-  the physics). A stop (s = 0 falling) is bracketed by the step (s > 0 -> s <= 0, or
-  a dip below zero between a falling and a rising end, found at the minimum of the dense
-  s), located by bisection on the dense output to adjacent floats, then confirmed on
-  the flow (a DOP853 step from the step's start to the located time and to the float
-  before it; else bisection on that step). A liftoff (n reaching 0) is a time alone.
+  7th-order dense output, where its step is stable; else RODAS (:mod:`._rodas4`), a
+  linearly implicit (Rosenbrock) method of order 4 with the flow's exact derivatives
+  (:func:`_slip_derivatives`). The flow is stiff only in the direction's relaxation at
+  |sigma| / max(s, SLOW_SPEED) [1/s] near a slide's start and end, where DOP853's step
+  would be bounded by stability (:data:`STABLE_PRODUCT`); RODAS takes over while its own
+  steps are longer. 8th order elsewhere, because rtol 1e-12 on a smooth flow then takes
+  one or two steps per sample of a record. The error is measured on the vectors whatever
+  the axes (:func:`_error_scale`): u by |u|, the direction by the velocity error s |dc|
+  it makes. A stop (s = 0 falling) is bracketed by the step (s > 0 -> s <= 0, or a dip
+  below zero between a falling and a rising end, found at the minimum of the dense s),
+  located by bisection on the step's dense output to adjacent floats, then confirmed on
+  the flow (a step of the same method from the step's start to the located time and to
+  the float before it; else bisection on that step). A liftoff (n reaching 0) is a time
+  alone.
 
 The rules (which mode follows a guard, what a mode starts with, the graze rule of
 ``_falls``, events at the end of a piece left to the next, chatter, the stop's
@@ -50,7 +55,7 @@ from ..core._model import KNOTS_PER_RADIAN
 from ..excitation import _pieces
 from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
 from ..planar._model import SLOW_SPEED
-from . import _dop853
+from . import _dop853, _rodas4
 from . import _xp_scalar as xp
 
 STICK, SLIP, FLIGHT = 0, 1, 2
@@ -77,18 +82,28 @@ _V_ERROR_FACTOR, _ROUNDING = 10.0, 1e-12  # the driver's
 # ---- the piece's excitation: pe = (t0 [s], h [s], P (3, 5) scaled (p0, p1, s, w, phi), directions (3,))
 def _a(pe, i, t):
     """Component ``i`` of the base acceleration at ``t`` [m/s²] (the driver's local time)."""
-    P = pe[2]
+    return _a_local(pe[2], i, min(t - pe[0], pe[1]))
+
+
+def _a_local(P, i, tau):
+    """Component ``i`` at the piece's local time ``tau`` [s] (coefficients ``P``)."""
     if P[i, 2] == 0:  # a linear piece: no sine to evaluate
-        return accel(P[i, 0], P[i, 1], None, None, None, min(t - pe[0], pe[1]), xp)
-    return accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
+        return accel(P[i, 0], P[i, 1], None, None, None, tau, xp)
+    return accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], tau, xp)
 
 
 def _a_rate(pe, i, t):
     """Its rate [m/s³], rounding against the piece's direction projected out (as the
     driver's decisions see it)."""
+    return monotone_rate(_raw_rate(pe, i, t), pe[3][i], xp)
+
+
+def _raw_rate(pe, i, t):
+    """Component ``i``'s rate at ``t`` [m/s³] as is."""
     P = pe[2]
-    rate = accel_rate(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
-    return monotone_rate(rate, pe[3][i], xp)
+    if P[i, 2] == 0:  # a linear piece: no cosine to evaluate
+        return accel_rate(P[i, 0], P[i, 1], None, None, None, min(t - pe[0], pe[1]), xp)
+    return accel_rate(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
 
 
 def _normal(pe, p, t):
@@ -115,12 +130,20 @@ def _lifts_off(pe, p, t):
     return n < 0 or (n == 0 and n_rate < 0)
 
 
+def _forces(pe, p, t):
+    """(n, sigma_x, sigma_y) [m/s²] at ``t`` without their rates (the piece's local time
+    computed once)."""
+    P, tau = pe[2], min(t - pe[0], pe[1])
+    return p[4] + _a_local(P, 2, tau), _a_local(P, 0, tau) - p[2] * p[4], _a_local(P, 1, tau) - p[3] * p[4]
+
+
 def _mode_at_rest(pe, p, t):
-    """``PlanarBlock.mode_at_rest`` (rigid support)."""
-    margin, margin_rate = _circle_margin(pe, p, t)
-    if _lifts_off(pe, p, t):
+    """``PlanarBlock.mode_at_rest`` (rigid support); the rates only where a value is 0."""
+    n, sx, sy = _forces(pe, p, t)
+    if n < 0 or (n == 0 and _normal(pe, p, t)[1] < 0):
         return FLIGHT
-    if margin < 0 or (margin == 0 and margin_rate < 0):
+    margin = p[0] * n - math.hypot(sx, sy)
+    if margin < 0 or (margin == 0 and _circle_margin(pe, p, t)[1] < 0):
         return SLIP
     return STICK
 
@@ -187,20 +210,41 @@ def _flow_into(mode, t, y, pe, p, out):
         out[_UX], out[_UY], out[_CX], out[_CY] = y[_CX], y[_CY], rx, ry
         out[_W], out[_WD] = y[_WD], -(p[4] + _a(pe, 2, t))
         return
-    n = p[4] + _a(pe, 2, t)
+    _slip_into(y, p, rx, ry, p[4] + _a(pe, 2, t), out)
+
+
+def _slip_into(y, p, rx, ry, n, out):
+    """The slip flow into ``out`` with -sigma = (rx, ry) and n [m/s²]."""
+    ex, ey, along, turn_x, turn_y = _slip_rates(y, p, rx, ry, n)
+    s = y[_S]
+    out[_UX], out[_UY], out[_S], out[_CX], out[_CY], out[_PATH] = s * ex, s * ey, along, turn_x, turn_y, s
+    out[_W], out[_WD] = 0.0, 0.0
+
+
+def _slip_rates(y, p, rx, ry, n):
+    """The slip's e = c / |c| [-], s' [m/s²] and c' [1/s] (``PlanarBlock.flow``), with
+    -sigma = (rx, ry) and n [m/s²]: (e_x, e_y, s', c_x', c_y')."""
     size = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
     ex, ey = y[_CX] / size, y[_CY] / size
     along = ex * rx + ey * ry - p[1] * n
     across = ex * ry - ey * rx
     s = y[_S]
     turn = across / (s if s > SLOW_SPEED else SLOW_SPEED)
-    out[_UX], out[_UY], out[_S], out[_CX], out[_CY] = s * ex, s * ey, along, -ey * turn * size, ex * turn * size
-    out[_PATH] = s
+    return ex, ey, along, -ey * turn * size, ex * turn * size
+
+
+def _slip_rates_at(t, y, pe, p):
+    """:func:`_slip_rates` at ``t`` [s]."""
+    return _slip_rates(y, p, -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4]), p[4] + _a(pe, 2, t))
 
 
 def _slip_rhs(t, y, args, out):
-    """The slip flow as DOP853's right-hand side (``args``: (pe, p))."""
-    _flow_into(SLIP, t, y, args[0], args[1], out)
+    """The slip flow as the steps' right-hand side (``args``: (pe, p)); :func:`_flow_into`
+    with the piece's local time computed once."""
+    pe, p = args
+    P, tau = pe[2], min(t - pe[0], pe[1])
+    rx, ry = -(_a_local(P, 0, tau) - p[2] * p[4]), -(_a_local(P, 1, tau) - p[3] * p[4])
+    _slip_into(y, p, rx, ry, p[4] + _a_local(P, 2, tau), out)
 
 
 def _guards(mode, t, y, pe, p):
@@ -208,9 +252,8 @@ def _guards(mode, t, y, pe, p):
     second is +inf)."""
     if mode == FLIGHT:
         return y[_W], math.inf
-    n, _ = _normal(pe, p, t)
+    n, sx, sy = _forces(pe, p, t)
     if mode == STICK:
-        sx, sy, _, _ = _demand(pe, p, t)
         return n, p[0] * n - math.sqrt(sx**2 + sy**2)
     return n, y[_S]
 
@@ -220,7 +263,7 @@ def _guard_rates(mode, index, t, y, pe, p):
     n, n_rate = _normal(pe, p, t)
     if mode == SLIP and index == 1:
         _, _, rx, ry = _demand(pe, p, t)
-        return _flow(SLIP, t, y, pe, p)[_S], math.hypot(rx, ry) + p[1] * abs(n_rate)
+        return _slip_rates_at(t, y, pe, p)[2], math.hypot(rx, ry) + p[1] * abs(n_rate)
     if mode == FLIGHT:
         return y[_WD], -n
     if mode == STICK and index == 1:
@@ -236,8 +279,8 @@ def _turn_rate(mode, t, y, pe, p):
         return 2 * (p[0] ** 2 * n * n_rate - (sx * rx + sy * ry)), True
     if mode == FLIGHT:
         return y[_WD], True
-    rate = _flow(mode, t, y, pe, p)
-    return rate[_S], rate[_CX] == 0 and rate[_CY] == 0
+    _, _, along, turn_x, turn_y = _slip_rates_at(t, y, pe, p)
+    return along, turn_x == 0 and turn_y == 0
 
 
 def _falls(rate, curvature, resolution):
@@ -301,8 +344,34 @@ def _turning_point(mode, t, y, end, pe, p):
     return hi if hi < end else math.nan
 
 
+def _is_linear(pe):
+    """Whether a(t) is linear on the piece (no sine in any component)."""
+    P = pe[2]
+    return P[0, 2] == 0 and P[1, 2] == 0 and P[2, 2] == 0
+
+
+def _next_turn(mode, t, y, end, pe, p):
+    """:func:`_turning_point` where the loop reads it: in slip and flight (stick finds
+    its own in :func:`_static_root`)."""
+    return math.nan if mode == STICK else _turning_point(mode, t, y, end, pe, p)
+
+
+def _quiet_stick(pe, p, t, end, y):
+    """Whether stick certainly lasts from ``t`` to ``end`` [s]: a(t) is linear on the
+    piece, so n is linear and mu n - |sigma| concave (|sigma| is the norm of a linear
+    function), and both guards are positive at both ends (no root between, and the
+    turning point is not needed)."""
+    if not _is_linear(pe):
+        return False
+    g0, g1 = _guards(STICK, t, y, pe, p)
+    e0, e1 = _guards(STICK, end, y, pe, p)
+    return g0 > 0 and g1 > 0 and e0 > 0 and e1 > 0
+
+
 def _static_root(t, y, end, pe, p):
     """The driver's ``static_root`` in stick: (time, guard) or (nan, -1)."""
+    if _quiet_stick(pe, p, t, end, y):
+        return math.nan, -1
     turn = _turning_point(STICK, t, y, end, pe, p)
     times = (t, end, end) if math.isnan(turn) else (t, turn, end)
     for k in range(2 if not math.isnan(turn) else 1):
@@ -338,9 +407,9 @@ def _time_function(t, fa):
     kind 0: n; 1: the flight's w; 2: the flight's w'; 3: -n (w'')."""
     kind, t_from, y, pe, p = fa
     if kind == 0:
-        return _normal(pe, p, t)[0]
+        return _forces(pe, p, t)[0]
     if kind == 3:
-        return -_normal(pe, p, t)[0]
+        return -_forces(pe, p, t)[0]
     z = _flight_state(t_from, y, t, pe, p)
     return z[_W] if kind == 1 else z[_WD]
 
@@ -430,74 +499,221 @@ def _root_between(fa, a, b):
             b = mid
 
 
-# ---- slip: DOP853 with stops located on its dense output ------------------------------
+# ---- slip: DOP853, RODAS where the direction's relaxation is stiff --------------------
+def _slip_derivatives(t, y, args, J, f_t):
+    """df/dy (8, 8) into ``J`` and df/dt (8,) into ``f_t`` of the slip flow
+    (:func:`_flow_into`; the kink of the direction's rate at s = SLOW_SPEED is taken
+    from the side of s)."""
+    pe, p = args
+    for i in range(N_STATE):
+        f_t[i] = 0.0
+        for j in range(N_STATE):
+            J[i, j] = 0.0
+    rx, ry = -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4])
+    drx, dry, dn = -_raw_rate(pe, 0, t), -_raw_rate(pe, 1, t), _raw_rate(pe, 2, t)
+    s, cx, cy = y[_S], y[_CX], y[_CY]
+    q = math.sqrt(cx**2 + cy**2)
+    q3 = q**3
+    ex, ey = cx / q, cy / q
+    x = cx * ry - cy * rx  # |c| times the rate across
+    fast = s > SLOW_SPEED
+    slow = s if fast else SLOW_SPEED
+    J[_UX, _S], J[_UX, _CX], J[_UX, _CY] = ex, s * cy * cy / q3, -s * cx * cy / q3
+    J[_UY, _S], J[_UY, _CX], J[_UY, _CY] = ey, -s * cx * cy / q3, s * cx * cx / q3
+    J[_S, _CX], J[_S, _CY] = -cy * x / q3, cx * x / q3
+    x_cx, x_cy = ry / q - x * cx / q3, -rx / q - x * cy / q3  # d(x / q)
+    J[_CX, _CX], J[_CX, _CY] = -cy * x_cx / slow, -(x / q + cy * x_cy) / slow
+    J[_CY, _CX], J[_CY, _CY] = (x / q + cx * x_cx) / slow, cx * x_cy / slow
+    if fast:
+        J[_CX, _S], J[_CY, _S] = cy * x / (q * s * s), -cx * x / (q * s * s)
+    J[_PATH, _S] = 1.0
+    x_t = cx * dry - cy * drx
+    f_t[_S] = ex * drx + ey * dry - p[1] * dn
+    f_t[_CX], f_t[_CY] = -cy * x_t / (q * slow), cx * x_t / (q * slow)
+
+
+def _error_scale(y, y_new, rtol, atol, out):
+    """Each component's error scale [m, m/s, -] into ``out``: atol + rtol max(|y|,
+    |y_new|) (SciPy's), save the vectors, whose errors are measured whatever the axes:
+    u's components share the larger |u|, and the direction c's error counts as the
+    error of the velocity v = s c / |c| it makes: both components get |c| (rtol + atol
+    / s), s the larger speed (at s = 0 it makes no velocity: it relaxes at the model's
+    capped rate and moves s to second order only)."""
+    for i in range(N_STATE):
+        out[i] = atol + rtol * max(abs(y[i]), abs(y_new[i]))
+    out[_UX] = out[_UY] = atol + rtol * math.sqrt(max(y[_UX] ** 2 + y[_UY] ** 2, y_new[_UX] ** 2 + y_new[_UY] ** 2))
+    size = math.sqrt(max(y[_CX] ** 2 + y[_CY] ** 2, y_new[_CX] ** 2 + y_new[_CY] ** 2))
+    speed = max(y[_S], y_new[_S])
+    out[_CX] = out[_CY] = size * (rtol + atol / speed) if speed > 0 else math.inf
+    return out
+
+
+def _slip_decompose(J, alpha, M):
+    """I alpha - J of the slip flow, for :func:`_slip_solve`: its only columns besides
+    the diagonal are s, c_x and c_y, so it is solved through the inverse of that 3 x 3
+    block (left in M[:3, :3])."""
+    a00, a01, a02 = alpha - J[_S, _S], -J[_S, _CX], -J[_S, _CY]  # the block, rows and columns (s, c_x, c_y)
+    a10, a11, a12 = -J[_CX, _S], alpha - J[_CX, _CX], -J[_CX, _CY]
+    a20, a21, a22 = -J[_CY, _S], -J[_CY, _CX], alpha - J[_CY, _CY]
+    M[0, 0], M[0, 1], M[0, 2] = a11 * a22 - a12 * a21, a02 * a21 - a01 * a22, a01 * a12 - a02 * a11
+    M[1, 0], M[1, 1], M[1, 2] = a12 * a20 - a10 * a22, a00 * a22 - a02 * a20, a02 * a10 - a00 * a12
+    M[2, 0], M[2, 1], M[2, 2] = a10 * a21 - a11 * a20, a01 * a20 - a00 * a21, a00 * a11 - a01 * a10
+    det = a00 * M[0, 0] + a01 * M[1, 0] + a02 * M[2, 0]
+    for i in range(3):
+        for j in range(3):
+            M[i, j] /= det
+
+
+def _slip_solve(J, alpha, M, x):
+    """x <- (I alpha - J)^-1 x (see :func:`_slip_decompose`)."""
+    b0, b1, b2 = x[_S], x[_CX], x[_CY]
+    for i in range(3):
+        x[_S + i] = M[i, 0] * b0 + M[i, 1] * b1 + M[i, 2] * b2
+    for i in range(N_STATE):
+        if i < _S or i > _CY:
+            x[i] = (x[i] + J[i, _S] * x[_S] + J[i, _CX] * x[_CX] + J[i, _CY] * x[_CY]) / alpha
+
+
+def _relaxation_rate(t, y, pe, p):
+    """|sigma| / max(s, SLOW_SPEED) [1/s]: the rate at which the slip's direction relaxes
+    towards the demand (the flow's stiff eigenvalue)."""
+    _, sx, sy = _forces(pe, p, t)
+    return math.sqrt(sx * sx + sy * sy) / max(y[_S], SLOW_SPEED)
+
+
 _step, _initial_step, _dense_coefficients = _dop853.for_flow(_slip_rhs)
-_dense_value, _dense_state = _dop853.dense_value, _dop853.dense_state
+_jacobian, _stiff_step, _stiff_dense_coefficients = _rodas4.for_flow(_slip_rhs, _slip_derivatives, _slip_decompose,
+                                                                         _slip_solve)
+#: DOP853 or RODAS for a step
+EXPLICIT, STIFF = 0, 1
+#: DOP853's longest step times the direction's relaxation rate [-]: its stability
+#: interval on the negative axis ends at -6.3 (|R| < 0.2 up to -5.5)
+STABLE_PRODUCT = 4.0
 
 
-def _slip_to(t, y, h, stop, pe, p, rtol, atol, B, cnt):
+def _dense_value(F, y, x, i, method):
+    """Component ``i`` of the step's dense output at x in [0, 1]."""
+    if method == STIFF:
+        return _rodas4.dense_value(F, y, x, i)
+    return _dop853.dense_value(F, y, x, i)
+
+
+def _dense_state(F, y, x, out, method):
+    for i in range(y.shape[0]):
+        out[i] = _dense_value(F, y, x, i, method)
+
+
+def _slip_to(t, y, stop, pe, p, rtol, atol, B, cnt, fl):
     """Slide from (t, y) to ``stop`` [s] or to the first stop before it: (time, state,
-    1 if a stop else -1, next step [s]). ``h``: the step to try (0: choose one); ``B``:
-    the work buffers (:func:`_buffers`)."""
-    K, K2, F, work, y_new, z, y_cur, _ = B
+    1 if a stop else -1). ``B``: the work buffers (:func:`_buffers`); ``fl``: the
+    steps to try (0: choose one) and the method, kept from call to call. DOP853 steps
+    while its step is stable (h times the direction's relaxation rate at most
+    :data:`STABLE_PRODUCT`); where the accuracy would allow a longer one, RODAS takes
+    over while its own steps are longer than DOP853's stable ones."""
+    K, K2, F, work, y_new, z, y_cur, _, J, M, scale = B
     args = (pe, p)
+    h, h_stiff, method = fl[F_H], fl[F_H_STIFF], int(fl[F_METHOD])
     _put(y_cur, y)
     _slip_rhs(t, y_cur, args, K[0])
     cnt[C_RHS] += 1
     if h <= 0:
         h = _initial_step(args, t, y_cur, stop - t, rtol, atol, K, work)
         cnt[C_RHS] += 1
+    jacobian_at = math.nan  # the time of the derivatives in J (at y_cur)
+    rejected = False
+    h_accepted, err_accepted = 0.0, 0.0  # DOP853's last accepted step [s] and its error [-]
     while t < stop:
+        stable = STABLE_PRODUCT / _relaxation_rate(t, y_cur, pe, p)  # DOP853's longest stable step [s]
+        if method == EXPLICIT and h > stable:
+            if h_stiff > stable:
+                method, h = STIFF, min(h, h_stiff)
+            else:
+                h = stable
+        elif method == STIFF and h < stable:
+            method = EXPLICIT
         rest = stop - t
         last = h >= rest
         hh = rest if last else h
         if not last and hh <= _ULPS * _EPS * max(1.0, abs(t)):
             cnt[C_STATUS] = STEP_TOO_SMALL
-            return t, y_cur.copy(), -1, h
-        _step(args, t, y_cur, hh, K, y_new, work)
-        cnt[C_RHS] += 12
-        err = _dop853.error_norm(K, hh, y_cur, y_new, rtol, atol)
-        if err > 1.0:
-            h = hh * _dop853.factor(err, False)
+            break
+        if method == STIFF:
+            if jacobian_at != t:
+                _jacobian(args, t, y_cur, K, J)
+                jacobian_at = t
+                cnt[C_RHS] += 1
+            _stiff_step(args, t, y_cur, hh, K, y_new, work, J, M)
+            cnt[C_RHS] += 5
+            err = _rodas4.error_norm(K, _error_scale(y_cur, y_new, rtol, atol, scale))
+        else:
+            _step(args, t, y_cur, hh, K, y_new, work)
+            cnt[C_RHS] += 12
+            err = _dop853.error_norm(K, hh, _error_scale(y_cur, y_new, rtol, atol, scale))
+        accepted = err <= 1.0
+        h_next = hh * (_rodas4.factor(err, accepted) if method == STIFF else _dop853.factor(err, accepted))
+        if accepted and rejected:  # no longer than the step just accepted after a rejection (SciPy's)
+            h_next = min(h_next, hh)
+        if accepted and method == EXPLICIT:
+            if h_accepted > 0 and err > 0 and err_accepted > 0:  # Gustafsson's predictive step
+                predicted = _dop853.SAFETY * (hh / h_accepted) * (err_accepted / err**2) ** (1.0 / 8.0)
+                h_next = min(h_next, hh * max(_dop853.MIN_FACTOR, predicted))
+            h_accepted, err_accepted = hh, err
+        if method == STIFF:
+            h_stiff = h_next
+        rejected = not accepted
+        if rejected:
+            h = h_next
             cnt[C_REJECTED] += 1
             continue
         cnt[C_STEPS] += 1
         t_new = stop if last else t + hh
+        if method == STIFF:  # the rate at the end (DOP853's step has it in K[12])
+            _slip_rhs(t_new, y_new, args, K[_dop853.N_STAGES])
+            cnt[C_RHS] += 1
         upper, dense = math.nan, False
         f_start, f_end = K[0, _S], K[_dop853.N_STAGES, _S]
         if y_cur[_S] > 0 and y_new[_S] <= 0:
             upper = t_new
         elif y_cur[_S] > 0 and f_start < 0 and f_end > 0:  # s may dip below zero and come back
-            _dense_coefficients(args, t, y_cur, y_new, hh, K, F, work)
+            cnt[C_RHS] += _dense_rows(args, t, y_cur, y_new, hh, K, F, work, method)
             dense = True
-            cnt[C_RHS] += 3
-            x_min = _dense_minimum(F, y_cur, t, hh, args, work, z)
-            if _dense_value(F, y_cur, x_min, _S) <= 0:
+            x_min = _dense_minimum(F, y_cur, t, hh, args, work, z, method)
+            if _dense_value(F, y_cur, x_min, _S, method) <= 0:
                 upper = t + x_min * hh
         if not math.isnan(upper):
             if not dense:
-                _dense_coefficients(args, t, y_cur, y_new, hh, K, F, work)
-                cnt[C_RHS] += 3
-            root = _stop_on_flow(F, args, t, y_cur, hh, upper, K, K2, work, z, cnt)
+                cnt[C_RHS] += _dense_rows(args, t, y_cur, y_new, hh, K, F, work, method)
+            root = _stop_on_flow(F, args, t, y_cur, hh, upper, K, K2, work, z, cnt, B, method)
             if root > 0:
-                return root, z.copy(), 1, h
-        h_next = hh * _dop853.factor(err, True)
+                fl[F_H], fl[F_H_STIFF], fl[F_METHOD] = h, h_stiff, method
+                return root, z.copy(), 1
         h = max(h, h_next) if last else h_next
         t = t_new
         _put(y_cur, y_new)
         _put(K[0], K[_dop853.N_STAGES])
-    return t, y_cur.copy(), -1, h
+    fl[F_H], fl[F_H_STIFF], fl[F_METHOD] = h, h_stiff, method
+    return t, y_cur.copy(), -1
+
+
+def _dense_rows(args, t, y, y_new, hh, K, F, work, method):
+    """The step's dense output into ``F``; the right-hand-side calls it took."""
+    if method == STIFF:
+        _stiff_dense_coefficients(y, y_new, K, F)
+        return 0
+    _dense_coefficients(args, t, y, y_new, hh, K, F, work)
+    return 3
 
 
 def _buffers():
-    """Work arrays: K, K2 (16, 8), F (7, 8), then four (8,) of the slip's steps, and a
-    zero state (8,) (read only)."""
+    """Work arrays: K, K2 (16, 8), F (7, 8), then four (8,) of the slip's steps, a
+    zero state (8,) (read only), J (8, 8) and M (3, 3) of RODAS's steps, the error scale (8,)."""
     n = _dop853.N_STAGES_EXTENDED
     return (np.empty((n, N_STATE)), np.empty((n, N_STATE)), np.empty((7, N_STATE)), np.empty(N_STATE),
-            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE), np.zeros(N_STATE))
+            np.empty(N_STATE), np.empty(N_STATE), np.empty(N_STATE), np.zeros(N_STATE),
+            np.empty((N_STATE, N_STATE)), np.empty((3, 3)), np.empty(N_STATE))
 
 
-def _dense_minimum(F, y, t, hh, args, work, rate):
+def _dense_minimum(F, y, t, hh, args, work, rate, method):
     """x in [0, 1] where the dense s is least (its rate from the flow at the dense state
     goes from < 0 to > 0), by bisection."""
     lo, hi = 0.0, 1.0
@@ -505,7 +721,7 @@ def _dense_minimum(F, y, t, hh, args, work, rate):
         mid = 0.5 * (lo + hi)
         if mid == lo or mid == hi:
             break
-        _dense_state(F, y, mid, work)
+        _dense_state(F, y, mid, work, method)
         _slip_rhs(t + mid * hh, work, args, rate)
         if rate[_S] < 0:
             lo = mid
@@ -514,42 +730,47 @@ def _dense_minimum(F, y, t, hh, args, work, rate):
     return hi
 
 
-def _s_after(args, t, y, d, K, K2, work, z):
-    """s [m/s] after a DOP853 step of ``d`` [s] from (t, y) (K[0]: the rate there),
-    the state left in ``z``."""
+def _s_after(args, t, y, d, K, K2, work, z, B, method):
+    """s [m/s] after a step of ``d`` [s] from (t, y) (K[0]: the rate there; for RODAS
+    K[7] and B's J: the derivatives there), the state left in ``z``."""
     _put(K2[0], K[0])
-    _step(args, t, y, d, K2, z, work)
+    if method == STIFF:
+        _put(K2[7], K[7])
+        _stiff_step(args, t, y, d, K2, z, work, B[8], B[9])
+    else:
+        _step(args, t, y, d, K2, z, work)
     return z[_S]
 
 
-def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt):
+def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt, B, method):
     """The stop in (t, upper]: the first float where the dense s is <= 0, confirmed on
     the flow (a step from t to it has s <= 0, to the float before it s > 0); else the
     same bisection on steps from t. The time (0 if the flow has none), the state in ``z``."""
+    calls = 6 if method == STIFF else 12
     a, b = t, upper
     while True:  # on the dense output
         mid = 0.5 * (a + b)
         if mid <= a or mid >= b:
             break
-        if _dense_value(F, y, (mid - t) / hh, _S) > 0:
+        if _dense_value(F, y, (mid - t) / hh, _S, method) > 0:
             a = mid
         else:
             b = mid
     before = np.nextafter(b, -math.inf)
-    cnt[C_RHS] += 24
-    if before <= t or _s_after(args, t, y, before - t, K, K2, work, z) > 0:
-        if _s_after(args, t, y, b - t, K, K2, work, z) <= 0:
+    cnt[C_RHS] += 2 * calls
+    if before <= t or _s_after(args, t, y, before - t, K, K2, work, z, B, method) > 0:
+        if _s_after(args, t, y, b - t, K, K2, work, z, B, method) <= 0:
             return b
     a, b = t, upper  # on the flow
-    if _s_after(args, t, y, b - t, K, K2, work, z) > 0:
+    if _s_after(args, t, y, b - t, K, K2, work, z, B, method) > 0:
         return 0.0
     while True:
         mid = 0.5 * (a + b)
         if mid <= a or mid >= b:
-            _s_after(args, t, y, b - t, K, K2, work, z)
+            _s_after(args, t, y, b - t, K, K2, work, z, B, method)
             return b
-        cnt[C_RHS] += 12
-        if _s_after(args, t, y, mid - t, K, K2, work, z) > 0:
+        cnt[C_RHS] += calls
+        if _s_after(args, t, y, mid - t, K, K2, work, z, B, method) > 0:
             a = mid
         else:
             b = mid
@@ -559,8 +780,9 @@ def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt):
 #: counters (int64): knots, events, events in the current instant, most at one instant,
 #: liftoffs, status, steps, rejected steps, right-hand-side calls, mode, restarted
 C_NK, C_NE, C_RUN, C_MAX_RUN, C_FLIGHTS, C_STATUS, C_STEPS, C_REJECTED, C_RHS, C_MODE, C_RESTARTED = range(11)
-#: floats: time [s], largest speed [m/s], last event [s], step to try [s], largest |u| [m]
-F_T, F_VMAX, F_LAST, F_H, F_MAXU = range(5)
+#: floats: time [s], largest speed [m/s], last event [s], step to try [s], largest |u| [m],
+#: RODAS's last step to try [s] (inf: none yet), the slip's method (EXPLICIT or STIFF)
+F_T, F_VMAX, F_LAST, F_H, F_MAXU, F_H_STIFF, F_METHOD = range(7)
 #: knot rows: t, y (7), mode after, dy/dt after (7), dy/dt before (7)
 KNOT_WIDTH = 23
 #: event rows: t, mode before, mode after, y before the entry (7)
@@ -619,7 +841,7 @@ def _log_event(kb, eb, cnt, fl, log, y, t, after, pe, p, resolution, cap):
         cnt[C_STATUS] = CHATTER
         return kb, eb
     cnt[C_MODE], cnt[C_RESTARTED] = after, 1
-    fl[F_H] = 0.0  # a new mode: a fresh first step
+    fl[F_H], fl[F_H_STIFF], fl[F_METHOD] = 0.0, math.inf, EXPLICIT  # a new mode: a fresh first step
     kb = _add_knot(kb, cnt, fl, log, t, y, after, np.zeros(N_STATE), _flow(after, t, y, pe, p))
     return kb, eb
 
@@ -669,7 +891,7 @@ def _output_step(pe):
 
 def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
     """The driver's ``advance_to``: from ``fl[F_T]`` to ``end`` [s]."""
-    turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+    turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
     while fl[F_T] < end and not (until_rest and cnt[C_MODE] == STICK):
         if cnt[C_STATUS] != FINISHED:
             return kb, eb
@@ -681,13 +903,13 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
                 return _add_knot(kb, cnt, fl, log, end, y, mode, B[7], B[7]), eb
             fl[F_T] = root
             kb, eb = _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt)
-            turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+            turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
             continue
         if cnt[C_RESTARTED]:
             index = _guard_left_at_once(mode, t, y, pe, p, opt[2])
             if index >= 0:
                 kb, eb = _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt)
-                turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+                turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
                 if cnt[C_MODE] != mode:
                     continue
             cnt[C_RESTARTED] = 0
@@ -702,7 +924,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
         else:
             lift = _liftoff_time(t, t_out, y, pe, p)
             stop = t_out if math.isnan(lift) else lift
-            t_new, z, root, fl[F_H] = _slip_to(t, y, fl[F_H], stop, pe, p, opt[0], opt[1], B, cnt)
+            t_new, z, root = _slip_to(t, y, stop, pe, p, opt[0], opt[1], B, cnt, fl)
             if cnt[C_STATUS] != FINISHED:
                 return kb, eb
             if root < 0 and not math.isnan(lift):
@@ -718,11 +940,11 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
                 cnt[C_STATUS] = INCONSISTENT
                 return kb, eb
         if root < 0:
-            rate = _flow(mode, t_new, y, pe, p)
+            rate = _flow(mode, t_new, y, pe, p) if log else B[7]
             kb = _add_knot(kb, cnt, fl, log, t_new, y, mode, rate, rate)
         else:
             kb, eb = _on_guard(kb, eb, cnt, fl, log, y, root, pe, p, opt)
-            turn = _turning_point(cnt[C_MODE], fl[F_T], y, end, pe, p)
+            turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
     return kb, eb
 
 
@@ -732,8 +954,7 @@ def _piece_excitation(T0, H, CF, scale, k, P, D):
     for i in range(3):
         P[i, 0], P[i, 1], P[i, 2] = CF[k, i, 0] * scale, CF[k, i, 1] * scale, CF[k, i, 2] * scale
         P[i, 3], P[i, 4] = CF[k, i, 3], CF[k, i, 4]
-        D[i] = np.sign(accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], H[k], xp)
-                       - accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], 0.0, xp))
+        D[i] = np.sign(_a_local(P, i, H[k]) - _a_local(P, i, 0.0))
     return (T0[k], H[k], P, D)
 
 
@@ -743,7 +964,8 @@ def _run(T0, H, CF, p, opt, log):
     knot and event logs if ``log``. Returns (outcome, knots (k, 23), events (e, 10))."""
     n = T0.shape[0]
     cnt = np.zeros(11, dtype=np.int64)
-    fl = np.zeros(5)
+    fl = np.zeros(7)
+    fl[F_H_STIFF] = math.inf
     fl[F_LAST] = math.nan
     cnt[C_MODE], cnt[C_RESTARTED] = STICK, 1
     y = np.zeros(N_STATE)
@@ -763,7 +985,8 @@ def _run(T0, H, CF, p, opt, log):
             pe = (t_end, math.inf, np.zeros((3, 5)), np.zeros(3))
             end = t_end
         if log and cnt[C_NK] > 0:  # enter_piece: dy/dt after the last knot on this piece
-            _put(kb[cnt[C_NK] - 1, 9:16], _flow(cnt[C_MODE], fl[F_T], y, pe, p))
+            _flow_into(cnt[C_MODE], fl[F_T], y, pe, p, B[3])
+            _put(kb[cnt[C_NK] - 1, 9:16], B[3])
         cnt[C_RESTARTED] = 1
         if cnt[C_MODE] == STICK or (cnt[C_MODE] == SLIP and y[_S] == 0):
             rest = _mode_at_rest(pe, p, pe[0])
@@ -780,6 +1003,10 @@ def _run(T0, H, CF, p, opt, log):
                 cnt[C_STATUS] = NEVER_RESTS
                 break
             end = fl[F_T] + bound
+        if cnt[C_MODE] == STICK and k < n and fl[F_T] < end and _quiet_stick(pe, p, fl[F_T], end, y):  # _advance's, short
+            fl[F_T], cnt[C_RESTARTED] = end, 1
+            kb = _add_knot(kb, cnt, fl, log, end, y, STICK, zero, zero)
+            continue
         kb, eb = _advance(kb, eb, cnt, fl, log, y, end, k == n, pe, p, opt, B)
         if cnt[C_STATUS] != FINISHED:
             break
@@ -838,7 +1065,7 @@ def run_one(T0, H, CF, p, options):
 
 _OPTIONS = dict(error_model="numpy")
 #: modules whose functions the engine compiles besides its own
-_SHARED = (_pieces, _dop853, xp, sys.modules[__name__])
+_SHARED = (_pieces, _dop853, _rodas4, xp, sys.modules[__name__])
 
 
 def _register():

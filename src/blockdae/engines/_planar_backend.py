@@ -22,7 +22,7 @@ from . import _planar as engine
 #: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)
 _PARALLEL_WORK = 1e5
 #: the engine's name in the compile notice, and its compile time on one core [s]
-_ENGINE, _COMPILE_SECONDS = "the compiled planar engine", 25
+_ENGINE, _COMPILE_SECONDS = "the compiled planar engine", 35
 #: parts of a batch per thread (threads take the next part when done: balance)
 _PARTS_PER_THREAD = 8
 
@@ -119,8 +119,9 @@ def _run_parallel(T0, H, CF, offsets, params, options, until_rest, out):
     if threads == 1:
         run(T0, H, CF, offsets, params, options, until_rest, items, out, False)
         return
-    # strided parts: neighbouring items (one motion at nearby factors) cost alike
-    parts = [items[k::threads * _PARTS_PER_THREAD] for k in range(threads * _PARTS_PER_THREAD)]
+    # strided parts: neighbouring items (one motion at nearby factors) cost alike; copied
+    # contiguous, so that the kernel runs with the serial call's types (one compile)
+    parts = [items[k::threads * _PARTS_PER_THREAD].copy() for k in range(threads * _PARTS_PER_THREAD)]
     with concurrent.futures.ThreadPoolExecutor(threads) as pool:
         list(pool.map(lambda part: run(T0, H, CF, offsets, params, options, until_rest, part, out, False), parts))
 
