@@ -17,7 +17,7 @@ import numpy as np
 from ..core._units import STANDARD_GRAVITY
 from ..engines._linear_solution import linear_pieces
 from ..excitation import Record, pga_factor
-from . import _engine
+from . import _engine, _fused
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._exact import check, engine_settings
 from ._model import METHODS, FlexibleSlidingMass
@@ -213,53 +213,62 @@ def analyse_exact(analysis: Analysis) -> dict:
 
 def exact_rows(analyses: list[Analysis]) -> list[dict]:
     """The rows of ``analyses``, exact: equivalent-linear iterations one by one, then
-    every no-sliding and sliding run in one parallel compiled call."""
-    _, response, parallel, serial, _ = _engine.kernels()
-    inputs, index = [], {}
+    every analysis (its no-sliding response, once per record and column, and its runs)
+    in one compiled call, parallel over cores for a large batch (:mod:`._fused`)."""
+    inputs, index, record_of = [], {}, []
     for analysis in analyses:
         key = (id(analysis.record), analysis.t_end)
         if key not in index:
             index[key] = len(inputs)
             inputs.append(_engine_input(analysis.record, analysis.t_end))
-    finals = [_final_column(analysis, inputs[index[(id(analysis.record), analysis.t_end)]], response)
-              for analysis in analyses]
-    jobs, response_of, slides = [], {}, []
-    for analysis, ((omega, xi, kyg, coupled), _) in zip(analyses, finals):
-        record = index[(id(analysis.record), analysis.t_end)]
-        key = (record, omega, xi)
-        if key not in response_of:
-            response_of[key] = len(jobs)
-            jobs.append((record, 1.0, omega, xi, 0.0, coupled, False))
-        for polarity in analysis.polarities:
-            jobs.append((record, 1.0 if polarity == "normal" else -1.0, omega, xi, kyg, coupled, True))
-        slides.append((response_of[key], len(jobs) - len(analysis.polarities)))
-    offsets = np.concatenate([[0], np.cumsum([len(x[0]) for x in inputs])]).astype(np.int64)
-    arrays = [np.concatenate([x[k] for x in inputs]) for k in range(4)]
-    columns = list(zip(*jobs))
-    work = sum(int(offsets[record + 1] - offsets[record]) for record, *_ in jobs)
-    run_jobs = parallel if work >= PARALLEL_WORK else serial
-    out = run_jobs(*arrays, offsets, np.array(columns[0], dtype=np.int64),
-                   *(np.array(c, dtype=float) for c in columns[1:5]), np.array(columns[5], dtype=np.bool_),
-                   np.array(columns[6], dtype=np.bool_))
+        record_of.append(index[key])
+    parameters, flags = np.empty((len(analyses), 3)), np.zeros((len(analyses), len(_fused.FLAG_FIELDS)), np.int64)
+    response_of, vs_finals = [], []
+    first_with = {}
+    for q, analysis in enumerate(analyses):
+        (omega, xi, kyg, coupled), vs_final = _final_column(analysis, inputs[record_of[q]])
+        parameters[q] = omega, xi, kyg
+        response_of.append(first_with.setdefault((record_of[q], omega, xi), q))
+        flags[q] = (coupled, "normal" in analysis.polarities, "inverse" in analysis.polarities, False,
+                    response_of[q] == q)
+        vs_finals.append(vs_final)
+    out = _run_analyses(inputs, np.array(record_of, dtype=np.int64), parameters, flags)
     rows = []
-    for analysis, ((_, xi, _, _), vs_final), (response, first) in zip(analyses, finals, slides):
-        for j in [response] + list(range(first, first + len(analysis.polarities))):
-            if out[j, _FIELD["status"]] != _engine.FINISHED:
-                check(out[j], f" ({analysis.name}, {analysis.model})")
+    for q, analysis in enumerate(analyses):
+        response = out[response_of[q], _fused.RESPONSE]
+        runs = {"normal": out[q, _fused.NORMAL], "inverse": out[q, _fused.INVERSE]}
+        for outcome in [response] + [runs[polarity] for polarity in analysis.polarities]:
+            if outcome[_FIELD["status"]] != _engine.FINISHED:
+                check(outcome, f" ({analysis.name}, {analysis.model})")
         row = {"record": analysis.name, "ky_g": analysis.model.ky, "height_m": analysis.model.column.height,
                "vs_m_s": analysis.model.column.vs, "normal_m": np.nan, "inverse_m": np.nan,
-               "kmax_g": out[response, _FIELD["hea_samples"]] / analysis.model.g,
-               "kmax_sup_g": out[response, _FIELD["hea_sup"]] / analysis.model.g,
-               "vs_final_m_s": vs_final, "damping_final": xi,
+               "kmax_g": response[_FIELD["hea_samples"]] / analysis.model.g,
+               "kmax_sup_g": response[_FIELD["hea_sup"]] / analysis.model.g,
+               "vs_final_m_s": vs_finals[q], "damping_final": parameters[q, 1],
                "episodes_normal": None, "episodes_inverse": None}
-        for k, polarity in enumerate(analysis.polarities):
-            row[f"{polarity}_m"] = 0.0 + out[first + k, _FIELD["s"]]
-            row[f"episodes_{polarity}"] = int(out[first + k, _FIELD["n_episodes"]])
+        for polarity in analysis.polarities:
+            row[f"{polarity}_m"] = 0.0 + runs[polarity][_FIELD["s"]]
+            row[f"episodes_{polarity}"] = int(runs[polarity][_FIELD["n_episodes"]])
         rows.append(row)
     return rows
 
 
-def _final_column(analysis, arrays, response):
+def _run_analyses(inputs, record, parameters, flags):
+    """The compiled analyses (:func:`._fused._analyses`) of excitations ``inputs`` (engine
+    arrays): (n, 3, width) outcomes."""
+    parallel, serial = _fused.kernels()
+    if len(inputs) == 1:
+        arrays, offsets = inputs[0], np.array([0, len(inputs[0][0])], dtype=np.int64)
+    else:
+        arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
+        offsets = np.concatenate([[0], np.cumsum([len(x[0]) for x in inputs])]).astype(np.int64)
+    out = np.empty((len(record), 3, _fused.WIDTH))
+    work = float(np.sum(offsets[record + 1] - offsets[record])) * 2
+    (parallel if work >= PARALLEL_WORK else serial)(*arrays, offsets, record, parameters, flags, out)
+    return out
+
+
+def _final_column(analysis, arrays):
     """The engine's settings (omega, xi, ky g, coupled) of ``analysis`` after its
     equivalent-linear iteration (on the exact no-sliding sup |u|), if any, and the
     column's vs then [m/s]."""
@@ -269,7 +278,9 @@ def _final_column(analysis, arrays, response):
     column = model.column
 
     def peak_displacement(vs, xi):
-        outcome = response(*arrays, 1.0, np.pi * vs / (2 * column.height), xi)
+        outcome = _run_analyses([arrays], np.zeros(1, dtype=np.int64),
+                                np.array([[np.pi * vs / (2 * column.height), xi, 0.0]]),
+                                np.array([[0, 0, 0, 1, 1]], dtype=np.int64))[0, _fused.RESPONSE]
         check(outcome, f" ({analysis.name}, equivalent-linear pass at vs={vs!r} m/s)")
         return outcome[_FIELD["u_sup"]]
 

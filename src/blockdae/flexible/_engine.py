@@ -212,6 +212,95 @@ def _stick_hea(a, u, v, row):
 
 
 @register_jitable
+def _quick_step(mode, m, row, step, xi, kyg, a0, rate, u, v, s, w):
+    """A whole step [s] of ``mode`` by its map ``m`` and constants ``row`` (from
+    :func:`_step_tables`) under a(tau) = a0 + rate tau [m/s², m/s³], where its guard's
+    values at the ends and a bound of its rate show that it stays positive: (True, u, u',
+    s, w at the end); (False, ...) where they do not (the closed form decides)."""
+    u_end, v_end, amplitude, _ = _whole_step(m, row, u, v, a0, rate)
+    if mode == SLIP:  # w' = a - ky g + (2/pi) u''
+        pw, ps = _slip_polynomials(a0, rate, kyg, u, v, s, w)
+        w_end = _cubic(pw, step) + MASS_PARTICIPATION * v_end
+        w_rate = (max(abs(a0 - kyg), abs(a0 + rate * step - kyg)) + MASS_PARTICIPATION * row[0] * amplitude) * _WIDEN
+        if _signed(w, w_end, w_rate, step) > 0:
+            return True, u_end, v_end, _cubic(ps, step) + MASS_PARTICIPATION * u_end, w_end
+        return False, u, v, s, w
+    hea_start, hea_end = _stick_hea(a0, u, v, row), _stick_hea(a0 + rate * step, u_end, v_end, row)
+    return _signed(kyg - hea_start, kyg - hea_end, _hea_rate(rate, row, amplitude, xi), step) > 0, u_end, v_end, s, w
+
+
+@register_jitable
+def _piece(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, log, n_rows,
+           mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event):
+    """One piece of a(t) = a0 + rate tau [m/s², m/s³], ``length`` [s] from ``t_start``
+    [s], from the state (``mode``, u, v, s, w) and the event counters: whole steps by
+    their map (``maps``, ``table`` from :func:`_step_tables` for ``step`` [s]) where
+    bounds show that no guard crosses, else in closed form with every event located.
+    ``cached``: (6,) scratch of exp, cos, sin of the last span; ``stack``: the root
+    search's scratch; ``log``: knot rows from ``n_rows`` on ((0, 8): none). Returns
+    (mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, status, n_rows)."""
+    status = FINISHED
+    logging = log.shape[0] > 0
+    tau = 0.0
+    while True:
+        if tau == 0.0 and length == step:
+            quick, u_end, v_end, s_end, w_end = _quick_step(mode, maps[mode], table[mode], step, xi, kyg, a0, rate, u,
+                                                            v, s, w)
+            if quick:
+                u, v, s, w = u_end, v_end, s_end, w_end
+                break
+        a = a0 + rate * tau
+        span = length - tau
+        f, sf, wf, guard = _forms(mode, coupled, omega, xi, damped[mode], kyg, a, rate, u, v, s, w)
+        if f[6] != cached[0] or f[7] != cached[1] or span != cached[2]:  # a record: once per mode and step
+            cached[0], cached[1], cached[2] = f[6], f[7], span
+            cached[3], cached[4], cached[5] = math.exp(-f[6] * span), math.cos(f[7] * span), math.sin(
+                f[7] * span)
+        event_tau = math.nan
+        g1 = _derivative(guard)
+        g2 = _derivative(g1)
+        at_start = guard[0] + guard[4]
+        if at_start <= 0 and (_falls(_eval(g1, 0.0), _eval(g2, 0.0), EVENT_RESOLUTION) or (
+                at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
+            event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
+        elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
+                     _bound(g1, 0.0, span), span) <= 0 and _moves(guard):
+            root = _down_crossing_search(guard, g1, g2, _derivative(g2), 0.0, span, t_start + tau, stack)
+            if root == -math.inf:
+                status = UNSETTLED
+                break
+            if root < span:  # a root at the end of the piece: the next piece decides
+                event_tau = root
+        if math.isnan(event_tau):
+            u, v = _eval_at(f, span, cached[3], cached[4], cached[5]), _eval_at(
+                _derivative(f), span, cached[3], cached[4], cached[5])
+            s = _eval_at(sf, span, cached[3], cached[4], cached[5])
+            w = _eval_at(wf, span, cached[3], cached[4], cached[5])
+            break
+        f1 = _derivative(f)
+        u, v = _eval(f, event_tau), _eval(f1, event_tau)
+        s = _eval(sf, event_tau)
+        w = 0.0  # exactly, at an onset and at a stop
+        before = mode
+        mode = SLIP if before == STICK else STICK
+        n_episodes += mode == SLIP
+        tau += event_tau
+        t_event = t_start + tau
+        run = run + 1 if t_event - last_event <= EVENT_RESOLUTION else 1
+        max_run = max(max_run, run)
+        last_event = t_event
+        n_events += 1
+        if logging and not _log(log, n_rows, t_event, u, v, s, w, mode, before, 1.0):
+            status = LOG_FULL
+            break
+        n_rows += logging
+        if run > MAX_EVENTS_AT_ONE_INSTANT:
+            status = CHATTER
+            break
+    return mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, status, n_rows
+
+
+@register_jitable
 def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, log):
     """One sliding run over the pieces (t0, h, p0, p1) [s, s, m/s², m/s³] of a(t) times
     ``scale`` from rest: column omega [rad/s], xi [-], ky g [m/s²], coupled or decoupled.
@@ -228,80 +317,13 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, log):
     status = FINISHED
     logging = log.shape[0] > 0
     for i in range(t0.shape[0]):
-        length, a0, rate = h[i], scale * p0[i], scale * p1[i]
-        tau = 0.0
         if logging and not _log(log, n_rows, t0[i], u, v, s, w, mode, mode, 0.0):
             status = LOG_FULL
             break
         n_rows += logging
-        while True:
-            if tau == 0.0 and length == step:
-                # a guard kept positive by its values at the ends and a bound of its rate
-                # needs no closed form; else the general path below
-                row = table[mode]
-                u_end, v_end, amplitude, _ = _whole_step(maps[mode], row, u, v, a0, rate)
-                if mode == SLIP:  # w' = a - ky g + (2/pi) u''
-                    pw, ps = _slip_polynomials(a0, rate, kyg, u, v, s, w)
-                    w_end = _cubic(pw, step) + MASS_PARTICIPATION * v_end
-                    w_rate = (max(abs(a0 - kyg), abs(a0 + rate * step - kyg))
-                              + MASS_PARTICIPATION * row[0] * amplitude) * _WIDEN
-                    quick = _signed(w, w_end, w_rate, step) > 0
-                    if quick:
-                        s, w = _cubic(ps, step) + MASS_PARTICIPATION * u_end, w_end
-                else:
-                    hea_start, hea_end = _stick_hea(a0, u, v, row), _stick_hea(a0 + rate * step, u_end, v_end, row)
-                    quick = _signed(kyg - hea_start, kyg - hea_end, _hea_rate(rate, row, amplitude, xi), step) > 0
-                if quick:
-                    u, v = u_end, v_end
-                    break
-            a = a0 + rate * tau
-            span = length - tau
-            f, sf, wf, guard = _forms(mode, coupled, omega, xi, damped[mode], kyg, a, rate, u, v, s, w)
-            if f[6] != cached[0] or f[7] != cached[1] or span != cached[2]:  # a record: once per mode and step
-                cached[0], cached[1], cached[2] = f[6], f[7], span
-                cached[3], cached[4], cached[5] = math.exp(-f[6] * span), math.cos(f[7] * span), math.sin(
-                    f[7] * span)
-            event_tau = math.nan
-            g1 = _derivative(guard)
-            g2 = _derivative(g1)
-            at_start = guard[0] + guard[4]
-            if at_start <= 0 and (_falls(_eval(g1, 0.0), _eval(g2, 0.0), EVENT_RESOLUTION) or (
-                    at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
-                event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
-            elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
-                         _bound(g1, 0.0, span), span) <= 0 and _moves(guard):
-                root = _down_crossing_search(guard, g1, g2, _derivative(g2), 0.0, span, t0[i] + tau, stack)
-                if root == -math.inf:
-                    status = UNSETTLED
-                    break
-                if root < span:  # a root at the end of the piece: the next piece decides
-                    event_tau = root
-            if math.isnan(event_tau):
-                u, v = _eval_at(f, span, cached[3], cached[4], cached[5]), _eval_at(
-                    _derivative(f), span, cached[3], cached[4], cached[5])
-                s = _eval_at(sf, span, cached[3], cached[4], cached[5])
-                w = _eval_at(wf, span, cached[3], cached[4], cached[5])
-                break
-            f1 = _derivative(f)
-            u, v = _eval(f, event_tau), _eval(f1, event_tau)
-            s = _eval(sf, event_tau)
-            w = 0.0  # exactly, at an onset and at a stop
-            before = mode
-            mode = SLIP if before == STICK else STICK
-            n_episodes += mode == SLIP
-            tau += event_tau
-            t_event = t0[i] + tau
-            run = run + 1 if t_event - last_event <= EVENT_RESOLUTION else 1
-            max_run = max(max_run, run)
-            last_event = t_event
-            n_events += 1
-            if logging and not _log(log, n_rows, t_event, u, v, s, w, mode, before, 1.0):
-                status = LOG_FULL
-                break
-            n_rows += logging
-            if run > MAX_EVENTS_AT_ONE_INSTANT:
-                status = CHATTER
-                break
+        mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, status, n_rows = _piece(
+            t0[i], h[i], scale * p0[i], scale * p1[i], step, maps, table, omega, xi, damped, kyg, coupled, cached,
+            stack, log, n_rows, mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event)
         if status != FINISHED:
             break
     if logging and status == FINISHED:

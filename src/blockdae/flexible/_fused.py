@@ -1,0 +1,193 @@
+"""One ``bd.flexible`` analysis in one compiled pass, final numbers only: the no-sliding
+response (max |HEA| at the samples, its supremum over time, sup |u|) and the sliding
+runs of both polarities.
+
+Each step of the record advances the response by its step map (as in
+:func:`._engine._piece`). A decoupled run slides on that response (its column is the
+no-sliding one; the inverse polarity's u is minus the normal one's), so its step costs
+a test of its guard; a coupled run steps its own column. A run's step needs no closed
+form where bounds show that its guard cannot cross; otherwise :func:`._engine._piece`
+takes it and locates every event. The sups search only the steps whose bound exceeds
+the largest sample so far, after the pass.
+"""
+
+import functools
+import math
+
+import numba
+import numpy as np
+from numba.extending import register_jitable
+
+from ..engines._linear import FINISHED, STACK_DEPTH, UNSETTLED, _combine, _derivative, _eval, _signed
+from ._column import MASS_PARTICIPATION
+from ._engine import (OUTCOME_FIELDS, SLIP, STICK, _WIDEN, _cubic, _damped, _forms, _hea_rate, _peak, _piece, _quick_step,
+                      _slip_polynomials, _step_tables, _stick_hea, _whole_step)
+
+#: rows of an analysis's outcome (each OUTCOME_FIELDS): the no-sliding response (state
+#: at the end, peaks, status), the run of the record as given, the run of it times -1
+RESPONSE, NORMAL, INVERSE = 0, 1, 2
+#: columns of ``flags``: coupled, run the normal polarity, run the inverse, find sup |u|,
+#: find the response's peaks (else its row is nan: another analysis has them)
+FLAG_FIELDS = ("coupled", "normal", "inverse", "u_sup", "response")
+#: columns of ``parameters``: omega [rad/s], xi [-], ky g [m/s²]
+PARAMETER_FIELDS = ("omega", "xi", "kyg")
+#: steps a sup search may need, held at first (grown when a pass needs more)
+_CANDIDATES = 64
+
+
+@register_jitable
+def _put(row, values):
+    """Write the tuple of floats ``values`` into the array ``row``."""
+    for k in range(len(values)):
+        row[k] = values[k]
+
+
+@register_jitable
+def _push(candidates, count, i, u, v, hea_reach, u_reach):
+    """Append a step to the sup search's candidates (grown when full); returns them."""
+    if count == candidates.shape[0]:
+        grown = np.empty((2 * count, 5))
+        grown[:count] = candidates
+        candidates = grown
+    candidates[count, 0], candidates[count, 1], candidates[count, 2] = i, u, v
+    candidates[count, 3], candidates[count, 4] = hea_reach, u_reach
+    return candidates
+
+
+@register_jitable
+def _sups(candidates, count, t0, h, p0, p1, omega, xi, damped, hea_sup, u_sup, want_u, stack):
+    """(sup |HEA| [m/s²], sup |u| [m]) from the best samples ``hea_sup``, ``u_sup`` and a
+    search of every candidate step whose bound exceeds the best so far; -inf where a
+    search did not settle."""
+    for q in range(count):
+        i, hea_reach, u_reach = int(candidates[q, 0]), candidates[q, 3], candidates[q, 4]
+        if hea_reach > hea_sup or (want_u and u_reach > u_sup):
+            f, _, _, guard = _forms(STICK, False, omega, xi, damped, 0.0, p0[i], p1[i], candidates[q, 1],
+                                    candidates[q, 2], 0.0, 0.0)
+            if hea_reach > hea_sup:  # the guard is ky g - HEA with ky g = 0
+                hea_sup = _peak(_combine(-1.0, guard, 0.0, guard, 0.0), h[i], hea_sup, t0[i], stack)
+            if want_u and u_reach > u_sup:
+                u_sup = _peak(f, h[i], u_sup, t0[i], stack)
+            if hea_sup == -math.inf or u_sup == -math.inf:
+                break
+    return hea_sup, u_sup
+
+
+@register_jitable
+def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out):
+    """One analysis over the pieces (t0, h, p0, p1) [s, s, m/s², m/s³] of a(t) from rest:
+    column omega [rad/s], xi [-], ky g [m/s²], ``coupled`` or decoupled; ``runs``: (2,)
+    whether to run the normal and the inverse polarity; ``want_u``: find sup |u| (else
+    nan); ``respond``: find the response's peaks (else nan; a coupled analysis then
+    steps no response). Writes ``out`` (3, len(OUTCOME_FIELDS)): rows RESPONSE and the
+    runs asked for."""
+    n = t0.shape[0]
+    stack = np.empty((STACK_DEPTH, 4))
+    cached = np.full(6, math.nan)
+    damped = _damped(omega, xi, coupled)
+    step = h[0]
+    maps, table = _step_tables(omega, xi, coupled, kyg, damped, step)
+    stick_map, stick = maps[STICK], table[STICK]
+    natural = stick[6]
+    # each run's mode, u, u', s, w (a decoupled run's u, u' are the response's times its sign)
+    state = np.zeros((2, 5))
+    # each run's events, episodes, events at the last instant, most at one instant, last event time
+    counts = np.zeros((2, 5))
+    counts[:, 4] = -math.inf
+    status = np.full(3, FINISHED)
+    signs = (1.0, -1.0)
+    no_log = np.empty((0, 8))
+    candidates = np.empty((_CANDIDATES, 5))
+    n_candidates = 0
+    u, v, hea = 0.0, 0.0, 0.0
+    hea_samples, u_samples = 0.0, 0.0
+    for i in range(n):
+        a0, rate, length = p0[i], p1[i], h[i]
+        whole = length == step
+        if coupled and not respond:  # the runs step their own columns
+            u_end, v_end, hea_end, amplitude, hea_rate, hea_reach, u_reach = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        elif whole:
+            u_end, v_end, amplitude, particular = _whole_step(stick_map, stick, u, v, a0, rate)
+            hea_end = _stick_hea(a0 + rate * step, u_end, v_end, stick)
+            hea_rate = _hea_rate(rate, stick, amplitude, xi)
+            hea_reach = max(abs(hea), abs(hea_end)) + 0.5 * hea_rate * step
+            u_reach = max(abs(u), abs(u_end)) + 0.5 * (abs(particular) + natural * amplitude) * _WIDEN * step
+        else:
+            f, _, _, _ = _forms(STICK, False, omega, xi, damped[STICK], 0.0, a0, rate, u, v, 0.0, 0.0)
+            u_end, v_end = _eval(f, length), _eval(_derivative(f), length)
+            hea_end = _stick_hea(a0 + rate * length, u_end, v_end, stick)
+            amplitude, hea_rate, hea_reach, u_reach = math.inf, math.inf, math.inf, math.inf
+        hea_samples, u_samples = max(hea_samples, abs(hea_end)), max(u_samples, abs(u_end))
+        if respond and (hea_reach > hea_samples or (want_u and u_reach > u_samples)):
+            candidates = _push(candidates, n_candidates, i, u, v, hea_reach, u_reach)
+            n_candidates += 1
+        for r in range(2):
+            if not runs[r] or status[1 + r] != FINISHED:
+                continue
+            sign = signs[r]
+            mode, s, w = int(state[r, 0]), state[r, 3], state[r, 4]
+            if coupled and whole:
+                quick, run_u, run_v, s, w = _quick_step(mode, maps[mode], table[mode], step, xi, kyg, sign * a0,
+                                                        sign * rate, state[r, 1], state[r, 2], s, w)
+                if quick:
+                    state[r, 1], state[r, 2], state[r, 3], state[r, 4] = run_u, run_v, s, w
+                    continue
+            elif whole:  # decoupled: the response's step decides, for either sign
+                if mode == STICK:
+                    if _signed(kyg - sign * hea, kyg - sign * hea_end, hea_rate, step) > 0:
+                        continue
+                else:
+                    pw, ps = _slip_polynomials(sign * a0, sign * rate, kyg, sign * u, sign * v, s, w)
+                    w_end = _cubic(pw, step) + MASS_PARTICIPATION * sign * v_end
+                    w_rate = (max(abs(sign * a0 - kyg), abs(sign * (a0 + rate * step) - kyg))
+                              + MASS_PARTICIPATION * stick[0] * amplitude) * _WIDEN
+                    if _signed(w, w_end, w_rate, step) > 0:
+                        state[r, 3], state[r, 4] = _cubic(ps, step) + MASS_PARTICIPATION * sign * u_end, w_end
+                        continue
+            run_u, run_v = (state[r, 1], state[r, 2]) if coupled else (sign * u, sign * v)
+            (mode, run_u, run_v, s, w, n_events, n_episodes, at_once, most, last, run_status,
+             _) = _piece(t0[i], length, sign * a0, sign * rate, step, maps, table, omega, xi, damped, kyg, coupled,
+                         cached, stack, no_log, 0, mode, run_u, run_v, s, w, int(counts[r, 0]), int(counts[r, 1]),
+                         int(counts[r, 2]), int(counts[r, 3]), counts[r, 4])
+            _put(state[r], (float(mode), run_u, run_v, s, w))
+            _put(counts[r], (float(n_events), float(n_episodes), float(at_once), float(most), last))
+            status[1 + r] = run_status
+        u, v, hea = u_end, v_end, hea_end
+    if respond:
+        hea_sup, u_sup = _sups(candidates, n_candidates, t0, h, p0, p1, omega, xi, damped[STICK], hea_samples,
+                               u_samples, want_u, stack)
+        if hea_sup == -math.inf or u_sup == -math.inf:
+            status[0] = UNSETTLED
+    else:
+        hea_samples, hea_sup, u_samples, u_sup = math.nan, math.nan, math.nan, math.nan
+    _put(out[RESPONSE], (u, v, 0.0, 0.0, float(STICK), 0.0, 0.0, hea_samples, hea_sup,
+                         u_sup if want_u else math.nan, u_samples, float(status[0]), 0.0, math.nan))
+    for r in range(2):
+        if runs[r]:
+            if not coupled:  # the column's state is the response's
+                state[r, 1], state[r, 2] = signs[r] * u, signs[r] * v
+            _put(out[1 + r], (state[r, 1], state[r, 2], state[r, 3], state[r, 4], state[r, 0], counts[r, 0],
+                              counts[r, 1], 0.0, 0.0, 0.0, 0.0, float(status[1 + r]), counts[r, 3], counts[r, 4]))
+
+
+def _analyses(t0, h, p0, p1, offsets, record, parameters, flags, out):
+    """Analyses in parallel: analysis j runs excitation ``record[j]`` (pieces
+    ``offsets[record[j]]:offsets[record[j] + 1]`` of the concatenated arrays) with
+    ``parameters[j]`` (PARAMETER_FIELDS) and ``flags[j]`` (FLAG_FIELDS); writes
+    ``out[j]`` (3, len(OUTCOME_FIELDS))."""
+    for j in numba.prange(record.shape[0]):
+        lo, hi = offsets[record[j]], offsets[record[j] + 1]
+        _analysis(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], parameters[j, 0], parameters[j, 1], parameters[j, 2],
+                  flags[j, 0] != 0, flags[j, 1:3] != 0, flags[j, 3] != 0, flags[j, 4] != 0, out[j])
+
+
+@functools.cache
+def kernels():
+    """(analyses parallel over cores, analyses serial) compiled with numba (on first use,
+    then from the disk cache)."""
+    options = dict(cache=True, error_model="numpy")
+    return numba.njit(parallel=True, **options)(_analyses), numba.njit(**options)(_analyses)
+
+
+#: width of an analysis's outcome rows
+WIDTH = len(OUTCOME_FIELDS)
