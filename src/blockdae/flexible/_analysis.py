@@ -149,16 +149,9 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
         raise ValueError(f"reference_strain must be a fraction > 0, got {reference_strain!r}")
     names, records = _motions(motion)
     vr_given = np.nan if vr is None else vr
-    try:
-        sets = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (ky, height, vs, vr_given, damping)))
-    except ValueError:
-        raise ValueError(f"ky, height, vs, vr and damping must broadcast together, got shapes "
-                         f"{[np.shape(x) for x in (ky, height, vs, vr_given, damping)]}") from None
-    if sets[0].ndim > 1:
-        raise ValueError(f"ky, height, vs, vr and damping must be numbers or 1-D arrays, got shape {sets[0].shape}")
     models = [FlexibleSlidingMass(ShearColumn(float(h), float(v), None if np.isnan(r) else float(r), float(d)),
                                   ky=float(k), method=method, g=g)
-              for k, h, v, r, d in zip(*(np.atleast_1d(x) for x in sets))]
+              for k, h, v, r, d in _parameter_sets(ky, height, vs, vr_given, damping)]
     polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
     analyses = []
     for name, record in zip(names, records):
@@ -174,6 +167,21 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
         analyses += [Analysis(record, name, model, polarities, end, reference_strain if equivalent_linear else None)
                      for model in models]
     return analyses
+
+
+def _parameter_sets(*values):
+    """(ky, height, vs, vr, damping) of each parameter set: numbers or 1-D arrays,
+    broadcast together."""
+    if all(type(x) in (float, int) for x in values):  # one set: no arrays needed
+        return [values]
+    try:
+        sets = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in values))
+    except ValueError:
+        raise ValueError(f"ky, height, vs, vr and damping must broadcast together, got shapes "
+                         f"{[np.shape(x) for x in values]}") from None
+    if sets[0].ndim > 1:
+        raise ValueError(f"ky, height, vs, vr and damping must be numbers or 1-D arrays, got shape {sets[0].shape}")
+    return zip(*(np.atleast_1d(x) for x in sets))
 
 
 def _motions(motion):
@@ -222,49 +230,53 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
             index[key] = len(inputs)
             inputs.append(_engine_input(analysis.record, analysis.t_end))
         record_of.append(index[key])
-    parameters, flags = np.empty((len(analyses), 3)), np.zeros((len(analyses), len(_fused.FLAG_FIELDS)), np.int64)
-    response_of, vs_finals = [], []
-    first_with = {}
+    parameters, flags, response_of, vs_finals, first_with = [], [], [], [], {}
     for q, analysis in enumerate(analyses):
         (omega, xi, kyg, coupled), vs_final = _final_column(analysis, inputs[record_of[q]])
-        parameters[q] = omega, xi, kyg
+        parameters.append((omega, xi, kyg))
         response_of.append(first_with.setdefault((record_of[q], omega, xi), q))
-        flags[q] = (coupled, "normal" in analysis.polarities, "inverse" in analysis.polarities, False,
-                    response_of[q] == q)
+        flags.append((coupled, "normal" in analysis.polarities, "inverse" in analysis.polarities, False,
+                      response_of[q] == q))
         vs_finals.append(vs_final)
-    out = _run_analyses(inputs, np.array(record_of, dtype=np.int64), parameters, flags)
+    out = _run_analyses(inputs, record_of, parameters, flags).tolist()
+    status, s, episodes = _FIELD["status"], _FIELD["s"], _FIELD["n_episodes"]
     rows = []
     for q, analysis in enumerate(analyses):
-        response = out[response_of[q], _fused.RESPONSE]
-        runs = {"normal": out[q, _fused.NORMAL], "inverse": out[q, _fused.INVERSE]}
+        response = out[response_of[q]][_fused.RESPONSE]
+        runs = {"normal": out[q][_fused.NORMAL], "inverse": out[q][_fused.INVERSE]}
         for outcome in [response] + [runs[polarity] for polarity in analysis.polarities]:
-            if outcome[_FIELD["status"]] != _engine.FINISHED:
+            if outcome[status] != _engine.FINISHED:
                 check(outcome, f" ({analysis.name}, {analysis.model})")
-        row = {"record": analysis.name, "ky_g": analysis.model.ky, "height_m": analysis.model.column.height,
-               "vs_m_s": analysis.model.column.vs, "normal_m": np.nan, "inverse_m": np.nan,
-               "kmax_g": response[_FIELD["hea_samples"]] / analysis.model.g,
-               "kmax_sup_g": response[_FIELD["hea_sup"]] / analysis.model.g,
-               "vs_final_m_s": vs_finals[q], "damping_final": parameters[q, 1],
+        model = analysis.model
+        row = {"record": analysis.name, "ky_g": model.ky, "height_m": model.column.height,
+               "vs_m_s": model.column.vs, "normal_m": np.nan, "inverse_m": np.nan,
+               "kmax_g": response[_FIELD["hea_samples"]] / model.g, "kmax_sup_g": response[_FIELD["hea_sup"]] / model.g,
+               "vs_final_m_s": vs_finals[q], "damping_final": parameters[q][1],
                "episodes_normal": None, "episodes_inverse": None}
         for polarity in analysis.polarities:
-            row[f"{polarity}_m"] = 0.0 + runs[polarity][_FIELD["s"]]
-            row[f"episodes_{polarity}"] = int(runs[polarity][_FIELD["n_episodes"]])
+            row[f"{polarity}_m"] = 0.0 + runs[polarity][s]
+            row[f"episodes_{polarity}"] = int(runs[polarity][episodes])
         rows.append(row)
     return rows
 
 
-def _run_analyses(inputs, record, parameters, flags):
+def _run_analyses(inputs, record_of, parameters, flags):
     """The compiled analyses (:func:`._fused._analyses`) of excitations ``inputs`` (engine
-    arrays): (n, 3, width) outcomes."""
+    arrays): analysis j runs ``inputs[record_of[j]]`` with ``parameters[j]``
+    (PARAMETER_FIELDS) and ``flags[j]`` (FLAG_FIELDS). Returns (n, 3, width) outcomes."""
     parallel, serial = _fused.kernels()
     if len(inputs) == 1:
         arrays, offsets = inputs[0], np.array([0, len(inputs[0][0])], dtype=np.int64)
+        work = len(inputs[0][0]) * len(record_of)
     else:
         arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
-        offsets = np.concatenate([[0], np.cumsum([len(x[0]) for x in inputs])]).astype(np.int64)
-    out = np.empty((len(record), 3, _fused.WIDTH))
-    work = float(np.sum(offsets[record + 1] - offsets[record])) * 2
-    (parallel if work >= PARALLEL_WORK else serial)(*arrays, offsets, record, parameters, flags, out)
+        lengths = [len(x[0]) for x in inputs]
+        offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
+        work = sum(lengths[j] for j in record_of)
+    out = np.empty((len(record_of), 3, _fused.WIDTH))
+    (parallel if 2 * work >= PARALLEL_WORK else serial)(*arrays, offsets, np.array(record_of, dtype=np.int64),
+                                                        np.array(parameters, dtype=float),
+                                                        np.array(flags, dtype=np.int64), out)
     return out
 
 
@@ -278,9 +290,8 @@ def _final_column(analysis, arrays):
     column = model.column
 
     def peak_displacement(vs, xi):
-        outcome = _run_analyses([arrays], np.zeros(1, dtype=np.int64),
-                                np.array([[np.pi * vs / (2 * column.height), xi, 0.0]]),
-                                np.array([[0, 0, 0, 1, 1]], dtype=np.int64))[0, _fused.RESPONSE]
+        outcome = _run_analyses([arrays], [0], [(np.pi * vs / (2 * column.height), xi, 0.0)],
+                                [(False, False, False, True, True)])[0, _fused.RESPONSE]
         check(outcome, f" ({analysis.name}, equivalent-linear pass at vs={vs!r} m/s)")
         return outcome[_FIELD["u_sup"]]
 
