@@ -20,7 +20,7 @@ from numba.extending import register_jitable
 
 from ..engines._linear import FINISHED, STACK_DEPTH, UNSETTLED, _combine, _derivative, _eval
 from ._column import MASS_PARTICIPATION
-from ._engine import (OUTCOME_FIELDS, STICK, _WIDEN, _cubic, _damped, _forms, _hea_curvature, _hea_rate, _piece,
+from ._engine import (OUTCOME_FIELDS, SLIP, STICK, _WIDEN, _cubic, _damped, _forms, _hea_curvature, _hea_rate, _piece,
                       _quick_step, _slip_clear, _slip_polynomials, _step_tables, _stick_clear, _stick_hea,
                       _whole_step)
 from ._roots import STACK_COLUMNS, peak
@@ -66,9 +66,29 @@ def _sups(candidates, count, t0, h, p0, p1, omega, xi, damped, hea_sup, u_sup, w
     return hea_sup, u_sup
 
 
-#: the closed-form path of a step, compiled on its own: inlined, its size slows the loop
-#: over the quick steps (by about a third, measured)
-_piece_compiled = numba.njit(cache=True, error_model="numpy")(_piece)
+def _slow_runs(slow_normal, slow_inverse, t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg,
+               coupled, cached, stack, state, counts, status, u, v):
+    """The runs flagged over a piece in closed form (:func:`._engine._piece`), from and to
+    ``state`` (mode, u, u', s, w of each), their counters ``counts`` and ``status``; a
+    decoupled run's column is the response's (``u``, ``v`` at the start) times its sign."""
+    no_log = np.empty((0, 8))
+    for r in range(2):
+        if not (slow_normal if r == 0 else slow_inverse):
+            continue
+        sign = 1.0 - 2.0 * r
+        run_u, run_v = (state[r, 1], state[r, 2]) if coupled else (sign * u, sign * v)
+        (mode, run_u, run_v, s, w, n_events, n_episodes, at_once, most, last, run_status,
+         _) = _piece(t_start, length, sign * a0, sign * rate, step, maps, table, omega, xi, damped, kyg, coupled,
+                     cached, stack, no_log, 0, int(state[r, 0]), run_u, run_v, state[r, 3], state[r, 4],
+                     int(counts[r, 0]), int(counts[r, 1]), int(counts[r, 2]), int(counts[r, 3]), counts[r, 4])
+        _put(state[r], (float(mode), run_u, run_v, s, w))
+        _put(counts[r], (float(n_events), float(n_episodes), float(at_once), float(most), last))
+        status[1 + r] = run_status
+
+
+#: the closed-form steps, compiled on their own: inlined, their size slows the loop over
+#: the quick steps (by about a third, measured)
+_slow_runs_compiled = numba.njit(cache=True, error_model="numpy")(_slow_runs)
 
 
 @register_jitable
@@ -86,6 +106,7 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     step = h[0]
     maps, table = _step_tables(omega, xi, coupled, kyg, damped, step)
     stick_map, stick = maps[STICK], table[STICK]
+    slip_map, slip = maps[SLIP], table[SLIP]
     natural = stick[6]
     # each run's mode, u, u', s, w (a decoupled run's u, u' are the response's times its sign)
     state = np.zeros((2, 5))
@@ -93,7 +114,6 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     counts = np.zeros((2, 5))
     counts[:, 4] = -math.inf
     status = np.full(3, FINISHED)
-    no_log = np.empty((0, 8))
     candidates = np.empty((n, 5))  # at most one a step (allocated here, so never regrown in the loop)
     n_candidates = 0
     u, v, hea = 0.0, 0.0, 0.0
@@ -121,14 +141,19 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
             candidates[n_candidates, 2], candidates[n_candidates, 3] = v, hea_reach
             candidates[n_candidates, 4] = u_reach
             n_candidates += 1
-        for r in range(2):
+        slow_normal, slow_inverse = False, False
+        for r in range(2):  # each run's step: quick where bounds allow, else in closed form
             if not runs[r] or status[1 + r] != FINISHED:
                 continue
             sign = 1.0 - 2.0 * r
             mode, s, w = int(state[r, 0]), state[r, 3], state[r, 4]
-            if coupled and whole:
-                quick, run_u, run_v, s, w = _quick_step(mode, maps[mode], table[mode], step, xi, kyg, sign * a0,
-                                                        sign * rate, state[r, 1], state[r, 2], s, w)
+            if coupled and whole:  # each mode's map picked statically (a tuple indexed at run time is copied)
+                if mode == STICK:
+                    quick, run_u, run_v, s, w = _quick_step(STICK, stick_map, stick, step, xi, kyg, sign * a0,
+                                                            sign * rate, state[r, 1], state[r, 2], s, w)
+                else:
+                    quick, run_u, run_v, s, w = _quick_step(SLIP, slip_map, slip, step, xi, kyg, sign * a0,
+                                                            sign * rate, state[r, 1], state[r, 2], s, w)
                 if quick:
                     state[r, 1], state[r, 2], state[r, 3], state[r, 4] = run_u, run_v, s, w
                     continue
@@ -142,14 +167,13 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
                     if _slip_clear(w, w_end, sign * a0, sign * rate, kyg, stick, amplitude, step):
                         state[r, 3], state[r, 4] = _cubic(ps, step) + MASS_PARTICIPATION * sign * u_end, w_end
                         continue
-            run_u, run_v = (state[r, 1], state[r, 2]) if coupled else (sign * u, sign * v)
-            (mode, run_u, run_v, s, w, n_events, n_episodes, at_once, most, last, run_status,
-             _) = _piece_compiled(t0[i], length, sign * a0, sign * rate, step, maps, table, omega, xi, damped, kyg,
-                                  coupled, cached, stack, no_log, 0, mode, run_u, run_v, s, w, int(counts[r, 0]),
-                                  int(counts[r, 1]), int(counts[r, 2]), int(counts[r, 3]), counts[r, 4])
-            _put(state[r], (float(mode), run_u, run_v, s, w))
-            _put(counts[r], (float(n_events), float(n_episodes), float(at_once), float(most), last))
-            status[1 + r] = run_status
+            if r == 0:
+                slow_normal = True
+            else:
+                slow_inverse = True
+        if slow_normal or slow_inverse:
+            _slow_runs_compiled(slow_normal, slow_inverse, t0[i], length, a0, rate, step, maps, table, omega, xi,
+                                damped, kyg, coupled, cached, stack, state, counts, status, u, v)
         u, v, hea = u_end, v_end, hea_end
     if respond:
         hea_sup, u_sup = _sups(candidates, n_candidates, t0, h, p0, p1, omega, xi, damped[STICK], hea_samples,
