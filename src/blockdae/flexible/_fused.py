@@ -19,10 +19,9 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..engines._linear import FINISHED, STACK_DEPTH, UNSETTLED, _combine, _derivative, _eval
-from ._column import MASS_PARTICIPATION
+from ._column import MASS_PARTICIPATION, SLIP_MASS_FRACTION
 from ._engine import (OUTCOME_FIELDS, SLIP, STICK, _WIDEN, _cubic, _damped, _forms, _hea_curvature, _hea_rate, _piece,
-                      _quick_step, _slip_clear, _slip_polynomials, _step_tables, _stick_clear, _stick_hea,
-                      _whole_step)
+                      _quick_step, _slip_clear, _slip_polynomials, _step_tables, _stick_clear)
 from ._roots import STACK_COLUMNS, peak
 
 #: rows of an analysis's outcome (each OUTCOME_FIELDS): the no-sliding response (state
@@ -43,27 +42,79 @@ def _put(row, values):
 
 
 @register_jitable
-def _sups(candidates, count, t0, h, p0, p1, omega, xi, damped, hea_sup, u_sup, want_u, stack):
-    """(sup |HEA| [m/s²], sup |u| [m]) from the best samples ``hea_sup``, ``u_sup`` and a
-    search of every candidate step whose bound exceeds the best so far; -inf where a
-    search did not settle."""
-    for q in range(count):
-        i, hea_reach, u_reach = int(candidates[q, 0]), candidates[q, 3], candidates[q, 4]
-        if hea_reach > hea_sup or (want_u and u_reach > u_sup):
-            f, _, _, guard = _forms(STICK, False, omega, xi, damped, 0.0, p0[i], p1[i], candidates[q, 1],
-                                    candidates[q, 2], 0.0, 0.0)
-            if hea_reach > hea_sup:  # the guard is ky g - HEA with ky g = 0
-                hea = _combine(-1.0, guard, 0.0, guard, 0.0)
-                hea1 = _derivative(hea)
-                hea2 = _derivative(hea1)
-                hea_sup = peak(hea, hea1, hea2, _derivative(hea2), h[i], hea_sup, t0[i], stack)
+def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, amplitude, reach):
+    """The no-sliding response from rest, in two passes: (u, u') at the knots by the step
+    map (closed form on a partial step), then, in a loop without dependences that the
+    compiler vectorises, HEA at the knots, the free oscillation's amplitude on each step
+    and a bound of |HEA| on it (inf on a partial step). Fills ``u``, ``v``, ``hea`` (n + 1,)
+    [m, m/s, m/s²], ``amplitude`` (n,) [m] and ``reach`` (n,) [m/s²]."""
+    m, row = maps[STICK], table[STICK]
+    k, c, b, forced, inverse_k, inverse_damped, _ = row
+    n = t0.shape[0]
+    u[0], v[0] = 0.0, 0.0
+    for i in range(n):  # as _whole_step, term by term
+        a0, rate = p0[i], p1[i]
+        if h[i] == step:
+            u[i + 1] = m[0] * u[i] + m[1] * v[i] + m[4] * a0 + m[5] * rate + m[8]
+            v[i + 1] = m[2] * u[i] + m[3] * v[i] + m[6] * a0 + m[7] * rate + m[9]
+        else:
+            f, _, _, _ = _forms(STICK, False, omega, xi, damped, 0.0, a0, rate, u[i], v[i], 0.0, 0.0)
+            u[i + 1], v[i + 1] = _eval(f, h[i]), _eval(_derivative(f), h[i])
+    hea[0] = SLIP_MASS_FRACTION * p0[0] - MASS_PARTICIPATION * (c * v[0] + k * u[0])
+    for i in range(n):
+        rate = p1[i]
+        particular = -forced * rate * inverse_k
+        free = u[i] - (b - forced * p0[i] - c * particular) * inverse_k
+        rotated = (v[i] - particular + 0.5 * c * free) * inverse_damped
+        a = math.sqrt(free * free + rotated * rotated) if h[i] == step else math.inf
+        amplitude[i] = a
+        hea[i + 1] = SLIP_MASS_FRACTION * (p0[i] + rate * h[i]) - MASS_PARTICIPATION * (c * v[i + 1] + k * u[i + 1])
+    for i in range(n):  # apart: hea[i] written by the loop above would tie its iterations
+        a = amplitude[i]
+        reach[i] = max(abs(hea[i]), abs(hea[i + 1])) + min(0.5 * _hea_rate(p1[i], row, a, xi) * step,
+                                                           0.125 * _hea_curvature(row, a, xi) * step * step)
+
+
+@register_jitable
+def _largest(x):
+    """max |x[1:]| (four running maxima, so that their latencies overlap)."""
+    best = np.zeros(4)
+    n = x.shape[0] - 1
+    for i in range(1, n - 2, 4):
+        best[0], best[1] = max(best[0], abs(x[i])), max(best[1], abs(x[i + 1]))
+        best[2], best[3] = max(best[2], abs(x[i + 2])), max(best[3], abs(x[i + 3]))
+    for i in range(max(1, n - (n % 4) + 1), n + 1):
+        best[0] = max(best[0], abs(x[i]))
+    return max(max(best[0], best[1]), max(best[2], best[3]))
+
+
+@register_jitable
+def _sups(t0, h, p0, p1, omega, xi, damped, row, step, u, v, amplitude, reach, hea_sup, want_u, stack):
+    """(sup |HEA| [m/s²], max |u| at the samples, sup |u| [m]) of the response
+    (:func:`_response`; ``hea_sup``: max |HEA| at the samples): every step whose bound
+    exceeds the best so far is searched; -inf where a search did not settle."""
+    u_samples = _largest(u) if want_u else math.nan
+    u_sup = u_samples
+    for i in range(t0.shape[0]):
+        u_reach = math.inf
+        if want_u:
+            a = amplitude[i]
+            u_reach = max(abs(u[i]), abs(u[i + 1])) + min(0.5 * (abs(row[3] * p1[i] * row[4]) + row[6] * a),
+                                                          0.125 * row[0] * a * step) * _WIDEN * step
+        if reach[i] > hea_sup or (want_u and u_reach > u_sup):
+            f, _, _, guard = _forms(STICK, False, omega, xi, damped, 0.0, p0[i], p1[i], u[i], v[i], 0.0, 0.0)
+            if reach[i] > hea_sup:  # the guard is ky g - HEA with ky g = 0
+                g = _combine(-1.0, guard, 0.0, guard, 0.0)
+                g1 = _derivative(g)
+                g2 = _derivative(g1)
+                hea_sup = peak(g, g1, g2, _derivative(g2), h[i], hea_sup, t0[i], stack)
             if want_u and u_reach > u_sup:
                 f1 = _derivative(f)
                 f2 = _derivative(f1)
                 u_sup = peak(f, f1, f2, _derivative(f2), h[i], u_sup, t0[i], stack)
             if hea_sup == -math.inf or u_sup == -math.inf:
                 break
-    return hea_sup, u_sup
+    return hea_sup, u_samples, u_sup
 
 
 def _slow_runs(slow_normal, slow_inverse, t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg,
@@ -107,40 +158,31 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     maps, table = _step_tables(omega, xi, coupled, kyg, damped, step)
     stick_map, stick = maps[STICK], table[STICK]
     slip_map, slip = maps[SLIP], table[SLIP]
-    natural = stick[6]
+    # the response: u, u', HEA at the knots, the free amplitude on each step
+    u, v, hea = np.zeros(n + 1), np.zeros(n + 1), np.zeros(n + 1)
+    amplitude, reach = np.zeros(n), np.zeros(n)
+    if respond or not coupled:
+        _response(t0, h, p0, p1, omega, xi, damped[STICK], maps, table, step, u, v, hea, amplitude, reach)
+    if respond:
+        hea_samples = _largest(hea)
+        hea_sup, u_samples, u_sup = _sups(t0, h, p0, p1, omega, xi, damped[STICK], stick, step, u, v, amplitude,
+                                          reach, hea_samples, want_u, stack)
+    else:
+        hea_samples, hea_sup, u_samples, u_sup = math.nan, math.nan, math.nan, math.nan
+    response_status = UNSETTLED if hea_sup == -math.inf or u_sup == -math.inf else FINISHED
+    _put(out[RESPONSE], (u[n], v[n], 0.0, 0.0, float(STICK), 0.0, 0.0, hea_samples, hea_sup,
+                         u_sup if want_u else math.nan, u_samples, float(response_status), 0.0, math.nan))
+    if not (runs[0] or runs[1]):
+        return
     # each run's mode, u, u', s, w (a decoupled run's u, u' are the response's times its sign)
     state = np.zeros((2, 5))
     # each run's events, episodes, events at the last instant, most at one instant, last event time
     counts = np.zeros((2, 5))
     counts[:, 4] = -math.inf
     status = np.full(3, FINISHED)
-    candidates = np.empty((n, 5))  # at most one a step (allocated here, so never regrown in the loop)
-    n_candidates = 0
-    u, v, hea = 0.0, 0.0, 0.0
-    hea_samples, u_samples = 0.0, 0.0
     for i in range(n):
         a0, rate, length = p0[i], p1[i], h[i]
         whole = length == step
-        if coupled and not respond:  # the runs step their own columns
-            u_end, v_end, hea_end, amplitude, hea_reach, u_reach = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-        elif whole:
-            u_end, v_end, amplitude, particular = _whole_step(stick_map, stick, u, v, a0, rate)
-            hea_end = _stick_hea(a0 + rate * step, u_end, v_end, stick)
-            hea_reach = max(abs(hea), abs(hea_end)) + min(0.5 * _hea_rate(rate, stick, amplitude, xi) * step,
-                                                          0.125 * _hea_curvature(stick, amplitude, xi) * step * step)
-            u_reach = max(abs(u), abs(u_end)) + min(0.5 * (abs(particular) + natural * amplitude),
-                                                    0.125 * stick[0] * amplitude * step) * _WIDEN * step
-        else:
-            f, _, _, _ = _forms(STICK, False, omega, xi, damped[STICK], 0.0, a0, rate, u, v, 0.0, 0.0)
-            u_end, v_end = _eval(f, length), _eval(_derivative(f), length)
-            hea_end = _stick_hea(a0 + rate * length, u_end, v_end, stick)
-            amplitude, hea_reach, u_reach = math.inf, math.inf, math.inf
-        hea_samples, u_samples = max(hea_samples, abs(hea_end)), max(u_samples, abs(u_end))
-        if respond and (hea_reach > hea_samples or (want_u and u_reach > u_samples)):
-            candidates[n_candidates, 0], candidates[n_candidates, 1] = i, u
-            candidates[n_candidates, 2], candidates[n_candidates, 3] = v, hea_reach
-            candidates[n_candidates, 4] = u_reach
-            n_candidates += 1
         slow_normal, slow_inverse = False, False
         for r in range(2):  # each run's step: quick where bounds allow, else in closed form
             if not runs[r] or status[1 + r] != FINISHED:
@@ -159,13 +201,14 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
                     continue
             elif whole:  # decoupled: the response's step decides, for either sign
                 if mode == STICK:
-                    if _stick_clear(kyg - sign * hea, kyg - sign * hea_end, rate, stick, amplitude, xi, step):
+                    if _stick_clear(kyg - sign * hea[i], kyg - sign * hea[i + 1], rate, stick, amplitude[i], xi,
+                                    step):
                         continue
                 else:
-                    pw, ps = _slip_polynomials(sign * a0, sign * rate, kyg, sign * u, sign * v, s, w)
-                    w_end = _cubic(pw, step) + MASS_PARTICIPATION * sign * v_end
-                    if _slip_clear(w, w_end, sign * a0, sign * rate, kyg, stick, amplitude, step):
-                        state[r, 3], state[r, 4] = _cubic(ps, step) + MASS_PARTICIPATION * sign * u_end, w_end
+                    pw, ps = _slip_polynomials(sign * a0, sign * rate, kyg, sign * u[i], sign * v[i], s, w)
+                    w_end = _cubic(pw, step) + MASS_PARTICIPATION * sign * v[i + 1]
+                    if _slip_clear(w, w_end, sign * a0, sign * rate, kyg, stick, amplitude[i], step):
+                        state[r, 3], state[r, 4] = _cubic(ps, step) + MASS_PARTICIPATION * sign * u[i + 1], w_end
                         continue
             if r == 0:
                 slow_normal = True
@@ -173,21 +216,11 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
                 slow_inverse = True
         if slow_normal or slow_inverse:
             _slow_runs_compiled(slow_normal, slow_inverse, t0[i], length, a0, rate, step, maps, table, omega, xi,
-                                damped, kyg, coupled, cached, stack, state, counts, status, u, v)
-        u, v, hea = u_end, v_end, hea_end
-    if respond:
-        hea_sup, u_sup = _sups(candidates, n_candidates, t0, h, p0, p1, omega, xi, damped[STICK], hea_samples,
-                               u_samples, want_u, stack)
-        if hea_sup == -math.inf or u_sup == -math.inf:
-            status[0] = UNSETTLED
-    else:
-        hea_samples, hea_sup, u_samples, u_sup = math.nan, math.nan, math.nan, math.nan
-    _put(out[RESPONSE], (u, v, 0.0, 0.0, float(STICK), 0.0, 0.0, hea_samples, hea_sup,
-                         u_sup if want_u else math.nan, u_samples, float(status[0]), 0.0, math.nan))
+                                damped, kyg, coupled, cached, stack, state, counts, status, u[i], v[i])
     for r in range(2):
         if runs[r]:
             if not coupled:  # the column's state is the response's
-                state[r, 1], state[r, 2] = (1.0 - 2.0 * r) * u, (1.0 - 2.0 * r) * v
+                state[r, 1], state[r, 2] = (1.0 - 2.0 * r) * u[n], (1.0 - 2.0 * r) * v[n]
             _put(out[1 + r], (state[r, 1], state[r, 2], state[r, 3], state[r, 4], state[r, 0], counts[r, 0],
                               counts[r, 1], 0.0, 0.0, 0.0, 0.0, float(status[1 + r]), counts[r, 3], counts[r, 4]))
 
