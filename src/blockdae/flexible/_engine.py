@@ -256,12 +256,13 @@ def _piece(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg,
         g1 = _derivative(guard)
         g2 = _derivative(g1)
         at_start = guard[0] + guard[4]
-        if at_start <= 0 and (_falls(_eval(g1, 0.0), _eval(g2, 0.0), EVENT_RESOLUTION) or (
+        if at_start <= 0 and (_falls(g1[0] + g1[4], g2[0] + g2[4], EVENT_RESOLUTION) or (  # values at 0
                 at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
             event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
         elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
                      _bound(g1, 0.0, span), span) <= 0 and _moves(guard):
-            root = first_fall(guard, g1, g2, _derivative(g2), span, t_start + tau, stack)
+            root = first_fall(guard, g1, g2, _derivative(g2), span, t_start + tau, stack, cached[3], cached[4],
+                              cached[5])
             if root == -math.inf:
                 status = UNSETTLED
                 break
@@ -273,9 +274,9 @@ def _piece(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg,
             s = _eval_at(sf, span, cached[3], cached[4], cached[5])
             w = _eval_at(wf, span, cached[3], cached[4], cached[5])
             break
-        f1 = _derivative(f)
-        u, v = _eval(f, event_tau), _eval(f1, event_tau)
-        s = _eval(sf, event_tau)
+        decay, cos, sin = math.exp(-f[6] * event_tau), math.cos(f[7] * event_tau), math.sin(f[7] * event_tau)
+        u, v = _eval_at(f, event_tau, decay, cos, sin), _eval_at(_derivative(f), event_tau, decay, cos, sin)
+        s = _eval_at(sf, event_tau, decay, cos, sin)  # sf: u's exponent and frequency
         w = 0.0  # exactly, at an onset and at a stop
         before = mode
         mode = SLIP if before == STICK else STICK

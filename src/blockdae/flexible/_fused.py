@@ -159,8 +159,9 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     stick_map, stick = maps[STICK], table[STICK]
     slip_map, slip = maps[SLIP], table[SLIP]
     # the response: u, u', HEA at the knots, the free amplitude on each step
-    u, v, hea = np.zeros(n + 1), np.zeros(n + 1), np.zeros(n + 1)
-    amplitude, reach = np.zeros(n), np.zeros(n)
+    u, v, hea = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)  # every entry is written before it is read
+    amplitude, reach = np.empty(n), np.empty(n)
+    u[n], v[n] = 0.0, 0.0  # (the response's row of a coupled analysis without it)
     if respond or not coupled:
         _response(t0, h, p0, p1, omega, xi, damped[STICK], maps, table, step, u, v, hea, amplitude, reach)
     if respond:

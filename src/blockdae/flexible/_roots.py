@@ -109,15 +109,15 @@ def _falling_part(f, f1, lo, f_lo, hi, f_hi, decreasing, origin):
 
 
 @register_jitable
-def first_fall(f, f1, f2, f3, span, origin, stack):
+def first_fall(f, f1, f2, f3, span, origin, stack, decay, cos, sin):
     """The first tau in [0, span] [s] where f falls to <= 0 (nan: none; -inf: the search
     did not settle), as the linear engine's ``_down_crossing_search`` from 0: for a caller
     that has decided whether a guard at zero at 0 is left at once. ``origin``: the time
     of tau = 0 [s] (the resolution is a few ulps of it); ``stack``: scratch
-    (STACK_DEPTH, STACK_COLUMNS)."""
+    (STACK_DEPTH, STACK_COLUMNS); ``decay``, ``cos``, ``sin``: e^{-sigma span}, cos and
+    sin(w span) of f (the caller has them)."""
     resolution = 4 * _EPS * max(abs(origin) + abs(span), 1.0)
     amplitudes = (_amplitude(f1), _amplitude(f2), _amplitude(f3))
-    decay, cos, sin = _trig(f, span)
     _put(stack, 0, 0.0, f[0] + f[4], f1[0] + f1[4], f2[0] + f2[4], 1.0, span, _eval_at(f, span, decay, cos, sin),
          _eval_at(f1, span, decay, cos, sin), _eval_at(f2, span, decay, cos, sin), decay)
     top = 0
