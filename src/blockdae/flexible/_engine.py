@@ -156,8 +156,8 @@ def _whole_step(m, row, u, v, a0, rate):
     constants ``row``; the free oscillation's amplitude [m] (|u' - forced| <= natural
     frequency x amplitude, |u''| <= its square x amplitude) and the forced part's u' [m/s]."""
     k, c, b, forced, inverse_k, inverse_damped, _ = row
-    u_end = m[0] * u + m[1] * v + m[4] * a0 + m[5] * rate + m[8]
-    v_end = m[2] * u + m[3] * v + m[6] * a0 + m[7] * rate + m[9]
+    u_end = m[4] * a0 + m[5] * rate + m[8] + m[0] * u + m[1] * v  # the state's terms last: a shorter chain
+    v_end = m[6] * a0 + m[7] * rate + m[9] + m[2] * u + m[3] * v  # from one step to the next
     particular = -forced * rate * inverse_k  # _solve's a1
     free = u - (b - forced * a0 - c * particular) * inverse_k
     rotated = (v - particular + 0.5 * c * free) * inverse_damped

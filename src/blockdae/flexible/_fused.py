@@ -52,14 +52,17 @@ def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, am
     k, c, b, forced, inverse_k, inverse_damped, _ = row
     n = t0.shape[0]
     u[0], v[0] = 0.0, 0.0
+    u_end, v_end = 0.0, 0.0  # carried in registers, not read back from the arrays
     for i in range(n):  # as _whole_step, term by term
         a0, rate = p0[i], p1[i]
         if h[i] == step:
-            u[i + 1] = m[0] * u[i] + m[1] * v[i] + m[4] * a0 + m[5] * rate + m[8]
-            v[i + 1] = m[2] * u[i] + m[3] * v[i] + m[6] * a0 + m[7] * rate + m[9]
+            u_start = u_end
+            u_end = m[4] * a0 + m[5] * rate + m[8] + m[0] * u_start + m[1] * v_end
+            v_end = m[6] * a0 + m[7] * rate + m[9] + m[2] * u_start + m[3] * v_end
         else:
-            f, _, _, _ = _forms(STICK, False, omega, xi, damped, 0.0, a0, rate, u[i], v[i], 0.0, 0.0)
-            u[i + 1], v[i + 1] = _eval(f, h[i]), _eval(_derivative(f), h[i])
+            f, _, _, _ = _forms(STICK, False, omega, xi, damped, 0.0, a0, rate, u_end, v_end, 0.0, 0.0)
+            u_end, v_end = _eval(f, h[i]), _eval(_derivative(f), h[i])
+        u[i + 1], v[i + 1] = u_end, v_end
     hea[0] = SLIP_MASS_FRACTION * p0[0] - MASS_PARTICIPATION * (c * v[0] + k * u[0])
     for i in range(n):
         rate = p1[i]
@@ -117,29 +120,69 @@ def _sups(t0, h, p0, p1, omega, xi, damped, row, step, u, v, amplitude, reach, h
     return hea_sup, u_samples, u_sup
 
 
-def _slow_runs(slow_normal, slow_inverse, t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg,
-               coupled, cached, stack, state, counts, status, u, v):
-    """The runs flagged over a piece in closed form (:func:`._engine._piece`), from and to
-    ``state`` (mode, u, u', s, w of each), their counters ``counts`` and ``status``; a
-    decoupled run's column is the response's (``u``, ``v`` at the start) times its sign."""
-    no_log = np.empty((0, 8))
-    for r in range(2):
-        if not (slow_normal if r == 0 else slow_inverse):
-            continue
-        sign = 1.0 - 2.0 * r
-        run_u, run_v = (state[r, 1], state[r, 2]) if coupled else (sign * u, sign * v)
-        (mode, run_u, run_v, s, w, n_events, n_episodes, at_once, most, last, run_status,
-         _) = _piece(t_start, length, sign * a0, sign * rate, step, maps, table, omega, xi, damped, kyg, coupled,
-                     cached, stack, no_log, 0, int(state[r, 0]), run_u, run_v, state[r, 3], state[r, 4],
-                     int(counts[r, 0]), int(counts[r, 1]), int(counts[r, 2]), int(counts[r, 3]), counts[r, 4])
-        _put(state[r], (float(mode), run_u, run_v, s, w))
-        _put(counts[r], (float(n_events), float(n_episodes), float(at_once), float(most), last))
-        status[1 + r] = run_status
+def _slow_step(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, counts,
+               mode, u, v, s, w):
+    """:func:`._engine._piece` for a run from (``mode``, u, u', s, w), its counters
+    ``counts`` (COUNT_FIELDS) updated: its (mode, u, u', s, w) at the end of the piece."""
+    (mode, u, v, s, w, n_events, n_episodes, at_once, most, last, status, _) = _piece(
+        t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack,
+        np.empty((0, 8)), 0, mode, u, v, s, w, int(counts[0]), int(counts[1]), int(counts[2]), int(counts[3]),
+        counts[4])
+    counts[0], counts[1], counts[2], counts[3], counts[4], counts[5] = (n_events, n_episodes, at_once, most, last,
+                                                                        status)
+    return mode, u, v, s, w
 
 
-#: the closed-form steps, compiled on their own: inlined, their size slows the loop over
-#: the quick steps (by about a third, measured)
-_slow_runs_compiled = numba.njit(cache=True, error_model="numpy")(_slow_runs)
+#: a run's counters: events, episodes, events at the last instant, most at one instant,
+#: the last event's time [s], status
+COUNT_FIELDS = ("n_events", "n_episodes", "at_once", "max_events_at_one_instant", "t_last_event", "status")
+#: the closed-form step, compiled on its own: inlined, its size slows the loop over the
+#: quick steps (by about a third, measured)
+_slow_step_compiled = numba.njit(cache=True, error_model="numpy")(_slow_step)
+
+
+@register_jitable
+def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step, u, v, hea, amplitude, cached,
+         stack, counts):
+    """One sliding run of a(t) times ``sign`` from rest, its state in registers: each
+    whole step quick where bounds allow (a coupled run steps its own column; a
+    decoupled one's is the response's ``u``, ``v``, ``hea`` (n + 1,), ``amplitude``
+    (n,) times ``sign``), else in closed form. Returns (mode, u, u', s, w) at the end;
+    ``counts`` (COUNT_FIELDS) holds its counters and status."""
+    stick_map, stick = maps[STICK], table[STICK]
+    slip_map, slip = maps[SLIP], table[SLIP]
+    mode, run_u, run_v, s, w = STICK, 0.0, 0.0, 0.0, 0.0
+    for i in range(t0.shape[0]):
+        a0, rate = sign * p0[i], sign * p1[i]
+        if h[i] == step:
+            if coupled:  # each mode's map picked statically (a tuple indexed at run time is copied)
+                if mode == STICK:
+                    quick, u_end, v_end, s_end, w_end = _quick_step(STICK, stick_map, stick, step, xi, kyg, a0, rate,
+                                                                    run_u, run_v, s, w)
+                else:
+                    quick, u_end, v_end, s_end, w_end = _quick_step(SLIP, slip_map, slip, step, xi, kyg, a0, rate,
+                                                                    run_u, run_v, s, w)
+                if quick:
+                    run_u, run_v, s, w = u_end, v_end, s_end, w_end
+                    continue
+            elif mode == STICK:  # decoupled: the response's step decides
+                if _stick_clear(kyg - sign * hea[i], kyg - sign * hea[i + 1], rate, stick, amplitude[i], xi, step):
+                    continue
+            else:
+                pw, ps = _slip_polynomials(a0, rate, kyg, sign * u[i], sign * v[i], s, w)
+                w_end = _cubic(pw, step) + MASS_PARTICIPATION * sign * v[i + 1]
+                if _slip_clear(w, w_end, a0, rate, kyg, stick, amplitude[i], step):
+                    s, w = _cubic(ps, step) + MASS_PARTICIPATION * sign * u[i + 1], w_end
+                    continue
+        if not coupled:
+            run_u, run_v = sign * u[i], sign * v[i]
+        mode, run_u, run_v, s, w = _slow_step_compiled(t0[i], h[i], a0, rate, step, maps, table, omega, xi, damped,
+                                                       kyg, coupled, cached, stack, counts, mode, run_u, run_v, s, w)
+        if counts[5] != FINISHED:
+            break
+    if not coupled:  # the column's state is the response's
+        run_u, run_v = sign * u[u.shape[0] - 1], sign * v[v.shape[0] - 1]
+    return mode, run_u, run_v, s, w
 
 
 @register_jitable
@@ -156,8 +199,7 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     damped = _damped(omega, xi, coupled)
     step = h[0]
     maps, table = _step_tables(omega, xi, coupled, kyg, damped, step)
-    stick_map, stick = maps[STICK], table[STICK]
-    slip_map, slip = maps[SLIP], table[SLIP]
+    stick = table[STICK]
     # the response: u, u', HEA at the knots, the free amplitude on each step
     u, v, hea = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)  # every entry is written before it is read
     amplitude, reach = np.empty(n), np.empty(n)
@@ -173,57 +215,14 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     response_status = UNSETTLED if hea_sup == -math.inf or u_sup == -math.inf else FINISHED
     _put(out[RESPONSE], (u[n], v[n], 0.0, 0.0, float(STICK), 0.0, 0.0, hea_samples, hea_sup,
                          u_sup if want_u else math.nan, u_samples, float(response_status), 0.0, math.nan))
-    if not (runs[0] or runs[1]):
-        return
-    # each run's mode, u, u', s, w (a decoupled run's u, u' are the response's times its sign)
-    state = np.zeros((2, 5))
-    # each run's events, episodes, events at the last instant, most at one instant, last event time
-    counts = np.zeros((2, 5))
-    counts[:, 4] = -math.inf
-    status = np.full(3, FINISHED)
-    for i in range(n):
-        a0, rate, length = p0[i], p1[i], h[i]
-        whole = length == step
-        slow_normal, slow_inverse = False, False
-        for r in range(2):  # each run's step: quick where bounds allow, else in closed form
-            if not runs[r] or status[1 + r] != FINISHED:
-                continue
-            sign = 1.0 - 2.0 * r
-            mode, s, w = int(state[r, 0]), state[r, 3], state[r, 4]
-            if coupled and whole:  # each mode's map picked statically (a tuple indexed at run time is copied)
-                if mode == STICK:
-                    quick, run_u, run_v, s, w = _quick_step(STICK, stick_map, stick, step, xi, kyg, sign * a0,
-                                                            sign * rate, state[r, 1], state[r, 2], s, w)
-                else:
-                    quick, run_u, run_v, s, w = _quick_step(SLIP, slip_map, slip, step, xi, kyg, sign * a0,
-                                                            sign * rate, state[r, 1], state[r, 2], s, w)
-                if quick:
-                    state[r, 1], state[r, 2], state[r, 3], state[r, 4] = run_u, run_v, s, w
-                    continue
-            elif whole:  # decoupled: the response's step decides, for either sign
-                if mode == STICK:
-                    if _stick_clear(kyg - sign * hea[i], kyg - sign * hea[i + 1], rate, stick, amplitude[i], xi,
-                                    step):
-                        continue
-                else:
-                    pw, ps = _slip_polynomials(sign * a0, sign * rate, kyg, sign * u[i], sign * v[i], s, w)
-                    w_end = _cubic(pw, step) + MASS_PARTICIPATION * sign * v[i + 1]
-                    if _slip_clear(w, w_end, sign * a0, sign * rate, kyg, stick, amplitude[i], step):
-                        state[r, 3], state[r, 4] = _cubic(ps, step) + MASS_PARTICIPATION * sign * u[i + 1], w_end
-                        continue
-            if r == 0:
-                slow_normal = True
-            else:
-                slow_inverse = True
-        if slow_normal or slow_inverse:
-            _slow_runs_compiled(slow_normal, slow_inverse, t0[i], length, a0, rate, step, maps, table, omega, xi,
-                                damped, kyg, coupled, cached, stack, state, counts, status, u[i], v[i])
     for r in range(2):
         if runs[r]:
-            if not coupled:  # the column's state is the response's
-                state[r, 1], state[r, 2] = (1.0 - 2.0 * r) * u[n], (1.0 - 2.0 * r) * v[n]
-            _put(out[1 + r], (state[r, 1], state[r, 2], state[r, 3], state[r, 4], state[r, 0], counts[r, 0],
-                              counts[r, 1], 0.0, 0.0, 0.0, 0.0, float(status[1 + r]), counts[r, 3], counts[r, 4]))
+            counts = np.zeros(len(COUNT_FIELDS))
+            counts[4] = -math.inf
+            mode, run_u, run_v, s, w = _run(t0, h, p0, p1, 1.0 - 2.0 * r, omega, xi, kyg, coupled, damped, maps, table,
+                                            step, u, v, hea, amplitude, cached, stack, counts)
+            _put(out[1 + r], (run_u, run_v, s, w, float(mode), counts[0], counts[1], 0.0, 0.0, 0.0, 0.0, counts[5],
+                              counts[3], counts[4]))
 
 
 def _analyses(t0, h, p0, p1, offsets, record, parameters, flags, out):
