@@ -142,12 +142,12 @@ _slow_step_compiled = numba.njit(cache=True, error_model="numpy")(_slow_step)
 
 
 @register_jitable
-def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step, u, v, hea, amplitude, cached,
-         stack, counts):
+def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step, u, v, hea, amplitude, reach,
+         cached, stack, counts):
     """One sliding run of a(t) times ``sign`` from rest, its state in registers: each
     whole step quick where bounds allow (a coupled run steps its own column; a
     decoupled one's is the response's ``u``, ``v``, ``hea`` (n + 1,), ``amplitude``
-    (n,) times ``sign``), else in closed form. Returns (mode, u, u', s, w) at the end;
+    and bound of |HEA| ``reach`` (n,) times ``sign``), else in closed form. Returns (mode, u, u', s, w) at the end;
     ``counts`` (COUNT_FIELDS) holds its counters and status."""
     stick_map, stick = maps[STICK], table[STICK]
     slip_map, slip = maps[SLIP], table[SLIP]
@@ -165,8 +165,9 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
                 if quick:
                     run_u, run_v, s, w = u_end, v_end, s_end, w_end
                     continue
-            elif mode == STICK:  # decoupled: the response's step decides
-                if _stick_clear(kyg - sign * hea[i], kyg - sign * hea[i + 1], rate, stick, amplitude[i], xi, step):
+            elif mode == STICK:  # decoupled: the response's step decides (first its bound of |HEA|)
+                if reach[i] < kyg or _stick_clear(kyg - sign * hea[i], kyg - sign * hea[i + 1], rate, stick,
+                                                  amplitude[i], xi, step):
                     continue
             else:
                 pw, ps = _slip_polynomials(a0, rate, kyg, sign * u[i], sign * v[i], s, w)
@@ -220,7 +221,7 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
             counts = np.zeros(len(COUNT_FIELDS))
             counts[4] = -math.inf
             mode, run_u, run_v, s, w = _run(t0, h, p0, p1, 1.0 - 2.0 * r, omega, xi, kyg, coupled, damped, maps, table,
-                                            step, u, v, hea, amplitude, cached, stack, counts)
+                                            step, u, v, hea, amplitude, reach, cached, stack, counts)
             _put(out[1 + r], (run_u, run_v, s, w, float(mode), counts[0], counts[1], 0.0, 0.0, 0.0, 0.0, counts[5],
                               counts[3], counts[4]))
 
