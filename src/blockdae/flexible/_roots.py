@@ -76,10 +76,9 @@ def sign_change(f, f1, lo, f_lo, hi, f_hi, origin):
             lo = x_new
         else:
             hi = x_new
-        close = abs(x_new - x) <= max(tiny, 4 * _EPS * abs(x_new))
         x = x_new
-        if close:
-            break
+        if abs(fx) <= max(tiny, 4 * _EPS * abs(x)) * abs(dx):  # the next step would be below the resolution:
+            break  # the root is within it, which the probe below confirms
     gap = max(tiny, 8 * _EPS * abs(x))
     if hi - lo > 2 * gap:  # close the other side by a probe a few ulps across
         probe = x - gap if x == hi else x + gap
