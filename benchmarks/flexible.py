@@ -57,7 +57,8 @@ def single(record, repeat):
         case = f"{kind}{', equivalent-linear' if eq else ''}"
         speedups[case] = peer_warm / warm
         rows.append((case, f"{exact * 100:.4f}", f"{peer * 100:.4f}", f"{(peer / exact - 1) * 100:+.2f}",
-                     f"{warm * 1e3:.3f}", f"{peer_warm * 1e3:.1f}", f"{peer_warm / warm:.0f}", f"{warm_both * 1e3:.3f}"))
+                     f"{warm * 1e3:.3f}", f"{peer_warm * 1e3:.1f}", f"{peer_warm / warm:.0f}",
+                     f"{warm_both * 1e3:.3f}"))
     return rows, speedups
 
 

@@ -27,8 +27,9 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..engines._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT,
-                               MAX_INTERVALS, STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative, _eval,
-                               _eval_at, _falls, _signed, _solve)
+                               STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative, _eval, _eval_at, _falls, _signed,
+                               _solve)
+from ..engines._linear import MAX_INTERVALS  # noqa: F401 -- read through this module (._exact's messages)
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._roots import STACK_COLUMNS, first_fall
 

@@ -120,14 +120,14 @@ def _sups(t0, h, p0, p1, omega, xi, damped, row, step, u, v, amplitude, reach, h
     return hea_sup, u_samples, u_sup
 
 
-def _slow_step(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, counts,
-               mode, u, v, s, w):
+def _slow_step(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, no_log,
+               counts, mode, u, v, s, w):
     """:func:`._engine._piece` for a run from (``mode``, u, u', s, w), its counters
-    ``counts`` (COUNT_FIELDS) updated: its (mode, u, u', s, w) at the end of the piece."""
+    ``counts`` (COUNT_FIELDS) updated: its (mode, u, u', s, w) at the end of the piece.
+    ``no_log``: an empty (0, 8) knot log."""
     (mode, u, v, s, w, n_events, n_episodes, at_once, most, last, status, _) = _piece(
-        t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack,
-        np.empty((0, 8)), 0, mode, u, v, s, w, int(counts[0]), int(counts[1]), int(counts[2]), int(counts[3]),
-        counts[4])
+        t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, no_log, 0, mode,
+        u, v, s, w, int(counts[0]), int(counts[1]), int(counts[2]), int(counts[3]), counts[4])
     counts[0], counts[1], counts[2], counts[3], counts[4], counts[5] = (n_events, n_episodes, at_once, most, last,
                                                                         status)
     return mode, u, v, s, w
@@ -152,6 +152,7 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
     stick_map, stick = maps[STICK], table[STICK]
     slip_map, slip = maps[SLIP], table[SLIP]
     mode, run_u, run_v, s, w = STICK, 0.0, 0.0, 0.0, 0.0
+    no_log = np.empty((0, 8))
     for i in range(t0.shape[0]):
         a0, rate = sign * p0[i], sign * p1[i]
         if h[i] == step:
@@ -178,7 +179,8 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
         if not coupled:
             run_u, run_v = sign * u[i], sign * v[i]
         mode, run_u, run_v, s, w = _slow_step_compiled(t0[i], h[i], a0, rate, step, maps, table, omega, xi, damped,
-                                                       kyg, coupled, cached, stack, counts, mode, run_u, run_v, s, w)
+                                                       kyg, coupled, cached, stack, no_log, counts, mode, run_u, run_v,
+                                                       s, w)
         if counts[5] != FINISHED:
             break
     if not coupled:  # the column's state is the response's
