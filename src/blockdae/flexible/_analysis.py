@@ -11,17 +11,21 @@ runs of a batch go to the compiled engine in one call, parallel over cores.
 
 import dataclasses
 import functools
+import math
 
 import numpy as np
 
+from ..backends import Horizon
 from ..core._units import STANDARD_GRAVITY
 from ..engines._linear_solution import linear_pieces
 from ..excitation import Record, pga_factor
 from . import _engine, _fused
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._exact import check, engine_settings
+from ._ky_table import KyTable
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
+from ._table_engine import solve_table_exact
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns
@@ -59,7 +63,8 @@ class FlexibleResult:
     """Results of :func:`flexible`: one row per (motion, parameter set).
 
     Attributes:
-        rows: a list of dicts with the keys :data:`COLUMNS`: record, ky_g [g], height_m
+        rows: a list of dicts with the keys :data:`COLUMNS`: record, ky_g [g] (of a
+            :class:`KyTable`: ky at zero displacement), height_m
             [m], vs_m_s [m/s] (as given), normal_m and inverse_m (downslope displacement
             at the end [m], nan where that polarity was not run), kmax_g (max |HEA| / g at
             the samples of the no-sliding response, as SLAMMER reports it) and kmax_sup_g
@@ -98,7 +103,9 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     Args:
         motion: a :class:`Record` of the ground acceleration along the slope, or a
             sequence or dict (name -> record) of them (a batch).
-        ky: yield acceleration [g], >= 0.
+        ky: yield acceleration [g], >= 0; or a :class:`KyTable` (ky [g] against the
+            sliding displacement [m], linear between rows, constant beyond), also as
+            pySLAMMER's pair ``(disp_values [m], ky_values [g])`` of two sequences.
         height: height H of the sliding mass [m], > 0.
         vs: its shear-wave velocity [m/s], > 0.
         vr: shear-wave velocity below the slip surface [m/s]; None: vs.
@@ -130,6 +137,8 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga,
                     polarity, integration, g, t_end)
     rows_of, _ = INTEGRATIONS[integration]
+    if any(analysis.model.table is not None for analysis in analyses):
+        rows_of = table_rows
     return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration)
 
 
@@ -147,10 +156,18 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
     if reference_strain is not None and not (isinstance(reference_strain, (int, float)) and
                                              not isinstance(reference_strain, bool) and reference_strain > 0):
         raise ValueError(f"reference_strain must be a fraction > 0, got {reference_strain!r}")
+    table = as_ky_table(ky)
+    if table is not None and not table.constant:
+        if integration == "slammer":
+            raise ValueError(f"ky={table}: integration='slammer' takes a constant ky (SLAMMER 1.1 has no ky "
+                             "table); use integration='exact'")
+        ky = 0.0  # a placeholder in the broadcast: every model gets the table
+    elif table is not None:
+        ky, table = table.ky_g[0], None
     names, records = _motions(motion)
     vr_given = np.nan if vr is None else vr
     models = [FlexibleSlidingMass(ShearColumn(float(h), float(v), None if np.isnan(r) else float(r), float(d)),
-                                  ky=float(k), method=method, g=g)
+                                  ky=float(k) if table is None else table, method=method, g=g)
               for k, h, v, r, d in _parameter_sets(ky, height, vs, vr_given, damping)]
     polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
     analyses = []
@@ -182,6 +199,16 @@ def _parameter_sets(*values):
     if sets[0].ndim > 1:
         raise ValueError(f"ky, height, vs, vr and damping must be numbers or 1-D arrays, got shape {sets[0].shape}")
     return zip(*(np.atleast_1d(x) for x in sets))
+
+
+def as_ky_table(ky):
+    """``ky`` as a :class:`KyTable` if it is one or pySLAMMER's pair of two sequences
+    (displacements [m], ky [g]); None for a number or an array of them (a batch)."""
+    if isinstance(ky, KyTable):
+        return ky
+    if isinstance(ky, tuple) and len(ky) == 2 and all(np.ndim(part) == 1 for part in ky):
+        return KyTable(*ky)
+    return None
 
 
 def _motions(motion):
@@ -326,3 +353,22 @@ def slammer_rows(analyses: list[Analysis]) -> list[dict]:
 #: "exact": continuous time, events located, the exact peak; "slammer": SLAMMER 1.1's
 #: fixed-step scheme and its peak rounded to 0.001 g
 INTEGRATIONS = {"exact": (exact_rows, "exact"), "slammer": (slammer_rows, "slammer")}
+
+
+def table_rows(analyses) -> list[dict]:
+    """The rows of :func:`flexible` analyses whose ky is a table: the
+    no-sliding response (kmax, the equivalent-linear iteration) as for a constant ky,
+    then each polarity's slide by :func:`solve_table_exact` on the record with its
+    virtual zero sample."""
+    rows = exact_rows([dataclasses.replace(a, model=a.model.replace(ky=a.model.ky_at(0.0)), polarities=())
+                       for a in analyses])
+    for analysis, row in zip(analyses, rows):
+        omega = math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height)
+        model = analysis.model.with_parameters({"omega": omega, "damping": row["damping_final"]})
+        record = with_zero_sample(analysis.record)
+        for polarity in analysis.polarities:
+            motion = record if polarity == "normal" else record.scaled(-1.0)
+            sol = solve_table_exact(model, motion, Horizon(analysis.t_end + analysis.record.dt), "exact")
+            row[f"{polarity}_m"] = 0.0 + sol.sliding_displacement
+            row[f"episodes_{polarity}"] = sum(event.kind == "onset" for event in sol.events)
+    return rows

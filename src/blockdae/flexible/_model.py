@@ -11,9 +11,10 @@ the sliding displacement s and velocity w = s' of the base (one-way: downslope o
     SLIP, decoupled:  u'' as in STICK;                               s' = w,  w' = HEA - ky g
     SLIP, coupled:    d1 u'' = -(4/pi) ky g - 2 xi omega u' - omega² u;  s' = w,  w' = a - ky g + (2/pi) u''
 
-with d1 = 1 - 8/pi². STICK is left when ky g - HEA falls through 0 (onset), SLIP when w
-falls through 0 (stop, w := 0). Every mode is linear in (u, u', s, w) with a forcing
-linear in t on each piece of a record: the exact backend (:mod:`._exact`) steps closed
+with d1 = 1 - 8/pi² (ky may be a table of s: :class:`KyTable`). STICK is left when
+ky g - HEA falls through 0 (onset), SLIP when w falls through 0 (stop, w := 0). Every
+mode is linear in (u, u', s, w) with a forcing linear in t on each piece of a record:
+the exact backend (:mod:`._exact`; :mod:`._table_engine` for a ky table) steps closed
 forms and locates every event to adjacent floats.
 """
 
@@ -27,12 +28,17 @@ from ..core._model import KNOTS_PER_RADIAN, AbstractHybridModel
 from ..core._units import STANDARD_GRAVITY
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn
 from ._exact import solve_exact
+from ._ky_table import KyTable, next_breakpoint, piecewise_ky
 from ._modes import EVENT_KINDS, FlexibleMode
 from ._solution import FlexibleEvent, FlexibleSolution
 
 #: the slip equations: "coupled" (Rathje & Bray 1999) or "decoupled" (Bray & Rathje 1998)
 METHODS = ("coupled", "decoupled")
-_U, _V, _S, _W = range(4)
+#: a ky table's parameters: breakpoint_j [m], ky_intercept_j [g], ky_slope_j [g/m]
+_TABLE_PARAMETERS = ("breakpoint", "ky_intercept", "ky_slope")
+_U, _V, _S, _W, _PASSED = range(5)
+#: the next breakpoint once all are passed [m]: a guard that is never reached
+_BEYOND = 1e30
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -43,7 +49,11 @@ class FlexibleSlidingMass(AbstractHybridModel):
         column: the sliding mass (:class:`ShearColumn`: height [m], vs, vr [m/s],
             damping ratios).
         ky: yield acceleration [g], >= 0; the base slides downslope (the +ky
-            direction) while it transmits ky g.
+            direction) while it transmits ky g. A :class:`KyTable` makes it a function
+            of the sliding displacement s (linear between breakpoints; a one-row table
+            is its constant ky): the state then has a fifth entry, the breakpoints
+            passed, and SLIP a second guard, the next breakpoint minus s, whose
+            crossing is a "breakpoint" event (SLIP to SLIP).
         method: "coupled" (the column's response feels the sliding) or "decoupled"
             (the stick response drives a rigid block).
         g: the value of one g [m/s²].
@@ -53,7 +63,7 @@ class FlexibleSlidingMass(AbstractHybridModel):
     """
 
     column: ShearColumn
-    ky: float
+    ky: float | KyTable
     method: str = "coupled"
     g: float = STANDARD_GRAVITY
 
@@ -67,8 +77,19 @@ class FlexibleSlidingMass(AbstractHybridModel):
     def __post_init__(self):
         if not isinstance(self.column, ShearColumn):
             raise TypeError(f"column must be a ShearColumn(height, vs, ...), got {type(self.column).__name__}")
-        set_real_fields(self, ("ky", "g"))
-        if self.ky < 0:
+        if isinstance(self.ky, KyTable) and self.ky.constant:
+            object.__setattr__(self, "ky", self.ky.ky_g[0])
+        if isinstance(self.ky, KyTable):
+            from ._table_engine import solve_table_exact
+
+            set_real_fields(self, ("g",))
+            object.__setattr__(self, "table", self.ky.segments())
+            object.__setattr__(self, "state_names", FlexibleSlidingMass.state_names + ("breakpoints_passed",))
+            object.__setattr__(self, "engines", {"exact": solve_table_exact})
+        else:
+            set_real_fields(self, ("ky", "g"))
+            object.__setattr__(self, "table", None)
+        if self.table is None and self.ky < 0:
             raise ValueError(f"ky={self.ky!r} must be a yield acceleration >= 0 [g]")
         if self.g <= 0:
             raise ValueError(f"g={self.g!r} must be > 0 [m/s²]")
@@ -85,46 +106,71 @@ class FlexibleSlidingMass(AbstractHybridModel):
 
     @property
     def yield_acceleration(self) -> float:
-        """ky g [m/s²]."""
-        return self.ky * self.g
+        """ky g [m/s²] (of a table: at s = 0)."""
+        return self.ky_at(0.0) * self.g
+
+    def ky_at(self, s, xp=np):
+        """ky [g] at the sliding displacement ``s`` [m]."""
+        if self.table is None:
+            return self.ky + 0.0 * s
+        return piecewise_ky(s, *self.table, xp)
+
+    def _friction(self, y, xp=np):
+        """ky(s) g [m/s²] in state ``y``."""
+        return self.ky_at(y[_S], xp) * self.g
+
+    def _friction_rate(self, y):
+        """d(ky(s) g)/dt = ky'(s) g w [m/s³] (0 for a constant ky; w = 0 in STICK)."""
+        if self.table is None:
+            return 0.0
+        breakpoints, _, slopes = self.table
+        return float(slopes[int(np.searchsorted(breakpoints, y[_S], side="right"))]) * self.g * y[_W]
+
+    def _more(self, y):
+        """The states beyond (u, u', s, w): the breakpoints passed, for a table."""
+        return () if self.table is None else (y[_PASSED],)
 
     def replace(self, **changes) -> "FlexibleSlidingMass":
         """A copy with some of column, ky, method, g changed (validated again)."""
         return dataclasses.replace(self, **changes)
 
     # ---- the physics ------------------------------------------------------------
-    def modal_acceleration(self, mode, a, y):
+    def modal_acceleration(self, mode, a, y, xp=np):
         """u'' [m/s²] in ``mode`` at ground acceleration ``a`` [m/s²] in state ``y``."""
         elastic = 2 * self.damping * self.omega * y[_V] + self.omega**2 * y[_U]
         if mode == FlexibleMode.SLIP and self.coupled:
-            return (-MODE_PARTICIPATION * self.yield_acceleration - elastic) / self.slip_mass_fraction
+            return (-MODE_PARTICIPATION * self._friction(y, xp) - elastic) / self.slip_mass_fraction
         return -MODE_PARTICIPATION * a - elastic
 
     def modal_jerk(self, mode, a_rate, y, accel):
         """u''' [m/s³] from u'' = ``accel`` and a' = ``a_rate`` [m/s³] (a'' = 0)."""
         elastic = 2 * self.damping * self.omega * accel + self.omega**2 * y[_V]
         if mode == FlexibleMode.SLIP and self.coupled:
-            return -elastic / self.slip_mass_fraction
+            return -(elastic + MODE_PARTICIPATION * self._friction_rate(y)) / self.slip_mass_fraction
         return -MODE_PARTICIPATION * a_rate - elastic
 
-    def hea(self, mode, a, y):
+    def hea(self, mode, a, y, xp=np):
         """The column's average acceleration a + (2/pi) u'' [m/s²] (the base shear per unit mass)."""
-        return a + MASS_PARTICIPATION * self.modal_acceleration(mode, a, y)
+        return a + MASS_PARTICIPATION * self.modal_acceleration(mode, a, y, xp)
 
     # ---- hybrid automaton ------------------------------------------------------
     def flow(self, mode, t, y, excitation, xp=np):
         """(u', u'', s', w') in ``mode``."""
         a = excitation.acceleration(t)
-        accel = self.modal_acceleration(mode, a, y)
+        accel = self.modal_acceleration(mode, a, y, xp)
+        more = tuple(0.0 * y[_W] for _ in self._more(y))
         if mode == FlexibleMode.STICK:
-            return xp.stack([y[_V], accel, 0.0 * y[_W], 0.0 * y[_W]])
-        return xp.stack([y[_V], accel, y[_W], a - self.yield_acceleration + MASS_PARTICIPATION * accel])
+            return xp.stack([y[_V], accel, 0.0 * y[_W], 0.0 * y[_W], *more])
+        return xp.stack([y[_V], accel, y[_W], a - self._friction(y, xp) + MASS_PARTICIPATION * accel, *more])
 
     def guards(self, mode, t, y, excitation, xp=np):
-        """STICK: ky g - HEA (onset as it falls through 0); SLIP: w (stop)."""
+        """STICK: ky g - HEA (onset as it falls through 0); SLIP: w (stop) and, with a
+        ky table, the next breakpoint minus s (a breakpoint crossed)."""
         if mode == FlexibleMode.STICK:
-            return xp.stack([self.yield_acceleration - self.hea(mode, excitation.acceleration(t), y)])
-        return xp.stack([y[_W]])
+            return xp.stack([self._friction(y, xp) - self.hea(mode, excitation.acceleration(t), y, xp)])
+        if self.table is None:
+            return xp.stack([y[_W]])
+        return xp.stack([y[_W], next_breakpoint(y[_PASSED], self.table[0], xp, _BEYOND) - y[_S]])
 
     def mode_at_rest(self, t, excitation, xp=np, y=None):
         """At rest HEA = d1 a: SLIP where it exceeds ky g (or reaches it rising)."""
@@ -134,8 +180,20 @@ class FlexibleSlidingMass(AbstractHybridModel):
         return FlexibleMode.STICK
 
     def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
-        """STICK -> SLIP at an onset, SLIP -> STICK at a stop."""
+        """STICK -> SLIP at an onset, SLIP -> STICK at a stop; a breakpoint stays in SLIP."""
+        if mode == FlexibleMode.SLIP and guard_index == 1:
+            return FlexibleMode.SLIP
         return FlexibleMode.SLIP if mode == FlexibleMode.STICK else FlexibleMode.STICK
+
+    def guard_restarts(self, mode, guard_index):
+        """A breakpoint crossed is an event (ky's slope changes) though SLIP stays."""
+        return mode == FlexibleMode.SLIP and guard_index == 1
+
+    def state_on_entry(self, before, after, t, y, excitation, xp=np):
+        """Past a breakpoint (SLIP to SLIP) the count of breakpoints passed grows by one."""
+        if self.table is not None and before == after == FlexibleMode.SLIP:
+            return xp.stack([y[_U], y[_V], y[_S], y[_W], y[_PASSED] + 1.0])
+        return y
 
     # ---- what the hybrid driver asks --------------------------------------------
     def is_static(self, mode):
@@ -146,11 +204,13 @@ class FlexibleSlidingMass(AbstractHybridModel):
         return mode == FlexibleMode.STICK and not np.any(np.asarray(y, dtype=float))
 
     def rest_state(self, y):
-        return np.array([y[_U], 0.0, y[_S], 0.0])
+        return np.array([y[_U], 0.0, y[_S], 0.0, *self._more(y)])
 
     def state_at_guard(self, mode, guard_index, y, xp=np):
-        """w = 0 exactly at a stop (it is 0 in STICK)."""
-        return xp.stack([y[_U], y[_V], y[_S], 0.0 * y[_W]])
+        """w = 0 exactly at a stop (it is 0 in STICK); a breakpoint keeps the state."""
+        if mode == FlexibleMode.SLIP and guard_index == 1:
+            return y
+        return xp.stack([y[_U], y[_V], y[_S], 0.0 * y[_W], *self._more(y)])
 
     def turn_rate(self, mode, t, y, excitation, xp=np):
         return None  # the solvers' steps and the driver's knots resolve the oscillation
@@ -164,7 +224,10 @@ class FlexibleSlidingMass(AbstractHybridModel):
         if mode == FlexibleMode.STICK:  # -(a + (2/pi) u'')
             snap = -2 * self.damping * self.omega * jerk - self.omega**2 * accel
             return -a_rate - MASS_PARTICIPATION * jerk, -MASS_PARTICIPATION * snap
-        return a - self.yield_acceleration + MASS_PARTICIPATION * accel, a_rate + MASS_PARTICIPATION * jerk
+        w_rate = a - self._friction(y) + MASS_PARTICIPATION * accel
+        if guard_index == 1:  # the next breakpoint minus s
+            return -y[_W], -w_rate
+        return w_rate, a_rate - self._friction_rate(y) + MASS_PARTICIPATION * jerk
 
     def contradiction(self, mode, y, velocity_error):
         """A slide moving upslope: w [m/s] below zero."""
@@ -188,15 +251,26 @@ class FlexibleSlidingMass(AbstractHybridModel):
         """omega [rad/s], damping (total ratio) [-], ky [g], g [m/s²]; coupled also d1 =
         slip_mass_fraction [-], which only its slip reads (so that the compiled rules of
         the two methods, cached by parameter names, differ)."""
-        named = {"omega": self.omega, "damping": self.damping, "ky": self.ky, "g": self.g}
+        named = {"omega": self.omega, "damping": self.damping, "g": self.g}
+        if self.table is None:
+            named["ky"] = self.ky
+        else:  # a ky table: its reachable breakpoints [m], its pieces' intercepts [g] and slopes [g/m]
+            for label, values in zip(_TABLE_PARAMETERS, self.table):
+                named |= {f"{label}_{j}": float(v) for j, v in enumerate(values)}
         return named | ({"slip_mass_fraction": self.slip_mass_fraction} if self.coupled else {})
 
     def with_parameters(self, values):
         model = object.__new__(FlexibleSlidingMass)
-        for name in ("column", "method"):
+        for name in ("column", "method", "table", "state_names", "ky"):
             object.__setattr__(model, name, getattr(self, name))
-        for name, value in {**self.parameters(), **values}.items():
+        if self.table is not None:
+            object.__setattr__(model, "engines", self.engines)
+        named = {**self.parameters(), **values}
+        for name, value in named.items():
             object.__setattr__(model, name, value)
+        if self.table is not None:
+            object.__setattr__(model, "table", tuple([named[f"{label}_{j}"] for j in range(len(part))]
+                                                     for label, part in zip(_TABLE_PARAMETERS, self.table)))
         return model
 
     def event(self, t, mode_before, mode_after, y):
@@ -205,3 +279,8 @@ class FlexibleSlidingMass(AbstractHybridModel):
 
     def solution(self, *, t, y, mode, events, backend, dense, stats):
         return FlexibleSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
+
+    # ---- bd.study ------------------------------------------------------------------
+    #: what :func:`bd.study` sweeps: its keyword, the table's column, the unit (the
+    #: mass's ``study_batch``, which runs ``bd.flexible``'s rows, is in :mod:`._study`)
+    study_parameter = ("ky", "ky_g", "g")

@@ -13,5 +13,6 @@ class FlexibleMode(enum.IntEnum):
         return self.name
 
 
-#: event kind of each mode change (before, after)
-EVENT_KINDS = {(FlexibleMode.STICK, FlexibleMode.SLIP): "onset", (FlexibleMode.SLIP, FlexibleMode.STICK): "stop"}
+#: event kind of each mode change (before, after); SLIP to SLIP: a ky-table breakpoint crossed
+EVENT_KINDS = {(FlexibleMode.STICK, FlexibleMode.SLIP): "onset", (FlexibleMode.SLIP, FlexibleMode.STICK): "stop",
+               (FlexibleMode.SLIP, FlexibleMode.SLIP): "breakpoint"}

@@ -14,6 +14,8 @@ def displacement_sensitivities(model, motion, t_end, wrt=tuple(INPUTS), **option
     """d s(t_end) / d p [m per unit of p] for p in ``wrt``: "ky" [g], "height" [m], "vs"
     [m/s] (vr held), "damping" (the soil's ratio) and "A" (the motion scaled so that its
     peak is A g). ``options``: the JAX twin's settings (e.g. rtol, atol)."""
+    if model.table is not None:
+        raise ValueError(f"ky={model.ky}: displacement_sensitivities takes a constant ky (not yet a ky table)")
     unknown = [name for name in wrt if name not in INPUTS]
     if unknown:
         raise ValueError(f"wrt={unknown[0]!r} is unknown; choose from {tuple(INPUTS)}")

@@ -14,7 +14,7 @@ class FlexibleEvent(AbstractEvent):
 
     Attributes:
         t: time [s]; mode_before, mode_after: the modes on either side.
-        kind: "onset" or "stop".
+        kind: "onset", "stop" or "breakpoint" (s crossed a breakpoint of a ky table).
         u: modal displacement (top relative to base) [m]; u_rate: u' [m/s].
         s: sliding displacement, downslope positive [m]; w: sliding velocity [m/s] (0 at both).
     """
@@ -67,7 +67,7 @@ class FlexibleSolution(DriverSolution):
         for event in self.events:
             if event.kind == "onset":
                 start = event
-            elif start is not None:
+            elif event.kind == "stop" and start is not None:
                 found.append(Episode(start.t, event.t, event.s - start.s))
                 start = None
         if start is not None:
@@ -91,8 +91,8 @@ class FlexibleSolution(DriverSolution):
 
     def event_table(self, events=None) -> str:
         """``events`` (default: all of them) as an aligned text table with units."""
-        lines = [f"{'t [s]':>12}  {'kind':<5}  {'u [m]':>13}  {'u_rate [m/s]':>13}  {'s [m]':>13}"]
-        lines += [f"{e.t:12.6f}  {e.kind:<5}  {e.u:13.6e}  {e.u_rate:13.6e}  {e.s:13.6e}"
+        lines = [f"{'t [s]':>12}  {'kind':<10}  {'u [m]':>13}  {'u_rate [m/s]':>13}  {'s [m]':>13}"]
+        lines += [f"{e.t:12.6f}  {e.kind:<10}  {e.u:13.6e}  {e.u_rate:13.6e}  {e.s:13.6e}"
                   for e in (self.events if events is None else events)]
         return "\n".join(lines)
 

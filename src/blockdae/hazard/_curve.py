@@ -5,6 +5,8 @@ import pathlib
 
 import numpy as np
 
+from . import _formats
+
 
 @dataclasses.dataclass(frozen=True)
 class HazardCurve:
@@ -22,6 +24,59 @@ class HazardCurve:
         _check(x, lam, [f"point {i}" for i in range(x.size)] if x.ndim == 1 else [])
         object.__setattr__(self, "im", x)
         object.__setattr__(self, "rate", lam)
+
+    @classmethod
+    def from_openquake_csv(cls, path, site=None, imt=None):
+        """One site's curve from an OpenQuake engine hazard-curve CSV export.
+
+        The format (``oq export hcurves``, e.g. hazard_curve-mean-PGA_<calc>.csv; written by
+        openquake/calculators/export/hazard.py, ``export_hcurves_csv``): line 1 a comment
+        ``#,,,"generated_by=..., kind='mean', investigation_time=50.0, imt='PGA'"``; line 2
+        the header ``lon,lat,depth,poe-<level>,...`` (levels in g for PGA and SA); then one
+        line per site of probabilities of exceedance in the investigation time T [yr].
+
+        Conversion (Poisson occurrence): λ = -ln(1 - poe) / T [1/yr]. Levels with poe = 1
+        (a rate without bound) or poe = 0 (none) are left out.
+
+        Args:
+            path: the CSV file.
+            site: None (the file holds one site), the site's row (0-based), or its
+                (lon, lat) [deg], matched to within 1e-5 deg.
+            imt: None, or the intensity measure expected, e.g. "PGA" or "SA(0.2)":
+                checked against the comment's imt.
+
+        A malformed file, a probability outside [0, 1] or a curve that does not decrease
+        raises a ValueError naming the file, the line and the field.
+        """
+        return cls._checked(*_formats.openquake_csv(pathlib.Path(path), site, imt))
+
+    @classmethod
+    def from_usgs_json(cls, path, imt=None, component="Total"):
+        """A curve from a USGS NSHMP hazard web-service response (JSON), rates annual.
+
+        The format (usgs/nshmp-haz-ws, ``HazardService``): ``{"status", "date", "url",
+        "server", "response": [{"metadata": {"imt": {"value": "PGA", ...}, "xlabel":
+        "Ground Motion (g)", "ylabel": "Annual Frequency of Exceedence", "xvalues": [...],
+        ...}, "data": [{"component": "Total", "yvalues": [...]}, {"component":
+        "Fault", ...}, ...]}, ...]}``, one response per IMT; also the older static-curve
+        service of the Unified Hazard Tool (usgs/earthquake-hazard-tool,
+        etc/curve/data.json): ``xvals`` and one data entry with ``yvals``. Levels in g;
+        levels of rate 0 are left out.
+
+        Args:
+            path: the JSON file.
+            imt: None (the file holds one curve) or its imt value, e.g. "PGA", "SA0P2".
+            component: the curve of ``data`` by its component, "Total" by default.
+
+        A malformed file (with its line for a JSON syntax error) or a curve that does not
+        decrease raises a ValueError naming the file and the field.
+        """
+        return cls._checked(*_formats.usgs_json(pathlib.Path(path), imt, component))
+
+    @classmethod
+    def _checked(cls, im, rate, where):
+        _check(np.asarray(im, dtype=float), np.asarray(rate, dtype=float), where)
+        return cls(im, rate)
 
     @classmethod
     def read_csv(cls, path, im_column=0, rate_column=1):

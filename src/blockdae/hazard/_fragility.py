@@ -20,6 +20,8 @@ from scipy.special import log_ndtr
 from scipy.stats import norm
 
 MIN_RECORDS = 10
+#: columns that name the slope (or the location) of a row: a fit takes one value of each
+SLOPE_COLUMNS = ("mu", "location", "ky_g", "height_m", "vs_m_s")
 _LN_SQRT_2PI = 0.5 * np.log(2.0 * np.pi)
 
 
@@ -68,9 +70,16 @@ def fit_fragility(table, im="pga_g", displacement="max_abs_displacement_m", *, d
     """Fit P(D > d | im) to a study table by maximum likelihood, with bootstrap refits.
 
     Args:
-        table: a DataFrame with a "record" column (e.g. :func:`bd.study`'s, of one μ).
-        im: the column of the intensity measure (PGA [g], PGV, Arias intensity, Sa(T)...).
-        displacement: the column of the displacement [m] (its absolute value is used).
+        table: a DataFrame with a "record" column and one slope (one value in each of
+            :data:`SLOPE_COLUMNS` it has): :func:`bd.study`'s of one μ and one location
+            (the 1-D block, or ``block=bd.PlanarBlock(...)``), or ``bd.flexible(...)``'s
+            of one (ky, H, Vs), its runs at several ``target_pga`` concatenated with a
+            ``pga_g`` column.
+        im: the column of the intensity measure (PGA [g], PGV, Arias intensity, Sa(T),
+            a flexible mass's kmax_g...).
+        displacement: the column of the displacement [m] (its absolute value is used),
+            or several columns: each row's largest absolute value among them, NaN
+            skipped (a flexible table's ``("normal_m", "inverse_m")``: the worse polarity).
         d0_m: displacements at or below it are negligible [m] (Bray & Travasarou: 1 cm).
         n_boot: bootstrap refits over records drawn with replacement (0: none).
         seed: of the bootstrap's random generator.
@@ -140,12 +149,16 @@ def _positive_im(name, im):
 
 
 def _checked(table, im, displacement, d0_m):
-    for column in ("record", im, displacement):
+    displacements = [displacement] if isinstance(displacement, str) else list(displacement)
+    if not displacements:
+        raise ValueError("displacement must name at least one column")
+    for column in ("record", im, *displacements):
         if column not in table.columns:
             raise ValueError(f"the table has no column {column!r} (columns: {list(table.columns)})")
-    if "mu" in table.columns and table["mu"].nunique() > 1:
-        raise ValueError(f"the table holds {table['mu'].nunique()} values of mu: fit one slope at a time, "
-                         f"e.g. table[table.mu == {table['mu'].iloc[0]!r}]")
+    for column in SLOPE_COLUMNS:
+        if column in table.columns and table[column].nunique() > 1:
+            raise ValueError(f"the table holds {table[column].nunique()} values of {column}: fit one slope at a "
+                             f"time, e.g. table[table.{column} == {table[column].iloc[0]!r}]")
     if not (np.isfinite(d0_m) and d0_m > 0):
         raise ValueError(f"d0_m must be positive and finite [m], got {d0_m!r}")
     n = table["record"].nunique()
@@ -157,9 +170,14 @@ def _checked(table, im, displacement, d0_m):
         row = int(np.flatnonzero(bad)[0])
         raise ValueError(f"{im} must be positive and finite: row {row} ({table['record'].iloc[row]!r}) "
                          f"has {im}={float(x[row])!r}")
-    d = np.abs(table[displacement].to_numpy(dtype=float))
-    if not np.all(np.isfinite(d)):
-        raise ValueError(f"{displacement} has values that are not finite")
+    values = np.abs(table[displacements].to_numpy(dtype=float))
+    name = displacements[0] if len(displacements) == 1 else f"max |{', '.join(displacements)}|"
+    missing = np.flatnonzero(np.isnan(values).all(axis=1) | np.isinf(values).any(axis=1))
+    if missing.size:
+        row = int(missing[0])
+        raise ValueError(f"{name} is not finite: row {row} ({table['record'].iloc[row]!r}) has "
+                         f"{dict(zip(displacements, values[row]))}")
+    d = np.nanmax(values, axis=1)
     if np.count_nonzero(d > d0_m) < 2:
-        raise ValueError(f"fewer than two rows with {displacement} > d0_m = {d0_m:g} m: nothing to fit")
+        raise ValueError(f"fewer than two rows with {name} > d0_m = {d0_m:g} m: nothing to fit")
     return x, d, table["record"].to_numpy()

@@ -166,6 +166,14 @@ class PlanarBlock(AbstractHybridModel):
         """A copy with some parameters changed (validated again)."""
         return dataclasses.replace(self, **changes)
 
+    #: what :func:`bd.study` sweeps: its keyword, the table's column, the unit
+    study_parameter = ("mu", "mu", "-")
+
+    def study_batch(self, mu) -> "PlanarBlock":
+        """This block at every friction coefficient ``mu`` [-] (1-D), for :func:`bd.study`
+        (checks them against the other parameters)."""
+        return self.replace(mu=mu)
+
     def study_columns(self, motions, t_end, scale, rtol=None) -> dict:
         """What :func:`bd.study` tabulates of this block (a batch of m parameter sets)
         on ``motions`` (BaseMotions) at the factors ``scale`` on a(t) [-]: one row per

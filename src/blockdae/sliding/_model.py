@@ -247,6 +247,14 @@ class SlidingBlock(AbstractHybridModel):
         """A copy with some parameters changed (validated again)."""
         return dataclasses.replace(self, **changes)
 
+    #: what :func:`bd.study` sweeps: its keyword, the table's column, the unit
+    study_parameter = ("mu", "mu", "-")
+
+    def study_batch(self, mu) -> "SlidingBlock":
+        """This block at every friction coefficient ``mu`` [-] (1-D), for :func:`bd.study`
+        (checks them against the other parameters)."""
+        return self.replace(mu=mu)
+
     def study_columns(self, motions, t_end, scale, rtol=None) -> dict:
         """What :func:`bd.study` tabulates of this block (a batch of m parameter sets)
         on ``motions`` at the factors ``scale`` on a(t) [-]: one row per motion x set x

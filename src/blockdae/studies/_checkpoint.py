@@ -51,7 +51,7 @@ class Checkpoint:
             folder.mkdir(parents=True, exist_ok=True)
             with atomic_path(path) as temporary:
                 temporary.write_text(json.dumps(manifest, indent=1) + "\n")
-        return cls(folder, tasks, len(grid.where) * grid.mu.size * grid.factors.size)
+        return cls(folder, tasks, len(grid.where) * grid.values.size * grid.factors.size)
 
     def path(self, index) -> pathlib.Path:
         """The table of task ``index``."""
@@ -83,8 +83,10 @@ class Checkpoint:
 
 def _manifest(records, grid, tasks) -> dict:
     """What a study is, as JSON values (floats by their repr: exact)."""
-    settings = {f.name: _plain(getattr(grid, f.name)) for f in dataclasses.fields(grid) if f.name != "by"}
+    settings = {f.name: _plain(getattr(grid, f.name)) for f in dataclasses.fields(grid)
+                if f.name not in ("by", "parameter", "column")}
     settings[grid.by] = settings.pop("factors")  # "pga" or "scale", as study names them
+    settings[grid.parameter] = settings.pop("values")  # "mu" or "ky", as study names them
     manifest = {"format": FORMAT, "blockdae": _version(), **settings,
                 "records_per_task": len(tasks[0]), "records": [_fingerprint(r) for r in records]}
     return json.loads(json.dumps(manifest, default=_number))  # tuples as lists, as read back

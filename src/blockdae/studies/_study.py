@@ -1,7 +1,9 @@
-"""Studies of records × friction × intensity × location (seed 002), as one tidy table.
+"""Studies of records × friction (or yield acceleration) × intensity × location (seed
+002), as one tidy table.
 
 A study slides a one-way (by default) block on the ground and on floors of shear frames
-under every record, at every friction coefficient μ and every intensity. The work is
+under every record, at every friction coefficient μ and every intensity; another model
+sweeps the parameter it declares (``study_parameter``: the flexible mass's ky [g]). The work is
 split into tasks of whole records: a task computes the ground and floor motions of its
 records once (one frame response per record and frame), normalises each motion to a
 peak of 1 g (``pga``) and runs every (motion, μ, intensity) in one call of the compiled
@@ -49,7 +51,9 @@ class NoWorkerError(RuntimeError):
 class _Grid:
     """What every task shares: the grid and the settings (small, sent with each task)."""
 
-    mu: np.ndarray
+    parameter: str  # the model's swept parameter: its keyword ("mu", "ky") ...
+    column: str  # ... and its column in the table ("mu", "ky_g")
+    values: np.ndarray  # its values
     factors: np.ndarray  # pga [g] ("pga") or factors on a(t) [-] ("scale")
     by: str  # "pga" or "scale"
     where: tuple
@@ -59,20 +63,24 @@ class _Grid:
     damping: float
     t_end: float | None
     g: float
-    block: object  # the model at one μ: its study_columns(...) runs a task's analyses
+    block: object  # the model at one value: its study_batch(values).study_columns(...) runs a task's analyses
     rtol: float | None
 
 
-def study(records, mu, pga=None, scale=None, where=("ground",), direction="negative", *, executor=None,
-          no_worker_timeout=60.0, checkpoint=None, progress=None, refine=4, sd_period=10.0, damping=0.05,
-          t_end=None, g=STANDARD_GRAVITY, block=None, rtol=None):
-    """Slide a block under every record, μ, intensity and location: one tidy table.
+def study(records, mu=None, pga=None, scale=None, where=("ground",), direction="negative", *, ky=None,
+          executor=None, no_worker_timeout=60.0, checkpoint=None, progress=None, refine=4, sd_period=10.0,
+          damping=0.05, t_end=None, g=STANDARD_GRAVITY, block=None, rtol=None):
+    """Slide a block under every record, μ (or ky), intensity and location: one tidy table.
 
     Args:
         records: ground accelerograms (:class:`bd.Record` [m/s²], distinct names), or a
             :class:`bd.RecordSet`: its :attr:`~bd.RecordSet.metadata` columns (magnitude,
             epicentral_distance_km, vs30_m_s, ...) follow ``record`` in the table, to group by.
-        mu: friction coefficients μ > 0 [-].
+        mu: friction coefficients μ > 0 [-], the swept parameter of a block (the 1-D
+            block, ``bd.PlanarBlock``).
+        ky: instead of ``mu``, yield accelerations ky > 0 [g], the swept parameter of a
+            model that declares ky (``bd.FlexibleSlidingMass``). The model's
+            ``study_parameter`` says which of the two it takes; the other is refused.
         pga: target peak accelerations A > 0 [g]: the motion at each location (ground
             or floor) is scaled so that its peak |a| is A g (seed 002).
         scale: instead of ``pga``, factors > 0 [-] on the motion at each location.
@@ -101,14 +109,20 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
             displacement spectrum gives Sd (see ``sd_m``).
         t_end: final time [s]; None: until the block rests after each motion.
         g: the value of one g [m/s²] (a ``block`` given brings its own).
-        block: the model to slide, any μ (the study sets μ): one with a
-            ``study_columns(motions, t_end, scale, rtol)`` method (its table columns, one
-            row per motion x μ x factor), e.g. ``bd.PlanarBlock(mu=0.1, bias=(-0.02, 0))``
-            on three-component records (``bd.BaseMotion``, named by their components;
-            ``pga`` scales the largest horizontal peak; ground only). None: the 1-D
+        block: the model to slide, any μ or ky (the study sets it): one that declares
+            ``study_parameter`` ((keyword, table column, unit), e.g. ("mu", "mu", "-"))
+            and ``study_batch(values)``, the model at every value, whose
+            ``study_columns(motions, t_end, scale, rtol)`` gives its table columns (one
+            row per motion x value x factor). E.g. ``bd.PlanarBlock(mu=0.1, bias=(-0.02,
+            0))`` on three-component records (``bd.BaseMotion``, named by their
+            components; ``pga`` scales the largest horizontal peak; ground only), or
+            ``bd.FlexibleSlidingMass(bd.ShearColumn(height, vs), ky=0.1)`` with ``ky=``
+            (both polarities, linear-elastic: the equivalent-linear iteration is not run
+            in studies; ``t_end`` None: each record's last sample). None: the 1-D
             ``bd.SlidingBlock(direction=direction, g=g)``.
         rtol: relative tolerance [-] of a model that integrates (None: the model's
-            study default, 1e-10 for the block on a plane); the 1-D block's engine is exact.
+            study default, 1e-10 for the block on a plane); the engines of the 1-D block
+            and of the flexible mass are exact.
 
     Returns:
         A DataFrame, one row per record × location × μ × intensity (in that order):
@@ -125,21 +139,26 @@ def study(records, mu, pga=None, scale=None, where=("ground",), direction="negat
         studies only: there stick and slip alternate, so n_slips = ⌈n_events / 2⌉);
         t_end_s (final time [s]). A ``block``'s own columns replace displacement_m ...
         t_end_s (the block on a plane: displacement_x_m, displacement_y_m, displacement_m
-        = |u|, max_abs_displacement_m, slide_distance_m, n_events, n_flights, t_end_s).
+        = |u|, max_abs_displacement_m, slide_distance_m, n_events, n_flights, t_end_s;
+        the flexible mass: ``bd.flexible``'s height_m, vs_m_s, normal_m, inverse_m,
+        kmax_g, kmax_sup_g, vs_final_m_s, damping_final, episodes_normal,
+        episodes_inverse), and its swept column (ky_g [g]) replaces mu.
 
     Every check runs before any work (:class:`ValueError`): no records, a record that
-    is not a finite :class:`bd.Record`, μ or an intensity <= 0, ``no_worker_timeout`` not
+    is not a finite :class:`bd.Record`, μ (ky) or an intensity <= 0, ``mu`` given to a
+    model that sweeps ky or ``ky`` to one that sweeps μ, ``no_worker_timeout`` not
     a positive finite number [s] or None, a result table larger than the free memory,
     a checkpoint of another study. A task that raises on an executor lets the others
-    finish (and be saved) before its error is raised.
+    finish (and be saved) before its error is raised (the flexible mass's tasks refuse a
+    motion that is not a :class:`bd.Record` or ends before ``t_end``).
     Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu, direction=direction),
     motion.scaled(scale))`` of the location's motion to rounding.
     """
     metadata = records.metadata if isinstance(records, RecordSet) else None
-    records, grid = _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g, block,
-                             rtol)
+    records, grid = _checked(records, dict(mu=mu, ky=ky), pga, scale, where, direction, refine, sd_period, damping,
+                             t_end, g, block, rtol)
     no_worker_timeout = _timeout(no_worker_timeout)
-    tasks = _tasks(records, len(grid.where) * grid.mu.size * grid.factors.size)
+    tasks = _tasks(records, len(grid.where) * grid.values.size * grid.factors.size)
     store = None if checkpoint is None else Checkpoint.open(checkpoint, records, grid, tasks)
     parts = {} if store is None else store.finished()
     bar = progress_bar(len(tasks), "study", "task", progress)
@@ -176,6 +195,11 @@ def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
         with the mean Sd [m]), adjustment (eq. 4 [-]) and rd_adjusted_m (its product
         with rd_m [m]).
     """
+    missing = [c for c in ("mu", "max_abs_displacement_m", "sd_m") if c not in table]
+    if missing:
+        raise ValueError(f"summary takes a study of a block over mu (the seed's Newmark summaries); the table "
+                         f"has no {missing} columns (a flexible mass's study: group it yourself, or fit "
+                         "bd.hazard.fit_fragility to it)")
     keys = ["location", "floor", "frame_period_s", "mu", "pga_g"]
     out = (table.groupby(keys, sort=False, dropna=False)
            .agg(n_records=("record", "size"), rc_m=("max_abs_displacement_m", "mean"), sd_m=("sd_m", "mean"))
@@ -187,7 +211,7 @@ def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
 
 
 def run_task(records, grid: _Grid) -> dict:
-    """One task: every location, μ and intensity under ``records``; columns as arrays."""
+    """One task: every location, swept value (μ, ky) and intensity under ``records``; columns as arrays."""
     motions, places = [], []
     for record in records:
         floors = {}
@@ -202,16 +226,16 @@ def run_task(records, grid: _Grid) -> dict:
     leading = [_leading(m) for m in motions]  # the component whose peak is the motion's
     peak = np.array([m.peak_acceleration for m in leading])
     engine_motions = [_normalised(m, grid.g / p) for m, p in zip(motions, peak)] if grid.by == "pga" else motions
-    columns = grid.block.replace(mu=grid.mu).study_columns(engine_motions, grid.t_end, grid.factors, grid.rtol)
+    columns = grid.block.study_batch(grid.values).study_columns(engine_motions, grid.t_end, grid.factors, grid.rtol)
     sd = response_spectrum(leading, grid.sd_period, grid.damping).sd
     pgv = np.array([_peak_velocity(m) for m in leading])
-    n_mu, n_f = grid.mu.size, grid.factors.size
-    each = lambda x: np.repeat(np.asarray(x), n_mu * n_f)  # per motion -> per row
-    factors = np.tile(grid.factors, len(motions) * n_mu)
-    scale = factors * np.repeat(grid.g / peak, n_mu * n_f) if grid.by == "pga" else factors
+    n_v, n_f = grid.values.size, grid.factors.size
+    each = lambda x: np.repeat(np.asarray(x), n_v * n_f)  # per motion -> per row
+    factors = np.tile(grid.factors, len(motions) * n_v)
+    scale = factors * np.repeat(grid.g / peak, n_v * n_f) if grid.by == "pga" else factors
     return dict(record=each([_name(m) for m in records for _ in grid.where]),
                 place=each([grid.where.index(p) for p in places]),
-                mu=np.tile(np.repeat(grid.mu, n_f), len(motions)),
+                **{grid.column: np.tile(np.repeat(grid.values, n_f), len(motions))},
                 scale=scale, pga_m_s2=scale * each(peak), pgv_m_s=scale * each(pgv), sd_m=scale * each(sd), **columns)
 
 
@@ -241,7 +265,7 @@ def _peak_velocity(record: Record) -> float:
     return float(max(np.max(np.abs(v)), np.max(np.abs(inside), initial=0.0)))
 
 
-def _checked(records, mu, pga, scale, where, direction, refine, sd_period, damping, t_end, g, block, rtol):
+def _checked(records, swept, pga, scale, where, direction, refine, sd_period, damping, t_end, g, block, rtol):
     if isinstance(records, (Record, BaseMotion)):
         records = [records]
     records = list(records)
@@ -257,7 +281,6 @@ def _checked(records, mu, pga, scale, where, direction, refine, sd_period, dampi
     if len(set(names)) < len(names):
         raise ValueError(f"record names must be distinct (they label the rows); repeated: "
                          f"{sorted({n for n in names if names.count(n) > 1})}")
-    mu = _values("mu", mu, "-")
     if (pga is None) == (scale is None):
         raise ValueError("give pga (target peaks [g]) or scale (factors [-]), one of the two")
     by = "pga" if pga is not None else "scale"
@@ -274,10 +297,8 @@ def _checked(records, mu, pga, scale, where, direction, refine, sd_period, dampi
         raise ValueError(f"where repeats a location: {where!r}")
     if block is None:
         block = SlidingBlock(mu=1.0, direction=direction, g=g)  # checks direction and g
-    if not callable(getattr(block, "study_columns", None)):
-        raise TypeError(f"block must be a model with a study_columns method (bd.SlidingBlock, bd.PlanarBlock), "
-                        f"got {type(block).__name__}")
-    block.replace(mu=mu)  # checks mu against the block's other parameters (|bias| < mu, ...)
+    parameter, column, values = _swept(block, swept)
+    block.study_batch(values)  # checks the values against the model's other parameters (|bias| < mu, ...)
     if any(isinstance(r, BaseMotion) for r in records) and where != ("ground",):
         raise ValueError("three-component motions (bd.BaseMotion) are studied on the ground only")
     _values("sd_period", sd_period, "s")
@@ -290,15 +311,34 @@ def _checked(records, mu, pga, scale, where, direction, refine, sd_period, dampi
     if by == "pga" and any(_leading(r).peak_acceleration == 0 for r in records):
         zero = next(_name(r) for r in records if _leading(r).peak_acceleration == 0)
         raise ValueError(f"pga cannot normalise a record of zeros: {zero!r}")
-    rows = len(records) * len(where) * mu.size * factors.size
+    rows = len(records) * len(where) * values.size * factors.size
     free = os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
     if rows * ROW_BYTES > free:
         raise ValueError(f"the result table would have {rows:,} rows (~{rows * ROW_BYTES / 2**30:.1f} GiB), more "
                          f"than the free memory ({free / 2**30:.1f} GiB): split the study or shrink the grid")
-    grid = _Grid(mu=mu, factors=factors, by=by, where=where, direction=direction, refine=refine,
-                 sd_period=float(sd_period), damping=float(damping), t_end=t_end, g=float(block.g), block=block,
-                 rtol=rtol)
+    grid = _Grid(parameter=parameter, column=column, values=values, factors=factors, by=by, where=where,
+                 direction=direction, refine=refine, sd_period=float(sd_period), damping=float(damping), t_end=t_end,
+                 g=float(block.g), block=block, rtol=rtol)
     return records, grid
+
+
+def _swept(block, swept):
+    """(keyword, table column, values) of the parameter ``block`` sweeps, from ``swept``
+    (keyword -> the values given to :func:`study`, None where not given), checked: the
+    model declares ``study_parameter`` and ``study_batch``, and only its keyword is given."""
+    if not callable(getattr(block, "study_batch", None)) or not isinstance(getattr(block, "study_parameter", None),
+                                                                           tuple):
+        raise TypeError(f"block must be a model that declares study_parameter and study_batch (bd.SlidingBlock, "
+                        f"bd.PlanarBlock, bd.FlexibleSlidingMass), got {type(block).__name__}")
+    parameter, column, unit = block.study_parameter
+    model = type(block).__name__
+    for other, given in swept.items():
+        if other != parameter and given is not None:
+            raise ValueError(f"{other}={given!r}: {model} sweeps {parameter} [{unit}], not {other}; give "
+                             f"{parameter}= instead")
+    if swept.get(parameter) is None:
+        raise ValueError(f"give {parameter}= ({model}'s swept parameter [{unit}], a number or a 1-D sequence)")
+    return parameter, column, _values(parameter, swept[parameter], unit)
 
 
 def _values(name, values, unit):
@@ -400,7 +440,7 @@ def _table(parts, grid):
         "location": np.array(labels, dtype=object)[place],
         "floor": np.array([0 if p == "ground" else p.level for p in grid.where])[place],
         "frame_period_s": np.array([np.nan if p == "ground" else p.frame.period for p in grid.where])[place],
-        "mu": cols.pop("mu"),
+        grid.column: cols.pop(grid.column),
         "pga_g": cols["pga_m_s2"] / grid.g,
     })
     if grid.by == "pga":  # exactly the grid's values, not their round trip through the peaks

@@ -1,0 +1,319 @@
+"""The exact backend of a flexible sliding mass whose ky is a table of the sliding
+displacement (:class:`~._ky_table.KyTable`).
+
+On one piece of ky, ky(s) = k0 + k1 s [g, g/m], and one piece of a record, a(t) = p0
++ p1 tau, every mode is linear with constant coefficients in the augmented state
+z = (u, u', s, w, a, a', 1): z' = M z, so z(tau) = expm(M tau) z(0), the matrix
+exponential (Taylor's series, scaled and squared, accurate to rounding) of a 7 x 7 matrix per
+(mode, piece of ky). Softening pieces (k1 < 0) add growing and decaying exponentials
+to the sliding, hardening ones (k1 > 0) a slow oscillation; the matrix exponential
+needs no case for either, nor for k1 = 0 (a Jordan block).
+
+The generic driver (:mod:`blockdae.core._driver`) runs the modes, the events and the
+knots (at the record's samples and the events only); this integrator steps it in closed form and finds the first root of each guard
+(a linear form c z: the onset guard ky(s) g - HEA in STICK, w and the next breakpoint
+minus s in SLIP) on a step: an interval is dropped where bounds of the guard's
+derivatives (Taylor at its start, the fourth derivative bounded by the matrix norm in
+scaled units) show the guard rising, falling, convex or concave, else halved; a
+crossing is refined by bisection to adjacent floats. The next breakpoint minus s falls
+monotonically in SLIP (w >= 0): its crossing is bracketed by its values.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..core._driver import AbstractIntegrator, SolverError, drive
+from ..engines._linear_solution import linear_pieces
+from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
+from ._modes import FlexibleMode
+
+_U, _V, _S, _W, _A, _AR, _ONE = range(7)
+_EPS = float(np.finfo(float).eps)
+#: most intervals one root search may examine before it is reported as unsettled
+MAX_INTERVALS = 20_000
+#: events closer than this are one instant [s]; most events at one instant (chatter)
+EVENT_RESOLUTION, MAX_EVENTS_AT_ONE_INSTANT = 1e-12, 5
+#: degree of the Taylor series of the matrix exponential (on |M tau| <= 1/2)
+_TAYLOR_DEGREE = 16
+#: derivatives of a guard kept at an interval's start: g, g', g'', g''' and the bound row of g''''
+_ORDERS = 5
+
+
+class _System:
+    """z' = M z in one mode on one piece of ky, and its guards as rows c (g = c z) with
+    c M^k, k < 5, and the scaled norms that bound g'''' (see :meth:`fourth_bound`)."""
+
+    def __init__(self, model, mode, intercept, slope, breakpoint):
+        k, c, g = model.omega**2, 2.0 * model.damping * model.omega, model.g
+        kappa, friction = slope * g, intercept * g  # ky(s) g = friction + kappa s
+        M = np.zeros((7, 7))
+        M[_U, _V] = M[_A, _AR] = 1.0
+        if mode == FlexibleMode.SLIP and model.coupled:  # d1 u'' = -(4/pi) ky(s) g - c u' - k u
+            M[_V, [_U, _V, _S, _ONE]] = np.array([-k, -c, -MODE_PARTICIPATION * kappa,
+                                                  -MODE_PARTICIPATION * friction]) / SLIP_MASS_FRACTION
+        else:
+            M[_V, [_U, _V, _A]] = -k, -c, -MODE_PARTICIPATION
+        if mode == FlexibleMode.SLIP:  # s' = w, w' = a - ky(s) g + (2/pi) u''
+            M[_S, _W] = 1.0
+            M[_W] = MASS_PARTICIPATION * M[_V]
+            M[_W, _A] += 1.0
+            M[_W, _S] -= kappa
+            M[_W, _ONE] -= friction
+            guards = [np.eye(7)[_W]]
+            if math.isfinite(breakpoint):
+                guards.append(breakpoint * np.eye(7)[_ONE] - np.eye(7)[_S])
+        else:  # ky(s) g - HEA, HEA = a + (2/pi) u''
+            onset = -MASS_PARTICIPATION * M[_V]
+            onset[_A] -= 1.0
+            onset[_S] += kappa
+            onset[_ONE] += friction
+            guards = [onset]
+        self.M, self.guards, self.monotone = M, guards, [False, True][:len(guards)]
+        fast = model.omega / math.sqrt(SLIP_MASS_FRACTION) if model.coupled else model.omega
+        rate = max(fast, math.sqrt(abs(kappa)))
+        # z~ = z / scale: every entry of M~ = M scaled is (a number of order one) x rate
+        self.scale = np.array([1.0, rate, 1.0, rate, rate**2, rate**3, rate**2 / g])
+        self.scaled = M * self.scale[None, :] / self.scale[:, None]
+        self.norm = np.abs(self.scaled).sum(axis=1).max()
+        self.rows = []
+        for row in guards:
+            powers = [row]
+            for _ in range(_ORDERS - 1):
+                powers.append(powers[-1] @ M)
+            self.rows.append((np.array(powers[:-1]), float(np.abs(powers[-1] * self.scale).sum())))
+        self._maps = {}
+
+    def transition(self, tau):
+        """expm(M tau), remembered for the step lengths that recur."""
+        found = self._maps.get(tau)
+        if found is None:
+            if len(self._maps) > 512:
+                self._maps.clear()
+            found = self._maps[tau] = self.exponential(tau)
+        return found
+
+    def exponential(self, tau):
+        """expm(M tau) by Taylor's series (degree 16) with scaling and squaring, on the
+        balanced M~ = M scaled (|M~ tau| / 2^squarings <= 1/2: truncation below 1e-20)."""
+        x = self.scaled * tau
+        squarings = max(0, math.ceil(math.log2(max(self.norm * tau, 1e-300) / 0.5)))
+        x = x / 2.0**squarings
+        term, total = np.eye(7), np.eye(7)
+        for k in range(1, _TAYLOR_DEGREE + 1):
+            term = term @ x / k
+            total = total + term
+        for _ in range(squarings):
+            total = total @ total
+        return total * self.scale[:, None] / self.scale[None, :]
+
+    def fourth_bound(self, row4, z, length):
+        """A bound of |g''''| on [0, length] [s] from z at its start: |c M^4 z(tau)| <=
+        |c M^4 scale|_1 |z~(tau)|_inf <= ... exp(|M~| length) |z~(0)|_inf."""
+        growth = self.norm * length
+        if growth > 50.0:
+            return math.inf
+        return row4 * math.exp(growth) * float(np.abs(z / self.scale).max()) * (1.0 + 1e-9)
+
+
+def _lower(coefficients, length):
+    """A lower bound of sum c_k x^k over x in [0, length] (nested: c0 + x (c1 + x (...)))."""
+    bound = coefficients[-1]
+    for c in coefficients[-2::-1]:
+        bound = c + length * min(0.0, bound)
+    return bound
+
+
+def _upper(coefficients, length):
+    """An upper bound of sum c_k x^k over x in [0, length]."""
+    bound = coefficients[-1]
+    for c in coefficients[-2::-1]:
+        bound = c + length * max(0.0, bound)
+    return bound
+
+
+class _Search:
+    """The first tau in (0, h] [s] where g = c z falls to <= 0 from > 0, z(tau) = expm(M
+    tau) z0 (None: no crossing)."""
+
+    def __init__(self, system, index, z0, t0):
+        self.system, self.z0, self.t0 = system, z0, t0
+        self.powers, self.row4 = system.rows[index]
+        self.budget = MAX_INTERVALS
+
+    def state(self, tau):
+        return self.system.transition(tau) @ self.z0
+
+    def value(self, tau, order=0):
+        return float(self.powers[order] @ self.state(tau))
+
+    def bisect(self, lo, hi):
+        """The first tau in (lo, hi] where g <= 0, to adjacent floats of t0 + tau, for g
+        > 0 at lo, <= 0 at hi and one crossing between."""
+        while True:
+            mid = lo + 0.5 * (hi - lo)
+            if not (self.t0 + lo < self.t0 + mid < self.t0 + hi):
+                return hi
+            if self.value(mid) > 0:
+                lo = mid
+            else:
+                hi = mid
+
+    def search(self, lo, z_lo, hi):
+        """The first crossing in (lo, hi] from the state ``z_lo`` at lo (None: none): an
+        interval where g is shown > 0, g' >= 0 or <= 0, or g'' of one sign is decided at
+        once, others are halved, the earlier half first."""
+        self.budget -= 1
+        if self.budget < 0:
+            raise SolverError(f"the ky-table engine's root search did not settle by t = {self.t0 + lo:.12g} s "
+                              f"(more than {MAX_INTERVALS} intervals); use backend 'cvode'")
+        length = hi - lo
+        d = self.powers @ z_lo
+        z_hi = self.system.transition(length) @ z_lo
+        g_lo, g_hi = float(d[0]), float(self.powers[0] @ z_hi)
+        if self.t0 + lo + length <= self.t0 + lo or length <= 4 * _EPS * max(abs(self.t0) + abs(hi), 1.0):
+            return hi if g_lo > 0 >= g_hi else None
+        if g_lo == g_hi == 0 and not np.any(d[1:]):
+            return None  # a guard that stays at zero (HEA = ky g = 0 at rest): no fall through it
+        b4 = self.system.fourth_bound(self.row4, z_lo, length)
+        if _lower([d[0], d[1], d[2] / 2, d[3] / 6, -b4 / 24], length) > 0:
+            return None  # positive all along
+        if _lower([d[1], d[2], d[3] / 2, -b4 / 6], length) >= 0:
+            return None  # rising all along: no fall through zero
+        if _upper([d[1], d[2], d[3] / 2, b4 / 6], length) <= 0:  # falling all along
+            return self.bisect(lo, hi) if g_lo > 0 >= g_hi else None
+        if _lower([d[2], d[3], -b4 / 2], length) > 0:  # convex: falls, then rises
+            if g_lo > 0:
+                turn = self.bisect_rate(lo, hi)
+                if self.value(turn) <= 0:
+                    return self.bisect(lo, turn)
+                return None
+        if _upper([d[2], d[3], b4 / 2], length) < 0 and g_lo > 0:  # concave: one crossing at most
+            return self.bisect(lo, hi) if g_hi <= 0 else None
+        mid = lo + 0.5 * length
+        first = self.search(lo, z_lo, mid)
+        if first is not None:
+            return first
+        return self.search(mid, self.state(mid), hi)
+
+    def bisect_rate(self, lo, hi):
+        """Where g' (rising on [lo, hi]) crosses zero; lo or hi if it does not."""
+        if self.value(lo, 1) >= 0:
+            return lo
+        if self.value(hi, 1) <= 0:
+            return hi
+        while True:
+            mid = lo + 0.5 * (hi - lo)
+            if not (self.t0 + lo < self.t0 + mid < self.t0 + hi):
+                return hi
+            if self.value(mid, 1) < 0:
+                lo = mid
+            else:
+                hi = mid
+
+
+class _Systems:
+    """The :class:`_System` of each (mode, breakpoints passed) of ``model``, built once."""
+
+    def __init__(self, model):
+        self.model = model
+        self.breakpoints, self.intercepts, self.slopes = (np.asarray(x, dtype=float) for x in model.table)
+        self.built = {}
+
+    def __call__(self, mode, passed):
+        key = (int(mode), passed)
+        if key not in self.built:
+            breakpoint = self.breakpoints[passed] if passed < len(self.breakpoints) else math.inf
+            self.built[key] = _System(self.model, mode, self.intercepts[passed], self.slopes[passed], breakpoint)
+        return self.built[key]
+
+
+class TableIntegrator(AbstractIntegrator):
+    """Steps the driver's runs in closed form (see the module's docstring): a step
+    returns at ``t_out`` or at the first guard crossing located to adjacent floats."""
+
+    def __init__(self, model, piece):
+        self.model, self.piece = model, piece
+        self.system = _Systems(model)
+        self.counts = {"n_restarts": 0, "n_calls": 0}
+
+    def restart(self, mode, t, y):
+        self.mode, self.t, self.y = mode, float(t), np.array(y, dtype=float)
+        self.counts["n_restarts"] += 1
+
+    def step(self, t_out, t_stop):
+        self.counts["n_calls"] += 1
+        p0, p1, amplitude = self.piece.coefficients[0][:3]
+        if amplitude != 0:
+            raise ValueError("the ky-table engine takes records (linear pieces of a(t)); use backend 'cvode'")
+        passed = int(round(self.y[4]))
+        system = self.system(self.mode, passed)
+        z0 = np.array([*self.y[:4], p0 + p1 * self.piece.local_time(self.t), p1, 1.0])
+        h = t_out - self.t
+        best, index = None, None
+        for i, row in enumerate(system.guards):
+            search = _Search(system, i, z0, self.t)
+            if system.monotone[i]:
+                root = self._monotone_root(search, h)
+            else:
+                root = search.search(0.0, z0, h if best is None else best)
+            if root is not None and (best is None or root < best):
+                best, index = root, i
+        tau = h if best is None else best
+        z = system.transition(tau) @ z0
+        self.t = t_out if best is None else self.t + tau
+        self.y = np.array([*z[:4], self.y[4]])
+        return self.t, self.y.copy(), index
+
+    @staticmethod
+    def _monotone_root(search, h):
+        """The crossing of a guard that only falls (the next breakpoint minus s)."""
+        if search.value(0.0) > 0 >= search.value(h):
+            return search.bisect(0.0, h)
+        return None
+
+    @property
+    def stats(self):
+        return dict(self.counts)
+
+
+def solve_table_exact(model, excitation, horizon, name):
+    """``model`` (ky a table) under ``excitation`` (a record) to ``horizon``: its solution,
+    every onset, stop and breakpoint located to adjacent floats. The driver's knots are
+    the pieces' ends and the events (steps in closed form need no others); the dense
+    output is the closed form from the last knot (:class:`ExactDense`)."""
+    if horizon.until_rest:
+        raise ValueError("the column oscillates on after the record: give t_end [s]")
+    found = linear_pieces(excitation, horizon.t_end)
+    if found is None:
+        raise ValueError(f"the ky-table engine takes records (linear pieces); {type(excitation).__name__} has sine "
+                         "pieces: use backend 'cvode'")
+    coarse = model.with_parameters({})
+    object.__setattr__(coarse, "output_step", lambda: math.inf)  # knots at pieces and events only
+    solution = drive(coarse, excitation, horizon, TableIntegrator, name, MAX_EVENTS_AT_ONE_INSTANT,
+                     EVENT_RESOLUTION, (0.0, 0.0))
+    return dataclasses.replace(solution, dense=ExactDense(_Systems(model), solution, found[0]))
+
+
+class ExactDense:
+    """The states at any times [s]: from the last knot at or before each, z(t) = expm(M
+    (t - t_k)) z_k in the knot's mode and piece of ky, a(t) on the record's piece there."""
+
+    def __init__(self, systems, solution, pieces):
+        self.systems, self.t, self.y, self.mode = systems, solution.t, solution.state, solution.mode
+        self.pieces = pieces
+
+    def __call__(self, times):
+        times = np.asarray(times, dtype=float)
+        out = np.empty(times.shape + (self.y.shape[1],))
+        knots = np.clip(np.searchsorted(self.t, times.ravel(), side="right") - 1, 0, len(self.t) - 1)
+        flat = out.reshape(-1, self.y.shape[1])
+        for n, (t, k) in enumerate(zip(times.ravel(), knots)):
+            j = max(int(np.searchsorted(self.pieces.t0, self.t[k], side="right")) - 1, 0)
+            rate = self.pieces.p1[j]
+            a = self.pieces.p0[j] + rate * (self.t[k] - self.pieces.t0[j])
+            system = self.systems(self.mode[k], int(round(self.y[k, 4])))
+            z = system.exponential(t - self.t[k]) @ np.array([*self.y[k, :4], a, rate, 1.0])
+            flat[n] = [*z[:4], self.y[k, 4]]
+        return tuple(out[..., i] for i in range(out.shape[-1]))
