@@ -10,6 +10,8 @@ def set_real_fields(obj, names) -> None:
     float; a value that is not a finite real number raises ValueError naming the field."""
     for name in names:
         value = getattr(obj, name)
+        if type(value) is float and math.isfinite(value):
+            continue  # already what it would be set to
         if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
             raise ValueError(f"{name} must be a real number, got {value!r}")
         if not math.isfinite(value):

@@ -19,7 +19,7 @@ from ..backends import Horizon
 from ..core._units import STANDARD_GRAVITY
 from ..engines._linear_solution import linear_pieces
 from ..excitation import Record, pga_factor
-from . import _engine
+from . import _engine, _fused
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._exact import check, engine_settings
 from ._ky_table import KyTable
@@ -166,16 +166,9 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
         ky, table = table.ky_g[0], None
     names, records = _motions(motion)
     vr_given = np.nan if vr is None else vr
-    try:
-        sets = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (ky, height, vs, vr_given, damping)))
-    except ValueError:
-        raise ValueError(f"ky, height, vs, vr and damping must broadcast together, got shapes "
-                         f"{[np.shape(x) for x in (ky, height, vs, vr_given, damping)]}") from None
-    if sets[0].ndim > 1:
-        raise ValueError(f"ky, height, vs, vr and damping must be numbers or 1-D arrays, got shape {sets[0].shape}")
     models = [FlexibleSlidingMass(ShearColumn(float(h), float(v), None if np.isnan(r) else float(r), float(d)),
                                   ky=float(k) if table is None else table, method=method, g=g)
-              for k, h, v, r, d in zip(*(np.atleast_1d(x) for x in sets))]
+              for k, h, v, r, d in _parameter_sets(ky, height, vs, vr_given, damping)]
     polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
     analyses = []
     for name, record in zip(names, records):
@@ -191,6 +184,21 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
         analyses += [Analysis(record, name, model, polarities, end, reference_strain if equivalent_linear else None)
                      for model in models]
     return analyses
+
+
+def _parameter_sets(*values):
+    """(ky, height, vs, vr, damping) of each parameter set: numbers or 1-D arrays,
+    broadcast together."""
+    if all(type(x) in (float, int) for x in values):  # one set: no arrays needed
+        return [values]
+    try:
+        sets = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in values))
+    except ValueError:
+        raise ValueError(f"ky, height, vs, vr and damping must broadcast together, got shapes "
+                         f"{[np.shape(x) for x in values]}") from None
+    if sets[0].ndim > 1:
+        raise ValueError(f"ky, height, vs, vr and damping must be numbers or 1-D arrays, got shape {sets[0].shape}")
+    return zip(*(np.atleast_1d(x) for x in sets))
 
 
 def as_ky_table(ky):
@@ -240,53 +248,66 @@ def analyse_exact(analysis: Analysis) -> dict:
 
 def exact_rows(analyses: list[Analysis]) -> list[dict]:
     """The rows of ``analyses``, exact: equivalent-linear iterations one by one, then
-    every no-sliding and sliding run in one parallel compiled call."""
-    _, response, parallel, serial, _ = _engine.kernels()
-    inputs, index = [], {}
+    every analysis (its no-sliding response, once per record and column, and its runs)
+    in one compiled call, parallel over cores for a large batch (:mod:`._fused`)."""
+    inputs, index, record_of = [], {}, []
     for analysis in analyses:
         key = (id(analysis.record), analysis.t_end)
         if key not in index:
             index[key] = len(inputs)
             inputs.append(_engine_input(analysis.record, analysis.t_end))
-    finals = [_final_column(analysis, inputs[index[(id(analysis.record), analysis.t_end)]], response)
-              for analysis in analyses]
-    jobs, response_of, slides = [], {}, []
-    for analysis, ((omega, xi, kyg, coupled), _) in zip(analyses, finals):
-        record = index[(id(analysis.record), analysis.t_end)]
-        key = (record, omega, xi)
-        if key not in response_of:
-            response_of[key] = len(jobs)
-            jobs.append((record, 1.0, omega, xi, 0.0, coupled, False))
-        for polarity in analysis.polarities:
-            jobs.append((record, 1.0 if polarity == "normal" else -1.0, omega, xi, kyg, coupled, True))
-        slides.append((response_of[key], len(jobs) - len(analysis.polarities)))
-    offsets = np.concatenate([[0], np.cumsum([len(x[0]) for x in inputs])]).astype(np.int64)
-    arrays = [np.concatenate([x[k] for x in inputs]) for k in range(4)]
-    columns = list(zip(*jobs))
-    work = sum(int(offsets[record + 1] - offsets[record]) for record, *_ in jobs)
-    run_jobs = parallel if work >= PARALLEL_WORK else serial
-    out = run_jobs(*arrays, offsets, np.array(columns[0], dtype=np.int64),
-                   *(np.array(c, dtype=float) for c in columns[1:5]), np.array(columns[5], dtype=np.bool_),
-                   np.array(columns[6], dtype=np.bool_))
+        record_of.append(index[key])
+    parameters, flags, response_of, vs_finals, first_with = [], [], [], [], {}
+    for q, analysis in enumerate(analyses):
+        (omega, xi, kyg, coupled), vs_final = _final_column(analysis, inputs[record_of[q]])
+        parameters.append((omega, xi, kyg))
+        response_of.append(first_with.setdefault((record_of[q], omega, xi), q))
+        flags.append((coupled, "normal" in analysis.polarities, "inverse" in analysis.polarities, False,
+                      response_of[q] == q))
+        vs_finals.append(vs_final)
+    out = _run_analyses(inputs, record_of, parameters, flags).tolist()
+    status, s, episodes = _FIELD["status"], _FIELD["s"], _FIELD["n_episodes"]
     rows = []
-    for analysis, ((_, xi, _, _), vs_final), (response, first) in zip(analyses, finals, slides):
-        for j in [response] + list(range(first, first + len(analysis.polarities))):
-            if out[j, _FIELD["status"]] != _engine.FINISHED:
-                check(out[j], f" ({analysis.name}, {analysis.model})")
-        row = {"record": analysis.name, "ky_g": analysis.model.ky, "height_m": analysis.model.column.height,
-               "vs_m_s": analysis.model.column.vs, "normal_m": np.nan, "inverse_m": np.nan,
-               "kmax_g": out[response, _FIELD["hea_samples"]] / analysis.model.g,
-               "kmax_sup_g": out[response, _FIELD["hea_sup"]] / analysis.model.g,
-               "vs_final_m_s": vs_final, "damping_final": xi,
+    for q, analysis in enumerate(analyses):
+        response = out[response_of[q]][_fused.RESPONSE]
+        runs = {"normal": out[q][_fused.NORMAL], "inverse": out[q][_fused.INVERSE]}
+        for outcome in [response] + [runs[polarity] for polarity in analysis.polarities]:
+            if outcome[status] != _engine.FINISHED:
+                check(outcome, f" ({analysis.name}, {analysis.model})")
+        model = analysis.model
+        row = {"record": analysis.name, "ky_g": model.ky, "height_m": model.column.height,
+               "vs_m_s": model.column.vs, "normal_m": np.nan, "inverse_m": np.nan,
+               "kmax_g": response[_FIELD["hea_samples"]] / model.g, "kmax_sup_g": response[_FIELD["hea_sup"]] / model.g,
+               "vs_final_m_s": vs_finals[q], "damping_final": parameters[q][1],
                "episodes_normal": None, "episodes_inverse": None}
-        for k, polarity in enumerate(analysis.polarities):
-            row[f"{polarity}_m"] = 0.0 + out[first + k, _FIELD["s"]]
-            row[f"episodes_{polarity}"] = int(out[first + k, _FIELD["n_episodes"]])
+        for polarity in analysis.polarities:
+            row[f"{polarity}_m"] = 0.0 + runs[polarity][s]
+            row[f"episodes_{polarity}"] = int(runs[polarity][episodes])
         rows.append(row)
     return rows
 
 
-def _final_column(analysis, arrays, response):
+def _run_analyses(inputs, record_of, parameters, flags):
+    """The compiled analyses (:func:`._fused._analyses`) of excitations ``inputs`` (engine
+    arrays): analysis j runs ``inputs[record_of[j]]`` with ``parameters[j]``
+    (PARAMETER_FIELDS) and ``flags[j]`` (FLAG_FIELDS). Returns (n, 3, width) outcomes."""
+    parallel, serial = _fused.kernels()
+    if len(inputs) == 1:
+        arrays, offsets = inputs[0], np.array([0, len(inputs[0][0])], dtype=np.int64)
+        work = len(inputs[0][0]) * len(record_of)
+    else:
+        arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
+        lengths = [len(x[0]) for x in inputs]
+        offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
+        work = sum(lengths[j] for j in record_of)
+    out = np.empty((len(record_of), 3, _fused.WIDTH))
+    (parallel if 2 * work >= PARALLEL_WORK else serial)(*arrays, offsets, np.array(record_of, dtype=np.int64),
+                                                        np.array(parameters, dtype=float),
+                                                        np.array(flags, dtype=np.int64), out)
+    return out
+
+
+def _final_column(analysis, arrays):
     """The engine's settings (omega, xi, ky g, coupled) of ``analysis`` after its
     equivalent-linear iteration (on the exact no-sliding sup |u|), if any, and the
     column's vs then [m/s]."""
@@ -296,7 +317,8 @@ def _final_column(analysis, arrays, response):
     column = model.column
 
     def peak_displacement(vs, xi):
-        outcome = response(*arrays, 1.0, np.pi * vs / (2 * column.height), xi)
+        outcome = _run_analyses([arrays], [0], [(np.pi * vs / (2 * column.height), xi, 0.0)],
+                                [(False, False, False, True, True)])[0, _fused.RESPONSE]
         check(outcome, f" ({analysis.name}, equivalent-linear pass at vs={vs!r} m/s)")
         return outcome[_FIELD["u_sup"]]
 

@@ -1,5 +1,5 @@
 """The compiled exact engine of the flexible sliding mass (section 8 of the formulation
-note), on the linear engine's closed forms and root search (:mod:`blockdae.engines._linear`).
+note), on the linear engine's closed forms (:mod:`blockdae.engines._linear`).
 
 On a piece of a record, a(tau) = a + rate tau, every mode is linear: u is the
 oscillator's closed form (a "form": cubic + e^{-sigma tau}(C cos w tau + D sin w tau)),
@@ -10,13 +10,13 @@ s = s0 + (w0 - (2/pi) u'0) tau + (a - ky g) tau²/2 + rate tau³/6 + (2/pi)(u - 
 of the same exponent and frequency as u, whose polynomial part (degree <= 1 in u, as
 omega > 0) stays within the cubic. The onset guard ky g - HEA = ky g - d1 a(tau) +
 (2/pi)(2 xi omega u' + omega² u) and the stop guard w are forms too: their first
-downward crossings are located to adjacent floats by the linear engine's search. The
-driver's rules hold: a guard at zero and falling as a mode starts is left at once, one
-reaching zero at the end of a piece is left to the next, a guard below zero at rest
-(t = 0, a(0) > ky g / d1) is an onset at once. The no-sliding response
-(:func:`_response`) gives max |HEA| at the samples, its supremum over time and sup |u|.
-On whole steps of a record each mode runs by its step map (from the closed forms) while
-bounds show that no guard can cross (no peak can exceed the best); else in closed form.
+downward crossings are located to adjacent floats by the linear engine's search rules
+(:mod:`._roots`). The driver's rules hold: a guard at zero and falling as a mode starts
+is left at once, one reaching zero at the end of a piece is left to the next, a guard
+below zero at rest (t = 0, a(0) > ky g / d1) is an onset at once. On whole steps of a
+record each mode runs by its step map (from the closed forms) while bounds show that no
+guard can cross; else in closed form. :mod:`._fused` runs the analyses of
+``bd.flexible`` (final numbers only) on these pieces.
 """
 
 import functools
@@ -27,9 +27,11 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..engines._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT,
-                               MAX_INTERVALS, STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative,
-                               _down_crossing_search, _eval, _eval_at, _falls, _sign_change, _signed, _solve)
+                               STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative, _eval, _eval_at, _falls, _signed,
+                               _solve)
+from ..engines._linear import MAX_INTERVALS  # noqa: F401 -- read through this module (._exact's messages)
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
+from ._roots import STACK_COLUMNS, first_fall
 
 _EPS = float(np.finfo(float).eps)
 STICK, SLIP = 0, 1
@@ -123,46 +125,6 @@ def _step_maps(mode, coupled, omega, xi, damped, kyg, step):
 
 
 @register_jitable
-def _peak(f, span, best, origin, stack):
-    """max(best, sup of |f| on [0, span]) [f's unit]: extrema located to adjacent floats
-    where f' changes sign (bounds of f', f'', f''' prune and split the interval as in
-    the root search); -inf if the search did not settle."""
-    f1 = _derivative(f)
-    f2 = _derivative(f1)
-    f3 = _derivative(f2)
-    resolution = 4 * _EPS * max(abs(origin) + abs(span), 1.0)
-    top = 0
-    stack[0, 0], stack[0, 1] = 0.0, span
-    budget = MAX_INTERVALS
-    while top >= 0:
-        lo, hi = stack[top, 0], stack[top, 1]
-        top -= 1
-        budget -= 1
-        if budget < 0:
-            return -math.inf
-        f_lo, f_hi = abs(_eval(f, lo)), abs(_eval(f, hi))
-        best = max(best, f_lo, f_hi)
-        length = hi - lo
-        if max(f_lo, f_hi) + 0.5 * _bound(f1, lo, hi) * length <= best or length <= resolution:
-            continue  # cannot exceed the best
-        d_lo, d_hi = _eval(f1, lo), _eval(f1, hi)
-        if _signed(d_lo, d_hi, _bound(f2, lo, hi), length) != 0:
-            continue  # monotone: its ends
-        if _signed(_eval(f2, lo), _eval(f2, hi), _bound(f3, lo, hi), length) != 0:
-            if d_lo * d_hi < 0:  # one extremum inside
-                best = max(best, abs(_eval(f, _sign_change(f1, lo, hi))))
-            continue
-        if top + 2 >= stack.shape[0]:
-            return -math.inf
-        mid = lo + 0.5 * length
-        top += 1
-        stack[top, 0], stack[top, 1] = mid, hi
-        top += 1
-        stack[top, 0], stack[top, 1] = lo, mid
-    return best
-
-
-@register_jitable
 def _log(log, n_rows, t, u, v, s, w, mode, before, is_event):
     """Append a knot row; False if the log is full."""
     if n_rows >= log.shape[0]:
@@ -174,15 +136,19 @@ def _log(log, n_rows, t, u, v, s, w, mode, before, is_event):
 
 @register_jitable
 def _step_tables(omega, xi, coupled, kyg, damped, step):
-    """For whole steps [s] of a record: each mode's step map (:func:`_step_maps`) and its
-    constants (k, c, b, forced, 1/k, 1/damped frequency, natural frequency)."""
+    """For whole steps [s] of a record: each mode's step map (:func:`_step_maps`, a
+    tuple of 10) and its constants (k, c, b, forced, 1/k, 1/damped frequency, natural
+    frequency), tuples indexed by mode (scalars to the compiler, not arrays)."""
     maps = (_step_maps(STICK, coupled, omega, xi, damped[STICK], kyg, step),
             _step_maps(SLIP, coupled, omega, xi, damped[SLIP], kyg, step))
-    table = np.empty((2, 7))
-    for mode in (STICK, SLIP):
-        k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
-        table[mode] = k, c, b, forced, 1.0 / k, 1.0 / damped[mode], math.sqrt(k)
-    return maps, table
+    stick = _oscillator(STICK, coupled, omega, xi, kyg)
+    slip = _oscillator(SLIP, coupled, omega, xi, kyg)
+    return ((maps[0][0], maps[0][1], maps[0][2], maps[0][3], maps[0][4], maps[0][5], maps[0][6], maps[0][7],
+             maps[0][8], maps[0][9]),
+            (maps[1][0], maps[1][1], maps[1][2], maps[1][3], maps[1][4], maps[1][5], maps[1][6], maps[1][7],
+             maps[1][8], maps[1][9])), \
+        (stick + (1.0 / stick[0], 1.0 / damped[STICK], math.sqrt(stick[0])),
+         slip + (1.0 / slip[0], 1.0 / damped[SLIP], math.sqrt(slip[0])))
 
 
 @register_jitable
@@ -191,11 +157,12 @@ def _whole_step(m, row, u, v, a0, rate):
     constants ``row``; the free oscillation's amplitude [m] (|u' - forced| <= natural
     frequency x amplitude, |u''| <= its square x amplitude) and the forced part's u' [m/s]."""
     k, c, b, forced, inverse_k, inverse_damped, _ = row
-    u_end = m[0] * u + m[1] * v + m[4] * a0 + m[5] * rate + m[8]
-    v_end = m[2] * u + m[3] * v + m[6] * a0 + m[7] * rate + m[9]
+    u_end = m[4] * a0 + m[5] * rate + m[8] + m[0] * u + m[1] * v  # the state's terms last: a shorter chain
+    v_end = m[6] * a0 + m[7] * rate + m[9] + m[2] * u + m[3] * v  # from one step to the next
     particular = -forced * rate * inverse_k  # _solve's a1
     free = u - (b - forced * a0 - c * particular) * inverse_k
-    return u_end, v_end, math.sqrt(free * free + ((v - particular + 0.5 * c * free) * inverse_damped) ** 2), particular
+    rotated = (v - particular + 0.5 * c * free) * inverse_damped
+    return u_end, v_end, math.sqrt(free * free + rotated * rotated), particular
 
 
 @register_jitable
@@ -206,9 +173,129 @@ def _hea_rate(rate, row, amplitude, xi):
 
 
 @register_jitable
+def _hea_curvature(row, amplitude, xi):
+    """A bound of |HEA''| [m/s⁴] on a STICK step: a'' = 0 on a piece, so HEA'' =
+    -(2/pi)(c X''' + k X'') for the free part X."""
+    return MASS_PARTICIPATION * row[0] * row[0] * amplitude * (1.0 + 2.0 * xi) * _WIDEN
+
+
+@register_jitable
+def _clear(value_a, value_b, curvature, length):
+    """Whether a function with these end values and |f''| <= ``curvature`` stays > 0 on
+    an interval of ``length``: it lies above its chord less curvature tau (length - tau) / 2."""
+    return min(value_a, value_b) > 0.125 * curvature * length * length
+
+
+@register_jitable
 def _stick_hea(a, u, v, row):
     """HEA = d1 a - (2/pi)(c u' + k u) [m/s²] in STICK."""
     return SLIP_MASS_FRACTION * a - MASS_PARTICIPATION * (row[1] * v + row[0] * u)
+
+
+@register_jitable
+def _quick_step(mode, m, row, step, xi, kyg, a0, rate, u, v, s, w):
+    """A whole step [s] of ``mode`` by its map ``m`` and constants ``row`` (from
+    :func:`_step_tables`) under a(tau) = a0 + rate tau [m/s², m/s³], where its guard's
+    values at the ends and a bound of its rate show that it stays positive: (True, u, u',
+    s, w at the end); (False, ...) where they do not (the closed form decides)."""
+    u_end, v_end, amplitude, _ = _whole_step(m, row, u, v, a0, rate)
+    if mode == SLIP:  # w' = a - ky g + (2/pi) u''
+        pw, ps = _slip_polynomials(a0, rate, kyg, u, v, s, w)
+        w_end = _cubic(pw, step) + MASS_PARTICIPATION * v_end
+        if _slip_clear(w, w_end, a0, rate, kyg, row, amplitude, step):
+            return True, u_end, v_end, _cubic(ps, step) + MASS_PARTICIPATION * u_end, w_end
+        return False, u, v, s, w
+    hea_start, hea_end = _stick_hea(a0, u, v, row), _stick_hea(a0 + rate * step, u_end, v_end, row)
+    return _stick_clear(kyg - hea_start, kyg - hea_end, rate, row, amplitude, xi, step), u_end, v_end, s, w
+
+
+@register_jitable
+def _stick_clear(guard_start, guard_end, rate, row, amplitude, xi, step):
+    """Whether the onset guard ky g - HEA [m/s²] stays > 0 on a whole STICK step [s],
+    from its end values and bounds of its rate or its curvature."""
+    return _signed(guard_start, guard_end, _hea_rate(rate, row, amplitude, xi), step) > 0 or _clear(
+        guard_start, guard_end, _hea_curvature(row, amplitude, xi), step)
+
+
+@register_jitable
+def _slip_clear(w, w_end, a0, rate, kyg, row, amplitude, step):
+    """Whether w [m/s] stays > 0 on a whole SLIP step [s] from its end values and bounds
+    of w' = a - ky g + (2/pi) u'' or w'' = a' + (2/pi) u''' (the free part's)."""
+    w_rate = (max(abs(a0 - kyg), abs(a0 + rate * step - kyg)) + MASS_PARTICIPATION * row[0] * amplitude) * _WIDEN
+    w_curvature = (abs(rate) + MASS_PARTICIPATION * row[0] * row[6] * amplitude) * _WIDEN
+    return _signed(w, w_end, w_rate, step) > 0 or _clear(w, w_end, w_curvature, step)
+
+
+@register_jitable
+def _piece(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, log, n_rows,
+           mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event):
+    """One piece of a(t) = a0 + rate tau [m/s², m/s³], ``length`` [s] from ``t_start``
+    [s], from the state (``mode``, u, v, s, w) and the event counters: whole steps by
+    their map (``maps``, ``table`` from :func:`_step_tables` for ``step`` [s]) where
+    bounds show that no guard crosses, else in closed form with every event located.
+    ``cached``: (6,) scratch of exp, cos, sin of the last span; ``stack``: the root
+    search's scratch; ``log``: knot rows from ``n_rows`` on ((0, 8): none). Returns
+    (mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, status, n_rows)."""
+    status = FINISHED
+    logging = log.shape[0] > 0
+    tau = 0.0
+    while True:
+        if tau == 0.0 and length == step:
+            quick, u_end, v_end, s_end, w_end = _quick_step(mode, maps[mode], table[mode], step, xi, kyg, a0, rate, u,
+                                                            v, s, w)
+            if quick:
+                u, v, s, w = u_end, v_end, s_end, w_end
+                break
+        a = a0 + rate * tau
+        span = length - tau
+        f, sf, wf, guard = _forms(mode, coupled, omega, xi, damped[mode], kyg, a, rate, u, v, s, w)
+        if f[6] != cached[0] or f[7] != cached[1] or span != cached[2]:  # a record: once per mode and step
+            cached[0], cached[1], cached[2] = f[6], f[7], span
+            cached[3], cached[4], cached[5] = math.exp(-f[6] * span), math.cos(f[7] * span), math.sin(
+                f[7] * span)
+        event_tau = math.nan
+        g1 = _derivative(guard)
+        g2 = _derivative(g1)
+        at_start = guard[0] + guard[4]
+        if at_start <= 0 and (_falls(g1[0] + g1[4], g2[0] + g2[4], EVENT_RESOLUTION) or (  # values at 0
+                at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
+            event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
+        elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
+                     _bound(g1, 0.0, span), span) <= 0 and _moves(guard):
+            root = first_fall(guard, g1, g2, _derivative(g2), span, t_start + tau, stack, cached[3], cached[4],
+                              cached[5])
+            if root == -math.inf:
+                status = UNSETTLED
+                break
+            if root < span:  # a root at the end of the piece: the next piece decides
+                event_tau = root
+        if math.isnan(event_tau):
+            u, v = _eval_at(f, span, cached[3], cached[4], cached[5]), _eval_at(
+                _derivative(f), span, cached[3], cached[4], cached[5])
+            s = _eval_at(sf, span, cached[3], cached[4], cached[5])
+            w = _eval_at(wf, span, cached[3], cached[4], cached[5])
+            break
+        decay, cos, sin = math.exp(-f[6] * event_tau), math.cos(f[7] * event_tau), math.sin(f[7] * event_tau)
+        u, v = _eval_at(f, event_tau, decay, cos, sin), _eval_at(_derivative(f), event_tau, decay, cos, sin)
+        s = _eval_at(sf, event_tau, decay, cos, sin)  # sf: u's exponent and frequency
+        w = 0.0  # exactly, at an onset and at a stop
+        before = mode
+        mode = SLIP if before == STICK else STICK
+        n_episodes += mode == SLIP
+        tau += event_tau
+        t_event = t_start + tau
+        run = run + 1 if t_event - last_event <= EVENT_RESOLUTION else 1
+        max_run = max(max_run, run)
+        last_event = t_event
+        n_events += 1
+        if logging and not _log(log, n_rows, t_event, u, v, s, w, mode, before, 1.0):
+            status = LOG_FULL
+            break
+        n_rows += logging
+        if run > MAX_EVENTS_AT_ONE_INSTANT:
+            status = CHATTER
+            break
+    return mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, status, n_rows
 
 
 @register_jitable
@@ -217,7 +304,7 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, log):
     ``scale`` from rest: column omega [rad/s], xi [-], ky g [m/s²], coupled or decoupled.
     ``log``: (capacity, 8) knot rows (KNOT_FIELDS), or (0, 8) for the outcome only.
     Returns (outcome (OUTCOME_FIELDS; no peaks), rows logged)."""
-    stack = np.empty((STACK_DEPTH, 4))
+    stack = np.empty((STACK_DEPTH, STACK_COLUMNS))
     damped = _damped(omega, xi, coupled)
     step = h[0]  # a whole step of a record, the common case, by its map
     maps, table = _step_tables(omega, xi, coupled, kyg, damped, step)
@@ -228,80 +315,13 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, log):
     status = FINISHED
     logging = log.shape[0] > 0
     for i in range(t0.shape[0]):
-        length, a0, rate = h[i], scale * p0[i], scale * p1[i]
-        tau = 0.0
         if logging and not _log(log, n_rows, t0[i], u, v, s, w, mode, mode, 0.0):
             status = LOG_FULL
             break
         n_rows += logging
-        while True:
-            if tau == 0.0 and length == step:
-                # a guard kept positive by its values at the ends and a bound of its rate
-                # needs no closed form; else the general path below
-                row = table[mode]
-                u_end, v_end, amplitude, _ = _whole_step(maps[mode], row, u, v, a0, rate)
-                if mode == SLIP:  # w' = a - ky g + (2/pi) u''
-                    pw, ps = _slip_polynomials(a0, rate, kyg, u, v, s, w)
-                    w_end = _cubic(pw, step) + MASS_PARTICIPATION * v_end
-                    w_rate = (max(abs(a0 - kyg), abs(a0 + rate * step - kyg))
-                              + MASS_PARTICIPATION * row[0] * amplitude) * _WIDEN
-                    quick = _signed(w, w_end, w_rate, step) > 0
-                    if quick:
-                        s, w = _cubic(ps, step) + MASS_PARTICIPATION * u_end, w_end
-                else:
-                    hea_start, hea_end = _stick_hea(a0, u, v, row), _stick_hea(a0 + rate * step, u_end, v_end, row)
-                    quick = _signed(kyg - hea_start, kyg - hea_end, _hea_rate(rate, row, amplitude, xi), step) > 0
-                if quick:
-                    u, v = u_end, v_end
-                    break
-            a = a0 + rate * tau
-            span = length - tau
-            f, sf, wf, guard = _forms(mode, coupled, omega, xi, damped[mode], kyg, a, rate, u, v, s, w)
-            if f[6] != cached[0] or f[7] != cached[1] or span != cached[2]:  # a record: once per mode and step
-                cached[0], cached[1], cached[2] = f[6], f[7], span
-                cached[3], cached[4], cached[5] = math.exp(-f[6] * span), math.cos(f[7] * span), math.sin(
-                    f[7] * span)
-            event_tau = math.nan
-            g1 = _derivative(guard)
-            g2 = _derivative(g1)
-            at_start = guard[0] + guard[4]
-            if at_start <= 0 and (_falls(_eval(g1, 0.0), _eval(g2, 0.0), EVENT_RESOLUTION) or (
-                    at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
-                event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
-            elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
-                         _bound(g1, 0.0, span), span) <= 0 and _moves(guard):
-                root = _down_crossing_search(guard, g1, g2, _derivative(g2), 0.0, span, t0[i] + tau, stack)
-                if root == -math.inf:
-                    status = UNSETTLED
-                    break
-                if root < span:  # a root at the end of the piece: the next piece decides
-                    event_tau = root
-            if math.isnan(event_tau):
-                u, v = _eval_at(f, span, cached[3], cached[4], cached[5]), _eval_at(
-                    _derivative(f), span, cached[3], cached[4], cached[5])
-                s = _eval_at(sf, span, cached[3], cached[4], cached[5])
-                w = _eval_at(wf, span, cached[3], cached[4], cached[5])
-                break
-            f1 = _derivative(f)
-            u, v = _eval(f, event_tau), _eval(f1, event_tau)
-            s = _eval(sf, event_tau)
-            w = 0.0  # exactly, at an onset and at a stop
-            before = mode
-            mode = SLIP if before == STICK else STICK
-            n_episodes += mode == SLIP
-            tau += event_tau
-            t_event = t0[i] + tau
-            run = run + 1 if t_event - last_event <= EVENT_RESOLUTION else 1
-            max_run = max(max_run, run)
-            last_event = t_event
-            n_events += 1
-            if logging and not _log(log, n_rows, t_event, u, v, s, w, mode, before, 1.0):
-                status = LOG_FULL
-                break
-            n_rows += logging
-            if run > MAX_EVENTS_AT_ONE_INSTANT:
-                status = CHATTER
-                break
+        mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, status, n_rows = _piece(
+            t0[i], h[i], scale * p0[i], scale * p1[i], step, maps, table, omega, xi, damped, kyg, coupled, cached,
+            stack, log, n_rows, mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event)
         if status != FINISHED:
             break
     if logging and status == FINISHED:
@@ -313,67 +333,6 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, log):
     outcome = np.array([u, v, s, w, mode, n_events, n_episodes, 0.0, 0.0, 0.0, 0.0, status, max_run, last_event],
                        dtype=np.float64)
     return outcome, n_rows
-
-
-@register_jitable
-def _response(t0, h, p0, p1, scale, omega, xi):
-    """The no-sliding response's outcome (OUTCOME_FIELDS: the state at the end and the
-    peaks): a pass over the steps takes max |HEA| and |u| at the samples and a bound of
-    each on every step; the sups over time then search only the steps whose bound
-    exceeds the best so far."""
-    n = t0.shape[0]
-    stack = np.empty((STACK_DEPTH, 4))
-    damped = _damped(omega, xi, False)
-    step = h[0]
-    maps, table = _step_tables(omega, xi, False, 0.0, damped, step)
-    row = table[STICK]
-    starts, reach = np.empty((n, 2)), np.empty((n, 2))  # (u, u') at each start; bounds of |HEA|, |u| on it
-    u, v, hea_samples, u_samples = 0.0, 0.0, 0.0, 0.0
-    for i in range(n):
-        a0, rate = scale * p0[i], scale * p1[i]
-        starts[i, 0], starts[i, 1] = u, v
-        if h[i] == step:
-            u_end, v_end, amplitude, particular = _whole_step(maps[STICK], row, u, v, a0, rate)
-            hea_start, hea_end = _stick_hea(a0, u, v, row), _stick_hea(a0 + rate * step, u_end, v_end, row)
-            reach[i, 0] = max(abs(hea_start), abs(hea_end)) + 0.5 * _hea_rate(rate, row, amplitude, xi) * step
-            reach[i, 1] = max(abs(u), abs(u_end)) + 0.5 * (abs(particular) + row[6] * amplitude) * _WIDEN * step
-        else:
-            f, _, _, _ = _forms(STICK, False, omega, xi, damped[STICK], 0.0, a0, rate, u, v, 0.0, 0.0)
-            u_end, v_end = _eval(f, h[i]), _eval(_derivative(f), h[i])
-            hea_end = _stick_hea(a0 + rate * h[i], u_end, v_end, row)
-            reach[i, 0], reach[i, 1] = math.inf, math.inf
-        hea_samples, u_samples = max(hea_samples, abs(hea_end)), max(u_samples, abs(u_end))
-        u, v = u_end, v_end
-    hea_sup, u_sup, status = hea_samples, u_samples, FINISHED
-    for i in range(n):
-        if reach[i, 0] > hea_sup or reach[i, 1] > u_sup:
-            f, _, _, guard = _forms(STICK, False, omega, xi, damped[STICK], 0.0, scale * p0[i], scale * p1[i],
-                                    starts[i, 0], starts[i, 1], 0.0, 0.0)
-            if reach[i, 0] > hea_sup:  # the guard is ky g - HEA with ky g = 0
-                hea_sup = _peak(_combine(-1.0, guard, 0.0, guard, 0.0), h[i], hea_sup, t0[i], stack)
-            if reach[i, 1] > u_sup:
-                u_sup = _peak(f, h[i], u_sup, t0[i], stack)
-            if hea_sup == -math.inf or u_sup == -math.inf:
-                status = UNSETTLED
-                break
-    return np.array([u, v, 0.0, 0.0, STICK, 0.0, 0.0, hea_samples, hea_sup, u_sup, u_samples, status, 0.0, math.nan])
-
-
-def _run_jobs(t0, h, p0, p1, offsets, record, scale, omega, xi, kyg, coupled, slide):
-    """Outcomes of many runs in parallel: job j runs excitation ``record[j]`` (pieces
-    ``offsets[record[j]]:offsets[record[j] + 1]`` of the concatenated arrays) with the
-    j-th entries of the other (n_jobs,) arrays: a sliding run, or the no-sliding
-    response where ``slide[j]`` is False. Returns (n_jobs, len(OUTCOME_FIELDS))."""
-    out = np.empty((record.shape[0], len(OUTCOME_FIELDS)))
-    empty = np.empty((0, len(KNOT_FIELDS)))
-    for j in numba.prange(record.shape[0]):
-        lo, hi = offsets[record[j]], offsets[record[j] + 1]
-        if slide[j]:
-            out[j] = _run(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], scale[j], omega[j], xi[j], kyg[j], coupled[j],
-                          empty)[0]
-        else:
-            out[j] = _response(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], scale[j], omega[j], xi[j])
-    return out
 
 
 def _dense(knot_t, knots, knot_mode, t0, p0, p1, scale, omega, xi, kyg, coupled, t):
@@ -397,9 +356,6 @@ def _dense(knot_t, knots, knot_mode, t0, p0, p1, scale, omega, xi, kyg, coupled,
 
 @functools.cache
 def kernels():
-    """(run, response, run_jobs parallel over cores, run_jobs serial, dense) compiled with
-    numba (on first use, then from the disk cache)."""
+    """(run, dense) compiled with numba (on first use, then from the disk cache)."""
     options = dict(cache=True, error_model="numpy")
-    return (numba.njit(**options)(_run), numba.njit(**options)(_response),
-            numba.njit(parallel=True, **options)(_run_jobs), numba.njit(**options)(_run_jobs),
-            numba.njit(**options)(_dense))
+    return numba.njit(**options)(_run), numba.njit(**options)(_dense)

@@ -47,7 +47,7 @@ def solve_exact(model, excitation, horizon, name):
                          "has sine pieces: use backend 'cvode'")
     pieces, arrays = found
     settings = engine_settings(model)
-    run, _, _, _, dense = _engine.kernels()
+    run, dense = _engine.kernels()
     capacity = _ROWS_PER_PIECE * len(pieces.t0) + 8
     while True:
         log = np.empty((capacity, len(_engine.KNOT_FIELDS)))

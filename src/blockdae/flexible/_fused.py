@@ -1,0 +1,251 @@
+"""One ``bd.flexible`` analysis in one compiled pass, final numbers only: the no-sliding
+response (max |HEA| at the samples, its supremum over time, sup |u|) and the sliding
+runs of both polarities.
+
+Each step of the record advances the response by its step map (as in
+:func:`._engine._piece`). A decoupled run slides on that response (its column is the
+no-sliding one; the inverse polarity's u is minus the normal one's), so its step costs
+a test of its guard; a coupled run steps its own column. A run's step needs no closed
+form where bounds show that its guard cannot cross; otherwise :func:`._engine._piece`
+takes it and locates every event. The sups search only the steps whose bound exceeds
+the largest sample so far, after the pass.
+"""
+
+import functools
+import math
+
+import numba
+import numpy as np
+from numba.extending import register_jitable
+
+from ..engines._linear import FINISHED, STACK_DEPTH, UNSETTLED, _combine, _derivative, _eval
+from ._column import MASS_PARTICIPATION, SLIP_MASS_FRACTION
+from ._engine import (OUTCOME_FIELDS, SLIP, STICK, _WIDEN, _cubic, _damped, _forms, _hea_curvature, _hea_rate, _piece,
+                      _quick_step, _slip_clear, _slip_polynomials, _step_tables, _stick_clear)
+from ._roots import STACK_COLUMNS, peak
+
+#: rows of an analysis's outcome (each OUTCOME_FIELDS): the no-sliding response (state
+#: at the end, peaks, status), the run of the record as given, the run of it times -1
+RESPONSE, NORMAL, INVERSE = 0, 1, 2
+#: columns of ``flags``: coupled, run the normal polarity, run the inverse, find sup |u|,
+#: find the response's peaks (else its row is nan: another analysis has them)
+FLAG_FIELDS = ("coupled", "normal", "inverse", "u_sup", "response")
+#: columns of ``parameters``: omega [rad/s], xi [-], ky g [m/s²]
+PARAMETER_FIELDS = ("omega", "xi", "kyg")
+
+
+@register_jitable
+def _put(row, values):
+    """Write the tuple of floats ``values`` into the array ``row``."""
+    for k in range(len(values)):
+        row[k] = values[k]
+
+
+@register_jitable
+def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, amplitude, reach):
+    """The no-sliding response from rest, in two passes: (u, u') at the knots by the step
+    map (closed form on a partial step), then, in a loop without dependences that the
+    compiler vectorises, HEA at the knots, the free oscillation's amplitude on each step
+    and a bound of |HEA| on it (inf on a partial step). Fills ``u``, ``v``, ``hea`` (n + 1,)
+    [m, m/s, m/s²], ``amplitude`` (n,) [m] and ``reach`` (n,) [m/s²]."""
+    m, row = maps[STICK], table[STICK]
+    k, c, b, forced, inverse_k, inverse_damped, _ = row
+    n = t0.shape[0]
+    u[0], v[0] = 0.0, 0.0
+    u_end, v_end = 0.0, 0.0  # carried in registers, not read back from the arrays
+    for i in range(n):  # as _whole_step, term by term
+        a0, rate = p0[i], p1[i]
+        if h[i] == step:
+            u_start = u_end
+            u_end = m[4] * a0 + m[5] * rate + m[8] + m[0] * u_start + m[1] * v_end
+            v_end = m[6] * a0 + m[7] * rate + m[9] + m[2] * u_start + m[3] * v_end
+        else:
+            f, _, _, _ = _forms(STICK, False, omega, xi, damped, 0.0, a0, rate, u_end, v_end, 0.0, 0.0)
+            u_end, v_end = _eval(f, h[i]), _eval(_derivative(f), h[i])
+        u[i + 1], v[i + 1] = u_end, v_end
+    hea[0] = SLIP_MASS_FRACTION * p0[0] - MASS_PARTICIPATION * (c * v[0] + k * u[0])
+    for i in range(n):
+        rate = p1[i]
+        particular = -forced * rate * inverse_k
+        free = u[i] - (b - forced * p0[i] - c * particular) * inverse_k
+        rotated = (v[i] - particular + 0.5 * c * free) * inverse_damped
+        a = math.sqrt(free * free + rotated * rotated) if h[i] == step else math.inf
+        amplitude[i] = a
+        hea[i + 1] = SLIP_MASS_FRACTION * (p0[i] + rate * h[i]) - MASS_PARTICIPATION * (c * v[i + 1] + k * u[i + 1])
+    for i in range(n):  # apart: hea[i] written by the loop above would tie its iterations
+        a = amplitude[i]
+        reach[i] = max(abs(hea[i]), abs(hea[i + 1])) + min(0.5 * _hea_rate(p1[i], row, a, xi) * step,
+                                                           0.125 * _hea_curvature(row, a, xi) * step * step)
+
+
+@register_jitable
+def _largest(x):
+    """max |x[1:]| (four running maxima, so that their latencies overlap)."""
+    best = np.zeros(4)
+    n = x.shape[0] - 1
+    for i in range(1, n - 2, 4):
+        best[0], best[1] = max(best[0], abs(x[i])), max(best[1], abs(x[i + 1]))
+        best[2], best[3] = max(best[2], abs(x[i + 2])), max(best[3], abs(x[i + 3]))
+    for i in range(max(1, n - (n % 4) + 1), n + 1):
+        best[0] = max(best[0], abs(x[i]))
+    return max(max(best[0], best[1]), max(best[2], best[3]))
+
+
+@register_jitable
+def _sups(t0, h, p0, p1, omega, xi, damped, row, step, u, v, amplitude, reach, hea_sup, want_u, stack):
+    """(sup |HEA| [m/s²], max |u| at the samples, sup |u| [m]) of the response
+    (:func:`_response`; ``hea_sup``: max |HEA| at the samples): every step whose bound
+    exceeds the best so far is searched; -inf where a search did not settle."""
+    u_samples = _largest(u) if want_u else math.nan
+    u_sup = u_samples
+    for i in range(t0.shape[0]):
+        u_reach = math.inf
+        if want_u:
+            a = amplitude[i]
+            u_reach = max(abs(u[i]), abs(u[i + 1])) + min(0.5 * (abs(row[3] * p1[i] * row[4]) + row[6] * a),
+                                                          0.125 * row[0] * a * step) * _WIDEN * step
+        if reach[i] > hea_sup or (want_u and u_reach > u_sup):
+            f, _, _, guard = _forms(STICK, False, omega, xi, damped, 0.0, p0[i], p1[i], u[i], v[i], 0.0, 0.0)
+            if reach[i] > hea_sup:  # the guard is ky g - HEA with ky g = 0
+                g = _combine(-1.0, guard, 0.0, guard, 0.0)
+                g1 = _derivative(g)
+                g2 = _derivative(g1)
+                hea_sup = peak(g, g1, g2, _derivative(g2), h[i], hea_sup, t0[i], stack)
+            if want_u and u_reach > u_sup:
+                f1 = _derivative(f)
+                f2 = _derivative(f1)
+                u_sup = peak(f, f1, f2, _derivative(f2), h[i], u_sup, t0[i], stack)
+            if hea_sup == -math.inf or u_sup == -math.inf:
+                break
+    return hea_sup, u_samples, u_sup
+
+
+def _slow_step(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, no_log,
+               counts, mode, u, v, s, w):
+    """:func:`._engine._piece` for a run from (``mode``, u, u', s, w), its counters
+    ``counts`` (COUNT_FIELDS) updated: its (mode, u, u', s, w) at the end of the piece.
+    ``no_log``: an empty (0, 8) knot log."""
+    (mode, u, v, s, w, n_events, n_episodes, at_once, most, last, status, _) = _piece(
+        t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, no_log, 0, mode,
+        u, v, s, w, int(counts[0]), int(counts[1]), int(counts[2]), int(counts[3]), counts[4])
+    counts[0], counts[1], counts[2], counts[3], counts[4], counts[5] = (n_events, n_episodes, at_once, most, last,
+                                                                        status)
+    return mode, u, v, s, w
+
+
+#: a run's counters: events, episodes, events at the last instant, most at one instant,
+#: the last event's time [s], status
+COUNT_FIELDS = ("n_events", "n_episodes", "at_once", "max_events_at_one_instant", "t_last_event", "status")
+#: the closed-form step, compiled on its own: inlined, its size slows the loop over the
+#: quick steps (by about a third, measured)
+_slow_step_compiled = numba.njit(cache=True, error_model="numpy")(_slow_step)
+
+
+@register_jitable
+def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step, u, v, hea, amplitude, reach,
+         cached, stack, counts):
+    """One sliding run of a(t) times ``sign`` from rest, its state in registers: each
+    whole step quick where bounds allow (a coupled run steps its own column; a
+    decoupled one's is the response's ``u``, ``v``, ``hea`` (n + 1,), ``amplitude``
+    and bound of |HEA| ``reach`` (n,) times ``sign``), else in closed form. Returns (mode, u, u', s, w) at the end;
+    ``counts`` (COUNT_FIELDS) holds its counters and status."""
+    stick_map, stick = maps[STICK], table[STICK]
+    slip_map, slip = maps[SLIP], table[SLIP]
+    mode, run_u, run_v, s, w = STICK, 0.0, 0.0, 0.0, 0.0
+    no_log = np.empty((0, 8))
+    for i in range(t0.shape[0]):
+        a0, rate = sign * p0[i], sign * p1[i]
+        if h[i] == step:
+            if coupled:  # each mode's map picked statically (a tuple indexed at run time is copied)
+                if mode == STICK:
+                    quick, u_end, v_end, s_end, w_end = _quick_step(STICK, stick_map, stick, step, xi, kyg, a0, rate,
+                                                                    run_u, run_v, s, w)
+                else:
+                    quick, u_end, v_end, s_end, w_end = _quick_step(SLIP, slip_map, slip, step, xi, kyg, a0, rate,
+                                                                    run_u, run_v, s, w)
+                if quick:
+                    run_u, run_v, s, w = u_end, v_end, s_end, w_end
+                    continue
+            elif mode == STICK:  # decoupled: the response's step decides (first its bound of |HEA|)
+                if reach[i] < kyg or _stick_clear(kyg - sign * hea[i], kyg - sign * hea[i + 1], rate, stick,
+                                                  amplitude[i], xi, step):
+                    continue
+            else:
+                pw, ps = _slip_polynomials(a0, rate, kyg, sign * u[i], sign * v[i], s, w)
+                w_end = _cubic(pw, step) + MASS_PARTICIPATION * sign * v[i + 1]
+                if _slip_clear(w, w_end, a0, rate, kyg, stick, amplitude[i], step):
+                    s, w = _cubic(ps, step) + MASS_PARTICIPATION * sign * u[i + 1], w_end
+                    continue
+        if not coupled:
+            run_u, run_v = sign * u[i], sign * v[i]
+        mode, run_u, run_v, s, w = _slow_step_compiled(t0[i], h[i], a0, rate, step, maps, table, omega, xi, damped,
+                                                       kyg, coupled, cached, stack, no_log, counts, mode, run_u, run_v,
+                                                       s, w)
+        if counts[5] != FINISHED:
+            break
+    if not coupled:  # the column's state is the response's
+        run_u, run_v = sign * u[u.shape[0] - 1], sign * v[v.shape[0] - 1]
+    return mode, run_u, run_v, s, w
+
+
+@register_jitable
+def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out):
+    """One analysis over the pieces (t0, h, p0, p1) [s, s, m/s², m/s³] of a(t) from rest:
+    column omega [rad/s], xi [-], ky g [m/s²], ``coupled`` or decoupled; ``runs``: (2,)
+    whether to run the normal and the inverse polarity; ``want_u``: find sup |u| (else
+    nan); ``respond``: find the response's peaks (else nan; a coupled analysis then
+    steps no response). Writes ``out`` (3, len(OUTCOME_FIELDS)): rows RESPONSE and the
+    runs asked for."""
+    n = t0.shape[0]
+    stack = np.empty((STACK_DEPTH, STACK_COLUMNS))
+    cached = np.full(6, math.nan)
+    damped = _damped(omega, xi, coupled)
+    step = h[0]
+    maps, table = _step_tables(omega, xi, coupled, kyg, damped, step)
+    stick = table[STICK]
+    # the response: u, u', HEA at the knots, the free amplitude on each step
+    u, v, hea = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)  # every entry is written before it is read
+    amplitude, reach = np.empty(n), np.empty(n)
+    u[n], v[n] = 0.0, 0.0  # (the response's row of a coupled analysis without it)
+    if respond or not coupled:
+        _response(t0, h, p0, p1, omega, xi, damped[STICK], maps, table, step, u, v, hea, amplitude, reach)
+    if respond:
+        hea_samples = _largest(hea)
+        hea_sup, u_samples, u_sup = _sups(t0, h, p0, p1, omega, xi, damped[STICK], stick, step, u, v, amplitude,
+                                          reach, hea_samples, want_u, stack)
+    else:
+        hea_samples, hea_sup, u_samples, u_sup = math.nan, math.nan, math.nan, math.nan
+    response_status = UNSETTLED if hea_sup == -math.inf or u_sup == -math.inf else FINISHED
+    _put(out[RESPONSE], (u[n], v[n], 0.0, 0.0, float(STICK), 0.0, 0.0, hea_samples, hea_sup,
+                         u_sup if want_u else math.nan, u_samples, float(response_status), 0.0, math.nan))
+    for r in range(2):
+        if runs[r]:
+            counts = np.zeros(len(COUNT_FIELDS))
+            counts[4] = -math.inf
+            mode, run_u, run_v, s, w = _run(t0, h, p0, p1, 1.0 - 2.0 * r, omega, xi, kyg, coupled, damped, maps, table,
+                                            step, u, v, hea, amplitude, reach, cached, stack, counts)
+            _put(out[1 + r], (run_u, run_v, s, w, float(mode), counts[0], counts[1], 0.0, 0.0, 0.0, 0.0, counts[5],
+                              counts[3], counts[4]))
+
+
+def _analyses(t0, h, p0, p1, offsets, record, parameters, flags, out):
+    """Analyses in parallel: analysis j runs excitation ``record[j]`` (pieces
+    ``offsets[record[j]]:offsets[record[j] + 1]`` of the concatenated arrays) with
+    ``parameters[j]`` (PARAMETER_FIELDS) and ``flags[j]`` (FLAG_FIELDS); writes
+    ``out[j]`` (3, len(OUTCOME_FIELDS))."""
+    for j in numba.prange(record.shape[0]):
+        lo, hi = offsets[record[j]], offsets[record[j] + 1]
+        _analysis(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], parameters[j, 0], parameters[j, 1], parameters[j, 2],
+                  flags[j, 0] != 0, flags[j, 1:3] != 0, flags[j, 3] != 0, flags[j, 4] != 0, out[j])
+
+
+@functools.cache
+def kernels():
+    """(analyses parallel over cores, analyses serial) compiled with numba (on first use,
+    then from the disk cache)."""
+    options = dict(cache=True, error_model="numpy")
+    return numba.njit(parallel=True, **options)(_analyses), numba.njit(**options)(_analyses)
+
+
+#: width of an analysis's outcome rows
+WIDTH = len(OUTCOME_FIELDS)

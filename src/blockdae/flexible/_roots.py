@@ -1,0 +1,211 @@
+"""The flexible engine's root and peak searches on the closed forms of
+:mod:`blockdae.engines._linear`, by the same rules as its ``_down_crossing_search``: an
+interval is kept only where bounds of the form's first three derivatives fail to show
+that it keeps one sign, is monotone or is convex/concave, and is halved otherwise.
+
+Two things make them cheaper: each point's exp, cos and sin serve the form and its
+derivatives at once (the stack holds both ends' values), and a sign change on a
+monotone part is found by Newton's method within its bracket (halving it where a step
+would leave it), the bracket then closed by a probe a few ulps across and bisection to
+one ulp of the time (``_first_nonpositive`` bisects to adjacent floats of tau, which
+near tau = 0 are far finer than the time's: up to a hundred halvings).
+"""
+
+import math
+
+import numpy as np
+from numba.extending import register_jitable
+
+from ..engines._linear import MAX_INTERVALS, _eval, _eval_at, _rounding, _signed
+
+_EPS = float(np.finfo(float).eps)
+#: Newton steps before the bracket is closed by bisection alone
+_NEWTON_STEPS = 12
+#: columns of a search's stack: lo, f, f', f'', e^{-sigma lo}; hi, f, f', f'', e^{-sigma hi}
+STACK_COLUMNS = 10
+
+
+@register_jitable
+def _trig(f, tau):
+    """(e^{-sigma tau}, cos w tau, sin w tau) of the form f."""
+    return math.exp(-f[6] * tau), math.cos(f[7] * tau), math.sin(f[7] * tau)
+
+
+@register_jitable
+def _amplitude(f):
+    """sqrt(C² + D²) of the form f: its oscillation's amplitude at tau = 0."""
+    return math.sqrt(f[4] * f[4] + f[5] * f[5])
+
+
+@register_jitable
+def _bound(f, amplitude, hi, decay_lo):
+    """An upper bound of |f| on [lo, hi], 0 <= lo <= hi, term by term (as the linear
+    engine's ``_bound``), from sqrt(C² + D²) and e^{-sigma lo} given."""
+    poly = abs(f[0]) + abs(f[1]) * hi + abs(f[2]) * hi * hi + abs(f[3]) * hi * hi * hi
+    return (poly + amplitude * decay_lo) * (1 + 8 * _EPS)
+
+
+@register_jitable
+def _put(stack, top, lo, f_lo, d_lo, c_lo, e_lo, hi, f_hi, d_hi, c_hi, e_hi):
+    stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3], stack[top, 4] = lo, f_lo, d_lo, c_lo, e_lo
+    stack[top, 5], stack[top, 6], stack[top, 7], stack[top, 8], stack[top, 9] = hi, f_hi, d_hi, c_hi, e_hi
+
+
+@register_jitable
+def sign_change(f, f1, lo, f_lo, hi, f_hi, origin):
+    """The float hi of a pair (lo, hi) within one ulp of the time ``origin`` + tau [s]
+    (adjacent floats of tau where tau outgrows it) where f, monotone on [lo, hi] with
+    f(lo) = ``f_lo`` and f(hi) = ``f_hi`` on either side, changes from f(lo)'s side (f > 0
+    or not) to the other; f1 is f's derivative form."""
+    positive = f_lo > 0
+    tiny = _EPS * abs(origin)  # finer than this, tau no longer moves origin + tau
+    x, fx = (lo, f_lo) if abs(f_lo) < abs(f_hi) else (hi, f_hi)
+    decay, cos, sin = _trig(f, x)
+    dx = _eval_at(f1, x, decay, cos, sin)
+    for _ in range(_NEWTON_STEPS):
+        if hi - lo <= tiny:
+            return hi
+        x_new = x - fx / dx if dx != 0.0 else math.nan
+        if not lo < x_new < hi:  # a step out of the bracket: halve it instead
+            x_new = lo + 0.5 * (hi - lo)
+            if x_new <= lo or x_new >= hi:
+                return hi
+        decay, cos, sin = _trig(f, x_new)
+        fx, dx = _eval_at(f, x_new, decay, cos, sin), _eval_at(f1, x_new, decay, cos, sin)
+        if (fx > 0) == positive:
+            lo = x_new
+        else:
+            hi = x_new
+        x = x_new
+        if abs(fx) <= max(tiny, 4 * _EPS * abs(x)) * abs(dx):  # the next step would be below the resolution:
+            break  # the root is within it, which the probe below confirms
+    gap = max(tiny, 8 * _EPS * abs(x))
+    if hi - lo > 2 * gap:  # close the other side by a probe a few ulps across
+        probe = x - gap if x == hi else x + gap
+        if lo < probe < hi:
+            if (_eval(f, probe) > 0) == positive:
+                lo = probe
+            else:
+                hi = probe
+    while hi - lo > tiny:
+        mid = lo + 0.5 * (hi - lo)
+        if mid <= lo or mid >= hi:
+            break
+        if (_eval(f, mid) > 0) == positive:
+            lo = mid
+        else:
+            hi = mid
+    return hi
+
+
+@register_jitable
+def _falling_part(f, f1, lo, f_lo, hi, f_hi, decreasing, origin):
+    """The crossing on [lo, hi] where f is monotone (nan: none), as the linear engine's
+    ``_monotone_part``: f must fall below zero by more than its rounding."""
+    if not decreasing or not (f_lo > 0 > f_hi) or f_hi >= -_rounding(f, hi):
+        return math.nan
+    return sign_change(f, f1, lo, f_lo, hi, f_hi, origin)
+
+
+@register_jitable
+def first_fall(f, f1, f2, f3, span, origin, stack, decay, cos, sin):
+    """The first tau in [0, span] [s] where f falls to <= 0 (nan: none; -inf: the search
+    did not settle), as the linear engine's ``_down_crossing_search`` from 0: for a caller
+    that has decided whether a guard at zero at 0 is left at once. ``origin``: the time
+    of tau = 0 [s] (the resolution is a few ulps of it); ``stack``: scratch
+    (STACK_DEPTH, STACK_COLUMNS); ``decay``, ``cos``, ``sin``: e^{-sigma span}, cos and
+    sin(w span) of f (the caller has them)."""
+    resolution = 4 * _EPS * max(abs(origin) + abs(span), 1.0)
+    amplitudes = (_amplitude(f1), _amplitude(f2), _amplitude(f3))
+    _put(stack, 0, 0.0, f[0] + f[4], f1[0] + f1[4], f2[0] + f2[4], 1.0, span, _eval_at(f, span, decay, cos, sin),
+         _eval_at(f1, span, decay, cos, sin), _eval_at(f2, span, decay, cos, sin), decay)
+    top = 0
+    budget = MAX_INTERVALS
+    while top >= 0:
+        lo, f_lo, d_lo, c_lo, e_lo = stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3], stack[top, 4]
+        hi, f_hi, d_hi, c_hi, e_hi = stack[top, 5], stack[top, 6], stack[top, 7], stack[top, 8], stack[top, 9]
+        top -= 1
+        budget -= 1
+        if budget < 0:
+            return -math.inf
+        length = hi - lo
+        if _signed(f_lo, f_hi, _bound(f1, amplitudes[0], hi, e_lo), length) != 0:
+            continue
+        slope_sign = _signed(d_lo, d_hi, _bound(f2, amplitudes[1], hi, e_lo), length)
+        if slope_sign != 0:
+            root = _falling_part(f, f1, lo, f_lo, hi, f_hi, slope_sign < 0, origin)
+            if not math.isnan(root):
+                return root
+            continue
+        if _signed(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
+            if d_lo * d_hi >= 0:
+                root = _falling_part(f, f1, lo, f_lo, hi, f_hi, d_lo + d_hi < 0, origin)
+                if not math.isnan(root):
+                    return root
+                continue
+            turn = sign_change(f1, f2, lo, d_lo, hi, d_hi, origin)
+            f_turn = _eval(f, turn)
+            root = _falling_part(f, f1, lo, f_lo, turn, f_turn, d_lo < 0, origin)
+            if math.isnan(root):
+                root = _falling_part(f, f1, turn, f_turn, hi, f_hi, d_hi < 0, origin)
+            if not math.isnan(root):
+                return root
+            continue
+        if length <= resolution:
+            if f_lo > 0 > f_hi and f_hi < -_rounding(f, hi):
+                return hi
+            continue
+        if top + 2 >= stack.shape[0]:
+            return -math.inf
+        mid = lo + 0.5 * length
+        decay, cos, sin = _trig(f, mid)
+        f_mid, d_mid, c_mid = (_eval_at(f, mid, decay, cos, sin), _eval_at(f1, mid, decay, cos, sin),
+                               _eval_at(f2, mid, decay, cos, sin))
+        top += 1
+        _put(stack, top, mid, f_mid, d_mid, c_mid, decay, hi, f_hi, d_hi, c_hi, e_hi)
+        top += 1
+        _put(stack, top, lo, f_lo, d_lo, c_lo, e_lo, mid, f_mid, d_mid, c_mid, decay)
+    return math.nan
+
+
+@register_jitable
+def peak(f, f1, f2, f3, span, best, origin, stack):
+    """max(best, sup of |f| on [0, span]) [f's unit]: extrema located to adjacent floats
+    where f' changes sign (bounds of f', f'', f''' prune and split the interval as in
+    :func:`first_fall`); -inf if the search did not settle."""
+    resolution = 4 * _EPS * max(abs(origin) + abs(span), 1.0)
+    amplitudes = (_amplitude(f1), _amplitude(f2), _amplitude(f3))
+    decay, cos, sin = _trig(f, span)
+    _put(stack, 0, 0.0, f[0] + f[4], f1[0] + f1[4], f2[0] + f2[4], 1.0, span, _eval_at(f, span, decay, cos, sin),
+         _eval_at(f1, span, decay, cos, sin), _eval_at(f2, span, decay, cos, sin), decay)
+    top = 0
+    budget = MAX_INTERVALS
+    while top >= 0:
+        lo, f_lo, d_lo, c_lo, e_lo = stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3], stack[top, 4]
+        hi, f_hi, d_hi, c_hi, e_hi = stack[top, 5], stack[top, 6], stack[top, 7], stack[top, 8], stack[top, 9]
+        top -= 1
+        budget -= 1
+        if budget < 0:
+            return -math.inf
+        best = max(best, abs(f_lo), abs(f_hi))
+        length = hi - lo
+        if max(abs(f_lo), abs(f_hi)) + 0.5 * _bound(f1, amplitudes[0], hi, e_lo) * length <= best or \
+                length <= resolution:
+            continue  # cannot exceed the best
+        if _signed(d_lo, d_hi, _bound(f2, amplitudes[1], hi, e_lo), length) != 0:
+            continue  # monotone: its ends
+        if _signed(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
+            if d_lo * d_hi < 0:  # one extremum inside
+                best = max(best, abs(_eval(f, sign_change(f1, f2, lo, d_lo, hi, d_hi, origin))))
+            continue
+        if top + 2 >= stack.shape[0]:
+            return -math.inf
+        mid = lo + 0.5 * length
+        decay, cos, sin = _trig(f, mid)
+        f_mid, d_mid, c_mid = (_eval_at(f, mid, decay, cos, sin), _eval_at(f1, mid, decay, cos, sin),
+                               _eval_at(f2, mid, decay, cos, sin))
+        top += 1
+        _put(stack, top, mid, f_mid, d_mid, c_mid, decay, hi, f_hi, d_hi, c_hi, e_hi)
+        top += 1
+        _put(stack, top, lo, f_lo, d_lo, c_lo, e_lo, mid, f_mid, d_mid, c_mid, decay)
+    return best

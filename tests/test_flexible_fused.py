@@ -1,0 +1,77 @@
+"""The fast paths of ``bd.flexible`` (issue 22): its event search (``flexible._roots``)
+against the linear engine's bisection on the same forms, and a batch run in parallel
+against the same batch run serially."""
+
+import math
+
+import numpy as np
+import pytest
+
+import blockdae as bd
+from blockdae.engines import _linear
+from blockdae.flexible import _analysis, _roots
+from conftest import load_sample_record
+
+_EPS = np.finfo(float).eps
+
+
+def _random_form(rng):
+    """A cubic plus a damped oscillation, of the sizes of the engine's guards, positive
+    at 0 (a guard that may fall through zero)."""
+    q = rng.normal(size=4) * np.array([0.1, 50.0, 1e3, 1e4])
+    C, D = rng.normal(size=2)
+    q[0] = 0.1 * abs(q[0]) - C
+    return (q[0], q[1], q[2], q[3], C, D, abs(rng.normal()) * 10.0, 5.0 + abs(rng.normal()) * 100.0)
+
+
+def test_first_fall_matches_the_linear_engines_search():
+    """Reference: engines/_linear's _down_crossing_search (bisection to adjacent floats of
+    tau) on 300 random forms over a 5 ms step at t = 10 s: the same crossing or none,
+    within one ulp of the time (the resolution _roots bisects to)."""
+    rng = np.random.default_rng(22)
+    origin, span, found = 10.0, 0.005, 0
+    stack_linear = np.empty((_linear.STACK_DEPTH, 4))
+    stack = np.empty((_linear.STACK_DEPTH, _roots.STACK_COLUMNS))
+    for _ in range(300):
+        f = _random_form(rng)
+        f1 = _linear._derivative(f)
+        f2 = _linear._derivative(f1)
+        f3 = _linear._derivative(f2)
+        expected = _linear._down_crossing_search(f, f1, f2, f3, 0.0, span, origin, stack_linear)
+        trig = math.exp(-f[6] * span), math.cos(f[7] * span), math.sin(f[7] * span)
+        root = _roots.first_fall(f, f1, f2, f3, span, origin, stack, *trig)
+        if math.isnan(expected):
+            assert math.isnan(root)
+        else:
+            found += 1
+            assert abs(root - expected) <= 2 * _EPS * origin
+            assert _linear._eval(f, root) <= 0
+    assert found >= 30  # the draw has crossings to compare
+
+
+def test_sign_change_brackets_the_root_to_an_ulp_of_the_time():
+    """f = 2 e^{-tau} - 1 falls through zero at ln 2: the result r has f(r) <= 0 and f > 0
+    one ulp of the time (origin 10 s) before it, and r is within that of ln 2."""
+    f = (-1.0, 0.0, 0.0, 0.0, 2.0, 0.0, 1.0, 0.0)
+    f1 = _linear._derivative(f)
+    origin = 10.0
+    r = _roots.sign_change(f, f1, 0.0, _linear._eval(f, 0.0), 1.0, _linear._eval(f, 1.0), origin)
+    assert _linear._eval(f, r) <= 0 < _linear._eval(f, r - _EPS * origin)
+    assert abs(r - math.log(2.0)) <= 2 * _EPS * origin
+
+
+@pytest.mark.parametrize("method", ["coupled", "decoupled"])
+def test_a_parallel_batch_equals_the_serial_one(method, monkeypatch):
+    """Two records x four parameter sets, both polarities: the rows of the batch run in
+    parallel over cores equal those run serially, to the last bit."""
+    records = {stem: bd.Record(load_sample_record(stem).acceleration_samples[:301],
+                               load_sample_record(stem).dt, name=stem, units="m/s2")
+               for stem in ("Northridge_1994_PAC-175", "Cape_Mendocino_1992_PET-090")}
+    args = dict(ky=[0.05, 0.1, 0.1, 0.2], height=[5.0, 10.0, 20.0, 10.0], vs=250.0, method=method)
+    tables = []
+    for work in (0.0, math.inf):
+        monkeypatch.setattr(_analysis, "PARALLEL_WORK", work)
+        tables.append(bd.flexible(records, **args).to_dataframe())
+    for column in ("normal_m", "inverse_m", "kmax_g", "kmax_sup_g", "episodes_normal", "episodes_inverse"):
+        np.testing.assert_array_equal(tables[0][column].to_numpy(float), tables[1][column].to_numpy(float))
+    assert (tables[0]["episodes_normal"] > 0).any()
