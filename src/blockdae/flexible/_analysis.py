@@ -21,6 +21,7 @@ from ..engines._linear_solution import linear_pieces
 from ..excitation import Record, pga_factor
 from . import _engine, _fused
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
+from ._damped_slip import flat_table_model, slip_underdamped
 from ._exact import check, engine_settings
 from ._ky_table import KyTable
 from ._model import METHODS, FlexibleSlidingMass
@@ -257,13 +258,16 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
             index[key] = len(inputs)
             inputs.append(_engine_input(analysis.record, analysis.t_end))
         record_of.append(index[key])
-    parameters, flags, response_of, vs_finals, first_with = [], [], [], [], {}
+    parameters, flags, response_of, vs_finals, first_with, damped = [], [], [], [], {}, set()
     for q, analysis in enumerate(analyses):
         (omega, xi, kyg, coupled), vs_final = _final_column(analysis, inputs[record_of[q]])
         parameters.append((omega, xi, kyg))
         response_of.append(first_with.setdefault((record_of[q], omega, xi), q))
-        flags.append((coupled, "normal" in analysis.polarities, "inverse" in analysis.polarities, False,
-                      response_of[q] == q))
+        slides = slip_underdamped(xi, coupled)  # else its slides run on ._damped_slip, after
+        if not slides:
+            damped.add(q)
+        flags.append((coupled and slides, slides and "normal" in analysis.polarities,
+                      slides and "inverse" in analysis.polarities, False, response_of[q] == q))
         vs_finals.append(vs_final)
     out = _run_analyses(inputs, record_of, parameters, flags).tolist()
     status, s, episodes = _FIELD["status"], _FIELD["s"], _FIELD["n_episodes"]
@@ -271,7 +275,8 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     for q, analysis in enumerate(analyses):
         response = out[response_of[q]][_fused.RESPONSE]
         runs = {"normal": out[q][_fused.NORMAL], "inverse": out[q][_fused.INVERSE]}
-        for outcome in [response] + [runs[polarity] for polarity in analysis.polarities]:
+        compiled = () if q in damped else analysis.polarities
+        for outcome in [response] + [runs[polarity] for polarity in compiled]:
             if outcome[status] != _engine.FINISHED:
                 check(outcome, f" ({analysis.name}, {analysis.model})")
         model = analysis.model
@@ -280,10 +285,12 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
                "kmax_g": response[_FIELD["hea_samples"]] / model.g, "kmax_sup_g": response[_FIELD["hea_sup"]] / model.g,
                "vs_final_m_s": vs_finals[q], "damping_final": parameters[q][1],
                "episodes_normal": None, "episodes_inverse": None}
-        for polarity in analysis.polarities:
+        for polarity in compiled:
             row[f"{polarity}_m"] = 0.0 + runs[polarity][s]
             row[f"episodes_{polarity}"] = int(runs[polarity][episodes])
         rows.append(row)
+    for q in damped:
+        _slides_in_closed_form(analyses[q], rows[q])
     return rows
 
 
@@ -363,12 +370,22 @@ def table_rows(analyses) -> list[dict]:
     rows = exact_rows([dataclasses.replace(a, model=a.model.replace(ky=a.model.ky_at(0.0)), polarities=())
                        for a in analyses])
     for analysis, row in zip(analyses, rows):
-        omega = math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height)
-        model = analysis.model.with_parameters({"omega": omega, "damping": row["damping_final"]})
-        record = with_zero_sample(analysis.record)
-        for polarity in analysis.polarities:
-            motion = record if polarity == "normal" else record.scaled(-1.0)
-            sol = solve_table_exact(model, motion, Horizon(analysis.t_end + analysis.record.dt), "exact")
-            row[f"{polarity}_m"] = 0.0 + sol.sliding_displacement
-            row[f"episodes_{polarity}"] = sum(event.kind == "onset" for event in sol.events)
+        _slides_in_closed_form(analysis, row)
     return rows
+
+
+def _slides_in_closed_form(analysis, row):
+    """Each polarity's slide of ``analysis`` into ``row`` (its no-sliding columns
+    filled) by the matrix-exponential engine (:func:`solve_table_exact`) on the record
+    with its virtual zero sample: for a ky table, or a slip too damped for the compiled
+    engine (ky then a one-piece table, :mod:`._damped_slip`)."""
+    omega = math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height)
+    model = analysis.model.with_parameters({"omega": omega, "damping": row["damping_final"]})
+    if model.table is None:
+        model = flat_table_model(model)
+    record = with_zero_sample(analysis.record)
+    for polarity in analysis.polarities:
+        motion = record if polarity == "normal" else record.scaled(-1.0)
+        sol = solve_table_exact(model, motion, Horizon(analysis.t_end + analysis.record.dt), "exact")
+        row[f"{polarity}_m"] = 0.0 + sol.sliding_displacement
+        row[f"episodes_{polarity}"] = sum(event.kind == "onset" for event in sol.events)

@@ -6,7 +6,7 @@ import numpy as np
 from ..core._driver import SolverError
 from ..engines._linear_solution import linear_pieces
 from . import _engine
-from ._column import SLIP_MASS_FRACTION
+from ._damped_slip import UNDERDAMPED_LIMIT, slip_underdamped, solve_damped_slip
 
 #: knot-log rows per piece of a(t) at the start (grown if a run needs more)
 _ROWS_PER_PIECE = 2
@@ -14,13 +14,12 @@ _ROWS_PER_PIECE = 2
 
 def engine_settings(model):
     """The engine's parameters of ``model``: omega [rad/s], xi [-], ky g [m/s²], coupled;
-    raises ValueError where a mode has no underdamped closed form."""
+    raises ValueError where the no-sliding response (STICK) has no underdamped closed
+    form (a slip too damped for it runs on :mod:`._damped_slip`)."""
     omega, xi, coupled = float(model.omega), float(model.damping), model.coupled
-    slip_ratio = xi / np.sqrt(SLIP_MASS_FRACTION) if coupled else xi
-    if not (0 < xi and slip_ratio < 1 - 5e-9):
-        raise ValueError(f"damping={xi!r} (total) gives the coupled slip a damping ratio xi / sqrt(d1) = "
-                         f"{slip_ratio!r}: the exact engine needs it below 1 - 5e-9 (an underdamped slip); "
-                         "use backend 'cvode' or 'ida'")
+    if not 0 < xi < UNDERDAMPED_LIMIT:
+        raise ValueError(f"damping={xi!r} (total): the exact engine needs a total damping ratio in (0, "
+                         f"{UNDERDAMPED_LIMIT!r}) (an underdamped column); use backend 'cvode' or 'ida'")
     return omega, xi, float(model.yield_acceleration), coupled
 
 
@@ -47,6 +46,8 @@ def solve_exact(model, excitation, horizon, name):
                          "has sine pieces: use backend 'cvode'")
     pieces, arrays = found
     settings = engine_settings(model)
+    if not slip_underdamped(settings[1], settings[3]):
+        return solve_damped_slip(model, excitation, horizon, name)
     run, dense = _engine.kernels()
     capacity = _ROWS_PER_PIECE * len(pieces.t0) + 8
     while True:

@@ -1,0 +1,43 @@
+"""A sliding mass whose slip is too damped for the compiled engine's underdamped closed
+forms (coupled: xi / sqrt(d1) >= 1 - 5e-9, total damping xi >= about 0.435): its slides
+run on the matrix-exponential engine of the ky tables (:mod:`._table_engine`, which
+needs no case for any eigen-structure), with ky as a one-piece flat table; the
+no-sliding response (STICK, underdamped while xi < 1) stays on the compiled engine.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ._column import SLIP_MASS_FRACTION
+
+#: the compiled engine's closed forms need each mode's damping ratio below this
+UNDERDAMPED_LIMIT = 1 - 5e-9
+
+
+def slip_underdamped(xi, coupled) -> bool:
+    """Whether SLIP's damping ratio (coupled: xi / sqrt(d1); decoupled: xi [-]) is below
+    :data:`UNDERDAMPED_LIMIT`."""
+    return xi / (math.sqrt(SLIP_MASS_FRACTION) if coupled else 1.0) < UNDERDAMPED_LIMIT
+
+
+def flat_table_model(model):
+    """``model`` (a constant ky) as the table engine takes it: ky a one-piece table (no
+    breakpoint, slope 0) and a fifth state, the breakpoints passed (always 0)."""
+    flat = model.with_parameters({})
+    object.__setattr__(flat, "table", ((), (float(model.ky),), (0.0,)))
+    object.__setattr__(flat, "state_names", tuple(model.state_names) + ("breakpoints_passed",))
+    return flat
+
+
+def solve_damped_slip(model, excitation, horizon, name):
+    """``model`` (a constant ky) under ``excitation`` (a record) by the table engine: its
+    solution with the model's own four states (u, u', s, w), every onset and stop
+    located to adjacent floats."""
+    from ._table_engine import solve_table_exact
+
+    solution = solve_table_exact(flat_table_model(model), excitation, horizon, name)
+    dense = solution.dense
+    return dataclasses.replace(solution, state=np.ascontiguousarray(solution.state[:, :4]),
+                               dense=lambda times: dense(times)[:4])
