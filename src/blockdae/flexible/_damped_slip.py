@@ -1,5 +1,5 @@
 """A sliding mass whose slip is too damped for the compiled engine's underdamped closed
-forms (coupled: xi / sqrt(d1) >= 1 - 5e-9, total damping xi >= about 0.435): its slides
+forms (coupled: xi / sqrt(d1) >= 1 - 1e-6, total damping xi >= about 0.4352): its slides
 run on the matrix-exponential engine of the ky tables (:mod:`._table_engine`, which
 needs no case for any eigen-structure), with ky as a one-piece flat table; the
 no-sliding response (STICK, underdamped while xi < 1) stays on the compiled engine.
@@ -12,14 +12,18 @@ import numpy as np
 
 from ._column import SLIP_MASS_FRACTION
 
-#: the compiled engine's closed forms need each mode's damping ratio below this
+#: the compiled engine's closed forms need the column's damping ratio below this
 UNDERDAMPED_LIMIT = 1 - 5e-9
+#: SLIP runs on the compiled engine while its damping ratio is below this, else here
+#: (measured: at 1 - 1e-7 its slides agree with this engine's to 4e-14, at 1 - 3e-8 its
+#: root search no longer settles, the underdamped forms too ill-conditioned)
+COMPILED_SLIP_LIMIT = 1 - 1e-6
 
 
 def slip_underdamped(xi, coupled) -> bool:
     """Whether SLIP's damping ratio (coupled: xi / sqrt(d1); decoupled: xi [-]) is below
-    :data:`UNDERDAMPED_LIMIT`."""
-    return xi / (math.sqrt(SLIP_MASS_FRACTION) if coupled else 1.0) < UNDERDAMPED_LIMIT
+    :data:`COMPILED_SLIP_LIMIT` (the compiled engine's slides)."""
+    return xi / (math.sqrt(SLIP_MASS_FRACTION) if coupled else 1.0) < COMPILED_SLIP_LIMIT
 
 
 def flat_table_model(model):
