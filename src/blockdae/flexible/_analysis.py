@@ -378,7 +378,12 @@ def _slides_in_closed_form(analysis, row):
     """Each polarity's slide of ``analysis`` into ``row`` (its no-sliding columns
     filled) by the matrix-exponential engine (:func:`solve_table_exact`) on the record
     with its virtual zero sample: for a ky table, or a slip too damped for the compiled
-    engine (ky then a one-piece table, :mod:`._damped_slip`)."""
+    engine (ky then a one-piece table, :mod:`._damped_slip`). Where the no-sliding
+    sup |HEA| stays below ky g at s = 0 nothing slides (no run needed)."""
+    if row["kmax_sup_g"] < analysis.model.ky_at(0.0):
+        for polarity in analysis.polarities:
+            row[f"{polarity}_m"], row[f"episodes_{polarity}"] = 0.0, 0
+        return
     omega = math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height)
     model = analysis.model.with_parameters({"omega": omega, "damping": row["damping_final"]})
     if model.table is None:
