@@ -50,11 +50,27 @@ def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, am
     [m, m/s, m/s²], ``amplitude`` (n,) [m] and ``reach`` (n,) [m/s²]."""
     m, row = maps[STICK], table[STICK]
     k, c, b, forced, inverse_k, inverse_damped, _ = row
+    # the map of two whole steps, M², so that the chain from knot to knot is two steps long
+    q0, q1 = m[0] * m[0] + m[1] * m[2], m[0] * m[1] + m[1] * m[3]
+    q2, q3 = m[2] * m[0] + m[3] * m[2], m[2] * m[1] + m[3] * m[3]
     n = t0.shape[0]
     u[0], v[0] = 0.0, 0.0
     u_end, v_end = 0.0, 0.0  # carried in registers, not read back from the arrays
-    for i in range(n):  # as _whole_step, term by term
+    i = 0
+    while i < n:  # as _whole_step, term by term
         a0, rate = p0[i], p1[i]
+        if h[i] == step and i + 1 < n and h[i + 1] == step:  # two whole steps: x2 = M² x0 + M F0 + F1
+            fu = m[4] * a0 + m[5] * rate + m[8]
+            fv = m[6] * a0 + m[7] * rate + m[9]
+            gu = m[4] * p0[i + 1] + m[5] * p1[i + 1] + m[8] + m[0] * fu + m[1] * fv
+            gv = m[6] * p0[i + 1] + m[7] * p1[i + 1] + m[9] + m[2] * fu + m[3] * fv
+            u[i + 1], v[i + 1] = fu + m[0] * u_end + m[1] * v_end, fv + m[2] * u_end + m[3] * v_end
+            u_start = u_end
+            u_end = gu + q0 * u_start + q1 * v_end
+            v_end = gv + q2 * u_start + q3 * v_end
+            u[i + 2], v[i + 2] = u_end, v_end
+            i += 2
+            continue
         if h[i] == step:
             u_start = u_end
             u_end = m[4] * a0 + m[5] * rate + m[8] + m[0] * u_start + m[1] * v_end
@@ -63,6 +79,7 @@ def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, am
             f, _, _, _ = _forms(STICK, False, omega, xi, damped, 0.0, a0, rate, u_end, v_end, 0.0, 0.0)
             u_end, v_end = _eval(f, h[i]), _eval(_derivative(f), h[i])
         u[i + 1], v[i + 1] = u_end, v_end
+        i += 1
     hea[0] = SLIP_MASS_FRACTION * p0[0] - MASS_PARTICIPATION * (c * v[0] + k * u[0])
     for i in range(n):
         rate = p1[i]
