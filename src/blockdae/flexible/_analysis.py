@@ -139,7 +139,7 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga,
                     polarity, integration, g, t_end)
     rows_of, _ = INTEGRATIONS[integration]
-    if any(analysis.model.table is not None for analysis in analyses):
+    if analyses and analyses[0].model.table is not None:  # plan gives every model the table or none
         rows_of = table_rows
     return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration)
 
