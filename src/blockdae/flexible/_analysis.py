@@ -168,7 +168,7 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
         ky, table = table.ky_g[0], None
     names, records = _motions(motion)
     vr_given = np.nan if vr is None else vr
-    models = [_model(float(k) if table is None else table, float(h), float(v), None if np.isnan(r) else float(r),
+    models = [_model(float(k) if table is None else table, float(h), float(v), None if math.isnan(r) else float(r),
                      float(d), method, g)
               for k, h, v, r, d in _parameter_sets(ky, height, vs, vr_given, damping)]
     polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
@@ -213,7 +213,7 @@ def _settings(model):
 def _parameter_sets(*values):
     """(ky, height, vs, vr, damping) of each parameter set: numbers or 1-D arrays,
     broadcast together."""
-    if all(type(x) in (float, int) for x in values):  # one set: no arrays needed
+    if set(map(type, values)) <= {float, int}:  # one set: no arrays needed
         return [values]
     try:
         sets = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in values))
