@@ -181,9 +181,9 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
     whole step quick where bounds allow (a coupled run steps its own column; a
     decoupled one's is the response's ``u``, ``v``, ``hea`` (n + 1,), ``amplitude``
     and bound of |HEA| ``reach`` (n,) times ``sign``), else in closed form. In STICK a
-    coupled run differs from the response times ``sign`` by a free oscillation d, stepped alone, whose |HEA| is bounded by a bound
-    that decays with it: a step where the response's bound plus it stays below ky g
-    needs no more. Returns (mode, u, u', s, w) at the end; ``counts`` (COUNT_FIELDS)
+    coupled run differs from the response times ``sign`` by a free oscillation d,
+    stepped alone, whose share of HEA has a bound that decays with it: a step where the
+    response's bound plus it stays below ky g needs no more. Returns (mode, u, u', s, w) at the end; ``counts`` (COUNT_FIELDS)
     holds its counters and status."""
     stick_map, stick = maps[STICK], table[STICK]
     slip_map, slip = maps[SLIP], table[SLIP]
