@@ -36,6 +36,8 @@ COLUMNS = ("record", "ky_g", "height_m", "vs_m_s", "normal_m", "inverse_m", "kma
 #: the worker threads may cost more than they save
 PARALLEL_WORK = 5e5
 _FIELD = {name: i for i, name in enumerate(_engine.OUTCOME_FIELDS)}
+_STATUS, _S, _EPISODES, _HEA_SAMPLES, _HEA_SUP = (_FIELD[name] for name in ("status", "s", "n_episodes", "hea_samples",
+                                                                             "hea_sup"))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -138,7 +140,7 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga,
                     polarity, integration, g, t_end)
     rows_of, _ = INTEGRATIONS[integration]
-    if any(analysis.model.table is not None for analysis in analyses):
+    if analyses and analyses[0].model.table is not None:  # plan gives every model the table or none
         rows_of = table_rows
     return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration)
 
@@ -167,8 +169,8 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
         ky, table = table.ky_g[0], None
     names, records = _motions(motion)
     vr_given = np.nan if vr is None else vr
-    models = [FlexibleSlidingMass(ShearColumn(float(h), float(v), None if np.isnan(r) else float(r), float(d)),
-                                  ky=float(k) if table is None else table, method=method, g=g)
+    models = [_model(float(k) if table is None else table, float(h), float(v), None if math.isnan(r) else float(r),
+                     float(d), method, g)
               for k, h, v, r, d in _parameter_sets(ky, height, vs, vr_given, damping)]
     polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
     analyses = []
@@ -176,21 +178,43 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
         if target_pga is not None:
             rounding = INTEGRATIONS[integration][1]
             record = record.scaled(pga_factor(record.peak_acceleration, target_pga, g, rounding, "target_pga"))
-        end = record.duration if t_end is None else float(t_end)
-        if integration == "slammer" and end != record.duration:
+        duration = record.duration
+        end = duration if t_end is None else float(t_end)
+        if integration == "slammer" and end != duration:
             raise ValueError(f"t_end={t_end!r}: integration='slammer' runs to the record's last sample "
-                             f"({record.duration!r} s for {name!r}), as SLAMMER does; give t_end=None")
-        if not 0 < end <= record.duration:
-            raise ValueError(f"t_end={t_end!r} must lie in (0, {record.duration!r}] s (the record {name!r})")
+                             f"({duration!r} s for {name!r}), as SLAMMER does; give t_end=None")
+        if not 0 < end <= duration:
+            raise ValueError(f"t_end={t_end!r} must lie in (0, {duration!r}] s (the record {name!r})")
         analyses += [Analysis(record, name, model, polarities, end, reference_strain if equivalent_linear else None)
                      for model in models]
     return analyses
 
 
+def _model(ky, height, vs, vr, damping, method, g) -> FlexibleSlidingMass:
+    """The sliding mass of one parameter set (validated); cached, as the models are
+    immutable and a repeated call (a warm loop, a study) asks for the same ones."""
+    try:
+        return _cached_model(ky, height, vs, vr, damping, method, g, type(g))
+    except TypeError:  # an unhashable g: validation names it
+        return FlexibleSlidingMass(ShearColumn(height, vs, vr, damping), ky=ky, method=method, g=g)
+
+
+@functools.lru_cache(maxsize=4096)
+def _cached_model(ky, height, vs, vr, damping, method, g, g_type):
+    """:func:`_model`, keyed also by the type of ``g`` (True == 1.0 must not find 1.0's)."""
+    return FlexibleSlidingMass(ShearColumn(height, vs, vr, damping), ky=ky, method=method, g=g)
+
+
+@functools.lru_cache(maxsize=4096)
+def _settings(model):
+    """:func:`engine_settings` of ``model`` (an immutable one from :func:`_model`)."""
+    return engine_settings(model)
+
+
 def _parameter_sets(*values):
     """(ky, height, vs, vr, damping) of each parameter set: numbers or 1-D arrays,
     broadcast together."""
-    if all(type(x) in (float, int) for x in values):  # one set: no arrays needed
+    if set(map(type, values)) <= {float, int}:  # one set: no arrays needed
         return [values]
     try:
         sets = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in values))
@@ -214,6 +238,8 @@ def as_ky_table(ky):
 
 def _motions(motion):
     """(names, records) of one record, a sequence or a dict of them."""
+    if isinstance(motion, Record):
+        return [motion.name or "motion 0"], [motion]
     if isinstance(motion, dict):
         names, records = list(motion), list(motion.values())
     else:
@@ -252,42 +278,43 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     every analysis (its no-sliding response, once per record and column, and its runs)
     in one compiled call, parallel over cores for a large batch (:mod:`._fused`)."""
     inputs, index, record_of = [], {}, []
-    for analysis in analyses:
-        key = (id(analysis.record), analysis.t_end)
-        if key not in index:
-            index[key] = len(inputs)
-            inputs.append(_engine_input(analysis.record, analysis.t_end))
-        record_of.append(index[key])
     parameters, flags, response_of, vs_finals, first_with, damped = [], [], [], [], {}, set()
     for q, analysis in enumerate(analyses):
-        (omega, xi, kyg, coupled), vs_final = _final_column(analysis, inputs[record_of[q]])
+        key = (id(analysis.record), analysis.t_end)
+        r = index.get(key)
+        if r is None:
+            r = index[key] = len(inputs)
+            inputs.append(_engine_input(analysis.record, analysis.t_end))
+        record_of.append(r)
+        (omega, xi, kyg, coupled), vs_final = _final_column(analysis, inputs[r])
         parameters.append((omega, xi, kyg))
-        response_of.append(first_with.setdefault((record_of[q], omega, xi), q))
+        response_of.append(first_with.setdefault((r, omega, xi), q))
         slides = slip_underdamped(xi, coupled)  # else its slides run on ._damped_slip, after
         if not slides:
             damped.add(q)
-        flags.append((coupled and slides, slides and "normal" in analysis.polarities,
-                      slides and "inverse" in analysis.polarities, False, response_of[q] == q))
+        polarities = analysis.polarities
+        flags.append((coupled and slides, slides and "normal" in polarities, slides and "inverse" in polarities,
+                      False, response_of[q] == q))
         vs_finals.append(vs_final)
     out = _run_analyses(inputs, record_of, parameters, flags).tolist()
-    status, s, episodes = _FIELD["status"], _FIELD["s"], _FIELD["n_episodes"]
     rows = []
     for q, analysis in enumerate(analyses):
-        response = out[response_of[q]][_fused.RESPONSE]
-        runs = {"normal": out[q][_fused.NORMAL], "inverse": out[q][_fused.INVERSE]}
+        response, normal, inverse = out[response_of[q]][_fused.RESPONSE], out[q][_fused.NORMAL], out[q][_fused.INVERSE]
+        runs = {"normal": normal, "inverse": inverse}
         compiled = () if q in damped else analysis.polarities
-        for outcome in [response] + [runs[polarity] for polarity in compiled]:
-            if outcome[status] != _engine.FINISHED:
+        if response[_STATUS] != _engine.FINISHED or any(runs[p][_STATUS] != _engine.FINISHED for p in compiled):
+            for outcome in [response] + [runs[polarity] for polarity in compiled]:
                 check(outcome, f" ({analysis.name}, {analysis.model})")
         model = analysis.model
-        row = {"record": analysis.name, "ky_g": model.ky, "height_m": model.column.height,
-               "vs_m_s": model.column.vs, "normal_m": np.nan, "inverse_m": np.nan,
-               "kmax_g": response[_FIELD["hea_samples"]] / model.g, "kmax_sup_g": response[_FIELD["hea_sup"]] / model.g,
-               "vs_final_m_s": vs_finals[q], "damping_final": parameters[q][1],
-               "episodes_normal": None, "episodes_inverse": None}
+        column = model.column
+        row = {"record": analysis.name, "ky_g": model.ky, "height_m": column.height, "vs_m_s": column.vs,
+               "normal_m": np.nan, "inverse_m": np.nan, "kmax_g": response[_HEA_SAMPLES] / model.g,
+               "kmax_sup_g": response[_HEA_SUP] / model.g, "vs_final_m_s": vs_finals[q],
+               "damping_final": parameters[q][1], "episodes_normal": None, "episodes_inverse": None}
         for polarity in compiled:
-            row[f"{polarity}_m"] = 0.0 + runs[polarity][s]
-            row[f"episodes_{polarity}"] = int(runs[polarity][episodes])
+            run = runs[polarity]
+            row[f"{polarity}_m"] = 0.0 + run[_S]
+            row[f"episodes_{polarity}"] = int(run[_EPISODES])
         rows.append(row)
     for q in damped:
         _slides_in_closed_form(analyses[q], rows[q])
@@ -300,7 +327,7 @@ def _run_analyses(inputs, record_of, parameters, flags):
     (PARAMETER_FIELDS) and ``flags[j]`` (FLAG_FIELDS). Returns (n, 3, width) outcomes."""
     parallel, serial = _fused.kernels()
     if len(inputs) == 1:
-        arrays, offsets = inputs[0], np.array([0, len(inputs[0][0])], dtype=np.int64)
+        arrays, offsets = inputs[0], _offsets(len(inputs[0][0]))
         work = len(inputs[0][0]) * len(record_of)
     else:
         arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
@@ -314,13 +341,19 @@ def _run_analyses(inputs, record_of, parameters, flags):
     return out
 
 
+@functools.lru_cache(maxsize=64)
+def _offsets(n):
+    """The offsets (0, ``n``) of one excitation of ``n`` pieces (the kernels only read them)."""
+    return np.array([0, n], dtype=np.int64)
+
+
 def _final_column(analysis, arrays):
     """The engine's settings (omega, xi, ky g, coupled) of ``analysis`` after its
     equivalent-linear iteration (on the exact no-sliding sup |u|), if any, and the
     column's vs then [m/s]."""
     model = analysis.model
     if analysis.reference_strain is None:
-        return engine_settings(model), model.column.vs
+        return _settings(model), model.column.vs
     column = model.column
 
     def peak_displacement(vs, xi):

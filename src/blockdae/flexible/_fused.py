@@ -5,7 +5,9 @@ runs of both polarities.
 Each step of the record advances the response by its step map (as in
 :func:`._engine._piece`). A decoupled run slides on that response (its column is the
 no-sliding one; the inverse polarity's u is minus the normal one's), so its step costs
-a test of its guard; a coupled run steps its own column. A run's step needs no closed
+a test of its guard; a coupled run steps its own column, in STICK only its difference
+from the response (a free oscillation, decaying) where a bound shows that the guard stays
+positive. A run's step needs no closed
 form where bounds show that its guard cannot cross; otherwise :func:`._engine._piece`
 takes it and locates every event. The sups search only the steps whose bound exceeds
 the largest sample so far, after the pass.
@@ -50,11 +52,27 @@ def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, am
     [m, m/s, m/s²], ``amplitude`` (n,) [m] and ``reach`` (n,) [m/s²]."""
     m, row = maps[STICK], table[STICK]
     k, c, b, forced, inverse_k, inverse_damped, _ = row
+    # the map of two whole steps, M², so that the chain from knot to knot is two steps long
+    q0, q1 = m[0] * m[0] + m[1] * m[2], m[0] * m[1] + m[1] * m[3]
+    q2, q3 = m[2] * m[0] + m[3] * m[2], m[2] * m[1] + m[3] * m[3]
     n = t0.shape[0]
     u[0], v[0] = 0.0, 0.0
     u_end, v_end = 0.0, 0.0  # carried in registers, not read back from the arrays
-    for i in range(n):  # as _whole_step, term by term
+    i = 0
+    while i < n:  # as _whole_step, term by term
         a0, rate = p0[i], p1[i]
+        if h[i] == step and i + 1 < n and h[i + 1] == step:  # two whole steps: x2 = M² x0 + M F0 + F1
+            fu = m[4] * a0 + m[5] * rate + m[8]
+            fv = m[6] * a0 + m[7] * rate + m[9]
+            gu = m[4] * p0[i + 1] + m[5] * p1[i + 1] + m[8] + m[0] * fu + m[1] * fv
+            gv = m[6] * p0[i + 1] + m[7] * p1[i + 1] + m[9] + m[2] * fu + m[3] * fv
+            u[i + 1], v[i + 1] = fu + m[0] * u_end + m[1] * v_end, fv + m[2] * u_end + m[3] * v_end
+            u_start = u_end
+            u_end = gu + q0 * u_start + q1 * v_end
+            v_end = gv + q2 * u_start + q3 * v_end
+            u[i + 2], v[i + 2] = u_end, v_end
+            i += 2
+            continue
         if h[i] == step:
             u_start = u_end
             u_end = m[4] * a0 + m[5] * rate + m[8] + m[0] * u_start + m[1] * v_end
@@ -63,6 +81,7 @@ def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, am
             f, _, _, _ = _forms(STICK, False, omega, xi, damped, 0.0, a0, rate, u_end, v_end, 0.0, 0.0)
             u_end, v_end = _eval(f, h[i]), _eval(_derivative(f), h[i])
         u[i + 1], v[i + 1] = u_end, v_end
+        i += 1
     hea[0] = SLIP_MASS_FRACTION * p0[0] - MASS_PARTICIPATION * (c * v[0] + k * u[0])
     for i in range(n):
         rate = p1[i]
@@ -136,9 +155,23 @@ def _slow_step(t_start, length, a0, rate, step, maps, table, omega, xi, damped, 
 #: a run's counters: events, episodes, events at the last instant, most at one instant,
 #: the last event's time [s], status
 COUNT_FIELDS = ("n_events", "n_episodes", "at_once", "max_events_at_one_instant", "t_last_event", "status")
+#: the kernels' compiler options: ``contract`` lets a multiply and an add fuse (FMA, one
+#: rounding instead of two; no other fast-math licence), a fifth off the response's
+#: recurrence (measured)
+OPTIONS = dict(cache=True, error_model="numpy", fastmath={"contract"})
 #: the closed-form step, compiled on its own: inlined, its size slows the loop over the
 #: quick steps (by about a third, measured)
-_slow_step_compiled = numba.njit(cache=True, error_model="numpy")(_slow_step)
+_slow_step_compiled = numba.njit(**OPTIONS)(_slow_step)
+
+
+@register_jitable
+def _difference_bound(du, dv, row):
+    """A bound [m/s²] of |(2/pi)(c du' + k du)|, the part of HEA of a free STICK
+    oscillation from (``du`` [m], ``dv`` [m/s]) (|X| <= amplitude, |X'| <= natural
+    frequency x amplitude), for all later times while it stays free."""
+    k, c, inverse_damped, natural = row[0], row[1], row[5], row[6]
+    rotated = (dv + 0.5 * c * du) * inverse_damped
+    return MASS_PARTICIPATION * (c * natural + k) * math.sqrt(du * du + rotated * rotated) * _WIDEN
 
 
 @register_jitable
@@ -147,16 +180,29 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
     """One sliding run of a(t) times ``sign`` from rest, its state in registers: each
     whole step quick where bounds allow (a coupled run steps its own column; a
     decoupled one's is the response's ``u``, ``v``, ``hea`` (n + 1,), ``amplitude``
-    and bound of |HEA| ``reach`` (n,) times ``sign``), else in closed form. Returns (mode, u, u', s, w) at the end;
-    ``counts`` (COUNT_FIELDS) holds its counters and status."""
+    and bound of |HEA| ``reach`` (n,) times ``sign``), else in closed form. In STICK a
+    coupled run differs from the response times ``sign`` by a free oscillation d,
+    stepped alone, whose share of HEA has a bound that decays with it: a step where the
+    response's bound plus it stays below ky g needs no more. Returns (mode, u, u', s, w) at the end; ``counts`` (COUNT_FIELDS)
+    holds its counters and status."""
     stick_map, stick = maps[STICK], table[STICK]
     slip_map, slip = maps[SLIP], table[SLIP]
     mode, run_u, run_v, s, w = STICK, 0.0, 0.0, 0.0, 0.0
+    # the free oscillation d = run - sign x response in STICK (from rest: 0), its bound of
+    # |HEA| and that bound's factor over a step (rounded up)
+    tracking, du, dv, bound = coupled, 0.0, 0.0, 0.0
+    decay = math.exp(-0.5 * stick[1] * step) * _WIDEN
     no_log = np.empty((0, 8))
     for i in range(t0.shape[0]):
         a0, rate = sign * p0[i], sign * p1[i]
         if h[i] == step:
             if coupled:  # each mode's map picked statically (a tuple indexed at run time is copied)
+                if tracking:
+                    if reach[i] + bound < kyg:
+                        du, dv = stick_map[0] * du + stick_map[1] * dv, stick_map[2] * du + stick_map[3] * dv
+                        bound *= decay
+                        continue
+                    run_u, run_v, tracking = sign * u[i] + du, sign * v[i] + dv, False
                 if mode == STICK:
                     quick, u_end, v_end, s_end, w_end = _quick_step(STICK, stick_map, stick, step, xi, kyg, a0, rate,
                                                                     run_u, run_v, s, w)
@@ -165,6 +211,9 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
                                                                     run_u, run_v, s, w)
                 if quick:
                     run_u, run_v, s, w = u_end, v_end, s_end, w_end
+                    if mode == STICK:
+                        du, dv = run_u - sign * u[i + 1], run_v - sign * v[i + 1]
+                        bound, tracking = _difference_bound(du, dv, stick), True
                     continue
             elif mode == STICK:  # decoupled: the response's step decides (first its bound of |HEA|)
                 if reach[i] < kyg or _stick_clear(kyg - sign * hea[i], kyg - sign * hea[i + 1], rate, stick,
@@ -178,13 +227,21 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
                     continue
         if not coupled:
             run_u, run_v = sign * u[i], sign * v[i]
+        elif tracking:
+            run_u, run_v, tracking = sign * u[i] + du, sign * v[i] + dv, False
         mode, run_u, run_v, s, w = _slow_step_compiled(t0[i], h[i], a0, rate, step, maps, table, omega, xi, damped,
                                                        kyg, coupled, cached, stack, no_log, counts, mode, run_u, run_v,
                                                        s, w)
         if counts[5] != FINISHED:
             break
+        if coupled and mode == STICK:
+            du, dv = run_u - sign * u[i + 1], run_v - sign * v[i + 1]
+            bound, tracking = _difference_bound(du, dv, stick), True
+    n = u.shape[0] - 1
     if not coupled:  # the column's state is the response's
-        run_u, run_v = sign * u[u.shape[0] - 1], sign * v[v.shape[0] - 1]
+        run_u, run_v = sign * u[n], sign * v[n]
+    elif tracking:
+        run_u, run_v = sign * u[n] + du, sign * v[n] + dv
     return mode, run_u, run_v, s, w
 
 
@@ -193,8 +250,8 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     """One analysis over the pieces (t0, h, p0, p1) [s, s, m/s², m/s³] of a(t) from rest:
     column omega [rad/s], xi [-], ky g [m/s²], ``coupled`` or decoupled; ``runs``: (2,)
     whether to run the normal and the inverse polarity; ``want_u``: find sup |u| (else
-    nan); ``respond``: find the response's peaks (else nan; a coupled analysis then
-    steps no response). Writes ``out`` (3, len(OUTCOME_FIELDS)): rows RESPONSE and the
+    nan); ``respond``: find the response's peaks (else nan; the response is stepped
+    all the same, as every run reads it). Writes ``out`` (3, len(OUTCOME_FIELDS)): rows RESPONSE and the
     runs asked for."""
     n = t0.shape[0]
     stack = np.empty((STACK_DEPTH, STACK_COLUMNS))
@@ -206,9 +263,7 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     # the response: u, u', HEA at the knots, the free amplitude on each step
     u, v, hea = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)  # every entry is written before it is read
     amplitude, reach = np.empty(n), np.empty(n)
-    u[n], v[n] = 0.0, 0.0  # (the response's row of a coupled analysis without it)
-    if respond or not coupled:
-        _response(t0, h, p0, p1, omega, xi, damped[STICK], maps, table, step, u, v, hea, amplitude, reach)
+    _response(t0, h, p0, p1, omega, xi, damped[STICK], maps, table, step, u, v, hea, amplitude, reach)
     if respond:
         hea_samples = _largest(hea)
         hea_sup, u_samples, u_sup = _sups(t0, h, p0, p1, omega, xi, damped[STICK], stick, step, u, v, amplitude,
@@ -243,8 +298,7 @@ def _analyses(t0, h, p0, p1, offsets, record, parameters, flags, out):
 def kernels():
     """(analyses parallel over cores, analyses serial) compiled with numba (on first use,
     then from the disk cache)."""
-    options = dict(cache=True, error_model="numpy")
-    return numba.njit(parallel=True, **options)(_analyses), numba.njit(**options)(_analyses)
+    return numba.njit(parallel=True, **OPTIONS)(_analyses), numba.njit(**OPTIONS)(_analyses)
 
 
 #: width of an analysis's outcome rows
