@@ -4,9 +4,9 @@ on a record's linear pieces, the solution with dense output in closed form."""
 import numpy as np
 
 from ..core._driver import SolverError
-from ..engines._linear_solution import linear_pieces
 from . import _engine
 from ._damped_slip import UNDERDAMPED_LIMIT, slip_underdamped, solve_damped_slip
+from ._table_engine import record_pieces
 
 #: knot-log rows per piece of a(t) at the start (grown if a run needs more)
 _ROWS_PER_PIECE = 2
@@ -38,16 +38,10 @@ def check(outcome, where=""):
 def solve_exact(model, excitation, horizon, name):
     """``model`` under ``excitation`` (a record) to ``horizon``: its solution, every onset
     and stop located to adjacent floats."""
-    if horizon.until_rest:
-        raise ValueError("the column oscillates on after the record: give t_end [s]")
-    found = linear_pieces(excitation, horizon.t_end)
-    if found is None:
-        raise ValueError(f"the exact flexible engine takes records (linear pieces); {type(excitation).__name__} "
-                         "has sine pieces: use backend 'cvode'")
-    pieces, arrays = found
     settings = engine_settings(model)
     if not slip_underdamped(settings[1], settings[3]):
         return solve_damped_slip(model, excitation, horizon, name)
+    pieces, arrays = record_pieces(excitation, horizon, "the exact flexible engine")
     run, dense = _engine.kernels()
     capacity = _ROWS_PER_PIECE * len(pieces.t0) + 8
     while True:

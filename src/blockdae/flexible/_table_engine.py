@@ -278,17 +278,25 @@ class TableIntegrator(AbstractIntegrator):
         return dict(self.counts)
 
 
+def record_pieces(excitation, horizon, engine):
+    """(pieces, arrays) of a record's linear pieces to ``horizon``'s t_end [s] for
+    ``engine`` (its name, for the errors): ValueError for a horizon until rest (the column
+    oscillates on) or sine pieces."""
+    if horizon.until_rest:
+        raise ValueError("the column oscillates on after the record: give t_end [s]")
+    found = linear_pieces(excitation, horizon.t_end)
+    if found is None:
+        raise ValueError(f"{engine} takes records (linear pieces); {type(excitation).__name__} has sine pieces: "
+                         "use backend 'cvode'")
+    return found
+
+
 def solve_table_exact(model, excitation, horizon, name):
     """``model`` (ky a table) under ``excitation`` (a record) to ``horizon``: its solution,
     every onset, stop and breakpoint located to adjacent floats. The driver's knots are
     the pieces' ends and the events (steps in closed form need no others); the dense
     output is the closed form from the last knot (:class:`ExactDense`)."""
-    if horizon.until_rest:
-        raise ValueError("the column oscillates on after the record: give t_end [s]")
-    found = linear_pieces(excitation, horizon.t_end)
-    if found is None:
-        raise ValueError(f"the ky-table engine takes records (linear pieces); {type(excitation).__name__} has sine "
-                         "pieces: use backend 'cvode'")
+    found = record_pieces(excitation, horizon, "the ky-table engine")
     coarse = model.with_parameters({})
     object.__setattr__(coarse, "output_step", lambda: math.inf)  # knots at pieces and events only
     solution = drive(coarse, excitation, horizon, TableIntegrator, name, MAX_EVENTS_AT_ONE_INSTANT,
