@@ -24,19 +24,17 @@ import math
 
 import numpy as np
 
-from ..core._driver import AbstractIntegrator, SolverError, drive
+from ..core._driver import AbstractIntegrator, InconsistentStateError, SolverError, drive
+from ..engines._linear import CHATTER, UNSETTLED
 from ..engines._linear_solution import linear_pieces
+from . import _table_kernel
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._modes import FlexibleMode
+from ._table_kernel import EVENT_RESOLUTION, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS
+from ._table_kernel import TAYLOR_DEGREE as _TAYLOR_DEGREE
 
 _U, _V, _S, _W, _A, _AR, _ONE = range(7)
 _EPS = float(np.finfo(float).eps)
-#: most intervals one root search may examine before it is reported as unsettled
-MAX_INTERVALS = 20_000
-#: events closer than this are one instant [s]; most events at one instant (chatter)
-EVENT_RESOLUTION, MAX_EVENTS_AT_ONE_INSTANT = 1e-12, 5
-#: degree of the Taylor series of the matrix exponential (on |M tau| <= 1/2)
-_TAYLOR_DEGREE = 16
 #: derivatives of a guard kept at an interval's start: g, g', g'', g''' and the bound row of g''''
 _ORDERS = 5
 
@@ -227,6 +225,43 @@ class _Systems:
             breakpoint = self.breakpoints[passed] if passed < len(self.breakpoints) else math.inf
             self.built[key] = _System(self.model, mode, self.intercepts[passed], self.slopes[passed], breakpoint)
         return self.built[key]
+
+
+def system_arrays(model):
+    """The systems of ``model`` (ky a table) as :func:`._table_kernel._slides` takes them:
+    (scaled (k, 7, 7) [1/s], scale (k, 7), norm (k,) [1/s], powers (k, 2, 4, 7), row4 (k, 2),
+    n_guards (k,), pieces of ky, ky g at s = 0 [m/s²]), system mode * pieces + passed."""
+    systems = _Systems(model)
+    n_pieces = len(systems.intercepts)
+    built = [systems(mode, passed) for mode in FlexibleMode for passed in range(n_pieces)]
+    powers, row4 = np.zeros((len(built), 2, 4, 7)), np.zeros((len(built), 2))
+    for k, system in enumerate(built):
+        for g, (rows, bound) in enumerate(system.rows):
+            powers[k, g], row4[k, g] = rows, bound
+    return (np.array([s.scaled for s in built]), np.array([s.scale for s in built]),
+            np.array([s.norm for s in built]), powers, row4, np.array([len(s.guards) for s in built]), n_pieces,
+            float(model.yield_acceleration))
+
+
+def slide_compiled(systems, arrays, log_rows=0, where=""):
+    """One slide from rest by the compiled engine (:mod:`._table_kernel`) over a record's
+    linear pieces ``arrays`` (t0, h, p0, p1) with ``systems`` from :func:`system_arrays`:
+    (outcome (OUTCOME_FIELDS), event log (EVENT_FIELDS) of its first ``log_rows``
+    events). Raises as the driver does: chatter, an unsettled search, a slide upslope."""
+    log = np.empty((log_rows, len(_table_kernel.EVENT_FIELDS)))
+    outcome = _table_kernel.kernel()(*arrays, *systems, log)
+    field = dict(zip(_table_kernel.OUTCOME_FIELDS, outcome))
+    status, last = int(field["status"]), field["t_last_event"]
+    if status == CHATTER:
+        raise RuntimeError(f"more than {MAX_EVENTS_AT_ONE_INSTANT} events at t = {last:.12g} s within "
+                           f"{EVENT_RESOLUTION:g} s{where}: chatter of the flexible sliding mass")
+    if status == UNSETTLED:
+        raise SolverError(f"the ky-table engine's root search did not settle after t = {last:.12g} s (more than "
+                          f"{MAX_INTERVALS} intervals){where}; use backend 'cvode'")
+    if status == _table_kernel.INCONSISTENT:
+        raise InconsistentStateError(f"by t = {field['t']:.12g} s the slide moves upslope (w = {field['w']:+.6g} "
+                                     f"m/s){where}: a missed event, please report")
+    return outcome, log[:min(log_rows, int(field["n_events"]))]
 
 
 class TableIntegrator(AbstractIntegrator):
