@@ -15,18 +15,17 @@ import math
 
 import numpy as np
 
-from ..backends import Horizon
 from ..core._units import STANDARD_GRAVITY
 from ..engines._linear_solution import linear_pieces
 from ..excitation import Record, pga_factor
-from . import _engine, _fused
+from . import _engine, _fused, _table_kernel
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._damped_slip import flat_table_model, slip_underdamped
 from ._exact import check, engine_settings
 from ._ky_table import KyTable
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
-from ._table_engine import solve_table_exact
+from ._table_engine import slide_compiled, system_arrays
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns
@@ -398,8 +397,8 @@ INTEGRATIONS = {"exact": (exact_rows, "exact"), "slammer": (slammer_rows, "slamm
 def table_rows(analyses) -> list[dict]:
     """The rows of :func:`flexible` analyses whose ky is a table: the
     no-sliding response (kmax, the equivalent-linear iteration) as for a constant ky,
-    then each polarity's slide by :func:`solve_table_exact` on the record with its
-    virtual zero sample."""
+    then each polarity's slide by the compiled matrix-exponential engine
+    (:func:`_slides_in_closed_form`)."""
     rows = exact_rows([dataclasses.replace(a, model=a.model.replace(ky=a.model.ky_at(0.0)), polarities=())
                        for a in analyses])
     for analysis, row in zip(analyses, rows):
@@ -409,10 +408,11 @@ def table_rows(analyses) -> list[dict]:
 
 def _slides_in_closed_form(analysis, row):
     """Each polarity's slide of ``analysis`` into ``row`` (its no-sliding columns
-    filled) by the matrix-exponential engine (:func:`solve_table_exact`) on the record
-    with its virtual zero sample: for a ky table, or a slip too damped for the compiled
-    engine (ky then a one-piece table, :mod:`._damped_slip`). Where the no-sliding
-    sup |HEA| stays below ky g at s = 0 nothing slides (no run needed)."""
+    filled) by the compiled matrix-exponential engine (:func:`slide_compiled`, the
+    mathematics of :mod:`._table_engine`) on the record with its virtual zero sample: for
+    a ky table, or a slip too damped for the closed forms of :mod:`._engine` (ky then a
+    one-piece table, :mod:`._damped_slip`). Where the no-sliding sup |HEA| stays below
+    ky g at s = 0 nothing slides (no run needed)."""
     if row["kmax_sup_g"] < analysis.model.ky_at(0.0):
         for polarity in analysis.polarities:
             row[f"{polarity}_m"], row[f"episodes_{polarity}"] = 0.0, 0
@@ -421,9 +421,10 @@ def _slides_in_closed_form(analysis, row):
     model = analysis.model.with_parameters({"omega": omega, "damping": row["damping_final"]})
     if model.table is None:
         model = flat_table_model(model)
-    record = with_zero_sample(analysis.record)
+    systems = system_arrays(model)
+    t0, h, p0, p1 = _engine_input(analysis.record, analysis.t_end)
     for polarity in analysis.polarities:
-        motion = record if polarity == "normal" else record.scaled(-1.0)
-        sol = solve_table_exact(model, motion, Horizon(analysis.t_end + analysis.record.dt), "exact")
-        row[f"{polarity}_m"] = 0.0 + sol.sliding_displacement
-        row[f"episodes_{polarity}"] = sum(event.kind == "onset" for event in sol.events)
+        sign = 1.0 if polarity == "normal" else -1.0  # the record times -1: its pieces' a and a' negated
+        outcome, _ = slide_compiled(systems, (t0, h, sign * p0, sign * p1), where=f" ({analysis.name}, {polarity})")
+        row[f"{polarity}_m"] = 0.0 + outcome[_table_kernel.OUTCOME_FIELDS.index("s")]
+        row[f"episodes_{polarity}"] = int(outcome[_table_kernel.OUTCOME_FIELDS.index("n_onsets")])

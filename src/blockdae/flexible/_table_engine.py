@@ -39,9 +39,22 @@ _EPS = float(np.finfo(float).eps)
 _ORDERS = 5
 
 
+def _closure(M, start):
+    """The states (a mask (7,)) that those in ``start`` depend on through z' = M z, with
+    them: the smallest subsystem that evolves alone and holds ``start``."""
+    found = start.copy()
+    while True:
+        more = found | (np.abs(M[found]).sum(axis=0) != 0)
+        if (more == found).all():
+            return found
+        found = more
+
+
 class _System:
     """z' = M z in one mode on one piece of ky, and its guards as rows c (g = c z) with
-    c M^k, k < 5, and the scaled norms that bound g'''' (see :meth:`fourth_bound`)."""
+    c M^k, k < 4, and what bounds g'''' = c M^4 z (see :meth:`fourth_bound`): |c M^4
+    scale|_1, the weights 1 / scale on the subsystem that c M^4 z reads (zero elsewhere:
+    s and w in STICK, s under a flat ky) and that subsystem's scaled norm."""
 
     def __init__(self, model, mode, intercept, slope, breakpoint):
         k, c, g = model.omega**2, 2.0 * model.damping * model.omega, model.g
@@ -80,7 +93,11 @@ class _System:
             powers = [row]
             for _ in range(_ORDERS - 1):
                 powers.append(powers[-1] @ M)
-            self.rows.append((np.array(powers[:-1]), float(np.abs(powers[-1] * self.scale).sum())))
+            fourth = powers[-1]
+            relevant = _closure(M, fourth != 0)
+            inner = np.abs(self.scaled[np.ix_(relevant, relevant)]).sum(axis=1).max() if relevant.any() else 0.0
+            self.rows.append((np.array(powers[:-1]), float(np.abs(fourth * self.scale).sum()),
+                              np.where(relevant, 1.0 / self.scale, 0.0), float(inner)))
         self._maps = {}
 
     def transition(self, tau):
@@ -106,13 +123,15 @@ class _System:
             total = total @ total
         return total * self.scale[:, None] / self.scale[None, :]
 
-    def fourth_bound(self, row4, z, length):
-        """A bound of |g''''| on [0, length] [s] from z at its start: |c M^4 z(tau)| <=
-        |c M^4 scale|_1 |z~(tau)|_inf <= ... exp(|M~| length) |z~(0)|_inf."""
-        growth = self.norm * length
+    def fourth_bound(self, index, z, length):
+        """A bound of |g''''| on [0, length] [s] of guard ``index`` from z at its start:
+        with J the subsystem that c M^4 z reads (it evolves alone), |c M^4 z(tau)| <= |c M^4
+        scale|_1 |z~_J(tau)|_inf <= ... exp(|M~_JJ| length) |z~_J(0)|_inf."""
+        _, row4, weights, inner = self.rows[index]
+        growth = inner * length
         if growth > 50.0:
             return math.inf
-        return row4 * math.exp(growth) * float(np.abs(z / self.scale).max()) * (1.0 + 1e-9)
+        return row4 * math.exp(growth) * float(np.abs(z * weights).max()) * (1.0 + 1e-9)
 
 
 def _lower(coefficients, length):
@@ -137,7 +156,7 @@ class _Search:
 
     def __init__(self, system, index, z0, t0):
         self.system, self.z0, self.t0 = system, z0, t0
-        self.powers, self.row4 = system.rows[index]
+        self.powers, self.index = system.rows[index][0], index
         self.budget = MAX_INTERVALS
 
     def state(self, tau):
@@ -174,7 +193,7 @@ class _Search:
             return hi if g_lo > 0 >= g_hi else None
         if g_lo == g_hi == 0 and not np.any(d[1:]):
             return None  # a guard that stays at zero (HEA = ky g = 0 at rest): no fall through it
-        b4 = self.system.fourth_bound(self.row4, z_lo, length)
+        b4 = self.system.fourth_bound(self.index, z_lo, length)
         if _lower([d[0], d[1], d[2] / 2, d[3] / 6, -b4 / 24], length) > 0:
             return None  # positive all along
         if _lower([d[1], d[2], d[3] / 2, -b4 / 6], length) >= 0:
@@ -229,18 +248,20 @@ class _Systems:
 
 def system_arrays(model):
     """The systems of ``model`` (ky a table) as :func:`._table_kernel._slides` takes them:
-    (scaled (k, 7, 7) [1/s], scale (k, 7), norm (k,) [1/s], powers (k, 2, 4, 7), row4 (k, 2),
-    n_guards (k,), pieces of ky, ky g at s = 0 [m/s²]), system mode * pieces + passed."""
+    (scaled (k, 7, 7) [1/s], scale (k, 7), norm (k,) [1/s], powers (k, 2, 4, 7), and of each
+    guard's fourth derivative (see :meth:`_System.fourth_bound`) row4 (k, 2), weights (k, 2,
+    7), inner norms (k, 2) [1/s]; n_guards (k,), pieces of ky, ky g at s = 0 [m/s²]), system
+    mode * pieces + passed."""
     systems = _Systems(model)
     n_pieces = len(systems.intercepts)
     built = [systems(mode, passed) for mode in FlexibleMode for passed in range(n_pieces)]
-    powers, row4 = np.zeros((len(built), 2, 4, 7)), np.zeros((len(built), 2))
+    powers, row4, weights, inner = (np.zeros((len(built), 2) + shape) for shape in ((4, 7), (), (7,), ()))
     for k, system in enumerate(built):
-        for g, (rows, bound) in enumerate(system.rows):
-            powers[k, g], row4[k, g] = rows, bound
+        for g, row in enumerate(system.rows):
+            powers[k, g], row4[k, g], weights[k, g], inner[k, g] = row
     return (np.array([s.scaled for s in built]), np.array([s.scale for s in built]),
-            np.array([s.norm for s in built]), powers, row4, np.array([len(s.guards) for s in built]), n_pieces,
-            float(model.yield_acceleration))
+            np.array([s.norm for s in built]), powers, row4, weights, inner, np.array([len(s.guards) for s in built]),
+            n_pieces, float(model.yield_acceleration))
 
 
 def slide_compiled(systems, arrays, log_rows=0, where=""):
@@ -249,7 +270,7 @@ def slide_compiled(systems, arrays, log_rows=0, where=""):
     (outcome (OUTCOME_FIELDS), event log (EVENT_FIELDS) of its first ``log_rows``
     events). Raises as the driver does: chatter, an unsettled search, a slide upslope."""
     log = np.empty((log_rows, len(_table_kernel.EVENT_FIELDS)))
-    outcome = _table_kernel.kernel()(*arrays, *systems, log)
+    outcome = _table_kernel.kernel()(*arrays, _table_kernel.step_slots(arrays[0], arrays[1]), *systems, log)
     field = dict(zip(_table_kernel.OUTCOME_FIELDS, outcome))
     status, last = int(field["status"]), field["t_last_event"]
     if status == CHATTER:

@@ -45,8 +45,10 @@ MAX_INTERVALS = 20_000
 EVENT_RESOLUTION, MAX_EVENTS_AT_ONE_INSTANT = 1e-12, 5
 #: degree of the Taylor series of the matrix exponential (on |M~ tau| <= 1/2)
 TAYLOR_DEGREE = 16
-#: whole-step transitions kept per (mode, piece of ky): distinct step lengths [-]
-_SLOTS = 16
+#: whole-step lengths whose transitions are kept per (mode, piece of ky), and halvings of each
+SLOTS, _DEPTHS = 16, 24
+#: the first dropped term of Taylor's series of degree 16 at norm 1/2 (its truncation)
+_TRUNCATION = 0.5**17 / math.factorial(17)
 #: up to this many squarings a transition is applied to the vector (2^n Taylor passes)
 _VECTOR_SQUARINGS = 3
 #: pending intervals of one root search (its depth: a step halved to rounding is ~60)
@@ -58,7 +60,7 @@ OUTCOME_FIELDS = ("t", "u", "u_rate", "s", "w", "mode", "passed", "n_events", "n
 EVENT_FIELDS = ("t", "mode_before", "mode_after", "u", "u_rate", "s", "w")
 _T, _U, _V, _S, _W, _PASSED, _MODE, _LAST = range(8)  # the run's state (floats), the last event's time
 _N_EVENTS, _N_ONSETS, _RUN, _MAX_RUN, _STATUS = range(5)  # its counters
-_NO_ROOT = -1.0
+_NO_ROOT, _HALVE = -1.0, -2.0
 
 
 # ---- the matrix exponential ----------------------------------------------------------
@@ -66,6 +68,18 @@ _NO_ROOT = -1.0
 def _squarings(norm, tau):
     """Squarings that bring |M~ tau| [-] (``norm`` [1/s] times ``tau`` [s]) to <= 1/2."""
     return max(0, math.ceil(math.log2(max(norm * tau, 1e-300) / 0.5)))
+
+
+@register_jitable
+def _degree(x):
+    """The least degree (<= 16) of Taylor's series of expm on a matrix of norm ``x`` <= 1/2
+    whose first dropped term, x^(d+1) / (d+1)!, is at most degree 16's at 1/2 (2e-20)."""
+    dropped = x * x / 2.0
+    for degree in range(1, TAYLOR_DEGREE):
+        if dropped <= _TRUNCATION:
+            return degree
+        dropped *= x / (degree + 2)
+    return TAYLOR_DEGREE
 
 
 @register_jitable
@@ -78,9 +92,9 @@ def _exponential(scaled, scale, norm, tau, out, term, total):
     for i in range(7):
         for j in range(7):
             term[i, j] = total[i, j] = 1.0 if i == j else 0.0
-    for k in range(1, TAYLOR_DEGREE + 1):
+    for k in range(1, _degree(norm * x) + 1):
         factor = x / k
-        for i in range(7):  # term @ (M~ x / k), row by row into out's rows as scratch
+        for i in range(7):  # term @ (M~ x / k), into out as scratch
             for j in range(7):
                 acc = 0.0
                 for m in range(7):
@@ -125,24 +139,31 @@ def _dot(row, z):
 
 
 @register_jitable
+def _copy(source, target):
+    """``target`` (7,) = ``source`` (7,)."""
+    for i in range(7):
+        target[i] = source[i]
+
+
+@register_jitable
 def _apply(scaled, scale, norm, tau, z, out, vectors):
-    """``out`` = expm(M tau) z from the balanced M~: Taylor's series of degree 16 on
-    M~ tau / 2^n applied to z~ = z / scale 2^n times; ``vectors``: (3, 7) scratch."""
+    """``out`` = expm(M tau) z from the balanced M~: Taylor's series on M~ tau / 2^n
+    applied to z~ = z / scale 2^n times; ``vectors``: (3, 7) scratch."""
     squarings = _squarings(norm, tau)
     x = tau / 2.0**squarings
+    degree = _degree(norm * x)
     acc, term, nxt = vectors[0], vectors[1], vectors[2]
     for i in range(7):
         acc[i] = z[i] / scale[i]
     for _ in range(2**squarings):
-        for i in range(7):
-            term[i] = acc[i]
-        for k in range(1, TAYLOR_DEGREE + 1):
+        _copy(acc, term)
+        for k in range(1, degree + 1):
             factor = x / k
             for i in range(7):
-                s = 0.0
+                total = 0.0
                 for j in range(7):
-                    s += scaled[i, j] * term[j]
-                nxt[i] = s * factor
+                    total += scaled[i, j] * term[j]
+                nxt[i] = total * factor
             for i in range(7):
                 term[i] = nxt[i]
                 acc[i] += nxt[i]
@@ -151,22 +172,25 @@ def _apply(scaled, scale, norm, tau, z, out, vectors):
 
 
 @register_jitable
-def _advance(system, tau, z, out, keep):
+def _advance(system, tau, z, out):
     """``out`` = expm(M tau) z (7,) for ``tau`` [s] in ``system`` (see :func:`_system`):
-    from a kept transition of that length, else (``keep``: a whole step's, kept while a
-    slot is free) built, else applied to the vector."""
-    scaled, scale, norm, taus, maps, count, matrices, vectors = system
-    for slot in range(count[0]):
-        if taus[slot] == tau:
-            _matvec(maps[slot], z, out)
-            return
-    if keep and count[0] < taus.shape[0]:
-        slot = count[0]
-        _exponential(scaled, scale, norm, tau, maps[slot], matrices[0], matrices[1])
-        taus[slot] = tau
-        count[0] = slot + 1
-        _matvec(maps[slot], z, out)
-    elif _squarings(norm, tau) > _VECTOR_SQUARINGS:
+    on a whole step of length L (its slot >= 0), tau = L / 2^d (d < _DEPTHS) by its kept
+    transition (built on first use); else applied to the vector, or past
+    :data:`_VECTOR_SQUARINGS` squarings built as a matrix."""
+    scaled, scale, norm, taus, maps, slot, whole, matrices, vectors = system
+    if slot >= 0:
+        mantissa, exponent = math.frexp(whole / tau)
+        depth = exponent - 1
+        if mantissa == 0.5 and 0 <= depth < _DEPTHS:
+            if taus[slot, depth] == tau:
+                _matvec(maps[slot, depth], z, out)
+                return
+            if taus[slot, depth] == 0.0 and tau * 2.0**depth == whole:
+                _exponential(scaled, scale, norm, tau, maps[slot, depth], matrices[0], matrices[1])
+                taus[slot, depth] = tau
+                _matvec(maps[slot, depth], z, out)
+                return
+    if _squarings(norm, tau) > _VECTOR_SQUARINGS:
         _exponential(scaled, scale, norm, tau, matrices[2], matrices[0], matrices[1])
         _matvec(matrices[2], z, out)
     else:
@@ -193,61 +217,66 @@ def _upper(c, length):
 
 
 @register_jitable
-def _value(system, powers, order, tau, z0, work):
-    """The guard's derivative of ``order`` (c M^order z) at ``tau`` [s] from z0 at 0."""
-    _advance(system, tau, z0, work, False)
-    return _dot(powers[order], work)
-
-
-@register_jitable
-def _bisect(system, powers, order, z0, t0, lo, hi, work):
-    """The first tau in (lo, hi] [s] where the guard's derivative of ``order`` is <= 0,
-    to adjacent floats of ``t0`` + tau, for > 0 at lo, <= 0 at hi, one crossing between."""
+def _bisect(system, row, t0, lo, hi, z_lo, work):
+    """The first tau in (lo, hi] [s] where ``row`` . z is <= 0, to adjacent floats of
+    ``t0`` + tau, for > 0 at lo (state ``z_lo``), <= 0 at hi, one crossing between; each
+    trial advanced from the last lo kept. ``work``: (5, 7), rows 3 and 4 used."""
+    z_a, z_m = work[3], work[4]
+    _copy(z_lo, z_a)
     while True:
         mid = lo + 0.5 * (hi - lo)
         if not (t0 + lo < t0 + mid < t0 + hi):
             return hi
-        if _value(system, powers, order, mid, z0, work) > 0:
+        _advance(system, mid - lo, z_a, z_m)
+        if _dot(row, z_m) > 0:
             lo = mid
+            _copy(z_m, z_a)
         else:
             hi = mid
 
 
 @register_jitable
-def _bisect_rate(system, powers, z0, t0, lo, hi, work):
-    """Where g' (rising on [lo, hi] [s]) crosses zero; lo or hi if it does not."""
-    if _value(system, powers, 1, lo, z0, work) >= 0:
+def _bisect_rate(system, row, t0, lo, hi, z_lo, z_hi, work):
+    """Where g' = ``row`` . z (rising on [lo, hi] [s], states ``z_lo``, ``z_hi``) crosses
+    zero; lo or hi if it does not."""
+    if _dot(row, z_lo) >= 0:
         return lo
-    if _value(system, powers, 1, hi, z0, work) <= 0:
+    if _dot(row, z_hi) <= 0:
         return hi
+    z_a, z_m = work[3], work[4]
+    _copy(z_lo, z_a)
     while True:
         mid = lo + 0.5 * (hi - lo)
         if not (t0 + lo < t0 + mid < t0 + hi):
             return hi
-        if _value(system, powers, 1, mid, z0, work) < 0:
+        _advance(system, mid - lo, z_a, z_m)
+        if _dot(row, z_m) < 0:
             lo = mid
+            _copy(z_m, z_a)
         else:
             hi = mid
 
 
 @register_jitable
-def _fourth_bound(system, row4, z, length):
-    """A bound of |g''''| on [0, ``length``] [s] from z at its start: |c M^4 scale|_1
-    exp(|M~| length) |z / scale|_inf (inf where the growth exceeds e^50)."""
-    scale, norm = system[1], system[2]
-    growth = norm * length
+def _fourth_bound(bound, z, length):
+    """A bound of the guard's fourth derivative on [0, ``length``] [s] from z at its
+    start (``_System.fourth_bound``): ``bound`` = (|c M^4 scale|_1, weights (7,): 1 / scale
+    on the subsystem J that c M^4 z reads, 0 elsewhere, |M~_JJ| [1/s]); |c M^4 scale|_1
+    exp(|M~_JJ| length) |z~_J|_inf, inf past a growth of e^50."""
+    row4, weights, inner = bound
+    growth = inner * length
     if growth > 50.0:
         return math.inf
     largest = 0.0
     for i in range(7):
-        largest = max(largest, abs(z[i] / scale[i]))
+        largest = max(largest, abs(z[i] * weights[i]))
     return row4 * math.exp(growth) * largest * (1.0 + 1e-9)
 
 
 @register_jitable
-def _decide(system, powers, row4, z0, t0, lo, hi, z_lo, z_hi, work):
+def _decide(system, powers, bound, t0, lo, hi, z_lo, z_hi, work):
     """One interval (lo, hi] [s] of the search, z_lo and z_hi (7,) at its ends: the first
-    crossing in it (> 0), none (:data:`_NO_ROOT`), or -2 (halve it)."""
+    crossing in it (> 0), none (:data:`_NO_ROOT`) or :data:`_HALVE`."""
     length = hi - lo
     d0, d1, d2, d3 = _dot(powers[0], z_lo), _dot(powers[1], z_lo), _dot(powers[2], z_lo), _dot(powers[3], z_lo)
     g_lo, g_hi = d0, _dot(powers[0], z_hi)
@@ -255,43 +284,50 @@ def _decide(system, powers, row4, z0, t0, lo, hi, z_lo, z_hi, work):
         return hi if g_lo > 0 >= g_hi else _NO_ROOT
     if g_lo == 0 and g_hi == 0 and d1 == 0 and d2 == 0 and d3 == 0:
         return _NO_ROOT  # a guard that stays at zero (HEA = ky g = 0 at rest): no fall through it
-    b4 = _fourth_bound(system, row4, z_lo, length)
+    b4 = _fourth_bound(bound, z_lo, length)
     if _lower((d0, d1, d2 / 2, d3 / 6, -b4 / 24), length) > 0:
         return _NO_ROOT  # positive all along
     if _lower((d1, d2, d3 / 2, -b4 / 6), length) >= 0:
         return _NO_ROOT  # rising all along
     if _upper((d1, d2, d3 / 2, b4 / 6), length) <= 0:  # falling all along
-        return _bisect(system, powers, 0, z0, t0, lo, hi, work) if g_lo > 0 >= g_hi else _NO_ROOT
+        return _bisect(system, powers[0], t0, lo, hi, z_lo, work) if g_lo > 0 >= g_hi else _NO_ROOT
     if _lower((d2, d3, -b4 / 2), length) > 0 and g_lo > 0:  # convex: falls, then rises
-        turn = _bisect_rate(system, powers, z0, t0, lo, hi, work)
-        if _value(system, powers, 0, turn, z0, work) <= 0:
-            return _bisect(system, powers, 0, z0, t0, lo, turn, work)
+        turn = _bisect_rate(system, powers[1], t0, lo, hi, z_lo, z_hi, work)
+        z_turn = work[0]
+        if turn == lo:
+            _copy(z_lo, z_turn)
+        else:
+            _advance(system, turn - lo, z_lo, z_turn)
+        if _dot(powers[0], z_turn) <= 0:
+            return _bisect(system, powers[0], t0, lo, turn, z_lo, work)
         return _NO_ROOT
     if _upper((d2, d3, b4 / 2), length) < 0 and g_lo > 0:  # concave: one crossing at most
-        return _bisect(system, powers, 0, z0, t0, lo, hi, work) if g_hi <= 0 else _NO_ROOT
-    return -2.0
+        return _bisect(system, powers[0], t0, lo, hi, z_lo, work) if g_hi <= 0 else _NO_ROOT
+    return _HALVE
 
 
 @register_jitable
-def _first_root(system, powers, row4, z0, z_end, t0, h, work, stack):
-    """The first tau in (0, ``h``] [s] where the guard c z (``powers``: c M^k, (4, 7))
-    falls to <= 0 from > 0 on a step from z0 (7,) at ``t0`` [s], ``z_end`` = z(h):
-    (tau or :data:`_NO_ROOT`, settled). ``work``: (4, 7) scratch, ``stack``: (n, 2)."""
+def _first_root(system, powers, bound, z0, z_end, t0, h, work, stack):
+    """The first tau in (0, ``h``] [s] where the guard c z (``powers``: c M^k, (4, 7);
+    ``bound``: of its fourth derivative, see :func:`_fourth_bound`) falls to <= 0 from > 0 on a step from z0 (7,) at ``t0`` [s], ``z_end`` = z(h):
+    (tau or :data:`_NO_ROOT`, settled). A later half waits on ``stack`` (n, 10) with its
+    parent's start and state, from which it is advanced. ``work``: (5, 7) scratch."""
     lo, hi, top = 0.0, h, 0
-    z_lo, z_hi, z_mid = work[1], work[2], work[3]
-    for i in range(7):
-        z_lo[i], z_hi[i] = z0[i], z_end[i]
+    z_lo, z_hi = work[1], work[2]
+    _copy(z0, z_lo)
+    _copy(z_end, z_hi)
     for budget in range(MAX_INTERVALS):
         if budget > 0:
-            _advance(system, hi - lo, z_lo, z_hi, False)
-        found = _decide(system, powers, row4, z0, t0, lo, hi, z_lo, z_hi, work[0])
+            _advance(system, hi - lo, z_lo, z_hi)
+        found = _decide(system, powers, bound, t0, lo, hi, z_lo, z_hi, work)
         if found > 0:
             return found, True
-        if found == -2.0:  # the earlier half first, the later one kept
+        if found == _HALVE:  # the earlier half first, the later one kept
             if top == stack.shape[0]:
                 return _NO_ROOT, False
             mid = lo + 0.5 * (hi - lo)
-            stack[top, 0], stack[top, 1] = mid, hi
+            stack[top, 0], stack[top, 1], stack[top, 2] = mid, hi, lo
+            stack[top, 3:] = z_lo
             top += 1
             hi = mid
             continue
@@ -299,9 +335,7 @@ def _first_root(system, powers, row4, z0, z_end, t0, h, work, stack):
             return _NO_ROOT, True
         top -= 1
         lo, hi = stack[top, 0], stack[top, 1]
-        _advance(system, lo, z0, z_mid, False)
-        for i in range(7):
-            z_lo[i] = z_mid[i]
+        _advance(system, lo - stack[top, 2], stack[top, 3:], z_lo)
     return _NO_ROOT, False
 
 
@@ -365,37 +399,30 @@ def _at_rest(state):
 
 
 @register_jitable
-def _system(k, scaled, scale, norm, taus, maps, count, matrices, vectors):
-    """The tuple of system ``k`` that :func:`_advance` takes."""
-    return (scaled[k], scale[k], norm[k], taus[k], maps[k], count[k:k + 1], matrices, vectors)
-
-
-@register_jitable
-def _step(state, counts, system, powers, row4, n_guards, t_start, end, a, rate, z0, z_end, z, work, stack):
+def _step(state, counts, system, powers, bound, n_guards, end, a, rate, z0, z_end, z, work, stack):
     """One step of the current mode from the state at ``state[_T]`` to ``end`` [s] or its
     first guard root (the driver's step with :class:`TableIntegrator`): the state
     advanced, its root's index returned (-1: none)."""
     t = state[_T]
     h = end - t
     _state_vector(state, a, rate, z0)
-    _advance(system, h, z0, z_end, t == t_start)
+    _advance(system, h, z0, z_end)
     best, index = _NO_ROOT, -1
-    root, settled = _first_root(system, powers[0], row4[0], z0, z_end, t, h, work, stack)
+    root, settled = _first_root(system, powers[0], bound, z0, z_end, t, h, work, stack)
     if not settled:
         counts[_STATUS] = UNSETTLED
         return -1
     if root > 0:
         best, index = root, 0
     if n_guards == 2 and _dot(powers[1, 0], z0) > 0 >= _dot(powers[1, 0], z_end):
-        root = _bisect(system, powers[1], 0, z0, t, 0.0, h, work[0])
+        root = _bisect(system, powers[1, 0], t, 0.0, h, z0, work)
         if best < 0 or root < best:
             best, index = root, 1
     if best < 0:
-        for i in range(7):
-            z[i] = z_end[i]
+        _copy(z_end, z)
         state[_T] = end
     else:
-        _advance(system, best, z0, z, False)
+        _advance(system, best, z0, z)
         state[_T] = t + best
         if state[_T] >= end:  # a root at the end of the piece is left to the next piece
             state[_T], index = end, -1
@@ -403,18 +430,19 @@ def _step(state, counts, system, powers, row4, n_guards, t_start, end, a, rate, 
     return index
 
 
-def _slides(t0, h, p0, p1, scaled, scale, norm, powers, row4, n_guards, n_pieces, kyg, log):
+def _slides(t0, h, p0, p1, slots, scaled, scale, norm, powers, row4, weights, inner, n_guards, n_pieces, kyg, log):
     """One slide from rest over a record's linear pieces (``t0``, ``h`` [s], a = ``p0`` +
-    ``p1`` tau [m/s², m/s³], (n,) each) by the systems (mode * ``n_pieces`` + pieces of ky
+    ``p1`` tau [m/s², m/s³], (n,) each; ``slots`` (n,): the slot of each piece's length,
+    or -1, from :func:`step_slots`) by the systems (mode * ``n_pieces`` + pieces of ky
     passed; ``scaled`` (k, 7, 7) [1/s], ``scale`` (k, 7), ``norm`` (k,) [1/s], ``powers``
-    (k, 2, 4, 7), ``row4`` (k, 2), ``n_guards`` (k,)) of :func:`system_arrays`; ``kyg``: ky
-    g at s = 0 [m/s²]. Events go into ``log`` (m, 7) (EVENT_FIELDS) while it has room.
-    Returns the outcome (OUTCOME_FIELDS)."""
+    (k, 2, 4, 7), ``row4`` (k, 2), ``weights`` (k, 2, 7), ``inner`` (k, 2) [1/s] (see
+    :func:`_fourth_bound`), ``n_guards`` (k,)); ``kyg``: ky g at s = 0 [m/s²].
+    Events go into ``log`` (m, 7) (EVENT_FIELDS) while it has room. Returns the outcome
+    (OUTCOME_FIELDS)."""
     n_systems = scaled.shape[0]
-    taus, maps = np.empty((n_systems, _SLOTS)), np.empty((n_systems, _SLOTS, 7, 7))
-    count = np.zeros(n_systems, dtype=np.int64)
+    taus, maps = np.zeros((n_systems, SLOTS, _DEPTHS)), np.empty((n_systems, SLOTS, _DEPTHS, 7, 7))
     matrices, vectors = np.empty((3, 7, 7)), np.empty((3, 7))
-    z0, z_end, z, work, stack = np.empty(7), np.empty(7), np.empty(7), np.empty((4, 7)), np.empty((_STACK, 2))
+    z0, z_end, z, work, stack = np.empty(7), np.empty(7), np.empty(7), np.empty((5, 7)), np.empty((_STACK, 10))
     state = np.zeros(8)  # t, u, u', s, w, passed, mode, the last event's time
     counts = np.zeros(5, dtype=np.int64)
     v_max = 0.0
@@ -443,9 +471,11 @@ def _slides(t0, h, p0, p1, scaled, scale, norm, powers, row4, n_guards, n_pieces
             if end - state[_T] <= _ULPS * _EPS * max(1.0, abs(end)):
                 state[_T], restarted = end, True  # too short for a step: nothing can happen
                 continue
-            system = _system(i, scaled, scale, norm, taus, maps, count, matrices, vectors)
-            index = _step(state, counts, system, powers[i], row4[i], n_guards[i], start, end, a, p1[k], z0, z_end,
-                          z, work, stack)
+            slot = slots[k] if state[_T] == start else -1
+            system = (scaled[i], scale[i], norm[i], taus[i], maps[i], slot, end - start, matrices, vectors)
+            bound = (row4[i, 0], weights[i, 0], inner[i, 0])  # of the first guard (the second is monotone)
+            index = _step(state, counts, system, powers[i], bound, n_guards[i], end, a, p1[k], z0, z_end, z,
+                          work, stack)
             v_max = max(v_max, abs(state[_V]), abs(state[_W]))
             if state[_MODE] == SLIP and state[_W] < -1e-12 * v_max:
                 counts[_STATUS] = INCONSISTENT
@@ -460,6 +490,16 @@ def _slides(t0, h, p0, p1, scaled, scale, norm, powers, row4, n_guards, n_pieces
     out[9], out[10] = counts[_STATUS], counts[_MAX_RUN]
     out[11] = state[_LAST] if counts[_N_EVENTS] > 0 else np.nan
     return out
+
+
+def step_slots(t0, h):
+    """The slot of each piece's length (end - start [s], (n,)) among the :data:`SLOTS`
+    most frequent ones (their transitions are kept), -1 for the others."""
+    lengths = np.append(t0[1:], t0[-1] + h[-1]) - t0
+    distinct, inverse, counts = np.unique(lengths, return_inverse=True, return_counts=True)
+    slot_of = np.full(distinct.size, -1, dtype=np.int64)
+    slot_of[np.argsort(-counts, kind="stable")[:SLOTS]] = np.arange(min(SLOTS, distinct.size))
+    return slot_of[inverse]
 
 
 @functools.cache
