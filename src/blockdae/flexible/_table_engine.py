@@ -248,29 +248,33 @@ class _Systems:
 
 def system_arrays(model):
     """The systems of ``model`` (ky a table) as :func:`._table_kernel._slides` takes them:
-    (scaled (k, 7, 7) [1/s], scale (k, 7), norm (k,) [1/s], powers (k, 2, 4, 7), and of each
-    guard's fourth derivative (see :meth:`_System.fourth_bound`) row4 (k, 2), weights (k, 2,
-    7), inner norms (k, 2) [1/s]; n_guards (k,), pieces of ky, ky g at s = 0 [m/s²]), system
-    mode * pieces + passed."""
+    (systems (k, SYSTEM_ROWS, 7): per system (mode * pieces + passed) M~ [1/s], scale,
+    weights and rows c M^k of each guard, its numbers (see :mod:`._table_kernel`); pieces
+    of ky; ky g at s = 0 [m/s²])."""
     systems = _Systems(model)
     n_pieces = len(systems.intercepts)
     built = [systems(mode, passed) for mode in FlexibleMode for passed in range(n_pieces)]
-    powers, row4, weights, inner = (np.zeros((len(built), 2) + shape) for shape in ((4, 7), (), (7,), ()))
+    packed = np.zeros((len(built), _table_kernel.SYSTEM_ROWS, 7))
     for k, system in enumerate(built):
-        for g, row in enumerate(system.rows):
-            powers[k, g], row4[k, g], weights[k, g], inner[k, g] = row
-    return (np.array([s.scaled for s in built]), np.array([s.scale for s in built]),
-            np.array([s.norm for s in built]), powers, row4, weights, inner, np.array([len(s.guards) for s in built]),
-            n_pieces, float(model.yield_acceleration))
+        packed[k, _table_kernel._MATRIX:_table_kernel._MATRIX + 7] = system.scaled
+        packed[k, _table_kernel._SCALE] = system.scale
+        for g, (powers, _, weights, _) in enumerate(system.rows):
+            packed[k, _table_kernel._WEIGHTS + g] = weights
+            packed[k, _table_kernel._POWERS + 4 * g:_table_kernel._POWERS + 4 * g + 4] = powers
+        _, row4, _, inner = system.rows[0]
+        packed[k, _table_kernel._NUMBERS, :4] = system.norm, row4, inner, len(system.rows)
+    return packed, n_pieces, float(model.yield_acceleration)
 
 
-def slide_compiled(systems, arrays, log_rows=0, where=""):
+def slide_compiled(systems, arrays, log_rows=0, where="", slots=None):
     """One slide from rest by the compiled engine (:mod:`._table_kernel`) over a record's
     linear pieces ``arrays`` (t0, h, p0, p1) with ``systems`` from :func:`system_arrays`:
     (outcome (OUTCOME_FIELDS), event log (EVENT_FIELDS) of its first ``log_rows``
     events). Raises as the driver does: chatter, an unsettled search, a slide upslope."""
     log = np.empty((log_rows, len(_table_kernel.EVENT_FIELDS)))
-    outcome = _table_kernel.kernel()(*arrays, _table_kernel.step_slots(arrays[0], arrays[1]), *systems, log)
+    if slots is None:
+        slots = _table_kernel.step_slots(arrays[0], arrays[1])
+    outcome = _table_kernel.kernel()(*arrays, slots, *systems, log)
     field = dict(zip(_table_kernel.OUTCOME_FIELDS, outcome))
     status, last = int(field["status"]), field["t_last_event"]
     if status == CHATTER:

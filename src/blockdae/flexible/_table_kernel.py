@@ -2,26 +2,31 @@
 mathematics and the event rules of :mod:`._table_engine` run by the generic driver
 (:mod:`blockdae.core._driver`), in one numba call per slide, final numbers and events only.
 
-The physics comes from :class:`._table_engine._System` (built once in Python, handed in
-as arrays by :func:`._table_engine.system_arrays`): per (mode, piece of ky), the balanced
-matrix M~ of z' = M z, z = (u, u', s, w, a, a', 1), its scale, its norm, and the rows c M^k
-(k < 4) of each guard with the bound row of c M^4. This module steps and searches:
+The physics comes from :class:`._table_engine._System` (built once in Python, packed by
+:func:`._table_engine.system_arrays` into one array, :data:`SYSTEM_ROWS` rows of 7 per
+(mode, piece of ky)): the balanced matrix M~ of z' = M z, z = (u, u', s, w, a, a', 1),
+its scale and norm, each guard's rows c M^k (k < 4) and what bounds c M^4 z. This module
+steps and searches:
 
-* z(tau) = expm(M tau) z(0), expm by Taylor's series (degree 16) on M~ tau scaled to a
-  norm <= 1/2, squared back; a whole step's transition (its length recurs: the record's
-  dt up to a few ulps of the time) is kept per (mode, piece of ky) in a few slots, any
-  other length is applied to the vector (2^squarings Taylor passes) or, past
-  :data:`_VECTOR_SQUARINGS`, built as a matrix;
-* the first root of a guard on a step by the interval search of ``_Search`` (Taylor at an
+* z(tau) = expm(M tau) z(0), expm by Taylor's series (degree 16 at norm 1/2, fewer terms
+  below, dropping less than degree 16 does there) on M~ tau scaled to a norm <= 1/2,
+  squared back. A whole step's transition (the record's dt up to a few ulps of the
+  time: :data:`SLOTS` lengths) and its halvings (the search's intervals, to
+  :data:`_DEPTHS`) are kept per (mode, piece of ky); any other length is applied to the
+  vector (2^squarings Taylor passes) or, past :data:`_VECTOR_SQUARINGS`, built.
+* The first root of a guard on a step by the interval search of ``_Search`` (Taylor at an
   interval's start, its fourth derivative bounded by the matrix norm; an interval shown
-  positive, monotone, convex or concave is decided, else halved, the earlier half first),
-  crossings bisected to adjacent floats of the time; the breakpoint guard (next
-  breakpoint minus s) falls monotonically in SLIP and is bracketed by its values;
-* the driver's rules: a block at rest re-takes its mode at a piece's start (SLIP where
+  positive, monotone, convex or concave is decided, else halved, the earlier half
+  first), crossings bisected to adjacent floats of the time; the breakpoint guard (next
+  breakpoint minus s) falls monotonically in SLIP and is bracketed by its values. A
+  later half or a bisection's trial is advanced from the nearest state before it.
+* The driver's rules: a block at rest re-takes its mode at a piece's start (SLIP where
   d1 a > ky g), a guard at or below zero and falling as a mode starts is left at once, a
   root at the end of a piece is left to the next, a piece's rest shorter than 8 ulps is
   skipped, chatter (more than 5 events within 1e-12 s) and a slide moving upslope stop
   the run with a status.
+
+Arrays are indexed, not sliced, in the hot paths (a view costs a reference count).
 """
 
 import functools
@@ -45,14 +50,19 @@ MAX_INTERVALS = 20_000
 EVENT_RESOLUTION, MAX_EVENTS_AT_ONE_INSTANT = 1e-12, 5
 #: degree of the Taylor series of the matrix exponential (on |M~ tau| <= 1/2)
 TAYLOR_DEGREE = 16
-#: whole-step lengths whose transitions are kept per (mode, piece of ky), and halvings of each
-SLOTS, _DEPTHS = 16, 24
 #: the first dropped term of Taylor's series of degree 16 at norm 1/2 (its truncation)
 _TRUNCATION = 0.5**17 / math.factorial(17)
+#: whole-step lengths whose transitions are kept per system, and halvings of each
+SLOTS, _DEPTHS = 16, 24
 #: up to this many squarings a transition is applied to the vector (2^n Taylor passes)
 _VECTOR_SQUARINGS = 3
 #: pending intervals of one root search (its depth: a step halved to rounding is ~60)
 _STACK = 256
+#: rows of a system (each of 7): M~ (7), scale, each guard's weights of its fourth
+#: derivative's bound, each guard's c M^k (k < 4), then (norm [1/s], |c M^4 scale|_1 and
+#: the inner norm [1/s] of the first guard, number of guards)
+_MATRIX, _SCALE, _WEIGHTS, _POWERS, _NUMBERS = 0, 7, 8, 10, 18
+SYSTEM_ROWS = 19
 #: a slide's outcome: its state at the end, counts, status
 OUTCOME_FIELDS = ("t", "u", "u_rate", "s", "w", "mode", "passed", "n_events", "n_onsets", "status",
                   "max_events_at_one_instant", "t_last_event")
@@ -60,6 +70,9 @@ OUTCOME_FIELDS = ("t", "u", "u_rate", "s", "w", "mode", "passed", "n_events", "n
 EVENT_FIELDS = ("t", "mode_before", "mode_after", "u", "u_rate", "s", "w")
 _T, _U, _V, _S, _W, _PASSED, _MODE, _LAST = range(8)  # the run's state (floats), the last event's time
 _N_EVENTS, _N_ONSETS, _RUN, _MAX_RUN, _STATUS = range(5)  # its counters
+#: rows of the vectors' scratch (each z of 7): a step's start, end and result; a search
+#: interval's ends; a bisection's kept and trial states; the turn; a parent; Taylor's
+_Z0, _ZEND, _Z, _ZLO, _ZHI, _ZA, _ZM, _ZTURN, _ZPARENT, _ACC, _TERM, _NEXT = range(12)
 _NO_ROOT, _HALVE = -1.0, -2.0
 
 
@@ -83,118 +96,114 @@ def _degree(x):
 
 
 @register_jitable
-def _exponential(scaled, scale, norm, tau, out, term, total):
-    """``out`` = expm(M tau) (7, 7) for ``tau`` [s] from the balanced M~ (7, 7) [1/s] and
-    its ``scale`` (7,): Taylor on M~ tau / 2^n, squared n times, unscaled (as
-    ``_System.exponential``); ``term``, ``total``: (7, 7) scratch."""
-    squarings = _squarings(norm, tau)
+def _exponential(systems, i, tau, scratch):
+    """scratch[2] = expm(M tau) (7, 7) of system ``i`` for ``tau`` [s]: Taylor on M~ tau /
+    2^n, squared n times, unscaled (as ``_System.exponential``); scratch[0], [1]: work."""
+    squarings = _squarings(systems[i, _NUMBERS, 0], tau)
     x = tau / 2.0**squarings
-    for i in range(7):
-        for j in range(7):
-            term[i, j] = total[i, j] = 1.0 if i == j else 0.0
-    for k in range(1, _degree(norm * x) + 1):
+    for r in range(7):
+        for c in range(7):
+            scratch[0, r, c] = scratch[1, r, c] = 1.0 if r == c else 0.0
+    for k in range(1, _degree(systems[i, _NUMBERS, 0] * x) + 1):
         factor = x / k
-        for i in range(7):  # term @ (M~ x / k), into out as scratch
-            for j in range(7):
+        for r in range(7):  # term @ (M~ x / k)
+            for c in range(7):
                 acc = 0.0
                 for m in range(7):
-                    acc += term[i, m] * scaled[m, j]
-                out[i, j] = acc * factor
-        for i in range(7):
-            for j in range(7):
-                term[i, j] = out[i, j]
-                total[i, j] += out[i, j]
+                    acc += scratch[0, r, m] * systems[i, _MATRIX + m, c]
+                scratch[2, r, c] = acc * factor
+        for r in range(7):
+            for c in range(7):
+                scratch[0, r, c] = scratch[2, r, c]
+                scratch[1, r, c] += scratch[2, r, c]
     for _ in range(squarings):
-        for i in range(7):
-            for j in range(7):
+        for r in range(7):
+            for c in range(7):
                 acc = 0.0
                 for m in range(7):
-                    acc += total[i, m] * total[m, j]
-                out[i, j] = acc
-        for i in range(7):
-            for j in range(7):
-                total[i, j] = out[i, j]
-    for i in range(7):
-        for j in range(7):
-            out[i, j] = total[i, j] * scale[i] / scale[j]
+                    acc += scratch[1, r, m] * scratch[1, m, c]
+                scratch[2, r, c] = acc
+        for r in range(7):
+            for c in range(7):
+                scratch[1, r, c] = scratch[2, r, c]
+    for r in range(7):
+        for c in range(7):
+            scratch[2, r, c] = scratch[1, r, c] * systems[i, _SCALE, r] / systems[i, _SCALE, c]
 
 
 @register_jitable
-def _matvec(matrix, z, out):
-    """``out`` = ``matrix`` (7, 7) @ ``z`` (7,)."""
-    for i in range(7):
-        acc = 0.0
-        for j in range(7):
-            acc += matrix[i, j] * z[j]
-        out[i] = acc
+def _apply(systems, i, tau, vectors, a, b):
+    """vectors[b] = expm(M tau) vectors[a] in system ``i``: Taylor's series on M~ tau / 2^n
+    applied to z~ = z / scale 2^n times."""
+    squarings = _squarings(systems[i, _NUMBERS, 0], tau)
+    x = tau / 2.0**squarings
+    degree = _degree(systems[i, _NUMBERS, 0] * x)
+    for r in range(7):
+        vectors[_ACC, r] = vectors[a, r] / systems[i, _SCALE, r]
+    for _ in range(2**squarings):
+        for r in range(7):
+            vectors[_TERM, r] = vectors[_ACC, r]
+        for k in range(1, degree + 1):
+            factor = x / k
+            for r in range(7):
+                acc = 0.0
+                for c in range(7):
+                    acc += systems[i, _MATRIX + r, c] * vectors[_TERM, c]
+                vectors[_NEXT, r] = acc * factor
+            for r in range(7):
+                vectors[_TERM, r] = vectors[_NEXT, r]
+                vectors[_ACC, r] += vectors[_NEXT, r]
+    for r in range(7):
+        vectors[b, r] = vectors[_ACC, r] * systems[i, _SCALE, r]
 
 
 @register_jitable
-def _dot(row, z):
-    """``row`` (7,) . ``z`` (7,)."""
+def _advance(systems, kept, scratch, vectors, step, tau, a, b):
+    """vectors[b] = expm(M tau) vectors[a] for ``tau`` [s] (a != b) in the step's system;
+    ``step`` = (system, slot of the step's whole length or -1, that length [s]). A length
+    L / 2^d (d < _DEPTHS) of a whole step uses its kept transition (built on first use);
+    any other is applied to the vector, or built past :data:`_VECTOR_SQUARINGS`."""
+    i, slot, whole = step
+    if slot >= 0:
+        mantissa, exponent = math.frexp(whole / tau)
+        d = exponent - 1
+        if mantissa == 0.5 and 0 <= d < _DEPTHS and (kept[i, slot, d, 7, 0] == tau or (
+                kept[i, slot, d, 7, 0] == 0.0 and tau * 2.0**d == whole)):
+            if kept[i, slot, d, 7, 0] == 0.0:
+                _exponential(systems, i, tau, scratch)
+                kept[i, slot, d, :7, :] = scratch[2]
+                kept[i, slot, d, 7, 0] = tau
+            for r in range(7):
+                acc = 0.0
+                for c in range(7):
+                    acc += kept[i, slot, d, r, c] * vectors[a, c]
+                vectors[b, r] = acc
+            return
+    if _squarings(systems[i, _NUMBERS, 0], tau) > _VECTOR_SQUARINGS:
+        _exponential(systems, i, tau, scratch)
+        for r in range(7):
+            acc = 0.0
+            for c in range(7):
+                acc += scratch[2, r, c] * vectors[a, c]
+            vectors[b, r] = acc
+    else:
+        _apply(systems, i, tau, vectors, a, b)
+
+
+@register_jitable
+def _dot(systems, i, row, vectors, a):
+    """systems[i, row] . vectors[a]."""
     acc = 0.0
-    for j in range(7):
-        acc += row[j] * z[j]
+    for c in range(7):
+        acc += systems[i, row, c] * vectors[a, c]
     return acc
 
 
 @register_jitable
-def _copy(source, target):
-    """``target`` (7,) = ``source`` (7,)."""
-    for i in range(7):
-        target[i] = source[i]
-
-
-@register_jitable
-def _apply(scaled, scale, norm, tau, z, out, vectors):
-    """``out`` = expm(M tau) z from the balanced M~: Taylor's series on M~ tau / 2^n
-    applied to z~ = z / scale 2^n times; ``vectors``: (3, 7) scratch."""
-    squarings = _squarings(norm, tau)
-    x = tau / 2.0**squarings
-    degree = _degree(norm * x)
-    acc, term, nxt = vectors[0], vectors[1], vectors[2]
-    for i in range(7):
-        acc[i] = z[i] / scale[i]
-    for _ in range(2**squarings):
-        _copy(acc, term)
-        for k in range(1, degree + 1):
-            factor = x / k
-            for i in range(7):
-                total = 0.0
-                for j in range(7):
-                    total += scaled[i, j] * term[j]
-                nxt[i] = total * factor
-            for i in range(7):
-                term[i] = nxt[i]
-                acc[i] += nxt[i]
-    for i in range(7):
-        out[i] = acc[i] * scale[i]
-
-
-@register_jitable
-def _advance(system, tau, z, out):
-    """``out`` = expm(M tau) z (7,) for ``tau`` [s] in ``system`` (see :func:`_system`):
-    on a whole step of length L (its slot >= 0), tau = L / 2^d (d < _DEPTHS) by its kept
-    transition (built on first use); else applied to the vector, or past
-    :data:`_VECTOR_SQUARINGS` squarings built as a matrix."""
-    scaled, scale, norm, taus, maps, slot, whole, matrices, vectors = system
-    if slot >= 0:
-        mantissa, exponent = math.frexp(whole / tau)
-        depth = exponent - 1
-        if mantissa == 0.5 and 0 <= depth < _DEPTHS:
-            if taus[slot, depth] == tau:
-                _matvec(maps[slot, depth], z, out)
-                return
-            if taus[slot, depth] == 0.0 and tau * 2.0**depth == whole:
-                _exponential(scaled, scale, norm, tau, maps[slot, depth], matrices[0], matrices[1])
-                taus[slot, depth] = tau
-                _matvec(maps[slot, depth], z, out)
-                return
-    if _squarings(norm, tau) > _VECTOR_SQUARINGS:
-        _exponential(scaled, scale, norm, tau, matrices[2], matrices[0], matrices[1])
-        _matvec(matrices[2], z, out)
-    else:
-        _apply(scaled, scale, norm, tau, z, out, vectors)
+def _copy(vectors, a, b):
+    """vectors[b] = vectors[a]."""
+    for c in range(7):
+        vectors[b, c] = vectors[a, c]
 
 
 # ---- the root search on one step ------------------------------------------------------
@@ -217,109 +226,107 @@ def _upper(c, length):
 
 
 @register_jitable
-def _bisect(system, row, t0, lo, hi, z_lo, work):
-    """The first tau in (lo, hi] [s] where ``row`` . z is <= 0, to adjacent floats of
-    ``t0`` + tau, for > 0 at lo (state ``z_lo``), <= 0 at hi, one crossing between; each
-    trial advanced from the last lo kept. ``work``: (5, 7), rows 3 and 4 used."""
-    z_a, z_m = work[3], work[4]
-    _copy(z_lo, z_a)
+def _bisect(systems, kept, scratch, vectors, step, row, t0, lo, hi, a):
+    """The first tau in (lo, hi] [s] where systems[i, ``row``] . z is <= 0, to adjacent
+    floats of ``t0`` + tau, for > 0 at lo (state vectors[a]), <= 0 at hi, one crossing
+    between; each trial advanced from the last lo kept."""
+    _copy(vectors, a, _ZA)
     while True:
         mid = lo + 0.5 * (hi - lo)
         if not (t0 + lo < t0 + mid < t0 + hi):
             return hi
-        _advance(system, mid - lo, z_a, z_m)
-        if _dot(row, z_m) > 0:
+        _advance(systems, kept, scratch, vectors, step, mid - lo, _ZA, _ZM)
+        if _dot(systems, step[0], row, vectors, _ZM) > 0:
             lo = mid
-            _copy(z_m, z_a)
+            _copy(vectors, _ZM, _ZA)
         else:
             hi = mid
 
 
 @register_jitable
-def _bisect_rate(system, row, t0, lo, hi, z_lo, z_hi, work):
-    """Where g' = ``row`` . z (rising on [lo, hi] [s], states ``z_lo``, ``z_hi``) crosses
-    zero; lo or hi if it does not."""
-    if _dot(row, z_lo) >= 0:
+def _bisect_rate(systems, kept, scratch, vectors, step, row, t0, lo, hi):
+    """Where g' = systems[i, ``row``] . z (rising on [lo, hi] [s], states at _ZLO, _ZHI)
+    crosses zero; lo or hi if it does not."""
+    i = step[0]
+    if _dot(systems, i, row, vectors, _ZLO) >= 0:
         return lo
-    if _dot(row, z_hi) <= 0:
+    if _dot(systems, i, row, vectors, _ZHI) <= 0:
         return hi
-    z_a, z_m = work[3], work[4]
-    _copy(z_lo, z_a)
+    _copy(vectors, _ZLO, _ZA)
     while True:
         mid = lo + 0.5 * (hi - lo)
         if not (t0 + lo < t0 + mid < t0 + hi):
             return hi
-        _advance(system, mid - lo, z_a, z_m)
-        if _dot(row, z_m) < 0:
+        _advance(systems, kept, scratch, vectors, step, mid - lo, _ZA, _ZM)
+        if _dot(systems, i, row, vectors, _ZM) < 0:
             lo = mid
-            _copy(z_m, z_a)
+            _copy(vectors, _ZM, _ZA)
         else:
             hi = mid
 
 
 @register_jitable
-def _fourth_bound(bound, z, length):
-    """A bound of the guard's fourth derivative on [0, ``length``] [s] from z at its
-    start (``_System.fourth_bound``): ``bound`` = (|c M^4 scale|_1, weights (7,): 1 / scale
-    on the subsystem J that c M^4 z reads, 0 elsewhere, |M~_JJ| [1/s]); |c M^4 scale|_1
-    exp(|M~_JJ| length) |z~_J|_inf, inf past a growth of e^50."""
-    row4, weights, inner = bound
-    growth = inner * length
+def _fourth_bound(systems, i, vectors, length):
+    """A bound of the first guard's fourth derivative on [0, ``length``] [s] from z =
+    vectors[_ZLO] at its start (``_System.fourth_bound``): |c M^4 scale|_1 exp(|M~_JJ|
+    length) |z~_J|_inf, J the subsystem c M^4 z reads; inf past a growth of e^50."""
+    growth = systems[i, _NUMBERS, 2] * length
     if growth > 50.0:
         return math.inf
     largest = 0.0
-    for i in range(7):
-        largest = max(largest, abs(z[i] * weights[i]))
-    return row4 * math.exp(growth) * largest * (1.0 + 1e-9)
+    for c in range(7):
+        largest = max(largest, abs(vectors[_ZLO, c] * systems[i, _WEIGHTS, c]))
+    return systems[i, _NUMBERS, 1] * math.exp(growth) * largest * (1.0 + 1e-9)
 
 
 @register_jitable
-def _decide(system, powers, bound, t0, lo, hi, z_lo, z_hi, work):
-    """One interval (lo, hi] [s] of the search, z_lo and z_hi (7,) at its ends: the first
-    crossing in it (> 0), none (:data:`_NO_ROOT`) or :data:`_HALVE`."""
-    length = hi - lo
-    d0, d1, d2, d3 = _dot(powers[0], z_lo), _dot(powers[1], z_lo), _dot(powers[2], z_lo), _dot(powers[3], z_lo)
-    g_lo, g_hi = d0, _dot(powers[0], z_hi)
+def _decide(systems, kept, scratch, vectors, step, t0, lo, hi):
+    """One interval (lo, hi] [s] of the first guard's search, its states at _ZLO and _ZHI:
+    the first crossing in it (> 0), none (:data:`_NO_ROOT`) or :data:`_HALVE`."""
+    i, length = step[0], hi - lo
+    d0, d1 = _dot(systems, i, _POWERS, vectors, _ZLO), _dot(systems, i, _POWERS + 1, vectors, _ZLO)
+    d2, d3 = _dot(systems, i, _POWERS + 2, vectors, _ZLO), _dot(systems, i, _POWERS + 3, vectors, _ZLO)
+    g_lo, g_hi = d0, _dot(systems, i, _POWERS, vectors, _ZHI)
     if t0 + lo + length <= t0 + lo or length <= 4 * _EPS * max(abs(t0) + abs(hi), 1.0):
         return hi if g_lo > 0 >= g_hi else _NO_ROOT
     if g_lo == 0 and g_hi == 0 and d1 == 0 and d2 == 0 and d3 == 0:
         return _NO_ROOT  # a guard that stays at zero (HEA = ky g = 0 at rest): no fall through it
-    b4 = _fourth_bound(bound, z_lo, length)
+    b4 = _fourth_bound(systems, i, vectors, length)
     if _lower((d0, d1, d2 / 2, d3 / 6, -b4 / 24), length) > 0:
         return _NO_ROOT  # positive all along
     if _lower((d1, d2, d3 / 2, -b4 / 6), length) >= 0:
         return _NO_ROOT  # rising all along
     if _upper((d1, d2, d3 / 2, b4 / 6), length) <= 0:  # falling all along
-        return _bisect(system, powers[0], t0, lo, hi, z_lo, work) if g_lo > 0 >= g_hi else _NO_ROOT
+        return _bisect(systems, kept, scratch, vectors, step, _POWERS, t0, lo, hi, _ZLO) if g_lo > 0 >= g_hi \
+            else _NO_ROOT
     if _lower((d2, d3, -b4 / 2), length) > 0 and g_lo > 0:  # convex: falls, then rises
-        turn = _bisect_rate(system, powers[1], t0, lo, hi, z_lo, z_hi, work)
-        z_turn = work[0]
+        turn = _bisect_rate(systems, kept, scratch, vectors, step, _POWERS + 1, t0, lo, hi)
         if turn == lo:
-            _copy(z_lo, z_turn)
+            _copy(vectors, _ZLO, _ZTURN)
         else:
-            _advance(system, turn - lo, z_lo, z_turn)
-        if _dot(powers[0], z_turn) <= 0:
-            return _bisect(system, powers[0], t0, lo, turn, z_lo, work)
+            _advance(systems, kept, scratch, vectors, step, turn - lo, _ZLO, _ZTURN)
+        if _dot(systems, i, _POWERS, vectors, _ZTURN) <= 0:
+            return _bisect(systems, kept, scratch, vectors, step, _POWERS, t0, lo, turn, _ZLO)
         return _NO_ROOT
     if _upper((d2, d3, b4 / 2), length) < 0 and g_lo > 0:  # concave: one crossing at most
-        return _bisect(system, powers[0], t0, lo, hi, z_lo, work) if g_hi <= 0 else _NO_ROOT
+        return _bisect(systems, kept, scratch, vectors, step, _POWERS, t0, lo, hi, _ZLO) if g_hi <= 0 \
+            else _NO_ROOT
     return _HALVE
 
 
 @register_jitable
-def _first_root(system, powers, bound, z0, z_end, t0, h, work, stack):
-    """The first tau in (0, ``h``] [s] where the guard c z (``powers``: c M^k, (4, 7);
-    ``bound``: of its fourth derivative, see :func:`_fourth_bound`) falls to <= 0 from > 0 on a step from z0 (7,) at ``t0`` [s], ``z_end`` = z(h):
-    (tau or :data:`_NO_ROOT`, settled). A later half waits on ``stack`` (n, 10) with its
-    parent's start and state, from which it is advanced. ``work``: (5, 7) scratch."""
+def _first_root(systems, kept, scratch, vectors, step, t0, h, stack):
+    """The first tau in (0, ``h``] [s] where the first guard (c M^k and the bound of c M^4
+    z in the system) falls to <= 0 from > 0 on a step from vectors[_Z0] at ``t0`` [s],
+    vectors[_ZEND] = z(h): (tau or :data:`_NO_ROOT`, settled). A later half waits on
+    ``stack`` (n, 10) with its parent's start and state, from which it is advanced."""
     lo, hi, top = 0.0, h, 0
-    z_lo, z_hi = work[1], work[2]
-    _copy(z0, z_lo)
-    _copy(z_end, z_hi)
+    _copy(vectors, _Z0, _ZLO)
+    _copy(vectors, _ZEND, _ZHI)
     for budget in range(MAX_INTERVALS):
         if budget > 0:
-            _advance(system, hi - lo, z_lo, z_hi)
-        found = _decide(system, powers, bound, t0, lo, hi, z_lo, z_hi, work)
+            _advance(systems, kept, scratch, vectors, step, hi - lo, _ZLO, _ZHI)
+        found = _decide(systems, kept, scratch, vectors, step, t0, lo, hi)
         if found > 0:
             return found, True
         if found == _HALVE:  # the earlier half first, the later one kept
@@ -327,7 +334,8 @@ def _first_root(system, powers, bound, z0, z_end, t0, h, work, stack):
                 return _NO_ROOT, False
             mid = lo + 0.5 * (hi - lo)
             stack[top, 0], stack[top, 1], stack[top, 2] = mid, hi, lo
-            stack[top, 3:] = z_lo
+            for c in range(7):
+                stack[top, 3 + c] = vectors[_ZLO, c]
             top += 1
             hi = mid
             continue
@@ -335,25 +343,29 @@ def _first_root(system, powers, bound, z0, z_end, t0, h, work, stack):
             return _NO_ROOT, True
         top -= 1
         lo, hi = stack[top, 0], stack[top, 1]
-        _advance(system, lo - stack[top, 2], stack[top, 3:], z_lo)
+        for c in range(7):
+            vectors[_ZPARENT, c] = stack[top, 3 + c]
+        _advance(systems, kept, scratch, vectors, step, lo - stack[top, 2], _ZPARENT, _ZLO)
     return _NO_ROOT, False
 
 
 # ---- the driver's rules -----------------------------------------------------------
 @register_jitable
-def _state_vector(state, a, rate, z):
-    """z = (u, u', s, w, a, a', 1) from the run's ``state`` and a(t), a'(t)."""
-    z[0], z[1], z[2], z[3] = state[_U], state[_V], state[_S], state[_W]
-    z[4], z[5], z[6] = a, rate, 1.0
+def _state_vector(state, a, rate, vectors):
+    """vectors[_Z0] = (u, u', s, w, a, a', 1) from the run's ``state`` and a(t), a'(t)."""
+    vectors[_Z0, 0], vectors[_Z0, 1], vectors[_Z0, 2], vectors[_Z0, 3] = state[_U], state[_V], state[_S], state[_W]
+    vectors[_Z0, 4], vectors[_Z0, 5], vectors[_Z0, 6] = a, rate, 1.0
 
 
 @register_jitable
-def _left_at_once(powers, n_guards, z):
-    """The first guard at or below zero and falling as a mode starts (the driver's
-    ``guard_left_at_once``), or -1."""
-    for g in range(n_guards):
-        if _dot(powers[g, 0], z) <= 0:
-            if _falls(_dot(powers[g, 1], z), _dot(powers[g, 2], z), EVENT_RESOLUTION):
+def _left_at_once(systems, i, vectors):
+    """The first guard of system ``i`` at or below zero and falling at vectors[_Z0] as a
+    mode starts (the driver's ``guard_left_at_once``), or -1."""
+    for g in range(int(systems[i, _NUMBERS, 3])):
+        row = _POWERS + 4 * g
+        if _dot(systems, i, row, vectors, _Z0) <= 0:
+            if _falls(_dot(systems, i, row + 1, vectors, _Z0), _dot(systems, i, row + 2, vectors, _Z0),
+                      EVENT_RESOLUTION):
                 return g
     return -1
 
@@ -399,50 +411,49 @@ def _at_rest(state):
 
 
 @register_jitable
-def _step(state, counts, system, powers, bound, n_guards, end, a, rate, z0, z_end, z, work, stack):
-    """One step of the current mode from the state at ``state[_T]`` to ``end`` [s] or its
-    first guard root (the driver's step with :class:`TableIntegrator`): the state
-    advanced, its root's index returned (-1: none)."""
-    t = state[_T]
+def _step(state, counts, systems, kept, scratch, vectors, step, end, stack):
+    """One step of the current mode (``step`` = (system, slot, whole length [s])) from
+    vectors[_Z0] at ``state[_T]`` to ``end`` [s] or its first guard root (the driver's
+    step with :class:`TableIntegrator`): the state advanced, its root's index returned
+    (-1: none)."""
+    i, t = step[0], state[_T]
     h = end - t
-    _state_vector(state, a, rate, z0)
-    _advance(system, h, z0, z_end)
+    _advance(systems, kept, scratch, vectors, step, h, _Z0, _ZEND)
     best, index = _NO_ROOT, -1
-    root, settled = _first_root(system, powers[0], bound, z0, z_end, t, h, work, stack)
+    root, settled = _first_root(systems, kept, scratch, vectors, step, t, h, stack)
     if not settled:
         counts[_STATUS] = UNSETTLED
         return -1
     if root > 0:
         best, index = root, 0
-    if n_guards == 2 and _dot(powers[1, 0], z0) > 0 >= _dot(powers[1, 0], z_end):
-        root = _bisect(system, powers[1, 0], t, 0.0, h, z0, work)
+    breakpoint = _POWERS + 4
+    if systems[i, _NUMBERS, 3] == 2 and _dot(systems, i, breakpoint, vectors, _Z0) > 0 >= \
+            _dot(systems, i, breakpoint, vectors, _ZEND):
+        root = _bisect(systems, kept, scratch, vectors, step, breakpoint, t, 0.0, h, _Z0)
         if best < 0 or root < best:
             best, index = root, 1
     if best < 0:
-        _copy(z_end, z)
+        _copy(vectors, _ZEND, _Z)
         state[_T] = end
     else:
-        _advance(system, best, z0, z)
+        _advance(systems, kept, scratch, vectors, step, best, _Z0, _Z)
         state[_T] = t + best
         if state[_T] >= end:  # a root at the end of the piece is left to the next piece
             state[_T], index = end, -1
-    state[_U], state[_V], state[_S], state[_W] = z[0], z[1], z[2], z[3]
+    state[_U], state[_V], state[_S], state[_W] = vectors[_Z, 0], vectors[_Z, 1], vectors[_Z, 2], vectors[_Z, 3]
     return index
 
 
-def _slides(t0, h, p0, p1, slots, scaled, scale, norm, powers, row4, weights, inner, n_guards, n_pieces, kyg, log):
+def _slides(t0, h, p0, p1, slots, systems, n_pieces, kyg, log):
     """One slide from rest over a record's linear pieces (``t0``, ``h`` [s], a = ``p0`` +
     ``p1`` tau [m/s², m/s³], (n,) each; ``slots`` (n,): the slot of each piece's length,
-    or -1, from :func:`step_slots`) by the systems (mode * ``n_pieces`` + pieces of ky
-    passed; ``scaled`` (k, 7, 7) [1/s], ``scale`` (k, 7), ``norm`` (k,) [1/s], ``powers``
-    (k, 2, 4, 7), ``row4`` (k, 2), ``weights`` (k, 2, 7), ``inner`` (k, 2) [1/s] (see
-    :func:`_fourth_bound`), ``n_guards`` (k,)); ``kyg``: ky g at s = 0 [m/s²].
-    Events go into ``log`` (m, 7) (EVENT_FIELDS) while it has room. Returns the outcome
-    (OUTCOME_FIELDS)."""
-    n_systems = scaled.shape[0]
-    taus, maps = np.zeros((n_systems, SLOTS, _DEPTHS)), np.empty((n_systems, SLOTS, _DEPTHS, 7, 7))
-    matrices, vectors = np.empty((3, 7, 7)), np.empty((3, 7))
-    z0, z_end, z, work, stack = np.empty(7), np.empty(7), np.empty(7), np.empty((5, 7)), np.empty((_STACK, 10))
+    or -1, from :func:`step_slots`) by ``systems`` (k, SYSTEM_ROWS, 7) of
+    :func:`._table_engine.system_arrays` (system mode * ``n_pieces`` + pieces of ky
+    passed); ``kyg``: ky g at s = 0 [m/s²]. Events go into ``log`` (m, 7) (EVENT_FIELDS)
+    while it has room. Returns the outcome (OUTCOME_FIELDS)."""
+    kept = np.empty((systems.shape[0], SLOTS, _DEPTHS, 8, 7))  # transitions; row 7: their tau [s] (0: none)
+    kept[:, :, :, 7, 0] = 0.0
+    scratch, vectors, stack = np.empty((3, 7, 7)), np.empty((12, 7)), np.empty((_STACK, 10))
     state = np.zeros(8)  # t, u, u', s, w, passed, mode, the last event's time
     counts = np.zeros(5, dtype=np.int64)
     v_max = 0.0
@@ -457,10 +468,9 @@ def _slides(t0, h, p0, p1, slots, scaled, scale, norm, powers, row4, weights, in
         restarted = True
         while state[_T] < end and counts[_STATUS] == FINISHED:
             i = int(state[_MODE]) * n_pieces + int(state[_PASSED])
-            a = p0[k] + p1[k] * min(state[_T] - start, h[k])
+            _state_vector(state, p0[k] + p1[k] * min(state[_T] - start, h[k]), p1[k], vectors)
             if restarted:
-                _state_vector(state, a, p1[k], z0)
-                index = _left_at_once(powers[i], n_guards[i], z0)
+                index = _left_at_once(systems, i, vectors)
                 if index >= 0:
                     before = state[_MODE]
                     _on_guard(state, counts, index, state[_T], log)
@@ -471,11 +481,8 @@ def _slides(t0, h, p0, p1, slots, scaled, scale, norm, powers, row4, weights, in
             if end - state[_T] <= _ULPS * _EPS * max(1.0, abs(end)):
                 state[_T], restarted = end, True  # too short for a step: nothing can happen
                 continue
-            slot = slots[k] if state[_T] == start else -1
-            system = (scaled[i], scale[i], norm[i], taus[i], maps[i], slot, end - start, matrices, vectors)
-            bound = (row4[i, 0], weights[i, 0], inner[i, 0])  # of the first guard (the second is monotone)
-            index = _step(state, counts, system, powers[i], bound, n_guards[i], end, a, p1[k], z0, z_end, z,
-                          work, stack)
+            step = (i, slots[k] if state[_T] == start else -1, end - start)
+            index = _step(state, counts, systems, kept, scratch, vectors, step, end, stack)
             v_max = max(v_max, abs(state[_V]), abs(state[_W]))
             if state[_MODE] == SLIP and state[_W] < -1e-12 * v_max:
                 counts[_STATUS] = INCONSISTENT
