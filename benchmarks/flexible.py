@@ -9,6 +9,10 @@
 2. The table shape: 18 records x (2 methods x 4 ky x 7 heights linear-elastic + 2 methods
    x 7 heights equivalent-linear at ky = 0.1) x both polarities = 2,520 analyses, in four
    ``bd.flexible`` calls; first call (compilation, or numba's disk cache) and warm.
+3. The slides on matrix exponentials, same record and column: ky a table of the sliding
+   displacement (pySLAMMER's ``ky=(disp, ky)``, the same table on both sides), coupled and
+   decoupled, and a coupled total damping of 0.5 (0.3 + 0.2 impedance: an overdamped
+   slip), ky = 0.1 g; warm time of one analysis, normal polarity.
 
     python benchmarks/flexible.py [--quick]
 """
@@ -27,19 +31,23 @@ BARS = {
     "decoupled speed-up [x]": (300.0, True),
     "equivalent-linear speed-up [x]": (100.0, True),
     "2,520 analyses, warm [s]": (3.0, False),
+    "ky table speed-up [x]": (10.0, True),
+    "total damping 0.5 speed-up [x]": (10.0, True),
 }
+#: the ky table of part 3: ky [g] against the sliding displacement [m] (softening: 0.1 g to 0.05 g over 2 cm)
+KY_TABLE = ([0.0, 0.005, 0.01, 0.02], [0.1, 0.1, 0.08, 0.05])
 KY = (0.05, 0.1, 0.15, 0.2)
 HEIGHTS = (5.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0)
 VS = 300.0
 REFERENCE_STRAIN = 5e-4  # a fraction (0.05 %)
 
 
-def _peer(kind, record, equivalent_linear=False):
+def _peer(kind, record, equivalent_linear=False, damping=0.05):
     """pySLAMMER's analysis of ``record`` (normal polarity): its displacement [m]."""
     motion = pyslammer.GroundMotion(record.acceleration_samples / G, record.dt, record.name)
     cls = pyslammer.Coupled if kind == "coupled" else pyslammer.Decoupled
     options = dict(soil_model="equivalent_linear", ref_strain=REFERENCE_STRAIN) if equivalent_linear else {}
-    return cls(0.1, motion, 10.0, VS, VS, 0.05, **options).max_sliding_disp  # both run on construction
+    return cls(0.1, motion, 10.0, VS, VS, damping, **options).max_sliding_disp  # both run on construction
 
 
 def single(record, repeat):
@@ -59,6 +67,40 @@ def single(record, repeat):
         rows.append((case, f"{exact * 100:.4f}", f"{peer * 100:.4f}", f"{(peer / exact - 1) * 100:+.2f}",
                      f"{warm * 1e3:.3f}", f"{peer_warm * 1e3:.1f}", f"{peer_warm / warm:.0f}",
                      f"{warm_both * 1e3:.3f}"))
+    return rows, speedups
+
+
+def _peer_table(kind, record, damping=0.05):
+    """pySLAMMER's analysis of ``record`` (normal polarity) with ky as :data:`KY_TABLE`:
+    its displacement [m]. pySLAMMER 0.2.2 refuses a tuple in its ``ky <= 0`` check, so a
+    subclass (which does not run on construction) takes a number, then the table."""
+    from pyslammer.decoupled_analysis import assign_k_y
+
+    class WithTable(pyslammer.Coupled if kind == "coupled" else pyslammer.Decoupled):
+        pass
+
+    motion = pyslammer.GroundMotion(record.acceleration_samples / G, record.dt, record.name)
+    analysis = WithTable(0.1, motion, 10.0, VS, VS, damping)
+    analysis.k_y = assign_k_y(KY_TABLE)
+    analysis.run_sliding_analysis()
+    return analysis.max_sliding_disp
+
+
+def matrix_exponentials(record, repeat):
+    """Rows of part 3 and the speed-ups by case."""
+    rows, speedups = [], {}
+    cases = (("ky table, coupled", "coupled", KY_TABLE, 0.05, lambda: _peer_table("coupled", record)),
+             ("ky table, decoupled", "decoupled", KY_TABLE, 0.05, lambda: _peer_table("decoupled", record)),
+             ("total damping 0.5, coupled", "coupled", 0.1, 0.3, lambda: _peer("coupled", record, damping=0.3)))
+    for case, kind, ky, damping, peer_run in cases:
+        ours = lambda: bd.flexible(record, ky=ky, height=10.0, vs=VS, damping=damping, method=kind,
+                                   polarity="normal")
+        result, _, warm = timed(ours, repeat)
+        peer, _, peer_warm = timed(peer_run, max(1, repeat // 10))
+        exact = result["normal_m"][0]
+        speedups[case] = peer_warm / warm
+        rows.append((case, f"{exact * 100:.4f}", f"{peer * 100:.4f}", f"{(peer / exact - 1) * 100:+.2f}",
+                     f"{warm * 1e3:.3f}", f"{peer_warm * 1e3:.1f}", f"{peer_warm / warm:.0f}"))
     return rows, speedups
 
 
@@ -103,9 +145,17 @@ def main(argv=None):
     print(f"\nSLAMMER's table shape: {count} analyses over {len(records)} records (linear-elastic 2 methods x "
           f"{len(KY)} ky x heights, equivalent-linear 2 methods x heights, both polarities): first call "
           f"{first:.2f} s, warm {warm:.2f} s ({warm / count * 1e3:.3f} ms an analysis)\n")
+    rows, exponential = matrix_exponentials(record, repeat)
+    print("Slides on matrix exponentials (a ky table; an overdamped coupled slip), same record and column, ky table "
+          f"{KY_TABLE} (m, g) on both sides, normal polarity, warm median of {repeat}\n")
+    print_table(("case", "exact [cm]", "pySLAMMER [cm]", "pySLAMMER - exact [%]", "exact [ms]", "pySLAMMER [ms]",
+                 "speed-up [x]"), rows)
+    print()
     measured = {"coupled speed-up [x]": speedups["coupled"], "decoupled speed-up [x]": speedups["decoupled"],
                 "equivalent-linear speed-up [x]": speedups["coupled, equivalent-linear"],
-                "2,520 analyses, warm [s]": warm}
+                "2,520 analyses, warm [s]": warm,
+                "ky table speed-up [x]": min(exponential["ky table, coupled"], exponential["ky table, decoupled"]),
+                "total damping 0.5 speed-up [x]": exponential["total damping 0.5, coupled"]}
     for name, (bound, at_least) in BARS.items():
         ok = measured[name] >= bound if at_least else measured[name] <= bound
         print(f"bar {name} {'>=' if at_least else '<='} {bound:g}: {measured[name]:.3g}: "

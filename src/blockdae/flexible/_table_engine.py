@@ -24,6 +24,7 @@ import math
 
 import numpy as np
 
+from ..core._compile_notice import notice_numba
 from ..core._driver import AbstractIntegrator, InconsistentStateError, SolverError, drive
 from ..engines._linear import CHATTER, UNSETTLED
 from ..engines._linear_solution import linear_pieces
@@ -270,11 +271,14 @@ def slide_compiled(systems, arrays, log_rows=0, where="", slots=None):
     """One slide from rest by the compiled engine (:mod:`._table_kernel`) over a record's
     linear pieces ``arrays`` (t0, h, p0, p1) with ``systems`` from :func:`system_arrays`:
     (outcome (OUTCOME_FIELDS), event log (EVENT_FIELDS) of its first ``log_rows``
-    events). Raises as the driver does: chatter, an unsettled search, a slide upslope."""
+    events); ``slots``: :func:`._table_kernel.step_slots` of ``arrays`` where known.
+    Raises as the driver does: chatter, an unsettled search, a slide upslope."""
     log = np.empty((log_rows, len(_table_kernel.EVENT_FIELDS)))
     if slots is None:
         slots = _table_kernel.step_slots(arrays[0], arrays[1])
-    outcome = _table_kernel.kernel()(*arrays, slots, *systems, log)
+    kernel = _table_kernel.kernel()
+    notice_numba("the ky-table kernel", 15, kernel)
+    outcome = kernel(*arrays, slots, *systems, log)
     field = dict(zip(_table_kernel.OUTCOME_FIELDS, outcome))
     status, last = int(field["status"]), field["t_last_event"]
     if status == CHATTER:

@@ -53,7 +53,7 @@ TAYLOR_DEGREE = 16
 #: the first dropped term of Taylor's series of degree 16 at norm 1/2 (its truncation)
 _TRUNCATION = 0.5**17 / math.factorial(17)
 #: whole-step lengths whose transitions are kept per system, and halvings of each
-SLOTS, _DEPTHS = 16, 24
+SLOTS, _DEPTHS = 16, 12
 #: up to this many squarings a transition is applied to the vector (2^n Taylor passes)
 _VECTOR_SQUARINGS = 3
 #: pending intervals of one root search (its depth: a step halved to rounding is ~60)
