@@ -486,7 +486,8 @@ def test_benchmark_quick_run(monkeypatch, capsys):
     assert module.main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "pySLAMMER [ms]" in out and "SLAMMER's table shape: 80 analyses" in out
-    assert out.count("bar ") == 4 and out.count("smoke run, not a measurement") == 4
+    assert "Slides on matrix exponentials" in out and "total damping 0.5, coupled" in out
+    assert out.count("bar ") == 6 and out.count("smoke run, not a measurement") == 6
 
 
 def test_no_motion_at_ky_zero_does_not_slide():
