@@ -12,7 +12,7 @@ import pytest
 
 import blockdae as bd
 from blockdae.flexible import FlexibleSlidingMass, ShearColumn
-from blockdae.flexible._damped_slip import COMPILED_SLIP_LIMIT, slip_underdamped
+from blockdae.flexible._damped_slip import COMPILED_RESPONSE_LIMIT, COMPILED_SLIP_LIMIT, slip_underdamped
 from conftest import assert_same_events, load_sample_record
 from test_flexible import _compare_with_reference, _record, reference
 
@@ -97,3 +97,53 @@ def test_study_runs_a_heavily_damped_column():
     for name in ("normal_m", "inverse_m"):
         assert table[name][0] == pytest.approx(row[name], rel=1e-12) and row[name] > 0
     assert table["episodes_normal"][0] == row["episodes_normal"]
+
+
+NEAR_CRITICAL = 1 - 1e-9  # a total damping in [1 - 5e-9, 1): no underdamped closed form for STICK either
+assert NEAR_CRITICAL > COMPILED_RESPONSE_LIMIT > 1 - 2e-6
+
+
+@pytest.mark.parametrize("method", ["coupled", "decoupled"])
+def test_a_total_damping_next_to_1_matches_dop853(method):
+    """Total damping 1 - 1e-9 (the column critically damped to 1e-9): bd.simulate's exact
+    backend (the matrix-exponential engine in both modes) vs DOP853: the same onsets and
+    stops within 1e-10 s, s(t_end) within 1e-9 relative."""
+    model = FlexibleSlidingMass(ShearColumn(10.0, 250.0, damping=NEAR_CRITICAL, impedance=False), ky=0.05,
+                                method=method)
+    _compare_with_reference(_record("Northridge_1994_PAC-175", duration=6.0), model, 6.0, min_events=6)
+
+
+def test_flexible_rows_of_a_total_damping_next_to_1_match_dop853():
+    """bd.flexible at a total of 1 - 1e-9 (0.8 - 1e-9 + impedance 0.2): the no-sliding
+    response on matrix exponentials (kmax at the samples and its supremum over time within
+    1e-10 relative of DOP853's, extrema by brentq) and both polarities' slides (1e-9
+    relative, the same episodes) on the record with SLAMMER's zero sample."""
+    record = _record("Northridge_1994_PAC-175", duration=8.0)
+    row = bd.flexible(record, ky=0.05, height=10.0, vs=250.0, damping=NEAR_CRITICAL - 0.2).rows[0]
+    assert row["damping_final"] == pytest.approx(NEAR_CRITICAL, abs=1e-15)
+    samples = np.concatenate([[0.0], record.acceleration_samples])
+    args = (math.pi * 250.0 / 20.0, row["damping_final"], 0.05 * bd.STANDARD_GRAVITY, True, 8.0 + record.dt)
+    for polarity, sign in (("normal", 1.0), ("inverse", -1.0)):
+        events, y, *_ = reference(sign * samples, record.dt, *args)
+        assert row[f"{polarity}_m"] == pytest.approx(y[2], rel=1e-9)
+        assert row[f"episodes_{polarity}"] == sum(b == 0 for _, b, _ in events) >= 2
+    _, _, hea_samples, hea_sup, _ = reference(samples, record.dt, *args, slide=False)
+    assert row["kmax_g"] == pytest.approx(hea_samples.max() / bd.STANDARD_GRAVITY, rel=1e-10)
+    assert row["kmax_sup_g"] == pytest.approx(hea_sup / bd.STANDARD_GRAVITY, rel=1e-10)
+
+
+def test_equivalent_linear_and_study_from_a_total_damping_next_to_1():
+    """The equivalent-linear iteration's first pass at a total of 1 - 1e-9 (sup |u| on
+    matrix exponentials): the same final column and rows as a start on the compiled
+    response (total 1 - 2e-6; measured 1.0e-8 relative apart) to 1e-7 relative; bd.study
+    of that column gives bd.flexible's rows (independent calls)."""
+    record = _record("Northridge_1994_PAC-175", duration=8.0)
+    rows = bd.flexible(record, ky=0.05, height=10.0, vs=250.0, damping=[NEAR_CRITICAL - 0.2, 1 - 2e-6 - 0.2],
+                       equivalent_linear=True, reference_strain=5e-4, method="decoupled").rows
+    for name in ("vs_final_m_s", "damping_final", "normal_m", "inverse_m", "kmax_sup_g"):
+        assert rows[0][name] == pytest.approx(rows[1][name], rel=1e-7)
+    mass = FlexibleSlidingMass(ShearColumn(10.0, 250.0, damping=NEAR_CRITICAL - 0.2), ky=0.1)
+    table = bd.study([record], ky=[0.05], pga=[0.3], block=mass)
+    row = bd.flexible(record, ky=0.05, height=10.0, vs=250.0, damping=NEAR_CRITICAL - 0.2, target_pga=0.3).rows[0]
+    for name in ("normal_m", "inverse_m", "kmax_g", "kmax_sup_g"):
+        assert table[name][0] == pytest.approx(row[name], rel=1e-12) and row[name] > 0

@@ -14,8 +14,9 @@ from blockdae.backends import Horizon
 from blockdae.flexible import FlexibleSlidingMass, KyTable, ShearColumn
 from blockdae.flexible._analysis import with_zero_sample
 from blockdae.flexible._damped_slip import flat_table_model
-from blockdae.flexible._table_engine import record_pieces, slide_compiled, solve_table_exact, system_arrays
-from blockdae.flexible._table_kernel import OUTCOME_FIELDS
+from blockdae.flexible._table_engine import (record_pieces, response_compiled, slide_compiled, solve_table_exact,
+                                             system_arrays)
+from blockdae.flexible._table_kernel import OUTCOME_FIELDS, step_slots
 from conftest import load_sample_record
 
 #: ky falls from 0.1 g to 0.05 g over the first 2 cm of sliding; rises from 0.08 g to 0.14 g over 4 cm
@@ -113,3 +114,23 @@ def test_flexible_rows_run_the_kernel(ky, damping):
         solution = solve_table_exact(model, motion, Horizon(record.duration + record.dt), "exact")
         assert row[f"{polarity}_m"] == pytest.approx(solution.sliding_displacement, rel=DISPLACEMENT_TOLERANCE)
         assert row[f"episodes_{polarity}"] == sum(e.kind == "onset" for e in solution.events) >= 3
+
+
+@pytest.mark.parametrize("total", [0.25, 1 - 1e-9])
+def test_no_sliding_response_on_matrix_exponentials_matches_dop853(total):
+    """The kernel's no-sliding response (used for a total damping next to 1) vs DOP853
+    (tests/test_flexible.py's ``reference``, extrema refined by brentq) on 12 s of
+    Northridge PAC-175 with SLAMMER's zero sample: max |HEA| at the samples, its supremum
+    over time and sup |u| within 1e-10 relative (measured 1.4e-13)."""
+    from test_flexible import _with_zero_sample, reference
+
+    record = _record(12.0)
+    model = FlexibleSlidingMass(ShearColumn(10.0, 250.0, damping=total, impedance=False), ky=0.1)
+    _, arrays = record_pieces(with_zero_sample(record), Horizon(12.0 + record.dt), "the test")
+    samples, sup, u_sup = response_compiled(model, arrays, step_slots(arrays[0], arrays[1]), True)
+    _, _, hea_samples, hea_sup, u_reference = reference(_with_zero_sample(record), record.dt, model.omega,
+                                                        model.damping, model.yield_acceleration, True,
+                                                        12.0 + record.dt, slide=False)
+    assert samples == pytest.approx(hea_samples.max(), rel=1e-10)
+    assert sup == pytest.approx(hea_sup, rel=1e-10) and sup > samples
+    assert u_sup == pytest.approx(u_reference, rel=1e-10)

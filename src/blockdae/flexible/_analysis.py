@@ -20,12 +20,12 @@ from ..engines._linear_solution import linear_pieces
 from ..excitation import Record, pga_factor
 from . import _engine, _fused, _table_kernel
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
-from ._damped_slip import flat_table_model, slip_underdamped
+from ._damped_slip import COMPILED_RESPONSE_LIMIT, flat_table_model, slip_underdamped
 from ._exact import check, engine_settings
 from ._ky_table import KyTable
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
-from ._table_engine import slide_compiled, system_arrays
+from ._table_engine import response_compiled, slide_compiled, system_arrays
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns
@@ -282,7 +282,14 @@ def analyse_exact(analysis: Analysis) -> dict:
 def exact_rows(analyses: list[Analysis]) -> list[dict]:
     """The rows of ``analyses``, exact: equivalent-linear iterations one by one, then
     every analysis (its no-sliding response, once per record and column, and its runs)
-    in one compiled call, parallel over cores for a large batch (:mod:`._fused`)."""
+    in one compiled call, parallel over cores for a large batch (:mod:`._fused`). A
+    total damping too close to 1 for its closed forms runs on matrix exponentials
+    (:func:`_near_critical_row`)."""
+    near = {q for q, analysis in enumerate(analyses) if analysis.model.damping >= COMPILED_RESPONSE_LIMIT}
+    if near:
+        others = [analysis for q, analysis in enumerate(analyses) if q not in near]
+        rest = iter(exact_rows(others) if others else ())
+        return [_near_critical_row(analysis) if q in near else next(rest) for q, analysis in enumerate(analyses)]
     inputs, index, record_of = [], {}, []
     parameters, flags, response_of, vs_finals, first_with, damped = [], [], [], [], {}, set()
     for q, analysis in enumerate(analyses):
@@ -325,6 +332,31 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     for q in damped:
         _slides_in_closed_form(analyses[q], rows[q])
     return rows
+
+
+def _near_critical_row(analysis):
+    """The row of ``analysis`` whose total damping lies in [COMPILED_RESPONSE_LIMIT, 1),
+    too close to 1 for the compiled no-sliding response: that response (kmax at the
+    samples, its supremum over time, sup |u| for the equivalent-linear iteration) and the
+    slides on matrix exponentials (:func:`response_compiled`, :func:`_slides_in_closed_form`)."""
+    model, record = analysis.model, analysis.record
+    column, where = model.column, f" ({analysis.name}, {model})"
+    arrays, slots = _engine_input(record, analysis.t_end), _step_slots(record, analysis.t_end)
+
+    def response(vs, xi, with_u):
+        column_model = model.with_parameters({"omega": np.pi * vs / (2 * column.height), "damping": xi})
+        return response_compiled(column_model, arrays, slots, with_u, where)
+
+    vs, xi = column.vs, model.damping
+    if analysis.reference_strain is not None:
+        final = iterate_equivalent_linear(lambda vs, xi: response(vs, xi, True)[2], column, analysis.reference_strain)
+        vs, xi = final.vs, final.damping
+    samples, sup, _ = response(vs, xi, False)
+    row = {"record": analysis.name, "ky_g": model.ky, "height_m": column.height, "vs_m_s": column.vs,
+           "normal_m": np.nan, "inverse_m": np.nan, "kmax_g": samples / model.g, "kmax_sup_g": sup / model.g,
+           "vs_final_m_s": vs, "damping_final": xi, "episodes_normal": None, "episodes_inverse": None}
+    _slides_in_closed_form(analysis, row)
+    return row
 
 
 def _run_analyses(inputs, record_of, parameters, flags):

@@ -2,7 +2,9 @@
 forms (coupled: xi / sqrt(d1) >= 1 - 1e-6, total damping xi >= about 0.4352): its slides
 run on the matrix-exponential engine of the ky tables (:mod:`._table_engine`, which
 needs no case for any eigen-structure), with ky as a one-piece flat table; the
-no-sliding response (STICK, underdamped while xi < 1) stays on the compiled engine.
+no-sliding response (STICK, underdamped while xi < 1) stays on the compiled engine up to a
+total damping of :data:`COMPILED_RESPONSE_LIMIT`, beyond which it runs on matrix
+exponentials too.
 """
 
 import dataclasses
@@ -14,6 +16,10 @@ from ._column import SLIP_MASS_FRACTION
 
 #: the compiled engine's closed forms need the column's damping ratio below this
 UNDERDAMPED_LIMIT = 1 - 5e-9
+#: the no-sliding response (and so everything) runs on matrix exponentials from this total
+#: damping on (measured: at 1 - 1e-7 the compiled response's sup |u| search settles and
+#: agrees with them to 5e-10, at 1 - 1e-8 it no longer settles on Northridge PAC-175)
+COMPILED_RESPONSE_LIMIT = 1 - 1e-6
 #: SLIP runs on the compiled engine while its damping ratio is below this, else here
 #: (measured: at 1 - 1e-7 its slides agree with this engine's to 4e-14, at 1 - 3e-8 its
 #: root search no longer settles, the underdamped forms too ill-conditioned)

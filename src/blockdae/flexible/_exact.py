@@ -5,7 +5,7 @@ import numpy as np
 
 from ..core._driver import SolverError
 from . import _engine
-from ._damped_slip import UNDERDAMPED_LIMIT, slip_underdamped, solve_damped_slip
+from ._damped_slip import COMPILED_RESPONSE_LIMIT, UNDERDAMPED_LIMIT, slip_underdamped, solve_damped_slip
 from ._table_engine import record_pieces
 
 #: knot-log rows per piece of a(t) at the start (grown if a run needs more)
@@ -37,7 +37,10 @@ def check(outcome, where=""):
 
 def solve_exact(model, excitation, horizon, name):
     """``model`` under ``excitation`` (a record) to ``horizon``: its solution, every onset
-    and stop located to adjacent floats."""
+    and stop located to adjacent floats; a slip too damped for the closed forms, or a
+    total damping in [COMPILED_RESPONSE_LIMIT, 1), on :mod:`._damped_slip`."""
+    if COMPILED_RESPONSE_LIMIT <= float(model.damping) < 1:  # STICK too: its response on matrix exponentials as well
+        return solve_damped_slip(model, excitation, horizon, name)
     settings = engine_settings(model)
     if not slip_underdamped(settings[1], settings[3]):
         return solve_damped_slip(model, excitation, horizon, name)

@@ -89,17 +89,21 @@ class _System:
         self.scale = np.array([1.0, rate, 1.0, rate, rate**2, rate**3, rate**2 / g])
         self.scaled = M * self.scale[None, :] / self.scale[:, None]
         self.norm = np.abs(self.scaled).sum(axis=1).max()
-        self.rows = []
-        for row in guards:
-            powers = [row]
-            for _ in range(_ORDERS - 1):
-                powers.append(powers[-1] @ M)
-            fourth = powers[-1]
-            relevant = _closure(M, fourth != 0)
-            inner = np.abs(self.scaled[np.ix_(relevant, relevant)]).sum(axis=1).max() if relevant.any() else 0.0
-            self.rows.append((np.array(powers[:-1]), float(np.abs(fourth * self.scale).sum()),
-                              np.where(relevant, 1.0 / self.scale, 0.0), float(inner)))
+        self.rows = [self.guard_row(row) for row in guards]
         self._maps = {}
+
+    def guard_row(self, row):
+        """What the search takes of the form g = ``row`` z (7,): c M^k (4, 7) (k < 4), and
+        what bounds c M^4 z (:meth:`fourth_bound`): |c M^4 scale|_1, the weights 1 / scale
+        on the subsystem J that c M^4 z reads (0 elsewhere), |M~_JJ| [1/s]."""
+        powers = [np.asarray(row, dtype=float)]
+        for _ in range(_ORDERS - 1):
+            powers.append(powers[-1] @ self.M)
+        fourth = powers[-1]
+        relevant = _closure(self.M, fourth != 0)
+        inner = np.abs(self.scaled[np.ix_(relevant, relevant)]).sum(axis=1).max() if relevant.any() else 0.0
+        return (np.array(powers[:-1]), float(np.abs(fourth * self.scale).sum()),
+                np.where(relevant, 1.0 / self.scale, 0.0), float(inner))
 
     def transition(self, tau):
         """expm(M tau), remembered for the step lengths that recur."""
@@ -257,14 +261,43 @@ def system_arrays(model):
     built = [systems(mode, passed) for mode in FlexibleMode for passed in range(n_pieces)]
     packed = np.zeros((len(built), _table_kernel.SYSTEM_ROWS, 7))
     for k, system in enumerate(built):
-        packed[k, _table_kernel._MATRIX:_table_kernel._MATRIX + 7] = system.scaled
-        packed[k, _table_kernel._SCALE] = system.scale
-        for g, (powers, _, weights, _) in enumerate(system.rows):
-            packed[k, _table_kernel._WEIGHTS + g] = weights
-            packed[k, _table_kernel._POWERS + 4 * g:_table_kernel._POWERS + 4 * g + 4] = powers
-        _, row4, _, inner = system.rows[0]
-        packed[k, _table_kernel._NUMBERS, :4] = system.norm, row4, inner, len(system.rows)
+        _pack(packed[k], system, system.rows)
     return packed, n_pieces, float(model.yield_acceleration)
+
+
+def _pack(packed, system, rows):
+    """Write ``system`` with the rows (:meth:`_System.guard_row`) of its guards, or of
+    other forms c z, into ``packed`` (SYSTEM_ROWS, 7) (see :mod:`._table_kernel`)."""
+    packed[_table_kernel.MATRIX:_table_kernel.MATRIX + 7] = system.scaled
+    packed[_table_kernel.SCALE] = system.scale
+    packed[_table_kernel.NUMBERS, :2] = system.norm, len(rows)
+    for g, (powers, row4, weights, inner) in enumerate(rows):
+        packed[_table_kernel.WEIGHTS + g] = weights
+        packed[_table_kernel.POWERS + 4 * g:_table_kernel.POWERS + 4 * g + 4] = powers
+        packed[_table_kernel.NUMBERS, 2 + 2 * g:4 + 2 * g] = row4, inner
+
+
+def response_arrays(model):
+    """``model``'s column without sliding as :func:`._table_kernel._response` takes it:
+    (1, SYSTEM_ROWS, 7), STICK with the forms HEA = a + (2/pi) u'' [m/s²] and u [m]."""
+    system = _System(model, FlexibleMode.STICK, 0.0, 0.0, math.inf)  # its guard at ky = 0: -HEA
+    packed = np.zeros((1, _table_kernel.SYSTEM_ROWS, 7))
+    _pack(packed[0], system, [system.guard_row(-system.guards[0]), system.guard_row(np.eye(7)[_U])])
+    return packed
+
+
+def response_compiled(model, arrays, slots, with_u, where=""):
+    """``model``'s no-sliding response from rest over a record's linear pieces ``arrays``
+    (t0, h, p0, p1; ``slots`` their :func:`._table_kernel.step_slots`) on matrix
+    exponentials, for any damping: (max |HEA| at the pieces' ends [m/s²], sup |HEA| over
+    time [m/s²], sup |u| [m] (nan without ``with_u``))."""
+    kernel = _table_kernel.response_kernel()
+    notice_numba("the ky-table kernel", 15, kernel)
+    samples, sup, u_sup, settled = kernel(*arrays, slots, response_arrays(model), with_u)
+    if not settled:
+        raise SolverError(f"a peak search of the no-sliding response did not settle in {MAX_INTERVALS} intervals"
+                          f"{where}; use backend 'cvode'")
+    return samples, sup, u_sup
 
 
 def slide_compiled(systems, arrays, log_rows=0, where="", slots=None):

@@ -25,6 +25,9 @@ steps and searches:
   root at the end of a piece is left to the next, a piece's rest shorter than 8 ulps is
   skipped, chatter (more than 5 events within 1e-12 s) and a slide moving upslope stop
   the run with a status.
+* The no-sliding response (:func:`_response`, for a total damping too close to 1 for
+  the closed forms): max |HEA| at the samples, and the suprema of |HEA| and |u| over
+  time by an interval search on their bounds.
 
 Arrays are indexed, not sliced, in the hot paths (a view costs a reference count).
 """
@@ -59,9 +62,9 @@ _VECTOR_SQUARINGS = 3
 #: pending intervals of one root search (its depth: a step halved to rounding is ~60)
 _STACK = 256
 #: rows of a system (each of 7): M~ (7), scale, each guard's weights of its fourth
-#: derivative's bound, each guard's c M^k (k < 4), then (norm [1/s], |c M^4 scale|_1 and
-#: the inner norm [1/s] of the first guard, number of guards)
-_MATRIX, _SCALE, _WEIGHTS, _POWERS, _NUMBERS = 0, 7, 8, 10, 18
+#: derivative's bound, each guard's c M^k (k < 4), then (norm [1/s], number of guards,
+#: and of guard g at 2 + 2 g and 3 + 2 g: |c M^4 scale|_1 and the inner norm [1/s])
+MATRIX, SCALE, WEIGHTS, POWERS, NUMBERS = 0, 7, 8, 10, 18
 SYSTEM_ROWS = 19
 #: a slide's outcome: its state at the end, counts, status
 OUTCOME_FIELDS = ("t", "u", "u_rate", "s", "w", "mode", "passed", "n_events", "n_onsets", "status",
@@ -74,6 +77,8 @@ _N_EVENTS, _N_ONSETS, _RUN, _MAX_RUN, _STATUS = range(5)  # its counters
 #: interval's ends; a bisection's kept and trial states; the turn; a parent; Taylor's
 _Z0, _ZEND, _Z, _ZLO, _ZHI, _ZA, _ZM, _ZTURN, _ZPARENT, _ACC, _TERM, _NEXT = range(12)
 _NO_ROOT, _HALVE = -1.0, -2.0
+#: a peak search ends where no interval's bound exceeds the largest value by more than this [-]
+_PEAK_TOLERANCE = 1e-14
 
 
 # ---- the matrix exponential ----------------------------------------------------------
@@ -99,18 +104,18 @@ def _degree(x):
 def _exponential(systems, i, tau, scratch):
     """scratch[2] = expm(M tau) (7, 7) of system ``i`` for ``tau`` [s]: Taylor on M~ tau /
     2^n, squared n times, unscaled (as ``_System.exponential``); scratch[0], [1]: work."""
-    squarings = _squarings(systems[i, _NUMBERS, 0], tau)
+    squarings = _squarings(systems[i, NUMBERS, 0], tau)
     x = tau / 2.0**squarings
     for r in range(7):
         for c in range(7):
             scratch[0, r, c] = scratch[1, r, c] = 1.0 if r == c else 0.0
-    for k in range(1, _degree(systems[i, _NUMBERS, 0] * x) + 1):
+    for k in range(1, _degree(systems[i, NUMBERS, 0] * x) + 1):
         factor = x / k
         for r in range(7):  # term @ (M~ x / k)
             for c in range(7):
                 acc = 0.0
                 for m in range(7):
-                    acc += scratch[0, r, m] * systems[i, _MATRIX + m, c]
+                    acc += scratch[0, r, m] * systems[i, MATRIX + m, c]
                 scratch[2, r, c] = acc * factor
         for r in range(7):
             for c in range(7):
@@ -128,18 +133,18 @@ def _exponential(systems, i, tau, scratch):
                 scratch[1, r, c] = scratch[2, r, c]
     for r in range(7):
         for c in range(7):
-            scratch[2, r, c] = scratch[1, r, c] * systems[i, _SCALE, r] / systems[i, _SCALE, c]
+            scratch[2, r, c] = scratch[1, r, c] * systems[i, SCALE, r] / systems[i, SCALE, c]
 
 
 @register_jitable
 def _apply(systems, i, tau, vectors, a, b):
     """vectors[b] = expm(M tau) vectors[a] in system ``i``: Taylor's series on M~ tau / 2^n
     applied to z~ = z / scale 2^n times."""
-    squarings = _squarings(systems[i, _NUMBERS, 0], tau)
+    squarings = _squarings(systems[i, NUMBERS, 0], tau)
     x = tau / 2.0**squarings
-    degree = _degree(systems[i, _NUMBERS, 0] * x)
+    degree = _degree(systems[i, NUMBERS, 0] * x)
     for r in range(7):
-        vectors[_ACC, r] = vectors[a, r] / systems[i, _SCALE, r]
+        vectors[_ACC, r] = vectors[a, r] / systems[i, SCALE, r]
     for _ in range(2**squarings):
         for r in range(7):
             vectors[_TERM, r] = vectors[_ACC, r]
@@ -148,13 +153,13 @@ def _apply(systems, i, tau, vectors, a, b):
             for r in range(7):
                 acc = 0.0
                 for c in range(7):
-                    acc += systems[i, _MATRIX + r, c] * vectors[_TERM, c]
+                    acc += systems[i, MATRIX + r, c] * vectors[_TERM, c]
                 vectors[_NEXT, r] = acc * factor
             for r in range(7):
                 vectors[_TERM, r] = vectors[_NEXT, r]
                 vectors[_ACC, r] += vectors[_NEXT, r]
     for r in range(7):
-        vectors[b, r] = vectors[_ACC, r] * systems[i, _SCALE, r]
+        vectors[b, r] = vectors[_ACC, r] * systems[i, SCALE, r]
 
 
 @register_jitable
@@ -179,7 +184,7 @@ def _advance(systems, kept, scratch, vectors, step, tau, a, b):
                     acc += kept[i, slot, d, r, c] * vectors[a, c]
                 vectors[b, r] = acc
             return
-    if _squarings(systems[i, _NUMBERS, 0], tau) > _VECTOR_SQUARINGS:
+    if _squarings(systems[i, NUMBERS, 0], tau) > _VECTOR_SQUARINGS:
         _exponential(systems, i, tau, scratch)
         for r in range(7):
             acc = 0.0
@@ -266,17 +271,17 @@ def _bisect_rate(systems, kept, scratch, vectors, step, row, t0, lo, hi):
 
 
 @register_jitable
-def _fourth_bound(systems, i, vectors, length):
-    """A bound of the first guard's fourth derivative on [0, ``length``] [s] from z =
+def _fourth_bound(systems, i, g, vectors, length):
+    """A bound of guard ``g``'s fourth derivative on [0, ``length``] [s] from z =
     vectors[_ZLO] at its start (``_System.fourth_bound``): |c M^4 scale|_1 exp(|M~_JJ|
     length) |z~_J|_inf, J the subsystem c M^4 z reads; inf past a growth of e^50."""
-    growth = systems[i, _NUMBERS, 2] * length
+    growth = systems[i, NUMBERS, 3 + 2 * g] * length
     if growth > 50.0:
         return math.inf
     largest = 0.0
     for c in range(7):
-        largest = max(largest, abs(vectors[_ZLO, c] * systems[i, _WEIGHTS, c]))
-    return systems[i, _NUMBERS, 1] * math.exp(growth) * largest * (1.0 + 1e-9)
+        largest = max(largest, abs(vectors[_ZLO, c] * systems[i, WEIGHTS + g, c]))
+    return systems[i, NUMBERS, 2 + 2 * g] * math.exp(growth) * largest * (1.0 + 1e-9)
 
 
 @register_jitable
@@ -284,32 +289,32 @@ def _decide(systems, kept, scratch, vectors, step, t0, lo, hi):
     """One interval (lo, hi] [s] of the first guard's search, its states at _ZLO and _ZHI:
     the first crossing in it (> 0), none (:data:`_NO_ROOT`) or :data:`_HALVE`."""
     i, length = step[0], hi - lo
-    d0, d1 = _dot(systems, i, _POWERS, vectors, _ZLO), _dot(systems, i, _POWERS + 1, vectors, _ZLO)
-    d2, d3 = _dot(systems, i, _POWERS + 2, vectors, _ZLO), _dot(systems, i, _POWERS + 3, vectors, _ZLO)
-    g_lo, g_hi = d0, _dot(systems, i, _POWERS, vectors, _ZHI)
+    d0, d1 = _dot(systems, i, POWERS, vectors, _ZLO), _dot(systems, i, POWERS + 1, vectors, _ZLO)
+    d2, d3 = _dot(systems, i, POWERS + 2, vectors, _ZLO), _dot(systems, i, POWERS + 3, vectors, _ZLO)
+    g_lo, g_hi = d0, _dot(systems, i, POWERS, vectors, _ZHI)
     if t0 + lo + length <= t0 + lo or length <= 4 * _EPS * max(abs(t0) + abs(hi), 1.0):
         return hi if g_lo > 0 >= g_hi else _NO_ROOT
     if g_lo == 0 and g_hi == 0 and d1 == 0 and d2 == 0 and d3 == 0:
         return _NO_ROOT  # a guard that stays at zero (HEA = ky g = 0 at rest): no fall through it
-    b4 = _fourth_bound(systems, i, vectors, length)
+    b4 = _fourth_bound(systems, i, 0, vectors, length)
     if _lower((d0, d1, d2 / 2, d3 / 6, -b4 / 24), length) > 0:
         return _NO_ROOT  # positive all along
     if _lower((d1, d2, d3 / 2, -b4 / 6), length) >= 0:
         return _NO_ROOT  # rising all along
     if _upper((d1, d2, d3 / 2, b4 / 6), length) <= 0:  # falling all along
-        return _bisect(systems, kept, scratch, vectors, step, _POWERS, t0, lo, hi, _ZLO) if g_lo > 0 >= g_hi \
+        return _bisect(systems, kept, scratch, vectors, step, POWERS, t0, lo, hi, _ZLO) if g_lo > 0 >= g_hi \
             else _NO_ROOT
     if _lower((d2, d3, -b4 / 2), length) > 0 and g_lo > 0:  # convex: falls, then rises
-        turn = _bisect_rate(systems, kept, scratch, vectors, step, _POWERS + 1, t0, lo, hi)
+        turn = _bisect_rate(systems, kept, scratch, vectors, step, POWERS + 1, t0, lo, hi)
         if turn == lo:
             _copy(vectors, _ZLO, _ZTURN)
         else:
             _advance(systems, kept, scratch, vectors, step, turn - lo, _ZLO, _ZTURN)
-        if _dot(systems, i, _POWERS, vectors, _ZTURN) <= 0:
-            return _bisect(systems, kept, scratch, vectors, step, _POWERS, t0, lo, turn, _ZLO)
+        if _dot(systems, i, POWERS, vectors, _ZTURN) <= 0:
+            return _bisect(systems, kept, scratch, vectors, step, POWERS, t0, lo, turn, _ZLO)
         return _NO_ROOT
     if _upper((d2, d3, b4 / 2), length) < 0 and g_lo > 0:  # concave: one crossing at most
-        return _bisect(systems, kept, scratch, vectors, step, _POWERS, t0, lo, hi, _ZLO) if g_hi <= 0 \
+        return _bisect(systems, kept, scratch, vectors, step, POWERS, t0, lo, hi, _ZLO) if g_hi <= 0 \
             else _NO_ROOT
     return _HALVE
 
@@ -361,8 +366,8 @@ def _state_vector(state, a, rate, vectors):
 def _left_at_once(systems, i, vectors):
     """The first guard of system ``i`` at or below zero and falling at vectors[_Z0] as a
     mode starts (the driver's ``guard_left_at_once``), or -1."""
-    for g in range(int(systems[i, _NUMBERS, 3])):
-        row = _POWERS + 4 * g
+    for g in range(int(systems[i, NUMBERS, 1])):
+        row = POWERS + 4 * g
         if _dot(systems, i, row, vectors, _Z0) <= 0:
             if _falls(_dot(systems, i, row + 1, vectors, _Z0), _dot(systems, i, row + 2, vectors, _Z0),
                       EVENT_RESOLUTION):
@@ -426,8 +431,8 @@ def _step(state, counts, systems, kept, scratch, vectors, step, end, stack):
         return -1
     if root > 0:
         best, index = root, 0
-    breakpoint = _POWERS + 4
-    if systems[i, _NUMBERS, 3] == 2 and _dot(systems, i, breakpoint, vectors, _Z0) > 0 >= \
+    breakpoint = POWERS + 4
+    if systems[i, NUMBERS, 1] == 2 and _dot(systems, i, breakpoint, vectors, _Z0) > 0 >= \
             _dot(systems, i, breakpoint, vectors, _ZEND):
         root = _bisect(systems, kept, scratch, vectors, step, breakpoint, t, 0.0, h, _Z0)
         if best < 0 or root < best:
@@ -499,6 +504,98 @@ def _slides(t0, h, p0, p1, slots, systems, n_pieces, kyg, log):
     return out
 
 
+# ---- the no-sliding response (a total damping too close to 1 for the closed forms) ----
+@register_jitable
+def _sup(systems, kept, scratch, vectors, step, g, t0, h, best, stack):
+    """max(``best``, sup |form g| on [0, ``h``] [s]) from vectors[_Z0] at ``t0`` [s] and
+    vectors[_ZEND] = z(h) on a STICK step: an interval whose bound of |c z| (Taylor at
+    its start, the fourth derivative bounded) exceeds the largest value found by more
+    than :data:`_PEAK_TOLERANCE` of it is halved; -1 where the search does not settle."""
+    row, i = POWERS + 4 * g, step[0]
+    lo, hi, top = 0.0, h, 0
+    _copy(vectors, _Z0, _ZLO)
+    _copy(vectors, _ZEND, _ZHI)
+    for budget in range(MAX_INTERVALS):
+        if budget > 0:
+            _advance(systems, kept, scratch, vectors, step, hi - lo, _ZLO, _ZHI)
+        length = hi - lo
+        d0, d1 = _dot(systems, i, row, vectors, _ZLO), _dot(systems, i, row + 1, vectors, _ZLO)
+        d2, d3 = _dot(systems, i, row + 2, vectors, _ZLO), _dot(systems, i, row + 3, vectors, _ZLO)
+        best = max(best, abs(d0), abs(_dot(systems, i, row, vectors, _ZHI)))
+        tiny = t0 + lo + length <= t0 + lo or length <= 4 * _EPS * max(abs(t0) + abs(hi), 1.0)
+        reach = _upper((abs(d0), abs(d1), abs(d2) / 2, abs(d3) / 6,
+                        _fourth_bound(systems, i, g, vectors, length) / 24), length)
+        if not tiny and reach > best * (1.0 + _PEAK_TOLERANCE):
+            if top == stack.shape[0]:
+                return -1.0
+            mid = lo + 0.5 * (hi - lo)
+            stack[top, 0], stack[top, 1], stack[top, 2] = mid, hi, lo
+            for c in range(7):
+                stack[top, 3 + c] = vectors[_ZLO, c]
+            top += 1
+            hi = mid
+            continue
+        if top == 0:
+            return best
+        top -= 1
+        lo, hi = stack[top, 0], stack[top, 1]
+        for c in range(7):
+            vectors[_ZPARENT, c] = stack[top, 3 + c]
+        _advance(systems, kept, scratch, vectors, step, lo - stack[top, 2], _ZPARENT, _ZLO)
+    return -1.0
+
+
+def _response(t0, h, p0, p1, slots, systems, with_u):
+    """The no-sliding response from rest over a record's linear pieces (as
+    :func:`_slides`) in ``systems`` (1, SYSTEM_ROWS, 7): STICK with the forms HEA and u
+    (:func:`._table_engine.response_arrays`). Returns (max |HEA| at the pieces' ends
+    [m/s²], sup |HEA| over time [m/s²], sup |u| [m] (with ``with_u``, else nan), settled):
+    a first pass steps the record and bounds each form on each step, a second searches
+    the steps whose bound exceeds the largest value so far."""
+    n = t0.shape[0]
+    kept = np.empty((1, SLOTS, _DEPTHS, 8, 7))
+    kept[:, :, :, 7, 0] = 0.0
+    scratch, vectors, stack = np.empty((3, 7, 7)), np.empty((12, 7)), np.empty((_STACK, 10))
+    starts, reach = np.empty((n, 7)), np.empty((n, 2))
+    u, v, samples = 0.0, 0.0, 0.0
+    for k in range(n):
+        end = t0[k + 1] if k + 1 < n else t0[k] + h[k]
+        vectors[_Z0, 0], vectors[_Z0, 1], vectors[_Z0, 2], vectors[_Z0, 3] = u, v, 0.0, 0.0
+        vectors[_Z0, 4], vectors[_Z0, 5], vectors[_Z0, 6] = p0[k], p1[k], 1.0
+        for c in range(7):
+            starts[k, c] = vectors[_Z0, c]
+        step = (0, slots[k], end - t0[k])
+        _advance(systems, kept, scratch, vectors, step, end - t0[k], _Z0, _ZEND)
+        _copy(vectors, _Z0, _ZLO)
+        for g in range(2):
+            row = POWERS + 4 * g
+            reach[k, g] = _upper((abs(_dot(systems, 0, row, vectors, _ZLO)),
+                                  abs(_dot(systems, 0, row + 1, vectors, _ZLO)),
+                                  abs(_dot(systems, 0, row + 2, vectors, _ZLO)) / 2,
+                                  abs(_dot(systems, 0, row + 3, vectors, _ZLO)) / 6,
+                                  _fourth_bound(systems, 0, g, vectors, end - t0[k]) / 24), end - t0[k])
+        samples = max(samples, abs(_dot(systems, 0, POWERS, vectors, _Z0)), abs(_dot(systems, 0, POWERS, vectors,
+                                                                                      _ZEND)))
+        u, v = vectors[_ZEND, 0], vectors[_ZEND, 1]
+    peaks = np.array([samples, 0.0])
+    for k in range(n):
+        peaks[1] = max(peaks[1], abs(starts[k, 0]))
+    peaks[1] = max(peaks[1], abs(u))
+    for g in range(2 if with_u else 1):
+        for k in range(n):
+            if reach[k, g] > peaks[g] * (1.0 + _PEAK_TOLERANCE):
+                end = t0[k + 1] if k + 1 < n else t0[k] + h[k]
+                for c in range(7):
+                    vectors[_Z0, c] = starts[k, c]
+                step = (0, slots[k], end - t0[k])
+                _advance(systems, kept, scratch, vectors, step, end - t0[k], _Z0, _ZEND)
+                found = _sup(systems, kept, scratch, vectors, step, g, t0[k], end - t0[k], peaks[g], stack)
+                if found < 0:
+                    return samples, peaks[0], np.nan, False
+                peaks[g] = found
+    return samples, peaks[0], peaks[1] if with_u else np.nan, True
+
+
 def step_slots(t0, h):
     """The slot of each piece's length (end - start [s], (n,)) among the :data:`SLOTS`
     most frequent ones (their transitions are kept), -1 for the others."""
@@ -513,3 +610,9 @@ def step_slots(t0, h):
 def kernel():
     """:func:`_slides` compiled with numba (on first use, then from the disk cache)."""
     return numba.njit(cache=True, error_model="numpy")(_slides)
+
+
+@functools.cache
+def response_kernel():
+    """:func:`_response` compiled with numba (on first use, then from the disk cache)."""
+    return numba.njit(cache=True, error_model="numpy")(_response)
