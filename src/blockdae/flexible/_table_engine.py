@@ -10,13 +10,18 @@ to the sliding, hardening ones (k1 > 0) a slow oscillation; the matrix exponenti
 needs no case for either, nor for k1 = 0 (a Jordan block).
 
 The generic driver (:mod:`blockdae.core._driver`) runs the modes, the events and the
-knots (at the record's samples and the events only); this integrator steps it in closed form and finds the first root of each guard
-(a linear form c z: the onset guard ky(s) g - HEA in STICK, w and the next breakpoint
-minus s in SLIP) on a step: an interval is dropped where bounds of the guard's
-derivatives (Taylor at its start, the fourth derivative bounded by the matrix norm in
-scaled units) show the guard rising, falling, convex or concave, else halved; a
-crossing is refined by bisection to adjacent floats. The next breakpoint minus s falls
-monotonically in SLIP (w >= 0): its crossing is bracketed by its values.
+knots (at the record's samples and the events only); this integrator steps it in closed
+form and finds the first root of each guard (a linear form c z: the onset guard ky(s) g -
+HEA in STICK, w and the next breakpoint minus s in SLIP) on a step: an interval is
+dropped where bounds of the guard's derivatives (Taylor at its start, the fourth
+derivative bounded by the norm of the subsystem it reads, in scaled units) show the
+guard rising, falling, convex or concave, else halved; a crossing is refined by
+bisection to adjacent floats. The next breakpoint minus s falls monotonically in SLIP
+(w >= 0): its crossing is bracketed by its values.
+
+``bd.flexible``'s rows run the same systems (:func:`system_arrays`) on the compiled
+kernel of :mod:`._table_kernel` (:func:`slide_compiled`, :func:`response_compiled`);
+``bd.simulate`` runs this module's Python engine, whose solution has dense output.
 """
 
 import dataclasses
