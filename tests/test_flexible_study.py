@@ -203,3 +203,43 @@ def test_tables_and_numbers_together_are_refused(records, monkeypatch):
     with pytest.raises(ValueError, match=r"ky\[1\]=0.2: give ky as numbers \[g\] or as ky tables \(bd.KyTable\), "
                                          "not both"):
         bd.study(records[:1], ky=[TABLE, 0.2], pga=PGA, block=MASS)
+
+
+def test_cli_study_runs_the_flexible_mass(records, tmp_path, capsys, monkeypatch):
+    """blockdae study --ky/--ky-table --height --vs: bd.study's table of the flexible mass
+    (reference: the same bd.study call in Python), saved to --out; its misuses exit 2
+    with one line naming the option, before any work."""
+    from blockdae.cli._main import main
+    from conftest import sample_record_paths
+
+    folder = tmp_path / "records"
+    folder.mkdir()
+    for path in sample_record_paths():
+        if path.stem in SHORT[:2]:
+            (folder / path.name).write_bytes(path.read_bytes())
+    two = sorted(records[:2], key=lambda r: r.name)
+    out = tmp_path / "flexible.csv"
+    argv = ["--no-cache", "study", str(folder), "--pga", "0.2", "0.4", "--out", str(out)]
+    column = ["--height", "20", "--vs", "300"]
+    assert main(argv + column + ["--ky", "0.1", "0.2"]) == 0, capsys.readouterr().err
+    assert "8 analyses (2 records × 1 locations × 2 ky × 2 intensities)" in capsys.readouterr().out
+    pd.testing.assert_frame_equal(bd.load_study(out), bd.study(two, ky=KY, pga=[0.2, 0.4], block=MASS))
+    assert main(argv + column + ["--ky-table", "0:0.1", "0.05:0.2", "--method", "decoupled"]) == 0
+    decoupled = bd.FlexibleSlidingMass(COLUMN, ky=0.1, method="decoupled")
+    pd.testing.assert_frame_equal(bd.load_study(out), bd.study(two, ky=TABLE, pga=[0.2, 0.4], block=decoupled))
+    monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
+    for bad, message in [
+        (["--ky", "0.1", "--vs", "100"], "--ky and --ky-table study the flexible sliding mass: give --height"),
+        (column + ["--ky", "0.1", "--direction", "both"], "--direction both: the flexible sliding mass slides "
+                                                          "downslope in both polarities"),
+        (column + ["--mu", "0.1"], "--height applies to the flexible sliding mass (--ky or --ky-table), not to "
+                                   "the block"),
+        (column + ["--ky", "0.1", "--summary", str(tmp_path / "s.csv")], "--summary: the seed's summaries are of "
+                                                                         "a block"),
+        (column + ["--ky-table", "0:0.1", "0:0.2"], "--ky-table: KyTable: displacement_m must be strictly "
+                                                    "increasing"),
+        (column + ["--ky", "0.1", "--soil-damping", "0.9"], "--soil-damping: damping=0.9 gives a total damping "
+                                                            "ratio of 1.1"),
+    ]:
+        assert main(argv + bad) == 2, bad
+        assert message in capsys.readouterr().err, bad
