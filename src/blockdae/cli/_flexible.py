@@ -119,9 +119,9 @@ def add_flexible_study_arguments(parser):
     group.add_argument("--vr", type=positive("--vr"), default=None,
                        help="shear-wave velocity below the slip surface [m/s] (default: --vs)")
     group.add_argument("--soil-damping", type=number("--soil-damping", lambda x: -1 < x < 1, "in (-1, 1)"),
-                       default=0.05, help="the soil's damping ratio [-]; impedance damping from vr/vs is added "
+                       default=None, help="the soil's damping ratio [-]; impedance damping from vr/vs is added "
                                           "(default 0.05)")
-    group.add_argument("--method", choices=METHODS, default="coupled", help="slip equations (default coupled)")
+    group.add_argument("--method", choices=METHODS, default=None, help="slip equations (default coupled)")
 
 
 def flexible_study_block(args):
@@ -131,5 +131,6 @@ def flexible_study_block(args):
     if missing:
         raise UsageError(f"--ky and --ky-table study the flexible sliding mass: give {' and '.join(missing)}")
     ky = args.ky if args.ky_table is None else checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
-    column = checked(lambda: ShearColumn(args.height, args.vs, args.vr, args.soil_damping), "--soil-damping")
-    return FlexibleSlidingMass(column, ky=0.0, method=args.method, g=args.g), ky
+    damping = 0.05 if args.soil_damping is None else args.soil_damping
+    column = checked(lambda: ShearColumn(args.height, args.vs, args.vr, damping), "--soil-damping")
+    return FlexibleSlidingMass(column, ky=0.0, method=args.method or "coupled", g=args.g), ky

@@ -120,9 +120,9 @@ def run_study(args) -> int:
 def _block(args):
     """(the block to study, None for the 1-D block; the swept keyword and values; their
     name), the flexible sliding mass's options checked against --mu."""
-    flexible_only = [flag for flag, given in (("--height", args.height), ("--vs", args.vs), ("--vr", args.vr),
-                                              ("--soil-damping", args.soil_damping != 0.05),
-                                              ("--method", args.method != "coupled")) if given]
+    flexible_only = [flag for flag, value in (("--height", args.height), ("--vs", args.vs), ("--vr", args.vr),
+                                              ("--soil-damping", args.soil_damping), ("--method", args.method))
+                     if value is not None]
     if args.mu is not None:
         if flexible_only:
             raise UsageError(f"{flexible_only[0]} applies to the flexible sliding mass (--ky or --ky-table), not "
