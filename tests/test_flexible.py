@@ -11,6 +11,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 import blockdae as bd
+from blockdae.flexible import _analysis as analysis_module
 from blockdae.flexible import FlexibleMode, FlexibleSlidingMass, ShearColumn, equivalent_linear
 from conftest import assert_same_events, load_sample_record
 
@@ -350,12 +351,41 @@ def test_equivalent_linear_on_the_exact_peak():
     (dict(reference_strain=0.0), r"reference_strain must be a fraction > 0, got 0\.0"),
     (dict(t_end=100.0), r"t_end=100\.0 must lie in \(0, "),
     (dict(ky=[0.1, 0.2], height=[5.0, 10.0, 20.0]), r"must broadcast together"),
+    # empty, not finite, not numbers: named with the value, not a NumPy error
+    (dict(ky=np.array([])), r"ky=array\(\[\], dtype=float64\) is empty: give a number or at least one value \[g\]"),
+    (dict(height=[]), r"height=\[\] is empty: give a number or at least one value \[m\]"),
+    (dict(vs=(), ky=[0.1, 0.2]), r"vs=\(\) is empty: .* \[m/s\]"),
+    (dict(vr=[]), r"vr=\[\] is empty"),
+    (dict(damping=np.array([])), r"damping=array\(\[\], dtype=float64\) is empty"),
+    (dict(ky=np.nan), r"ky=nan must be a finite number \[g\]"),
+    (dict(ky=[0.1, np.inf]), r"ky\[1\]=inf must be a finite number \[g\]"),
+    (dict(height=np.inf), r"height=inf must be a finite number \[m\]"),
+    (dict(vs=[250.0, np.nan]), r"vs\[1\]=nan must be a finite number \[m/s\]"),
+    (dict(vr=np.nan), r"vr=nan must be a finite number \[m/s\]"),  # not taken for "vr not given"
+    (dict(damping=np.nan), r"damping=nan must be a finite number \[-\]"),
+    (dict(ky="0.1"), r"ky='0.1' must be a number or a 1-D sequence of numbers \[g\]"),
+    (dict(height=[[10.0]]), r"height must be a number or a 1-D sequence of numbers \[m\], got shape \(1, 1\)"),
+    (dict(target_pga=np.nan), r"target_pga=np.float64\(nan\) must be a positive finite peak"),
+    (dict(target_pga=0.0), r"target_pga=np.float64\(0.0\) must be a positive finite peak"),
+    (dict(t_end=0.0), r"t_end=0.0 must be a positive finite time \[s\]"),
+    (dict(t_end=-1.0), r"t_end=-1.0 must be a positive finite time \[s\]"),
+    (dict(t_end=np.nan), r"t_end=nan must be a positive finite time \[s\]"),
+    (dict(t_end="1"), r"t_end='1' must be a positive finite time \[s\]"),
+    (dict(method=None), r"method=None is unknown"),
 ])
-def test_flexible_refuses_bad_input(kwargs, message):
+def test_flexible_refuses_bad_input(kwargs, message, monkeypatch):
     record = _record("Northridge_1994_PAC-175", duration=2.0)
     args = dict(ky=0.1, height=10.0, vs=250.0) | kwargs
+    # refused before any work
+    monkeypatch.setitem(analysis_module.INTEGRATIONS, "exact", (lambda *a: pytest.fail("work started"), "exact"))
     with pytest.raises(ValueError, match=message):
         bd.flexible(record, **args)
+
+
+@pytest.mark.parametrize("motion, message", [({}, r"motion=\{\} holds no record"), ([], r"motion=\[\] holds no record")])
+def test_flexible_refuses_no_motion(motion, message):
+    with pytest.raises(ValueError, match=message):
+        bd.flexible(motion, ky=0.1, height=10.0, vs=250.0)
 
 
 def test_model_refuses_bad_input():

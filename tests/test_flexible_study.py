@@ -128,9 +128,11 @@ def test_bad_input_fails_before_work(records, kwargs, match, monkeypatch):
         bd.study(records, **(dict(ky=KY, pga=PGA, block=MASS) | kwargs))
 
 
-def test_t_end_past_a_record_and_summary_are_refused(records, table):
-    with pytest.raises(ValueError, match=r"t_end=100.0 must lie in \(0, 19.98"):
-        bd.study(records[:1], ky=KY, pga=PGA, block=MASS, t_end=100.0)
+def test_t_end_past_a_record_and_summary_are_refused(records, table, monkeypatch):
+    monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
+    with pytest.raises(ValueError, match=r"t_end=20.0 must lie in \(0, 19.98\] s \(the record "
+                                         r"'Northridge_1994_PAC-175', records\[0\]\)"):
+        bd.study(records[:2], ky=KY, pga=PGA, block=MASS, t_end=20.0)
     with pytest.raises(ValueError, match=r"summary takes a study of a block over mu.*no \['mu', "
                                          r"'max_abs_displacement_m'\] columns"):
         bd.studies.summary(table)
@@ -143,3 +145,99 @@ def test_benchmark_quick(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "10 records × 2 ky × 3 PGA = 60 analyses" in out and "bar: the study no slower" in out
     assert "smoke run, not a measurement" in out and "P(D > 5 cm | PGA 0.5 g)" in out
+
+
+def test_a_three_component_motion_is_refused_before_work(records, monkeypatch):
+    """A bd.BaseMotion (the block on a plane's input) is refused by name before any task runs."""
+    monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
+    x = records[4]
+    y = bd.Record(0.5 * x.acceleration_samples, x.dt, "half", units="m/s2")
+    with pytest.raises(ValueError, match=r"records\[1\] \('Kobe_1995_TAK-090 \+ half'\) is a "
+                                         r"BaseMotion: the flexible sliding mass takes records along the slope"):
+        bd.study([records[0], bd.BaseMotion(x, y)], ky=KY, pga=PGA, block=MASS)
+
+
+#: a hardening ky table: 0.1 g at rest, 0.2 g after 5 cm of sliding
+TABLE = bd.KyTable([0.0, 0.05], [0.1, 0.2])
+
+
+def test_a_ky_table_study_is_bd_flexible_and_resumes_from_its_checkpoint(records, tmp_path, monkeypatch):
+    """ky= a bd.KyTable: its rows are bd.flexible's with the same table and motion (scale=
+    the factors of target_pga: the same record, bit for bit), column ky_g its ky at D = 0;
+    the manifest records the table, a rerun with it resumes, another table is refused."""
+    two = records[:2]
+    factors = [0.3, 0.6]
+    monkeypatch.setattr(study_module, "TASK_ANALYSES", len(factors))  # one record a task: two tasks
+    folder = tmp_path / "ck"
+    table = bd.study(two, ky=TABLE, scale=factors, block=MASS, checkpoint=folder)
+    assert list(table["ky_g"]) == [0.1] * 4 and list(table["scale"]) == factors * 2
+    for record, rows in zip(two, (table.iloc[:2], table.iloc[2:])):
+        for factor, row in zip(factors, rows.itertuples()):
+            ref = bd.flexible(record.scaled(factor), ky=TABLE, height=COLUMN.height, vs=COLUMN.vs).rows[0]
+            assert [getattr(row, name) for name in FLEXIBLE] == [ref[name] for name in FLEXIBLE]
+    assert (table["normal_m"] > 0.05).any()  # some slides pass the breakpoint: the table matters
+    manifest = json.loads((folder / "manifest.json").read_text())
+    assert manifest["ky"] == [{"displacement_m": [0.0, 0.05], "ky_g": [0.1, 0.2]}]
+    (folder / "task-000001.csv").unlink()
+    ran = []
+
+    def counting(chunk, grid):
+        ran.append([r.name for r in chunk])
+        return _RUN_TASK(chunk, grid)
+    monkeypatch.setattr(study_module, "run_task", counting)
+    resumed = bd.study(two, ky=bd.KyTable([0.0, 0.05], [0.1, 0.2]), scale=factors, block=MASS, checkpoint=folder)
+    pd.testing.assert_frame_equal(resumed, table)
+    assert ran == [[two[1].name]]  # only the deleted task ran again
+    with pytest.raises(ValueError, match=r"holds another study: ky was \[\{'displacement_m': \[0.0, 0.05\], "
+                                         r"'ky_g': \[0.1, 0.2\]\}\], now \[\{'displacement_m': \[0.0, 0.05\], "
+                                         r"'ky_g': \[0.1, 0.3\]\}\]"):
+        bd.study(two, ky=bd.KyTable([0.0, 0.05], [0.1, 0.3]), scale=factors, block=MASS, checkpoint=folder)
+    with pytest.raises(ValueError, match=r"holds another study: ky was \[\{'displacement_m'.*\}\], now \[0.1\]"):
+        bd.study(two, ky=0.1, scale=factors, block=MASS, checkpoint=folder)
+
+
+def test_tables_and_numbers_together_are_refused(records, monkeypatch):
+    monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
+    with pytest.raises(ValueError, match=r"ky\[1\]=0.2: give ky as numbers \[g\] or as ky tables \(bd.KyTable\), "
+                                         "not both"):
+        bd.study(records[:1], ky=[TABLE, 0.2], pga=PGA, block=MASS)
+
+
+def test_cli_study_runs_the_flexible_mass(records, tmp_path, capsys, monkeypatch):
+    """blockdae study --ky/--ky-table --height --vs: bd.study's table of the flexible mass
+    (reference: the same bd.study call in Python), saved to --out; its misuses exit 2
+    with one line naming the option, before any work."""
+    from blockdae.cli._main import main
+    from conftest import sample_record_paths
+
+    folder = tmp_path / "records"
+    folder.mkdir()
+    for path in sample_record_paths():
+        if path.stem in SHORT[:2]:
+            (folder / path.name).write_bytes(path.read_bytes())
+    two = sorted(records[:2], key=lambda r: r.name)
+    out = tmp_path / "flexible.csv"
+    argv = ["--no-cache", "study", str(folder), "--pga", "0.2", "0.4", "--out", str(out)]
+    column = ["--height", "20", "--vs", "300"]
+    assert main(argv + column + ["--ky", "0.1", "0.2"]) == 0, capsys.readouterr().err
+    assert "8 analyses (2 records × 1 locations × 2 ky × 2 intensities)" in capsys.readouterr().out
+    pd.testing.assert_frame_equal(bd.load_study(out), bd.study(two, ky=KY, pga=[0.2, 0.4], block=MASS))
+    assert main(argv + column + ["--ky-table", "0:0.1", "0.05:0.2", "--method", "decoupled"]) == 0
+    decoupled = bd.FlexibleSlidingMass(COLUMN, ky=0.1, method="decoupled")
+    pd.testing.assert_frame_equal(bd.load_study(out), bd.study(two, ky=TABLE, pga=[0.2, 0.4], block=decoupled))
+    monkeypatch.setattr(study_module, "run_task", lambda *a: pytest.fail("work started"))
+    for bad, message in [
+        (["--ky", "0.1", "--vs", "100"], "--ky and --ky-table study the flexible sliding mass: give --height"),
+        (column + ["--ky", "0.1", "--direction", "both"], "--direction both: the flexible sliding mass slides "
+                                                          "downslope in both polarities"),
+        (column + ["--mu", "0.1"], "--height applies to the flexible sliding mass (--ky or --ky-table), not to "
+                                   "the block"),
+        (column + ["--ky", "0.1", "--summary", str(tmp_path / "s.csv")], "--summary: the seed's summaries are of "
+                                                                         "a block"),
+        (column + ["--ky-table", "0:0.1", "0:0.2"], "--ky-table: KyTable: displacement_m must be strictly "
+                                                    "increasing"),
+        (column + ["--ky", "0.1", "--soil-damping", "0.9"], "--soil-damping: damping=0.9 gives a total damping "
+                                                            "ratio of 1.1"),
+    ]:
+        assert main(argv + bad) == 2, bad
+        assert message in capsys.readouterr().err, bad

@@ -6,8 +6,8 @@ import json
 
 import pathlib
 
-from ._common import (checked, describe_record, number, positive, read, record_arguments, record_fields,
-                      save_figure)
+from ._common import (UsageError, checked, describe_record, number, positive, read, record_arguments,
+                      record_fields, save_figure)
 from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..flexible._analysis import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
@@ -108,3 +108,29 @@ def run_flexible(args) -> int:
     if args.plot is not None:
         print(f"figure: {args.plot}")
     return 0
+
+
+def add_flexible_study_arguments(parser):
+    """``blockdae study``'s options of the flexible sliding mass (with ``--ky`` or
+    ``--ky-table`` in place of ``--mu``)."""
+    group = parser.add_argument_group("the flexible sliding mass (with --ky or --ky-table)")
+    group.add_argument("--height", type=positive("--height"), default=None, help="height H of the sliding mass [m]")
+    group.add_argument("--vs", type=positive("--vs"), default=None, help="its shear-wave velocity [m/s]")
+    group.add_argument("--vr", type=positive("--vr"), default=None,
+                       help="shear-wave velocity below the slip surface [m/s] (default: --vs)")
+    group.add_argument("--soil-damping", type=number("--soil-damping", lambda x: -1 < x < 1, "in (-1, 1)"),
+                       default=None, help="the soil's damping ratio [-]; impedance damping from vr/vs is added "
+                                          "(default 0.05)")
+    group.add_argument("--method", choices=METHODS, default=None, help="slip equations (default coupled)")
+
+
+def flexible_study_block(args):
+    """(the flexible sliding mass of ``blockdae study``'s ``args``, the ky to sweep: numbers
+    [g] or a :class:`KyTable`); UsageError where --height or --vs is missing."""
+    missing = [flag for flag, value in (("--height", args.height), ("--vs", args.vs)) if value is None]
+    if missing:
+        raise UsageError(f"--ky and --ky-table study the flexible sliding mass: give {' and '.join(missing)}")
+    ky = args.ky if args.ky_table is None else checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
+    damping = 0.05 if args.soil_damping is None else args.soil_damping
+    column = checked(lambda: ShearColumn(args.height, args.vs, args.vr, damping), "--soil-damping")
+    return FlexibleSlidingMass(column, ky=0.0, method=args.method or "coupled", g=args.g), ky

@@ -17,10 +17,11 @@ from ._model import FlexibleSlidingMass
 from ._modes import FlexibleMode
 from ._sensitivities import displacement_sensitivities
 from ._solution import Episode, FlexibleEvent, FlexibleSolution
-from ._study import study_batch
+from ._study import study_batch, study_sweep
 
-#: bd.study's hook on the mass; attached here as its rows (._analysis) import the model
+#: bd.study's hooks on the mass; attached here as its rows (._analysis) import the model
 FlexibleSlidingMass.study_batch = study_batch
+FlexibleSlidingMass.study_sweep = study_sweep
 
 __all__ = ["Analysis", "EquivalentLinear", "Episode", "FlexibleEvent", "FlexibleMode", "FlexibleResult",
            "FlexibleSlidingMass", "FlexibleSolution", "KyTable", "ShearColumn", "analyse_exact",

@@ -12,6 +12,7 @@ runs of a batch go to the compiled engine in one call, parallel over cores.
 import dataclasses
 import functools
 import math
+import numbers
 
 import numpy as np
 
@@ -167,10 +168,15 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
     elif table is not None:
         ky, table = table.ky_g[0], None
     names, records = _motions(motion)
-    vr_given = np.nan if vr is None else vr
+    if t_end is not None and not (isinstance(t_end, numbers.Real) and not isinstance(t_end, bool) and
+                                  math.isfinite(t_end) and t_end > 0):
+        raise ValueError(f"t_end={t_end!r} must be a positive finite time [s] (or None: each record's last sample)")
+    given = {"ky": ky, "height": height, "vs": vs, "vr": vr, "damping": damping}
+    if vr is None:
+        given["vr"] = np.nan  # not given: each column takes its vs
     models = [_model(float(k) if table is None else table, float(h), float(v), None if math.isnan(r) else float(r),
                      float(d), method, g)
-              for k, h, v, r, d in _parameter_sets(ky, height, vs, vr_given, damping)]
+              for k, h, v, r, d in _parameter_sets(given, checked=("vr",) if vr is None else ())]
     polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
     analyses = []
     for name, record in zip(names, records):
@@ -210,19 +216,48 @@ def _settings(model):
     return engine_settings(model)
 
 
-def _parameter_sets(*values):
-    """(ky, height, vs, vr, damping) of each parameter set: numbers or 1-D arrays,
-    broadcast together."""
+def _parameter_sets(given, checked=()):
+    """(ky, height, vs, vr, damping) of each parameter set from ``given`` (name -> a
+    number or a 1-D sequence), broadcast together; each checked (numbers, finite, not
+    empty) but those named in ``checked``, ValueError naming it and its value."""
+    values = tuple(given.values())
     if set(map(type, values)) <= {float, int}:  # one set: no arrays needed
+        for name, value in given.items():
+            if name not in checked and not math.isfinite(value):
+                raise ValueError(f"{name}={value!r} must be a finite number [{PARAMETER_UNITS[name]}]")
         return [values]
+    arrays = [_parameter_array(name, value, name in checked) for name, value in given.items()]
     try:
-        sets = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in values))
+        sets = np.broadcast_arrays(*arrays)
     except ValueError:
         raise ValueError(f"ky, height, vs, vr and damping must broadcast together, got shapes "
-                         f"{[np.shape(x) for x in values]}") from None
-    if sets[0].ndim > 1:
-        raise ValueError(f"ky, height, vs, vr and damping must be numbers or 1-D arrays, got shape {sets[0].shape}")
+                         f"{[np.shape(x) for x in arrays]}") from None
     return zip(*(np.atleast_1d(x) for x in sets))
+
+
+#: the unit of each parameter of :func:`flexible`
+PARAMETER_UNITS = {"ky": "g", "height": "m", "vs": "m/s", "vr": "m/s", "damping": "-"}
+
+
+def _parameter_array(name, value, checked):
+    """``value`` of the parameter ``name`` as a float array of at most one dimension,
+    not empty, finite (unless ``checked``); else ValueError naming it and the value."""
+    unit = PARAMETER_UNITS[name]
+    try:
+        if np.asarray(value).dtype.kind in "USb":  # text, bytes, booleans
+            raise TypeError
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}={value!r} must be a number or a 1-D sequence of numbers [{unit}]") from None
+    if array.ndim > 1:
+        raise ValueError(f"{name} must be a number or a 1-D sequence of numbers [{unit}], got shape {array.shape}")
+    if array.size == 0:
+        raise ValueError(f"{name}={value!r} is empty: give a number or at least one value [{unit}]")
+    bad = np.flatnonzero(~np.isfinite(array.ravel()))
+    if bad.size and not checked:
+        where = "" if array.ndim == 0 else f"[{int(bad[0])}]"
+        raise ValueError(f"{name}{where}={float(array.ravel()[bad[0]])!r} must be a finite number [{unit}]")
+    return array
 
 
 def as_ky_table(ky):
@@ -249,7 +284,7 @@ def _motions(motion):
         if not isinstance(record, Record):
             raise TypeError(f"motion {name!r} must be a Record (samples at dt), got {type(record).__name__}")
     if not records:
-        raise ValueError("motion must hold at least one record")
+        raise ValueError(f"motion={motion!r} holds no record: give a Record, or a sequence or dict of them")
     return names, records
 
 

@@ -102,6 +102,17 @@ def piecewise_ky(s, breakpoints, intercepts, slopes, xp):
     return ky
 
 
+def piece_ky(passed, s, breakpoints, intercepts, slopes, xp):
+    """ky(s) [g] on the piece of :meth:`KyTable.segments` after ``passed`` breakpoints (a
+    count, as a float state): its intercept plus its slope times s, with the array
+    namespace ``xp`` only (its ``where``)."""
+    intercept, slope = intercepts[-1] + 0.0 * passed, slopes[-1] + 0.0 * passed
+    for j in reversed(range(len(breakpoints))):
+        intercept = xp.where(passed < j + 0.5, intercepts[j] + 0.0 * passed, intercept)
+        slope = xp.where(passed < j + 0.5, slopes[j] + 0.0 * passed, slope)
+    return intercept + slope * s
+
+
 def next_breakpoint(passed, breakpoints, xp, beyond=math.inf):
     """The breakpoint [m] after ``passed`` of them (a count, as a float state); ``beyond``
     when all are passed."""

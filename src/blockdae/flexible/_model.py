@@ -28,7 +28,7 @@ from ..core._model import KNOTS_PER_RADIAN, AbstractHybridModel
 from ..core._units import STANDARD_GRAVITY
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn
 from ._exact import solve_exact
-from ._ky_table import KyTable, next_breakpoint, piecewise_ky
+from ._ky_table import KyTable, next_breakpoint, piece_ky, piecewise_ky
 from ._modes import EVENT_KINDS, FlexibleMode
 from ._solution import FlexibleEvent, FlexibleSolution
 
@@ -116,15 +116,18 @@ class FlexibleSlidingMass(AbstractHybridModel):
         return piecewise_ky(s, *self.table, xp)
 
     def _friction(self, y, xp=np):
-        """ky(s) g [m/s²] in state ``y``."""
-        return self.ky_at(y[_S], xp) * self.g
+        """ky(s) g [m/s²] in state ``y``; of a table, on the piece that the breakpoints
+        passed select (the events switch pieces: the flow is smooth between them, also
+        for its derivatives, whatever side of a breakpoint rounding puts s on)."""
+        if self.table is None:
+            return self.ky_at(y[_S], xp) * self.g
+        return piece_ky(y[_PASSED], y[_S], *self.table, xp) * self.g
 
     def _friction_rate(self, y):
         """d(ky(s) g)/dt = ky'(s) g w [m/s³] (0 for a constant ky; w = 0 in STICK)."""
         if self.table is None:
             return 0.0
-        breakpoints, _, slopes = self.table
-        return float(slopes[int(np.searchsorted(breakpoints, y[_S], side="right"))]) * self.g * y[_W]
+        return float(self.table[2][int(round(float(y[_PASSED])))]) * self.g * y[_W]
 
     def _more(self, y):
         """The states beyond (u, u', s, w): the breakpoints passed, for a table."""

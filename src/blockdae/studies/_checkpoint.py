@@ -84,9 +84,9 @@ class Checkpoint:
 def _manifest(records, grid, tasks) -> dict:
     """What a study is, as JSON values (floats by their repr: exact)."""
     settings = {f.name: _plain(getattr(grid, f.name)) for f in dataclasses.fields(grid)
-                if f.name not in ("by", "parameter", "column")}
+                if f.name not in ("by", "parameter", "column", "values")}
     settings[grid.by] = settings.pop("factors")  # "pga" or "scale", as study names them
-    settings[grid.parameter] = settings.pop("values")  # "mu" or "ky", as study names them
+    settings[grid.parameter] = settings.pop("sweep")  # "mu" or "ky" as study names them: numbers, or ky tables
     manifest = {"format": FORMAT, "blockdae": _version(), **settings,
                 "records_per_task": len(tasks[0]), "records": [_fingerprint(r) for r in records]}
     return json.loads(json.dumps(manifest, default=_number))  # tuples as lists, as read back
@@ -100,7 +100,7 @@ def _number(value):
 
 
 def _plain(value):
-    """``value`` as JSON values: arrays as lists, floors as their fields."""
+    """``value`` as JSON values: arrays as lists, floors and ky tables as their fields."""
     if isinstance(value, np.ndarray):
         return value.tolist()
     if isinstance(value, tuple):

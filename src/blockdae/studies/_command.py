@@ -14,6 +14,7 @@ import time
 import numpy as np
 
 from ..cli._common import UsageError, files_or_set, number, positive, read, set_argument
+from ..cli._flexible import _table_row, add_flexible_study_arguments, flexible_study_block
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._readers import RECORD_SUFFIXES, record_files
 from ..structures import ShearFrame
@@ -39,11 +40,18 @@ def _seconds_or_none(text):
 
 def add_study_parser(subparsers):
     """The ``study`` sub-command on an argparse ``subparsers`` object."""
-    p = subparsers.add_parser("study", help="every record of a folder × mu × PGA × ground and floors (seed 002)")
+    p = subparsers.add_parser("study", help="every record of a folder × mu (or ky) × PGA × ground and floors "
+                                            "(seed 002; --ky: the flexible sliding mass)")
     p.add_argument("folder", type=pathlib.Path, nargs="?",
                    help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz); "
                         "or --set NAME")
-    p.add_argument("--mu", type=positive("--mu"), nargs="+", required=True, help="friction coefficients [-]")
+    swept = p.add_mutually_exclusive_group(required=True)
+    swept.add_argument("--mu", type=positive("--mu"), nargs="+", help="friction coefficients [-] (the 1-D block)")
+    swept.add_argument("--ky", type=positive("--ky"), nargs="+",
+                       help="yield accelerations [g] of the flexible sliding mass (with --height, --vs)")
+    swept.add_argument("--ky-table", type=_table_row, nargs="+", metavar="D_M:KY_G",
+                       help="the flexible sliding mass with ky [g] against the sliding displacement D [m], rows D:ky "
+                            "(bd.KyTable; the column ky_g: ky at D = 0)")
     size = p.add_mutually_exclusive_group(required=True)
     size.add_argument("--pga", type=_grid, nargs="+", help="target peak accelerations [g]: values or START:STOP:N")
     size.add_argument("--scale", type=_grid, nargs="+", help="factors on the motions [-]: values or START:STOP:N")
@@ -52,8 +60,9 @@ def add_study_parser(subparsers):
     p.add_argument("--storeys", type=int, default=5, help="storeys of the frames (default 5)")
     p.add_argument("--damping", type=number("--damping", lambda x: 0 <= x < 1, "in [0, 1)"), default=0.05, help="modal damping ratio of the frames [-] (default 0.05)")
     p.add_argument("--no-ground", action="store_true", help="floors only")
-    p.add_argument("--direction", choices=("negative", "positive", "both"), default="negative",
-                   help="allowed sliding direction (default negative: one-way)")
+    p.add_argument("--direction", choices=("negative", "positive", "both"), default=None,
+                   help="allowed sliding direction of the 1-D block (default negative: one-way; the flexible "
+                        "mass runs both polarities)")
     p.add_argument("--units", default=None, help="acceleration units of the files: g, m/s2, cm/s2 or gal "
                                                  "(default: as an AT2 header or a table's header line says, else g)")
     p.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
@@ -70,12 +79,14 @@ def add_study_parser(subparsers):
     p.add_argument("--no-worker-timeout", type=_seconds_or_none, default=60.0, metavar="SECONDS",
                    help="with --scheduler: fail (exit status 1) after this long [s] with no worker alive; "
                         "'none': wait forever (default 60)")
+    add_flexible_study_arguments(p)
     p.set_defaults(command=run_study)
     return p
 
 
 def run_study(args) -> int:
     """Run the study that ``args`` describe; the exit status."""
+    block, swept, label = _block(args)
     records = _records(args)
     frames = [ShearFrame(args.storeys, period, args.damping) for period in args.frame] if args.frame else []
     where = ([] if args.no_ground else ["ground"]) + [f.floor(i) for f in frames for i in range(1, f.storeys + 1)]
@@ -83,8 +94,9 @@ def run_study(args) -> int:
     client = _client(args.scheduler)
     start = time.perf_counter()
     try:
-        table = study(records, mu=args.mu, where=where, direction=args.direction, executor=client, g=args.g,
-                      no_worker_timeout=args.no_worker_timeout, checkpoint=args.checkpoint, **grid)
+        table = study(records, where=where, direction=args.direction or "negative", executor=client, g=args.g,
+                      no_worker_timeout=args.no_worker_timeout, checkpoint=args.checkpoint, block=block, **swept,
+                      **grid)
     except (ValueError, TypeError) as err:
         raise UsageError(str(err)) from None
     except NoWorkerError as err:
@@ -97,10 +109,33 @@ def run_study(args) -> int:
     _save(lambda: save_study(table, args.out), "--out")
     if args.summary is not None:
         _save(lambda: save_study(summary(table), args.summary), "--summary")
-    print(f"{len(table)} analyses ({len(records)} records × {len(where)} locations × {len(args.mu)} mu × "
-          f"{len(table) // (len(records) * len(where) * len(args.mu))} intensities) in {wall:.2f} s; "
+    values = next(iter(swept.values()))
+    n_swept = len(values) if isinstance(values, list) else 1  # numbers, or one ky table
+    print(f"{len(table)} analyses ({len(records)} records × {len(where)} locations × {n_swept} {label} × "
+          f"{len(table) // (len(records) * len(where) * n_swept)} intensities) in {wall:.2f} s; "
           f"results: {args.out}")
     return 0
+
+
+def _block(args):
+    """(the block to study, None for the 1-D block; the swept keyword and values; their
+    name), the flexible sliding mass's options checked against --mu."""
+    flexible_only = [flag for flag, value in (("--height", args.height), ("--vs", args.vs), ("--vr", args.vr),
+                                              ("--soil-damping", args.soil_damping), ("--method", args.method))
+                     if value is not None]
+    if args.mu is not None:
+        if flexible_only:
+            raise UsageError(f"{flexible_only[0]} applies to the flexible sliding mass (--ky or --ky-table), not "
+                             "to the block of --mu")
+        return None, dict(mu=args.mu), "mu"
+    if args.direction is not None:
+        raise UsageError(f"--direction {args.direction}: the flexible sliding mass slides downslope in both "
+                         "polarities of each record (columns normal_m, inverse_m); leave --direction out")
+    if args.summary is not None:
+        raise UsageError("--summary: the seed's summaries are of a block over mu; fit a fragility to the flexible "
+                         "mass's table instead (bd.hazard.fit_fragility)")
+    block, ky = flexible_study_block(args)
+    return block, dict(ky=ky), "ky"
 
 
 def _records(args):

@@ -53,7 +53,8 @@ class _Grid:
 
     parameter: str  # the model's swept parameter: its keyword ("mu", "ky") ...
     column: str  # ... and its column in the table ("mu", "ky_g")
-    values: np.ndarray  # its values
+    values: np.ndarray  # its values (its column in the table)
+    sweep: object  # what the model's study_batch takes: ``values``, or the model's own (the flexible mass's ky tables)
     factors: np.ndarray  # pga [g] ("pga") or factors on a(t) [-] ("scale")
     by: str  # "pga" or "scale"
     where: tuple
@@ -79,7 +80,9 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction="
         mu: friction coefficients μ > 0 [-], the swept parameter of a block (the 1-D
             block, ``bd.PlanarBlock``).
         ky: instead of ``mu``, yield accelerations ky > 0 [g], the swept parameter of a
-            model that declares ky (``bd.FlexibleSlidingMass``). The model's
+            model that declares ky (``bd.FlexibleSlidingMass``; also a ``bd.KyTable`` of
+            ky against the sliding displacement, or a sequence of them: column ky_g is
+            then each table's ky at zero displacement). The model's
             ``study_parameter`` says which of the two it takes; the other is refused.
         pga: target peak accelerations A > 0 [g]: the motion at each location (ground
             or floor) is scaled so that its peak |a| is A g (seed 002).
@@ -149,8 +152,8 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction="
     model that sweeps ky or ``ky`` to one that sweeps μ, ``no_worker_timeout`` not
     a positive finite number [s] or None, a result table larger than the free memory,
     a checkpoint of another study. A task that raises on an executor lets the others
-    finish (and be saved) before its error is raised (the flexible mass's tasks refuse a
-    motion that is not a :class:`bd.Record` or ends before ``t_end``).
+    finish (and be saved) before its error is raised. The flexible mass refuses a motion
+    that is not a :class:`bd.Record` or ends before ``t_end``, also before any work.
     Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu, direction=direction),
     motion.scaled(scale))`` of the location's motion to rounding.
     """
@@ -226,7 +229,7 @@ def run_task(records, grid: _Grid) -> dict:
     leading = [_leading(m) for m in motions]  # the component whose peak is the motion's
     peak = np.array([m.peak_acceleration for m in leading])
     engine_motions = [_normalised(m, grid.g / p) for m, p in zip(motions, peak)] if grid.by == "pga" else motions
-    columns = grid.block.study_batch(grid.values).study_columns(engine_motions, grid.t_end, grid.factors, grid.rtol)
+    columns = grid.block.study_batch(grid.sweep).study_columns(engine_motions, grid.t_end, grid.factors, grid.rtol)
     sd = response_spectrum(leading, grid.sd_period, grid.damping).sd
     pgv = np.array([_peak_velocity(m) for m in leading])
     n_v, n_f = grid.values.size, grid.factors.size
@@ -297,8 +300,8 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
         raise ValueError(f"where repeats a location: {where!r}")
     if block is None:
         block = SlidingBlock(mu=1.0, direction=direction, g=g)  # checks direction and g
-    parameter, column, values = _swept(block, swept)
-    block.study_batch(values)  # checks the values against the model's other parameters (|bias| < mu, ...)
+    parameter, column, values, sweep = _swept(block, swept)
+    batch = block.study_batch(sweep)  # checks the values against the model's other parameters (|bias| < mu, ...)
     if any(isinstance(r, BaseMotion) for r in records) and where != ("ground",):
         raise ValueError("three-component motions (bd.BaseMotion) are studied on the ground only")
     _values("sd_period", sd_period, "s")
@@ -308,6 +311,8 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
         raise ValueError(f"refine must be an integer >= 1 (floor samples per record step), got {refine!r}")
     if t_end is not None:
         _values("t_end", t_end, "s")
+    if callable(getattr(batch, "check_motions", None)):  # a model that takes only some motions (the flexible mass)
+        batch.check_motions(records, t_end)
     if by == "pga" and any(_leading(r).peak_acceleration == 0 for r in records):
         zero = next(_name(r) for r in records if _leading(r).peak_acceleration == 0)
         raise ValueError(f"pga cannot normalise a record of zeros: {zero!r}")
@@ -316,16 +321,19 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
     if rows * ROW_BYTES > free:
         raise ValueError(f"the result table would have {rows:,} rows (~{rows * ROW_BYTES / 2**30:.1f} GiB), more "
                          f"than the free memory ({free / 2**30:.1f} GiB): split the study or shrink the grid")
-    grid = _Grid(parameter=parameter, column=column, values=values, factors=factors, by=by, where=where,
+    grid = _Grid(parameter=parameter, column=column, values=values, sweep=sweep, factors=factors, by=by, where=where,
                  direction=direction, refine=refine, sd_period=float(sd_period), damping=float(damping), t_end=t_end,
                  g=float(block.g), block=block, rtol=rtol)
     return records, grid
 
 
 def _swept(block, swept):
-    """(keyword, table column, values) of the parameter ``block`` sweeps, from ``swept``
-    (keyword -> the values given to :func:`study`, None where not given), checked: the
-    model declares ``study_parameter`` and ``study_batch``, and only its keyword is given."""
+    """(keyword, table column, values, sweep) of the parameter ``block`` sweeps, from
+    ``swept`` (keyword -> the values given to :func:`study`, None where not given),
+    checked: the model declares ``study_parameter`` and ``study_batch``, and only its
+    keyword is given. ``values`` are numbers for the table; ``sweep`` is what
+    ``study_batch`` takes: the same numbers, or what the model's ``study_sweep(given)``
+    makes of what it takes besides numbers (the flexible mass's ky tables; None: numbers)."""
     if not callable(getattr(block, "study_batch", None)) or not isinstance(getattr(block, "study_parameter", None),
                                                                            tuple):
         raise TypeError(f"block must be a model that declares study_parameter and study_batch (bd.SlidingBlock, "
@@ -338,7 +346,11 @@ def _swept(block, swept):
                              f"{parameter}= instead")
     if swept.get(parameter) is None:
         raise ValueError(f"give {parameter}= ({model}'s swept parameter [{unit}], a number or a 1-D sequence)")
-    return parameter, column, _values(parameter, swept[parameter], unit)
+    own = block.study_sweep(swept[parameter]) if callable(getattr(block, "study_sweep", None)) else None
+    if own is not None:
+        return parameter, column, *own
+    values = _values(parameter, swept[parameter], unit)
+    return parameter, column, values, values
 
 
 def _values(name, values, unit):
