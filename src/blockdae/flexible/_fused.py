@@ -111,13 +111,33 @@ def _largest(x):
 
 
 @register_jitable
+def _first_reaching(reach, start, level):
+    """The first step j >= ``start`` whose bound of |HEA| ``reach[j]`` [m/s²] is not below
+    ``level`` [m/s²] (len(reach) if none): a tight scan, four steps at a time."""
+    n = reach.shape[0]
+    j = start
+    while j + 4 <= n and max(max(reach[j], reach[j + 1]), max(reach[j + 2], reach[j + 3])) < level:
+        j += 4
+    while j < n and reach[j] < level:
+        j += 1
+    return j
+
+
+@register_jitable
 def _sups(t0, h, p0, p1, omega, xi, damped, row, step, u, v, amplitude, reach, hea_sup, want_u, stack):
     """(sup |HEA| [m/s²], max |u| at the samples, sup |u| [m]) of the response
     (:func:`_response`; ``hea_sup``: max |HEA| at the samples): every step whose bound
     exceeds the best so far is searched; -inf where a search did not settle."""
     u_samples = _largest(u) if want_u else math.nan
     u_sup = u_samples
-    for i in range(t0.shape[0]):
+    n = t0.shape[0]
+    i = -1
+    while i + 1 < n:
+        i += 1
+        if not want_u:  # pass the steps whose bound does not exceed the best so far
+            i = _first_reaching(reach, i, np.nextafter(hea_sup, math.inf))
+            if i == n:
+                break
         u_reach = math.inf
         if want_u:
             a = amplitude[i]
@@ -193,7 +213,14 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
     tracking, du, dv, bound = coupled, 0.0, 0.0, 0.0
     decay = math.exp(-0.5 * stick[1] * step) * _WIDEN
     no_log = np.empty((0, 8))
-    for i in range(t0.shape[0]):
+    n = t0.shape[0]
+    i = -1
+    while i + 1 < n:
+        i += 1
+        if not coupled and mode == STICK:  # decoupled: pass the steps whose bound of |HEA| stays below ky g
+            i = _first_reaching(reach, i, kyg)
+            if i == n:
+                break
         a0, rate = sign * p0[i], sign * p1[i]
         if h[i] == step:
             if coupled:  # each mode's map picked statically (a tuple indexed at run time is copied)
@@ -215,9 +242,8 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
                         du, dv = run_u - sign * u[i + 1], run_v - sign * v[i + 1]
                         bound, tracking = _difference_bound(du, dv, stick), True
                     continue
-            elif mode == STICK:  # decoupled: the response's step decides (first its bound of |HEA|)
-                if reach[i] < kyg or _stick_clear(kyg - sign * hea[i], kyg - sign * hea[i + 1], rate, stick,
-                                                  amplitude[i], xi, step):
+            elif mode == STICK:  # decoupled: the response's step decides (its bound of |HEA| reaches ky g)
+                if _stick_clear(kyg - sign * hea[i], kyg - sign * hea[i + 1], rate, stick, amplitude[i], xi, step):
                     continue
             else:
                 pw, ps = _slip_polynomials(a0, rate, kyg, sign * u[i], sign * v[i], s, w)
@@ -237,7 +263,6 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
         if coupled and mode == STICK:
             du, dv = run_u - sign * u[i + 1], run_v - sign * v[i + 1]
             bound, tracking = _difference_bound(du, dv, stick), True
-    n = u.shape[0] - 1
     if not coupled:  # the column's state is the response's
         run_u, run_v = sign * u[n], sign * v[n]
     elif tracking:
