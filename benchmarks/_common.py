@@ -48,6 +48,24 @@ def timed(action, repeat):
     return result, first, statistics.median(warm) if warm else first
 
 
+
+def paired(ours, peer, rounds, burst):
+    """A speed-up measured in interleaved rounds, so that both sides share the machine's
+    load: each round times ``burst`` calls of ``ours`` (their median) and one of
+    ``peer``. Returns (ours' result, peer's result, ours' median [s], peer's median [s],
+    the median over rounds of peer / ours [-]), after one warm-up call of each."""
+    result, peer_result = ours(), peer()
+    mine, theirs, ratios = [], [], []
+    for _ in range(rounds):
+        _, _, ours_s = timed(ours, burst)
+        start = time.perf_counter()
+        peer()
+        peer_s = time.perf_counter() - start
+        mine.append(ours_s)
+        theirs.append(peer_s)
+        ratios.append(peer_s / ours_s)
+    return result, peer_result, statistics.median(mine), statistics.median(theirs), statistics.median(ratios)
+
 def print_table(headers, rows):
     """Print ``rows`` (tuples of str) under ``headers`` (strings with their units)."""
     widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h) for i, h in enumerate(headers)]
