@@ -36,7 +36,7 @@ from ..engines._linear_solution import linear_pieces
 from . import _table_kernel
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._modes import FlexibleMode
-from ._table_kernel import EVENT_RESOLUTION, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS
+from ._table_kernel import EVENT_RESOLUTION, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS, _lower, _upper
 from ._table_kernel import TAYLOR_DEGREE as _TAYLOR_DEGREE
 
 _U, _V, _S, _W, _A, _AR, _ONE = range(7)
@@ -142,22 +142,6 @@ class _System:
         if growth > 50.0:
             return math.inf
         return row4 * math.exp(growth) * float(np.abs(z * weights).max()) * (1.0 + 1e-9)
-
-
-def _lower(coefficients, length):
-    """A lower bound of sum c_k x^k over x in [0, length] (nested: c0 + x (c1 + x (...)))."""
-    bound = coefficients[-1]
-    for c in coefficients[-2::-1]:
-        bound = c + length * min(0.0, bound)
-    return bound
-
-
-def _upper(coefficients, length):
-    """An upper bound of sum c_k x^k over x in [0, length]."""
-    bound = coefficients[-1]
-    for c in coefficients[-2::-1]:
-        bound = c + length * max(0.0, bound)
-    return bound
 
 
 class _Search:

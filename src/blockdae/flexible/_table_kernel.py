@@ -320,6 +320,29 @@ def _decide(systems, kept, scratch, vectors, step, t0, lo, hi):
 
 
 @register_jitable
+def _push_later_half(stack, top, vectors, lo, hi):
+    """Halve (lo, hi] [s]: its later half waits on ``stack`` at ``top`` with its parent's
+    start lo and state vectors[_ZLO]. Returns (the earlier half's end, the new top)."""
+    mid = lo + 0.5 * (hi - lo)
+    stack[top, 0], stack[top, 1], stack[top, 2] = mid, hi, lo
+    for c in range(7):
+        stack[top, 3 + c] = vectors[_ZLO, c]
+    return mid, top + 1
+
+
+@register_jitable
+def _pop_later_half(systems, kept, scratch, vectors, step, stack, top):
+    """The last half waiting on ``stack`` below ``top``, its start state advanced from its
+    parent's into vectors[_ZLO]. Returns (lo, hi [s], the new top)."""
+    top -= 1
+    lo, hi = stack[top, 0], stack[top, 1]
+    for c in range(7):
+        vectors[_ZPARENT, c] = stack[top, 3 + c]
+    _advance(systems, kept, scratch, vectors, step, lo - stack[top, 2], _ZPARENT, _ZLO)
+    return lo, hi, top
+
+
+@register_jitable
 def _first_root(systems, kept, scratch, vectors, step, t0, h, stack):
     """The first tau in (0, ``h``] [s] where the first guard (c M^k and the bound of c M^4
     z in the system) falls to <= 0 from > 0 on a step from vectors[_Z0] at ``t0`` [s],
@@ -337,20 +360,11 @@ def _first_root(systems, kept, scratch, vectors, step, t0, h, stack):
         if found == _HALVE:  # the earlier half first, the later one kept
             if top == stack.shape[0]:
                 return _NO_ROOT, False
-            mid = lo + 0.5 * (hi - lo)
-            stack[top, 0], stack[top, 1], stack[top, 2] = mid, hi, lo
-            for c in range(7):
-                stack[top, 3 + c] = vectors[_ZLO, c]
-            top += 1
-            hi = mid
+            hi, top = _push_later_half(stack, top, vectors, lo, hi)
             continue
         if top == 0:
             return _NO_ROOT, True
-        top -= 1
-        lo, hi = stack[top, 0], stack[top, 1]
-        for c in range(7):
-            vectors[_ZPARENT, c] = stack[top, 3 + c]
-        _advance(systems, kept, scratch, vectors, step, lo - stack[top, 2], _ZPARENT, _ZLO)
+        lo, hi, top = _pop_later_half(systems, kept, scratch, vectors, step, stack, top)
     return _NO_ROOT, False
 
 
@@ -506,6 +520,17 @@ def _slides(t0, h, p0, p1, slots, systems, n_pieces, kyg, log):
 
 # ---- the no-sliding response (a total damping too close to 1 for the closed forms) ----
 @register_jitable
+def _form_bound(systems, i, g, vectors, length):
+    """A bound of |c z| of form ``g`` of system ``i`` on [0, ``length``] [s] from z =
+    vectors[_ZLO] at its start: Taylor's terms in absolute value, the fourth
+    derivative bounded (:func:`_fourth_bound`)."""
+    row = POWERS + 4 * g
+    return _upper((abs(_dot(systems, i, row, vectors, _ZLO)), abs(_dot(systems, i, row + 1, vectors, _ZLO)),
+                   abs(_dot(systems, i, row + 2, vectors, _ZLO)) / 2, abs(_dot(systems, i, row + 3, vectors, _ZLO)) / 6,
+                   _fourth_bound(systems, i, g, vectors, length) / 24), length)
+
+
+@register_jitable
 def _sup(systems, kept, scratch, vectors, step, g, t0, h, best, stack):
     """max(``best``, sup |form g| on [0, ``h``] [s]) from vectors[_Z0] at ``t0`` [s] and
     vectors[_ZEND] = z(h) on a STICK step: an interval whose bound of |c z| (Taylor at
@@ -519,29 +544,17 @@ def _sup(systems, kept, scratch, vectors, step, g, t0, h, best, stack):
         if budget > 0:
             _advance(systems, kept, scratch, vectors, step, hi - lo, _ZLO, _ZHI)
         length = hi - lo
-        d0, d1 = _dot(systems, i, row, vectors, _ZLO), _dot(systems, i, row + 1, vectors, _ZLO)
-        d2, d3 = _dot(systems, i, row + 2, vectors, _ZLO), _dot(systems, i, row + 3, vectors, _ZLO)
-        best = max(best, abs(d0), abs(_dot(systems, i, row, vectors, _ZHI)))
+        best = max(best, abs(_dot(systems, i, row, vectors, _ZLO)), abs(_dot(systems, i, row, vectors, _ZHI)))
         tiny = t0 + lo + length <= t0 + lo or length <= 4 * _EPS * max(abs(t0) + abs(hi), 1.0)
-        reach = _upper((abs(d0), abs(d1), abs(d2) / 2, abs(d3) / 6,
-                        _fourth_bound(systems, i, g, vectors, length) / 24), length)
+        reach = _form_bound(systems, i, g, vectors, length)
         if not tiny and reach > best * (1.0 + _PEAK_TOLERANCE):
             if top == stack.shape[0]:
                 return -1.0
-            mid = lo + 0.5 * (hi - lo)
-            stack[top, 0], stack[top, 1], stack[top, 2] = mid, hi, lo
-            for c in range(7):
-                stack[top, 3 + c] = vectors[_ZLO, c]
-            top += 1
-            hi = mid
+            hi, top = _push_later_half(stack, top, vectors, lo, hi)
             continue
         if top == 0:
             return best
-        top -= 1
-        lo, hi = stack[top, 0], stack[top, 1]
-        for c in range(7):
-            vectors[_ZPARENT, c] = stack[top, 3 + c]
-        _advance(systems, kept, scratch, vectors, step, lo - stack[top, 2], _ZPARENT, _ZLO)
+        lo, hi, top = _pop_later_half(systems, kept, scratch, vectors, step, stack, top)
     return -1.0
 
 
@@ -568,12 +581,7 @@ def _response(t0, h, p0, p1, slots, systems, with_u):
         _advance(systems, kept, scratch, vectors, step, end - t0[k], _Z0, _ZEND)
         _copy(vectors, _Z0, _ZLO)
         for g in range(2):
-            row = POWERS + 4 * g
-            reach[k, g] = _upper((abs(_dot(systems, 0, row, vectors, _ZLO)),
-                                  abs(_dot(systems, 0, row + 1, vectors, _ZLO)),
-                                  abs(_dot(systems, 0, row + 2, vectors, _ZLO)) / 2,
-                                  abs(_dot(systems, 0, row + 3, vectors, _ZLO)) / 6,
-                                  _fourth_bound(systems, 0, g, vectors, end - t0[k]) / 24), end - t0[k])
+            reach[k, g] = _form_bound(systems, 0, g, vectors, end - t0[k])
         samples = max(samples, abs(_dot(systems, 0, POWERS, vectors, _Z0)), abs(_dot(systems, 0, POWERS, vectors,
                                                                                       _ZEND)))
         u, v = vectors[_ZEND, 0], vectors[_ZEND, 1]
