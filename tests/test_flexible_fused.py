@@ -49,13 +49,16 @@ def test_first_fall_matches_the_linear_engines_search():
     assert found >= 30  # the draw has crossings to compare
 
 
-def test_sign_change_brackets_the_root_to_an_ulp_of_the_time():
+@pytest.mark.parametrize("slopes", ["known", "unknown"])
+def test_sign_change_brackets_the_root_to_an_ulp_of_the_time(slopes):
     """f = 2 e^{-tau} - 1 falls through zero at ln 2: the result r has f(r) <= 0 and f > 0
-    one ulp of the time (origin 10 s) before it, and r is within that of ln 2."""
+    one ulp of the time (origin 10 s) before it, and r is within that of ln 2; from the
+    Hermite start (the ends' slopes known) and from an end (slopes nan)."""
     f = (-1.0, 0.0, 0.0, 0.0, 2.0, 0.0, 1.0, 0.0)
     f1 = _linear._derivative(f)
     origin = 10.0
-    r = _roots.sign_change(f, f1, 0.0, _linear._eval(f, 0.0), 1.0, _linear._eval(f, 1.0), origin)
+    d_lo, d_hi = (_linear._eval(f1, 0.0), _linear._eval(f1, 1.0)) if slopes == "known" else (math.nan, math.nan)
+    r = _roots.sign_change(f, f1, 0.0, _linear._eval(f, 0.0), d_lo, 1.0, _linear._eval(f, 1.0), d_hi, origin)
     assert _linear._eval(f, r) <= 0 < _linear._eval(f, r - _EPS * origin)
     assert abs(r - math.log(2.0)) <= 2 * _EPS * origin
 

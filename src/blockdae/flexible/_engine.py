@@ -228,11 +228,12 @@ def _slip_clear(w, w_end, a0, rate, kyg, row, amplitude, step):
 
 @register_jitable
 def _piece(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, log, n_rows,
-           mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event):
+           mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, quick_first):
     """One piece of a(t) = a0 + rate tau [m/s², m/s³], ``length`` [s] from ``t_start``
     [s], from the state (``mode``, u, v, s, w) and the event counters: whole steps by
     their map (``maps``, ``table`` from :func:`_step_tables` for ``step`` [s]) where
-    bounds show that no guard crosses, else in closed form with every event located.
+    bounds show that no guard crosses (``quick_first``: try that first; a caller that has
+    tried it says False), else in closed form with every event located.
     ``cached``: (6,) scratch of exp, cos, sin of the last span; ``stack``: the root
     search's scratch; ``log``: knot rows from ``n_rows`` on ((0, 8): none). Returns
     (mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, status, n_rows)."""
@@ -240,7 +241,7 @@ def _piece(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg,
     logging = log.shape[0] > 0
     tau = 0.0
     while True:
-        if tau == 0.0 and length == step:
+        if quick_first and tau == 0.0 and length == step:
             quick, u_end, v_end, s_end, w_end = _quick_step(mode, maps[mode], table[mode], step, xi, kyg, a0, rate, u,
                                                             v, s, w)
             if quick:
@@ -321,7 +322,7 @@ def _run(t0, h, p0, p1, scale, omega, xi, kyg, coupled, log):
         n_rows += logging
         mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, status, n_rows = _piece(
             t0[i], h[i], scale * p0[i], scale * p1[i], step, maps, table, omega, xi, damped, kyg, coupled, cached,
-            stack, log, n_rows, mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event)
+            stack, log, n_rows, mode, u, v, s, w, n_events, n_episodes, run, max_run, last_event, True)
         if status != FINISHED:
             break
     if logging and status == FINISHED:

@@ -56,16 +56,17 @@ def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, am
     q0, q1 = m[0] * m[0] + m[1] * m[2], m[0] * m[1] + m[1] * m[3]
     q2, q3 = m[2] * m[0] + m[3] * m[2], m[2] * m[1] + m[3] * m[3]
     n = t0.shape[0]
+    for i in range(n):  # each whole step's forcing, parked where its end state goes (a loop that vectorises)
+        u[i + 1] = m[4] * p0[i] + m[5] * p1[i] + m[8]
+        v[i + 1] = m[6] * p0[i] + m[7] * p1[i] + m[9]
     u[0], v[0] = 0.0, 0.0
     u_end, v_end = 0.0, 0.0  # carried in registers, not read back from the arrays
     i = 0
     while i < n:  # as _whole_step, term by term
-        a0, rate = p0[i], p1[i]
         if h[i] == step and i + 1 < n and h[i + 1] == step:  # two whole steps: x2 = M² x0 + M F0 + F1
-            fu = m[4] * a0 + m[5] * rate + m[8]
-            fv = m[6] * a0 + m[7] * rate + m[9]
-            gu = m[4] * p0[i + 1] + m[5] * p1[i + 1] + m[8] + m[0] * fu + m[1] * fv
-            gv = m[6] * p0[i + 1] + m[7] * p1[i + 1] + m[9] + m[2] * fu + m[3] * fv
+            fu, fv = u[i + 1], v[i + 1]
+            gu = u[i + 2] + m[0] * fu + m[1] * fv
+            gv = v[i + 2] + m[2] * fu + m[3] * fv
             u[i + 1], v[i + 1] = fu + m[0] * u_end + m[1] * v_end, fv + m[2] * u_end + m[3] * v_end
             u_start = u_end
             u_end = gu + q0 * u_start + q1 * v_end
@@ -75,10 +76,10 @@ def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, am
             continue
         if h[i] == step:
             u_start = u_end
-            u_end = m[4] * a0 + m[5] * rate + m[8] + m[0] * u_start + m[1] * v_end
-            v_end = m[6] * a0 + m[7] * rate + m[9] + m[2] * u_start + m[3] * v_end
+            u_end = u[i + 1] + m[0] * u_start + m[1] * v_end
+            v_end = v[i + 1] + m[2] * u_start + m[3] * v_end
         else:
-            f, _, _, _ = _forms(STICK, False, omega, xi, damped, 0.0, a0, rate, u_end, v_end, 0.0, 0.0)
+            f, _, _, _ = _forms(STICK, False, omega, xi, damped, 0.0, p0[i], p1[i], u_end, v_end, 0.0, 0.0)
             u_end, v_end = _eval(f, h[i]), _eval(_derivative(f), h[i])
         u[i + 1], v[i + 1] = u_end, v_end
         i += 1
@@ -161,12 +162,13 @@ def _sups(t0, h, p0, p1, omega, xi, damped, row, step, u, v, amplitude, reach, h
 
 def _slow_step(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, no_log,
                counts, mode, u, v, s, w):
-    """:func:`._engine._piece` for a run from (``mode``, u, u', s, w), its counters
+    """:func:`._engine._piece`, its quick step tried already, for a run from (``mode``,
+    u, u', s, w), its counters
     ``counts`` (COUNT_FIELDS) updated: its (mode, u, u', s, w) at the end of the piece.
     ``no_log``: an empty (0, 8) knot log."""
     (mode, u, v, s, w, n_events, n_episodes, at_once, most, last, status, _) = _piece(
         t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, no_log, 0, mode,
-        u, v, s, w, int(counts[0]), int(counts[1]), int(counts[2]), int(counts[3]), counts[4])
+        u, v, s, w, int(counts[0]), int(counts[1]), int(counts[2]), int(counts[3]), counts[4], False)
     counts[0], counts[1], counts[2], counts[3], counts[4], counts[5] = (n_events, n_episodes, at_once, most, last,
                                                                         status)
     return mode, u, v, s, w

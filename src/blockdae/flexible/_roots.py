@@ -6,7 +6,8 @@ that it keeps one sign, is monotone or is convex/concave, and is halved otherwis
 Two things make them cheaper: each point's exp, cos and sin serve the form and its
 derivatives at once (the stack holds both ends' values), and a sign change on a
 monotone part is found by Newton's method within its bracket (halving it where a step
-would leave it), the bracket then closed by a probe a few ulps across and bisection to
+would leave it), started where the inverse cubic Hermite interpolant of the bracket's
+ends (values and slopes, already known) is zero, the bracket then closed by a probe a few ulps across and bisection to
 one ulp of the time (``_first_nonpositive`` bisects to adjacent floats of tau, which
 near tau = 0 are far finer than the time's: up to a hundred halvings).
 """
@@ -52,19 +53,46 @@ def _put(stack, top, lo, f_lo, d_lo, c_lo, e_lo, hi, f_hi, d_hi, c_hi, e_hi):
 
 
 @register_jitable
-def sign_change(f, f1, lo, f_lo, hi, f_hi, origin):
+def _hermite_start(lo, f_lo, d_lo, hi, f_hi, d_hi):
+    """Where the inverse cubic Hermite interpolant of a monotone f (values ``f_lo``,
+    ``f_hi`` of opposite signs and slopes ``d_lo``, ``d_hi`` at lo and hi) is zero: a
+    start for Newton's method within O((hi - lo)^4) of the root for a smooth f; nan
+    where it does not lie inside (lo, hi) (a slope of zero or of the wrong sign)."""
+    rise = f_hi - f_lo
+    if not (d_lo * rise > 0 and d_hi * rise > 0):
+        return math.nan
+    s = -f_lo / rise
+    s2 = s * s
+    s3 = s2 * s
+    x = ((2 * s3 - 3 * s2 + 1) * lo + (-2 * s3 + 3 * s2) * hi +
+         ((s3 - 2 * s2 + s) * rise / d_lo + (s3 - s2) * rise / d_hi))
+    return x if lo < x < hi else math.nan
+
+
+@register_jitable
+def sign_change(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, origin):
     """The float hi of a pair (lo, hi) within one ulp of the time ``origin`` + tau [s]
     (adjacent floats of tau where tau outgrows it) where f, monotone on [lo, hi] with
-    f(lo) = ``f_lo`` and f(hi) = ``f_hi`` on either side, changes from f(lo)'s side (f > 0
-    or not) to the other; f1 is f's derivative form."""
+    f(lo) = ``f_lo``, f'(lo) = ``d_lo``, f(hi) = ``f_hi`` and f'(hi) = ``d_hi`` on either
+    side, changes from f(lo)'s side (f > 0 or not) to the other; f1 is f's derivative
+    form. Newton's method starts from :func:`_hermite_start` (else the end nearer zero)."""
     positive = f_lo > 0
     tiny = _EPS * abs(origin)  # finer than this, tau no longer moves origin + tau
-    x, fx = (lo, f_lo) if abs(f_lo) < abs(f_hi) else (hi, f_hi)
-    decay, cos, sin = _trig(f, x)
-    dx = _eval_at(f1, x, decay, cos, sin)
+    x = _hermite_start(lo, f_lo, d_lo, hi, f_hi, d_hi)
+    if math.isnan(x):
+        x, fx, dx = (lo, f_lo, d_lo) if abs(f_lo) < abs(f_hi) else (hi, f_hi, d_hi)
+    else:
+        decay, cos, sin = _trig(f, x)
+        fx, dx = _eval_at(f, x, decay, cos, sin), _eval_at(f1, x, decay, cos, sin)
+        if (fx > 0) == positive:
+            lo = x
+        else:
+            hi = x
     for _ in range(_NEWTON_STEPS):
         if hi - lo <= tiny:
             return hi
+        if abs(fx) <= max(tiny, 4 * _EPS * abs(x)) * abs(dx):  # the next step would be below the resolution:
+            break  # the root is within it, which the probe below confirms
         x_new = x - fx / dx if dx != 0.0 else math.nan
         if not lo < x_new < hi:  # a step out of the bracket: halve it instead
             x_new = lo + 0.5 * (hi - lo)
@@ -77,8 +105,6 @@ def sign_change(f, f1, lo, f_lo, hi, f_hi, origin):
         else:
             hi = x_new
         x = x_new
-        if abs(fx) <= max(tiny, 4 * _EPS * abs(x)) * abs(dx):  # the next step would be below the resolution:
-            break  # the root is within it, which the probe below confirms
     gap = max(tiny, 8 * _EPS * abs(x))
     if hi - lo > 2 * gap:  # close the other side by a probe a few ulps across
         probe = x - gap if x == hi else x + gap
@@ -99,12 +125,12 @@ def sign_change(f, f1, lo, f_lo, hi, f_hi, origin):
 
 
 @register_jitable
-def _falling_part(f, f1, lo, f_lo, hi, f_hi, decreasing, origin):
+def _falling_part(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, decreasing, origin):
     """The crossing on [lo, hi] where f is monotone (nan: none), as the linear engine's
     ``_monotone_part``: f must fall below zero by more than its rounding."""
     if not decreasing or not (f_lo > 0 > f_hi) or f_hi >= -_rounding(f, hi):
         return math.nan
-    return sign_change(f, f1, lo, f_lo, hi, f_hi, origin)
+    return sign_change(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, origin)
 
 
 @register_jitable
@@ -133,21 +159,22 @@ def first_fall(f, f1, f2, f3, span, origin, stack, decay, cos, sin):
             continue
         slope_sign = _signed(d_lo, d_hi, _bound(f2, amplitudes[1], hi, e_lo), length)
         if slope_sign != 0:
-            root = _falling_part(f, f1, lo, f_lo, hi, f_hi, slope_sign < 0, origin)
+            root = _falling_part(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, slope_sign < 0, origin)
             if not math.isnan(root):
                 return root
             continue
         if _signed(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
             if d_lo * d_hi >= 0:
-                root = _falling_part(f, f1, lo, f_lo, hi, f_hi, d_lo + d_hi < 0, origin)
+                root = _falling_part(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, d_lo + d_hi < 0, origin)
                 if not math.isnan(root):
                     return root
                 continue
-            turn = sign_change(f1, f2, lo, d_lo, hi, d_hi, origin)
-            f_turn = _eval(f, turn)
-            root = _falling_part(f, f1, lo, f_lo, turn, f_turn, d_lo < 0, origin)
+            turn = sign_change(f1, f2, lo, d_lo, c_lo, hi, d_hi, c_hi, origin)
+            decay, cos, sin = _trig(f, turn)
+            f_turn, d_turn = _eval_at(f, turn, decay, cos, sin), _eval_at(f1, turn, decay, cos, sin)
+            root = _falling_part(f, f1, lo, f_lo, d_lo, turn, f_turn, d_turn, d_lo < 0, origin)
             if math.isnan(root):
-                root = _falling_part(f, f1, turn, f_turn, hi, f_hi, d_hi < 0, origin)
+                root = _falling_part(f, f1, turn, f_turn, d_turn, hi, f_hi, d_hi, d_hi < 0, origin)
             if not math.isnan(root):
                 return root
             continue
@@ -196,7 +223,7 @@ def peak(f, f1, f2, f3, span, best, origin, stack):
             continue  # monotone: its ends
         if _signed(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
             if d_lo * d_hi < 0:  # one extremum inside
-                best = max(best, abs(_eval(f, sign_change(f1, f2, lo, d_lo, hi, d_hi, origin))))
+                best = max(best, abs(_eval(f, sign_change(f1, f2, lo, d_lo, c_lo, hi, d_hi, c_hi, origin))))
             continue
         if top + 2 >= stack.shape[0]:
             return -math.inf
