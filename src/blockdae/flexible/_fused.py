@@ -163,9 +163,8 @@ def _sups(t0, h, p0, p1, omega, xi, damped, row, step, u, v, amplitude, reach, h
 def _slow_step(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, no_log,
                counts, mode, u, v, s, w):
     """:func:`._engine._piece`, its quick step tried already, for a run from (``mode``,
-    u, u', s, w), its counters
-    ``counts`` (COUNT_FIELDS) updated: its (mode, u, u', s, w) at the end of the piece.
-    ``no_log``: an empty (0, 8) knot log."""
+    u, u', s, w), its counters ``counts`` (COUNT_FIELDS) updated: its (mode, u, u', s, w)
+    at the end of the piece. ``no_log``: an empty (0, 8) knot log."""
     (mode, u, v, s, w, n_events, n_episodes, at_once, most, last, status, _) = _piece(
         t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg, coupled, cached, stack, no_log, 0, mode,
         u, v, s, w, int(counts[0]), int(counts[1]), int(counts[2]), int(counts[3]), counts[4], False)
