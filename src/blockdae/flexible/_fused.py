@@ -18,7 +18,9 @@ import math
 
 import numba
 import numpy as np
-from numba.extending import register_jitable
+from llvmlite import ir
+from numba import types
+from numba.extending import intrinsic, register_jitable
 
 from ..engines._linear import FINISHED, STACK_DEPTH, UNSETTLED, _combine, _derivative, _eval
 from ._column import MASS_PARTICIPATION, SLIP_MASS_FRACTION
@@ -45,11 +47,12 @@ def _put(row, values):
 
 @register_jitable
 def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, amplitude, reach):
-    """The no-sliding response from rest, in two passes: (u, u') at the knots by the step
-    map (closed form on a partial step), then, in a loop without dependences that the
-    compiler vectorises, HEA at the knots, the free oscillation's amplitude on each step
-    and a bound of |HEA| on it (inf on a partial step). Fills ``u``, ``v``, ``hea`` (n + 1,)
-    [m, m/s, m/s²], ``amplitude`` (n,) [m] and ``reach`` (n,) [m/s²]."""
+    """The no-sliding response from rest: each whole step's forcing (a loop that
+    vectorises), (u, u') at the knots by the step map (closed form on a partial step),
+    then, in loops without dependences that the compiler vectorises, HEA at the knots, the
+    free oscillation's amplitude on each step and a bound of |HEA| on it (inf on a partial
+    step). Fills ``u``, ``v``, ``hea`` (n + 1,) [m, m/s, m/s²], ``amplitude`` (n,) [m] and
+    ``reach`` (n,) (the bounds' bit patterns, :func:`_bits`, int64; [m/s²])."""
     m, row = maps[STICK], table[STICK]
     k, c, b, forced, inverse_k, inverse_damped, _ = row
     # the map of two whole steps, M², so that the chain from knot to knot is two steps long
@@ -94,32 +97,67 @@ def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, am
         hea[i + 1] = SLIP_MASS_FRACTION * (p0[i] + rate * h[i]) - MASS_PARTICIPATION * (c * v[i + 1] + k * u[i + 1])
     for i in range(n):  # apart: hea[i] written by the loop above would tie its iterations
         a = amplitude[i]
-        reach[i] = max(abs(hea[i]), abs(hea[i + 1])) + min(0.5 * _hea_rate(p1[i], row, a, xi) * step,
-                                                           0.125 * _hea_curvature(row, a, xi) * step * step)
+        reach[i] = _bits(max(abs(hea[i]), abs(hea[i + 1])) + min(0.5 * _hea_rate(p1[i], row, a, xi) * step,
+                                                                 0.125 * _hea_curvature(row, a, xi) * step * step))
+
+
+@intrinsic
+def _bits(typingctx, x):
+    """The bit pattern of the float64 ``x`` as an int64: for x >= 0 (inf included) the
+    order of the patterns is that of the values, and an integer maximum vectorises where
+    a float one (NaN rules) does not."""
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], ir.IntType(64))
+    return types.int64(types.float64), codegen
+
+
+@intrinsic
+def _float(typingctx, bits):
+    """The float64 whose bit pattern is the int64 ``bits`` (:func:`_bits` undone)."""
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], ir.DoubleType())
+    return types.float64(types.int64), codegen
+
+
+#: the sign bit cleared: a float64's pattern masked by it is that of its |x|
+_MAGNITUDE = np.int64(0x7FFFFFFFFFFFFFFF)
+#: steps a scan passes at once (a vectorised maximum over their bit patterns)
+_CHUNK = 64
 
 
 @register_jitable
 def _largest(x):
-    """max |x[1:]| (four running maxima, so that their latencies overlap)."""
-    best = np.zeros(4)
-    n = x.shape[0] - 1
-    for i in range(1, n - 2, 4):
-        best[0], best[1] = max(best[0], abs(x[i])), max(best[1], abs(x[i + 1]))
-        best[2], best[3] = max(best[2], abs(x[i + 2])), max(best[3], abs(x[i + 3]))
-    for i in range(max(1, n - (n % 4) + 1), n + 1):
-        best[0] = max(best[0], abs(x[i]))
-    return max(max(best[0], best[1]), max(best[2], best[3]))
+    """max |x[1:]|, by the bit patterns of |x| (:func:`_bits`)."""
+    bits = x[1:].view(np.int64)
+    best = np.int64(0)
+    for i in range(bits.shape[0]):
+        best = max(best, bits[i] & _MAGNITUDE)
+    return _float(best)
 
 
 @register_jitable
 def _first_reaching(reach, start, level):
-    """The first step j >= ``start`` whose bound of |HEA| ``reach[j]`` [m/s²] is not below
-    ``level`` [m/s²] (len(reach) if none): a tight scan, four steps at a time."""
+    """The first step j >= ``start`` whose bound of |HEA| (``reach``: their bit patterns,
+    :func:`_bits`) is not below ``level`` >= 0 [m/s²] (len(reach) if none): the next few
+    steps one by one (the next is often near), then _CHUNK at a time by their largest
+    pattern."""
+    threshold = _bits(level)
     n = reach.shape[0]
     j = start
-    while j + 4 <= n and max(max(reach[j], reach[j + 1]), max(reach[j + 2], reach[j + 3])) < level:
-        j += 4
-    while j < n and reach[j] < level:
+    near = min(start + 8, n)
+    while j < near and reach[j] < threshold:
+        j += 1
+    if j < near:
+        return j
+    while j + _CHUNK <= n:
+        chunk = reach[j:j + _CHUNK]
+        top = np.int64(0)
+        for k in range(chunk.shape[0]):  # a count unknown to the compiler: vectorised, not unrolled
+            top = max(top, chunk[k])
+        if top >= threshold:
+            break
+        j += _CHUNK
+    while j < n and reach[j] < threshold:
         j += 1
     return j
 
@@ -144,9 +182,10 @@ def _sups(t0, h, p0, p1, omega, xi, damped, row, step, u, v, amplitude, reach, h
             a = amplitude[i]
             u_reach = max(abs(u[i]), abs(u[i + 1])) + min(0.5 * (abs(row[3] * p1[i] * row[4]) + row[6] * a),
                                                           0.125 * row[0] * a * step) * _WIDEN * step
-        if reach[i] > hea_sup or (want_u and u_reach > u_sup):
+        bound = _float(reach[i])
+        if bound > hea_sup or (want_u and u_reach > u_sup):
             f, _, _, guard = _forms(STICK, False, omega, xi, damped, 0.0, p0[i], p1[i], u[i], v[i], 0.0, 0.0)
-            if reach[i] > hea_sup:  # the guard is ky g - HEA with ky g = 0
+            if bound > hea_sup:  # the guard is ky g - HEA with ky g = 0
                 g = _combine(-1.0, guard, 0.0, guard, 0.0)
                 g1 = _derivative(g)
                 g2 = _derivative(g1)
@@ -201,11 +240,12 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
     """One sliding run of a(t) times ``sign`` from rest, its state in registers: each
     whole step quick where bounds allow (a coupled run steps its own column; a
     decoupled one's is the response's ``u``, ``v``, ``hea`` (n + 1,), ``amplitude``
-    and bound of |HEA| ``reach`` (n,) times ``sign``), else in closed form. In STICK a
-    coupled run differs from the response times ``sign`` by a free oscillation d,
-    stepped alone, whose share of HEA has a bound that decays with it: a step where the
-    response's bound plus it stays below ky g needs no more. Returns (mode, u, u', s, w) at the end; ``counts`` (COUNT_FIELDS)
-    holds its counters and status."""
+    and bound of |HEA| ``reach`` (n,; bit patterns) times ``sign``), else in closed form.
+    In STICK a coupled run differs from the response times ``sign`` by a free
+    oscillation d, stepped alone, whose share of HEA has a bound that decays with it: a
+    step where the response's bound plus it stays below ky g needs no more. Returns
+    (mode, u, u', s, w) at the end; ``counts`` (COUNT_FIELDS) holds its counters and
+    status."""
     stick_map, stick = maps[STICK], table[STICK]
     slip_map, slip = maps[SLIP], table[SLIP]
     mode, run_u, run_v, s, w = STICK, 0.0, 0.0, 0.0, 0.0
@@ -226,7 +266,7 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
         if h[i] == step:
             if coupled:  # each mode's map picked statically (a tuple indexed at run time is copied)
                 if tracking:
-                    if reach[i] + bound < kyg:
+                    if _float(reach[i]) + bound < kyg:
                         du, dv = stick_map[0] * du + stick_map[1] * dv, stick_map[2] * du + stick_map[3] * dv
                         bound *= decay
                         continue
@@ -288,7 +328,7 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     stick = table[STICK]
     # the response: u, u', HEA at the knots, the free amplitude on each step
     u, v, hea = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)  # every entry is written before it is read
-    amplitude, reach = np.empty(n), np.empty(n)
+    amplitude, reach = np.empty(n), np.empty(n, np.int64)  # reach: bit patterns (_bits)
     _response(t0, h, p0, p1, omega, xi, damped[STICK], maps, table, step, u, v, hea, amplitude, reach)
     if respond:
         hea_samples = _largest(hea)
