@@ -347,26 +347,31 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     out = _run_analyses(inputs, record_of, parameters, flags).tolist()
     rows = []
     for q, analysis in enumerate(analyses):
-        response, normal, inverse = out[response_of[q]][_fused.RESPONSE], out[q][_fused.NORMAL], out[q][_fused.INVERSE]
-        runs = {"normal": normal, "inverse": inverse}
-        compiled = () if q in damped else analysis.polarities
-        if response[_STATUS] != _engine.FINISHED or any(runs[p][_STATUS] != _engine.FINISHED for p in compiled):
-            for outcome in [response] + [runs[polarity] for polarity in compiled]:
-                check(outcome, f" ({analysis.name}, {analysis.model})")
         model = analysis.model
         column = model.column
+        response = out[response_of[q]][_fused.RESPONSE]
+        if response[_STATUS] != _engine.FINISHED:
+            check(response, f" ({analysis.name}, {model})")
         row = {"record": analysis.name, "ky_g": model.ky, "height_m": column.height, "vs_m_s": column.vs,
                "normal_m": np.nan, "inverse_m": np.nan, "kmax_g": response[_HEA_SAMPLES] / model.g,
                "kmax_sup_g": response[_HEA_SUP] / model.g, "vs_final_m_s": vs_finals[q],
                "damping_final": parameters[q][1], "episodes_normal": None, "episodes_inverse": None}
-        for polarity in compiled:
-            run = runs[polarity]
-            row[f"{polarity}_m"] = 0.0 + run[_S]
-            row[f"episodes_{polarity}"] = int(run[_EPISODES])
+        for polarity in () if q in damped else analysis.polarities:
+            run_row, displacement, episodes = _RUN_OF[polarity]
+            run = out[q][run_row]
+            if run[_STATUS] != _engine.FINISHED:
+                check(run, f" ({analysis.name}, {model})")
+            row[displacement] = 0.0 + run[_S]
+            row[episodes] = int(run[_EPISODES])
         rows.append(row)
     for q in damped:
         _slides_in_closed_form(analyses[q], rows[q])
     return rows
+
+
+#: polarity -> (its row of a compiled outcome, its displacement and episodes columns)
+_RUN_OF = {"normal": (_fused.NORMAL, "normal_m", "episodes_normal"),
+           "inverse": (_fused.INVERSE, "inverse_m", "episodes_inverse")}
 
 
 def _near_critical_row(analysis):
