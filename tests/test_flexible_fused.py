@@ -4,12 +4,13 @@ against the same batch run serially."""
 
 import math
 
+import numba
 import numpy as np
 import pytest
 
 import blockdae as bd
 from blockdae.engines import _linear
-from blockdae.flexible import _analysis, _roots
+from blockdae.flexible import _analysis, _fused, _roots
 from conftest import load_sample_record
 
 _EPS = np.finfo(float).eps
@@ -61,6 +62,27 @@ def test_sign_change_brackets_the_root_to_an_ulp_of_the_time(slopes):
     r = _roots.sign_change(f, f1, 0.0, _linear._eval(f, 0.0), d_lo, 1.0, _linear._eval(f, 1.0), d_hi, origin)
     assert _linear._eval(f, r) <= 0 < _linear._eval(f, r - _EPS * origin)
     assert abs(r - math.log(2.0)) <= 2 * _EPS * origin
+
+
+def test_scans_by_bit_patterns_equal_numpy():
+    """The scans that compare bounds by their bit patterns (``_fused._bits``) against
+    numpy on the floats: max |x[1:]| of signed values, and the first bound >= a level
+    from each start, on bounds with zeros, infinities, runs longer than a chunk below the
+    level and levels 0, a bound's own value and its neighbours."""
+    rng = np.random.default_rng(7)
+    x = rng.standard_normal(1001) * 10.0 ** rng.integers(-3, 3, 1001)
+    largest = numba.njit(_fused._largest)
+    assert largest(x) == np.abs(x[1:]).max()
+    reach = np.abs(rng.standard_normal(700))
+    reach[rng.integers(0, 700, 40)] = 0.0
+    reach[[3, 411]] = np.inf
+    reach[100:300] *= 1e-3  # a quiet stretch of several chunks
+    bits = reach.view(np.int64)
+    first = numba.njit(_fused._first_reaching)
+    for level in (0.0, 0.5, reach[250], np.nextafter(reach[250], np.inf), 2.5, np.inf):
+        for start in (0, 2, 4, 99, 100, 250, 650, 699, 700):
+            hits = np.flatnonzero(reach[start:] >= level)
+            assert first(bits, start, level) == (start + hits[0] if hits.size else reach.size), (level, start)
 
 
 @pytest.mark.parametrize("method", ["coupled", "decoupled"])
