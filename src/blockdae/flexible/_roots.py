@@ -70,6 +70,17 @@ def _hermite_start(lo, f_lo, d_lo, hi, f_hi, d_hi):
 
 
 @register_jitable
+def _narrowed(f, f1, x, lo, hi, positive):
+    """(f(x), f'(x), the bracket [lo, hi] narrowed by x): x replaces the end on its side
+    (f > 0 or not, ``positive``: f(lo)'s)."""
+    decay, cos, sin = _trig(f, x)
+    fx, dx = _eval_at(f, x, decay, cos, sin), _eval_at(f1, x, decay, cos, sin)
+    if (fx > 0) == positive:
+        return fx, dx, x, hi
+    return fx, dx, lo, x
+
+
+@register_jitable
 def sign_change(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, origin):
     """The float hi of a pair (lo, hi) within one ulp of the time ``origin`` + tau [s]
     (adjacent floats of tau where tau outgrows it) where f, monotone on [lo, hi] with
@@ -82,12 +93,7 @@ def sign_change(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, origin):
     if math.isnan(x):
         x, fx, dx = (lo, f_lo, d_lo) if abs(f_lo) < abs(f_hi) else (hi, f_hi, d_hi)
     else:
-        decay, cos, sin = _trig(f, x)
-        fx, dx = _eval_at(f, x, decay, cos, sin), _eval_at(f1, x, decay, cos, sin)
-        if (fx > 0) == positive:
-            lo = x
-        else:
-            hi = x
+        fx, dx, lo, hi = _narrowed(f, f1, x, lo, hi, positive)
     for _ in range(_NEWTON_STEPS):
         if hi - lo <= tiny:
             return hi
@@ -98,12 +104,7 @@ def sign_change(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, origin):
             x_new = lo + 0.5 * (hi - lo)
             if x_new <= lo or x_new >= hi:
                 return hi
-        decay, cos, sin = _trig(f, x_new)
-        fx, dx = _eval_at(f, x_new, decay, cos, sin), _eval_at(f1, x_new, decay, cos, sin)
-        if (fx > 0) == positive:
-            lo = x_new
-        else:
-            hi = x_new
+        fx, dx, lo, hi = _narrowed(f, f1, x_new, lo, hi, positive)
         x = x_new
     gap = max(tiny, 8 * _EPS * abs(x))
     if hi - lo > 2 * gap:  # close the other side by a probe a few ulps across
