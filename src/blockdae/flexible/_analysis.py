@@ -325,26 +325,23 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
         others = [analysis for q, analysis in enumerate(analyses) if q not in near]
         rest = iter(exact_rows(others) if others else ())
         return [_near_critical_row(analysis) if q in near else next(rest) for q, analysis in enumerate(analyses)]
-    inputs, index, record_of = [], {}, []
-    parameters, flags, response_of, vs_finals, first_with, damped = [], [], [], [], {}, set()
+    inputs, index, tasks, response_of, vs_finals, first_with, damped = [], {}, [], [], [], {}, set()
     for q, analysis in enumerate(analyses):
         key = (id(analysis.record), analysis.t_end)
         r = index.get(key)
         if r is None:
             r = index[key] = len(inputs)
             inputs.append(_engine_input(analysis.record, analysis.t_end))
-        record_of.append(r)
         (omega, xi, kyg, coupled), vs_final = _final_column(analysis, inputs[r])
-        parameters.append((omega, xi, kyg))
         response_of.append(first_with.setdefault((r, omega, xi), q))
         slides = slip_underdamped(xi, coupled)  # else its slides run on ._damped_slip, after
         if not slides:
             damped.add(q)
         polarities = analysis.polarities
-        flags.append((coupled and slides, slides and "normal" in polarities, slides and "inverse" in polarities,
-                      False, response_of[q] == q))
+        tasks.append((r, omega, xi, kyg, coupled and slides, slides and "normal" in polarities,
+                      slides and "inverse" in polarities, False, response_of[q] == q))
         vs_finals.append(vs_final)
-    out = _run_analyses(inputs, record_of, parameters, flags).tolist()
+    out = _run_analyses(inputs, tasks).tolist()
     rows = []
     for q, analysis in enumerate(analyses):
         model = analysis.model
@@ -355,7 +352,7 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
         row = {"record": analysis.name, "ky_g": model.ky, "height_m": column.height, "vs_m_s": column.vs,
                "normal_m": np.nan, "inverse_m": np.nan, "kmax_g": response[_HEA_SAMPLES] / model.g,
                "kmax_sup_g": response[_HEA_SUP] / model.g, "vs_final_m_s": vs_finals[q],
-               "damping_final": parameters[q][1], "episodes_normal": None, "episodes_inverse": None}
+               "damping_final": tasks[q][2], "episodes_normal": None, "episodes_inverse": None}
         for polarity in () if q in damped else analysis.polarities:
             run_row, displacement, episodes = _RUN_OF[polarity]
             run = out[q][run_row]
@@ -399,23 +396,21 @@ def _near_critical_row(analysis):
     return row
 
 
-def _run_analyses(inputs, record_of, parameters, flags):
+def _run_analyses(inputs, tasks):
     """The compiled analyses (:func:`._fused._analyses`) of excitations ``inputs`` (engine
-    arrays): analysis j runs ``inputs[record_of[j]]`` with ``parameters[j]``
-    (PARAMETER_FIELDS) and ``flags[j]`` (FLAG_FIELDS). Returns (n, 3, width) outcomes."""
+    arrays): analysis j runs ``tasks[j]`` (a tuple of TASK_FIELDS) on
+    ``inputs[tasks[j][0]]``. Returns (n, 3, width) outcomes."""
     parallel, serial = _fused.kernels()
     if len(inputs) == 1:
         arrays, offsets = inputs[0], _offsets(len(inputs[0][0]))
-        work = len(inputs[0][0]) * len(record_of)
+        work = len(inputs[0][0]) * len(tasks)
     else:
         arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
         lengths = [len(x[0]) for x in inputs]
         offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
-        work = sum(lengths[j] for j in record_of)
-    out = np.empty((len(record_of), 3, _fused.WIDTH))
-    (parallel if 2 * work >= PARALLEL_WORK else serial)(*arrays, offsets, np.array(record_of, dtype=np.int64),
-                                                        np.array(parameters, dtype=float),
-                                                        np.array(flags, dtype=np.int64), out)
+        work = sum(lengths[task[0]] for task in tasks)
+    out = np.empty((len(tasks), 3, _fused.WIDTH))
+    (parallel if 2 * work >= PARALLEL_WORK else serial)(*arrays, offsets, np.array(tasks, dtype=float), out)
     return out
 
 
@@ -435,8 +430,8 @@ def _final_column(analysis, arrays):
     column = model.column
 
     def peak_displacement(vs, xi):
-        outcome = _run_analyses([arrays], [0], [(np.pi * vs / (2 * column.height), xi, 0.0)],
-                                [(False, False, False, True, True)])[0, _fused.RESPONSE]
+        outcome = _run_analyses([arrays], [(0, np.pi * vs / (2 * column.height), xi, 0.0, False, False, False, True,
+                                             True)])[0, _fused.RESPONSE]
         check(outcome, f" ({analysis.name}, equivalent-linear pass at vs={vs!r} m/s)")
         return outcome[_FIELD["u_sup"]]
 

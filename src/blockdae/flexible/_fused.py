@@ -31,11 +31,11 @@ from ._roots import STACK_COLUMNS, peak
 #: rows of an analysis's outcome (each OUTCOME_FIELDS): the no-sliding response (state
 #: at the end, peaks, status), the run of the record as given, the run of it times -1
 RESPONSE, NORMAL, INVERSE = 0, 1, 2
-#: columns of ``flags``: coupled, run the normal polarity, run the inverse, find sup |u|,
-#: find the response's peaks (else its row is nan: another analysis has them)
-FLAG_FIELDS = ("coupled", "normal", "inverse", "u_sup", "response")
-#: columns of ``parameters``: omega [rad/s], xi [-], ky g [m/s²]
-PARAMETER_FIELDS = ("omega", "xi", "kyg")
+#: columns of an analysis's task (a float64 row): its excitation's index, omega [rad/s],
+#: xi [-], ky g [m/s²], then flags (1 or 0): coupled, run the normal polarity, run the
+#: inverse, find sup |u|, find the response's peaks (else its row is nan: another analysis
+#: has them)
+TASK_FIELDS = ("record", "omega", "xi", "kyg", "coupled", "normal", "inverse", "u_sup", "response")
 
 
 @register_jitable
@@ -349,15 +349,16 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
                               counts[3], counts[4]))
 
 
-def _analyses(t0, h, p0, p1, offsets, record, parameters, flags, out):
-    """Analyses in parallel: analysis j runs excitation ``record[j]`` (pieces
-    ``offsets[record[j]]:offsets[record[j] + 1]`` of the concatenated arrays) with
-    ``parameters[j]`` (PARAMETER_FIELDS) and ``flags[j]`` (FLAG_FIELDS); writes
+def _analyses(t0, h, p0, p1, offsets, tasks, out):
+    """Analyses in parallel: analysis j runs the task ``tasks[j]`` (TASK_FIELDS) on its
+    excitation r (pieces ``offsets[r]:offsets[r + 1]`` of the concatenated arrays); writes
     ``out[j]`` (3, len(OUTCOME_FIELDS))."""
-    for j in numba.prange(record.shape[0]):
-        lo, hi = offsets[record[j]], offsets[record[j] + 1]
-        _analysis(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], parameters[j, 0], parameters[j, 1], parameters[j, 2],
-                  flags[j, 0] != 0, flags[j, 1:3] != 0, flags[j, 3] != 0, flags[j, 4] != 0, out[j])
+    for j in numba.prange(tasks.shape[0]):
+        task = tasks[j]
+        r = int(task[0])
+        lo, hi = offsets[r], offsets[r + 1]
+        _analysis(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], task[1], task[2], task[3], task[4] != 0, task[5:7] != 0,
+                  task[7] != 0, task[8] != 0, out[j])
 
 
 @functools.cache
