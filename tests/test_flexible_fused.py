@@ -2,6 +2,7 @@
 against the linear engine's bisection on the same forms, and a batch run in parallel
 against the same batch run serially."""
 
+import inspect
 import math
 
 import numba
@@ -83,6 +84,17 @@ def test_scans_by_bit_patterns_equal_numpy():
         for start in (0, 2, 4, 99, 100, 250, 650, 699, 700):
             hits = np.flatnonzero(reach[start:] >= level)
             assert first(bits, start, level) == (start + hits[0] if hits.size else reach.size), (level, start)
+
+
+def test_the_serial_kernel_is_a_function_of_its_own():
+    """numba's cache key omits ``parallel``: compiled from one function, the serial and
+    the parallel kernel would share one cache entry, and the serial one could load the
+    parallel one (a parallel region per call, an OpenMP worker left spinning). They come
+    from two functions, the serial one without prange."""
+    parallel, serial = _fused.kernels()
+    assert parallel.py_func is not serial.py_func
+    assert "prange" in inspect.getsource(parallel.py_func)
+    assert "prange" not in inspect.getsource(serial.py_func)
 
 
 @pytest.mark.parametrize("method", ["coupled", "decoupled"])

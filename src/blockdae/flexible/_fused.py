@@ -349,23 +349,38 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
                               counts[3], counts[4]))
 
 
+@register_jitable
+def _task(t0, h, p0, p1, offsets, tasks, j, out):
+    """Analysis j: the task ``tasks[j]`` (TASK_FIELDS) on its excitation r (pieces
+    ``offsets[r]:offsets[r + 1]`` of the concatenated arrays); writes ``out[j]`` (3,
+    len(OUTCOME_FIELDS))."""
+    task = tasks[j]
+    r = int(task[0])
+    lo, hi = offsets[r], offsets[r + 1]
+    _analysis(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], task[1], task[2], task[3], task[4] != 0, task[5:7] != 0,
+              task[7] != 0, task[8] != 0, out[j])
+
+
 def _analyses(t0, h, p0, p1, offsets, tasks, out):
-    """Analyses in parallel: analysis j runs the task ``tasks[j]`` (TASK_FIELDS) on its
-    excitation r (pieces ``offsets[r]:offsets[r + 1]`` of the concatenated arrays); writes
-    ``out[j]`` (3, len(OUTCOME_FIELDS))."""
+    """Every analysis of ``tasks`` (:func:`_task`), in parallel over cores."""
     for j in numba.prange(tasks.shape[0]):
-        task = tasks[j]
-        r = int(task[0])
-        lo, hi = offsets[r], offsets[r + 1]
-        _analysis(t0[lo:hi], h[lo:hi], p0[lo:hi], p1[lo:hi], task[1], task[2], task[3], task[4] != 0, task[5:7] != 0,
-                  task[7] != 0, task[8] != 0, out[j])
+        _task(t0, h, p0, p1, offsets, tasks, j, out)
+
+
+def _analyses_serial(t0, h, p0, p1, offsets, tasks, out):
+    """Every analysis of ``tasks`` (:func:`_task`), one after another. A function of its
+    own: numba's cache key omits ``parallel``, so one function compiled both ways shares
+    one cache entry, and the serial kernel could load the parallel one (a parallel region
+    per call, and an OpenMP worker left spinning)."""
+    for j in range(tasks.shape[0]):
+        _task(t0, h, p0, p1, offsets, tasks, j, out)
 
 
 @functools.cache
 def kernels():
     """(analyses parallel over cores, analyses serial) compiled with numba (on first use,
     then from the disk cache)."""
-    return numba.njit(parallel=True, **OPTIONS)(_analyses), numba.njit(**OPTIONS)(_analyses)
+    return numba.njit(parallel=True, **OPTIONS)(_analyses), numba.njit(**OPTIONS)(_analyses_serial)
 
 
 #: width of an analysis's outcome rows
