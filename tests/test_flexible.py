@@ -382,7 +382,8 @@ def test_flexible_refuses_bad_input(kwargs, message, monkeypatch):
         bd.flexible(record, **args)
 
 
-@pytest.mark.parametrize("motion, message", [({}, r"motion=\{\} holds no record"), ([], r"motion=\[\] holds no record")])
+@pytest.mark.parametrize("motion, message", [({}, r"motion=\{\} holds no record"),
+                                             ([], r"motion=\[\] holds no record")])
 def test_flexible_refuses_no_motion(motion, message):
     with pytest.raises(ValueError, match=message):
         bd.flexible(motion, ky=0.1, height=10.0, vs=250.0)

@@ -345,14 +345,11 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     rows = []
     for q, analysis in enumerate(analyses):
         model = analysis.model
-        column = model.column
         response = out[response_of[q]][_fused.RESPONSE]
         if response[_STATUS] != _engine.FINISHED:
             check(response, f" ({analysis.name}, {model})")
-        row = {"record": analysis.name, "ky_g": model.ky, "height_m": column.height, "vs_m_s": column.vs,
-               "normal_m": np.nan, "inverse_m": np.nan, "kmax_g": response[_HEA_SAMPLES] / model.g,
-               "kmax_sup_g": response[_HEA_SUP] / model.g, "vs_final_m_s": vs_finals[q],
-               "damping_final": tasks[q][2], "episodes_normal": None, "episodes_inverse": None}
+        row = _row(analysis, response[_HEA_SAMPLES] / model.g, response[_HEA_SUP] / model.g, vs_finals[q],
+                   tasks[q][2])
         for polarity in () if q in damped else analysis.polarities:
             run_row, displacement, episodes = _RUN_OF[polarity]
             run = out[q][run_row]
@@ -364,6 +361,17 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     for q in damped:
         _slides_in_closed_form(analyses[q], rows[q])
     return rows
+
+
+def _row(analysis, kmax_g, kmax_sup_g, vs_final, damping_final) -> dict:
+    """The row of ``analysis`` with its no-sliding columns: kmax at the samples and over
+    time [g], vs [m/s] and total damping [-] after the equivalent-linear iteration; its
+    polarities' columns nan (None) until they are run."""
+    model = analysis.model
+    return {"record": analysis.name, "ky_g": model.ky, "height_m": model.column.height, "vs_m_s": model.column.vs,
+            "normal_m": np.nan, "inverse_m": np.nan, "kmax_g": kmax_g, "kmax_sup_g": kmax_sup_g,
+            "vs_final_m_s": vs_final, "damping_final": damping_final, "episodes_normal": None,
+            "episodes_inverse": None}
 
 
 #: polarity -> (its row of a compiled outcome, its displacement and episodes columns)
@@ -389,9 +397,7 @@ def _near_critical_row(analysis):
         final = iterate_equivalent_linear(lambda vs, xi: response(vs, xi, True)[2], column, analysis.reference_strain)
         vs, xi = final.vs, final.damping
     samples, sup, _ = response(vs, xi, False)
-    row = {"record": analysis.name, "ky_g": model.ky, "height_m": column.height, "vs_m_s": column.vs,
-           "normal_m": np.nan, "inverse_m": np.nan, "kmax_g": samples / model.g, "kmax_sup_g": sup / model.g,
-           "vs_final_m_s": vs, "damping_final": xi, "episodes_normal": None, "episodes_inverse": None}
+    row = _row(analysis, samples / model.g, sup / model.g, vs, xi)
     _slides_in_closed_form(analysis, row)
     return row
 
@@ -448,15 +454,14 @@ def slammer_rows(analyses: list[Analysis]) -> list[dict]:
     rows = []
     for analysis in analyses:
         model, record = analysis.model, analysis.record
-        row = {"record": analysis.name, "ky_g": model.ky, "height_m": model.column.height,
-               "vs_m_s": model.column.vs, "normal_m": np.nan, "inverse_m": np.nan, "kmax_sup_g": np.nan,
-               "episodes_normal": None, "episodes_inverse": None}
+        row = _row(analysis, np.nan, np.nan, np.nan, np.nan)  # kmax, vs and damping from SLAMMER's runs
         for polarity in analysis.polarities:
             result = slammer_flexible(record.acceleration_samples / model.g, record.dt,
                                       scale=1.0 if polarity == "normal" else -1.0, ky=model.ky, column=model.column,
                                       method=model.method, reference_strain=analysis.reference_strain, g=model.g)
-            row |= {f"{polarity}_m": result.displacement, f"episodes_{polarity}": result.episodes,
-                    "kmax_g": result.kmax, "vs_final_m_s": result.vs, "damping_final": result.damping}
+            _, displacement, episodes = _RUN_OF[polarity]
+            row |= {displacement: result.displacement, episodes: result.episodes, "kmax_g": result.kmax,
+                    "vs_final_m_s": result.vs, "damping_final": result.damping}
         rows.append(row)
     return rows
 
@@ -505,7 +510,8 @@ def _slides_in_closed_form(analysis, row):
     ky g at s = 0 nothing slides (no run needed)."""
     if row["kmax_sup_g"] < analysis.model.ky_at(0.0):
         for polarity in analysis.polarities:
-            row[f"{polarity}_m"], row[f"episodes_{polarity}"] = 0.0, 0
+            _, displacement, episodes = _RUN_OF[polarity]
+            row[displacement], row[episodes] = 0.0, 0
         return
     omega = math.pi * row["vs_final_m_s"] / (2 * analysis.model.column.height)
     model = analysis.model.with_parameters({"omega": omega, "damping": row["damping_final"]})
@@ -518,5 +524,6 @@ def _slides_in_closed_form(analysis, row):
         sign = 1.0 if polarity == "normal" else -1.0  # the record times -1: its pieces' a and a' negated
         outcome, _ = slide_compiled(systems, (t0, h, sign * p0, sign * p1), where=f" ({analysis.name}, {polarity})",
                                     slots=slots)
-        row[f"{polarity}_m"] = 0.0 + outcome[_table_kernel.OUTCOME_FIELDS.index("s")]
-        row[f"episodes_{polarity}"] = int(outcome[_table_kernel.OUTCOME_FIELDS.index("n_onsets")])
+        _, displacement, episodes = _RUN_OF[polarity]
+        row[displacement] = 0.0 + outcome[_table_kernel.OUTCOME_FIELDS.index("s")]
+        row[episodes] = int(outcome[_table_kernel.OUTCOME_FIELDS.index("n_onsets")])

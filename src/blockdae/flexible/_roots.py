@@ -7,9 +7,10 @@ Two things make them cheaper: each point's exp, cos and sin serve the form and i
 derivatives at once (the stack holds both ends' values), and a sign change on a
 monotone part is found by Newton's method within its bracket (halving it where a step
 would leave it), started where the inverse cubic Hermite interpolant of the bracket's
-ends (values and slopes, already known) is zero, the bracket then closed by a probe a few ulps across and bisection to
-one ulp of the time (``_first_nonpositive`` bisects to adjacent floats of tau, which
-near tau = 0 are far finer than the time's: up to a hundred halvings).
+ends (values and slopes, already known) is zero, the bracket then closed by a probe a
+few ulps across and bisection to one ulp of the time (``_first_nonpositive`` bisects to
+adjacent floats of tau, which near tau = 0 are far finer than the time's: up to a
+hundred halvings).
 """
 
 import math

@@ -36,7 +36,7 @@ from ..engines._linear_solution import linear_pieces
 from . import _table_kernel
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._modes import FlexibleMode
-from ._table_kernel import EVENT_RESOLUTION, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS, _lower, _upper
+from ._table_kernel import EVENT_RESOLUTION, LOWER, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS, UPPER, _bound
 from ._table_kernel import TAYLOR_DEGREE as _TAYLOR_DEGREE
 
 _U, _V, _S, _W, _A, _AR, _ONE = range(7)
@@ -188,19 +188,19 @@ class _Search:
         if g_lo == g_hi == 0 and not np.any(d[1:]):
             return None  # a guard that stays at zero (HEA = ky g = 0 at rest): no fall through it
         b4 = self.system.fourth_bound(self.index, z_lo, length)
-        if _lower([d[0], d[1], d[2] / 2, d[3] / 6, -b4 / 24], length) > 0:
+        if _bound([d[0], d[1], d[2] / 2, d[3] / 6, -b4 / 24], length, LOWER) > 0:
             return None  # positive all along
-        if _lower([d[1], d[2], d[3] / 2, -b4 / 6], length) >= 0:
+        if _bound([d[1], d[2], d[3] / 2, -b4 / 6], length, LOWER) >= 0:
             return None  # rising all along: no fall through zero
-        if _upper([d[1], d[2], d[3] / 2, b4 / 6], length) <= 0:  # falling all along
+        if _bound([d[1], d[2], d[3] / 2, b4 / 6], length, UPPER) <= 0:  # falling all along
             return self.bisect(lo, hi) if g_lo > 0 >= g_hi else None
-        if _lower([d[2], d[3], -b4 / 2], length) > 0:  # convex: falls, then rises
+        if _bound([d[2], d[3], -b4 / 2], length, LOWER) > 0:  # convex: falls, then rises
             if g_lo > 0:
                 turn = self.bisect_rate(lo, hi)
                 if self.value(turn) <= 0:
                     return self.bisect(lo, turn)
                 return None
-        if _upper([d[2], d[3], b4 / 2], length) < 0 and g_lo > 0:  # concave: one crossing at most
+        if _bound([d[2], d[3], b4 / 2], length, UPPER) < 0 and g_lo > 0:  # concave: one crossing at most
             return self.bisect(lo, hi) if g_hi <= 0 else None
         mid = lo + 0.5 * length
         first = self.search(lo, z_lo, mid)

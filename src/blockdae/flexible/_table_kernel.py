@@ -212,36 +212,37 @@ def _copy(vectors, a, b):
 
 
 # ---- the root search on one step ------------------------------------------------------
+#: sides of :func:`_bound`
+LOWER, UPPER = 1.0, -1.0
+
+
 @register_jitable
-def _lower(c, length):
-    """A lower bound of sum c_k x^k over x in [0, ``length``] (nested)."""
-    bound = c[len(c) - 1]
+def _bound(c, length, side):
+    """A bound of sum c_k x^k over x in [0, ``length``] (nested): a lower one for ``side``
+    LOWER, an upper one for UPPER (the lower bound of the negated sum, negated: the same
+    floats, as negation is exact and rounding symmetric)."""
+    bound = side * c[len(c) - 1]
     for k in range(len(c) - 2, -1, -1):
-        bound = c[k] + length * min(0.0, bound)
-    return bound
+        bound = side * c[k] + length * min(0.0, bound)
+    return side * bound
+
+
+#: directions of a crossing for :func:`_bisect`: a form falling to <= 0, or rising to >= 0
+FALLING, RISING = 1.0, -1.0
 
 
 @register_jitable
-def _upper(c, length):
-    """An upper bound of sum c_k x^k over x in [0, ``length``]."""
-    bound = c[len(c) - 1]
-    for k in range(len(c) - 2, -1, -1):
-        bound = c[k] + length * max(0.0, bound)
-    return bound
-
-
-@register_jitable
-def _bisect(systems, kept, scratch, vectors, step, row, t0, lo, hi, a):
-    """The first tau in (lo, hi] [s] where systems[i, ``row``] . z is <= 0, to adjacent
-    floats of ``t0`` + tau, for > 0 at lo (state vectors[a]), <= 0 at hi, one crossing
-    between; each trial advanced from the last lo kept."""
+def _bisect(systems, kept, scratch, vectors, step, row, t0, lo, hi, a, direction=FALLING):
+    """The first tau in (lo, hi] [s] where ``direction`` x systems[i, ``row``] . z is <= 0,
+    to adjacent floats of ``t0`` + tau, for > 0 at lo (state vectors[a]), <= 0 at hi, one
+    crossing between; each trial advanced from the last lo kept."""
     _copy(vectors, a, _ZA)
     while True:
         mid = lo + 0.5 * (hi - lo)
         if not (t0 + lo < t0 + mid < t0 + hi):
             return hi
         _advance(systems, kept, scratch, vectors, step, mid - lo, _ZA, _ZM)
-        if _dot(systems, step[0], row, vectors, _ZM) > 0:
+        if direction * _dot(systems, step[0], row, vectors, _ZM) > 0:
             lo = mid
             _copy(vectors, _ZM, _ZA)
         else:
@@ -257,17 +258,7 @@ def _bisect_rate(systems, kept, scratch, vectors, step, row, t0, lo, hi):
         return lo
     if _dot(systems, i, row, vectors, _ZHI) <= 0:
         return hi
-    _copy(vectors, _ZLO, _ZA)
-    while True:
-        mid = lo + 0.5 * (hi - lo)
-        if not (t0 + lo < t0 + mid < t0 + hi):
-            return hi
-        _advance(systems, kept, scratch, vectors, step, mid - lo, _ZA, _ZM)
-        if _dot(systems, i, row, vectors, _ZM) < 0:
-            lo = mid
-            _copy(vectors, _ZM, _ZA)
-        else:
-            hi = mid
+    return _bisect(systems, kept, scratch, vectors, step, row, t0, lo, hi, _ZLO, RISING)
 
 
 @register_jitable
@@ -297,14 +288,14 @@ def _decide(systems, kept, scratch, vectors, step, t0, lo, hi):
     if g_lo == 0 and g_hi == 0 and d1 == 0 and d2 == 0 and d3 == 0:
         return _NO_ROOT  # a guard that stays at zero (HEA = ky g = 0 at rest): no fall through it
     b4 = _fourth_bound(systems, i, 0, vectors, length)
-    if _lower((d0, d1, d2 / 2, d3 / 6, -b4 / 24), length) > 0:
+    if _bound((d0, d1, d2 / 2, d3 / 6, -b4 / 24), length, LOWER) > 0:
         return _NO_ROOT  # positive all along
-    if _lower((d1, d2, d3 / 2, -b4 / 6), length) >= 0:
+    if _bound((d1, d2, d3 / 2, -b4 / 6), length, LOWER) >= 0:
         return _NO_ROOT  # rising all along
-    if _upper((d1, d2, d3 / 2, b4 / 6), length) <= 0:  # falling all along
+    if _bound((d1, d2, d3 / 2, b4 / 6), length, UPPER) <= 0:  # falling all along
         return _bisect(systems, kept, scratch, vectors, step, POWERS, t0, lo, hi, _ZLO) if g_lo > 0 >= g_hi \
             else _NO_ROOT
-    if _lower((d2, d3, -b4 / 2), length) > 0 and g_lo > 0:  # convex: falls, then rises
+    if _bound((d2, d3, -b4 / 2), length, LOWER) > 0 and g_lo > 0:  # convex: falls, then rises
         turn = _bisect_rate(systems, kept, scratch, vectors, step, POWERS + 1, t0, lo, hi)
         if turn == lo:
             _copy(vectors, _ZLO, _ZTURN)
@@ -313,7 +304,7 @@ def _decide(systems, kept, scratch, vectors, step, t0, lo, hi):
         if _dot(systems, i, POWERS, vectors, _ZTURN) <= 0:
             return _bisect(systems, kept, scratch, vectors, step, POWERS, t0, lo, turn, _ZLO)
         return _NO_ROOT
-    if _upper((d2, d3, b4 / 2), length) < 0 and g_lo > 0:  # concave: one crossing at most
+    if _bound((d2, d3, b4 / 2), length, UPPER) < 0 and g_lo > 0:  # concave: one crossing at most
         return _bisect(systems, kept, scratch, vectors, step, POWERS, t0, lo, hi, _ZLO) if g_hi <= 0 \
             else _NO_ROOT
     return _HALVE
@@ -525,9 +516,9 @@ def _form_bound(systems, i, g, vectors, length):
     vectors[_ZLO] at its start: Taylor's terms in absolute value, the fourth
     derivative bounded (:func:`_fourth_bound`)."""
     row = POWERS + 4 * g
-    return _upper((abs(_dot(systems, i, row, vectors, _ZLO)), abs(_dot(systems, i, row + 1, vectors, _ZLO)),
+    return _bound((abs(_dot(systems, i, row, vectors, _ZLO)), abs(_dot(systems, i, row + 1, vectors, _ZLO)),
                    abs(_dot(systems, i, row + 2, vectors, _ZLO)) / 2, abs(_dot(systems, i, row + 3, vectors, _ZLO)) / 6,
-                   _fourth_bound(systems, i, g, vectors, length) / 24), length)
+                   _fourth_bound(systems, i, g, vectors, length) / 24), length, UPPER)
 
 
 @register_jitable
