@@ -2,12 +2,15 @@
 lazy reading, filtering and the files that fail."""
 
 import gzip
+import json
 import math
+import pathlib
 
 import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.cli import main
 from blockdae.excitation._readers import RECORD_SUFFIXES, record_files
 from record_formats import SAMPLES, cosmos_block, cosmos_v2, esm, knet
 
@@ -28,7 +31,9 @@ def test_record_files_lists_every_suffix_a_reader_handles(tmp_path):
              "m.mseed", "n.miniseed", "o.AT2", "p.csv", "q.txt", "r.dat", "s.EW.gz", "t.pdf", "u"]
     for name in names:
         (tmp_path / name).write_text("")
-    assert [p.name for p in record_files(tmp_path)] == sorted(names[:-2])
+    with pytest.warns(UserWarning, match=r"2 files left out: t.pdf \(not a record file: suffix .pdf\); "
+                                         r"u \(not a record file: suffix none\)"):
+        assert [p.name for p in record_files(tmp_path)] == sorted(names[:-2])
     assert {".v1", ".v2", ".v1c", ".v2c", ".ns", ".ew", ".ud", ".asc", ".sac", ".mseed"} <= set(RECORD_SUFFIXES)
 
 
@@ -106,6 +111,42 @@ def test_a_list_of_files_and_folders_gzip_included(tmp_path):
     (tmp_path / "empty").mkdir()
     with pytest.raises(ValueError, match="empty: no record files"):
         bd.read_records(tmp_path / "empty")
+
+
+def test_subfolders_are_read_when_asked_and_named_when_not(tmp_path):
+    """A folder's subfolders (a station per folder, as downloaded) are searched with
+    recursive=True; without it, the record files left in them are counted and named in a
+    warning, as is every file that is not a record; hidden files are not looked at."""
+    (tmp_path / "top.NS").write_text(knet())
+    for station in ("s1", "s2"):
+        (tmp_path / station).mkdir()
+        (tmp_path / station / f"{station}.EW").write_text(knet(direction="E-W"))
+    (tmp_path / "s2" / "notes.pdf").write_text("")
+    (tmp_path / ".cache").mkdir()
+    (tmp_path / ".cache" / "old.NS").write_text(knet())
+    with pytest.warns(UserWarning, match=r"2 files left out: 2 record files in subfolders \(s1, s2\): not searched, "
+                                         r"recursive=True \(--recursive\) reads them"):
+        assert bd.read_records(tmp_path).names == ["top"]
+    with pytest.warns(UserWarning, match=r"1 file left out: s2/notes.pdf \(not a record file: suffix .pdf\)"):
+        records = bd.read_records(tmp_path, recursive=True)
+    assert records.names == ["s1", "s2", "top"]
+    assert [pathlib.Path(p).relative_to(tmp_path).as_posix() for p in records.table["path"]] == \
+        ["s1/s1.EW", "s2/s2.EW", "top.NS"]
+
+
+def test_the_command_line_searches_subfolders_with_recursive(tmp_path, capsys):
+    """blockdae newmark on a folder: --recursive reads the subfolders' records; without it
+    they are named on stderr as left out."""
+    station_folder = tmp_path / "records"
+    (station_folder / "s1").mkdir(parents=True)
+    (station_folder / "top.NS").write_text(knet())
+    (station_folder / "s1" / "s1.EW").write_text(knet(direction="E-W"))
+    arguments = ["--no-cache", "newmark", str(station_folder), "--ky", "0.01", "--json"]
+    with pytest.warns(UserWarning, match=r"1 record file in subfolders \(s1\): not searched"):
+        assert main(arguments) == 0
+    assert [r["record"] for r in json.loads(capsys.readouterr().out)["results"]] == ["top"]
+    assert main([*arguments, "--recursive"]) == 0
+    assert sorted({r["record"] for r in json.loads(capsys.readouterr().out)["results"]}) == ["s1", "top"]
 
 
 def test_a_header_number_that_is_not_a_number_fails_that_file_naming_field_and_value(tmp_path):

@@ -13,6 +13,7 @@ from ..core._atomic import atomic_path
 from ..core._units import STANDARD_GRAVITY
 from ..excitation import RecordSet, read_record
 from ..excitation._fema import SETS as FEMA_SETS
+from ..excitation._readers import record_files
 
 #: the record sets of --set: name -> the name of bd.RecordSet.fema_p695
 RECORD_SETS = {f"fema-p695-{name}": name for name in FEMA_SETS}
@@ -61,6 +62,18 @@ def record_arguments(parser):
     parser.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
     parser.add_argument("--accept-peak", action="store_true",
                         help="accept a peak acceleration outside 1e-4 g .. 10 g (else an error: wrong units?)")
+
+
+def recursive_argument(parser):
+    """--recursive: a folder's subfolders are searched for record files too."""
+    parser.add_argument("--recursive", action="store_true",
+                        help="search the folders' subfolders for record files too (else they are named and left out)")
+
+
+def folder_files(folder, args):
+    """The record files of ``folder`` (its subfolders' too with --recursive); a usage error
+    if it holds none. Files left out are named, with why, in a warning."""
+    return checked(lambda: record_files(folder, args.recursive), "")
 
 
 def read(path, args):

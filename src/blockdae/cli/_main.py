@@ -20,8 +20,9 @@ import warnings
 import numpy as np
 
 from .. import backends
-from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, positive,
-                      read, report_failures, record_arguments, record_fields, save_figure, set_argument, write_csv)
+from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, folder_files,
+                      positive, read, record_arguments, record_fields, recursive_argument, report_failures, save_figure,
+                      set_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._flexible import add_flexible_parser
 from ._info import add_info_parser
@@ -35,7 +36,7 @@ from ..core._units import STANDARD_GRAVITY, length_units
 from ..motions._commands import add_spectrum_parser, add_two_point_parser
 from ..studies._command import add_study_parser
 from ..core._progress import progress_bar
-from ..excitation._readers import RECORD_SUFFIXES, record_files, unit_factor
+from ..excitation._readers import RECORD_SUFFIXES, unit_factor
 from ..excitation._units import PGA_ROUNDINGS, UnitsWarning, pga_factor
 from ..sliding._model import SlidingBlock
 
@@ -137,6 +138,7 @@ def _parser():
     newmark_.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                           help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
     record_arguments(newmark_)
+    recursive_argument(newmark_)
     set_argument(newmark_)
     newmark_.add_argument("--csv", type=pathlib.Path, default=None, metavar="PATH",
                           help="write the table (one row per record, PGA and ky) as CSV")
@@ -160,6 +162,7 @@ def _parser():
                             "or --set NAME")
     _block_arguments(batch, nargs="+")
     record_arguments(batch)
+    recursive_argument(batch)
     set_argument(batch)
     batch.add_argument("--csv", type=pathlib.Path, default=None, help="write the results as CSV")
     batch.add_argument("--json", action="store_true", help="print the results as JSON")
@@ -233,7 +236,7 @@ def _run(args):
 def _newmark(args):
     record_set = files_or_set(args, args.records)
     paths = [] if record_set is not None else \
-        [p for arg in args.records for p in (checked(lambda: record_files(arg), "") if arg.is_dir() else [arg])]
+        [p for arg in args.records for p in (folder_files(arg, args) if arg.is_dir() else [arg])]
     records = list(record_set) if record_set is not None else [read(path, args) for path in paths]
     pga = None if args.pga is None else args.pga[0] if len(args.pga) == 1 else args.pga
     one = len(paths) == 1 and np.ndim(pga) == 0  # one record file at one PGA: a NewmarkResult
@@ -332,7 +335,7 @@ def _batch(args):
     block = _block(args, mu, None if args.mu_kinetic is None else f, bias)
     record_set = files_or_set(args, args.folder)
     sources = [(name, lambda name=name: record_set[name]) for name in record_set.names] if record_set is not None \
-        else [(path, lambda path=path: read(path, args)) for path in checked(lambda: record_files(args.folder), "")]
+        else [(path, lambda path=path: read(path, args)) for path in folder_files(args.folder, args)]
     metadata = {} if record_set is None else record_set.metadata.to_dict("index")
     rows, failed = [], []
     start = time.perf_counter()

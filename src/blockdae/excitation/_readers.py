@@ -7,6 +7,7 @@ import io
 import pathlib
 import re
 import typing
+import warnings
 import zlib
 
 import numpy as np
@@ -36,16 +37,41 @@ RECORD_SUFFIXES = (".csv", ".txt", ".dat", ".at2", ".v1", ".v2", ".v1c", ".v2c",
                    ".asc", ".sac", ".mseed", ".miniseed")
 
 
-def record_files(folder) -> list[pathlib.Path]:
+def record_files(folder, recursive=False) -> list[pathlib.Path]:
     """The record files in ``folder`` (suffixes :data:`RECORD_SUFFIXES`, each also ``.gz``),
-    sorted by name; a ValueError naming the folder if it is none or holds none."""
+    and in its subfolders if ``recursive``, sorted by their path in it.
+
+    Every file left out is named, with why, in one UserWarning: a file of another suffix,
+    or (not ``recursive``) record files in subfolders. Hidden files and folders (a name
+    starting with '.') are not looked at. A ValueError names the folder if it is none or
+    holds no record file.
+    """
     folder = pathlib.Path(folder)
     if not folder.is_dir():
         raise ValueError(f"{folder}: not a folder")
-    paths = sorted(p for p in folder.iterdir() if p.is_file() and record_suffix(p) in RECORD_SUFFIXES)
+    files = sorted(p for p in folder.rglob("*") if p.is_file()
+                   and not any(part.startswith(".") for part in p.relative_to(folder).parts))
+    is_record = [record_suffix(p) in RECORD_SUFFIXES for p in files]
+    below = [p.parent != folder for p in files]
+    paths = [p for p, record, deep in zip(files, is_record, below) if record and (recursive or not deep)]
+    other = [p for p, record, deep in zip(files, is_record, below) if not record and (recursive or not deep)]
+    unsearched = [p for p, record, deep in zip(files, is_record, below) if record and deep and not recursive]
+    notes = [f"{p.relative_to(folder)} (not a record file: suffix {record_suffix(p) or 'none'})" for p in other]
+    if unsearched:
+        subfolders = sorted({p.relative_to(folder).parts[0] for p in unsearched})
+        notes.append(f"{_count(len(unsearched), 'record file')} in subfolders ({', '.join(subfolders)}): "
+                     "not searched, recursive=True (--recursive) reads them")
+    if notes:
+        warnings.warn(f"{folder}: {_count(len(other) + len(unsearched), 'file')} left out: {'; '.join(notes)}",
+                      UserWarning, stacklevel=2)
     if not paths:
         raise ValueError(f"{folder}: no record files ({', '.join(RECORD_SUFFIXES)}, each also .gz)")
     return paths
+
+
+def _count(n, noun):
+    """"1 file", "2 files"."""
+    return f"{n} {noun}{'' if n == 1 else 's'}"
 
 
 def record_name(path) -> str:

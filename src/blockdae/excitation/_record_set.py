@@ -153,9 +153,11 @@ class _File:
 
 
 def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=True, remove_mean=False,
-                 gain=None) -> RecordSet:
+                 gain=None, recursive=False) -> RecordSet:
     """The records of a folder (its record files, sorted by name; see
-    :data:`~._readers.RECORD_SUFFIXES`), one file, or a list of files and folders, as a :class:`RecordSet`.
+    :data:`~._readers.RECORD_SUFFIXES`; its subfolders' too if ``recursive``), one file, or a
+    list of files and folders, as a :class:`RecordSet`. Files a folder holds and that are
+    left out are named, with why, in a UserWarning.
 
     Each file is read once, as :func:`read_record` reads it (the options are its own), to
     check it and fill the table (format, component, station, event, magnitude, epicentral
@@ -167,7 +169,7 @@ def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=
     (:func:`~._readers.record_name`); where two files give one name, both take their file's
     name (less ``.gz``) instead.
     """
-    paths = _paths(source)
+    paths = _paths(source, recursive)
     options = dict(units=units, dt=dt, g=g, check_peak=check_peak, remove_mean=remove_mean, gain=gain)
     rows, sources, failed = [], [], []
     for path in paths:
@@ -188,15 +190,16 @@ def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=
     return RecordSet._of(rows, sources, failed)
 
 
-def _paths(source):
-    """The record files of a folder or file path, or of a list of them (folders' files sorted by name)."""
+def _paths(source, recursive):
+    """The record files of a folder or file path, or of a list of them (folders' files sorted by
+    name; their subfolders' too if ``recursive``)."""
     items = [source] if isinstance(source, (str, os.PathLike)) else list(source)
     if not items:
         raise ValueError("read_records: no files given")
     paths = []
     for item in map(pathlib.Path, items):
         if item.is_dir():
-            paths += record_files(item)
+            paths += record_files(item, recursive)
         elif item.is_file():
             paths.append(item)
         else:

@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from ..cli._common import UsageError, files_or_set, number, positive, read, set_argument
+from ..cli._common import UsageError, files_or_set, number, positive, read, recursive_argument, set_argument
 from ..cli._flexible import _table_row, add_flexible_study_arguments, flexible_study_block
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._readers import RECORD_SUFFIXES, record_files
@@ -66,6 +66,7 @@ def add_study_parser(subparsers):
     p.add_argument("--units", default=None, help="acceleration units of the files: g, m/s2, cm/s2 or gal "
                                                  "(default: as an AT2 header or a table's header line says, else g)")
     p.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
+    recursive_argument(p)
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                    help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")
     set_argument(p)
@@ -144,7 +145,7 @@ def _records(args):
     if record_set is not None:
         return record_set
     try:
-        paths = record_files(args.folder)
+        paths = record_files(args.folder, args.recursive)
     except ValueError as err:
         raise UsageError(str(err)) from None
     return [read(path, args) for path in paths]
