@@ -145,6 +145,8 @@ def _parser():
     newmark_.add_argument("--plot", type=pathlib.Path, default=None, metavar="PATH",
                           help="save a figure: D against ky per record; for one record and one ky, the "
                                "history of the polarity with the larger D")
+    newmark_.add_argument("--derivative", action="store_true",
+                          help="also dD/dky [m/g] of each polarity, exact (its first run compiles, about 10 s)")
     newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
     newmark_.set_defaults(command=_newmark)
 
@@ -246,7 +248,7 @@ def _newmark(args):
         warnings.simplefilter("always", UnitsWarning)
         warnings.showwarning = _prefixed(warnings.showwarning, where)
         result = checked(lambda: newmark(motions, np.asarray(args.ky, dtype=float), g=args.g, pga=pga,
-                                         pga_rounding=args.pga_rounding), where)
+                                         pga_rounding=args.pga_rounding, derivative=args.derivative), where)
     table = result.to_dataframe()
     if one:
         table.insert(0, "pga_g", records[0].peak_acceleration / args.g if pga is None else pga)
@@ -280,11 +282,13 @@ def _print_newmark(args, records, pga, one, table):
     print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
     width = 0 if one else max(len("record"), *(len(r.name) for r in records))
     head = "" if one else f"{'record':<{width}} {'PGA [g]':>8} "
-    print(f"{head}{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}")
+    slopes = " dD/dky normal [m/g] dD/dky inverse [m/g]" if args.derivative else ""
+    print(f"{head}{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}{slopes}")
     for row in table.itertuples(index=False):
         head = "" if one else f"{row.record:<{width}} {row.pga_g:8.4f} "
+        slopes = f" {row.dD_dky_normal_m_per_g:19.6g} {row.dD_dky_inverse_m_per_g:20.6g}" if args.derivative else ""
         print(f"{head}{row.ky_g:8.4f} {row.normal_m:12.6f} {row.inverse_m:12.6f} {row.mean_m:12.6f} "
-              f"{row.max_m:12.6f}")
+              f"{row.max_m:12.6f}{slopes}")
 
 
 def _newmark_plot(args, records, pga, result):

@@ -17,6 +17,7 @@ import warnings
 import numpy as np
 
 from ..core._progress import progress_bar
+from ..core._sensitivities import sensitivities
 from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, UnitsWarning, pga_factor, read_record
@@ -59,7 +60,8 @@ class _Polarities:
         return _combine(lambda a, b: 0.5 * (a + b), self.normal, self.inverse)
 
     def _columns(self):
-        return {"normal_m": self.normal, "inverse_m": self.inverse, "mean_m": self.mean, "max_m": self.maximum}
+        return {"normal_m": self.normal, "inverse_m": self.inverse, "mean_m": self.mean, "max_m": self.maximum,
+                "dD_dky_normal_m_per_g": self.normal_dky, "dD_dky_inverse_m_per_g": self.inverse_dky}
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -71,15 +73,20 @@ class NewmarkResult(_Polarities):
         normal: downslope displacement D >= 0 for the record as given [m] (None if not run).
         inverse: D for the record inverted [m] (None if not run).
         g: the value of one g used [m/s²].
+        normal_dky, inverse_dky: dD/dky of each polarity run [m/g], shaped as ``normal``
+            (None unless ``newmark(..., derivative=True)``).
     """
 
     ky: float | np.ndarray
     normal: float | np.ndarray | None
     inverse: float | np.ndarray | None
     g: float
+    normal_dky: float | np.ndarray | None = None
+    inverse_dky: float | np.ndarray | None = None
 
     def to_dataframe(self):
-        """One row per k_y: ky_g, normal_m, inverse_m, mean_m, max_m (pandas)."""
+        """One row per k_y: ky_g, normal_m, inverse_m, mean_m, max_m, and where computed
+        dD_dky_normal_m_per_g, dD_dky_inverse_m_per_g (pandas)."""
         import pandas as pd
 
         columns = {"ky_g": self.ky, **self._columns()}
@@ -110,6 +117,8 @@ class NewmarkSweep(_Polarities):
         g: the value of one g used [m/s²].
         metadata: for a :class:`RecordSet`, its :attr:`~RecordSet.metadata` (magnitude,
             distance, Vs30, ...; pandas, indexed by name), carried into :meth:`to_dataframe`; else None.
+        normal_dky, inverse_dky: dD/dky of each polarity run [m/g], shaped as ``normal``
+            (None unless ``newmark(..., derivative=True)``).
     """
 
     records: tuple[str, ...]
@@ -120,6 +129,8 @@ class NewmarkSweep(_Polarities):
     inverse: np.ndarray | None
     g: float
     metadata: object = None
+    normal_dky: np.ndarray | None = None
+    inverse_dky: np.ndarray | None = None
 
     @property
     def shape(self) -> tuple[int, int, int]:
@@ -135,7 +146,8 @@ class NewmarkSweep(_Polarities):
     def to_dataframe(self):
         """One row per (record, pga, k_y): record, the set's :attr:`metadata` columns if any,
         pga_g (the target peak, or the record's own where it ran as given) [g], ky_g [g],
-        normal_m, inverse_m, mean_m, max_m [m] (pandas)."""
+        normal_m, inverse_m, mean_m, max_m [m], and where computed dD_dky_normal_m_per_g,
+        dD_dky_inverse_m_per_g [m/g] (pandas)."""
         import pandas as pd
 
         index = np.indices(self.shape).reshape(3, -1)
@@ -159,7 +171,7 @@ class NewmarkSweep(_Polarities):
 
 def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_end: float | None = None,
             backend: str = "exact", *, pga=None, target_pga=None, pga_rounding: str = "exact", progress=None,
-            **options) -> NewmarkResult | NewmarkSweep:
+            derivative: bool = False, **options) -> NewmarkResult | NewmarkSweep:
     """Newmark's rigid-block (one-way) downslope displacement, positive downslope.
 
     Args:
@@ -185,6 +197,10 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
             0.001 g before scaling, as SLAMMER scales (to reproduce its tables).
         progress: over many motions, a tqdm bar over them on stderr; None (default): only
             when stderr is a terminal.
+        derivative: also dD/dky [m/g] of each polarity run (``normal_dky``,
+            ``inverse_dky``), exact: differentiated through the closed-form engine
+            (:func:`blockdae.sensitivities` with respect to "mu"; its first call in a
+            process compiles a JAX kernel, about 10 s).
 
     Returns:
         For one excitation and at most one ``pga``, a :class:`NewmarkResult`; else a
@@ -207,26 +223,33 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         if shown := _not_sliding(ky_array, peak):
             warnings.warn(f"ky={shown} g >= PGA = {peak:.4g} g: the block does not slide, D = 0 m", UnitsWarning,
                           stacklevel=2)
-        normal, inverse = _downslope(motion, ky, polarity, g, t_end, backend, options)
+        normal, inverse, normal_dky, inverse_dky = _downslope(motion, ky, polarity, g, t_end, backend, derivative,
+                                                              options)
         return NewmarkResult(ky=float(ky_array) if ky_array.ndim == 0 else ky_array, normal=normal, inverse=inverse,
-                             g=float(g))
-    return _sweep(motion, ky_array, polarity, g, t_end, backend, pga, pga_rounding, progress, options)
+                             g=float(g), normal_dky=normal_dky, inverse_dky=inverse_dky)
+    return _sweep(motion, ky_array, polarity, g, t_end, backend, pga, pga_rounding, progress, derivative, options)
 
 
-def _downslope(motion, ky, polarity, g, t_end, backend, options):
-    """(D normal, D inverse) [m] of ``motion`` at yield acceleration(s) ``ky`` [g] (None where not run)."""
+def _downslope(motion, ky, polarity, g, t_end, backend, derivative, options):
+    """(D normal, D inverse) [m] of ``motion`` at yield acceleration(s) ``ky`` [g], and if
+    ``derivative`` their dD/dky [m/g] (None where not run or not asked)."""
     block = SlidingBlock(mu=ky, direction="negative", g=g)
 
     def downslope(excitation):
         u = simulate(block, excitation, t_end=t_end, backend=backend, **options).displacement
         return 0.0 - u  # downslope positive; no -0.0 for a block that never slid
 
-    normal = downslope(motion) if polarity in ("both", "normal") else None
-    inverse = downslope(motion.inverted()) if polarity in ("both", "inverse") else None
-    return normal, inverse
+    def slope(excitation):  # mu = ky moves the kinetic coefficient too (mu_kinetic is None)
+        return -sensitivities(block, excitation, t_end=t_end, wrt=("mu",))["mu"]
+
+    runs = [motion if polarity in ("both", "normal") else None,
+            motion.inverted() if polarity in ("both", "inverse") else None]
+    values = [None if m is None else downslope(m) for m in runs]
+    slopes = [None if m is None or not derivative else slope(m) for m in runs]
+    return (*values, *slopes)
 
 
-def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress, options):
+def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress, derivative, options):
     """:func:`newmark` over many motions × target peaks ``pga`` [g] × ``ky`` [g]."""
     metadata = motions.metadata if isinstance(motions, RecordSet) else None
     names, motions = _labelled(_motions(motions, g))
@@ -236,7 +259,7 @@ def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress
     targets = None if pga is None else check_pga(pga)
     check_pga_rounding(pga_rounding)
     shape = (len(motions), 1 if targets is None else targets.size, ky.size)
-    normal, inverse = np.full(shape, np.nan), np.full(shape, np.nan)
+    tables = [np.full(shape, np.nan) for _ in range(4)]  # D normal, D inverse, their dD/dky
     still = []  # (record, PGA) cases where some ky >= PGA
     with progress_bar(len(motions), "newmark", "record", progress) as bar:
         for i, (name, motion) in enumerate(zip(names, motions)):
@@ -247,18 +270,22 @@ def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress
                 peak = scaled.peak_acceleration / g
                 if shown := _not_sliding(ky, peak, where=f"{name}: "):
                     still.append(f"{name} (PGA {peak:.4g} g): ky={shown} g")
-                for table, d in zip((normal, inverse), _downslope(scaled, ky, polarity, g, t_end, backend, options)):
-                    if d is not None:
-                        table[i, j] = d
+                for table, value in zip(tables, _downslope(scaled, ky, polarity, g, t_end, backend, derivative,
+                                                           options)):
+                    if value is not None:
+                        table[i, j] = value
             bar.update()
     if still:
         more = f"; and {len(still) - _CASES_SHOWN} more" if len(still) > _CASES_SHOWN else ""
         warnings.warn(f"ky >= PGA in {len(still)} of {shape[0] * shape[1]} (record, PGA) cases: the block does not "
                       f"slide there, D = 0 m: {'; '.join(still[:_CASES_SHOWN])}{more}", UnitsWarning, stacklevel=3)
     peak = np.array([m.peak_acceleration / g for m in motions])
-    return NewmarkSweep(records=names, peak=peak, pga=targets, ky=ky, g=float(g), metadata=metadata,
-                        normal=normal if polarity in ("both", "normal") else None,
-                        inverse=inverse if polarity in ("both", "inverse") else None)
+    run = [polarity in ("both", "normal"), polarity in ("both", "inverse")] * 2
+    normal, inverse, normal_dky, inverse_dky = (table if ran else None for table, ran in zip(tables, run))
+    if not derivative:
+        normal_dky = inverse_dky = None
+    return NewmarkSweep(records=names, peak=peak, pga=targets, ky=ky, g=float(g), metadata=metadata, normal=normal,
+                        inverse=inverse, normal_dky=normal_dky, inverse_dky=inverse_dky)
 
 
 def _motions(motions, g):
