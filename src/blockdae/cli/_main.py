@@ -25,6 +25,7 @@ from ._common import (UsageError, checked, clean, describe_gravity, describe_rec
                       set_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._flexible import add_flexible_parser
+from ._hazard import add_hazard_parsers
 from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
 from ..sliding._examples import seed_examples
@@ -97,7 +98,7 @@ def _parser():
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
     sub = parser.add_subparsers(required=True,
-                                metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,info}")
+                                metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,fragility,hazard,info}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
                                      "plane under two or three components (u_x, u_y)")
@@ -172,6 +173,7 @@ def _parser():
     batch.set_defaults(command=_batch)
 
     add_study_parser(sub)
+    add_hazard_parsers(sub)
     add_info_parser(sub)
     return parser
 
