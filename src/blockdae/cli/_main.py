@@ -117,6 +117,9 @@ def _parser():
                      help="resample every component to the step DT [s] first (linear a(t), exact at the "
                           "new samples; see blockdae.resample): files of mixed steps make one motion")
     run.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure")
+    run.add_argument("--history", type=pathlib.Path, default=None, metavar="CSV",
+                     help="write the history as CSV: t, base acceleration, u, v (signed) and mode at the record's "
+                          "samples and every event")
     run.add_argument("--json", action="store_true", help="print the results as JSON")
     run.add_argument("--events", choices=("summary", "all", "none"), default="summary",
                      help=f"events to print: the first and last {_EVENTS_SHOWN} (default), all or none")
@@ -146,6 +149,9 @@ def _parser():
     newmark_.add_argument("--plot", type=pathlib.Path, default=None, metavar="PATH",
                           help="save a figure: D against ky per record; for one record and one ky, the "
                                "history of the polarity with the larger D")
+    newmark_.add_argument("--history", type=pathlib.Path, default=None, metavar="CSV",
+                          help="one record, one PGA and one ky: write the history of both polarities as CSV "
+                               "(t, the ground acceleration as given, D >= 0 downslope and its rate per polarity)")
     newmark_.add_argument("--derivative", action="store_true",
                           help="also dD/dky [m/g] of each polarity, exact (its first run compiles, about 10 s)")
     newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
@@ -216,6 +222,12 @@ def _run(args):
     wall = time.perf_counter() - start
     if args.plot is not None:
         _save_plot(args, solution, record, block)
+    if args.history is not None:
+        history = solution.history()
+        if block.g == 1:  # a dimensionless set-up: lengths in g s²
+            history.columns = [c.replace("_m_s2", "_g").replace("_m_s", "_g_s").replace("u_m", "u_g_s2")
+                               for c in history.columns]
+        write_csv(args.history, history.to_dict(orient="records"), list(history.columns))
     if args.json:
         print(json.dumps(_run_json(record, block, solution, wall), indent=2))
         return 0
@@ -232,8 +244,9 @@ def _run(args):
     print(f"events: {len(solution.events)}")
     _print_events(solution, args.events)
     print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
-    if args.plot is not None:
-        print(f"figure: {args.plot}")
+    for what, path in (("figure", args.plot), ("history", args.history)):
+        if path is not None:
+            print(f"{what}: {path}")
     return 0
 
 
@@ -259,8 +272,11 @@ def _newmark(args):
         write_csv(args.csv, table.to_dict(orient="records"), list(table.columns))
     if args.plot is not None:
         _newmark_plot(args, records, pga, result)
+    if args.history is not None:
+        _newmark_history(args, records, pga, one)
     _print_newmark(args, records, pga, one, table)
-    saved = [f"{what}: {path}" for what, path in (("results", args.csv), ("figure", args.plot)) if path is not None]
+    saved = [f"{what}: {path}" for what, path in (("results", args.csv), ("figure", args.plot),
+                                                  ("history", args.history)) if path is not None]
     for line in saved:
         print(line, file=sys.stderr if args.json else sys.stdout)
     return 0
@@ -291,6 +307,25 @@ def _print_newmark(args, records, pga, one, table):
         slopes = f" {row.dD_dky_normal_m_per_g:19.6g} {row.dD_dky_inverse_m_per_g:20.6g}" if args.derivative else ""
         print(f"{head}{row.ky_g:8.4f} {row.normal_m:12.6f} {row.inverse_m:12.6f} {row.mean_m:12.6f} "
               f"{row.max_m:12.6f}{slopes}")
+
+
+def _newmark_history(args, records, pga, one):
+    """--history: t, the ground acceleration [g] and, per polarity, D >= 0 downslope [m] and
+    its rate [m/s] at the record's samples and every event of either polarity."""
+    if not one or len(args.ky) > 1:
+        raise UsageError("--history takes one record, one --pga (or none) and one --ky")
+    record = records[0]
+    if pga is not None:
+        record = record.scaled(pga_factor(record.peak_acceleration, pga, args.g, args.pga_rounding))
+    block = SlidingBlock(mu=args.ky[0], direction="negative", g=args.g)
+    runs = {name: simulate(block, motion) for name, motion in (("normal", record), ("inverse", record.inverted()))}
+    t_end = max(run.t_end for run in runs.values())
+    t = np.union1d(record.times[record.times <= t_end], np.concatenate([[t_end], *(r.t_events for r in runs.values())]))
+    columns = {"t_s": t, "ground_acceleration_g": record.acceleration(t) / args.g}
+    for name, run in runs.items():
+        u, v = run(np.minimum(t, run.t_end))
+        columns[f"{name}_D_m"], columns[f"{name}_sliding_rate_m_s"] = 0.0 - u, 0.0 - v
+    write_csv(args.history, [dict(zip(columns, row)) for row in zip(*columns.values())], list(columns))
 
 
 def _newmark_plot(args, records, pga, result):

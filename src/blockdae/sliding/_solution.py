@@ -131,6 +131,25 @@ class Solution(AbstractSolution):
             raise ValueError(f"t must lie in [{self.t[0]}, {self.t[-1]}] s")
         return self.dense(t)
 
+    def history(self, t=None):
+        """The run at times ``t`` [s] (default: the record's samples, or 2001 even steps for
+        another motion, and every event), as a pandas DataFrame: t_s, base_acceleration_m_s2
+        (where the motion is known), u_m, v_m_s (signed: u = x_block - x_base) and mode."""
+        import pandas as pd
+
+        if t is None:
+            grid = getattr(self.motion, "times", None)
+            grid = np.linspace(0.0, self.t_end, 2001) if grid is None else grid[grid <= self.t_end]
+            t = np.union1d(np.append(grid, self.t_end), self.t_events)
+        t = np.asarray(t, dtype=float)
+        u, v = self(t)
+        columns = {"t_s": t}
+        if self.motion is not None:
+            columns["base_acceleration_m_s2"] = np.asarray(self.motion.acceleration(t), dtype=float)
+        after = np.clip(np.searchsorted(self.t, t, side="right") - 1, 0, self.t.size - 1)
+        return pd.DataFrame({**columns, "u_m": u, "v_m_s": v,
+                             "mode": [Mode(int(m)).name for m in np.asarray(self.mode)[after]]})
+
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
         """Seed 000 Figures 3-5: v, u and the phase plane, with ``excitation`` also the
         absolute motions (see :func:`blockdae.plot`); a matplotlib Figure."""
