@@ -846,12 +846,12 @@ twice as far as the rigid block (median); a column much softer than the motion
 feels the sliding, gives less than the decoupled one for most columns."""),
     ("md", """## SLAMMER's fixed-step results against the exact ones, over its table
 
-The flexible rows of half of SLAMMER 1.1's results table (`../shared/slammer/`, 9 records;
+The flexible rows of half of SLAMMER 1.1's results table (`tests/data/`, 9 records;
 decoupled and coupled, linear-elastic and equivalent-linear), both polarities, each run
 twice on the same scaled record (SLAMMER's factor: the target over the peak rounded to
 0.001 g): by SLAMMER's scheme and exactly. Displacements below 0.5 cm are left out of the
 ratios."""),
-    ("code", """path = pathlib.Path.cwd().resolve().parents[1] / "shared" / "slammer" / "slammer_1.1_results_part.json.gz"
+    ("code", """path = pathlib.Path("..") / "tests" / "data" / "slammer_1.1_results_part.json.gz"  # from notebooks/
 rows = [r for r in json.loads(gzip.decompress(path.read_bytes()))["analyses"] if r["analysis"]["method"] != "rigid"]
 compared = []
 for row in rows:

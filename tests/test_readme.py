@@ -1,6 +1,7 @@
-"""Every code block of the README runs as written (the set-up block's install is the one
-exception: CI has just run it). Each block runs alone, as a reader may copy it: a python
-block in a fresh interpreter, a bash block in a shell, each in a scratch folder."""
+"""Every code block of the README and of the pages in docs/ runs as written (the set-up
+block's install is the one exception: CI has just run it). Each block runs alone, as a
+reader may copy it: a python block in a fresh interpreter, a bash block in a shell, each in
+a scratch folder. Blocks meant only to be read are fenced as ```text."""
 
 import os
 import pathlib
@@ -10,20 +11,64 @@ import sys
 
 import pytest
 
-README = pathlib.Path(__file__).parents[1] / "README.md"
+ROOT = pathlib.Path(__file__).parents[1]
+README = ROOT / "README.md"
+DOCS = sorted((ROOT / "docs").glob("*.md"))
+PAGES = [README, *DOCS]
 BLOCK = re.compile(r"```(python|bash)\n(.*?)```", re.DOTALL)
+FENCE_LANGUAGES = {"python", "bash", "text"}
 
 
-def _blocks(language):
-    return [code for lang, code in BLOCK.findall(README.read_text()) if lang == language]
+def _blocks(language, pages=PAGES):
+    """(page, code) of every ```language block of ``pages``, in order."""
+    return [(page, code) for page in pages for lang, code in BLOCK.findall(page.read_text())
+            if lang == language]
+
+
+def _name(page):
+    return page.relative_to(ROOT).as_posix()
 
 
 def _is_setup(code):
     return "pip install" in code
 
 
-def test_readme_has_code_blocks():
-    assert len(_blocks("python")) >= 1 and len(_blocks("bash")) >= 3
+def _opening_fences(page):
+    """(line number, language) of every opening ``` fence of ``page``."""
+    fences, inside = [], False
+    for number, line in enumerate(page.read_text().splitlines(), start=1):
+        if line.startswith("```"):
+            if not inside:
+                fences.append((number, line[3:].strip()))
+            inside = not inside
+    assert not inside, f"{_name(page)}: a ``` fence is never closed"
+    return fences
+
+
+def test_readme_and_docs_have_code_blocks():
+    """The README shows a rigid, a flexible and an own-record analysis, the set-up and the
+    command line; the docs pages hold the reference examples."""
+    assert len(_blocks("python", [README])) >= 3 and len(_blocks("bash", [README])) >= 2
+    assert len(_blocks("python", DOCS)) >= 15 and len(_blocks("bash", DOCS)) >= 4
+    runnable = {_name(page) for page, _ in _blocks("python", DOCS) + _blocks("bash", DOCS)}
+    assert len(runnable) >= 10, runnable
+
+
+@pytest.mark.parametrize("page", PAGES, ids=_name)
+def test_every_fence_says_its_language(page):
+    """A fence without python, bash or text would escape the runs below."""
+    odd = [(number, lang) for number, lang in _opening_fences(page) if lang not in FENCE_LANGUAGES]
+    assert not odd, f"{_name(page)}: fences without a known language at (line, language) {odd}"
+
+
+def test_readme_links_every_docs_page_and_every_link_resolves():
+    """Each docs page is reachable from the README, and no page links to a missing file."""
+    readme = README.read_text()
+    assert all(f"docs/{page.name}" in readme for page in DOCS), [p.name for p in DOCS]
+    for page in PAGES:
+        for target in re.findall(r"\]\(([^)#\s]+)(?:#[^)]*)?\)", page.read_text()):
+            if "://" not in target:
+                assert (page.parent / target).exists(), f"{_name(page)} links to missing {target}"
 
 
 def _environment(jax_cache_dir):
@@ -33,13 +78,17 @@ def _environment(jax_cache_dir):
                     [str(pathlib.Path(sys.executable).parent), os.environ.get("PATH", "")]))
 
 
-@pytest.mark.parametrize("index", range(len(_blocks("python"))))
+PYTHON_BLOCKS = _blocks("python")
+
+
+@pytest.mark.parametrize("index", range(len(PYTHON_BLOCKS)),
+                         ids=[f"{_name(page)}-{i}" for i, (page, _) in enumerate(PYTHON_BLOCKS)])
 def test_python_blocks_run_alone_as_written(index, tmp_path, jax_cache_dir):
-    """Issue 23 item 6: no block leans on names an earlier block defined (a NameError here)."""
-    code = _blocks("python")[index]
+    """No block leans on names an earlier block defined (a NameError here)."""
+    page, code = PYTHON_BLOCKS[index]
     done = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=_environment(jax_cache_dir),
                           capture_output=True, text=True, timeout=900)
-    assert done.returncode == 0, f"README block failed alone:\n{code}\n--- stderr:\n{done.stderr[-3000:]}"
+    assert done.returncode == 0, f"{_name(page)} block failed alone:\n{code}\n--- stderr:\n{done.stderr[-3000:]}"
 
 
 def _only_benchmarks(block) -> bool:
@@ -48,16 +97,19 @@ def _only_benchmarks(block) -> bool:
     return all(line.startswith("python benchmarks/") for line in lines)
 
 
+BASH_BLOCKS = [(page, code) for page, code in _blocks("bash") if not _is_setup(code)]
+
+
 # the block of benchmark smoke runs is slow (about 100 s); each of its commands also runs fast
 # in tests/test_benchmarks.py or tests/test_hazard.py
-@pytest.mark.parametrize("index", [pytest.param(i, marks=pytest.mark.slow) if _only_benchmarks(b) else i
-                                   for i, b in enumerate(b for b in _blocks("bash") if not _is_setup(b))])
+@pytest.mark.parametrize("index", [pytest.param(i, marks=pytest.mark.slow) if _only_benchmarks(code) else i
+                                   for i, (_, code) in enumerate(BASH_BLOCKS)],
+                         ids=[f"{_name(page)}-{i}" for i, (page, _) in enumerate(BASH_BLOCKS)])
 def test_bash_blocks_run_as_written(index, tmp_path, jax_cache_dir):
-    code = [b for b in _blocks("bash") if not _is_setup(b)][index]
+    page, code = BASH_BLOCKS[index]
     env = _environment(jax_cache_dir)
-    repo = README.parent
     in_repo = "benchmarks/" in code or "examples/" in code
-    script = f"set -euo pipefail\ncd {repo}\n" + code if in_repo else "set -euo pipefail\n" + code
+    script = f"set -euo pipefail\ncd {ROOT}\n" + code if in_repo else "set -euo pipefail\n" + code
     done = subprocess.run(["bash", "-c", script], cwd=tmp_path, env=env, capture_output=True, text=True,
                           timeout=900)
-    assert done.returncode == 0, f"README block failed:\n{code}\n--- stderr:\n{done.stderr[-3000:]}"
+    assert done.returncode == 0, f"{_name(page)} block failed:\n{code}\n--- stderr:\n{done.stderr[-3000:]}"
