@@ -9,7 +9,6 @@ import math
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 import blockdae as bd
 from blockdae.flexible import _analysis as analysis_module
@@ -112,7 +111,7 @@ def _compare_with_reference(record, model, t_end, min_events=4):
     1.8e-13, 1.9e-14); returns (exact solution, reference events)."""
     sol = bd.simulate(model, record, t_end=t_end)
     events, y = reference(record.acceleration_samples, record.dt, model.omega, model.damping,
-                              model.yield_acceleration, model.coupled, t_end)
+                          model.yield_acceleration, model.coupled, t_end)
     assert [(e.mode_before, e.mode_after) for e in sol.events] == [(b, a) for _, b, a in events]
     assert len(events) >= min_events
     np.testing.assert_allclose(sol.t_events, [t for t, _, _ in events], rtol=0, atol=EVENT_BAR)
