@@ -27,7 +27,12 @@ def reference(samples, dt, omega, xi, table, coupled, t_end):
     """Section 8 with ky(s) [g] = np.interp(s, table) integrated by DOP853 (rtol 1e-12,
     atol 1e-15) from rest under a(t) linear between ``samples`` [m/s²], restarted at every
     sample, onset, stop and breakpoint crossing. Returns (events [(t [s], kind)], final
-    state (u, u', s, w))."""
+    state (u, u', s, w)).
+
+    Its own error, measured against the same integration at rtol 2.5e-14, atol 1e-20
+    (which the exact engine matches within 7.5e-15 s and 5.2e-14 of s) on every case of
+    this file: events <= 6.3e-12 s, s(t_end) <= 2.6e-11 relative, u(t_end) <= 2.2e-13 of
+    max |u| (the largest on the decoupled softening table)."""
     k, c = omega**2, 2 * xi * omega
     d, ky = np.array(table.displacement_m), np.array(table.ky_g)
     friction = lambda s: float(np.interp(s, d, ky)) * G
@@ -93,7 +98,8 @@ def _record(duration):
 def test_exact_matches_dop853_with_a_ky_table(method, table):
     """Reference: the DOP853 integration above, Northridge PAC-175 (dt 0.02 s), 6 s, a
     10 m column: the same onsets, stops and breakpoints within 1e-10 s, s(t_end) within
-    1e-9 relative, u(t_end) within 1e-9 of max |u|."""
+    1e-9 relative, u(t_end) within 1e-11 of max |u| (16x, 38x and 45x the reference's
+    measured error)."""
     record = _record(6.0)
     model = FlexibleSlidingMass(ShearColumn(10.0, 250.0), ky=table, method=method)
     sol = bd.simulate(model, record, t_end=6.0)
@@ -103,7 +109,7 @@ def test_exact_matches_dop853_with_a_ky_table(method, table):
     assert sum(kind == "breakpoint" for _, kind in events) >= 2 and len(sol.episodes) >= 3
     np.testing.assert_allclose(sol.t_events, [t for t, _ in events], rtol=0, atol=1e-10)
     assert sol.displacement == pytest.approx(y[2], rel=1e-9)
-    assert abs(sol.state[-1, 0] - y[0]) <= 1e-9 * np.abs(sol.state[:, 0]).max()
+    assert abs(sol.state[-1, 0] - y[0]) <= 1e-11 * np.abs(sol.state[:, 0]).max()
     crossed = [e.s for e in sol.events if e.kind == "breakpoint"]
     np.testing.assert_allclose(crossed, [d for d in table.displacement_m if 0 < d <= sol.displacement][:len(crossed)],
                                rtol=1e-12)
@@ -111,7 +117,8 @@ def test_exact_matches_dop853_with_a_ky_table(method, table):
 
 def test_a_nearly_flat_table_is_exact_too():
     """A slope of -1e-6 g/m (the matrix exponential has no cancellation where the slow
-    modes merge): DOP853's events within 1e-10 s and s(t_end) within 1e-9 relative."""
+    modes merge): DOP853's events within 1e-10 s and s(t_end) within 1e-9 relative (the
+    reference's errors here: 1.4e-13 s, 1.0e-13)."""
     record = _record(6.0)
     table = KyTable([0.0, 1.0], [0.1, 0.1 - 1e-6])
     model = FlexibleSlidingMass(ShearColumn(10.0, 250.0), ky=table, method="coupled")
@@ -126,7 +133,7 @@ def test_a_nearly_flat_table_is_exact_too():
 def test_onset_at_t0_and_a_residual_ky_of_zero(method):
     """HEA(0) = d1 a(0) = 0.095 g at rest exceeds ky(0) = 0.08 g: sliding from t = 0; the
     table falls to ky = 0 (a residual strength of zero) over 5 cm: DOP853 (above) within
-    1e-10 s and 1e-9 relative."""
+    1e-10 s and 1e-9 relative (the reference's errors here: 1.5e-13 s, 2.5e-13)."""
     samples = 0.5 * G * np.cos(np.linspace(0.0, 3 * np.pi, 151))
     record = bd.Record(samples, 0.01, units="m/s2")
     table = KyTable([0.0, 0.05], [0.08, 0.0])

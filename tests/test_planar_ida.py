@@ -114,9 +114,15 @@ def slide_reference(ratio, t_end, z=None, tau0=1e-5):
     """The slide from rest under a_x = sin(pi t / 2) on [0, 2], a_y = ratio a_x, a_z =
     ``z(t)`` (g = 1, f = mu), written here: the onset where |sigma| = mu n (brentq), then
     (s, theta, u_x, u_y) with s' = -e.sigma - f n, theta' = (e_perp.(-sigma)) / s by
-    Radau (stiff: the direction relaxes at |sigma| / s) from ``tau0`` [s] after the
-    onset, where s = int (|sigma| - f n) dt and e = -sigma / |sigma| (at f = mu the lag
-    of e is O(tau²), u is O(tau³)). Returns (t_on, (s, theta, u_x, u_y) at ``t_end``)."""
+    Radau (rtol 1e-12; stiff: the direction relaxes at |sigma| / s) from ``tau0`` [s] after
+    the onset, where s = int (|sigma| - f n) dt and e = -sigma / |sigma| (at f = mu the lag
+    of e is O(tau²), u is O(tau³)), restarted at the pulse's end (a kink of a_x). Returns
+    (t_on, (s, theta, u_x, u_y) at ``t_end``).
+
+    Its own error, measured against tau0 = 1e-6 s with Radau at rtol 1e-13 and 2.5e-14 and
+    DOP853 at 2.5e-14 (the largest of them): at the pulse's end (R = 0.4 / 0.8) 8.9e-16 /
+    2.0e-12 s of the stop that follows and 1.6e-14 / 1.2e-11 of u; with the vertical
+    shaking, at 2.5 s, 2.6e-12 / 6.9e-12 of u and 4.7e-12 / 7.6e-12 of v."""
     def sigma(t):
         a = math.sin(math.pi * t / PULSE) if t < PULSE else 0.0
         return a - BIAS_X, ratio * a
@@ -133,16 +139,20 @@ def slide_reference(ratio, t_end, z=None, tau0=1e-5):
     t0 = t_on + tau0
     s0 = quad(margin, t_on, t0, epsabs=1e-22, epsrel=1e-14)[0]
     sx, sy = sigma(t0)
-    sol = solve_ivp(rhs, (t0, t_end), [s0, math.atan2(-sy, -sx), 0.0, 0.0], method="Radau", rtol=1e-12,
-                    atol=1e-16, first_step=tau0 / 100)
-    assert sol.status == 0
-    return t_on, sol.y[:, -1]
+    state, first_step = [s0, math.atan2(-sy, -sx), 0.0, 0.0], tau0 / 100
+    for start, end in ((t0, min(t_end, PULSE)), (PULSE, t_end)):
+        if end > start:
+            sol = solve_ivp(rhs, (start, end), state, method="Radau", rtol=1e-12, atol=1e-16, first_step=first_step)
+            assert sol.status == 0
+            state, first_step = sol.y[:, -1], None
+    return t_on, state
 
 
 def stop_after_the_pulse(state):
     """After the pulse sigma = (-bias_x, 0) and n = 1 are constant: with the angle phi of
     e from -sigma, s = C tan(phi/2)^beta / sin(phi) (beta = f n / |sigma|) and phi' =
-    -|sigma| sin(phi) / s, so the stop (phi -> 0) and the displacement are quadratures.
+    -|sigma| sin(phi) / s, so the stop (phi -> 0) and the displacement are quadratures
+    (scipy's quad: within 8.9e-16 s and 1.7e-16 of u of mpmath's on the cases here).
     Returns (time from the state to the stop [s], displacement at the stop [m])."""
     s, theta, u_x, u_y = state
     size, back = abs(BIAS_X), math.copysign(1.0, BIAS_X)  # -sigma = (back |sigma|, 0)

@@ -129,12 +129,18 @@ def test_unending_excitation_needs_t_end():
 
 
 def test_dense_output_is_consistent_with_knots_and_velocity():
-    """u(t) from dense output equals the integral of v(t) (trapezoid on a fine grid)."""
+    """u(t) from dense output equals the integral of v(t): 10-point Gauss-Legendre on
+    quarters of each interval between knots (v is smooth there), within 1e-13 m (measured
+    5.6e-16 m; the trapezoid rule on a grid of 5e-5 s, the reference before it, was
+    1.6e-9 m off)."""
     sol = bd.simulate(bd.SlidingBlock(mu=0.3, mu_kinetic=0.2, bias=0.05, g=G), bd.Harmonic(5.0, 0.7), t_end=3.0)
-    t = np.linspace(0.0, 3.0, 60001)
-    u, v = sol(t)
-    integral = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
-    np.testing.assert_allclose(u, integral, atol=1e-8)
+    knots = np.unique(sol.t)
+    t = np.unique(np.concatenate([np.linspace(a, b, 5) for a, b in zip(knots[:-1], knots[1:])]))
+    x, w = np.polynomial.legendre.leggauss(10)
+    half = np.diff(t)[:, None] / 2
+    nodes = (t[:-1, None] + half) + half * x
+    integral = np.concatenate([[0.0], np.cumsum(half[:, 0] * (sol(nodes.ravel())[1].reshape(nodes.shape) @ w))])
+    np.testing.assert_allclose(sol(t)[0], integral, rtol=0, atol=1e-13)
     np.testing.assert_allclose(sol(sol.t)[0], sol.u, atol=1e-13)
     with pytest.raises(ValueError, match="t must lie in"):
         sol(np.array(3.5))

@@ -1,13 +1,13 @@
 """Seed 000 (rigid block on accelerating subsoil), Examples 1-6.
 
 References: closed forms derived from the paper's equations, solved here independently
-with scipy/numpy (brentq on the closed-form relative velocity, polynomial roots and
-quadrature), and the paper's printed values at the paper's precision.
+(brentq on the closed-form relative velocity; the pulses' stops and displacements in
+mpmath), and the paper's printed values at the paper's precision.
 """
 
+import mpmath as mp
 import numpy as np
 import pytest
-from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import blockdae as bd
@@ -87,30 +87,55 @@ def test_example4_rectangular_pulse_eq14():
     assert sol.events[-1].t == pytest.approx(0.5 + (9 - MUG) * 0.5 / MUG, rel=1e-14)
 
 
+def triangular_slide():
+    """(t_on [s], t_off [s], u [m]) of Example 5 in mpmath: the block's v_b = 18 t_on² +
+    mu g (t - t_on) against v_s = 18 t² on [0, 0.25], -18 t² + 18 t - 2.25 on [0.25, 0.5]
+    (Eqs. 15-17); t_off the root of a quadratic, u the integral of v_b - v_s (polynomials)."""
+    with mp.workdps(30):
+        mug = mp.mpf(MUG)
+        t_on = mug / 36
+        a, b, c = -18, 18 - mug, mug * t_on - mp.mpf(2.25) - 18 * t_on**2
+        t_off = (-b - mp.sqrt(b**2 - 4 * a * c)) / (2 * a)  # the root in (0.25, 0.5)
+        falling = lambda t: -6 * t**3 + 9 * t**2 - mp.mpf(2.25) * t  # an integral of v_s past 0.25
+        u = (18 * t_on**2 * (t_off - t_on) + mug * (t_off - t_on) ** 2 / 2
+             - 6 * (mp.mpf(0.25) ** 3 - t_on**3) - (falling(t_off) - falling(mp.mpf(0.25))))
+        return float(t_on), float(t_off), float(u)
+
+
 def test_example5_triangular_pulse():
-    """Closed form from Eqs. 15-17: v_s = -18t² + 18t - 2.25 on [0.25, 0.5]."""
+    """Closed form from Eqs. 15-17 (``triangular_slide``): events within 1e-14 s (measured
+    5.6e-17), u within 1e-14 relative (measured 2.2e-16; scipy's quad, the reference before
+    it, was 2.2e-16 off)."""
     sol = bd.simulate(bd.SlidingBlock(mu=MU, g=G), bd.TriangularPulse(9.0, 0.5))
-    t_on = MUG / 36.0
-    # block: v_b = 18 t_on² + mu g (t - t_on) meets v_s on the falling half
-    roots = np.roots([-18.0, 18.0 - MUG, -2.25 - 18 * t_on**2 + MUG * t_on])
-    t_off = roots[(roots > 0.25) & (roots < 0.5)].real[0]
-    v_s = lambda t: 18 * t**2 if t < 0.25 else -18 * t**2 + 18 * t - 2.25
-    u = quad(lambda t: 18 * t_on**2 + MUG * (t - t_on) - v_s(t), t_on, t_off, points=[0.25],
-             epsabs=1e-15, epsrel=1e-14)[0]
-    np.testing.assert_allclose(sol.t_events, [t_on, t_off], atol=1e-13)
-    assert sol.displacement == pytest.approx(u, rel=1e-11)
+    t_on, t_off, u = triangular_slide()
+    np.testing.assert_allclose(sol.t_events, [t_on, t_off], rtol=0, atol=1e-14)
+    assert sol.displacement == pytest.approx(u, rel=1e-14)
     assert (round(t_on, 4), round(t_off, 4), round(sol.displacement, 4)) == (0.1635, 0.4588, -0.0453)
 
 
+def sine_slide():
+    """(t_on [s], t_off [s], u [m]) of Example 6 in mpmath (Eqs. 18-19): a_s = 9 sin 2 pi t on
+    [0, 0.5], v_s = (9/w)(1 - cos wt), constant 18/w after the pulse, so the slide at mu g
+    stops at t_off = t_on + (9/w)(1 + cos w t_on) / (mu g); u the integral of mu g (t - t_on)
+    - (v_s(t) - v_s(t_on))."""
+    with mp.workdps(30):
+        mug, w = mp.mpf(MUG), 2 * mp.pi
+        t_on = mp.asin(mug / 9) / w
+        v_on = 9 / w * (1 - mp.cos(w * t_on))
+        t_off = t_on + 9 / w * (1 + mp.cos(w * t_on)) / mug
+        half = mp.mpf(0.5)
+        base = 9 / w * ((half - t_on) - (mp.sin(w * half) - mp.sin(w * t_on)) / w) + 18 / w * (t_off - half)
+        u = mug * (t_off - t_on) ** 2 / 2 - (base - v_on * (t_off - t_on))
+        return float(t_on), float(t_off), float(u)
+
+
 def test_example6_sine_pulse():
-    """Eqs. 18-19: a_s = 9 sin 2 pi t on [0, 0.5]; sliding outlasts the pulse."""
+    """Eqs. 18-19 (``sine_slide``): sliding outlasts the pulse; events within 1e-14 s
+    (measured 1.4e-17), u within 1e-14 relative (measured 2.2e-16; scipy's quad, the
+    reference before it, agreed with the closed form to the last bit)."""
     sol = bd.simulate(bd.SlidingBlock(mu=MU, g=G), bd.SinePulse(9.0, 0.5))
-    t_on = np.arcsin(MUG / 9) / W
-    v_s = lambda t: 9 / W * (1 - np.cos(W * min(t, 0.5)))
-    v_rel = lambda t: MUG * (t - t_on) - (v_s(t) - v_s(t_on))
-    t_off = brentq(v_rel, 0.5, 1.0, xtol=1e-15, rtol=1e-15)
-    u = quad(v_rel, t_on, t_off, points=[0.5], epsabs=0, epsrel=1e-13)[0]
-    np.testing.assert_allclose(sol.t_events, [t_on, t_off], atol=1e-13)
-    assert sol.displacement == pytest.approx(u, rel=1e-11)
+    t_on, t_off, u = sine_slide()
+    np.testing.assert_allclose(sol.t_events, [t_on, t_off], rtol=0, atol=1e-14)
+    assert sol.displacement == pytest.approx(u, rel=1e-14)
     # the paper: t* = 0.1135 s, t** = 0.541 s, u = -0.1332 m (its last digit is rounded up)
     np.testing.assert_allclose([t_on, t_off, sol.displacement], [0.1135, 0.541, -0.1332], atol=1e-4)
