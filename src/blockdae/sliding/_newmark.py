@@ -25,6 +25,7 @@ from ..excitation._record_set import RecordSet, with_metadata
 from ..excitation._units import check_pga, check_pga_rounding
 from ._model import SlidingBlock
 from ._sweep import _labelled
+from ..core._repr import compact_repr
 
 _POLARITIES = ("both", "normal", "inverse")
 
@@ -73,6 +74,9 @@ class NewmarkResult(_Polarities):
         g: the value of one g used [m/s²].
     """
 
+    def __repr__(self):
+        return compact_repr(self, f"largest D {np.max(self.maximum):.4g} m over {np.size(self.ky)} ky")
+
     ky: float | np.ndarray
     normal: float | np.ndarray | None
     inverse: float | np.ndarray | None
@@ -111,6 +115,11 @@ class NewmarkSweep(_Polarities):
         metadata: for a :class:`RecordSet`, its :attr:`~RecordSet.metadata` (magnitude,
             distance, Vs30, ...; pandas, indexed by name), carried into :meth:`to_dataframe`; else None.
     """
+
+    def __repr__(self):
+        n_records, n_pga, n_ky = self.shape
+        return compact_repr(self, f"{n_records} records x {n_pga} PGA x {n_ky} ky, largest D "
+                                  f"{np.nanmax(self.maximum):.4g} m")
 
     records: tuple[str, ...]
     peak: np.ndarray
@@ -198,6 +207,7 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
             raise ValueError(f"newmark: pga={pga!r} and target_pga={target_pga!r} name the same target peak [g]; "
                              "give one")
         pga = target_pga
+    ky = _yield_accelerations(ky)
     ky_array = np.asarray(ky, dtype=float)
     _require(np.isfinite(ky_array) & (ky_array > 0), "ky", ky_array, "must be a positive yield acceleration [g]")
     if isinstance(motion, AbstractExcitation) and np.ndim(pga) == 0:
@@ -211,6 +221,26 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         return NewmarkResult(ky=float(ky_array) if ky_array.ndim == 0 else ky_array, normal=normal, inverse=inverse,
                              g=float(g))
     return _sweep(motion, ky_array, polarity, g, t_end, backend, pga, pga_rounding, progress, options)
+
+
+def _yield_accelerations(ky):
+    """``ky`` [g] as numbers: a constant ky table (:class:`bd.KyTable`, or pySLAMMER's pair
+    (displacements [m], ky [g])) as its one value; a table of ky varying with the sliding
+    displacement is refused (TypeError saying what is taken), as is anything not numeric."""
+    from ..flexible._analysis import as_ky_table
+
+    table = as_ky_table(ky)
+    if table is not None:
+        if table.constant:
+            return float(table.ky_g[0])
+        raise TypeError(f"ky={table}: newmark takes yield accelerations [g] (a number or a 1-D sequence of "
+                        "them), not ky varying with the sliding displacement; a ky table runs on the flexible "
+                        "sliding mass: bd.flexible(motion, ky=table, height=..., vs=...)")
+    try:
+        return np.asarray(ky, dtype=float) if np.ndim(ky) else float(ky)
+    except (TypeError, ValueError):
+        raise TypeError(f"ky={ky!r:.80}: newmark takes yield accelerations [g], a number or a 1-D sequence "
+                        "of numbers (or a constant bd.KyTable)") from None
 
 
 def _downslope(motion, ky, polarity, g, t_end, backend, options):

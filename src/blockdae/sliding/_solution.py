@@ -10,6 +10,7 @@ from ..core._solution import AbstractEvent, AbstractSolution
 from ..core._units import STANDARD_GRAVITY, length_units
 from ..excitation import AbstractExcitation
 from ._modes import Mode
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -103,6 +104,10 @@ class Solution(AbstractSolution):
             (set by :func:`blockdae.simulate`; None if a backend was called directly).
     """
 
+    def __repr__(self):
+        return compact_repr(self, f"u(t_end) = {self.displacement:.6g} m (signed: u = x_block - x_base), "
+                                  f"{len(self.events)} events")
+
     t: np.ndarray
     u: np.ndarray
     v: np.ndarray
@@ -176,6 +181,11 @@ class BatchSolution:
             (set by :func:`blockdae.simulate`; None if a backend was called directly).
         motion: the base excitation.
     """
+
+    def __repr__(self):
+        u = self.displacement
+        return compact_repr(self, f"{u.size} parameter sets, u(t_end) from {np.min(u):.4g} to {np.max(u):.4g} m "
+                                  "(signed)")
 
     displacement: np.ndarray
     max_abs_displacement: np.ndarray
