@@ -321,15 +321,30 @@ def test_newmark_over_records_warns_where_ky_reaches_a_records_pga(tmp_path, cap
     assert results[3]["max_m"] == 0.0 and results[2]["max_m"] > 0
 
 
-def test_newmark_plot_is_d_against_ky_or_the_history_of_one_case(tmp_path, capsys):
-    import matplotlib.image
+def test_newmark_plot_is_d_against_ky_or_the_history_of_one_case(tmp_path, capsys, monkeypatch):
+    """D against ky for several ky; for one ky the history of the polarity with the larger D,
+    drawn downslope positive as its title says: the drawn D ends at the title's D >= 0
+    and never goes below zero; the acceleration panel marks ky."""
+    import re
+    from blockdae.cli import _main as cli_main
 
+    figures = {}
+    real = cli_main.save_figure
+    monkeypatch.setattr(cli_main, "save_figure", lambda fig, path: (figures.__setitem__(path.stem, fig),
+                                                                    real(fig, path)))
     path, _ = _sine_csv(tmp_path, "time (s),Acceleration (m/s2)")
     for ky, plot in ((["0.05", "0.1"], tmp_path / "d_ky.png"), (["0.1"], tmp_path / "history.png")):
         assert main(["--no-cache", "newmark", str(path), "--ky", *ky, "--plot", str(plot)]) == 0
         assert f"figure: {plot}" in capsys.readouterr().out
-    d_ky, history = (matplotlib.image.imread(tmp_path / name) for name in ("d_ky.png", "history.png"))
-    assert history.shape[1] > 1.5 * d_ky.shape[1]  # two columns of panels against one axes
+    d_ky = figures["d_ky"].axes[0]
+    assert d_ky.get_xlabel() == "yield acceleration k_y [g]" and d_ky.get_ylabel() == "downslope displacement D [m]"
+    acceleration, velocity, displacement = figures["history"].axes
+    title = figures["history"]._suptitle.get_text()
+    d = float(re.search(r"D = ([0-9.e+-]+) m", title).group(1))
+    drawn = displacement.lines[0].get_ydata()
+    assert d > 0 and drawn[-1] == pytest.approx(d, rel=1e-3) and drawn.min() >= 0
+    assert displacement.get_ylabel() == "downslope displacement D [m]"
+    assert any(np.allclose(line.get_ydata(), 0.1) for line in acceleration.lines)  # ky [g]
 
 
 @pytest.mark.parametrize("argv, message", [

@@ -285,9 +285,11 @@ def _print_newmark(args, records, pga, one, table):
 
 
 def _newmark_plot(args, records, pga, result):
-    """--plot: D against ky per record; one record at one PGA and one ky: the history (base,
-    block, relative motion) of the polarity with the larger D."""
+    """--plot: D against ky per record; one record at one PGA and one ky: the history (ground
+    acceleration with ky, downslope velocity and displacement D >= 0) of the polarity with
+    the larger D."""
     from .._plot import plot
+    from ..sliding._figures import newmark_history_figure
 
     if len(records) > 1 or np.ndim(pga) != 0 or len(args.ky) > 1:
         save_figure(plot(result), args.plot)
@@ -300,9 +302,10 @@ def _newmark_plot(args, records, pga, result):
     motion = record.inverted() if inverse else record
     block = SlidingBlock(mu=args.ky[0], direction="negative", g=args.g)
     solution = simulate(block, motion, t_end=None)
-    title = (f"{record.name}, {'inverse' if inverse else 'normal'} polarity: ky = {args.ky[0]:g} g, "
-             f"D = {d:.4g} m")
-    save_figure(plot(solution, motion, block, title=title), args.plot)
+    polarity = "inverse" if inverse else "normal"
+    title = f"{record.name}, {polarity} polarity: ky = {args.ky[0]:g} g, D = {d:.4g} m"
+    save_figure(newmark_history_figure(solution, motion, args.ky[0], args.g, polarity=polarity, n_points=4000,
+                                       title=title), args.plot)
 
 
 def _examples(args):

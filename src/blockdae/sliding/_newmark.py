@@ -94,10 +94,9 @@ class NewmarkResult(_Polarities):
         matplotlib Figure."""
         from ._figures import newmark_figure
 
-        runs = [(f"{name} polarity", d) for name, d in (("normal", self.normal), ("inverse", self.inverse))
-                if d is not None]
-        return newmark_figure(np.atleast_1d(self.ky), [np.atleast_1d(d) for _, d in runs], [n for n, _ in runs],
-                              title=title)
+        curves = [(f"{name} polarity", np.atleast_1d(d)) for name, d in (("normal", self.normal),
+                                                                         ("inverse", self.inverse)) if d is not None]
+        return newmark_figure(np.atleast_1d(self.ky), curves, key="polarity", title=title)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -154,16 +153,15 @@ class NewmarkSweep(_Polarities):
         return with_metadata(pd.DataFrame(columns), self.metadata)
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
-        """D [m] (the larger of the polarities run) against k_y [g], one curve per
-        (record, pga) (the other arguments are unused); a matplotlib Figure."""
+        """D [m] (the larger of the polarities run) against k_y [g]: a colour per record
+        (legend, or a colour scale for many), a line style per target PGA (the other
+        arguments are unused); a matplotlib Figure."""
         from ._figures import newmark_figure
 
-        labels = [name + ("" if self.pga is None else f", PGA {p:g} g")
-                  for name, row in zip(self.records, self.analysed_pga) for p in row]
         polarity = "larger of the polarities" if self.normal is not None and self.inverse is not None else \
             ("normal polarity" if self.inverse is None else "inverse polarity")
-        return newmark_figure(self.ky, self.maximum.reshape(-1, self.ky.size), labels, polarity=polarity,
-                              title=title)
+        curves = list(zip(self.records, self.maximum))
+        return newmark_figure(self.ky, curves, pga=self.pga, polarity=polarity, title=title)
 
 
 def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_end: float | None = None,
