@@ -962,7 +962,7 @@ with warnings.catch_warnings(record=True) as caught:
     warnings.simplefilter("always", em.ValidityWarning)
     for ax, k in zip(axes, ky):
         hz.plot_fragility(fits[k], 0.05, im, others=regressions(k), ax=ax)
-        ax.set(xscale="log", xlabel="PGA [g]", ylabel="P(D > 5 cm | PGA) [-]", title=f"ky = {k:.2f} g")
+        ax.set(xscale="log", title=f"ky = {k:.2f} g")
 print(f"ValidityWarnings while drawing: {sum(w.category is em.ValidityWarning for w in caught)}")"""),
     ("code", """levels = [0.2, 0.4, 0.8]  # PGA [g]
 rows = []

@@ -431,8 +431,11 @@ def test_plot_shows_hea_against_ky_and_the_episodes(tmp_path):
     fig = bd.plot(sol)
     try:
         hea, velocity, displacement = fig.axes
-        assert [ax.get_ylabel() for ax in fig.axes] == ["HEA [g]", "sliding velocity w [m/s]",
-                                                         "sliding displacement s [m]"]
+        assert [ax.get_ylabel() for ax in fig.axes] == ["horizontal equivalent\nacceleration HEA [g]",
+                                                         "downslope sliding\nvelocity w [m/s]",
+                                                         "downslope\ndisplacement D [m]"]
+        assert f"D = {sol.sliding_displacement:.4g} m" in fig._suptitle.get_text()
+        assert displacement.lines[0].get_ydata().min() >= 0  # downslope positive, as the title and tables
         assert sorted(line.get_ydata()[0] for line in hea.lines[1:]) == [-0.1, 0.1]
         assert len(displacement.patches) == len(sol.episodes) >= 2
         assert displacement.lines[0].get_ydata()[-1] == pytest.approx(sol.displacement, rel=1e-3)
