@@ -222,7 +222,7 @@ class BatchSolution:
     def to_dataframe(self):
         """A pandas DataFrame, one row per parameter set: the grid (mu, mu_kinetic, bias
         [-], g_m_s2 [m/s²], and the direction of a 1-D block; when the block is known),
-        displacement_m (displacement_x_m, displacement_y_m for a planar block),
+        u_end_m (the signed u at the end [m]; displacement_x_m, displacement_y_m for a planar block),
         max_abs_displacement_m [m], n_events, t_end_s [s]."""
         import pandas as pd
 
@@ -232,7 +232,7 @@ class BatchSolution:
             if hasattr(self.block, "direction"):  # the 1-D block's sliding directions
                 columns |= {"direction": self.block.direction}
         u = np.asarray(self.displacement, dtype=float)
-        columns |= ({"displacement_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]})
+        columns |= ({"u_end_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]})
         columns |= {"max_abs_displacement_m": np.asarray(self.max_abs_displacement, dtype=float),
                     "n_events": np.asarray(self.n_events, dtype=int),
                     "t_end_s": np.asarray(self.t_end, dtype=float)}
