@@ -65,8 +65,7 @@ def _thresholds(ax, block):
                                           (-1.0, "u > 0", block.allow_positive, ":")):
         if allowed:
             level = (block.bias + sign * block.mu) * block.g
-            ax.axhline(level, color="C1", ls=style, lw=1.0,
-                       label=f"threshold, to {towards}")
+            ax.axhline(level, color="C1", ls=style, lw=1.0, label=f"threshold, to {towards}")
 
 
 def batch_figure(batch, *, title=None):
@@ -93,8 +92,8 @@ def batch_figure(batch, *, title=None):
 
 
 def newmark_figure(ky, curves, *, key="record", pga=None, polarity=None, title=None):
-    """Newmark's D [m] against k_y [g]: one colour per entry of ``curves`` ((label, D of
-    shape (n_pga, n_ky) [m]) pairs), one line style per target PGA (``pga`` [g], None: the records
+    """Newmark's D [m] against k_y [g]: a colour per entry of ``curves`` ((label, D of shape
+    (n_pga, n_ky) [m]) pairs), a line style per target PGA (``pga`` [g]; None: the records
     as given); a legend titled ``key`` (a colour scale beyond :data:`_LEGEND_ENTRIES`
     curves); log axes where the values span a decade or more (D = 0 is then not drawn);
     ``polarity``, if given, says which D is drawn."""

@@ -1,8 +1,9 @@
 """Studies of records × friction (or yield acceleration) × intensity × location (seed
 002), as one tidy table.
 
-A study slides a one-way (by default) block on the ground and on floors of shear frames
-under every record, at every friction coefficient μ and every intensity; another model
+A study slides a one-way block (by default in both polarities of each record, as
+``bd.newmark``) on the ground and on floors of shear frames under every record, at every
+friction coefficient μ (or yield acceleration ky [g]) and every intensity; another model
 sweeps the parameter it declares (``study_parameter``: the flexible mass's ky [g]). The work is
 split into tasks of whole records: a task computes the ground and floor motions of its
 records once (one frame response per record and frame), normalises each motion to a
@@ -209,9 +210,9 @@ def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
 
     Returns:
         One row per location × polarity × μ (or ky_g) × pga_g: location, floor,
-        frame_period_s, polarity (where the study has it), mu (ky_g), pga_g, n_records, rc_m (mean R_c = mean max |u| [m]), sd_m (mean Sd [m]), rd_m (eq. 3
-        with the mean Sd [m]), adjustment (eq. 4 [-]) and rd_adjusted_m (its product
-        with rd_m [m]).
+        frame_period_s, polarity (where the study has it), mu (ky_g), pga_g, n_records,
+        rc_m (mean R_c = mean max |u| [m]), sd_m (mean Sd [m]), rd_m (eq. 3 with the mean
+        Sd [m]), adjustment (eq. 4 [-]) and rd_adjusted_m (its product with rd_m [m]).
     """
     swept = "ky_g" if "ky_g" in table and "mu" not in table else "mu"
     missing = [c for c in (swept, "max_abs_displacement_m", "sd_m") if c not in table]
