@@ -115,9 +115,9 @@ def run_study(args) -> int:
     n_swept = len(values) if isinstance(values, list) else 1  # numbers, or one ky table
     n_polarities = table["polarity"].nunique() if "polarity" in table else 1
     polarities = f" × {n_polarities} polarities" if n_polarities > 1 else ""
-    print(f"{len(table)} analyses ({len(records)} records × {len(where)} locations{polarities} × {n_swept} {label} × "
-          f"{len(table) // (len(records) * len(where) * n_polarities * n_swept)} intensities) in {wall:.2f} s; "
-          f"results: {args.out}")
+    intensities = len(table) // (len(records) * len(where) * n_polarities * n_swept)
+    print(f"{len(table)} analyses ({len(records)} records × {len(where)} locations{polarities} × {n_swept} {label} "
+          f"× {intensities} intensities) in {wall:.2f} s; results: {args.out}")
     return 0
 
 

@@ -348,8 +348,8 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
         raise ValueError(f"the result table would have {rows:,} rows (~{rows * ROW_BYTES / 2**30:.1f} GiB), more "
                          f"than the free memory ({free / 2**30:.1f} GiB): split the study or shrink the grid")
     grid = _Grid(parameter=parameter, column=column, values=values, sweep=sweep, factors=factors, by=by, where=where,
-                 direction=direction, polarities=polarities, refine=refine, sd_period=float(sd_period), damping=float(damping), t_end=t_end,
-                 g=float(block.g), block=block, rtol=rtol)
+                 direction=direction, polarities=polarities, refine=refine, sd_period=float(sd_period),
+                 damping=float(damping), t_end=t_end, g=float(block.g), block=block, rtol=rtol)
     return records, grid
 
 
