@@ -28,7 +28,7 @@ def main(argv=None):
     pga = np.linspace(0.05, 1.0, 3 if args.quick else 20)
     where = ["ground"] + [bd.ShearFrame(5, T, 0.05).floor(i) for T in periods for i in range(1, 6)]
     repeat = 1 if args.quick else args.repeat
-    run = lambda **kw: bd.study(records, mu=mu, pga=pga, where=where, progress=False, **kw)
+    run = lambda **kw: bd.study(records, mu=mu, pga=pga, where=where, direction="negative", progress=False, **kw)
     n = len(records) * len(where) * len(mu) * len(pga)
     print(f"{len(records)} records × {len(mu)} mu × {len(pga)} PGA × {len(where)} locations = {n} analyses "
           f"(one-way block, until rest; floors refined 4x; warm: median of {repeat})")

@@ -16,7 +16,7 @@ from blockdae.core._sensitivities import _difference, finite_differences
 from blockdae.backends import _REGISTRY, available, make_backend
 
 G = 9.81
-RESULT_COLUMNS = ["displacement_m", "max_abs_displacement_m", "n_events", "t_end_s"]
+RESULT_COLUMNS = ["u_end_m", "max_abs_displacement_m", "n_events", "t_end_s"]
 
 
 def synthetic_records(n=2, samples=300, dt=0.01):
@@ -77,7 +77,7 @@ def test_batch_table_rows_equal_one_by_one_runs():
         sol = bd.simulate(GRID.item(i), motion, t_end=4.0)
         assert (row["mu"], row["mu_kinetic"], row["bias"]) == (GRID.mu[i], GRID.mu_kinetic[i], GRID.bias[i])
         assert row["n_events"] == len(sol.events)
-        assert row["displacement_m"] == pytest.approx(sol.displacement, rel=1e-12, abs=1e-15)
+        assert row["u_end_m"] == pytest.approx(sol.displacement, rel=1e-12, abs=1e-15)
         assert row["max_abs_displacement_m"] == pytest.approx(sol.max_abs_displacement, rel=1e-12, abs=1e-15)
         assert row["t_end_s"] == 4.0
     assert set(df["g_m_s2"]) == {GRID.g} and set(df["direction"]) == {"both"}
@@ -105,9 +105,9 @@ def test_records_times_scales_times_grid_equal_one_by_one_runs():
                 sol = bd.simulate(GRID.item(n), record.scaled(k))
                 assert (row["record"], row["scale"], row["mu"]) == (record.name, k, GRID.mu[n])
                 assert row["pga_m_s2"] == pytest.approx(abs(k) * record.peak_acceleration, rel=1e-15)
-                assert row["displacement_m"] == pytest.approx(sol.displacement, rel=1e-12, abs=1e-15)
+                assert row["u_end_m"] == pytest.approx(sol.displacement, rel=1e-12, abs=1e-15)
                 assert row["n_events"] == len(sol.events)
-                assert sweep.displacement[i, j, n] == row["displacement_m"]
+                assert sweep.displacement[i, j, n] == row["u_end_m"]
     assert np.all(sweep.n_events > 0)
     assert sweep[1, 2].motion.peak_acceleration == pytest.approx(records[1].peak_acceleration)
 
@@ -187,7 +187,8 @@ def test_plot_of_a_batch_is_against_the_varied_parameter(pyplot):
     mu = np.array([0.1, 0.2, 0.3])
     batch = bd.simulate(bd.SlidingBlock(mu, bias=0.02), bd.SinePulse(5.0, 0.5))  # mu_kinetic follows mu
     ax = bd.plot(batch, title="grid").axes[0]
-    assert ax.get_xlabel() == "mu [-]" and ax.get_ylabel() == "displacement [m]"
+    assert ax.get_xlabel() == "static friction coefficient mu [-]"
+    assert ax.get_ylabel() == "relative displacement (signed) [m]"
     line = next(line for line in ax.lines if line.get_label() == "u(t_end)")
     np.testing.assert_array_equal(line.get_xdata(), mu)
     np.testing.assert_array_equal(line.get_ydata(), batch.displacement)

@@ -25,7 +25,7 @@ from conftest import load_sample_record, sample_record_paths
 SHORT = ("Northridge_1994_PAC-175", "Cape_Mendocino_1992_PET-090", "Kobe_1995_TAK-090")
 FRAME = bd.ShearFrame(5, 0.3, 0.05)
 GRID = dict(mu=[0.1, 0.3], pga=[0.2, 0.6], where=["ground", FRAME.floor(1)])
-PER_RECORD = 2 * 2 * 2  # analyses of one record: locations × mu × pga
+PER_RECORD = 2 * 2 * 2 * 2  # analyses of one record: locations × polarities × mu × pga
 _RUN_TASK = study_module.run_task
 _RELEASE = threading.Event()  # lets the hung tasks of test_dask_worker_lost_then_resumed end
 
@@ -220,8 +220,8 @@ def test_a_task_file_of_other_records_is_refused(records, tmp_path, one_record_p
     folder = tmp_path / "ck"
     bd.study(records[:2], **GRID, checkpoint=folder)
     (folder / "task-000000.csv").write_bytes((folder / "task-000001.csv").read_bytes())
-    with pytest.raises(ValueError, match=rf"{folder / 'task-000000.csv'}: 8 rows of records \['Cape_Mendocino"
-                                         rf"_1992_PET-090'\], expected 8 rows of each of \['Northridge"):
+    with pytest.raises(ValueError, match=rf"{folder / 'task-000000.csv'}: 16 rows of records \['Cape_Mendocino"
+                                         rf"_1992_PET-090'\], expected 16 rows of each of \['Northridge"):
         bd.study(records[:2], **GRID, checkpoint=folder)
 
 

@@ -54,7 +54,7 @@ def test_run_on_a_csv_file_matches_seed_example_5(tmp_path, capsys):
     path.write_text(TRIANGLE_CSV)
     assert main(["--no-cache", "run", str(path), "--mu", "0.6", *SEED_G, "--json"]) == 0
     result = json.loads(capsys.readouterr().out)
-    assert result["displacement_m"] == pytest.approx(-0.0453, abs=5e-5)
+    assert result["u_end_m"] == pytest.approx(-0.0453, abs=5e-5)
     np.testing.assert_allclose([e["t_s"] for e in result["events"]], [0.1635, 0.4588], atol=5e-5)
     assert [e["to"] for e in result["events"]] == ["SLIP_NEG", "STICK"]
 
@@ -94,7 +94,7 @@ def test_batch_writes_one_csv_row_per_record_and_mu(tmp_path, capsys):
     assert "4 analyses of 2 records" in captured.out and captured.err == ""  # no progress bar off a terminal
     rows = list(csv.DictReader(out_csv.open()))
     assert [(r["record"], float(r["mu"])) for r in rows] == [("a", 0.6), ("a", 1.0), ("b", 0.6), ("b", 1.0)]
-    u = [float(r["displacement_m"]) for r in rows]
+    u = [float(r["u_end_m"]) for r in rows]
     assert u[0] == pytest.approx(-0.0453, abs=5e-5) and u[2] == pytest.approx(0.0453, abs=5e-5)
     assert u[1] == 0.0 and u[3] == 0.0
 
@@ -167,7 +167,7 @@ def test_batch_grid_over_mu_kinetic_and_bias_with_clean_columns(tmp_path, capsys
     for row in rows:
         block = bd.SlidingBlock(mu=float(row["mu"]), mu_kinetic=float(row["mu_kinetic"]),
                                 bias=float(row["bias"]), g=9.81)
-        assert float(row["displacement_m"]) == bd.simulate(block, record, t_end=1.2).displacement
+        assert float(row["u_end_m"]) == bd.simulate(block, record, t_end=1.2).displacement
     assert main([*argv[:-4], "--json"]) == 0
     result = json.loads(capsys.readouterr().out)
     assert len(result["rows"]) == 8 and result["failed"] == []
@@ -321,15 +321,30 @@ def test_newmark_over_records_warns_where_ky_reaches_a_records_pga(tmp_path, cap
     assert results[3]["max_m"] == 0.0 and results[2]["max_m"] > 0
 
 
-def test_newmark_plot_is_d_against_ky_or_the_history_of_one_case(tmp_path, capsys):
-    import matplotlib.image
+def test_newmark_plot_is_d_against_ky_or_the_history_of_one_case(tmp_path, capsys, monkeypatch):
+    """D against ky for several ky; for one ky the history of the polarity with the larger D,
+    drawn downslope positive as its title says: the drawn D ends at the title's D >= 0
+    and never goes below zero; the acceleration panel marks ky."""
+    import re
+    from blockdae.cli import _main as cli_main
 
+    figures = {}
+    real = cli_main.save_figure
+    monkeypatch.setattr(cli_main, "save_figure", lambda fig, path: (figures.__setitem__(path.stem, fig),
+                                                                    real(fig, path)))
     path, _ = _sine_csv(tmp_path, "time (s),Acceleration (m/s2)")
     for ky, plot in ((["0.05", "0.1"], tmp_path / "d_ky.png"), (["0.1"], tmp_path / "history.png")):
         assert main(["--no-cache", "newmark", str(path), "--ky", *ky, "--plot", str(plot)]) == 0
         assert f"figure: {plot}" in capsys.readouterr().out
-    d_ky, history = (matplotlib.image.imread(tmp_path / name) for name in ("d_ky.png", "history.png"))
-    assert history.shape[1] > 1.5 * d_ky.shape[1]  # two columns of panels against one axes
+    d_ky = figures["d_ky"].axes[0]
+    assert d_ky.get_xlabel() == "yield acceleration k_y [g]" and d_ky.get_ylabel() == "downslope displacement D [m]"
+    acceleration, velocity, displacement = figures["history"].axes
+    title = figures["history"]._suptitle.get_text()
+    d = float(re.search(r"D = ([0-9.e+-]+) m", title).group(1))
+    drawn = displacement.lines[0].get_ydata()
+    assert d > 0 and drawn[-1] == pytest.approx(d, rel=1e-3) and drawn.min() >= 0
+    assert displacement.get_ylabel() == "downslope displacement D [m]"
+    assert any(np.allclose(line.get_ydata(), 0.1) for line in acceleration.lines)  # ky [g]
 
 
 @pytest.mark.parametrize("argv, message", [
@@ -454,7 +469,7 @@ def test_a_zero_second_component_gives_the_1d_exact_answer(tmp_path, capsys):
     assert one_d["backend"] == "exact"
     assert planar["displacement_m"][1] == 0.0
     # IDA at its default rtol 1e-10 (tests/test_planar_ida.py: within 1e-7 of the exact 1-D u)
-    assert planar["displacement_m"][0] == pytest.approx(one_d["displacement_m"], rel=1e-7)
+    assert planar["displacement_m"][0] == pytest.approx(one_d["u_end_m"], rel=1e-7)
     np.testing.assert_allclose([e["t_s"] for e in planar["events"]], [e["t_s"] for e in one_d["events"]],
                                rtol=0, atol=1e-9)
 

@@ -430,8 +430,11 @@ def test_plot_shows_hea_against_ky_and_the_episodes(tmp_path):
     fig = bd.plot(sol)
     try:
         hea, velocity, displacement = fig.axes
-        assert [ax.get_ylabel() for ax in fig.axes] == ["HEA [g]", "sliding velocity w [m/s]",
-                                                         "sliding displacement s [m]"]
+        assert [ax.get_ylabel() for ax in fig.axes] == ["horizontal equivalent\nacceleration HEA [g]",
+                                                         "downslope sliding\nvelocity w [m/s]",
+                                                         "downslope\ndisplacement D [m]"]
+        assert f"D = {sol.sliding_displacement:.4g} m" in fig._suptitle.get_text()
+        assert displacement.lines[0].get_ydata().min() >= 0  # downslope positive, as the title and tables
         assert sorted(line.get_ydata()[0] for line in hea.lines[1:]) == [-0.1, 0.1]
         assert len(displacement.patches) == len(sol.episodes) >= 2
         assert displacement.lines[0].get_ydata()[-1] == pytest.approx(sol.displacement, rel=1e-3)
@@ -531,14 +534,18 @@ def test_no_motion_at_ky_zero_does_not_slide():
     assert cut["kmax_sup_g"] == whole["kmax_sup_g"] and cut["normal_m"] == whole["normal_m"] > 0
 
 
-def test_the_package_is_its_entry_point():
-    """``bd.flexible`` is the package (its classes reachable) and, called, the analysis."""
+def test_bd_flexible_is_a_function_with_its_own_help():
+    """``bd.flexible`` is the analysis function: ``help`` shows its docstring (its
+    arguments), not the package's; the package's classes stay importable from it."""
     import inspect
-    import blockdae.flexible as package
+    import pydoc
+    from blockdae.flexible import ShearColumn, flexible as direct_function
 
-    assert package is bd.flexible and bd.flexible.ShearColumn is bd.ShearColumn
+    assert inspect.isfunction(bd.flexible) and bd.flexible is direct_function and ShearColumn is bd.ShearColumn
+    text = pydoc.render_doc(bd.flexible, renderer=pydoc.plaintext)
+    assert "function flexible" in text and "height: height H of the sliding mass [m]" in text
     assert list(inspect.signature(bd.flexible).parameters)[:4] == ["motion", "ky", "height", "vs"]
     record = bd.Record([0.0, 0.1, 0.3, -0.2, 0.1, 0.0], 0.01, units="g", check_peak=False)
     called = bd.flexible(record, ky=0.05, height=10.0, vs=200.0).to_dataframe()
-    direct = package.flexible(record, ky=0.05, height=10.0, vs=200.0).to_dataframe()
+    direct = direct_function(record, ky=0.05, height=10.0, vs=200.0).to_dataframe()
     assert called.equals(direct) and called["normal_m"].iloc[0] > 0

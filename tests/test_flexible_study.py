@@ -117,7 +117,8 @@ def test_fragility_of_a_flexible_study_is_that_of_bd_flexible_runs(table, by_fle
 
 @pytest.mark.parametrize("kwargs, match", [
     (dict(mu=[0.1]), r"mu=\[0.1\]: FlexibleSlidingMass sweeps ky \[g\], not mu; give ky= instead"),
-    (dict(block=None, ky=[0.1]), r"ky=\[0.1\]: SlidingBlock sweeps mu \[-\], not ky; give mu= instead"),
+    (dict(block=bd.SlidingBlock(mu=0.3, bias=-0.1), ky=[0.1]),
+     r"ky=\[0.1\]: SlidingBlock sweeps mu \[-\], not ky; give mu= instead"),  # with a bias, ky is not mu
     (dict(block=bd.PlanarBlock(mu=0.3), ky=[0.1]), r"PlanarBlock sweeps mu \[-\], not ky"),
     (dict(ky=None), r"give ky= \(FlexibleSlidingMass's swept parameter \[g\]"),
     (dict(ky=[0.1, -0.05]), r"ky must be positive and finite \[g\], got -0.05"),
@@ -133,8 +134,8 @@ def test_t_end_past_a_record_and_summary_are_refused(records, table, monkeypatch
     with pytest.raises(ValueError, match=r"t_end=20.0 must lie in \(0, 19.98\] s \(the record "
                                          r"'Northridge_1994_PAC-175', records\[0\]\)"):
         bd.study(records[:2], ky=KY, pga=PGA, block=MASS, t_end=20.0)
-    with pytest.raises(ValueError, match=r"summary takes a study of a block over mu.*no \['mu', "
-                                         r"'max_abs_displacement_m'\] columns"):
+    with pytest.raises(ValueError, match=r"summary takes a study of a block over mu or ky_g.*no "
+                                         r"\['max_abs_displacement_m'\] columns"):
         bd.studies.summary(table)
 
 
@@ -230,8 +231,8 @@ def test_cli_study_runs_the_flexible_mass(records, tmp_path, capsys, monkeypatch
         (["--ky", "0.1", "--vs", "100"], "--ky and --ky-table study the flexible sliding mass: give --height"),
         (column + ["--ky", "0.1", "--direction", "both"], "--direction both: the flexible sliding mass slides "
                                                           "downslope in both polarities"),
-        (column + ["--mu", "0.1"], "--height applies to the flexible sliding mass (--ky or --ky-table), not to "
-                                   "the block"),
+        (column + ["--mu", "0.1"], "--height applies to the flexible sliding mass (--ky or --ky-table with "
+                                   "--height and --vs), not to the rigid block of --mu"),
         (column + ["--ky", "0.1", "--summary", str(tmp_path / "s.csv")], "--summary: the seed's summaries are of "
                                                                          "a block"),
         (column + ["--ky-table", "0:0.1", "0:0.2"], "--ky-table: KyTable: displacement_m must be strictly "

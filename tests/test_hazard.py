@@ -350,5 +350,8 @@ def test_plots_draw_the_fit_its_band_and_the_others():
     np.testing.assert_allclose(ax.lines[1].get_ydata(), jibson.exceedance(0.05, x))
     d = np.geomspace(0.01, 1.0, 10)
     curve = HazardCurve(x, 1e-4 * x**-2.5)
+    assert ax.get_xlabel() == "Peak ground acceleration [g]" and ax.get_ylabel() == "probability of D > 0.05 m [-]"
     ax = plot_displacement_hazard(d, {"fit": displacement_hazard(curve, fit, d)})
     assert ax.get_xscale() == ax.get_yscale() == "log" and len(ax.lines) == 1
+    np.testing.assert_array_equal(ax.lines[0].get_xdata(), d)  # d drawn in m, as given and labelled
+    assert ax.get_xlabel() == "downslope displacement d [m]"

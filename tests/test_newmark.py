@@ -181,21 +181,61 @@ def test_a_sweep_warns_once_naming_the_cases_where_ky_reaches_the_pga(tmp_path):
 
 
 def test_the_sweeps_figure_draws_d_against_ky_per_record(sample_records):
+    """One curve per (record, PGA), coloured by record with a legend keyed by record, a
+    line style per PGA with its own legend; D >= 0 drawn as computed; log axes where the
+    values span a decade; beyond 12 records a colour scale replaces the legend."""
     import matplotlib
     import matplotlib.pyplot as plt
 
     matplotlib.use("Agg", force=True)
-    sweep = bd.newmark(sample_records[:2], [0.05, 0.1, 0.2], pga=[0.3, 0.5])
+    ky = [0.02, 0.05, 0.1, 0.2]
+    sweep = bd.newmark(sample_records[:2], ky, pga=[0.3, 0.5])
     fig = bd.plot(sweep)
     try:
         ax = fig.axes[0]
-        assert len(ax.get_lines()) == 1 + 4  # the zero line and one curve per (record, pga)
-        curves = [line for line in ax.get_lines() if not line.get_label().startswith("_")]
-        assert [c.get_label() for c in curves] == [f"{r.name}, PGA {p:g} g" for r in sample_records[:2]
-                                                   for p in (0.3, 0.5)]
-        for curve, d in zip(curves, sweep.maximum.reshape(4, 3)):
-            np.testing.assert_array_equal(curve.get_xdata(), [0.05, 0.1, 0.2])
+        curves = [line for line in ax.get_lines() if len(line.get_xdata()) == len(ky)]
+        assert len(curves) == 4
+        for curve, d in zip(curves, sweep.maximum.reshape(4, len(ky))):
+            np.testing.assert_array_equal(curve.get_xdata(), ky)
             np.testing.assert_array_equal(curve.get_ydata(), d)
-        assert "[g]" in ax.get_xlabel() and "[m]" in ax.get_ylabel()
+        assert curves[0].get_color() == curves[1].get_color() != curves[2].get_color()  # a colour per record
+        assert curves[0].get_linestyle() != curves[1].get_linestyle()  # a style per PGA
+        assert [t.get_text() for t in fig.legends[0].get_texts()] == [r.name for r in sample_records[:2]]
+        assert fig.legends[0].get_title().get_text() == "record"
+        assert [t.get_text() for t in ax.get_legend().get_texts()] == ["0.3 g", "0.5 g"]
+        assert ax.get_xscale() == "log" and ax.get_xlabel() == "yield acceleration k_y [g]"
+        positive = sweep.maximum[sweep.maximum > 0]
+        assert ax.get_yscale() == ("log" if positive.max() >= 10 * positive.min() else "linear")
+        assert ax.get_ylabel().startswith("downslope displacement D [m]")
     finally:
         plt.close(fig)
+    many = bd.newmark(sample_records[:13], [0.1, 0.2])
+    fig = bd.plot(many)
+    try:
+        assert not fig.legends and len(fig.axes) == 2  # the axes and the colour scale
+        assert fig.axes[1].get_ylabel() == "record number (1 to 13, in the table's order)"
+    finally:
+        plt.close(fig)
+
+
+def test_a_ky_table_is_refused_saying_what_newmark_takes_or_taken_when_constant(kobe):
+    varying = bd.KyTable((0.0, 0.1), (0.1, 0.2))
+    for ky in (varying, ((0.0, 0.1), (0.1, 0.2))):
+        with pytest.raises(TypeError, match=r"newmark takes yield accelerations \[g\] \(a number or a 1-D "
+                                            r"sequence of them\).*bd.flexible\(motion, ky=table"):
+            bd.newmark(kobe, ky)
+    with pytest.raises(TypeError, match=r"ky='steep': newmark takes yield accelerations \[g\]"):
+        bd.newmark(kobe, "steep")
+    constant = bd.newmark(kobe, bd.KyTable((0.0,), (0.1,)))
+    assert constant.ky == 0.1 and constant.normal == bd.newmark(kobe, 0.1).normal
+
+
+def test_results_sign_and_repr(kobe, sample_records):
+    """D >= 0 in NewmarkResult and NewmarkSweep, their tables named *_m; reprs one short line."""
+    result = bd.newmark(kobe, np.linspace(0.02, 0.3, 40))
+    sweep = bd.newmark(sample_records[:3], [0.05, 0.1], pga=[0.2, 0.4])
+    for r in (result, sweep):
+        assert np.all(r.normal >= 0) and np.all(r.inverse >= 0)
+        assert {"normal_m", "inverse_m", "mean_m", "max_m"} <= set(r.to_dataframe().columns)
+        text = repr(r)
+        assert len(text) < 400 and "\n" not in text and "largest D" in text

@@ -38,9 +38,13 @@ def table(records):
 
 
 def test_shape_order_and_units(table, records):
-    assert len(table) == len(records) * len(WHERE) * len(MU) * len(PGA)
+    """Both polarities of the one-way block by default, as bd.newmark runs them."""
+    assert len(table) == len(records) * len(WHERE) * 2 * len(MU) * len(PGA)
     assert list(table["record"].unique()) == list(SHORT)
     assert list(table.loc[:7, "pga_g"]) == PGA * 4
+    assert list(table.loc[:7, "polarity"]) == ["normal"] * 4 + ["inverse"] * 4
+    assert list(table.columns[:6]) == ["record", "location", "floor", "frame_period_s", "polarity", "mu"]
+    assert (table["D_m"] >= 0).all() and "u_end_m" not in table and "displacement_m" not in table
     assert set(table["floor"]) == {0, 1, 5}
     np.testing.assert_allclose(table["pga_m_s2"], table["pga_g"] * bd.STANDARD_GRAVITY, rtol=1e-14)
     assert (table["n_slips"] == (table["n_events"] + 1) // 2).all()
@@ -52,10 +56,10 @@ def test_rows_equal_independent_simulations(table, records, row):
     r = table.iloc[row]
     record = records[SHORT.index(r["record"])]
     motion = record if r["floor"] == 0 else FRAME.floor(int(r["floor"])).motion(record)
-    used = motion.scaled(r["scale"])
+    used = motion.scaled(r["scale"] * {"normal": 1.0, "inverse": -1.0}[r["polarity"]])
     sol = bd.simulate(bd.SlidingBlock(mu=r["mu"], direction="negative"), used)
     np.testing.assert_allclose(r["max_abs_displacement_m"], sol.max_abs_displacement, rtol=1e-12, atol=0)
-    np.testing.assert_allclose(r["displacement_m"], sol.displacement, rtol=1e-12, atol=1e-300)
+    np.testing.assert_allclose(r["D_m"], -sol.displacement, rtol=1e-12, atol=1e-300)
     assert r["n_events"] == len(sol.events)
     assert r["n_slips"] == sum(int(e.mode_after) != 0 for e in sol.events)
     im = bd.intensity_measures(used)
@@ -66,7 +70,7 @@ def test_rows_equal_independent_simulations(table, records, row):
 def test_scale_grid_is_the_pga_grid_by_other_names(records, table):
     ground = table[table["floor"] == 0]
     k = ground["scale"].to_numpy().reshape(len(records), -1)[:, :len(PGA)]
-    by_scale = bd.study(records[:1], mu=MU[:1], scale=k[0], where="ground")
+    by_scale = bd.study(records[:1], mu=MU[:1], scale=k[0], where="ground", direction="negative")
     np.testing.assert_allclose(by_scale["max_abs_displacement_m"],
                                ground["max_abs_displacement_m"].to_numpy()[:len(PGA)], rtol=1e-12)
     np.testing.assert_allclose(by_scale["pga_g"], PGA, rtol=1e-14)
@@ -174,10 +178,10 @@ def test_a_record_with_nan_fails_before_work(records, monkeypatch):
 
 def test_summary_follows_the_formulas(table):
     s = bd.study_summary(table)
-    assert len(s) == len(WHERE) * len(MU) * len(PGA) and (s["n_records"] == len(SHORT)).all()
+    assert len(s) == len(WHERE) * 2 * len(MU) * len(PGA) and (s["n_records"] == len(SHORT)).all()
     for _, row in s.sample(4, random_state=1).iterrows():
         cases = table[(table["location"] == row["location"]) & (table["mu"] == row["mu"])
-                      & (table["pga_g"] == row["pga_g"])]
+                      & (table["pga_g"] == row["pga_g"]) & (table["polarity"] == row["polarity"])]
         assert row["rc_m"] == pytest.approx(cases["max_abs_displacement_m"].mean(), rel=1e-14)
         assert row["sd_m"] == pytest.approx(cases["sd_m"].mean(), rel=1e-14)
         rd = bd.newmark_rd_sd(row["sd_m"], row["pga_g"], row["mu"])
@@ -210,10 +214,15 @@ def test_command(tmp_path, records, capsys):
                             "--out", str(out)])
     assert status == 0, capsys.readouterr().err
     got = bd.load_study(out)
-    assert len(got) == 2 * 6 * 2 * 2 and sorted(got["pga_g"].unique()) == PGA
+    assert len(got) == 2 * 6 * 2 * 2 * 2 and sorted(got["pga_g"].unique()) == PGA  # two polarities by default
+    assert "2 records × 6 locations × 2 polarities × 2 mu × 2 intensities" in capsys.readouterr().out
     expected = bd.study(sorted(records[:2], key=lambda r: r.name), mu=MU, pga=PGA,
                         where=["ground"] + [FRAME.floor(i) for i in range(1, 6)])
     pd.testing.assert_frame_equal(got, expected)
+    rigid_ky = tmp_path / "ky.csv"
+    assert main(["--no-cache", "study", str(folder), "--ky", "0.1", "0.3", "--pga", "0.2", "--out", str(rigid_ky)]) == 0
+    by_ky = bd.load_study(rigid_ky)
+    assert "ky_g" in by_ky and (by_ky["D_m"] >= 0).all() and set(by_ky["polarity"]) == {"normal", "inverse"}
     (folder / "bad.csv").write_text("0.0, 1.0\n0.01, nan\n")
     assert main(["--no-cache", "study", str(folder), "--mu", "0.1", "--pga", "0.5", "--out", str(out)]) == 2
     assert "bad.csv" in capsys.readouterr().err
@@ -278,3 +287,28 @@ def test_simulate_final_scale_equals_scaled_motions(records):
             np.testing.assert_allclose(got[..., k], want, rtol=1e-12, atol=1e-300)
     with pytest.raises(ValueError, match="scale must be"):
         bd.simulate_final(block, records[:1], scale=[])
+
+
+def test_rigid_ky_study_is_newmark_in_both_polarities(records):
+    """``ky=`` on the 1-D block: the column ky_g, the rows of bd.newmark (an independent
+    path: one simulate per polarity and ky), D >= 0 in each polarity; ``direction=
+    "negative"`` keeps the record as given only; a two-way block's table holds signed u."""
+    ky, pga = [0.05, 0.15], [0.4]
+    table = bd.study(records[:2], ky=ky, pga=pga)
+    assert "ky_g" in table and "mu" not in table and list(table["polarity"].unique()) == ["normal", "inverse"]
+    for record in records[:2]:
+        scaled = record.scaled(bd.pga_factor(record.peak_acceleration, pga[0]))
+        want = bd.newmark(scaled, ky=np.array(ky))
+        rows = table[table["record"] == record.name]
+        for polarity in ("normal", "inverse"):
+            got = rows[rows["polarity"] == polarity]["D_m"].to_numpy()
+            np.testing.assert_allclose(got, getattr(want, polarity), rtol=1e-12, atol=1e-300)
+            assert (got >= 0).all()
+    one = bd.study(records[:2], ky=ky, pga=pga, direction="negative")
+    assert list(one["polarity"].unique()) == ["normal"]
+    normal = table[table["polarity"] == "normal"].drop(columns="polarity").reset_index(drop=True)
+    pd.testing.assert_frame_equal(one.drop(columns="polarity"), normal)
+    two_way = bd.study(records[:1], mu=[0.1], pga=pga, direction="both")
+    assert "u_end_m" in two_way and "D_m" not in two_way and "n_slips" not in two_way
+    with pytest.raises(ValueError, match=r"SlidingBlock sweeps mu \[-\], not ky"):
+        bd.study(records[:1], ky=ky, pga=pga, block=bd.SlidingBlock(mu=0.3, bias=-0.1, direction="negative"))

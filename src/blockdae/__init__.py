@@ -18,9 +18,8 @@ from .engines._linear_solution import simulate_linear_final
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RecordSet, RectangularPulse,
                          SinePulse, TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
                          read_record, read_records, resample)
-from . import flexible  # the package, called as its entry point: bd.flexible(motion, ky, height, vs, ...)
 from .flexible import (EquivalentLinear, FlexibleEvent, FlexibleMode, FlexibleResult, FlexibleSlidingMass,
-                       FlexibleSolution, KyTable, ShearColumn)
+                       FlexibleSolution, KyTable, ShearColumn, flexible)
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
                       cumulative_arias, fourier_amplitude, intensity_measures, mean_period, motion_histories,
                       relative_motion, response_spectrum)

@@ -42,7 +42,7 @@ from ..excitation._units import PGA_ROUNDINGS, UnitsWarning, pga_factor
 from ..sliding._model import SlidingBlock
 
 _CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
-               "g_m_s2", "direction", "backend", "displacement_m", "max_abs_displacement_m", "n_events",
+               "g_m_s2", "direction", "backend", "u_end_m", "max_abs_displacement_m", "n_events",
                "t_end_s")
 _EVENTS_SHOWN = 5  # events printed at each end of a long list by default
 
@@ -329,9 +329,11 @@ def _newmark_history(args, records, pga, one):
 
 
 def _newmark_plot(args, records, pga, result):
-    """--plot: D against ky per record; one record at one PGA and one ky: the history (base,
-    block, relative motion) of the polarity with the larger D."""
+    """--plot: D against ky per record; one record at one PGA and one ky: the history (ground
+    acceleration with ky, downslope velocity and displacement D >= 0) of the polarity with
+    the larger D."""
     from .._plot import plot
+    from ..sliding._figures import newmark_history_figure
 
     if len(records) > 1 or np.ndim(pga) != 0 or len(args.ky) > 1:
         save_figure(plot(result), args.plot)
@@ -344,9 +346,10 @@ def _newmark_plot(args, records, pga, result):
     motion = record.inverted() if inverse else record
     block = SlidingBlock(mu=args.ky[0], direction="negative", g=args.g)
     solution = simulate(block, motion, t_end=None)
-    title = (f"{record.name}, {'inverse' if inverse else 'normal'} polarity: ky = {args.ky[0]:g} g, "
-             f"D = {d:.4g} m")
-    save_figure(plot(solution, motion, block, title=title), args.plot)
+    polarity = "inverse" if inverse else "normal"
+    title = f"{record.name}, {polarity} polarity: ky = {args.ky[0]:g} g, D = {d:.4g} m"
+    save_figure(newmark_history_figure(solution, motion, args.ky[0], args.g, polarity=polarity, n_points=4000,
+                                       title=title), args.plot)
 
 
 def _examples(args):
@@ -397,11 +400,11 @@ def _batch(args):
     if args.json:
         print(json.dumps({"rows": rows, "failed": failed}, indent=2))
     else:
-        print(f"{'record':<32} {'mu [-]':>7} {'f [-]':>7} {'bias [-]':>8} {'u [m]':>11} {'max|u| [m]':>11} "
+        print(f"{'record':<32} {'mu [-]':>7} {'f [-]':>7} {'bias [-]':>8} {'u end [m]':>11} {'max|u| [m]':>11} "
               f"{'events':>7}")
         for row in rows:
             print(f"{row['record']:<32} {row['mu']:7.4f} {row['mu_kinetic']:7.4f} {row['bias']:+8.4f} "
-                  f"{row['displacement_m']:+11.6f} {row['max_abs_displacement_m']:11.6f} {row['n_events']:7d}")
+                  f"{row['u_end_m']:+11.6f} {row['max_abs_displacement_m']:11.6f} {row['n_events']:7d}")
         print(f"{len(rows)} analyses of {len(sources) - len(failed)} records in {wall:.2f} s (wall clock)")
     if args.csv is not None:
         fields = [*_CSV_FIELDS[:1], *next(iter(metadata.values()), {}), *_CSV_FIELDS[1:]]
@@ -479,7 +482,7 @@ def _block_fields(block):
 def _run_json(record, block, solution, wall):
     return {
         **record_fields(record), **_block_fields(block), "backend": solution.backend,
-        "displacement_m": solution.displacement, "max_abs_displacement_m": solution.max_abs_displacement,
+        "u_end_m": solution.displacement, "max_abs_displacement_m": solution.max_abs_displacement,
         "t_end_s": clean(solution.t_end), "wall_time_s": wall,
         "events": [{"t_s": e.t, "from": e.mode_before.name, "to": e.mode_after.name, "u_m": e.u, "v_m_s": e.v}
                    for e in solution.events],
@@ -489,7 +492,7 @@ def _run_json(record, block, solution, wall):
 def _batch_rows(record, block, result):
     return [{
         **record_fields(record), **_block_fields(block.item(i)), "backend": result.backend,
-        "displacement_m": float(result.displacement[i]),
+        "u_end_m": float(result.displacement[i]),
         "max_abs_displacement_m": float(result.max_abs_displacement[i]),
         "n_events": int(result.n_events[i]), "t_end_s": clean(float(result.t_end[i])),
     } for i in range(block.batch_shape[0])]

@@ -9,6 +9,7 @@ from ._sensitivities import finite_differences, sensitivities, unit
 from ._simulate import simulate
 from ..backends import make_backend
 from ._model import AbstractHybridModel
+from ._repr import compact_repr
 
 #: the backends a cross-check runs by default, those that run the block, in this order
 DEFAULT_BACKENDS = ("exact", "cvode", "ida", "jax")
@@ -49,6 +50,9 @@ class CrossCheck:
     error), nor is ``atol``: a loose atol that governs the error shows as a disagreement.
     ``span`` [s] is max(1 s, t_end of the reference).
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     rows: list
     reference: str

@@ -42,7 +42,8 @@ def unit(name: str) -> str:
 def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: str | None = None, of=None,
                   **options) -> dict:
     """d u(t_end) / d p for each parameter p in ``wrt`` (for a SpringSupportedMass: the
-    derivatives of its flights, see ``of``).
+    derivatives of its flights, see ``of``). u is signed (x_block - x_base): for Newmark's
+    one-way block (direction "negative") the downslope D = -u, so dD/dp = -du/dp.
 
     Args:
         block: a :class:`SlidingBlock` (a batch of parameter sets if its parameters are

@@ -6,6 +6,7 @@ import dataclasses
 from typing import Callable
 
 import numpy as np
+from ._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -71,6 +72,9 @@ class DriverSolution(AbstractSolution):
         stats: counters.
         block, motion: the model and the base motion (set by :func:`blockdae.simulate`).
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     t: np.ndarray
     state: np.ndarray

@@ -1,14 +1,10 @@
 """The flexible sliding mass (Bray & Rathje; Rathje & Bray): the first mode of a shear
 column above the slip surface, sliding when its average acceleration reaches ky g,
-decoupled or coupled (../shared/flexible_formulation.md).
+decoupled or coupled.
 
-This package is also its entry point: ``bd.flexible(motion, ky, height, vs, ...)`` calls
-:func:`~._analysis.flexible` (``help(bd.flexible.flexible)`` shows its arguments).
+Its entry point is the function :func:`~._analysis.flexible`, exported at the top level as
+``bd.flexible(motion, ky, height, vs, ...)``; the classes are exported there too.
 """
-
-import inspect
-import sys
-import types
 
 from ._analysis import Analysis, FlexibleResult, analyse_exact, flexible
 from ._column import EquivalentLinear, ShearColumn, equivalent_linear, impedance_damping
@@ -27,13 +23,3 @@ __all__ = ["Analysis", "EquivalentLinear", "Episode", "FlexibleEvent", "Flexible
            "FlexibleSlidingMass", "FlexibleSolution", "KyTable", "ShearColumn", "analyse_exact",
            "displacement_sensitivities", "equivalent_linear", "flexible", "impedance_damping"]
 
-
-class _CallablePackage(types.ModuleType):
-    """The package, called as its entry point :func:`flexible`."""
-
-    def __call__(self, *args, **kwargs) -> FlexibleResult:
-        return flexible(*args, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallablePackage
-__signature__ = inspect.signature(flexible)

@@ -27,6 +27,7 @@ from ._ky_table import KyTable
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
 from ._table_engine import response_compiled, slide_compiled, system_arrays
+from ..core._repr import compact_repr
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns
@@ -76,6 +77,10 @@ class FlexibleResult:
             episodes_inverse (sliding episodes).
         method, integration: as given.
     """
+
+    def __repr__(self):
+        largest = np.nanmax([[row["normal_m"], row["inverse_m"]] for row in self.rows], initial=0.0)
+        return compact_repr(self, f"{len(self.rows)} rows, largest D {largest:.4g} m; .to_dataframe()")
 
     rows: list
     method: str

@@ -8,7 +8,8 @@ from ..core._figures import time_grid
 
 def sliding_figure(solution, *, n_points, title=None):
     """Three panels against t [s]: HEA and ±ky g [g]; the sliding velocity w [m/s]; the
-    sliding displacement s [m]; each episode shaded from onset to stop."""
+    downslope sliding displacement D = s >= 0 [m] (the tables' normal_m / inverse_m); each
+    episode shaded from onset to stop."""
     import matplotlib.pyplot as plt
 
     block = solution.block
@@ -21,18 +22,18 @@ def sliding_figure(solution, *, n_points, title=None):
     hea.plot(t, solution.hea(t) / block.g, color="C0", lw=1.0, label="HEA")
     for sign in (1, -1):
         hea.plot(t, sign * ky, color="C3", lw=0.9, ls="--", label="±ky" if sign > 0 else None)
-    hea.set_ylabel("HEA [g]")
+    hea.set_ylabel("horizontal equivalent\nacceleration HEA [g]")
     velocity.plot(t, w, color="C3", lw=1.2)
-    velocity.set_ylabel("sliding velocity w [m/s]")
+    velocity.set_ylabel("downslope sliding\nvelocity w [m/s]")
     displacement.plot(t, s, color="C3", lw=1.2)
-    displacement.set(ylabel="sliding displacement s [m]", xlabel="t [s]")
+    displacement.set(ylabel="downslope\ndisplacement D [m]", xlabel="time t [s]")
     for episode in solution.episodes:
         stop = solution.t_end if np.isnan(episode.stop) else episode.stop
         for ax in (hea, velocity, displacement):
             ax.axvspan(episode.onset, stop, color="0.9", zorder=0)
     hea.legend(loc="upper right", fontsize="small")
     fig.suptitle(title or f"{block.method} flexible sliding mass, ky = {_ky_label(block)}: "
-                          f"{len(solution.episodes)} episodes, s = {solution.sliding_displacement:.4g} m")
+                          f"{len(solution.episodes)} episodes, D = {solution.sliding_displacement:.4g} m")
     return fig
 
 

@@ -6,6 +6,7 @@ import numpy as np
 
 from ..core._solution import AbstractEvent, DriverSolution
 from ._modes import FlexibleMode
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -54,6 +55,9 @@ class FlexibleSolution(DriverSolution):
             (:class:`FlexibleMode`); events: onsets and stops; backend, stats; block,
             motion: the model and the ground motion (set by :func:`blockdae.simulate`).
     """
+
+    def __repr__(self):
+        return compact_repr(self, f"D = {self.sliding_displacement:.6g} m, {len(self.episodes)} episodes")
 
     @property
     def sliding_displacement(self) -> float:

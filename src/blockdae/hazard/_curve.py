@@ -6,6 +6,7 @@ import pathlib
 import numpy as np
 
 from . import _formats
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -15,6 +16,9 @@ class HazardCurve:
     Attributes: im: intensity levels, positive and increasing (n >= 2);
     rate: annual rates of exceedance [1/yr], positive and decreasing (n,).
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     im: np.ndarray
     rate: np.ndarray

@@ -5,6 +5,7 @@ import dataclasses
 import inspect
 
 import numpy as np
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -15,6 +16,9 @@ class Deaggregation:
     weights: (n, m) [-]. Between levels the weights are interpolated linearly in ln im,
     beyond them the nearest level's are used.
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     im: np.ndarray
     magnitudes: np.ndarray
@@ -52,6 +56,9 @@ class EmpiricalFragility:
         magnitude: a moment magnitude, a :class:`Deaggregation`, or None for a model
             without one.
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     model: object
     im: str

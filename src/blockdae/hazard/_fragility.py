@@ -18,6 +18,7 @@ import dataclasses
 import numpy as np
 from scipy.special import log_ndtr
 from scipy.stats import norm
+from ..core._repr import compact_repr
 
 MIN_RECORDS = 10
 #: columns that name the slope (or the location) of a row: a fit takes one value of each
@@ -36,6 +37,9 @@ class Fragility:
         n_records, n_rows: what it was fitted to; boot: (n_boot, 5) array of
         (b0, b1, c0, c1, sigma) refitted to resampled records (empty: none).
     """
+
+    def __repr__(self):
+        return compact_repr(self, _summary(self))
 
     im: str
     d0_m: float
@@ -64,6 +68,13 @@ class Fragility:
         p = np.stack([_exceedance(theta, d, x) for theta in self.boot])
         tail = 50.0 * (1.0 - level)
         return np.percentile(p, tail, axis=0), np.percentile(p, 100.0 - tail, axis=0)
+
+
+def _summary(fragility) -> str:
+    """One line: the median D above d0 [m] as a power of the intensity, the spread, the data."""
+    f = fragility
+    return (f"median D = {np.exp(f.c0):.4g} m x ({f.im})^{f.c1:.3g} above {f.d0_m:g} m, sigma ln D = {f.sigma:.3g}; "
+            f"{f.n_records} records, {f.n_rows} rows, {len(f.boot)} bootstrap refits")
 
 
 def fit_fragility(table, im="pga_g", displacement="max_abs_displacement_m", *, d0_m=0.01, n_boot=200, seed=0):

@@ -14,6 +14,7 @@ import numpy as np
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._pieces import accel, accel_int1, accel_int2
 from . import _checks
+from ..core._repr import compact_repr
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)  # exact for a² of linear pieces
 
@@ -36,6 +37,9 @@ class IntensityMeasures:
         t_end: end of the analysed window [s].
         g: the value of g used in the Arias intensity [m/s²].
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     name: str
     pga: float

@@ -16,6 +16,7 @@ import numpy as np
 from ..core._compile_notice import notice_numba
 from ..excitation._pieces import accel_int1, accel_int2
 from . import _checks
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -33,6 +34,9 @@ class ResponseSpectrum:
         psv = ω Sd [m/s], psa = ω² Sd [m/s²] (ω = 2π/T).
         t_end: end of each analysed window [s], shape batch.
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     periods: np.ndarray
     damping: np.ndarray

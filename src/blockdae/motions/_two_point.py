@@ -16,6 +16,7 @@ from ..core._compile_notice import notice_numba
 from ..excitation._pieces import accel_int1, accel_int2, rebase
 from . import _checks
 from ._intensity import _Chain, intensity_measures
+from ..core._repr import compact_repr
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 
@@ -44,6 +45,9 @@ class RelativeMotion:
         envelope: the proposed bound min(v_m τ, d_m) (seed eqs. 2-3) [m].
         t_end: end of the record window [s]; damping: ζ of ``spectral`` [-].
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     name: str
     lags: np.ndarray

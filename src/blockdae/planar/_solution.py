@@ -9,6 +9,7 @@ from ..core._solution import AbstractEvent, DriverSolution
 from ..core._units import STANDARD_GRAVITY, length_units
 
 from ._modes import PlanarMode, horizontal_velocity
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -59,6 +60,9 @@ class PlanarSolution(DriverSolution):
         stats: counters.
         block, motion: the block and the base motion (set by :func:`blockdae.simulate`).
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     @property
     def u_x(self) -> np.ndarray:

@@ -41,17 +41,31 @@ def solution_figure(solution, excitation=None, block=None, *, n_points, title=No
             mode = solution.mode[np.searchsorted(solution.t, t, side="right") - 1]
             dv = block.flow(mode, t, np.stack([u, v]), excitation)[1]
             acc.plot(t, a_base + dv, **BLOCK)
+            _thresholds(acc, block)
         curve(vel, t, v_base, None, None, "velocity [m/s]", style=BASE)
         curve(vel, t, v_base + v, t_ev, v_base[at_ev] + v_ev, None, style=BLOCK)
         curve(disp, t, x_base, None, None, "displacement [m]", style=BASE)
         curve(disp, t, x_base + u, t_ev, x_base[at_ev] + u_ev, None, style=BLOCK)
         disp.set_xlabel("t [s]")
-        acc.legend(loc="upper right", fontsize="small")
+        acc.legend(loc="lower right", fontsize="x-small", ncol=2)
     rel_v.legend(loc="best", fontsize="small")
     if title:
         fig.suptitle(title)
     return fig
 
+
+
+def _thresholds(ax, block):
+    """The base accelerations at which a block at rest starts to slide, (bias ± mu) g
+    [m/s²] (+: toward u < 0, -: toward u > 0), on the sides its direction allows (a batch
+    of blocks: none)."""
+    if np.ndim(block.mu) or np.ndim(block.bias):
+        return
+    for sign, towards, allowed, style in ((1.0, "u < 0", block.allow_negative, "--"),
+                                          (-1.0, "u > 0", block.allow_positive, ":")):
+        if allowed:
+            level = (block.bias + sign * block.mu) * block.g
+            ax.axhline(level, color="C1", ls=style, lw=1.0, label=f"threshold, to {towards}")
 
 
 def batch_figure(batch, *, title=None):
@@ -63,30 +77,107 @@ def batch_figure(batch, *, title=None):
         del grid["mu_kinetic"]
     varied = [name for name, values in grid.items() if np.unique(values).size > 1]
     if len(varied) == 1:
-        x, xlabel = grid[varied[0]], f"{varied[0]} [-]"
+        x, xlabel = grid[varied[0]], _WORDS.get(varied[0], varied[0]) + " [-]"
     else:
         x = np.arange(len(batch))
         xlabel = "parameter set" + (f" ({', '.join(varied)} vary)" if varied else "")
     fig, ax = plt.subplots(figsize=(6, 4), constrained_layout=True)
     ax.plot(x, batch.displacement, marker="o", ms=4, color="C3", label="u(t_end)")
     ax.plot(x, batch.max_abs_displacement, marker="s", ms=4, mfc="none", ls="--", color="0.3", label="max |u|")
-    ax.set(xlabel=xlabel, ylabel="displacement [m]", title=title)
+    ax.set(xlabel=xlabel, ylabel="relative displacement (signed) [m]", title=title)
     ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
     ax.legend(loc="best", fontsize="small")
     return fig
 
 
 
-def newmark_figure(ky, displacement, labels, *, polarity=None, title=None):
-    """Newmark's D [m] against k_y [g]: one curve per row of ``displacement`` (shape
-    (n_curves, n_ky)), labelled by ``labels``; ``polarity``, if given, says which D is drawn."""
+def newmark_figure(ky, curves, *, key="record", pga=None, polarity=None, title=None):
+    """Newmark's D [m] against k_y [g]: a colour per entry of ``curves`` ((label, D of shape
+    (n_pga, n_ky) [m]) pairs), a line style per target PGA (``pga`` [g]; None: the records
+    as given); a legend titled ``key`` (a colour scale beyond :data:`_LEGEND_ENTRIES`
+    curves); log axes where the values span a decade or more (D = 0 is then not drawn);
+    ``polarity``, if given, says which D is drawn."""
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.ticker import FormatStrFormatter, FuncFormatter, NullFormatter
+
+    fig, ax = plt.subplots(figsize=(8.5, 5), constrained_layout=True)
+    many = len(curves) > _LEGEND_ENTRIES
+    colours = plt.get_cmap("viridis")(np.linspace(0, 1, len(curves))) if many else \
+        [f"C{i}" for i in range(len(curves))] if len(curves) <= 10 else plt.get_cmap("tab20").colors
+    for colour, (label, d) in zip(colours, curves):
+        for j, row in enumerate(np.atleast_2d(d)):
+            ax.plot(ky, row, color=colour, ls=_STYLES[j % len(_STYLES)], marker=_MARKERS[j % len(_MARKERS)], ms=3.5,
+                    lw=1.2, label=label if j == 0 else None)
+    values = np.concatenate([np.ravel(d) for _, d in curves])
+    positive = values[values > 0]
+    log_d = positive.size > 0 and positive.max() >= 10 * positive.min()
+    if log_d:
+        ax.set_yscale("log")
+        ax.yaxis.set_major_formatter(FormatStrFormatter("%g"))
+        short = positive.max() < 100 * positive.min()  # under two decades: 2 and 5 x 10^n labelled too
+        ax.yaxis.set_minor_formatter(FuncFormatter(_two_and_five) if short else NullFormatter())
+        if np.any(values == 0):
+            ax.text(0.99, 0.99, "D = 0 (no sliding) not drawn", transform=ax.transAxes, fontsize="small",
+                    color="0.4", ha="right", va="top")
+    else:
+        ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    if np.max(ky) >= 10 * np.min(ky):
+        ax.set_xscale("log")
+        ax.set_xticks([x for x in _KY_TICKS if np.min(ky) <= x <= np.max(ky)])
+        ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+        ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.grid(True, which="both", alpha=0.3)
+    ax.set(xlabel="yield acceleration k_y [g]",
+           ylabel="downslope displacement D [m]" + (f" ({polarity})" if polarity else ""), title=title)
+    if many:
+        bar = fig.colorbar(plt.cm.ScalarMappable(cmap="viridis", norm=plt.Normalize(1, len(curves))), ax=ax)
+        bar.set_label(f"{key} number (1 to {len(curves)}, in the table's order)")
+    else:
+        fig.legend(loc="outside right upper", fontsize="small", title=key)
+    if pga is not None and len(pga) > 1:
+        handles = [Line2D([], [], color="0.3", ls=_STYLES[j % len(_STYLES)], marker=_MARKERS[j % len(_MARKERS)],
+                          ms=3.5) for j in range(len(pga))]
+        ax.legend(handles, [f"{p:g} g" for p in pga], loc="lower left", fontsize="small", title="target PGA")
+    return fig
+
+
+def _two_and_five(value, _position):
+    """A minor tick's label on a log axis: "0.2", "50", ... at 2 and 5 x 10^n, else none."""
+    leading = value / 10 ** np.floor(np.log10(value))
+    return f"{value:g}" if np.isclose(leading, 2) or np.isclose(leading, 5) else ""
+
+
+def newmark_history_figure(solution, motion, ky, g, *, polarity, n_points, title=None):
+    """One Newmark analysis as practitioners draw it, against t [s]: the ground
+    acceleration [g] of the polarity run with the yield acceleration k_y marked; the
+    downslope sliding velocity -v [m/s]; the downslope displacement D = -u >= 0 [m];
+    slip episodes shaded. ``solution`` is of the one-way block (u <= 0) under ``motion``."""
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
-    for label, d in zip(labels, displacement):
-        ax.plot(ky, d, marker="o", ms=3.5, label=label)
-    ax.set(xlabel="yield acceleration k_y [g]", ylabel="downslope displacement D [m]" + (f" ({polarity})" if polarity else ""), title=title)
-    ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
-    if len(labels) <= _LEGEND_ENTRIES:
-        ax.legend(loc="best", fontsize="small")
+    t = time_grid(solution, n_points)
+    u, v = solution(t)
+    fig, (acc, vel, disp) = plt.subplots(3, 1, sharex=True, figsize=(8, 8.5), constrained_layout=True)
+    acc.plot(t, motion.acceleration(t) / g, color="0.3", lw=1.0, label=f"ground ({polarity} polarity)")
+    acc.axhline(ky, color="C3", ls="--", lw=1.0, label=f"k_y = {ky:g} g")
+    acc.set_ylabel("ground acceleration [g]")
+    vel.plot(t, 0.0 - v, color="C3", lw=1.2)
+    vel.set_ylabel("downslope velocity [m/s]")
+    disp.plot(t, 0.0 - u, color="C3", lw=1.2)
+    disp.set(ylabel="downslope displacement D [m]", xlabel="time t [s]")
+    sliding = solution.mode[np.searchsorted(solution.t, t, side="right") - 1] != 0
+    for ax in (acc, vel, disp):
+        ax.fill_between(t, 0, 1, where=sliding, transform=ax.get_xaxis_transform(), color="0.9", zorder=0,
+                        label="sliding" if ax is acc else None)
+        ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    acc.legend(loc="upper right", fontsize="small")
+    if title:
+        fig.suptitle(title)
     return fig
+
+
+_WORDS = {"mu": "static friction coefficient mu", "mu_kinetic": "kinetic friction coefficient f",
+          "bias": "bias force R/Q"}
+_KY_TICKS = (0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0)  # [g]
+_STYLES = ("-", "--", ":", "-.")
+_MARKERS = ("o", "s", "^", "v", "D")

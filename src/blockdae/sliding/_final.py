@@ -7,11 +7,15 @@ import numpy as np
 from ..backends import Horizon, make_backend
 from ..excitation import AbstractExcitation
 from ._model import SlidingBlock
+from ..core._repr import compact_repr
 
 
 class FinalNumbers(NamedTuple):
     """The final numbers of many analyses; each of shape (n_motions,) + block.batch_shape
     (+ (n_scales,) when ``scale`` is given)."""
+
+    def __repr__(self):
+        return compact_repr(self)
 
     displacement: np.ndarray  # u(t_end) [m]
     max_abs_displacement: np.ndarray  # max |u(t)| [m]

@@ -259,14 +259,17 @@ class SlidingBlock(AbstractHybridModel):
         """What :func:`bd.study` tabulates of this block (a batch of m parameter sets)
         on ``motions`` at the factors ``scale`` on a(t) [-]: one row per motion x set x
         factor, from the exact engine (``rtol`` is not used: nothing is integrated).
-        displacement_m (u at the end [m]), max_abs_displacement_m [m], n_events,
-        t_end_s [s]."""
+        A block sliding one way downslope (direction "negative"): D_m (the downslope
+        displacement at the end, -u >= 0 [m]); else u_end_m (the signed u at the end [m]);
+        then max_abs_displacement_m [m], n_events, t_end_s [s]."""
         from ..backends import Horizon, make_backend
 
         horizons = [Horizon.resolve(motion, t_end) for motion in motions]
         out = make_backend("exact").solve_final(self, list(motions), horizons, np.asarray(scale, dtype=float))
-        return dict(displacement_m=out[..., 0].ravel(), max_abs_displacement_m=out[..., 3].ravel(),
-                    n_events=out[..., 4].ravel().astype(int), t_end_s=out[..., 5].ravel())
+        u = out[..., 0].ravel()
+        end = dict(D_m=0.0 - u) if self.direction == "negative" else dict(u_end_m=u)  # 0.0 - u: no -0.0
+        return dict(**end, max_abs_displacement_m=out[..., 3].ravel(), n_events=out[..., 4].ravel().astype(int),
+                    t_end_s=out[..., 5].ravel())
 
     # ---- hybrid automaton --------------------------------------------------
     def demand(self, t, excitation, xp=np):

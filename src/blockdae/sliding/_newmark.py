@@ -26,6 +26,7 @@ from ..excitation._record_set import RecordSet, with_metadata
 from ..excitation._units import check_pga, check_pga_rounding
 from ._model import SlidingBlock
 from ._sweep import _labelled
+from ..core._repr import compact_repr
 
 _POLARITIES = ("both", "normal", "inverse")
 
@@ -77,6 +78,9 @@ class NewmarkResult(_Polarities):
             (None unless ``newmark(..., derivative=True)``).
     """
 
+    def __repr__(self):
+        return compact_repr(self, f"largest D {np.max(self.maximum):.4g} m over {np.size(self.ky)} ky")
+
     ky: float | np.ndarray
     normal: float | np.ndarray | None
     inverse: float | np.ndarray | None
@@ -97,10 +101,9 @@ class NewmarkResult(_Polarities):
         matplotlib Figure."""
         from ._figures import newmark_figure
 
-        runs = [(f"{name} polarity", d) for name, d in (("normal", self.normal), ("inverse", self.inverse))
-                if d is not None]
-        return newmark_figure(np.atleast_1d(self.ky), [np.atleast_1d(d) for _, d in runs], [n for n, _ in runs],
-                              title=title)
+        curves = [(f"{name} polarity", np.atleast_1d(d)) for name, d in (("normal", self.normal),
+                                                                         ("inverse", self.inverse)) if d is not None]
+        return newmark_figure(np.atleast_1d(self.ky), curves, key="polarity", title=title)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -120,6 +123,11 @@ class NewmarkSweep(_Polarities):
         normal_dky, inverse_dky: dD/dky of each polarity run [m/g], shaped as ``normal``
             (None unless ``newmark(..., derivative=True)``).
     """
+
+    def __repr__(self):
+        n_records, n_pga, n_ky = self.shape
+        return compact_repr(self, f"{n_records} records x {n_pga} PGA x {n_ky} ky, largest D "
+                                  f"{np.nanmax(self.maximum):.4g} m")
 
     records: tuple[str, ...]
     peak: np.ndarray
@@ -157,16 +165,15 @@ class NewmarkSweep(_Polarities):
         return with_metadata(pd.DataFrame(columns), self.metadata)
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
-        """D [m] (the larger of the polarities run) against k_y [g], one curve per
-        (record, pga) (the other arguments are unused); a matplotlib Figure."""
+        """D [m] (the larger of the polarities run) against k_y [g]: a colour per record
+        (legend, or a colour scale for many), a line style per target PGA (the other
+        arguments are unused); a matplotlib Figure."""
         from ._figures import newmark_figure
 
-        labels = [name + ("" if self.pga is None else f", PGA {p:g} g")
-                  for name, row in zip(self.records, self.analysed_pga) for p in row]
         polarity = "larger of the polarities" if self.normal is not None and self.inverse is not None else \
             ("normal polarity" if self.inverse is None else "inverse polarity")
-        return newmark_figure(self.ky, self.maximum.reshape(-1, self.ky.size), labels, polarity=polarity,
-                              title=title)
+        curves = list(zip(self.records, self.maximum))
+        return newmark_figure(self.ky, curves, pga=self.pga, polarity=polarity, title=title)
 
 
 def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_end: float | None = None,
@@ -214,6 +221,7 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
             raise ValueError(f"newmark: pga={pga!r} and target_pga={target_pga!r} name the same target peak [g]; "
                              "give one")
         pga = target_pga
+    ky = _yield_accelerations(ky)
     ky_array = np.asarray(ky, dtype=float)
     _require(np.isfinite(ky_array) & (ky_array > 0), "ky", ky_array, "must be a positive yield acceleration [g]")
     if isinstance(motion, AbstractExcitation) and np.ndim(pga) == 0:
@@ -228,6 +236,26 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         return NewmarkResult(ky=float(ky_array) if ky_array.ndim == 0 else ky_array, normal=normal, inverse=inverse,
                              g=float(g), normal_dky=normal_dky, inverse_dky=inverse_dky)
     return _sweep(motion, ky_array, polarity, g, t_end, backend, pga, pga_rounding, progress, derivative, options)
+
+
+def _yield_accelerations(ky):
+    """``ky`` [g] as numbers: a constant ky table (:class:`bd.KyTable`, or pySLAMMER's pair
+    (displacements [m], ky [g])) as its one value; a table of ky varying with the sliding
+    displacement is refused (TypeError saying what is taken), as is anything not numeric."""
+    from ..flexible._analysis import as_ky_table
+
+    table = as_ky_table(ky)
+    if table is not None:
+        if table.constant:
+            return float(table.ky_g[0])
+        raise TypeError(f"ky={table}: newmark takes yield accelerations [g] (a number or a 1-D sequence of "
+                        "them), not ky varying with the sliding displacement; a ky table runs on the flexible "
+                        "sliding mass: bd.flexible(motion, ky=table, height=..., vs=...)")
+    try:
+        return np.asarray(ky, dtype=float) if np.ndim(ky) else float(ky)
+    except (TypeError, ValueError):
+        raise TypeError(f"ky={ky!r:.80}: newmark takes yield accelerations [g], a number or a 1-D sequence "
+                        "of numbers (or a constant bd.KyTable)") from None
 
 
 def _downslope(motion, ky, polarity, g, t_end, backend, derivative, options):

@@ -10,6 +10,7 @@ from ..core._solution import AbstractEvent, AbstractSolution
 from ..core._units import STANDARD_GRAVITY, length_units
 from ..excitation import AbstractExcitation
 from ._modes import Mode
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -102,6 +103,10 @@ class Solution(AbstractSolution):
         block, motion: the block and the base excitation it was computed for
             (set by :func:`blockdae.simulate`; None if a backend was called directly).
     """
+
+    def __repr__(self):
+        return compact_repr(self, f"u(t_end) = {self.displacement:.6g} m (signed: u = x_block - x_base), "
+                                  f"{len(self.events)} events")
 
     t: np.ndarray
     u: np.ndarray
@@ -196,6 +201,11 @@ class BatchSolution:
         motion: the base excitation.
     """
 
+    def __repr__(self):
+        u = self.displacement
+        return compact_repr(self, f"{u.size} parameter sets, u(t_end) from {np.min(u):.4g} to {np.max(u):.4g} m "
+                                  "(signed)")
+
     displacement: np.ndarray
     max_abs_displacement: np.ndarray
     n_events: np.ndarray
@@ -231,7 +241,7 @@ class BatchSolution:
     def to_dataframe(self):
         """A pandas DataFrame, one row per parameter set: the grid (mu, mu_kinetic, bias
         [-], g_m_s2 [m/s²], and the direction of a 1-D block; when the block is known),
-        displacement_m (displacement_x_m, displacement_y_m for a planar block),
+        u_end_m (the signed u at the end [m]; displacement_x_m, displacement_y_m for a planar block),
         max_abs_displacement_m [m], n_events, t_end_s [s]."""
         import pandas as pd
 
@@ -241,7 +251,7 @@ class BatchSolution:
             if hasattr(self.block, "direction"):  # the 1-D block's sliding directions
                 columns |= {"direction": self.block.direction}
         u = np.asarray(self.displacement, dtype=float)
-        columns |= ({"displacement_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]})
+        columns |= ({"u_end_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]})
         columns |= {"max_abs_displacement_m": np.asarray(self.max_abs_displacement, dtype=float),
                     "n_events": np.asarray(self.n_events, dtype=int),
                     "t_end_s": np.asarray(self.t_end, dtype=float)}

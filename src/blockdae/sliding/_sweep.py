@@ -10,6 +10,7 @@ from ._solution import BatchSolution
 from ..excitation import AbstractExcitation, pga_factor
 from ..excitation._units import check_pga, check_pga_rounding
 from ._model import SlidingBlock
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -25,6 +26,9 @@ class SweepSolution:
     Result arrays (``displacement`` [m], ``max_abs_displacement`` [m], ``n_events``,
     ``t_end`` [s]) have shape (n_motions, n_scales, n_sets).
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     names: tuple[str, ...]
     scale: np.ndarray

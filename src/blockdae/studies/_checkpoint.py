@@ -51,7 +51,7 @@ class Checkpoint:
             folder.mkdir(parents=True, exist_ok=True)
             with atomic_path(path) as temporary:
                 temporary.write_text(json.dumps(manifest, indent=1) + "\n")
-        return cls(folder, tasks, len(grid.where) * grid.values.size * grid.factors.size)
+        return cls(folder, tasks, grid.rows_per_record)
 
     def path(self, index) -> pathlib.Path:
         """The table of task ``index``."""

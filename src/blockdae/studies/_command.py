@@ -41,14 +41,15 @@ def _seconds_or_none(text):
 def add_study_parser(subparsers):
     """The ``study`` sub-command on an argparse ``subparsers`` object."""
     p = subparsers.add_parser("study", help="every record of a folder × mu (or ky) × PGA × ground and floors "
-                                            "(seed 002; --ky: the flexible sliding mass)")
+                                            "(--ky with --height and --vs: the flexible sliding mass)")
     p.add_argument("folder", type=pathlib.Path, nargs="?",
                    help=f"folder of records ({', '.join(RECORD_SUFFIXES)}, each also gzip-compressed: .gz); "
                         "or --set NAME")
     swept = p.add_mutually_exclusive_group(required=True)
     swept.add_argument("--mu", type=positive("--mu"), nargs="+", help="friction coefficients [-] (the 1-D block)")
     swept.add_argument("--ky", type=positive("--ky"), nargs="+",
-                       help="yield accelerations [g] of the flexible sliding mass (with --height, --vs)")
+                       help="yield accelerations [g]: of Newmark's rigid block (column ky_g), or with --height "
+                            "and --vs of the flexible sliding mass")
     swept.add_argument("--ky-table", type=_table_row, nargs="+", metavar="D_M:KY_G",
                        help="the flexible sliding mass with ky [g] against the sliding displacement D [m], rows D:ky "
                             "(bd.KyTable; the column ky_g: ky at D = 0)")
@@ -61,8 +62,9 @@ def add_study_parser(subparsers):
     p.add_argument("--damping", type=number("--damping", lambda x: 0 <= x < 1, "in [0, 1)"), default=0.05, help="modal damping ratio of the frames [-] (default 0.05)")
     p.add_argument("--no-ground", action="store_true", help="floors only")
     p.add_argument("--direction", choices=("negative", "positive", "both"), default=None,
-                   help="allowed sliding direction of the 1-D block (default negative: one-way; the flexible "
-                        "mass runs both polarities)")
+                   help="the 1-D block: default both polarities of the one-way block, as newmark (columns "
+                        "polarity, D_m >= 0 [m]); negative: the records as given only; positive or both: signed u "
+                        "(u_end_m); the flexible mass runs both polarities")
     p.add_argument("--units", default=None, help="acceleration units of the files: g, m/s2, cm/s2 or gal "
                                                  "(default: as an AT2 header or a table's header line says, else g)")
     p.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
@@ -95,7 +97,7 @@ def run_study(args) -> int:
     client = _client(args.scheduler)
     start = time.perf_counter()
     try:
-        table = study(records, where=where, direction=args.direction or "negative", executor=client, g=args.g,
+        table = study(records, where=where, direction=args.direction, executor=client, g=args.g,
                       no_worker_timeout=args.no_worker_timeout, checkpoint=args.checkpoint, block=block, **swept,
                       **grid)
     except (ValueError, TypeError) as err:
@@ -112,23 +114,28 @@ def run_study(args) -> int:
         _save(lambda: save_study(summary(table), args.summary), "--summary")
     values = next(iter(swept.values()))
     n_swept = len(values) if isinstance(values, list) else 1  # numbers, or one ky table
-    print(f"{len(table)} analyses ({len(records)} records × {len(where)} locations × {n_swept} {label} × "
-          f"{len(table) // (len(records) * len(where) * n_swept)} intensities) in {wall:.2f} s; "
-          f"results: {args.out}")
+    n_polarities = table["polarity"].nunique() if "polarity" in table else 1
+    polarities = f" × {n_polarities} polarities" if n_polarities > 1 else ""
+    intensities = len(table) // (len(records) * len(where) * n_polarities * n_swept)
+    print(f"{len(table)} analyses ({len(records)} records × {len(where)} locations{polarities} × {n_swept} {label} "
+          f"× {intensities} intensities) in {wall:.2f} s; results: {args.out}")
     return 0
 
 
 def _block(args):
     """(the block to study, None for the 1-D block; the swept keyword and values; their
-    name), the flexible sliding mass's options checked against --mu."""
+    name): the rigid block for --mu, or --ky without --height and --vs; else the flexible
+    sliding mass; its options are refused with the rigid block."""
     flexible_only = [flag for flag, value in (("--height", args.height), ("--vs", args.vs), ("--vr", args.vr),
                                               ("--soil-damping", args.soil_damping), ("--method", args.method))
                      if value is not None]
-    if args.mu is not None:
+    rigid = args.mu is not None or (args.ky is not None and args.height is None and args.vs is None)
+    if rigid:
+        flag = "--mu" if args.mu is not None else "--ky"
         if flexible_only:
-            raise UsageError(f"{flexible_only[0]} applies to the flexible sliding mass (--ky or --ky-table), not "
-                             "to the block of --mu")
-        return None, dict(mu=args.mu), "mu"
+            raise UsageError(f"{flexible_only[0]} applies to the flexible sliding mass (--ky or --ky-table with "
+                             f"--height and --vs), not to the rigid block of {flag}")
+        return (None, dict(mu=args.mu), "mu") if args.mu is not None else (None, dict(ky=args.ky), "ky")
     if args.direction is not None:
         raise UsageError(f"--direction {args.direction}: the flexible sliding mass slides downslope in both "
                          "polarities of each record (columns normal_m, inverse_m); leave --direction out")

@@ -1,8 +1,9 @@
 """Studies of records × friction (or yield acceleration) × intensity × location (seed
 002), as one tidy table.
 
-A study slides a one-way (by default) block on the ground and on floors of shear frames
-under every record, at every friction coefficient μ and every intensity; another model
+A study slides a one-way block (by default in both polarities of each record, as
+``bd.newmark``) on the ground and on floors of shear frames under every record, at every
+friction coefficient μ (or yield acceleration ky [g]) and every intensity; another model
 sweeps the parameter it declares (``study_parameter``: the flexible mass's ky [g]). The work is
 split into tasks of whole records: a task computes the ground and floor motions of its
 records once (one frame response per record and frame), normalises each motion to a
@@ -58,7 +59,8 @@ class _Grid:
     factors: np.ndarray  # pga [g] ("pga") or factors on a(t) [-] ("scale")
     by: str  # "pga" or "scale"
     where: tuple
-    direction: str
+    direction: str | None
+    polarities: tuple  # the 1-D block's: ("normal", "inverse"), ("normal",); other models: ()
     refine: int
     sd_period: float
     damping: float
@@ -67,8 +69,13 @@ class _Grid:
     block: object  # the model at one value: its study_batch(values).study_columns(...) runs a task's analyses
     rtol: float | None
 
+    @property
+    def rows_per_record(self) -> int:
+        """Rows of the table per record: locations x polarities x swept values x intensities."""
+        return len(self.where) * max(1, len(self.polarities)) * self.values.size * self.factors.size
 
-def study(records, mu=None, pga=None, scale=None, where=("ground",), direction="negative", *, ky=None,
+
+def study(records, mu=None, pga=None, scale=None, where=("ground",), direction=None, *, ky=None,
           executor=None, no_worker_timeout=60.0, checkpoint=None, progress=None, refine=4, sd_period=10.0,
           damping=0.05, t_end=None, g=STANDARD_GRAVITY, block=None, rtol=None):
     """Slide a block under every record, μ (or ky), intensity and location: one tidy table.
@@ -79,8 +86,9 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction="
             epicentral_distance_km, vs30_m_s, ...) follow ``record`` in the table, to group by.
         mu: friction coefficients μ > 0 [-], the swept parameter of a block (the 1-D
             block, ``bd.PlanarBlock``).
-        ky: instead of ``mu``, yield accelerations ky > 0 [g], the swept parameter of a
-            model that declares ky (``bd.FlexibleSlidingMass``; also a ``bd.KyTable`` of
+        ky: instead of ``mu``, yield accelerations ky > 0 [g] (column ky_g): of the 1-D
+            block without bias (Newmark's rigid block: μ = ky), or of a model that
+            declares ky (``bd.FlexibleSlidingMass``; also a ``bd.KyTable`` of
             ky against the sliding displacement, or a sequence of them: column ky_g is
             then each table's ky at zero displacement). The model's
             ``study_parameter`` says which of the two it takes; the other is refused.
@@ -88,7 +96,11 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction="
             or floor) is scaled so that its peak |a| is A g (seed 002).
         scale: instead of ``pga``, factors > 0 [-] on the motion at each location.
         where: locations: "ground" and/or floors (``bd.ShearFrame(...).floor(i)``).
-        direction: "negative" (one-way, u < 0, the seed's body), "positive" or "both".
+        direction: of the 1-D block: None (default) runs Newmark's one-way block in both
+            polarities, as :func:`bd.newmark` does (column polarity: "normal", the record
+            as given, and "inverse", the record times -1; the block slides downslope,
+            u < 0, column D_m = -u >= 0); "negative" runs the record as given only;
+            "positive" or "both" (two-way) too, with the signed u (column u_end_m).
         executor: None (run here, on every core), a ``dask.distributed.Client`` or a
             ``concurrent.futures.Executor``: tasks of whole records are submitted to it
             (a ProcessPoolExecutor with ``mp_context=multiprocessing.get_context("spawn")``:
@@ -128,19 +140,22 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction="
             and of the flexible mass are exact.
 
     Returns:
-        A DataFrame, one row per record × location × μ × intensity (in that order):
-        record; location ("ground" or "T1=0.3s n=5 zeta=0.05 floor 1"); floor (0: ground);
-        frame_period_s (T_1 of the frame [s], NaN on the ground); mu [-]; pga_g (peak
+        A DataFrame, one row per record × location × polarity × μ × intensity (in that
+        order): record; location ("ground" or "T1=0.3s n=5 zeta=0.05 floor 1"); floor (0:
+        ground); frame_period_s (T_1 of the frame [s], NaN on the ground); polarity (the
+        1-D block: "normal" or "inverse", see ``direction``); mu [-] (ky_g [g]); pga_g (peak
         |a| of the motion used [g]); scale (its factor on the location's motion [-]);
         pga_m_s2 [m/s²]; pgv_m_s (peak |v| of the motion used, exact for linear pieces
         [m/s]); sd_m (Sd [m]: the seed's "absolute displacement spectrum at the low
         frequency end", which it identifies with the largest base displacement; the
         displacement u + x_g of a long-period oscillator tends to 0, its displacement u
         relative to the base to max |x_g|, so Sd = max |u| at ``sd_period``, exact);
-        displacement_m (u at the end [m]); max_abs_displacement_m (R_c, max |u| [m]);
+        D_m (the downslope displacement at the end, -u >= 0 [m], one-way downslope
+        studies) or u_end_m (the signed u at the end [m], directions "positive" and
+        "both"); max_abs_displacement_m (R_c, max |u| [m]);
         n_events (mode changes); n_slips (slip episodes = slip onsets, one-way
         studies only: there stick and slip alternate, so n_slips = ⌈n_events / 2⌉);
-        t_end_s (final time [s]). A ``block``'s own columns replace displacement_m ...
+        t_end_s (final time [s]). A ``block``'s own columns replace D_m ...
         t_end_s (the block on a plane: displacement_x_m, displacement_y_m, displacement_m
         = |u|, max_abs_displacement_m, slide_distance_m, n_events, n_flights, t_end_s;
         the flexible mass: ``bd.flexible``'s height_m, vs_m_s, normal_m, inverse_m,
@@ -154,14 +169,15 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction="
     a checkpoint of another study. A task that raises on an executor lets the others
     finish (and be saved) before its error is raised. The flexible mass refuses a motion
     that is not a :class:`bd.Record` or ends before ``t_end``, also before any work.
-    Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu, direction=direction),
-    motion.scaled(scale))`` of the location's motion to rounding.
+    Rows equal ``bd.simulate(bd.SlidingBlock(mu=mu, direction="negative"),
+    motion.scaled(scale))`` of the location's motion to rounding (the inverse polarity:
+    ``motion.scaled(-scale)``).
     """
     metadata = records.metadata if isinstance(records, RecordSet) else None
     records, grid = _checked(records, dict(mu=mu, ky=ky), pga, scale, where, direction, refine, sd_period, damping,
                              t_end, g, block, rtol)
     no_worker_timeout = _timeout(no_worker_timeout)
-    tasks = _tasks(records, len(grid.where) * grid.values.size * grid.factors.size)
+    tasks = _tasks(records, grid.rows_per_record)
     store = None if checkpoint is None else Checkpoint.open(checkpoint, records, grid, tasks)
     parts = {} if store is None else store.finished()
     bar = progress_bar(len(tasks), "study", "task", progress)
@@ -193,22 +209,23 @@ def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
         adjustment: the factor of seed 002's eq. 4.
 
     Returns:
-        One row per location × μ × pga_g: location, floor, frame_period_s, mu, pga_g,
-        n_records, rc_m (mean R_c = mean max |u| [m]), sd_m (mean Sd [m]), rd_m (eq. 3
-        with the mean Sd [m]), adjustment (eq. 4 [-]) and rd_adjusted_m (its product
-        with rd_m [m]).
+        One row per location × polarity × μ (or ky_g) × pga_g: location, floor,
+        frame_period_s, polarity (where the study has it), mu (ky_g), pga_g, n_records,
+        rc_m (mean R_c = mean max |u| [m]), sd_m (mean Sd [m]), rd_m (eq. 3 with the mean
+        Sd [m]), adjustment (eq. 4 [-]) and rd_adjusted_m (its product with rd_m [m]).
     """
-    missing = [c for c in ("mu", "max_abs_displacement_m", "sd_m") if c not in table]
+    swept = "ky_g" if "ky_g" in table and "mu" not in table else "mu"
+    missing = [c for c in (swept, "max_abs_displacement_m", "sd_m") if c not in table]
     if missing:
-        raise ValueError(f"summary takes a study of a block over mu (the seed's Newmark summaries); the table "
-                         f"has no {missing} columns (a flexible mass's study: group it yourself, or fit "
+        raise ValueError(f"summary takes a study of a block over mu or ky_g (the seed's Newmark summaries); "
+                         f"the table has no {missing} columns (a flexible mass's study: group it yourself, or fit "
                          "bd.hazard.fit_fragility to it)")
-    keys = ["location", "floor", "frame_period_s", "mu", "pga_g"]
+    keys = ["location", "floor", "frame_period_s", *(["polarity"] if "polarity" in table else []), swept, "pga_g"]
     out = (table.groupby(keys, sort=False, dropna=False)
            .agg(n_records=("record", "size"), rc_m=("max_abs_displacement_m", "mean"), sd_m=("sd_m", "mean"))
            .reset_index())
-    out["rd_m"] = newmark_rd_sd(out["sd_m"].to_numpy(), out["pga_g"].to_numpy(), out["mu"].to_numpy())
-    out["adjustment"] = adjustment(out["pga_g"].to_numpy(), out["mu"].to_numpy())
+    out["rd_m"] = newmark_rd_sd(out["sd_m"].to_numpy(), out["pga_g"].to_numpy(), out[swept].to_numpy())
+    out["adjustment"] = adjustment(out["pga_g"].to_numpy(), out[swept].to_numpy())
     out["rd_adjusted_m"] = out["adjustment"] * out["rd_m"]
     return out
 
@@ -228,17 +245,22 @@ def run_task(records, grid: _Grid) -> dict:
             places.append(place)
     leading = [_leading(m) for m in motions]  # the component whose peak is the motion's
     peak = np.array([m.peak_acceleration for m in leading])
-    engine_motions = [_normalised(m, grid.g / p) for m, p in zip(motions, peak)] if grid.by == "pga" else motions
+    polarities = grid.polarities or ("normal",)
+    sign = {"normal": 1.0, "inverse": -1.0}  # the inverse polarity: the motion times -1
+    unit = grid.g / peak if grid.by == "pga" else np.ones(len(motions))
+    engine_motions = [m if sign[p] * k == 1.0 else _normalised(m, sign[p] * k)
+                      for m, k in zip(motions, unit) for p in polarities]
     columns = grid.block.study_batch(grid.sweep).study_columns(engine_motions, grid.t_end, grid.factors, grid.rtol)
     sd = response_spectrum(leading, grid.sd_period, grid.damping).sd
     pgv = np.array([_peak_velocity(m) for m in leading])
-    n_v, n_f = grid.values.size, grid.factors.size
-    each = lambda x: np.repeat(np.asarray(x), n_v * n_f)  # per motion -> per row
-    factors = np.tile(grid.factors, len(motions) * n_v)
-    scale = factors * np.repeat(grid.g / peak, n_v * n_f) if grid.by == "pga" else factors
+    n_p, n_v, n_f = len(polarities), grid.values.size, grid.factors.size
+    each = lambda x: np.repeat(np.asarray(x), n_p * n_v * n_f)  # per motion -> per row
+    factors = np.tile(grid.factors, len(motions) * n_p * n_v)
+    scale = factors * np.repeat(grid.g / peak, n_p * n_v * n_f) if grid.by == "pga" else factors
+    polarity = dict(polarity=np.tile(np.repeat(polarities, n_v * n_f), len(motions))) if grid.polarities else {}
     return dict(record=each([_name(m) for m in records for _ in grid.where]),
-                place=each([grid.where.index(p) for p in places]),
-                **{grid.column: np.tile(np.repeat(grid.values, n_f), len(motions))},
+                place=each([grid.where.index(p) for p in places]), **polarity,
+                **{grid.column: np.tile(np.repeat(grid.values, n_f), len(motions) * n_p)},
                 scale=scale, pga_m_s2=scale * each(peak), pgv_m_s=scale * each(pgv), sd_m=scale * each(sd), **columns)
 
 
@@ -298,8 +320,12 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
             raise ValueError(f'where must hold "ground" or bd.Floor objects, got {place!r}')
     if len(set(where)) < len(where):
         raise ValueError(f"where repeats a location: {where!r}")
+    polarities = ()
     if block is None:
-        block = SlidingBlock(mu=1.0, direction=direction, g=g)  # checks direction and g
+        block = SlidingBlock(mu=1.0, direction=direction or "negative", g=g)  # checks direction and g
+        polarities = ("normal", "inverse") if direction is None else ("normal",)
+    elif isinstance(block, SlidingBlock):
+        polarities = ("normal",)
     parameter, column, values, sweep = _swept(block, swept)
     batch = block.study_batch(sweep)  # checks the values against the model's other parameters (|bias| < mu, ...)
     if any(isinstance(r, BaseMotion) for r in records) and where != ("ground",):
@@ -316,14 +342,14 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
     if by == "pga" and any(_leading(r).peak_acceleration == 0 for r in records):
         zero = next(_name(r) for r in records if _leading(r).peak_acceleration == 0)
         raise ValueError(f"pga cannot normalise a record of zeros: {zero!r}")
-    rows = len(records) * len(where) * values.size * factors.size
+    rows = len(records) * len(where) * max(1, len(polarities)) * values.size * factors.size
     free = os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
     if rows * ROW_BYTES > free:
         raise ValueError(f"the result table would have {rows:,} rows (~{rows * ROW_BYTES / 2**30:.1f} GiB), more "
                          f"than the free memory ({free / 2**30:.1f} GiB): split the study or shrink the grid")
     grid = _Grid(parameter=parameter, column=column, values=values, sweep=sweep, factors=factors, by=by, where=where,
-                 direction=direction, refine=refine, sd_period=float(sd_period), damping=float(damping), t_end=t_end,
-                 g=float(block.g), block=block, rtol=rtol)
+                 direction=direction, polarities=polarities, refine=refine, sd_period=float(sd_period),
+                 damping=float(damping), t_end=t_end, g=float(block.g), block=block, rtol=rtol)
     return records, grid
 
 
@@ -339,6 +365,9 @@ def _swept(block, swept):
         raise TypeError(f"block must be a model that declares study_parameter and study_batch (bd.SlidingBlock, "
                         f"bd.PlanarBlock, bd.FlexibleSlidingMass), got {type(block).__name__}")
     parameter, column, unit = block.study_parameter
+    if isinstance(block, SlidingBlock) and swept.get("ky") is not None and swept.get("mu") is None \
+            and np.all(np.asarray(block.bias) == 0):
+        parameter, column, unit = "ky", "ky_g", "g"  # Newmark's rigid block: it slides where a(t) > ky g, mu = ky
     model = type(block).__name__
     for other, given in swept.items():
         if other != parameter and given is not None:
@@ -452,6 +481,7 @@ def _table(parts, grid):
         "location": np.array(labels, dtype=object)[place],
         "floor": np.array([0 if p == "ground" else p.level for p in grid.where])[place],
         "frame_period_s": np.array([np.nan if p == "ground" else p.frame.period for p in grid.where])[place],
+        **({"polarity": cols.pop("polarity")} if "polarity" in cols else {}),
         grid.column: cols.pop(grid.column),
         "pga_g": cols["pga_m_s2"] / grid.g,
     })

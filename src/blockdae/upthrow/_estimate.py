@@ -5,6 +5,7 @@ import math
 from numbers import Real
 
 from ._model import SpringSupportedMass
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -20,6 +21,9 @@ class UpthrowEstimate:
             at liftoff if the ground kept its velocity; 0 if A <= 1.
         time_to_top: Delta t = u'0 / g [s] (eq. 8); the flight lasts about 2 Delta t.
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     static_deflection: float
     response_acceleration: float

@@ -6,6 +6,7 @@ import numpy as np
 
 from ..core._solution import AbstractEvent, DriverSolution
 from ._modes import UpthrowMode
+from ..core._repr import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
@@ -69,6 +70,9 @@ class UpthrowSolution(DriverSolution):
         stats: counters.
         block, motion: the model and the ground motion (set by :func:`blockdae.simulate`).
     """
+
+    def __repr__(self):
+        return compact_repr(self)
 
     @property
     def u(self) -> np.ndarray:
