@@ -76,7 +76,8 @@ def run_flexible(args) -> int:
     ky = args.ky if args.ky_table is None else checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
     result = checked(lambda: flexible(record, ky, args.height, args.vs, args.vr, args.damping, args.method,
                                       args.reference_strain is not None, args.reference_strain, args.pga,
-                                      args.polarity, args.integration, args.g, args.t_end), str(args.record))
+                                      args.polarity, args.integration, args.g, args.t_end,
+                                      check_peak=not args.accept_peak), str(args.record))
     rows = result.rows
     if args.plot is not None:
         from .._plot import plot

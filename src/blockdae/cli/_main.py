@@ -243,7 +243,7 @@ def _newmark(args):
         warnings.simplefilter("always", UnitsWarning)
         warnings.showwarning = _prefixed(warnings.showwarning, where)
         result = checked(lambda: newmark(motions, np.asarray(args.ky, dtype=float), g=args.g, pga=pga,
-                                         pga_rounding=args.pga_rounding), where)
+                                         pga_rounding=args.pga_rounding, check_peak=not args.accept_peak), where)
     table = result.to_dataframe()
     if one:
         table.insert(0, "pga_g", records[0].peak_acceleration / args.g if pga is None else pga)
@@ -294,7 +294,8 @@ def _newmark_plot(args, records, pga, result):
         return
     record = records[0]
     if pga is not None:
-        record = record.scaled(pga_factor(record.peak_acceleration, pga, args.g, args.pga_rounding))
+        record = record.scaled(pga_factor(record.peak_acceleration, pga, args.g, args.pga_rounding,
+                                          check_peak=not args.accept_peak))
     normal, inverse = (float(np.ravel(d)[0]) for d in (result.normal, result.inverse))
     inverse, d = inverse > normal, max(normal, inverse)
     motion = record.inverted() if inverse else record

@@ -100,7 +100,8 @@ def _scaled(record, args):
     flag, pga = ("--scale-to", args.scale_to) if args.scale_to is not None else ("--pga", args.pga)
     if pga is None:
         return record, 1.0
-    factor = checked(lambda: pga_factor(record.peak_acceleration, pga, args.g, name=flag), str(args.record))
+    factor = checked(lambda: pga_factor(record.peak_acceleration, pga, args.g, name=flag,
+                                        check_peak=not args.accept_peak), str(args.record))
     return record.scaled(factor), factor
 
 

@@ -152,8 +152,8 @@ class _File:
         return self.record
 
 
-def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=True, remove_mean=False,
-                 gain=None) -> RecordSet:
+def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=True, check_step=True,
+                 remove_mean=None, gain=None) -> RecordSet:
     """The records of a folder (its record files, sorted by name; see
     :data:`~._readers.RECORD_SUFFIXES`), one file, or a list of files and folders, as a :class:`RecordSet`.
 
@@ -168,7 +168,8 @@ def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=
     name (less ``.gz``) instead.
     """
     paths = _paths(source)
-    options = dict(units=units, dt=dt, g=g, check_peak=check_peak, remove_mean=remove_mean, gain=gain)
+    options = dict(units=units, dt=dt, g=g, check_peak=check_peak, check_step=check_step, remove_mean=remove_mean,
+                   gain=gain)
     rows, sources, failed = [], [], []
     for path in paths:
         try:

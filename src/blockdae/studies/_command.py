@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from ..cli._common import UsageError, files_or_set, number, positive, read, set_argument
+from ..cli._common import UsageError, files_or_set, number, positive, read, record_arguments, set_argument
 from ..cli._flexible import _table_row, add_flexible_study_arguments, flexible_study_block
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._readers import RECORD_SUFFIXES, record_files
@@ -63,9 +63,7 @@ def add_study_parser(subparsers):
     p.add_argument("--direction", choices=("negative", "positive", "both"), default=None,
                    help="allowed sliding direction of the 1-D block (default negative: one-way; the flexible "
                         "mass runs both polarities)")
-    p.add_argument("--units", default=None, help="acceleration units of the files: g, m/s2, cm/s2 or gal "
-                                                 "(default: as an AT2 header or a table's header line says, else g)")
-    p.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
+    record_arguments(p)
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                    help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")
     set_argument(p)
@@ -95,8 +93,8 @@ def run_study(args) -> int:
     start = time.perf_counter()
     try:
         table = study(records, where=where, direction=args.direction or "negative", executor=client, g=args.g,
-                      no_worker_timeout=args.no_worker_timeout, checkpoint=args.checkpoint, block=block, **swept,
-                      **grid)
+                      no_worker_timeout=args.no_worker_timeout, checkpoint=args.checkpoint, block=block,
+                      check_peak=not args.accept_peak, **swept, **grid)
     except (ValueError, TypeError) as err:
         raise UsageError(str(err)) from None
     except NoWorkerError as err:
