@@ -58,7 +58,7 @@ class Record(AbstractExcitation):
         object.__setattr__(self, "name", str(name))
         object.__setattr__(self, "start_time", check_finite("start_time", start_time, "s"))
         object.__setattr__(self, "metadata", types.MappingProxyType(dict(metadata or {})))
-        if check_peak:
+        if check_peak and np.any(samples):  # a record of zeros: no units to get wrong
             check_peak_acceleration(samples, "m/s2" if units is None else units, g,
                                     f"Record {self.name!r}" if self.name else "Record")
         if units is not None:

@@ -2,6 +2,7 @@
 a step above :data:`MAX_STEP_S` is refused unless confirmed, one above :data:`RESOLVING_STEP_S`
 warned about; a mean above :data:`OFFSET_FRACTION` of the peak is warned about."""
 
+import sys
 import warnings
 
 import numpy as np
@@ -38,7 +39,7 @@ def check_step(dt: float, source: str, check_step: bool = True):
     if dt > RESOLVING_STEP_S:
         warnings.warn(f"{source}: sample step dt = {dt:g} s resolves periods down to {4 * dt:g} s only (4 samples "
                       f"a period), not the periods of 0.1 s an accelerogram holds (dt <= {RESOLVING_STEP_S:g} s)",
-                      RecordWarning, stacklevel=4)
+                      RecordWarning, stacklevel=_outside_blockdae())
 
 
 def offset_fraction(samples) -> float:
@@ -56,4 +57,12 @@ def check_offset(samples, source: str):
     if fraction > OFFSET_FRACTION:
         warnings.warn(f"{source}: the samples' mean is {100 * fraction:.3g} % of their peak (above "
                       f"{100 * OFFSET_FRACTION:g} %): an offset that slides a block one way; remove it with "
-                      f"{REMOVE_OFFSET}", RecordWarning, stacklevel=4)
+                      f"{REMOVE_OFFSET}", RecordWarning, stacklevel=_outside_blockdae())
+
+
+def _outside_blockdae() -> int:
+    """The ``stacklevel`` of a warning that names the first caller outside blockdae."""
+    frame, level = sys._getframe(1), 1
+    while frame is not None and frame.f_globals.get("__name__", "").startswith("blockdae."):
+        frame, level = frame.f_back, level + 1
+    return level

@@ -66,7 +66,7 @@ def units_named(text: str) -> tuple[set, list]:
 def check_peak_acceleration(samples, units: str, g: float = STANDARD_GRAVITY, source: str = "record",
                             units_from: str | None = None):
     """The peak plausibility rule: raise ValueError if the peak of ``samples`` (in ``units``;
-    one g is ``g`` [m/s²]) is nonzero and outside :data:`PLAUSIBLE_PEAK_G` in standard g,
+    one g is ``g`` [m/s²]) is outside :data:`PLAUSIBLE_PEAK_G` in standard g,
     naming the peak, the likely unit and how to confirm it (:data:`CONFIRM_PEAK`).
 
     ``units_from`` says where ``units`` came from (e.g. a file's header line), if not the caller.
@@ -75,7 +75,7 @@ def check_peak_acceleration(samples, units: str, g: float = STANDARD_GRAVITY, so
     peak = float(np.max(np.abs(samples), initial=0.0))
     peak_g = peak * unit_factor(units, g) / STANDARD_GRAVITY
     low, high = PLAUSIBLE_PEAK_G
-    if peak == 0 or low <= peak_g <= high:
+    if low <= peak_g <= high:
         return
     in_g = "" if units == "g" else f" = {peak_g:.4g} g"
     mix_up = _likely_units(peak, units)
