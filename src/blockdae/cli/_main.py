@@ -127,10 +127,11 @@ def _parser():
                           help="accelerogram files or folders of them "
                                f"({', '.join(RECORD_SUFFIXES)}, each also .gz; sorted by name); or --set NAME")
     newmark_.add_argument("--ky", type=positive("--ky"), nargs="+", required=True,
-                          help="yield acceleration(s) [g]")
+                          help="yield acceleration(s) [g]; 0.05 g is 0.49 m/s²: a ky typed in m/s² is read "
+                               "9.8 times too large and gives millimetres")
     newmark_.add_argument("--pga", type=positive("--pga"), nargs="+", default=None, metavar="PGA_G",
                           help="scale each record so that its peak |a| is PGA_G [g], each value in turn "
-                               "(default: as read)")
+                               "(default: as read; above 2 g, likely m/s², refused unless --accept-peak)")
     newmark_.add_argument("--pga-rounding", choices=PGA_ROUNDINGS, default="exact",
                           help="with --pga: 'slammer' rounds the record's own peak to 0.001 g before "
                                "scaling, as SLAMMER does (default exact)")
