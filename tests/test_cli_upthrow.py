@@ -27,7 +27,7 @@ def _step_file(tmp_path, a_g, duration=3.5, name="step.csv"):
 
 def _upthrow(argv, capsys, status=0):
     """``blockdae upthrow argv`` on files in g (the step files' samples 0.5 s apart: --accept-step)."""
-    assert main(["--no-cache", "upthrow", *map(str, argv), "--units", "g", "--accept-step"]) == status
+    assert main(["--no-cache", "upthrow", "--units", "g", "--accept-step", *map(str, argv)]) == status
     return capsys.readouterr()
 
 
