@@ -92,11 +92,12 @@ def read_table(path, units, dt, g, check_peak, columns, text=None, *, check_step
         samples, file_dt, start_time = _read_columns(text, layout, path, columns)
         header_units, statement = _table_units(lines[:layout.start], path)
         rows = _data_line_numbers(lines, layout.start)[:2]
-        step_source = f"{path}, lines {rows[0]}-{rows[-1]}: the time column" if file_dt is not None else f"{path}: dt="
+        step_source = (f"{path}, lines {rows[0]}-{rows[-1]}: the time column" if file_dt is not None
+                       else f"{path}, the dt given")
+    dt = _sample_step(dt, file_dt, path)
     if units is None and header_units is None and statement is None:
         raise unstated_units_error(str(path), samples)
     units = _resolve_units(units, header_units, statement, path)
-    dt = _sample_step(dt, file_dt, path)
     _record_checks.check_step(dt, step_source, check_step)
     mean = samples.mean(axis=0)
     samples = samples - mean if remove_mean else samples

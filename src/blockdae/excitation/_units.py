@@ -28,7 +28,8 @@ _HEADER_UNIT_WORDS = (
     ("cm/s2", re.compile(_NO_LETTER_BEFORE + r"cm" + _PER_SECOND_SQUARED + _NO_LETTER_AFTER, re.I)),
     ("m/s2", re.compile(_NO_LETTER_BEFORE + r"m" + _PER_SECOND_SQUARED + _NO_LETTER_AFTER, re.I)),
     ("cm/s2", re.compile(_NO_LETTER_BEFORE + r"gals?" + _NO_LETTER_AFTER, re.I)),
-    ("g", re.compile(r"(?:[(\[]\s*g(?:'?s)?\s*[)\]]|(?:\bin\s|\bunits?\s*(?:of\s|:|=)?|_)\s*g(?:'?s)?(?![a-z0-9/]))", re.I)))
+    ("g", re.compile(r"(?:[(\[]\s*g(?:'?s)?\s*[)\]]"  # (g), [g's]
+                     r"|(?:\bin\s|\bunits?\s*(?:of\s|:|=)?|_)\s*g(?:'?s)?(?![a-z0-9/]))", re.I)))  # in g, units: g, acc_g
 _BRACKETED_RATIO = re.compile(r"[(\[]\s*([^()\[\]]*/[^()\[\]]*?)\s*[)\]]")  # "(m/s)", "[cm/s2]"
 
 
@@ -126,8 +127,8 @@ def check_pga(pga, name: str = "pga", check_peak: bool = True) -> np.ndarray:
             raise ValueError(f"{name}={value!r} must be a positive finite peak ground acceleration [g]")
         if check_peak and value > MAX_PGA_G:
             raise ValueError(f"{name}={value:g} g is implausible for a peak ground acceleration (above "
-                             f"{MAX_PGA_G:g} g); it looks like m/s² ({value:g} m/s² = {value / STANDARD_GRAVITY:.4g} g): "
-                             f"give {name} in g, or {CONFIRM_PEAK} to accept it")
+                             f"{MAX_PGA_G:g} g); it looks like m/s² ({value:g} m/s² = "
+                             f"{value / STANDARD_GRAVITY:.4g} g): give {name} in g, or {CONFIRM_PEAK} to accept it")
     return values
 
 
