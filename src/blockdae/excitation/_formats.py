@@ -3,8 +3,8 @@ each read by its module into :class:`~._header.Channel` s, made Records here wit
 
 from . import _cosmos, _esm, _knet, _seismo
 from ._readers import _resolve_units, _sample_step, decode, file_bytes, record_name
-from ._record import Record
 from . import _record_checks
+from ._record import Record
 from ._units import check_peak_acceleration, unit_factor
 
 #: (name, test of a file's text, reader) of the text formats, tried in this order
@@ -49,7 +49,7 @@ def _options(options, path, fmt):
 def _record(channel, path, units, dt, g, check_peak, check_step, remove_mean, name):
     """The Record [m/s²] of ``channel`` read with the caller's ``units`` (checked against the
     header's), ``dt`` (checked against the file's), mean removal and the peak, step and offset rules."""
-    units = _resolve_units(units, channel.units, channel.statement, path)
+    units = _resolve_units(units, channel.units, channel.statement, path, channel.samples)
     step = _sample_step(dt, channel.dt, path)
     _record_checks.check_step(step, str(path), check_step)
     if remove_mean is None:

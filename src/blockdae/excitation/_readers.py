@@ -95,9 +95,7 @@ def read_table(path, units, dt, g, check_peak, columns, text=None, *, check_step
         step_source = (f"{path}, lines {rows[0]}-{rows[-1]}: the time column" if file_dt is not None
                        else f"{path}, the dt given")
     dt = _sample_step(dt, file_dt, path)
-    if units is None and header_units is None and statement is None:
-        raise unstated_units_error(str(path), samples)
-    units = _resolve_units(units, header_units, statement, path)
+    units = _resolve_units(units, header_units, statement, path, samples)
     _record_checks.check_step(dt, step_source, check_step)
     mean = samples.mean(axis=0)
     samples = samples - mean if remove_mean else samples
@@ -185,15 +183,14 @@ def _sample_step(dt, file_dt, path):
     return file_dt
 
 
-def _resolve_units(units, header_units, statement, path):
-    """The units to read with: ``units``, or the header's (at ``statement``); they must agree,
-    and one of them must be given."""
+def _resolve_units(units, header_units, statement, path, samples):
+    """The units to read ``samples`` with: ``units``, or the header's (at ``statement``); they
+    must agree, and one of them must be given (else the error gives the peak in each unit)."""
     if units is None:
+        if statement is None:
+            raise unstated_units_error(str(path), samples)
         if header_units is None:
-            raise ValueError(f"{path}, {statement}: units not understood; pass units= "
-                             "('g', 'm/s2' or 'cm/s2')" if statement else
-                             f"{path}: the units of the accelerations are not stated; pass units= ('g', 'm/s2' or "
-                             "'cm/s2')")
+            raise ValueError(f"{path}, {statement}: units not understood; pass units= ('g', 'm/s2' or 'cm/s2')")
         return header_units
     given = canonical_units(units)
     if header_units and given != header_units:
