@@ -129,7 +129,8 @@ def test_a_time_column_in_ms_or_sample_numbers_is_refused(tmp_path, kobe_g, time
     path = write_table(tmp_path / "k.csv", table[:, 0] * time_scale, table[:, 1], "time, acc (g)")
     with pytest.raises(ValueError, match=rf"^{re.escape(str(path))}, lines 2-3: the time column: sample step dt = "
                                          rf"{0.01 * time_scale:g} s is implausible for an accelerogram \(above 0.1 s\):"
-                                         rf" .*{cause}.*check_step=False \(command line: --accept-step\)"):
+                                         rf" .*{cause}.*Give the times in seconds, or check_step=False \(command line: "
+                                         r"--accept-step\) to accept it"):
         bd.read_record(path)
     with pytest.warns(bd.RecordWarning, match=r"resolves periods down to"):
         assert bd.read_record(path, check_step=False).dt == pytest.approx(0.01 * time_scale)

@@ -96,7 +96,7 @@ def read_table(path, units, dt, g, check_peak, columns, text=None, *, check_step
                        else f"{path}, the dt given")
     dt = _sample_step(dt, file_dt, path)
     units = _resolve_units(units, header_units, statement, path, samples)
-    _record_checks.check_step(dt, step_source, check_step)
+    _record_checks.check_step(dt, step_source, check_step, time_column=layout.at2 is None and file_dt is not None)
     mean = samples.mean(axis=0)
     samples = samples - mean if remove_mean else samples
     if check_peak:

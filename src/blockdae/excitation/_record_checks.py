@@ -25,17 +25,18 @@ class RecordWarning(UserWarning):
     (a mean that is a sizeable fraction of its peak)."""
 
 
-def check_step(dt: float, source: str, check_step: bool = True):
+def check_step(dt: float, source: str, check_step: bool = True, time_column: bool = False):
     """The step rule: ValueError naming ``source`` (the file, line or field that sets the step)
-    if ``dt`` [s] is above :data:`MAX_STEP_S`, unless ``check_step`` is False; a
+    if ``dt`` [s] is above :data:`MAX_STEP_S`, unless ``check_step`` is False, naming the likely
+    cause where the step comes from a ``time_column`` (milliseconds, sample numbers); a
     :class:`RecordWarning` if it is above :data:`RESOLVING_STEP_S`."""
     if check_step and dt > MAX_STEP_S:
-        causes = [f"times in milliseconds ({dt:g} ms = {dt / 1000:g} s)"]
-        if float(dt).is_integer():
-            causes.insert(dt != 1, "a column of sample numbers")
+        in_ms, numbered = f"times in milliseconds ({dt:g} ms = {dt / 1000:g} s)", "a column of sample numbers"
+        causes = [numbered, in_ms] if dt == 1 else [in_ms, numbered] if float(dt).is_integer() else [in_ms]
+        fix = (f"{' or '.join(causes)}? Give the times in seconds, or {CONFIRM_STEP} to accept it" if time_column
+               else f"is the file an accelerogram? {CONFIRM_STEP} accepts it")
         raise ValueError(f"{source}: sample step dt = {dt:g} s is implausible for an accelerogram (above "
-                         f"{MAX_STEP_S:g} s): {' or '.join(causes)}? Give the times in seconds, "
-                         f"or {CONFIRM_STEP} to accept it")
+                         f"{MAX_STEP_S:g} s): {fix}")
     if dt > RESOLVING_STEP_S:
         warnings.warn(f"{source}: sample step dt = {dt:g} s resolves periods down to {4 * dt:g} s only (4 samples "
                       f"a period), not the periods of 0.1 s an accelerogram holds (dt <= {RESOLVING_STEP_S:g} s)",
