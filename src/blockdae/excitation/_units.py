@@ -51,17 +51,18 @@ def unit_factor(units: str, g: float = STANDARD_GRAVITY) -> float:
     return _FACTORS.get(canonical_units(units), g)
 
 
-def units_named(text: str) -> tuple[set, list]:
+def units_named(text: str) -> tuple[list, list]:
     """(the canonical units "g", "m/s2", "cm/s2" that ``text``, a header line, names in words,
     e.g. ``time (s), acceleration (m/s2)``, ``Acceleration in m/s2``, ``acc [cm/sec2]``,
-    ``(gal)``, ``(g's)``; the bracketed ratios in it that are no acceleration unit, e.g. "m/s")."""
-    found = set()
+    ``(gal)``, ``(g's)``, in the order they appear; the bracketed ratios in it that are no
+    acceleration unit, e.g. "m/s")."""
+    found = {}
     for units, pattern in _HEADER_UNIT_WORDS:
-        if pattern.search(text):
-            found.add(units)
-            text = pattern.sub(" ", text)  # "cm/s2" is not read again as "m/s2"
+        for match in pattern.finditer(text):
+            found.setdefault(units, match.start())
+        text = pattern.sub(lambda match: " " * len(match.group()), text)  # "cm/s2" not read again as "m/s2"
     others = [ratio for ratio in _BRACKETED_RATIO.findall(text) if ratio.strip()]
-    return found, others
+    return sorted(found, key=found.get), others
 
 
 def check_peak_acceleration(samples, units: str, g: float = STANDARD_GRAVITY, source: str = "record",
