@@ -26,7 +26,8 @@ def _step_file(tmp_path, a_g, duration=3.5, name="step.csv"):
 
 
 def _upthrow(argv, capsys, status=0):
-    assert main(["--no-cache", "upthrow", *map(str, argv)]) == status
+    """``blockdae upthrow argv`` on files in g (the step files' samples 0.5 s apart: --accept-step)."""
+    assert main(["--no-cache", "upthrow", "--units", "g", "--accept-step", *map(str, argv)]) == status
     return capsys.readouterr()
 
 
@@ -213,5 +214,6 @@ def test_bad_files_exit_2_naming_the_file_and_line(tmp_path, capsys):
     good = tmp_path / "good.csv"
     good.write_text("0.0, 0.0\n0.01, 0.3\n0.02, 0.0\n")
     err = _upthrow([good, "--frequency", F, "--pga", 9.81], capsys, status=2).err
-    assert (f"{good}: --pga=9.81 g is implausible for a peak ground acceleration [g] (above 5 g); it looks like "
-            "m/s² (9.81 m/s² = 1 g): give --pga in g") in err
+    assert (f"{good}: --pga=9.81 g is implausible for a peak ground acceleration (above 2 g); it looks like "
+            "m/s² (9.81 m/s² = 1 g): give --pga in g, or check_peak=False (command line: --accept-peak) to accept "
+            "it") in err

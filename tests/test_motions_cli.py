@@ -45,8 +45,8 @@ def test_two_point_table_and_plot(kobe_path, tmp_path, capsys):
     (["spectrum", "KOBE", "--periods", "-1"], "argument --periods: must be a positive finite number"),
     (["two-point", "KOBE", "--lags", "-0.1"], "argument --lags: must be a number >= 0"),
     (["spectrum", "KOBE", "--periods", "1", "--pga", "9.81"],
-     "--pga=9.81 g is implausible for a peak ground acceleration [g] (above 5 g); it looks like m/s² "
-     "(9.81 m/s² = 1 g): give --pga in g"),
+     "--pga=9.81 g is implausible for a peak ground acceleration (above 2 g); it looks like m/s² "
+     "(9.81 m/s² = 1 g): give --pga in g, or check_peak=False (command line: --accept-peak) to accept it"),
 ])
 def test_errors_name_the_argument(kobe_path, capsys, argv, message):
     argv = [str(kobe_path) if a == "KOBE" else a for a in argv]

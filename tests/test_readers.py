@@ -72,9 +72,11 @@ def test_velocity_file_is_refused(tmp_path):
         bd.read_record(path)
 
 
-def test_files_without_units_statement_default_to_g(tmp_path):
+def test_files_without_units_statement_need_units(tmp_path):
     path = write(tmp_path, "r.csv", "0.0, 0.1\n0.01, -0.2\n")
-    assert bd.read_record(path).peak_acceleration == pytest.approx(0.2 * STANDARD_GRAVITY)
+    with pytest.raises(ValueError, match=re.escape(f"{path}: the units of the accelerations are not stated")):
+        bd.read_record(path)
+    assert bd.read_record(path, units="g").peak_acceleration == pytest.approx(0.2 * STANDARD_GRAVITY)
     assert bd.read_record(path, units="m/s2").peak_acceleration == pytest.approx(0.2)
 
 
@@ -86,8 +88,8 @@ def test_files_without_units_statement_default_to_g(tmp_path):
 def test_table_header_units_are_read(tmp_path, header, factor):
     """A table's header line naming the acceleration's units in brackets is read in them (was
     read as g: an m/s² file of peak 6 passed as 6 g)."""
-    path = write(tmp_path, "r.csv", f"{header}\n0.0, 0.0\n0.01, 6.0\n0.02, -3.0\n")
-    np.testing.assert_array_equal(bd.read_record(path).acceleration_samples, np.array([0.0, 6.0, -3.0]) * factor)
+    path = write(tmp_path, "r.csv", f"{header}\n0.0, 0.0\n0.01, 0.6\n0.02, -0.3\n")
+    np.testing.assert_array_equal(bd.read_record(path).acceleration_samples, np.array([0.0, 0.6, -0.3]) * factor)
 
 
 def test_table_header_units_contradicted_or_not_acceleration_are_refused(tmp_path):
@@ -111,22 +113,25 @@ def test_table_header_units_blame_the_header_for_an_implausible_peak(tmp_path):
         bd.read_record(path)
 
 
-def test_sample_records_read_as_g_by_default():
-    """pySLAMMER's CSVs state no units: the default reads them in g and all pass the peak check."""
+def test_sample_records_state_g_in_a_comment():
+    """pySLAMMER's CSVs state their units in a comment line, ``# Time (s),Acceleration (g's)``:
+    read in g, and all pass the peak check."""
     for path in sample_record_paths():
-        np.testing.assert_array_equal(bd.read_record(path).acceleration_samples,
+        record = bd.read_record(path)
+        assert record.metadata["units"] == "g"
+        np.testing.assert_array_equal(record.acceleration_samples,
                                       bd.read_record(path, units="g").acceleration_samples)
 
 
 # --- plausible peak ----------------------------------------------------------------
 
 @pytest.mark.parametrize("body, units, message", [
-    ("0.0, 50\n0.01, -400\n", None, "peak acceleration 400 g is implausible .* looks like cm/s² read as g: "
+    ("0.0, 50\n0.01, -400\n", "g", "peak acceleration 400 g is implausible .* looks like cm/s² read as g: "
                                     "pass units='cm/s2', or check_peak=False"),
     ("0.0, 0.01\n0.01, -0.05\n", "cm/s2", r"peak acceleration 0.05 cm/s² = 5.099e-05 g .* looks like g read as "
                                          "cm/s²: pass units='g'"),
     ("0.0, 50\n0.01, -400\n", "m/s2", r"400 m/s² = 40.79 g .* looks like cm/s² read as m/s²: pass units='cm/s2'"),
-    ("0.0, 0.0\n0.01, 0.0\n", None, "peak acceleration 0 g is implausible .* check the file's values and units"),
+    ("0.0, 0.0\n0.01, 0.0\n", "g", "peak acceleration 0 g is implausible .* check the values and their units"),
 ])
 def test_implausible_peak_names_it_and_the_likely_mix_up(tmp_path, body, units, message):
     path = write(tmp_path, "r.csv", body)
@@ -144,10 +149,11 @@ def test_implausible_peak_with_header_units_blames_the_header(tmp_path):
 
 def test_peak_check_helper_bounds():
     check_peak_acceleration([0.0, 1.0001e-4], "g")
-    check_peak_acceleration([0.0, -10.0], "g")
-    check_peak_acceleration([0.0, 98.0], "m/s2")
-    with pytest.raises(ValueError, match=r"^built: peak acceleration 10.01 g"):
-        check_peak_acceleration([0.0, 10.01], "g", source="built")
+    check_peak_acceleration([0.0, -4.0], "g")
+    check_peak_acceleration([0.0, 39.2], "m/s2")
+    with pytest.raises(ValueError, match=r"^built: peak acceleration 4.01 g is implausible \(above the largest peaks "
+                                         r"recorded; plausible: 0.0001 g to 4 g\); looks like m/s² read as g"):
+        check_peak_acceleration([0.0, 4.01], "g", source="built")
     with pytest.raises(ValueError, match="units='furlong' is unknown"):
         check_peak_acceleration([0.0, 1.0], "furlong")
 
@@ -178,7 +184,7 @@ def test_time_column_origin_is_kept_as_start_time(tmp_path):
     """A time column from 5 s: the excitation starts at 0 as always, and start_time = 5 s
     puts its event times back on the file's axis."""
     shifted = bd.read_record(write(tmp_path, "late.csv", "t, a\n5.0, 0.0\n5.25, 0.9\n5.5, 0.0\n"),
-                             units="m/s2", g=9.81, check_peak=False)
+                             units="m/s2", g=9.81, check_peak=False, check_step=False)
     assert shifted.start_time == 5.0 and shifted.dt == 0.25
     assert "start_time=5 s" in repr(shifted)
     block = bd.SlidingBlock(mu=0.06, g=9.81)
@@ -227,16 +233,16 @@ def test_record_nan_message_says_0_based():
 def test_time_step_printed_clean(tmp_path):
     """A step from a time column printed to a few digits is that step exactly."""
     path = write(tmp_path, "r.csv", "".join(f"{0.02 * k:.2f}, 0.1\n" for k in range(1000)))
-    assert bd.read_record(path).dt == 0.02
+    assert bd.read_record(path, units="g").dt == 0.02
     with pytest.raises(ValueError, match=r"dt=0.01 s contradicts the file's step 0.02 s"):
-        bd.read_record(path, dt=0.01)
+        bd.read_record(path, dt=0.01, units="g")
 
 
 # --- separators ------------------------------------------------------------------------
 
 def test_semicolons_with_decimal_commas_are_read(tmp_path):
-    comma = bd.read_record(write(tmp_path, "eu.csv", "t;a\n0,00;0,1\n0,01;-0,25\n0,02;0,05\n"))
-    point = bd.read_record(write(tmp_path, "us.csv", "t,a\n0.00,0.1\n0.01,-0.25\n0.02,0.05\n"))
+    comma = bd.read_record(write(tmp_path, "eu.csv", "t;a\n0,00;0,1\n0,01;-0,25\n0,02;0,05\n"), units="g")
+    point = bd.read_record(write(tmp_path, "us.csv", "t,a\n0.00,0.1\n0.01,-0.25\n0.02,0.05\n"), units="g")
     np.testing.assert_array_equal(comma.acceleration_samples, point.acceleration_samples)
     assert comma.dt == point.dt == 0.01
 
@@ -254,7 +260,8 @@ def test_decimal_commas_never_misread(tmp_path, body, message):
 def test_blanks_tabs_crlf_and_trailing_separators(tmp_path):
     expected = np.array([0.5, 0.4]) * STANDARD_GRAVITY
     for body in ("0.0\t 0.5\r\n0.01\t0.4\r\n", "0.0, 0.5,\n0.01, 0.4,\n", "0.0;0.5\n0.01;0.4\n"):
-        np.testing.assert_array_equal(bd.read_record(write(tmp_path, "r.csv", body)).acceleration_samples, expected)
+        np.testing.assert_array_equal(bd.read_record(write(tmp_path, "r.csv", body), units="g").acceleration_samples,
+                                      expected)
 
 
 # --- what a file holds: gzip, BOM + CRLF, binary, other encodings, nothing (issue 27) ----
@@ -319,7 +326,7 @@ def test_batch_over_a_folder_of_mixed_files(tmp_path, capsys):
     (folder / "empty.txt").write_bytes(b"")
     (folder / "notes.md").write_text("not a record suffix: skipped")
     out = tmp_path / "r.csv"
-    assert main(["--no-cache", "batch", str(folder), "--mu", "0.1", "--csv", str(out)]) == 1
+    assert main(["--no-cache", "batch", str(folder), "--mu", "0.1", "--csv", str(out), "--units", "g"]) == 1
     err = capsys.readouterr().err
     assert "3 of 6 files failed" in err
     for name in ("binary.dat", "zipped.dat.gz", "empty.txt"):

@@ -129,17 +129,21 @@ def test_cosmos_three_channels_refused_by_read_record_grouped_by_read_motion(tmp
 
 # --- K-NET / KiK-net ------------------------------------------------------------------
 
-def test_knet_counts_times_the_scale_factor_mean_kept(tmp_path):
+def test_knet_counts_times_the_scale_factor_mean_removed_by_default(tmp_path):
+    """K-NET samples carry the recorder's offset: read_record removes their mean unless told
+    not to, and says so in the metadata."""
     path = write(tmp_path, "MYG0041103111446.NS", knet())
+    a = COUNTS * 3920.0 / 6182761.0
     record = bd.read_record(path)
-    np.testing.assert_allclose(record.acceleration_samples, COUNTS * 3920.0 / 6182761.0 * CM, rtol=1e-14)
+    np.testing.assert_allclose(record.acceleration_samples, (a - a.mean()) * CM, rtol=1e-12, atol=1e-15)
     meta = record.metadata
     assert (meta["format"], meta["station"], meta["component"], meta["units"], meta["mean_removed"]) == (
-        "K-NET", "MYG004", "N-S", "cm/s2", False)
+        "K-NET", "MYG004", "N-S", "cm/s2", True)
+    assert meta["mean_m_s2"] == pytest.approx(a.mean() * CM, rel=1e-12)
     assert meta["event"] == "2011/03/11 14:46:00" and meta["magnitude"] == "9.0"
-    centred = bd.read_record(path, remove_mean=True)
-    a = COUNTS * 3920.0 / 6182761.0
-    np.testing.assert_allclose(centred.acceleration_samples, (a - a.mean()) * CM, rtol=1e-12, atol=1e-15)
+    raw = bd.read_record(path, remove_mean=False)
+    np.testing.assert_allclose(raw.acceleration_samples, a * CM, rtol=1e-14)
+    assert raw.metadata["mean_removed"] is False
 
 
 def test_kiknet_channels(tmp_path):
@@ -255,7 +259,7 @@ def test_sac_file_shipped_with_obspy_needs_units():
     import obspy
 
     trace = obspy.read(str(path))[0]
-    record = bd.read_record(path, units="m/s2")
+    record = bd.read_record(path, units="m/s2", check_step=False)  # a test signal at 1 s steps
     np.testing.assert_array_equal(record.acceleration_samples, trace.data.astype(float))
     assert record.dt == trace.stats.delta and record.metadata["event"] == "FUNCGEN:SINE"
     assert record.metadata["format"] == "SAC"
@@ -301,8 +305,8 @@ def test_seismo_file_without_obspy_names_the_extra(tmp_path, monkeypatch):
 
 def test_format_options_are_refused_for_other_formats(tmp_path):
     path = write(tmp_path, "e.ASC", esm())
-    with pytest.raises(ValueError, match=r"e.ASC: remove_mean= is an option for K-NET files; this one is ESM"):
-        bd.read_record(path, remove_mean=True)
+    centred = bd.read_record(path, remove_mean=True)  # any format's mean can be removed
+    assert centred.metadata["mean_removed"] and abs(centred.acceleration_samples.mean()) < 1e-15
     with pytest.raises(ValueError, match=r"r.csv: gain= is an option for SAC/miniSEED files; this one is a table"):
         bd.read_record(write(tmp_path, "r.csv", "0, 0.1\n0.01, 0.2\n"), gain=2.0)
 
@@ -316,8 +320,9 @@ def test_knet_station_files_grouped_and_resampled_to_the_smallest_step(tmp_path)
     assert [c.metadata["component"] for c in motion.components] == ["N-S", "E-W", "U-D"]
     assert motion.z.dt == 0.01
     a = COUNTS[::2] * 3920.0 / 6182761.0 * CM
+    a -= a.mean()  # K-NET: the mean removed by default
     np.testing.assert_allclose(motion.z.acceleration_samples[::2], a[:motion.z.acceleration_samples[::2].size],
-                               rtol=1e-12)  # the old samples, kept at the new step
+                               rtol=1e-12, atol=1e-15)  # the old samples, kept at the new step
 
 
 def test_channels_of_two_stations_are_refused(tmp_path):

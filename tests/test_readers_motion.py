@@ -45,16 +45,17 @@ def test_four_column_table(tmp_path):
 
 
 def test_three_columns_leave_z_missing_and_decimal_commas_work(tmp_path):
-    motion = bd.read_motion(write(tmp_path, "eu.txt", "t;ax;ay\n0,00;0,1;0,2\n0,02;-0,3;0,0\n0,04;0,0;0,0\n"))
+    motion = bd.read_motion(write(tmp_path, "eu.txt", "t;ax;ay\n0,00;0,1;0,2\n0,02;-0,3;0,0\n0,04;0,0;0,0\n"),
+                            units="g")
     assert motion.z is None and motion.x.dt == 0.02
     assert motion.peak_acceleration == pytest.approx((0.3 * G, 0.2 * G, 0.0), rel=1e-15)
 
 
 def test_a_file_read_record_reads_gives_x_alone(tmp_path):
     two = write(tmp_path, "h.csv", "0.0, 0.1\n0.01, -0.2\n")
-    motion = bd.read_motion(two)
+    motion = bd.read_motion(two, units="g")
     assert motion.y is None and motion.z is None and motion.x.name == "h x"
-    np.testing.assert_array_equal(motion.x.acceleration_samples, bd.read_record(two).acceleration_samples)
+    np.testing.assert_array_equal(motion.x.acceleration_samples, bd.read_record(two, units="g").acceleration_samples)
     one = bd.read_motion(write(tmp_path, "one.txt", "0.1\n0.2\n"), dt=0.05, units="m/s2")
     assert one.x.dt == 0.05 and one.x.acceleration_samples.tolist() == [0.1, 0.2]
 
@@ -62,11 +63,11 @@ def test_a_file_read_record_reads_gives_x_alone(tmp_path):
 def test_peak_check_covers_all_columns_together(tmp_path):
     """One unit for the file: a zero column beside plausible ones passes; all in cm/s² read as g fail."""
     quiet = write(tmp_path, "q.csv", "0.0, 0.2, 0.0\n0.01, -0.1, 0.0\n")
-    assert bd.read_motion(quiet).peak_acceleration[1] == 0.0
+    assert bd.read_motion(quiet, units="g").peak_acceleration[1] == 0.0
     loud = write(tmp_path, "l.csv", "0.0, 150, 80\n0.01, -300, 20\n")
     with pytest.raises(ValueError, match=rf"^{re.escape(str(loud))}: peak acceleration 300 g is implausible .*"
                                          "pass units='cm/s2'"):
-        bd.read_motion(loud)
+        bd.read_motion(loud, units="g")
 
 
 @pytest.mark.parametrize("body, line, message", [
@@ -88,7 +89,7 @@ def test_table_errors_name_the_file_line(tmp_path, body, line, message):
 def test_one_file_per_component(tmp_path):
     x = write(tmp_path, "ns.csv", "0.0, 0.1\n0.01, -0.2\n0.02, 0.1\n0.03, 0.0\n")
     z = write(tmp_path, "up.txt", "0.05\n-0.02\n")
-    motion = bd.read_motion(x, z=z, dt=0.01)
+    motion = bd.read_motion(x, z=z, dt=0.01, units="g")
     assert motion.y is None and (motion.x.name, motion.z.name) == ("ns", "up")
     assert motion.duration == 0.03 and motion.z.duration == 0.01
     np.testing.assert_allclose(motion.acceleration([0.005, 0.02]), [[-0.05 * G, 0.1 * G], [0, 0], [0.015 * G, 0]],
@@ -103,14 +104,14 @@ def test_files_with_different_steps_raise(tmp_path):
     y = write(tmp_path, "b.csv", "0.0, 0.1\n0.02, -0.2\n")
     with pytest.raises(ValueError, match=r"components x \('a'\) and y \('b'\) are Records with different dt "
                                          r"\(x: dt=0.01 s, y: dt=0.02 s\); resample"):
-        bd.read_motion(x, y)
+        bd.read_motion(x, y, units="g")
 
 
 def test_errors_of_one_file_name_it(tmp_path):
     good = write(tmp_path, "a.csv", "0.0, 0.1\n0.01, -0.2\n")
     bad = write(tmp_path, "b.csv", "0.0, 0.1\n0.01, x\n")
     with pytest.raises(ValueError, match=rf"^{re.escape(str(bad))}, line 2: not a number"):
-        bd.read_motion(good, None, bad)
+        bd.read_motion(good, None, bad, units="g")
     with pytest.raises(ValueError, match="units='ft/s2' is unknown"):
         bd.read_motion(good, good, units="ft/s2")
 

@@ -21,7 +21,7 @@ def station_folder(tmp_path):
     (tmp_path / "s.EW").write_text(knet(direction="E-W"))
     (tmp_path / "e.ASC").write_text(esm())
     (tmp_path / "c.v2").write_text(cosmos_v2())
-    (tmp_path / "t.csv").write_text("time (s), acc (g)\n0,0.1\n0.01,0.25\n0.02,-0.1\n")
+    (tmp_path / "t.csv").write_text("time (s), acc (g)\n0,0.1\n0.01,0.25\n0.02,-0.1\n0.03,-0.25\n")
     (tmp_path / "bad.csv").write_text("0,1\n0.01,x\n")
     return tmp_path
 

@@ -161,54 +161,48 @@ def test_record_units_convert_to_m_s2():
         bd.Record(IN_G, 0.01, units="ft/s2")
 
 
-def test_array_in_g_without_units_warns_naming_the_peak_and_both_readings():
-    """An array in g given without units (read as m/s²: a 0.03 g record, D = 0 m) warns, as
-    does one in cm/s² of a weak record (read as 5 g); the same arrays with units= say which,
-    and are silent; so is a peak of 0.2 g to 2 g in m/s² without units."""
-    with pytest.warns(bd.UnitsWarning, match=re.escape(
-            "Record 'r': peak acceleration 0.3 with no units= is read as 0.3 m/s² = 0.03059 g, but as 0.3 g it "
-            "would be as plausible; pass units='m/s2' or units='g'")):
-        bd.Record(IN_G, 0.01, "r")
-    weak_in_cm_s2 = IN_G / 6 * G0 * 100  # a 0.05 g record in cm/s²: 49 "m/s²" = 5 g, below the 10 g bound
-    with pytest.warns(bd.UnitsWarning, match=re.escape(
-            "Record: peak acceleration 49.03 with no units= is read as 49.03 m/s² = 5 g, but as 49.03 cm/s² = "
-            "0.05 g it would be as plausible; pass units='m/s2' or units='cm/s2'")):
-        bd.Record(weak_in_cm_s2, 0.01)
+def test_arrays_are_m_s2_unless_units_say_otherwise():
+    """Numbers from Python are SI: an array without units is m/s², silently where its peak is
+    plausible (1e-4 g to 4 g); a weak record in cm/s² given without units (49 m/s² = 5 g) is
+    refused naming cm/s², and read with units="cm/s2"."""
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        bd.Record(weak_in_cm_s2, 0.01, units="cm/s2")
+        np.testing.assert_array_equal(bd.Record(IN_G, 0.01, "r").acceleration_samples, IN_G)
         bd.Record(IN_G, 0.01, units="g")
-        bd.Record(IN_G, 0.01, units="m/s2")
-        bd.Record(IN_G * G0, 0.01)  # 2.94 m/s²: as g it would be a 2.94 g record, not plausible alike
         bd.Record(np.zeros(3), 0.01)  # no peak, no units to get wrong
-        bd.Record(IN_G, 0.01, check_peak=False)
+    weak_in_cm_s2 = IN_G / 6 * G0 * 100  # a 0.05 g record in cm/s²
+    with pytest.raises(ValueError, match=re.escape(
+            "Record: peak acceleration 49.03 m/s² = 5 g is implausible (above the largest peaks recorded; plausible: "
+            "0.0001 g to 4 g); looks like cm/s² read as m/s²: pass units='cm/s2', or check_peak=False")):
+        bd.Record(weak_in_cm_s2, 0.01)
+    assert bd.Record(weak_in_cm_s2, 0.01, units="cm/s2").peak_acceleration == pytest.approx(0.05 * G0, rel=1e-14)
 
 
 @pytest.mark.parametrize("samples, units, message", [
-    (IN_G * G0 * 100, None, r"Record: peak acceleration 294\.2 m/s² = 30 g is implausible \(outside 0\.0001 g to "
-                            r"10 g\); looks like cm/s² read as m/s²: pass units='cm/s2', or check_peak=False"),
+    (IN_G * G0 * 100, None, r"Record: peak acceleration 294\.2 m/s² = 30 g is implausible \(above the largest peaks "
+                            r"recorded; plausible: 0\.0001 g to 4 g\); looks like cm/s² read as m/s²: pass "
+                            r"units='cm/s2', or check_peak=False"),
     (IN_G * G0 * 100, "g", r"Record: peak acceleration 294\.2 g is implausible .* looks like cm/s² read as g: "
                            r"pass units='cm/s2'"),
     (IN_G / 1000, "m/s2", r"peak acceleration 0\.0003 m/s² = 3\.059e-05 g is implausible .* looks like g read "
                           r"as m/s²: pass units='g'"),
 ])
 def test_implausible_array_peak_is_refused_naming_the_value_and_unit(samples, units, message):
-    """An array in cm/s² given as m/s² (peak > 10 g), ..., is an error naming peak and units."""
+    """An array in cm/s² given as m/s² (peak > 4 g), ..., is an error naming peak and units."""
     with pytest.raises(ValueError, match=message):
         bd.Record(samples, 0.01, units=units)
     assert bd.Record(samples, 0.01, units=units, check_peak=False).acceleration_samples.size == 5
 
 
 def test_derived_records_are_not_rechecked_and_from_samples_takes_units():
-    """scaled/inverted keep m/s² without a warning; BaseMotion.from_samples passes units on."""
+    """scaled/inverted keep m/s² without a warning; BaseMotion.from_samples passes units on (m/s² without)."""
     record = bd.Record(IN_G, 0.01, units="g")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert record.scaled(0.01).peak_acceleration == pytest.approx(0.003 * G0, rel=1e-15)
         motion = bd.BaseMotion.from_samples(IN_G, IN_G, dt=0.01, units="g")
     np.testing.assert_array_equal(motion.x.acceleration_samples, record.acceleration_samples)
-    with pytest.warns(bd.UnitsWarning, match="Record 'x': peak acceleration 0.3 with no units="):
-        bd.BaseMotion.from_samples(IN_G, dt=0.01)
+    np.testing.assert_array_equal(bd.BaseMotion.from_samples(IN_G, dt=0.01).x.acceleration_samples, IN_G)  # m/s²
 
 
 def test_resample_is_exact_at_the_new_samples_and_keeps_name_start_and_units():

@@ -15,7 +15,7 @@ from .core._sensitivities import sensitivities
 from .core._simulate import simulate
 from .core._units import STANDARD_GRAVITY
 from .engines._linear_solution import simulate_linear_final
-from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RecordSet, RectangularPulse,
+from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RecordSet, RecordWarning, RectangularPulse,
                          SinePulse, TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
                          read_record, read_records, resample)
 from .flexible import (EquivalentLinear, FlexibleEvent, FlexibleMode, FlexibleResult, FlexibleSlidingMass,
@@ -41,7 +41,7 @@ __all__ = [
     "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
     "check_peak_acceleration", "read_motion", "read_record", "read_records", "RecordSet", "simulate",
     "InconsistentStateError", "SolverError",
-    "UnitsWarning", "pga_factor", "resample",
+    "RecordWarning", "UnitsWarning", "pga_factor", "resample",
     "AbstractEvent", "AbstractSolution", "DriverSolution", "HybridEvent",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",
     "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",

@@ -3,17 +3,20 @@ usage error (``blockdae: error: ...``, exit status 2), reading a record argument
 (its flags, its description and its JSON fields), writing CSV and saving figures (atomically)."""
 
 import argparse
+import contextlib
 import csv
 import pathlib
 import sys
+import warnings
 
 import numpy as np
 
 from ..core._atomic import atomic_path
 from ..core._units import STANDARD_GRAVITY
-from ..excitation import RecordSet, read_record
+from ..excitation import RecordSet, RecordWarning, read_record
 from ..excitation._fema import SETS as FEMA_SETS
 from ..excitation._readers import record_files
+from ..motions._baseline import METHODS as BASELINES, baseline_corrected
 
 #: the record sets of --set: name -> the name of bd.RecordSet.fema_p695
 RECORD_SETS = {f"fema-p695-{name}": name for name in FEMA_SETS}
@@ -54,14 +57,23 @@ def checked(action, where):
         raise UsageError(message if not where or where in message else f"{where}: {message}") from None
 
 
-def record_arguments(parser):
-    """--units, --dt and --accept-peak: how :func:`read` reads a command's record files."""
+def record_arguments(parser, baseline="none"):
+    """--units, --dt, --accept-peak, --accept-step, --remove-mean and --baseline (default
+    ``baseline``): how :func:`read` reads a command's record files."""
     parser.add_argument("--units", default=None,
-                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header or a "
-                             "table's header line, e.g. 'time (s), acc (m/s2)', says, else g)")
+                        help="acceleration units: g, m/s2, cm/s2 or gal; needed where a file does not state them "
+                             "(a table whose header, e.g. 'time (s), acc (m/s2)', names none; SAC, miniSEED)")
     parser.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
     parser.add_argument("--accept-peak", action="store_true",
-                        help="accept a peak acceleration outside 1e-4 g .. 10 g (else an error: wrong units?)")
+                        help="accept a record's peak outside 1e-4 g .. 4 g, or a --pga above 2 g (else an error: "
+                             "wrong units?)")
+    parser.add_argument("--accept-step", action="store_true",
+                        help="accept a sample step above 0.1 s (else an error: times in ms, or sample numbers?)")
+    parser.add_argument("--remove-mean", action=argparse.BooleanOptionalAction, default=None,
+                        help="subtract each record's mean (default: for K-NET/KiK-net files only, whose samples "
+                             "carry an offset; --no-remove-mean keeps it)")
+    parser.add_argument("--baseline", choices=BASELINES, default=baseline,
+                        help=f"baseline correction after reading (bd.baseline_corrected; default {baseline})")
 
 
 def recursive_argument(parser):
@@ -77,12 +89,37 @@ def folder_files(folder, args):
 
 
 def read(path, args):
-    """The record at ``path`` with the command's --units, --dt, --g (and --accept-peak)."""
+    """The record at ``path`` with the command's --units, --dt, --g, --accept-peak,
+    --accept-step, --remove-mean and --baseline."""
     if not path.is_file():
         raise UsageError(f"{path}: no such file")
+    with reader_warnings(args):
+        record = checked(lambda: read_record(path, **read_options(args)), "")
+    return record if args.baseline == "none" else checked(lambda: baseline_corrected(record, args.baseline), str(path))
+
+
+def read_options(args) -> dict:
+    """The keywords of :func:`~blockdae.read_record` that a command's record arguments set."""
     units = {} if args.units is None else {"units": args.units}
-    check_peak = not getattr(args, "accept_peak", False)
-    return checked(lambda: read_record(path, dt=args.dt, g=args.g, check_peak=check_peak, **units), "")
+    return dict(dt=args.dt, g=args.g, check_peak=not args.accept_peak, check_step=not args.accept_step,
+                remove_mean=args.remove_mean, **units)
+
+
+@contextlib.contextmanager
+def reader_warnings(args):
+    """The readers' warnings (a coarse step, an offset) as ``blockdae: warning: ...`` lines on
+    stderr, each time; the offset's left out where --baseline corrects it."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("always", RecordWarning)
+        if args.baseline != "none":
+            warnings.filterwarnings("ignore", ".*the samples' mean", RecordWarning)
+        warnings.showwarning = warning_line
+        yield
+
+
+def warning_line(message, category, filename, lineno, file=None, line=None):
+    """``warnings.showwarning`` that prints ``blockdae: warning: <message>`` on stderr."""
+    print(f"blockdae: warning: {message}", file=sys.stderr)
 
 
 def set_argument(parser):

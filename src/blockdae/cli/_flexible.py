@@ -29,7 +29,8 @@ def add_flexible_parser(subparsers):
                                                      ".AT2)")
     ky = p.add_mutually_exclusive_group(required=True)
     ky.add_argument("--ky", type=number("--ky", lambda x: x >= 0, "a yield acceleration >= 0 [g]"), nargs="+",
-                    help="yield acceleration(s) [g]")
+                    help="yield acceleration(s) [g]; 0.05 g is 0.49 m/s²: a ky typed in m/s² is read 9.8 "
+                         "times too large and gives millimetres")
     ky.add_argument("--ky-table", type=_table_row, nargs="+", metavar="D_M:KY_G",
                     help="ky [g] against the sliding displacement D [m] as rows D:ky, D increasing (linear "
                          "between rows, constant beyond: bd.KyTable)")
@@ -43,7 +44,8 @@ def add_flexible_parser(subparsers):
     p.add_argument("--reference-strain", type=positive("--reference-strain"), default=None, metavar="FRACTION",
                    help="run the equivalent-linear iteration with this reference strain (a fraction, e.g. 0.0005)")
     p.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
-                   help="scale the record so that its peak |a| is PGA_G [g] (its exact peak; with --integration "
+                   help="scale the record so that its peak |a| is PGA_G [g] (above 2 g, likely m/s², refused unless "
+                        "--accept-peak; its exact peak; with --integration "
                         "slammer its peak rounded to 0.001 g, as SLAMMER scales)")
     p.add_argument("--integration", choices=tuple(INTEGRATIONS), default="exact",
                    help="exact (continuous time, events located; default) or slammer (SLAMMER 1.1's fixed-step "
@@ -76,7 +78,8 @@ def run_flexible(args) -> int:
     ky = args.ky if args.ky_table is None else checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
     result = checked(lambda: flexible(record, ky, args.height, args.vs, args.vr, args.damping, args.method,
                                       args.reference_strain is not None, args.reference_strain, args.pga,
-                                      args.polarity, args.integration, args.g, args.t_end), str(args.record))
+                                      args.polarity, args.integration, args.g, args.t_end,
+                                      check_peak=not args.accept_peak), str(args.record))
     rows = result.rows
     if args.plot is not None:
         from .._plot import plot

@@ -88,7 +88,8 @@ def _fits(args):
     start = time.perf_counter()
     with warnings.catch_warnings():  # a PGA grid reaches below ky on purpose: D = 0 there is data
         warnings.simplefilter("ignore", UnitsWarning)
-        sweep = checked(lambda: newmark(records, ky=np.asarray(args.ky), g=args.g, pga=args.pga), "")
+        sweep = checked(lambda: newmark(records, ky=np.asarray(args.ky), g=args.g, pga=args.pga,
+                                        check_peak=not args.accept_peak), "")
     wall = time.perf_counter() - start
     n_records, n_pga, n_ky = sweep.shape
     print(f"{n_records} records x {n_pga} PGAs x {n_ky} ky, both polarities: {2 * n_records * n_pga * n_ky} Newmark "

@@ -132,10 +132,11 @@ def _parser():
                           help="accelerogram files or folders of them "
                                f"({', '.join(RECORD_SUFFIXES)}, each also .gz; sorted by name); or --set NAME")
     newmark_.add_argument("--ky", type=positive("--ky"), nargs="+", required=True,
-                          help="yield acceleration(s) [g]")
+                          help="yield acceleration(s) [g]; 0.05 g is 0.49 m/s²: a ky typed in m/s² is read "
+                               "9.8 times too large and gives millimetres")
     newmark_.add_argument("--pga", type=positive("--pga"), nargs="+", default=None, metavar="PGA_G",
                           help="scale each record so that its peak |a| is PGA_G [g], each value in turn "
-                               "(default: as read)")
+                               "(default: as read; above 2 g, likely m/s², refused unless --accept-peak)")
     newmark_.add_argument("--pga-rounding", choices=PGA_ROUNDINGS, default="exact",
                           help="with --pga: 'slammer' rounds the record's own peak to 0.001 g before "
                                "scaling, as SLAMMER does (default exact)")
@@ -263,7 +264,8 @@ def _newmark(args):
         warnings.simplefilter("always", UnitsWarning)
         warnings.showwarning = _prefixed(warnings.showwarning, where)
         result = checked(lambda: newmark(motions, np.asarray(args.ky, dtype=float), g=args.g, pga=pga,
-                                         pga_rounding=args.pga_rounding, derivative=args.derivative), where)
+                                         pga_rounding=args.pga_rounding, derivative=args.derivative,
+                                         check_peak=not args.accept_peak), where)
     table = result.to_dataframe()
     if one:
         table.insert(0, "pga_g", records[0].peak_acceleration / args.g if pga is None else pga)
@@ -340,7 +342,8 @@ def _newmark_plot(args, records, pga, result):
         return
     record = records[0]
     if pga is not None:
-        record = record.scaled(pga_factor(record.peak_acceleration, pga, args.g, args.pga_rounding))
+        record = record.scaled(pga_factor(record.peak_acceleration, pga, args.g, args.pga_rounding,
+                                          check_peak=not args.accept_peak))
     normal, inverse = (float(np.ravel(d)[0]) for d in (result.normal, result.inverse))
     inverse, d = inverse > normal, max(normal, inverse)
     motion = record.inverted() if inverse else record

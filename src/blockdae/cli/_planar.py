@@ -4,11 +4,12 @@
 import json
 import time
 
-from ._common import UsageError, checked, describe_gravity, describe_record, save_figure
+from ._common import UsageError, checked, describe_gravity, describe_record, read_options, reader_warnings, save_figure
 from ..core._simulate import simulate
 from ..core._units import length_units
-from ..excitation import Record, read_motion
+from ..excitation import BaseMotion, Record, read_motion
 from ..excitation._readers import record_name
+from ..motions._baseline import baseline_corrected
 from ..planar._model import PlanarBlock
 
 #: the backend of a planar run unless --backend names one: IDA follows turning slides
@@ -17,16 +18,18 @@ PLANAR_BACKEND = "ida"
 
 def read_motion_argument(args):
     """The base motion of ``run``'s files: ``args.record`` (x, or a table of 2-3
-    components) with ``--y``, ``--z``, resampled to ``--resample`` [s] if given;
-    errors name the file (and line)."""
+    components) with ``--y``, ``--z``, resampled to ``--resample`` [s] if given, each
+    component corrected as ``--baseline`` says; errors name the file (and line)."""
     paths = {"record": args.record, "--y": args.y, "--z": args.z}
     for flag, path in paths.items():
         if path is not None and not path.is_file():
             raise UsageError(f"{path}: no such file" if flag == "record" else f"argument {flag}: {path}: no such file")
-    units = {} if args.units is None else {"units": args.units}
     try:
-        return read_motion(args.record, args.y, args.z, dt=args.dt, g=args.g, check_peak=not args.accept_peak,
-                           resample_dt=args.resample, **units)
+        with reader_warnings(args):
+            motion = read_motion(args.record, args.y, args.z, resample_dt=args.resample, **read_options(args))
+        if args.baseline == "none":
+            return motion
+        return BaseMotion(*(None if c is None else baseline_corrected(c, args.baseline) for c in motion.components))
     except (ValueError, OSError) as err:
         message, named = str(err), [(path, axis) for path, axis in zip(paths.values(), "xyz") if path]
         if any(str(path) in message for path, _ in named):  # a reader's error names its file (and line)

@@ -33,7 +33,8 @@ def add_upthrow_parser(subparsers):
                    help="damping ratio zeta of the support [-] (default 0)")
     size = p.add_mutually_exclusive_group()
     size.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
-                      help="scale the record so that its peak |a| is PGA_G [g]")
+                      help="scale the record so that its peak |a| is PGA_G [g] (above 2 g, likely m/s², "
+                           "refused unless --accept-peak)")
     size.add_argument("--scale-to", type=positive("--scale-to"), default=None, metavar="PGA_G",
                       help="deprecated: the old name of --pga")
     size.add_argument("--scale", type=number("--scale", lambda x: math.isfinite(x) and x != 0,
@@ -100,7 +101,8 @@ def _scaled(record, args):
     flag, pga = ("--scale-to", args.scale_to) if args.scale_to is not None else ("--pga", args.pga)
     if pga is None:
         return record, 1.0
-    factor = checked(lambda: pga_factor(record.peak_acceleration, pga, args.g, name=flag), str(args.record))
+    factor = checked(lambda: pga_factor(record.peak_acceleration, pga, args.g, name=flag,
+                                        check_peak=not args.accept_peak), str(args.record))
     return record.scaled(factor), factor
 
 

@@ -10,10 +10,10 @@ from ._readers import STANDARD_GRAVITY
 from ._record import Record
 from ._record_set import RecordSet, read_records
 from ._resample import resample
-from ._units import (MAX_PGA_G, PLAUSIBLE_PEAK_G, UNSTATED_PEAK_M_S2, UnitsWarning, check_peak_acceleration,
-                     pga_factor)
+from ._record_checks import MAX_STEP_S, OFFSET_FRACTION, RESOLVING_STEP_S, RecordWarning
+from ._units import MAX_PGA_G, PLAUSIBLE_PEAK_G, UnitsWarning, check_peak_acceleration, pga_factor
 
-__all__ = ["AbstractExcitation", "BaseMotion", "Harmonic", "MAX_PGA_G", "PLAUSIBLE_PEAK_G",
-           "Pieces", "Record", "RecordSet", "RectangularPulse", "STANDARD_GRAVITY", "SinePulse", "TriangularPulse",
-           "UNSTATED_PEAK_M_S2", "UnitsWarning", "check_peak_acceleration", "pga_factor", "read_motion", "read_record",
-           "read_records", "resample"]
+__all__ = ["AbstractExcitation", "BaseMotion", "Harmonic", "MAX_PGA_G", "MAX_STEP_S", "OFFSET_FRACTION",
+           "PLAUSIBLE_PEAK_G", "Pieces", "RESOLVING_STEP_S", "Record", "RecordSet", "RecordWarning", "RectangularPulse",
+           "STANDARD_GRAVITY", "SinePulse", "TriangularPulse", "UnitsWarning", "check_peak_acceleration", "pga_factor",
+           "read_motion", "read_record", "read_records", "resample"]

@@ -3,6 +3,7 @@ each read by its module into :class:`~._header.Channel` s, made Records here wit
 
 from . import _cosmos, _esm, _knet, _seismo
 from ._readers import _resolve_units, _sample_step, decode, file_bytes, record_name
+from . import _record_checks
 from ._record import Record
 from ._units import check_peak_acceleration, unit_factor
 
@@ -11,12 +12,15 @@ _TEXT_FORMATS = (("COSMOS", _cosmos.is_cosmos, _cosmos.read_cosmos),
                  ("K-NET", _knet.is_knet, _knet.read_knet),
                  ("ESM", _esm.is_esm, _esm.read_esm))
 #: the options of read_record that one format takes: {option: format}
-FORMAT_OPTIONS = {"remove_mean": "K-NET", "gain": "SAC/miniSEED"}
+FORMAT_OPTIONS = {"gain": "SAC/miniSEED"}
+#: the formats whose samples carry an offset by definition: read_record removes their mean by default
+OFFSET_FORMATS = ("K-NET", "KiK-net")
 
 
-def read_channels(path, units, dt, g, check_peak, name, options):
+def read_channels(path, units, dt, g, check_peak, name, options, *, check_step=True, remove_mean=None):
     """(Records of every acceleration channel, None) of a file in a format with a header, or
-    (None, its text) for the tables and AT2 files that :func:`read_record` reads itself."""
+    (None, its text) for the tables and AT2 files that :func:`read_record` reads itself.
+    ``remove_mean``: subtract each channel's mean; None: for :data:`OFFSET_FORMATS` only."""
     data = file_bytes(path)
     if _seismo.seismo_format(data) is not None:
         channels = _seismo.read_seismo(path, data, units, **_options(options, path, "SAC/miniSEED"))
@@ -30,8 +34,8 @@ def read_channels(path, units, dt, g, check_peak, name, options):
         channels = read(path, text, **_options(options, path, fmt))
     label = record_name(path) if name is None else name
     many = len(channels) > 1
-    return [_record(c, path, units, dt, g, check_peak, f"{label} {c.metadata['component']}" if many else label)
-            for c in channels], None
+    return [_record(c, path, units, dt, g, check_peak, check_step, remove_mean,
+                    f"{label} {c.metadata['component']}" if many else label) for c in channels], None
 
 
 def _options(options, path, fmt):
@@ -42,14 +46,20 @@ def _options(options, path, fmt):
     return options
 
 
-def _record(channel, path, units, dt, g, check_peak, name):
+def _record(channel, path, units, dt, g, check_peak, check_step, remove_mean, name):
     """The Record [m/s²] of ``channel`` read with the caller's ``units`` (checked against the
-    header's), ``dt`` (checked against the file's) and peak check."""
-    units = _resolve_units(units, channel.units, channel.statement, path)
+    header's), ``dt`` (checked against the file's), mean removal and the peak, step and offset rules."""
+    units = _resolve_units(units, channel.units, channel.statement, path, channel.samples)
     step = _sample_step(dt, channel.dt, path)
+    _record_checks.check_step(step, str(path), check_step)
+    if remove_mean is None:
+        remove_mean = channel.metadata["format"] in OFFSET_FORMATS
+    mean = float(channel.samples.mean())
+    samples = channel.samples - mean if remove_mean else channel.samples
     if check_peak:
-        check_peak_acceleration(channel.samples, units, g, str(path),
-                                channel.statement and f"the header's {channel.statement}")
-    metadata = {**channel.metadata, "units": units}
-    return Record(channel.samples * unit_factor(units, g), step, name, units="m/s2", check_peak=False,
-                  metadata=metadata)
+        check_peak_acceleration(samples, units, g, str(path), channel.statement and f"the header's {channel.statement}")
+    if not remove_mean:
+        _record_checks.check_offset(samples, str(path))
+    metadata = {**channel.metadata, "units": units, "mean_removed": bool(remove_mean),
+                "mean_m_s2": mean * unit_factor(units, g)}
+    return Record(samples * unit_factor(units, g), step, name, units="m/s2", check_peak=False, metadata=metadata)

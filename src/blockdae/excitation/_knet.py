@@ -22,12 +22,12 @@ def is_knet(text):
     return text.startswith("Origin Time") and "\nStation Code" in text[:1000]
 
 
-def read_knet(path, text, remove_mean=False):
+def read_knet(path, text):
     """The channel of a K-NET/KiK-net ASCII file [cm/s²].
 
     The samples are the file's counts times its ``Scale Factor  A(gal)/B``, A/B [gal per count],
-    and nothing else: the mean (the recorder's offset) is kept unless ``remove_mean=True``,
-    which subtracts it, as NIED does before stating ``Max. Acc. (gal)``. The step is
+    and nothing else: they carry the recorder's offset, which NIED subtracts (the mean) before
+    stating ``Max. Acc. (gal)`` and read_record subtracts by default. The step is
     1 / ``Sampling Freq(Hz)``; the count must give ``Duration Time(s)`` (whole seconds, to
     1 s), and the samples, less their mean, the header's ``Max. Acc.`` (to its 3 decimals).
     Metadata: station (``Station Code``), component (``Dir.``: N-S, E-W, U-D; KiK-net's 1-3
@@ -53,8 +53,6 @@ def read_knet(path, text, remove_mean=False):
     in_gal = (samples - samples.mean()) * unit_factor(units) * 100.0
     check_peak_statement(path, in_gal, stated, statement(lines, max_index), f"gal; {statement(lines, scale_index)}",
                          0.0005 + 1e-4 * abs(stated))
-    if remove_mean:
-        samples = samples - samples.mean()
     direction = values["Dir."].strip()
     if direction not in _DIRECTIONS:
         raise ValueError(f"{path}, {statement(lines, _LABELS.index('Dir.'))}: direction {direction!r} is not "
@@ -63,7 +61,7 @@ def read_knet(path, text, remove_mean=False):
     metadata = {"format": "KiK-net" if direction.isdigit() else "K-NET", "station": values["Station Code"].strip(),
                 "component": component, "azimuth_deg": azimuth, "vertical": azimuth is None,
                 "event": values["Origin Time"].strip(), "magnitude": values["Mag."].strip(),
-                "memo": values["Memo."].strip(), "mean_removed": bool(remove_mean)}
+                "memo": values["Memo."].strip()}
     return [Channel(samples, units, statement(lines, scale_index), dt, metadata)]
 
 

@@ -18,7 +18,7 @@ _COMPONENTS = (4, "1 to 4 columns (time [s], a_x[, a_y[, a_z]])")
 
 
 def read_motion(x, y=None, z=None, *, units=None, dt=None, g=STANDARD_GRAVITY, name=None,
-                check_peak=True, resample_dt=None, **options) -> BaseMotion:
+                check_peak=True, check_step=True, remove_mean=None, resample_dt=None, **options) -> BaseMotion:
     """Read a base motion (a_x, a_y, a_z) [m/s²] from files.
 
     Either one file per component, ``x`` and optionally ``y``, ``z``, each read by
@@ -38,26 +38,29 @@ def read_motion(x, y=None, z=None, *, units=None, dt=None, g=STANDARD_GRAVITY, n
 
     Args:
         x, y, z: file paths; y, z None: absent.
-        units, dt, g, check_peak: as for :func:`read_record`; one unit for all columns
-            of a table, whose peak check covers them all.
+        units, dt, g, check_peak, check_step, remove_mean: as for :func:`read_record`; one
+            unit for all columns of a table, whose peak check covers them all.
         name: label of the components; by default the files' names less their suffixes
             (:func:`~blockdae.excitation._readers.record_name`).
         resample_dt: None (default): the files' own steps; else every component is
             resampled to this step [s] (see :func:`blockdae.resample`) before the
             components are joined, so that files of mixed steps make one motion.
-        options: ``remove_mean``, ``gain``: as for :func:`read_record`, for the formats that take them.
+        options: ``gain``: as for :func:`read_record`, for the formats that take it.
 
     Records of different lengths are fine (a component is zero after its last
     sample); different sample steps raise ValueError (see :class:`BaseMotion`)
     unless ``resample_dt`` is given.
     """
-    options = dict(units=units, dt=dt, g=g, check_peak=check_peak, **options)
+    options = dict(units=units, dt=dt, g=g, check_peak=check_peak, check_step=check_step, remove_mean=remove_mean,
+                   **options)
     if y is None and z is None:
         path = pathlib.Path(x)
-        records, _ = read_channels(path, units, dt, g, check_peak, name, _format_options(options))
+        records, _ = read_channels(path, units, dt, g, check_peak, name, _format_options(options),
+                                   check_step=check_step, remove_mean=remove_mean)
         if records is not None:
             return _station_motion(records, resample_dt, path)
-        samples, step, start_time = read_samples(path, units, dt, g, check_peak, _COMPONENTS)
+        samples, step, start_time = read_samples(path, units, dt, g, check_peak, _COMPONENTS, check_step=check_step,
+                                                 remove_mean=bool(remove_mean))
         label = record_name(path) if name is None else name
         records = [Record(a, step, f"{label} {axis}", start_time, units="m/s2", check_peak=False)
                    for a, axis in zip(samples.T, _AXES)]

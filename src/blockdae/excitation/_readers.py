@@ -13,15 +13,14 @@ import zlib
 import numpy as np
 
 from ..core._units import STANDARD_GRAVITY  # noqa: F401 (imported from here by blockdae.excitation)
-from ._units import _SYMBOLS, canonical_units, check_peak_acceleration, unit_factor
+from . import _record_checks
+from ._units import _SYMBOLS, canonical_units, check_peak_acceleration, unit_factor, units_named, unstated_units_error
 
 # an AT2 header's "IN UNITS OF ..." text, squeezed by _squeeze_units
 _HEADER_UNITS = {"G": "g", "M/S2": "m/s2", "CM/S2": "cm/s2", "GAL": "cm/s2", "GALS": "cm/s2"}
 _NPTS = re.compile(r"\bNPTS\s*=\s*(\d+)", re.IGNORECASE)
 _DT = re.compile(r"\bDT\s*=\s*([0-9.eE+-]+)", re.IGNORECASE)
 _OLD_HEADER = re.compile(r"^\s*(\d+)\s+([0-9.eE+-]+)\s+NPTS", re.IGNORECASE)
-_BRACKETED = re.compile(r"[(\[]\s*([^()\[\]]+?)\s*[)\]]")  # "(m/s2)", "[cm/s^2]" in a table's header
-_TIME_UNITS = {"s", "sec", "secs", "second", "seconds"}
 _UNITS_OF = re.compile(r"UNITS\s+OF\s+(.*?)[\s.]*$", re.IGNORECASE)
 _HEADER_LINES = 10  # where the NPTS/DT line of an AT2 file is looked for
 _GZIP_MAGIC = b"\x1f\x8b"  # the first bytes of a gzip file
@@ -89,7 +88,7 @@ def _uncompressed(path):
     return path.with_suffix("") if path.suffix.lower() == ".gz" else path
 
 
-def read_samples(path, units, dt, g, check_peak, columns):
+def read_samples(path, units, dt, g, check_peak, columns, *, check_step=True, remove_mean=False):
     """(accelerations [m/s²], shape (n, k), sample step [s], start time [s]) of a file read
     as :func:`read_record` reads a table or an AT2 file; a table may hold k > 1 accelerations
     after its time column.
@@ -97,31 +96,41 @@ def read_samples(path, units, dt, g, check_peak, columns):
     ``columns``: (most columns of a table, their description for errors), e.g. :data:`ONE_COMPONENT`.
     The peak check covers all k columns at once (one file, one unit).
     """
-    return read_table(path, units, dt, g, check_peak, columns)[:3]
+    return read_table(path, units, dt, g, check_peak, columns, check_step=check_step, remove_mean=remove_mean)[:3]
 
 
-def read_table(path, units, dt, g, check_peak, columns, text=None):
-    """read_samples' result and the metadata (format, units as read) of a table or AT2 file
-    (its ``text``, read if None)."""
+def read_table(path, units, dt, g, check_peak, columns, text=None, *, check_step=True, remove_mean=False):
+    """read_samples' result and the metadata (format, units as read, mean removed) of a table or
+    AT2 file (its ``text``, read if None). Units must be stated, by ``units`` or the header; the
+    step, peak and offset rules apply (:mod:`._record_checks`, :func:`check_peak_acceleration`)."""
     path = pathlib.Path(path)
     if units is not None:
         canonical_units(units)  # an unknown name fails before the file is read
     text = _text(path) if text is None else text
     layout = _scan(text, path)
+    lines = text.split("\n")
     if layout.at2 is not None:
-        lines = text.split("\n")
         samples, file_dt, start_time = _read_at2(lines, layout.at2, path)
         samples = samples[:, None]
         header_units, statement = _at2_units(lines[:layout.at2[0]], path)
-        units = _resolve_units(units, header_units, statement, path)
+        step_source = f"{path}, line {layout.at2[0] + 1}: DT"
     else:
         samples, file_dt, start_time = _read_columns(text, layout, path, columns)
-        header_units, statement = _table_units(text.split("\n")[:layout.start], path)
-        units = _resolve_units(units, header_units, statement, path)
+        header_units, statement = _table_units(lines[:layout.start], path)
+        rows = _data_line_numbers(lines, layout.start)[:2]
+        step_source = (f"{path}, lines {rows[0]}-{rows[-1]}: the time column" if file_dt is not None
+                       else f"{path}, the dt given")
     dt = _sample_step(dt, file_dt, path)
+    units = _resolve_units(units, header_units, statement, path, samples)
+    _record_checks.check_step(dt, step_source, check_step, time_column=layout.at2 is None and file_dt is not None)
+    mean = samples.mean(axis=0)
+    samples = samples - mean if remove_mean else samples
     if check_peak:
         check_peak_acceleration(samples, units, g, str(path), statement and f"the header's {statement}")
-    metadata = {"format": "PEER AT2" if layout.at2 is not None else "table", "units": units}
+    if not remove_mean:
+        _record_checks.check_offset(samples, str(path))
+    metadata = {"format": "PEER AT2" if layout.at2 is not None else "table", "units": units,
+                "mean_removed": bool(remove_mean), "mean_m_s2": float(mean[0]) * unit_factor(units, g)}
     return samples * unit_factor(units, g), dt, start_time, metadata
 
 
@@ -200,13 +209,15 @@ def _sample_step(dt, file_dt, path):
     return file_dt
 
 
-def _resolve_units(units, header_units, statement, path):
-    """The units to read with: ``units``, or the header's; they must agree."""
+def _resolve_units(units, header_units, statement, path, samples):
+    """The units to read ``samples`` with: ``units``, or the header's (at ``statement``); they
+    must agree, and one of them must be given (else the error gives the peak in each unit)."""
     if units is None:
-        if statement and header_units is None:
-            raise ValueError(f"{path}, {statement}: units not understood; pass units= "
-                             "('g', 'm/s2' or 'cm/s2')")
-        return header_units or "g"
+        if statement is None:
+            raise unstated_units_error(str(path), samples)
+        if header_units is None:
+            raise ValueError(f"{path}, {statement}: units not understood; pass units= ('g', 'm/s2' or 'cm/s2')")
+        return header_units
     given = canonical_units(units)
     if header_units and given != header_units:
         raise ValueError(f"{path}: units={units!r} ({_SYMBOLS[given]}) contradicts the header, "
@@ -280,21 +291,19 @@ def _raise_first_bad_value(body, first_line, path):
 # --- tables: one column, or time and accelerations ---------------------------------
 
 def _table_units(header_lines, path):
-    """(units or None, "line N: '...'") that a table's header line of column names states in
-    brackets, e.g. ``time (s), acceleration (m/s2)`` or ``acc [cm/s2]``; (None, None) if it names
-    none. Time units are skipped; a bracketed ratio that is no acceleration unit is refused."""
+    """(units or None, "line N: '...'") that a table's header lines (column names and '#'
+    comments, e.g. numpy's ``# time (s), acceleration (m/s2)``) name (see
+    :func:`~._units.units_named`); (None, None) if they name none. A bracketed ratio that is
+    no acceleration unit (a velocity, "(m/s)") is refused, as are two different units."""
     found = {}
     for n, line in enumerate(header_lines, start=1):
-        text = line.split("#", 1)[0].strip()
-        for token in _BRACKETED.findall(text):
-            if token.strip().lower() in _TIME_UNITS:
-                continue
-            units, statement = _HEADER_UNITS.get(_squeeze_units(token)), f"line {n}: {text!r}"
-            if units is None and "/" in token:
-                raise ValueError(f"{path}, {statement}: the header names units {token!r}, not an acceleration "
-                                 "in g, m/s2, cm/s2 or gal; convert the file")
-            if units is not None:
-                found.setdefault(units, statement)
+        text = line.strip()
+        named, others = units_named(text)
+        if others:
+            raise ValueError(f"{path}, line {n}: {text!r}: the header names units {others[0]!r}, not an "
+                             "acceleration in g, m/s2, cm/s2 or gal; convert the file")
+        for units in named:
+            found.setdefault(units, f"line {n}: {text!r}")
     if len(found) > 1:
         raise ValueError(f"{path}: the header names different units, {', '.join(_SYMBOLS[u] for u in found)} "
                          f"({'; '.join(found.values())}); one file holds one unit")

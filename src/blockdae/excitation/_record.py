@@ -3,14 +3,13 @@
 import dataclasses
 import types
 import typing
-import warnings
 
 import numpy as np
 
 from ..core._units import STANDARD_GRAVITY
 from ._base import AbstractExcitation, check_finite, check_positive
 from ._pieces import Pieces
-from ._units import UNSTATED_PEAK_M_S2, UnitsWarning, check_peak_acceleration, unit_factor
+from ._units import check_peak_acceleration, unit_factor
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -25,13 +24,11 @@ class Record(AbstractExcitation):
         name: label used in tables and plots.
         start_time: time of the first sample on the file's own axis [s]; kept as a label.
         units: units of ``acceleration``: "m/s2", "g", "cm/s2" or "gal"; None (default):
-            m/s², with a :class:`UnitsWarning` if the peak is outside
-            :data:`UNSTATED_PEAK_M_S2` (2 to 19.6 m/s², 0.2 g to 2 g): below, the numbers
-            read as g would be as plausible; above, read as cm/s².
+            m/s², as every number blockdae takes from Python.
         g: the value of one "g" [m/s²], for ``units="g"``.
         check_peak: raise ValueError if a nonzero peak is implausible in ``units``
-            (outside :data:`PLAUSIBLE_PEAK_G`: an array in cm/s² given as m/s², ...);
-            False accepts any peak (and skips the warning).
+            (outside :data:`PLAUSIBLE_PEAK_G`, 1e-4 g to 4 g: an array in g or cm/s² given
+            as m/s², ...), naming the likely units; False accepts any peak.
         metadata: what a reader found in the file's header (format, units as read,
             station, component, event, ...), kept read-only; empty by default.
 
@@ -61,8 +58,9 @@ class Record(AbstractExcitation):
         object.__setattr__(self, "name", str(name))
         object.__setattr__(self, "start_time", check_finite("start_time", start_time, "s"))
         object.__setattr__(self, "metadata", types.MappingProxyType(dict(metadata or {})))
-        if check_peak:
-            _check_units(samples, units, g, self.name)
+        if check_peak and np.any(samples):  # a record of zeros: no units to get wrong
+            check_peak_acceleration(samples, "m/s2" if units is None else units, g,
+                                    f"Record {self.name!r}" if self.name else "Record")
         if units is not None:
             samples = samples * unit_factor(units, g)
         samples.setflags(write=False)
@@ -112,20 +110,3 @@ class Record(AbstractExcitation):
         return (f"Record(name={self.name!r}, n={self.acceleration_samples.size}, dt={self.dt} s, "
                 f"peak={self.peak_acceleration:.4g} m/s², start_time={self.start_time:g} s)")
 
-
-def _check_units(samples, units, g, name):
-    """Refuse a nonzero peak implausible in ``units``; warn if ``units`` is None and the
-    peak [m/s²] is outside :data:`UNSTATED_PEAK_M_S2`, where the samples may be in g or cm/s²."""
-    if not np.any(samples):
-        return  # a record of zeros: no units to get wrong
-    source = f"Record {name!r}" if name else "Record"
-    check_peak_acceleration(samples, "m/s2" if units is None else units, g, source)
-    peak = float(np.max(np.abs(samples)))
-    low, high = UNSTATED_PEAK_M_S2
-    if units is not None or low <= peak <= high:
-        return
-    other = "g" if peak < low else "cm/s2"
-    as_other = f"{peak:.4g} g" if other == "g" else f"{peak:.4g} cm/s² = {peak / 100 / STANDARD_GRAVITY:.4g} g"
-    warnings.warn(f"{source}: peak acceleration {peak:.4g} with no units= is read as {peak:.4g} m/s² "
-                  f"= {peak / STANDARD_GRAVITY:.4g} g, but as {as_other} it would be as plausible; "
-                  f"pass units='m/s2' or units='{other}' to say which", UnitsWarning, stacklevel=3)

@@ -152,8 +152,8 @@ class _File:
         return self.record
 
 
-def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=True, remove_mean=False,
-                 gain=None, recursive=False) -> RecordSet:
+def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=True, check_step=True,
+                 remove_mean=None, gain=None, recursive=False) -> RecordSet:
     """The records of a folder (its record files, sorted by name; see
     :data:`~._readers.RECORD_SUFFIXES`; its subfolders' too if ``recursive``), one file, or a
     list of files and folders, as a :class:`RecordSet`. Files a folder holds and that are
@@ -170,7 +170,8 @@ def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=
     name (less ``.gz``) instead.
     """
     paths = _paths(source, recursive)
-    options = dict(units=units, dt=dt, g=g, check_peak=check_peak, remove_mean=remove_mean, gain=gain)
+    options = dict(units=units, dt=dt, g=g, check_peak=check_peak, check_step=check_step, remove_mean=remove_mean,
+                   gain=gain)
     rows, sources, failed = [], [], []
     for path in paths:
         try:

@@ -104,7 +104,7 @@ class FlexibleResult:
 
 def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", equivalent_linear=False,
              reference_strain=None, target_pga=None, polarity="both", integration="exact", g=STANDARD_GRAVITY,
-             t_end=None) -> FlexibleResult:
+             t_end=None, *, check_peak=True) -> FlexibleResult:
     """Flexible sliding-mass analyses (Bray & Rathje 1998 decoupled; Rathje & Bray 1999
     coupled), downslope displacement positive, as SLAMMER runs them but exact in time.
 
@@ -113,7 +113,9 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
             sequence or dict (name -> record) of them (a batch).
         ky: yield acceleration [g], >= 0; or a :class:`KyTable` (ky [g] against the
             sliding displacement [m], linear between rows, constant beyond), also as
-            pySLAMMER's pair ``(disp_values [m], ky_values [g])`` of two sequences.
+            pySLAMMER's pair ``(disp_values [m], ky_values [g])`` of two sequences. A ky
+            in m/s² below the motion's peak cannot be told from one in g (0.49, 0.05 g in
+            m/s², gives millimetres where 0.05 g gives decimetres): check that it is in g.
         height: height H of the sliding mass [m], > 0.
         vs: its shear-wave velocity [m/s], > 0.
         vr: shear-wave velocity below the slip surface [m/s]; None: vs.
@@ -127,7 +129,8 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
         reference_strain: gamma_ref, a fraction (SLAMMER's GUI takes percent).
         target_pga: scale each motion to this peak |a| [g]; None: as given. "exact"
             scales by the motion's exact peak, "slammer" by its peak rounded to 0.001 g, as
-            SLAMMER does.
+            SLAMMER does. A value above 2 g is refused (likely m/s²: 2.94 is 0.3 g in m/s²)
+            unless ``check_peak=False``.
         polarity: "both", "normal" (the record as given) or "inverse" (times -1).
         integration: "exact" (continuous time, events located) or "slammer" (SLAMMER
             1.1's fixed-step scheme at the record's dt, quirks included, to reproduce its
@@ -135,6 +138,7 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
         g: the value of one g [m/s²].
         t_end: end of each analysis on the record's axis [s]; None: its last sample (the
             only end "slammer" has).
+        check_peak: False accepts a ``target_pga`` above 2 g.
 
     ky, height, vs, vr and damping broadcast together to the parameter sets (use
     ``np.meshgrid`` for a grid); every motion runs every set.
@@ -143,7 +147,7 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
         A :class:`FlexibleResult` (``.to_dataframe()``).
     """
     analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga,
-                    polarity, integration, g, t_end)
+                    polarity, integration, g, t_end, check_peak)
     rows_of, _ = INTEGRATIONS[integration]
     if analyses and analyses[0].model.table is not None:  # plan gives every model the table or none
         rows_of = table_rows
@@ -151,7 +155,7 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
 
 
 def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga, polarity,
-         integration, g, t_end) -> list[Analysis]:
+         integration, g, t_end, check_peak=True) -> list[Analysis]:
     """The analyses of a :func:`flexible` call, every input checked before any work."""
     if integration not in INTEGRATIONS:
         raise ValueError(f"integration={integration!r} is unknown; choose one of {tuple(INTEGRATIONS)}")
@@ -187,7 +191,8 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
     for name, record in zip(names, records):
         if target_pga is not None:
             rounding = INTEGRATIONS[integration][1]
-            record = record.scaled(pga_factor(record.peak_acceleration, target_pga, g, rounding, "target_pga"))
+            record = record.scaled(pga_factor(record.peak_acceleration, target_pga, g, rounding, "target_pga",
+                                              check_peak))
         duration = record.duration
         end = duration if t_end is None else float(t_end)
         if integration == "slammer" and end != duration:

@@ -11,7 +11,7 @@ import pathlib
 
 import numpy as np
 
-from ..cli._common import UsageError, checked, number, positive, read, save_figure, write_csv
+from ..cli._common import UsageError, checked, number, positive, read, record_arguments, save_figure, write_csv
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._units import pga_factor
 
@@ -19,13 +19,9 @@ SEED_LAGS = np.geomspace(0.05, 3.0, 20)  # seed 003: 20 lags from 0.05 to 3 s
 DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)
 
 
-def _common(parser):
+def _common(parser, baseline):
     parser.add_argument("record", type=pathlib.Path, help="accelerogram (CSV t,a / one column / .AT2)")
-    parser.add_argument("--units", default=None,
-                        help="acceleration units: g, m/s2, cm/s2 or gal (default: as an AT2 header or a "
-                             "table's header line says, else g)")
-    parser.add_argument("--dt", type=positive("--dt"),
-                        default=None, help="sample step [s], for one-column files")
+    record_arguments(parser, baseline)
     parser.add_argument("--g", type=positive("--g"),
                         default=STANDARD_GRAVITY, help="the unit 'g' [m/s²] (default 9.80665)")
     parser.add_argument("--pga", type=positive("--pga"),
@@ -38,15 +34,13 @@ def _common(parser):
 def add_spectrum_parser(subparsers):
     """The ``spectrum`` subcommand: exact response spectra of one record."""
     p = subparsers.add_parser("spectrum", help="exact response spectra of a record (Sd, Sv, Sa, PSa, ...)")
-    _common(p)
+    _common(p, baseline="none")
     p.add_argument("--periods", nargs="+", default=None,
                    type=positive("--periods"),
                    help="oscillator periods [s] (default 100 log-spaced from 0.01 to 10 s)")
     p.add_argument("--damping", nargs="+", default=[0.05],
                    type=number("--damping", lambda x: np.isfinite(x) and 0 <= x < 1, "in [0, 1)"),
                    help="fractions of critical damping [-] (default 0.05)")
-    p.add_argument("--baseline", choices=("none", "polynomial", "mean"), default="none",
-                   help="baseline correction before the analysis (default none)")
     p.add_argument("--t-end", type=positive("--t-end"),
                    default=None, help="end of the window [s] (default the record's duration)")
     p.set_defaults(command=run_spectrum)
@@ -57,12 +51,10 @@ def add_two_point_parser(subparsers):
     """The ``two-point`` subcommand: relative motion of two surface points (seed 003)."""
     p = subparsers.add_parser("two-point", help="largest relative displacement of two points τ = b/c apart "
                                                 "(seed 003)")
-    _common(p)
+    _common(p, baseline="polynomial")
     p.add_argument("--lags", nargs="+", default=None,
                    type=number("--lags", lambda x: np.isfinite(x) and x >= 0, "a number >= 0"),
                    help="lags τ = b/c [s] (default the seed's 20 lags, 0.05 to 3 s)")
-    p.add_argument("--baseline", choices=("none", "polynomial", "mean"), default="polynomial",
-                   help="baseline correction first (default polynomial, as the seed's records were)")
     p.add_argument("--damping", type=number("--damping", lambda x: np.isfinite(x) and 0 <= x < 1, "in [0, 1)"),
                    default=0.05, help="damping of the 2 Sd(2τ) estimate [-] (default 0.05)")
     p.set_defaults(command=run_two_point)
@@ -70,13 +62,10 @@ def add_two_point_parser(subparsers):
 
 
 def _record(args):
-    from ._baseline import baseline_corrected
-
-    rec = read(args.record, args)
-    rec = checked(lambda: baseline_corrected(rec, args.baseline), str(args.record))
+    rec = read(args.record, args)  # baseline corrected as --baseline says
     if args.pga is not None:
-        rec = rec.scaled(checked(lambda: pga_factor(rec.peak_acceleration, args.pga, args.g, name="--pga"),
-                                 str(args.record)))
+        rec = rec.scaled(checked(lambda: pga_factor(rec.peak_acceleration, args.pga, args.g, name="--pga",
+                                                    check_peak=not args.accept_peak), str(args.record)))
     return rec
 
 

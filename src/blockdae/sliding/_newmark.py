@@ -177,20 +177,24 @@ class NewmarkSweep(_Polarities):
 
 
 def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_end: float | None = None,
-            backend: str = "exact", *, pga=None, target_pga=None, pga_rounding: str = "exact", progress=None,
-            derivative: bool = False, **options) -> NewmarkResult | NewmarkSweep:
+            backend: str = "exact", *, pga=None, target_pga=None, pga_rounding: str = "exact", check_peak=True,
+            progress=None, derivative: bool = False, **options) -> NewmarkResult | NewmarkSweep:
     """Newmark's rigid-block (one-way) downslope displacement, positive downslope.
 
     Args:
         motion: ground acceleration along the slope [m/s²]: one excitation (e.g. a
             :class:`Record`); or many: a sequence of them, a mapping name -> excitation,
             a :class:`RecordSet` (its metadata carried into the table), or a path to a
-            folder (every record file in it, sorted by name; see :func:`blockdae.read_record`,
-            units as the files say, else g) or to one file.
+            folder (every record file in it, sorted by name) or to one file, read by
+            :func:`blockdae.read_record` (units as the files state them; for files that do not,
+            read them with ``bd.read_records(path, units=...)`` and pass the set).
         ky: yield acceleration(s) [g], a number or 1-D array (a batch, one compiled
             call); see :func:`yield_acceleration` and :meth:`SlidingBlock.on_incline`. A ky
             at or above the motion's peak [g] slides nowhere (D = 0): a :class:`UnitsWarning`
-            says so; one also above 1 g is refused (likely m/s², e.g. ``ky=9.81``).
+            says so; one also above 1 g is refused (likely m/s², e.g. ``ky=9.81``). A ky in
+            m/s² below the peak cannot be told from one in g: 0.49 (0.05 g in m/s²) under a
+            motion of peak 0.3 g gives millimetres where 0.05 g gives decimetres; check that
+            ky is in g (ky = 0.05 g is 0.49 m/s²).
         polarity: "both" (default, as SLAMMER reports), "normal" (the record as given:
             sliding while a(t) > ky g) or "inverse" (the record inverted).
         g: the value of one g [m/s²]; standard gravity by default.
@@ -198,10 +202,12 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         backend, **options: as for :func:`blockdae.simulate`.
         pga: target peak ground acceleration(s) [g], a number or a 1-D sequence: the motion
             is scaled so that its peak |a| is each ``pga`` g (see :func:`blockdae.pga_factor`);
-            None: as given.
+            None: as given. A value above 2 g is refused (likely m/s²: 2.94 is 0.3 g in m/s²)
+            unless ``check_peak=False``.
         target_pga: the same as ``pga`` (the name :func:`blockdae.flexible` uses); give one.
         pga_rounding: "exact" (default) or "slammer": the motion's own peak rounded to
             0.001 g before scaling, as SLAMMER scales (to reproduce its tables).
+        check_peak: False accepts a ``pga`` above 2 g.
         progress: over many motions, a tqdm bar over them on stderr; None (default): only
             when stderr is a terminal.
         derivative: also dD/dky [m/g] of each polarity run (``normal_dky``,
@@ -226,7 +232,7 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
     _require(np.isfinite(ky_array) & (ky_array > 0), "ky", ky_array, "must be a positive yield acceleration [g]")
     if isinstance(motion, AbstractExcitation) and np.ndim(pga) == 0:
         if pga is not None:
-            motion = motion.scaled(pga_factor(motion.peak_acceleration, pga, g, pga_rounding))
+            motion = motion.scaled(pga_factor(motion.peak_acceleration, pga, g, pga_rounding, check_peak=check_peak))
         peak = motion.peak_acceleration / g
         if shown := _not_sliding(ky_array, peak):
             warnings.warn(f"ky={shown} g >= PGA = {peak:.4g} g: the block does not slide, D = 0 m", UnitsWarning,
@@ -235,7 +241,8 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
                                                               options)
         return NewmarkResult(ky=float(ky_array) if ky_array.ndim == 0 else ky_array, normal=normal, inverse=inverse,
                              g=float(g), normal_dky=normal_dky, inverse_dky=inverse_dky)
-    return _sweep(motion, ky_array, polarity, g, t_end, backend, pga, pga_rounding, progress, derivative, options)
+    return _sweep(motion, ky_array, polarity, g, t_end, backend, pga, pga_rounding, check_peak, progress, derivative,
+                  options)
 
 
 def _yield_accelerations(ky):
@@ -277,14 +284,14 @@ def _downslope(motion, ky, polarity, g, t_end, backend, derivative, options):
     return (*values, *slopes)
 
 
-def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress, derivative, options):
+def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, check_peak, progress, derivative, options):
     """:func:`newmark` over many motions × target peaks ``pga`` [g] × ``ky`` [g]."""
     metadata = motions.metadata if isinstance(motions, RecordSet) else None
     names, motions = _labelled(_motions(motions, g))
     if ky.ndim > 1:
         raise ValueError(f"ky must be a number or a 1-D sequence of yield accelerations [g], got shape {ky.shape}")
     ky = np.atleast_1d(ky)
-    targets = None if pga is None else check_pga(pga)
+    targets = None if pga is None else check_pga(pga, check_peak=check_peak)
     check_pga_rounding(pga_rounding)
     shape = (len(motions), 1 if targets is None else targets.size, ky.size)
     tables = [np.full(shape, np.nan) for _ in range(4)]  # D normal, D inverse, their dD/dky
@@ -292,7 +299,7 @@ def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, progress
     with progress_bar(len(motions), "newmark", "record", progress) as bar:
         for i, (name, motion) in enumerate(zip(names, motions)):
             factors = [1.0] if targets is None else pga_factor(motion.peak_acceleration, targets, g, pga_rounding,
-                                                               name=f"pga ({name})")
+                                                               name=f"pga ({name})", check_peak=check_peak)
             for j, factor in enumerate(factors):
                 scaled = motion.scaled(float(factor))
                 peak = scaled.peak_acceleration / g

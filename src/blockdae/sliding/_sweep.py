@@ -85,7 +85,7 @@ class SweepSolution:
 
 
 def simulate_many(block: SlidingBlock, motions, t_end: float | None = None, backend: str = "exact", *,
-                  scale=None, pga=None, pga_rounding: str = "exact", **options) -> SweepSolution:
+                  scale=None, pga=None, pga_rounding: str = "exact", check_peak=True, **options) -> SweepSolution:
     """Slide every parameter set of ``block`` under every motion, at every amplitude scale.
 
     Args:
@@ -98,9 +98,10 @@ def simulate_many(block: SlidingBlock, motions, t_end: float | None = None, back
         scale: factor(s) on a(t) [-], a number or a 1-D sequence (default 1; -1 inverts).
         pga: instead of ``scale``, target peak ground acceleration(s) [g], a number or a
             1-D sequence: each motion is scaled so that max |a(t)| is each value times the
-            block's g (see :func:`blockdae.pga_factor`; values above 5, likely m/s², are refused).
+            block's g (see :func:`blockdae.pga_factor`; values above 2, likely m/s², are refused).
         pga_rounding: "exact" (default) or "slammer": each motion's own peak rounded to
             0.001 g before scaling, as SLAMMER scales.
+        check_peak: False accepts a ``pga`` above 2 g.
 
     Returns:
         A :class:`SweepSolution` of shape (n_motions, n_scales, n_sets).
@@ -108,7 +109,7 @@ def simulate_many(block: SlidingBlock, motions, t_end: float | None = None, back
     if not isinstance(block, SlidingBlock):
         raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
     names, motions = _labelled(motions)
-    factors = _factors(motions, scale, pga, block.g, pga_rounding)
+    factors = _factors(motions, scale, pga, block.g, pga_rounding, check_peak)
     grid = block if block.batch_shape else block.replace(mu=np.atleast_1d(block.mu))
     batches = tuple(tuple(simulate(grid, motion.scaled(k), t_end, backend, **options) for k in row)
                     for motion, row in zip(motions, factors))
@@ -130,18 +131,19 @@ def _labelled(motions):
     return tuple(str(name) for name, _ in items), [m for _, m in items]
 
 
-def _factors(motions, scale, pga, g, rounding) -> np.ndarray:
+def _factors(motions, scale, pga, g, rounding, check_peak) -> np.ndarray:
     """Factor on a(t) per (motion, scale) [-], shape (n_motions, n_scales); ``pga`` [g], one g = ``g`` [m/s²]."""
     if scale is not None and pga is not None:
         raise ValueError("give scale or pga, not both")
     if pga is None:
         k = _values("scale", 1.0 if scale is None else scale)
         return np.tile(k, (len(motions), 1))
-    check_pga(pga), check_pga_rounding(rounding)  # before any motion
+    check_pga(pga, check_peak=check_peak), check_pga_rounding(rounding)  # before any motion
     rows = []
     for i, motion in enumerate(motions):
         try:
-            rows.append(pga_factor(motion.peak_acceleration, np.atleast_1d(pga), float(g), rounding))
+            rows.append(pga_factor(motion.peak_acceleration, np.atleast_1d(pga), float(g), rounding,
+                                   check_peak=check_peak))
         except ValueError as err:  # a motion of zeros
             raise ValueError(f"motion {i}: {err}") from None
     return np.array(rows)

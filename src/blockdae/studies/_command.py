@@ -13,7 +13,8 @@ import time
 
 import numpy as np
 
-from ..cli._common import UsageError, files_or_set, number, positive, read, recursive_argument, set_argument
+from ..cli._common import (UsageError, files_or_set, number, positive, read, record_arguments, recursive_argument,
+                           set_argument)
 from ..cli._flexible import _table_row, add_flexible_study_arguments, flexible_study_block
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._readers import RECORD_SUFFIXES, record_files
@@ -65,9 +66,7 @@ def add_study_parser(subparsers):
                    help="the 1-D block: default both polarities of the one-way block, as newmark (columns "
                         "polarity, D_m >= 0 [m]); negative: the records as given only; positive or both: signed u "
                         "(u_end_m); the flexible mass runs both polarities")
-    p.add_argument("--units", default=None, help="acceleration units of the files: g, m/s2, cm/s2 or gal "
-                                                 "(default: as an AT2 header or a table's header line says, else g)")
-    p.add_argument("--dt", type=positive("--dt"), default=None, help="sample step [s], for one-column files")
+    record_arguments(p)
     recursive_argument(p)
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                    help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")
@@ -98,8 +97,8 @@ def run_study(args) -> int:
     start = time.perf_counter()
     try:
         table = study(records, where=where, direction=args.direction, executor=client, g=args.g,
-                      no_worker_timeout=args.no_worker_timeout, checkpoint=args.checkpoint, block=block, **swept,
-                      **grid)
+                      no_worker_timeout=args.no_worker_timeout, checkpoint=args.checkpoint, block=block,
+                      check_peak=not args.accept_peak, **swept, **grid)
     except (ValueError, TypeError) as err:
         raise UsageError(str(err)) from None
     except NoWorkerError as err:

@@ -77,7 +77,7 @@ class _Grid:
 
 def study(records, mu=None, pga=None, scale=None, where=("ground",), direction=None, *, ky=None,
           executor=None, no_worker_timeout=60.0, checkpoint=None, progress=None, refine=4, sd_period=10.0,
-          damping=0.05, t_end=None, g=STANDARD_GRAVITY, block=None, rtol=None):
+          damping=0.05, t_end=None, g=STANDARD_GRAVITY, block=None, rtol=None, check_peak=True):
     """Slide a block under every record, μ (or ky), intensity and location: one tidy table.
 
     Args:
@@ -93,7 +93,8 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction=N
             then each table's ky at zero displacement). The model's
             ``study_parameter`` says which of the two it takes; the other is refused.
         pga: target peak accelerations A > 0 [g]: the motion at each location (ground
-            or floor) is scaled so that its peak |a| is A g (seed 002).
+            or floor) is scaled so that its peak |a| is A g (seed 002). A value above 2 g
+            is refused (likely m/s²: 2.94 is 0.3 g in m/s²) unless ``check_peak=False``.
         scale: instead of ``pga``, factors > 0 [-] on the motion at each location.
         where: locations: "ground" and/or floors (``bd.ShearFrame(...).floor(i)``).
         direction: of the 1-D block: None (default) runs Newmark's one-way block in both
@@ -138,6 +139,7 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction=N
         rtol: relative tolerance [-] of a model that integrates (None: the model's
             study default, 1e-10 for the block on a plane); the engines of the 1-D block
             and of the flexible mass are exact.
+        check_peak: False accepts a ``pga`` above 2 g.
 
     Returns:
         A DataFrame, one row per record × location × polarity × μ × intensity (in that
@@ -175,7 +177,7 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction=N
     """
     metadata = records.metadata if isinstance(records, RecordSet) else None
     records, grid = _checked(records, dict(mu=mu, ky=ky), pga, scale, where, direction, refine, sd_period, damping,
-                             t_end, g, block, rtol)
+                             t_end, g, block, rtol, check_peak)
     no_worker_timeout = _timeout(no_worker_timeout)
     tasks = _tasks(records, grid.rows_per_record)
     store = None if checkpoint is None else Checkpoint.open(checkpoint, records, grid, tasks)
@@ -290,7 +292,8 @@ def _peak_velocity(record: Record) -> float:
     return float(max(np.max(np.abs(v)), np.max(np.abs(inside), initial=0.0)))
 
 
-def _checked(records, swept, pga, scale, where, direction, refine, sd_period, damping, t_end, g, block, rtol):
+def _checked(records, swept, pga, scale, where, direction, refine, sd_period, damping, t_end, g, block, rtol,
+             check_peak=True):
     if isinstance(records, (Record, BaseMotion)):
         records = [records]
     records = list(records)
@@ -311,7 +314,7 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
     by = "pga" if pga is not None else "scale"
     factors = _values(by, pga if pga is not None else scale, "g" if by == "pga" else "-")
     if by == "pga":
-        check_pga(factors)  # above 5 g: likely m/s²
+        check_pga(factors, "pga", check_peak)  # above 2 g: likely m/s²
     where = tuple([where] if isinstance(where, (str, Floor)) else where)
     if not where:
         raise ValueError('where is empty: give "ground" and/or floors (frame.floor(i))')
