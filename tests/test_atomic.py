@@ -91,7 +91,7 @@ def test_interrupted_batch_csv_keeps_the_previous_file(tmp_path, monkeypatch, ca
     (folder / "a.csv").write_text(TRIANGLE_CSV)
     out = tmp_path / "out" / "r.csv"
     out.parent.mkdir()
-    argv = ["--no-cache", "batch", str(folder), "--mu", "0.6", "1.0", "--g", "9.81", "--units", "m/s2",
+    argv = ["--no-cache", "batch", str(folder), "--mu", "0.6", "1.0", "--g", "9.81", "--units", "m/s2", "--accept-step",
             "--csv", str(out)]
     assert main(argv) == 0
     good = out.read_bytes()

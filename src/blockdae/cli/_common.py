@@ -57,9 +57,10 @@ def checked(action, where):
         raise UsageError(message if not where or where in message else f"{where}: {message}") from None
 
 
-def record_arguments(parser, baseline="none"):
-    """--units, --dt, --accept-peak, --accept-step, --remove-mean and --baseline (default
-    ``baseline``): how :func:`read` reads a command's record files."""
+def record_arguments(parser, baseline="none", horizontal=True):
+    """--units, --dt, --accept-peak, --accept-step, --remove-mean, --baseline (default
+    ``baseline``) and, for a command whose records shake along the base (``horizontal``),
+    --as-horizontal: how :func:`read` reads a command's record files."""
     parser.add_argument("--units", default=None,
                         help="acceleration units: g, m/s2, cm/s2 or gal; needed where a file does not state them "
                              "(a table whose header, e.g. 'time (s), acc (m/s2)', names none; SAC, miniSEED)")
@@ -74,6 +75,9 @@ def record_arguments(parser, baseline="none"):
                              "carry an offset; --no-remove-mean keeps it)")
     parser.add_argument("--baseline", choices=BASELINES, default=baseline,
                         help=f"baseline correction after reading (bd.baseline_corrected; default {baseline})")
+    if horizontal:
+        parser.add_argument("--as-horizontal", action="store_true",
+                            help="run a vertical component (as its header says) as horizontal motion (else refused)")
 
 
 def recursive_argument(parser):
@@ -90,11 +94,13 @@ def folder_files(folder, args):
 
 def read(path, args):
     """The record at ``path`` with the command's --units, --dt, --g, --accept-peak,
-    --accept-step, --remove-mean and --baseline."""
+    --accept-step, --remove-mean, --baseline and --as-horizontal."""
     if not path.is_file():
         raise UsageError(f"{path}: no such file")
     with reader_warnings(args):
         record = checked(lambda: read_record(path, **read_options(args)), "")
+    if getattr(args, "as_horizontal", False):
+        record = record.as_horizontal()
     return record if args.baseline == "none" else checked(lambda: baseline_corrected(record, args.baseline), str(path))
 
 

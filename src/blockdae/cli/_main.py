@@ -98,7 +98,8 @@ def _parser():
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
     sub = parser.add_subparsers(required=True,
-                                metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,fragility,hazard,info}")
+                                metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,"
+                                        "fragility,hazard,info}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
                                      "plane under two or three components (u_x, u_y)")

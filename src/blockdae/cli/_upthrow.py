@@ -45,7 +45,7 @@ def add_upthrow_parser(subparsers):
     p.add_argument("--t-end", type=positive("--t-end"), default=None,
                    help="final time [s] (default: the record's duration)")
     p.add_argument("--backend", choices=BACKENDS, default="exact", help="solver backend (default exact)")
-    record_arguments(p)
+    record_arguments(p, horizontal=False)
     p.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure (bd.plot)")
     p.add_argument("--json", action="store_true", help="print the results as JSON (SI units)")
     p.add_argument("--flights", choices=("summary", "all", "none"), default="summary",

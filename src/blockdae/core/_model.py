@@ -9,6 +9,7 @@ import numpy as np
 
 from ._solution import DriverSolution, HybridEvent
 from ..excitation import AbstractExcitation
+from ..excitation._record import check_horizontal
 
 #: the array namespace of the model's xp-generic rules on Python floats (the driver's)
 SCALAR = types.SimpleNamespace(stack=tuple, sqrt=math.sqrt, where=lambda cond, a, b: a if cond else b)
@@ -38,6 +39,9 @@ class AbstractHybridModel(abc.ABC):
     initial_mode: enum.IntEnum
     #: names of the excitation's components, in the order of ``excitation_pieces``
     component_names: tuple[str, ...] = ("x",)
+    #: whether the motion shakes the model along its base (a record whose header says it is
+    #: a vertical component is then refused); False for a model shaken vertically
+    horizontal_motion: bool = True
     #: indices of the states that make up the displacement the solution reports
     displacement_states: tuple[int, ...] = (0,)
     #: the backend :func:`blockdae.simulate` uses when none is named
@@ -63,9 +67,12 @@ class AbstractHybridModel(abc.ABC):
 
     def check_motion(self, motion) -> None:
         """Raise TypeError unless ``motion`` is a base motion this model runs under (an
-        excitation, by default)."""
+        excitation, by default); ValueError for a vertical component where the model takes
+        horizontal motion (:attr:`horizontal_motion`)."""
         if not isinstance(motion, AbstractExcitation):
             raise TypeError(f"motion must be an excitation (Harmonic, Record, ...), got {type(motion).__name__}")
+        if self.horizontal_motion:
+            check_horizontal(motion)
 
     # ---- the automaton -------------------------------------------------------
     @abc.abstractmethod

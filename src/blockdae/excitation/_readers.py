@@ -131,6 +131,8 @@ def read_table(path, units, dt, g, check_peak, columns, text=None, *, check_step
         _record_checks.check_offset(samples, str(path))
     metadata = {"format": "PEER AT2" if layout.at2 is not None else "table", "units": units,
                 "mean_removed": bool(remove_mean), "mean_m_s2": float(mean[0]) * unit_factor(units, g)}
+    if layout.at2 is not None:
+        metadata.update(_at2_component(text.split("\n", 2)[:2]))
     return samples * unit_factor(units, g), dt, start_time, metadata
 
 
@@ -239,6 +241,20 @@ def _at2_header(line, index, path):
         return index, int(count), float(step)
     except ValueError:
         raise ValueError(f"{path}, line {index + 1}: cannot read NPTS and DT in {line.strip()!r}") from None
+
+
+#: an AT2 header's component (the last field of its second line) that names a vertical channel
+_AT2_VERTICAL = {"UP": "Up", "UD": "Up", "V": "Up", "VER": "Up", "VERT": "Up", "Z": "Up", "DWN": "Down", "DOWN": "Down"}
+
+
+def _at2_component(first_lines):
+    """{"component": the last field of an AT2 file's second line (PEER's: "UP", "90", "360",
+    "DWN"), "vertical": whether it names a vertical channel}; {} where there is none."""
+    if len(first_lines) < 2 or "," not in first_lines[1]:
+        return {}
+    component = first_lines[1].rsplit(",", 1)[1].strip()
+    vertical = _AT2_VERTICAL.get(component.upper())
+    return {"component": vertical or component, "vertical": vertical is not None} if component else {}
 
 
 def _at2_units(header_lines, path):

@@ -95,6 +95,12 @@ class Record(AbstractExcitation):
     def peak_acceleration(self) -> float:
         return float(np.max(np.abs(self.acceleration_samples)))
 
+    def as_horizontal(self) -> "Record":
+        """This record with its header's vertical flag cleared: a vertical component run on
+        purpose as horizontal motion (the sliding models refuse one otherwise)."""
+        return Record(self.acceleration_samples, self.dt, self.name, self.start_time, units="m/s2",
+                      check_peak=False, metadata={**self.metadata, "vertical": False})
+
     def scaled(self, factor):
         return Record(self.acceleration_samples * float(factor), self.dt, self.name, self.start_time,
                       units="m/s2", check_peak=False, metadata=self.metadata)
@@ -110,3 +116,13 @@ class Record(AbstractExcitation):
         return (f"Record(name={self.name!r}, n={self.acceleration_samples.size}, dt={self.dt} s, "
                 f"peak={self.peak_acceleration:.4g} m/s², start_time={self.start_time:g} s)")
 
+
+def check_horizontal(motion) -> None:
+    """ValueError if ``motion`` is a record whose header says it is a vertical component: a
+    sliding block or mass is shaken along its base, by a horizontal component."""
+    metadata = getattr(motion, "metadata", None) or {}
+    if metadata.get("vertical"):
+        raise ValueError(f"{getattr(motion, 'name', '') or 'the record'}: a vertical component (its header says "
+                         f"{metadata.get('component', 'vertical')!r}), refused as horizontal motion: use a horizontal "
+                         "component of the station, or record.as_horizontal() (command line: --as-horizontal) to run "
+                         "it as horizontal motion on purpose")

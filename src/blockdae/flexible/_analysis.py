@@ -19,6 +19,7 @@ import numpy as np
 from ..core._units import STANDARD_GRAVITY
 from ..engines._linear_solution import linear_pieces
 from ..excitation import Record, pga_factor
+from ..excitation._record import check_horizontal
 from . import _engine, _fused, _table_kernel
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, flat_table_model, slip_underdamped
@@ -177,6 +178,8 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
     elif table is not None:
         ky, table = table.ky_g[0], None
     names, records = _motions(motion)
+    for record in records:
+        check_horizontal(record)
     if t_end is not None and not (isinstance(t_end, numbers.Real) and not isinstance(t_end, bool) and
                                   math.isfinite(t_end) and t_end > 0):
         raise ValueError(f"t_end={t_end!r} must be a positive finite time [s] (or None: each record's last sample)")

@@ -35,26 +35,30 @@ def baseline_corrected(record, method="polynomial", degree=6, pre_event=None) ->
         pre_event: length of the pre-event window [s] (mean only).
 
     Returns:
-        A new Record with the same dt and name.
+        A new Record with the same dt, name, start time and metadata (which gains
+        ``baseline``: the method).
     """
     if not isinstance(record, Record):
         raise TypeError(f"record must be a bd.Record, got {type(record).__name__}")
     if method not in METHODS:
         raise ValueError(f"method = {method!r}; method must be one of {METHODS}")
     a = np.array(record.acceleration_samples, dtype=float)
+
+    def corrected(samples):
+        return Record(samples, record.dt, record.name, record.start_time, units="m/s2", check_peak=False,
+                      metadata={**record.metadata, "baseline": method})
     if method == "none":
-        return Record(a, record.dt, record.name, units="m/s2", check_peak=False)
+        return corrected(a)
     if method == "mean":
         if pre_event is None:
             window = a
         else:
             pre_event = float(_checks.array("pre_event", pre_event, "s", low=0.0, low_open=True))
             window = a[: int(np.floor(pre_event / record.dt + 1e-9)) + 1]
-        return Record(a - window.mean(), record.dt, record.name, units="m/s2", check_peak=False)
+        return corrected(a - window.mean())
     if not (isinstance(degree, (int, np.integer)) and 2 <= degree <= 12):
         raise ValueError(f"degree = {degree!r}; degree must be an integer from 2 to 12 [-]")
-    return Record(a - polynomial_trend(record, degree)[0], record.dt, record.name, units="m/s2",
-                  check_peak=False)
+    return corrected(a - polynomial_trend(record, degree)[0])
 
 
 def polynomial_trend(record, degree=6):

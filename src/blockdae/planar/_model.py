@@ -36,6 +36,7 @@ import numpy as np
 
 from ..core._units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, BaseMotion
+from ..excitation._record import check_horizontal
 from ._solution import PlanarEvent, PlanarSolution
 from ..core._model import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
 from ..core._checks import set_real_fields
@@ -334,6 +335,8 @@ class PlanarBlock(AbstractHybridModel):
         if not isinstance(motion, (AbstractExcitation, BaseMotion)):
             raise TypeError(f"motion must be an excitation (Harmonic, Record, ...) or a BaseMotion, "
                             f"got {type(motion).__name__}")
+        for horizontal in (motion,) if isinstance(motion, AbstractExcitation) else (motion.x, motion.y):
+            check_horizontal(horizontal)
 
     def dae_form(self, piece):
         """The states and the friction force (F_x, F_y) as IDA's algebraic variables

@@ -8,6 +8,7 @@ import numpy as np
 from ..core._simulate import simulate
 from ._solution import BatchSolution
 from ..excitation import AbstractExcitation, pga_factor
+from ..excitation._record import check_horizontal
 from ..excitation._units import check_pga, check_pga_rounding
 from ._model import SlidingBlock
 from ..core._repr import compact_repr
@@ -128,6 +129,7 @@ def _labelled(motions):
         if not isinstance(motion, AbstractExcitation):
             raise TypeError(f"motions must be excitations (Record, Harmonic, ...); {name!r} is "
                             f"a {type(motion).__name__}")
+        check_horizontal(motion)
     return tuple(str(name) for name, _ in items), [m for _, m in items]
 
 

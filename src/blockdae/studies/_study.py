@@ -30,6 +30,7 @@ from ..core._progress import progress_bar
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._units import check_pga
 from ..excitation import BaseMotion, Record
+from ..excitation._record import check_horizontal
 from ..excitation._record_set import RecordSet, with_metadata
 from ..sliding._model import SlidingBlock
 from ..motions import response_spectrum
@@ -303,6 +304,9 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
         parts = record.components if isinstance(record, BaseMotion) else (record,)
         if not all(isinstance(c, Record) for c in parts if c is not None):
             raise TypeError(f"records[{i}] must be a bd.Record or a bd.BaseMotion of Records, got {record!r:.80}")
+        for horizontal in parts[:2]:
+            if horizontal is not None:
+                check_horizontal(horizontal)
         if not all(np.all(np.isfinite(c.acceleration_samples)) for c in parts if c is not None):
             raise ValueError(f"records[{i}] ({_name(record)!r}) has samples that are not finite (NaN or inf)")
     names = [_name(r) for r in records]

@@ -66,6 +66,7 @@ class SpringSupportedMass(AbstractHybridModel):
     state_names = ("u", "u_rate")
     modes = UpthrowMode
     initial_mode = UpthrowMode.CONTACT
+    horizontal_motion = False  # shaken vertically: a vertical component is its motion
     default_backend = "exact"
     engines = {"exact": "linear"}
     derivatives = "flights"
