@@ -91,7 +91,7 @@ def _prefixed(show, where):
 
 def _parser():
     parser = argparse.ArgumentParser(
-        prog="blockdae", description="Seismic sliding of a rigid block: exact event times.")
+        prog="blockdae", description="Seismic sliding of blocks and masses: exact event times.")
     parser.add_argument("--version", action="version", version=f"blockdae {_version()}")
     parser.add_argument("--cache-dir", type=pathlib.Path, default=None,
                         help="JAX compilation cache, so that later runs skip compiling "
