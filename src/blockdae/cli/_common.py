@@ -80,6 +80,33 @@ def record_arguments(parser, baseline="none", horizontal=True):
                             help="run a vertical component (as its header says) as horizontal motion (else refused)")
 
 
+#: --units-out: the length unit of displacements in a command's output -> metres per unit
+LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254, "ft": 0.3048}
+#: the displacement fields of the Newmark and flexible tables, [m] or [m/g]
+DISPLACEMENT_FIELDS = ("normal_m", "inverse_m", "mean_m", "max_m", "dD_dky_normal_m_per_g", "dD_dky_inverse_m_per_g")
+
+
+def units_out_argument(parser):
+    """--units-out: the length unit of the displacements a command prints and writes."""
+    parser.add_argument("--units-out", choices=tuple(LENGTH_UNITS), default="m",
+                        help="length unit of the displacements printed and written (default m; SLAMMER reports cm)")
+
+
+def in_units_out(row: dict, unit: str) -> dict:
+    """``row`` with its :data:`DISPLACEMENT_FIELDS` in ``unit`` ("cm", "in", ...: a key of
+    :data:`LENGTH_UNITS`), renamed to say so (normal_m -> normal_cm; None stays None)."""
+    factor = 1.0 / LENGTH_UNITS[unit]
+    return {(_renamed(key, unit) if key in DISPLACEMENT_FIELDS else key):
+            (value * factor if key in DISPLACEMENT_FIELDS and value is not None else value)
+            for key, value in row.items()}
+
+
+def _renamed(field, unit):
+    """normal_m -> normal_cm, dD_dky_normal_m_per_g -> dD_dky_normal_cm_per_g."""
+    stem, per_g = (field[:-len("_m_per_g")], "_per_g") if field.endswith("_m_per_g") else (field[:-2], "")
+    return f"{stem}_{unit}{per_g}"
+
+
 def recursive_argument(parser):
     """--recursive: a folder's subfolders are searched for record files too."""
     parser.add_argument("--recursive", action="store_true",

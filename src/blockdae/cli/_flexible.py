@@ -6,8 +6,8 @@ import json
 
 import pathlib
 
-from ._common import (UsageError, checked, describe_record, number, positive, read, record_arguments,
-                      record_fields, save_figure)
+from ._common import (UsageError, checked, describe_record, in_units_out, number, positive, read, record_arguments,
+                      record_fields, save_figure, units_out_argument)
 from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..flexible._analysis import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
@@ -15,10 +15,13 @@ from ..flexible._column import ShearColumn
 from ..flexible._ky_table import KyTable
 from ..flexible._model import METHODS, FlexibleSlidingMass
 
-_COLUMNS = (("ky_g", "ky [g]", "{:.4g}"), ("normal_m", "normal [m]", "{:.6g}"), ("inverse_m", "inverse [m]", "{:.6g}"),
-            ("kmax_g", "kmax [g]", "{:.5f}"), ("kmax_sup_g", "kmax sup [g]", "{:.5f}"),
-            ("vs_final_m_s", "vs final [m/s]", "{:.2f}"), ("damping_final", "damping final", "{:.4f}"),
-            ("episodes_normal", "episodes n", "{}"), ("episodes_inverse", "episodes i", "{}"))
+def _columns(unit):
+    """(field, heading, format) of the printed table, displacements in ``unit`` (--units-out)."""
+    return (("ky_g", "ky [g]", "{:.4g}"), (f"normal_{unit}", f"normal [{unit}]", "{:.6g}"),
+            (f"inverse_{unit}", f"inverse [{unit}]", "{:.6g}"), ("kmax_g", "kmax [g]", "{:.5f}"),
+            ("kmax_sup_g", "kmax sup [g]", "{:.5f}"), ("vs_final_m_s", "vs final [m/s]", "{:.2f}"),
+            ("damping_final", "damping final", "{:.4f}"), ("episodes_normal", "episodes n", "{}"),
+            ("episodes_inverse", "episodes i", "{}"))
 
 
 def add_flexible_parser(subparsers):
@@ -58,7 +61,9 @@ def add_flexible_parser(subparsers):
     record_arguments(p)
     p.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG",
                    help="save the figure of the first ky, normal polarity (bd.plot; the exact solution)")
-    p.add_argument("--json", action="store_true", help="print the rows as JSON (SI units)")
+    units_out_argument(p)
+    p.add_argument("--json", action="store_true", help="print the rows as JSON (SI units, displacements in "
+                                                       "--units-out)")
     p.set_defaults(command=run_flexible)
     return p
 
@@ -92,6 +97,7 @@ def run_flexible(args) -> int:
         end = (record.duration if args.t_end is None else args.t_end) + record.dt
         solution = checked(lambda: simulate(model, with_zero_sample(motion), t_end=end), str(args.record))
         save_figure(plot(solution, title=f"{record.name}: t from the virtual zero sample at -dt"), args.plot)
+    rows = [in_units_out(row, args.units_out) for row in rows]
     if args.json:
         print(json.dumps({**record_fields(record), "method": args.method, "rows": rows}, indent=2, default=float))
         return 0
@@ -102,10 +108,11 @@ def run_flexible(args) -> int:
     if args.ky_table is not None:
         print(f"ky against the sliding displacement: {ky} (the column ky [g]: at D = 0)")
 
+    columns = _columns(args.units_out)
     table = [[fmt.format(row[key]) if row[key] is not None and row[key] == row[key] else "-"  # None, nan: "-"
-              for key, _, fmt in _COLUMNS] for row in rows]
-    widths = [max(len(head), *(len(line[i]) for line in table)) for i, (_, head, _) in enumerate(_COLUMNS)]
-    print("  ".join(head.rjust(w) for (_, head, _), w in zip(_COLUMNS, widths)))
+              for key, _, fmt in columns] for row in rows]
+    widths = [max(len(head), *(len(line[i]) for line in table)) for i, (_, head, _) in enumerate(columns)]
+    print("  ".join(head.rjust(w) for (_, head, _), w in zip(columns, widths)))
     for line in table:
         print("  ".join(cell.rjust(w) for cell, w in zip(line, widths)))
     if args.plot is not None:

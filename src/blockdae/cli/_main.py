@@ -21,8 +21,8 @@ import numpy as np
 
 from .. import backends
 from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, folder_files,
-                      positive, read, record_arguments, record_fields, recursive_argument, report_failures, save_figure,
-                      set_argument, write_csv)
+                      in_units_out, positive, read, record_arguments, record_fields, recursive_argument,
+                      report_failures, save_figure, set_argument, units_out_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
@@ -156,6 +156,7 @@ def _parser():
                                "(t, the ground acceleration as given, D >= 0 downslope and its rate per polarity)")
     newmark_.add_argument("--derivative", action="store_true",
                           help="also dD/dky [m/g] of each polarity, exact (its first run compiles, about 10 s)")
+    units_out_argument(newmark_)
     newmark_.add_argument("--json", action="store_true", help="print the results as JSON")
     newmark_.set_defaults(command=_newmark)
 
@@ -271,13 +272,14 @@ def _newmark(args):
     if one:
         table.insert(0, "pga_g", records[0].peak_acceleration / args.g if pga is None else pga)
         table.insert(0, "record", records[0].name)
+    rows = [in_units_out(row, args.units_out) for row in table.to_dict(orient="records")]
     if args.csv is not None:
-        write_csv(args.csv, table.to_dict(orient="records"), list(table.columns))
+        write_csv(args.csv, rows)
     if args.plot is not None:
         _newmark_plot(args, records, pga, result)
     if args.history is not None:
         _newmark_history(args, records, pga, one)
-    _print_newmark(args, records, pga, one, table)
+    _print_newmark(args, records, pga, one, rows)
     saved = [f"{what}: {path}" for what, path in (("results", args.csv), ("figure", args.plot),
                                                   ("history", args.history)) if path is not None]
     for line in saved:
@@ -285,13 +287,12 @@ def _newmark(args):
     return 0
 
 
-def _print_newmark(args, records, pga, one, table):
-    """The Newmark table (JSON with --json): one row per (record, PGA, ky)."""
+def _print_newmark(args, records, pga, one, rows):
+    """The Newmark table (JSON with --json): one row per (record, PGA, ky), displacements in --units-out."""
     scale = {} if pga is None else {"pga_g": pga, "pga_rounding": args.pga_rounding}
     if args.json:
         fields = record_fields(records[0]) if one else {"records": [record_fields(r) for r in records]}
-        print(json.dumps({**fields, **scale, "g_m_s2": args.g, "results": table.to_dict(orient="records")},
-                         indent=2))
+        print(json.dumps({**fields, **scale, "g_m_s2": args.g, "results": rows}, indent=2, default=float))
         return
     if one:
         print(f"record: {describe_record(records[0])}")
@@ -300,16 +301,21 @@ def _print_newmark(args, records, pga, one, table):
     if pga is not None:
         print(f"scaled to a peak of {', '.join(f'{p:g}' for p in np.atleast_1d(pga))} g "
               f"(pga rounding: {args.pga_rounding})")
-    print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [m]; g = {args.g:g} m/s²")
+    u = args.units_out
+    print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [{u}]; g = {args.g:g} m/s²")
     width = 0 if one else max(len("record"), *(len(r.name) for r in records))
     head = "" if one else f"{'record':<{width}} {'PGA [g]':>8} "
-    slopes = " dD/dky normal [m/g] dD/dky inverse [m/g]" if args.derivative else ""
-    print(f"{head}{'ky [g]':>8} {'normal [m]':>12} {'inverse [m]':>12} {'mean [m]':>12} {'max [m]':>12}{slopes}")
-    for row in table.itertuples(index=False):
-        head = "" if one else f"{row.record:<{width}} {row.pga_g:8.4f} "
-        slopes = f" {row.dD_dky_normal_m_per_g:19.6g} {row.dD_dky_inverse_m_per_g:20.6g}" if args.derivative else ""
-        print(f"{head}{row.ky_g:8.4f} {row.normal_m:12.6f} {row.inverse_m:12.6f} {row.mean_m:12.6f} "
-              f"{row.max_m:12.6f}{slopes}")
+    columns = [f"{name}_{u}" for name in ("normal", "inverse", "mean", "max")]
+    columns += [f"dD_dky_{name}_{u}_per_g" for name in ("normal", "inverse")] if args.derivative else []
+    titles = [f"{name} [{u}]" for name in ("normal", "inverse", "mean", "max")]
+    titles += [f"dD/dky {name} [{u}/g]" for name in ("normal", "inverse")] if args.derivative else []
+    widths = [max(12, len(title)) for title in titles]
+    print(f"{head}{'ky [g]':>8} " + " ".join(f"{t:>{w}}" for t, w in zip(titles, widths)))
+    for row in rows:
+        head = "" if one else f"{row['record']:<{width}} {row['pga_g']:8.4f} "
+        cells = [f"{row[c]:{w}.6f}" if c.startswith(("normal", "inverse", "mean", "max")) else f"{row[c]:{w}.6g}"
+                 for c, w in zip(columns, widths)]
+        print(f"{head}{row['ky_g']:8.4f} " + " ".join(cells))
 
 
 def _newmark_history(args, records, pga, one):
