@@ -3,6 +3,7 @@ for) and the one-line notice before the first JAX compilation in a process."""
 
 import io
 import json
+import math
 import os
 import subprocess
 import sys
@@ -126,7 +127,8 @@ def test_the_command_line_prints_a_compile_notice_as_one_line_before_the_run(tmp
     monkeypatch.setattr(_compile_notice, "_noticed", set())
     monkeypatch.setattr(_compile_notice, "_will_compile", lambda dispatcher: True)
     record = tmp_path / "pulse.csv"
-    record.write_text("time [s], acceleration [m/s2]\n0.0, 0.0\n0.25, 3.0\n0.5, 0.0\n")
+    record.write_text("time [s], acceleration [m/s2]\n" + "".join(f"{k / 100}, {3 * math.sin(math.pi * k / 25)}\n"
+                                                                for k in range(51)))  # one sine wave, 0.01 s steps
     assert main(["newmark", str(record), "--ky", "0.1", "--units", "m/s2"]) == 0
     captured = capsys.readouterr()
     assert captured.err == ("blockdae: compiling the exact engine with numba (its first run after an install or "
