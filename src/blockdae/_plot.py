@@ -9,7 +9,7 @@ def plot(solution, excitation=None, block=None, *, n_points: int = 2000, title: 
 
     A :class:`ResponseSpectrum` is drawn as PSa [m/s²] against the period (log-log; see
     :func:`blockdae.motions.plot_spectrum` for the other quantities), a
-    :class:`RelativeMotion` as R(tau) with the seed-003 estimates. A
+    :class:`RelativeMotion` as R(tau) with Christian's (1973) estimates. A
     :class:`BatchSolution` is drawn as u(t_end) and max |u| [m] against the one
     parameter that varies across its grid (mu_kinetic counts only when the grid sets
     it), or against the parameter-set index when none or several vary (the x label

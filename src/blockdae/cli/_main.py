@@ -1,6 +1,6 @@
 """The ``blockdae`` command: run a record (or two or three components: a block on a
 plane, see ``blockdae.cli._planar``), Newmark's analysis, a mass on a spring support under a
-vertical record (``blockdae.cli._upthrow``), the seed-000 examples, a batch over a folder.
+vertical record (``blockdae.cli._upthrow``), Sawicki & Chybicki's examples, a batch over a folder.
 
 Every error about a file or an argument ends the command with exit status 2 and one
 line ``blockdae: error: ...`` on stderr naming the file (and line) or the argument. A
@@ -165,7 +165,7 @@ def _parser():
     add_two_point_parser(sub)
     add_upthrow_parser(sub)
 
-    examples = sub.add_parser("examples", help="seed-000 Examples 1-6: exact vs the paper")
+    examples = sub.add_parser("examples", help="Sawicki & Chybicki's (2005) Examples 1-6: exact vs the paper")
     examples.set_defaults(command=_examples)
 
     batch = sub.add_parser("batch", help="every record in a folder, over a parameter grid")
@@ -363,7 +363,7 @@ def _newmark_plot(args, records, pga, result):
 
 
 def _examples(args):
-    print("Seed 000, Examples 1-6: exact event times [s] and displacements [m] (g = 9.81 m/s², "
+    print("Sawicki & Chybicki 2005, Examples 1-6: exact event times [s] and displacements [m] (g = 9.81 m/s², "
           "as in the paper)")
     for example in seed_examples():
         solution = simulate(example.block, example.motion, t_end=example.t_end)

@@ -1,5 +1,5 @@
 """``blockdae upthrow``: a compact mass on a spring support under a vertical record
-(seed 004), the seed's estimates (eqs. 5, 8, 12, 13) beside the exact flights."""
+(Newmark 1969), the paper's estimates (eqs. 5, 8, 12, 13) beside the exact flights."""
 
 import json
 import math
@@ -23,8 +23,8 @@ _FLIGHTS_SHOWN = 5  # flights printed at each end of a long list by default
 
 def add_upthrow_parser(subparsers):
     """The ``upthrow`` subcommand on an argparse ``subparsers`` object."""
-    p = subparsers.add_parser("upthrow", help="a mass on a spring support under vertical ground motion (seed 004): "
-                                              "the seed's estimates and the exact flights")
+    p = subparsers.add_parser("upthrow", help="a mass on a spring support under vertical ground motion (Newmark 1969): "
+                                              "the paper's estimates and the exact flights")
     p.add_argument("record", type=pathlib.Path,
                    help="vertical ground acceleration, upward positive (CSV t,a / one column / .AT2)")
     p.add_argument("--frequency", type=positive("--frequency"), required=True,
@@ -107,7 +107,7 @@ def _scaled(record, args):
 
 
 def _print_estimate(estimate):
-    print(f"seed 004 estimate from the linear response: A = {estimate.response_acceleration:.6f} g")
+    print(f"Newmark 1969 estimate from the linear response: A = {estimate.response_acceleration:.6f} g")
     if not estimate.lifts_off:
         print("  A <= 1 g: no liftoff predicted")
         return

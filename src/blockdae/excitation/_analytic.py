@@ -1,4 +1,4 @@
-"""Harmonic motion and single pulses (seed 000, Eqs. 1-3 and Examples 4-6)."""
+"""Harmonic motion and single pulses (Sawicki & Chybicki 2005, Eqs. 1-3 and Examples 4-6)."""
 
 import dataclasses
 
@@ -10,7 +10,7 @@ from ._pieces import Pieces
 
 @dataclasses.dataclass(frozen=True)
 class Harmonic(AbstractExcitation):
-    """a(t) = A sin(2 pi t / T), v(t) = -(A T / 2 pi) cos(2 pi t / T) (seed 000, Eqs. 1-2).
+    """a(t) = A sin(2 pi t / T), v(t) = -(A T / 2 pi) cos(2 pi t / T) (Sawicki & Chybicki 2005, Eqs. 1-2).
 
     Args:
         amplitude: A [m/s²].
@@ -83,7 +83,7 @@ class _Pulse(AbstractExcitation):
 
 @dataclasses.dataclass(frozen=True)
 class RectangularPulse(_Pulse):
-    """a(t) = A on [0, duration), zero after; base at rest at t = 0 (seed 000, Ex. 4).
+    """a(t) = A on [0, duration), zero after; base at rest at t = 0 (Sawicki & Chybicki 2005, Ex. 4).
 
     Args:
         amplitude: A [m/s²].
@@ -96,7 +96,7 @@ class RectangularPulse(_Pulse):
 
 @dataclasses.dataclass(frozen=True)
 class TriangularPulse(_Pulse):
-    """Triangle rising to A at duration/2, back to zero at duration (seed 000, Ex. 5).
+    """Triangle rising to A at duration/2, back to zero at duration (Sawicki & Chybicki 2005, Ex. 5).
 
     Args:
         amplitude: peak A [m/s²].
@@ -110,7 +110,7 @@ class TriangularPulse(_Pulse):
 
 @dataclasses.dataclass(frozen=True)
 class SinePulse(_Pulse):
-    """a(t) = A sin(pi t / duration) on [0, duration], zero after (seed 000, Ex. 6).
+    """a(t) = A sin(pi t / duration) on [0, duration], zero after (Sawicki & Chybicki 2005, Ex. 6).
 
     Args:
         amplitude: A [m/s²].

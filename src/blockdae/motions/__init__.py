@@ -1,5 +1,5 @@
 """Ground motions: histories, intensity measures, baseline correction, response spectra
-and the relative motion of two surface points (seed 003)."""
+and the relative motion of two surface points (Christian 1973)."""
 
 from ._baseline import baseline_corrected, polynomial_trend
 from ._figures import plot_relative_motion, plot_spectrum

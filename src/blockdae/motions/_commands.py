@@ -15,7 +15,7 @@ from ..cli._common import UsageError, checked, number, positive, read, record_ar
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._units import pga_factor
 
-SEED_LAGS = np.geomspace(0.05, 3.0, 20)  # seed 003: 20 lags from 0.05 to 3 s
+SEED_LAGS = np.geomspace(0.05, 3.0, 20)  # Christian 1973: 20 lags from 0.05 to 3 s
 DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)
 
 
@@ -25,7 +25,7 @@ def _common(parser, baseline):
     parser.add_argument("--g", type=positive("--g"),
                         default=STANDARD_GRAVITY, help="the unit 'g' [m/s²] (default 9.80665)")
     parser.add_argument("--pga", type=positive("--pga"),
-                        default=None, help="scale the record to this PGA [g] (seed 003: 0.1)")
+                        default=None, help="scale the record to this PGA [g] (Christian 1973: 0.1)")
     parser.add_argument("--csv", type=pathlib.Path, default=None, help="write the table as CSV")
     parser.add_argument("--json", action="store_true", help="print the results as JSON")
     parser.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure")
@@ -48,13 +48,13 @@ def add_spectrum_parser(subparsers):
 
 
 def add_two_point_parser(subparsers):
-    """The ``two-point`` subcommand: relative motion of two surface points (seed 003)."""
+    """The ``two-point`` subcommand: relative motion of two surface points (Christian 1973)."""
     p = subparsers.add_parser("two-point", help="largest relative displacement of two points τ = b/c apart "
-                                                "(seed 003)")
+                                                "(Christian 1973)")
     _common(p, baseline="polynomial")
     p.add_argument("--lags", nargs="+", default=None,
                    type=number("--lags", lambda x: np.isfinite(x) and x >= 0, "a number >= 0"),
-                   help="lags τ = b/c [s] (default the seed's 20 lags, 0.05 to 3 s)")
+                   help="lags τ = b/c [s] (default the paper's 20 lags, 0.05 to 3 s)")
     p.add_argument("--damping", type=number("--damping", lambda x: np.isfinite(x) and 0 <= x < 1, "in [0, 1)"),
                    default=0.05, help="damping of the 2 Sd(2τ) estimate [-] (default 0.05)")
     p.set_defaults(command=run_two_point)
@@ -112,7 +112,7 @@ def _index(spec, j):
     return type(spec)(**fields)
 
 
-#: what each column of the two-point table holds (seed 003's words), printed under it
+#: what each column of the two-point table holds (Christian's words), printed under it
 TWO_POINT_LEGEND = (
     "τ = b/c: time the wave takes from one point to the other; R: largest |d(t) − d(t − τ)|, computed "
     "directly (at t_R);",

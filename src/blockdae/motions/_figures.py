@@ -84,7 +84,7 @@ def _tripartite_grid(ax, unit, unit_name):
 
 
 def plot_relative_motion(rm, *, ax=None, title=None, estimates=True):
-    """R(τ) against the lag on log-log axes with the seed's estimates (seed 003 Figs 4-7).
+    """R(τ) against the lag on log-log axes with the paper's estimates (Christian 1973 Figs 4-7).
 
     Args:
         rm: a :class:`RelativeMotion`.

@@ -30,7 +30,7 @@ class ResponseSpectrum:
         sd: max |u|, relative displacement [m]; t_sd: its time [s].
         sv: max |u'|, relative velocity [m/s]; t_sv: its time [s].
         sa: max |u'' + a_g|, absolute acceleration [m/s²]; t_sa: its time [s].
-        sd_abs: max |u + x_g|, absolute displacement (seed 002) [m]; t_sd_abs [s].
+        sd_abs: max |u + x_g|, absolute displacement (the SMiRT paper on Newmark's formula) [m]; t_sd_abs [s].
         psv = ω Sd [m/s], psa = ω² Sd [m/s²] (ω = 2π/T).
         t_end: end of each analysed window [s], shape batch.
     """

@@ -1,4 +1,4 @@
-"""Relative motion of two surface points during an earthquake (seed 003, Christian 1973).
+"""Relative motion of two surface points during an earthquake (Christian 1973).
 
 The second point feels the same ground motion τ = b/c seconds later and is at rest before
 it arrives: D(t) = d(t) - d(t - τ), d(s) = 0 for s < 0. Between the breakpoints of d(t)
@@ -23,7 +23,7 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 
 @dataclasses.dataclass(frozen=True)
 class RelativeMotion:
-    """Largest relative displacement of two points for each lag, with the seed's estimates.
+    """Largest relative displacement of two points for each lag, with the paper's estimates.
 
     Arrays have the shape of ``lags``. SI units.
 
@@ -99,7 +99,7 @@ class RelativeMotion:
 
 
 def relative_motion(motion, lags, *, t_end=None, damping=0.05, estimates=True) -> RelativeMotion:
-    """Largest relative displacement of two points a lag τ apart (seed 003), exact.
+    """Largest relative displacement of two points a lag τ apart (Christian 1973), exact.
 
     Args:
         motion: an excitation (``bd.Record``, ``bd.Harmonic``, ...), e.g. baseline corrected.

@@ -1,4 +1,4 @@
-"""The block on a plane with vertical shaking and flight (seed 001): its model, modes
+"""The block on a plane with vertical shaking and flight (Elms 2000): its model, modes
 and solution; Elms's set-up."""
 
 from ._model import PlanarBlock, PlanarDAEForm

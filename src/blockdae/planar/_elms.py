@@ -1,4 +1,4 @@
-"""Elms's set-up (seed 001) in one place, for the notebook, tests and benchmarks.
+"""Elms's set-up (Elms 2000) in one place, for the notebook, tests and benchmarks.
 
 Dimensionless as in the paper: g = 1 m/s², so accelerations are coefficients of g and
 displacements are in units of g (T*/2)² with T* the wave's period; t [s] is his T.
@@ -16,7 +16,7 @@ from ..sliding._model import SlidingBlock
 #: Elms's table wave: C_x = sin(pi t) for one period (A = 1, T* = 2 s) [m/s² with g = 1]
 WAVE = Harmonic(1.0, 2.0, cycles=1)
 
-# What the seed says in its text (its figures are not in the text; "almost", "about",
+# What the paper says in its text (its figures are not in the text; "almost", "about",
 # "nearly" and "roughly" are its words, so every comparison is approximate): percent
 # increase of the final x displacement over R = 0
 SEED_FIG7_MAX_PERCENT = 60.0  # "reaching almost 60 %" (mu = 0.8, largest N/A)

@@ -1,4 +1,4 @@
-"""Figures of the block on a plane (seed 001): the path in the plane and its components."""
+"""Figures of the block on a plane (Elms 2000): the path in the plane and its components."""
 
 import math
 

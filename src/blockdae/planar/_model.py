@@ -1,5 +1,5 @@
 """The rigid block on a plane under two horizontal and one vertical base component
-(seed 001, Elms), with flight when the base falls faster than g.
+(Elms 2000), with flight when the base falls faster than g.
 
 With the base acceleration (a_x, a_y, a_z)(t) [m/s²] (z upward) and the bias
 b = (b_x, b_y) (a constant horizontal force on the block as a fraction of its
@@ -61,7 +61,7 @@ STUDY_RTOL = 1e-10
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class PlanarBlock(AbstractHybridModel):
-    """Rigid block on a horizontal plane shaken in x, y and z (seed 001).
+    """Rigid block on a horizontal plane shaken in x, y and z (Elms 2000).
 
     Args:
         mu: static friction coefficient [-], > 0.

@@ -1,5 +1,5 @@
-"""The 1-D rigid block on an accelerating base (seed 000): its model, modes and
-solution; Newmark's conventions, seed-002 formulas, final numbers and sweeps."""
+"""The 1-D rigid block on an accelerating base (Sawicki & Chybicki 2005): its model, modes and
+solution; Newmark's conventions, the SMiRT paper's formulas, final numbers and sweeps."""
 
 from ._model import SlidingBlock, SlidingDAEForm
 from ._modes import Mode

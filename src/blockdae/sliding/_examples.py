@@ -1,4 +1,4 @@
-"""The worked examples of seed 000 in one place, for the CLI, tests, notebooks and benchmarks.
+"""The worked examples of Sawicki & Chybicki 2005 in one place, for the CLI, tests, notebooks and benchmarks.
 
 The paper's values are transcribed as printed (rounded to its digits), so that our
 exact answers can be shown beside them.
@@ -9,13 +9,13 @@ import dataclasses
 from ..excitation import AbstractExcitation, Harmonic, RectangularPulse, SinePulse, TriangularPulse
 from ._model import SlidingBlock
 
-#: gravitational acceleration the seed uses [m/s²]
+#: gravitational acceleration the paper uses [m/s²]
 SEED_G = 9.81
 
 
 @dataclasses.dataclass(frozen=True)
 class SeedExample:
-    """One example of seed 000.
+    """One example of Sawicki & Chybicki 2005.
 
     Attributes:
         name: "Example 1", ..., "Example 6" ("Example 3a"/"3b" for its two frictions).
@@ -41,7 +41,7 @@ class SeedExample:
 
 
 def rectangular_pulse_displacement(amplitude, duration, mu, g=SEED_G):
-    """Relative displacement after a rectangular pulse, seed 000 Eq. 14 [m].
+    """Relative displacement after a rectangular pulse, Sawicki & Chybicki 2005 Eq. 14 [m].
 
     u = (A g t0² / 2) (1 - A / mu) with the non-dimensional pulse A = amplitude / g;
     Newmark (1965, Eq. 23) prints the same magnitude with the opposite sign.
@@ -57,7 +57,7 @@ def rectangular_pulse_displacement(amplitude, duration, mu, g=SEED_G):
 
 
 def seed_examples() -> tuple[SeedExample, ...]:
-    """Examples 1-6 of seed 000 (A = 9 or 7 m/s², T = 1 s, pulses t0 = 0.5 s, g = 9.81 m/s²)."""
+    """Examples 1-6 of Sawicki & Chybicki 2005 (A = 9 or 7 m/s², T = 1 s, pulses t0 = 0.5 s, g = 9.81 m/s²)."""
     harmonic, harmonic_7 = Harmonic(amplitude=9.0, period=1.0), Harmonic(amplitude=7.0, period=1.0)
     pulse = dict(amplitude=9.0, duration=0.5)
     block = SlidingBlock(mu=0.6, g=SEED_G)

@@ -1,4 +1,4 @@
-"""Figures of the 1-D block: seed 000 Figures 3-5 (absolute and relative motion, the
+"""Figures of the 1-D block: Sawicki & Chybicki 2005 Figures 3-5 (absolute and relative motion, the
 phase plane) and a batch's displacements against its parameters."""
 
 import numpy as np

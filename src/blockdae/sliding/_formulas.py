@@ -1,15 +1,15 @@
-"""Newmark's sliding formula and the adjustment factor of seed 002.
+"""Newmark's sliding formula and the adjustment factor of the SMiRT paper on Newmark's formula.
 
 A body resting with friction coefficient μ on a base whose acceleration is one
 rectangular pulse of height A g and duration t0 slides from t = 0 until its velocity
 μ g t catches the base's, V = A g t0, at t1 = A t0 / μ. The largest displacement
-relative to the base is (Newmark 1965; seed 002, eqs. 1-3)
+relative to the base is (Newmark 1965; the SMiRT paper on Newmark's formula, eqs. 1-3)
 
     R_d = V² / (2 μ g) · (1 - μ / A)                                  (eq. 1)
     Sd  = (A g t0² / 2) · (2 A / μ - 1)   (the base displacement at t1) (eq. 2)
     R_d = (Sd / 2) · (A/μ - 1) / (A/μ - 0.5)                          (eq. 3)
 
-exactly for that pulse. For earthquakes seed 002 takes Sd from the absolute
+exactly for that pulse. For earthquakes the SMiRT paper on Newmark's formula takes Sd from the absolute
 displacement spectrum at its long-period end and multiplies eq. 3 by an adjustment
 factor (eq. 4). The printed eq. 4 is garbled; we read it, as its text describes it
 ("the larger the coefficient of friction, the smaller the factor, but proportional to
@@ -18,7 +18,7 @@ the square root of the size of the base motion"), as
     Adj = a · √A / (μ + b),   a = 0.19, b = 0.06,                     (eq. 4)
 
 with a and b parameters of :class:`AdjustmentFactor` and :func:`fit_adjustment_factor`
-refitting them to an ensemble's results. Accelerations A are in g, as in the seed.
+refitting them to an ensemble's results. Accelerations A are in g, as in the paper.
 """
 
 import dataclasses
@@ -29,7 +29,7 @@ from ..core._units import STANDARD_GRAVITY
 
 
 def newmark_rd(pgv, pga, mu, g: float = STANDARD_GRAVITY):
-    """Newmark's sliding distance from the peak base velocity (seed 002, eq. 1).
+    """Newmark's sliding distance from the peak base velocity (the SMiRT paper on Newmark's formula, eq. 1).
 
     Args:
         pgv: peak base velocity V [m/s].
@@ -48,7 +48,7 @@ def newmark_rd(pgv, pga, mu, g: float = STANDARD_GRAVITY):
 
 def pulse_sd(pga, duration, mu, g: float = STANDARD_GRAVITY):
     """Base displacement when the body stops sliding under one rectangular pulse
-    (seed 002, eq. 2): the Sd that makes eq. 3 exact for that pulse.
+    (the SMiRT paper on Newmark's formula, eq. 2): the Sd that makes eq. 3 exact for that pulse.
 
     Args:
         pga: pulse height A [g]; duration: pulse length t0 [s]; mu: μ > 0 [-];
@@ -64,7 +64,7 @@ def pulse_sd(pga, duration, mu, g: float = STANDARD_GRAVITY):
 
 
 def newmark_rd_sd(sd, pga, mu):
-    """Newmark's sliding distance from the base displacement Sd (seed 002, eq. 3).
+    """Newmark's sliding distance from the base displacement Sd (the SMiRT paper on Newmark's formula, eq. 3).
 
     Args:
         sd: the largest base displacement Sd [m] (for an earthquake, the absolute
@@ -81,12 +81,12 @@ def newmark_rd_sd(sd, pga, mu):
 
 @dataclasses.dataclass(frozen=True)
 class AdjustmentFactor:
-    """Seed 002's adjustment factor Adj = scale·√A/(μ + offset) (eq. 4, read as in the
-    module docstring); the seed's values are the defaults.
+    """The SMiRT paper's adjustment factor Adj = scale·√A/(μ + offset) (eq. 4, read as in the
+    module docstring); the paper's values are the defaults.
 
     Args:
-        scale: a > 0 [-] (seed 002: 0.19).
-        offset: b [-] (seed 002: 0.06); μ + b must stay positive.
+        scale: a > 0 [-] (the SMiRT paper on Newmark's formula: 0.19).
+        offset: b [-] (the SMiRT paper on Newmark's formula: 0.06); μ + b must stay positive.
 
     Calling it, ``adj(pga, mu)`` with A [g] and μ [-], gives the factor [-] (arguments
     broadcast); ``adj(pga, mu) * newmark_rd_sd(sd, pga, mu)`` is the adjusted R_d [m].

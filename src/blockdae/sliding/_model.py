@@ -1,4 +1,4 @@
-"""The 1-D rigid block on an accelerating base (seed 000), as a hybrid automaton.
+"""The 1-D rigid block on an accelerating base (Sawicki & Chybicki 2005), as a hybrid automaton.
 
 State y = (u, v): displacement and velocity of the block relative to its base
 [m, m/s]. With the base acceleration a(t) [m/s²] and the bias R/Q (a constant force
@@ -100,7 +100,7 @@ def stop_mode(mode, slip_rate, sigma_rate, t_stop, mu, f, g, allow_neg, allow_po
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class SlidingBlock(AbstractHybridModel):
-    """Rigid block on a base that accelerates along x (seed 000).
+    """Rigid block on a base that accelerates along x (Sawicki & Chybicki 2005).
 
     Args:
         mu: static friction coefficient [-]; decides onset and re-sticking.

@@ -3,7 +3,7 @@
 Practitioners (Newmark 1965; Jibson 1993; SLAMMER) state a sliding mass by its yield
 acceleration k_y [g] and report the *downslope* displacement as a positive number, for
 the record as given ("normal" polarity) and for the record inverted ("inverse"). Here
-that is the signed 1-D block of seed 000 with ``mu = k_y`` sliding one way only
+that is the signed 1-D block of Sawicki & Chybicki 2005 with ``mu = k_y`` sliding one way only
 (``direction="negative"``): it slides while the ground acceleration exceeds k_y g, and
 the downslope displacement is D = -u(t_end). :func:`newmark` runs one record
 (:class:`NewmarkResult`) or many records × target PGAs × k_y (:class:`NewmarkSweep`).

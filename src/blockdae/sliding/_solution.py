@@ -156,7 +156,7 @@ class Solution(AbstractSolution):
                              "mode": [Mode(int(m)).name for m in np.asarray(self.mode)[after]]})
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
-        """Seed 000 Figures 3-5: v, u and the phase plane, with ``excitation`` also the
+        """Sawicki & Chybicki 2005 Figures 3-5: v, u and the phase plane, with ``excitation`` also the
         absolute motions (see :func:`blockdae.plot`); a matplotlib Figure."""
         from ._figures import solution_figure
 

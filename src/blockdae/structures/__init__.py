@@ -1,4 +1,5 @@
-"""Structures that filter the ground motion: the floors of a uniform shear frame (seed 002)."""
+"""Structures that filter the ground motion: the floors of a uniform shear frame (as in the SMiRT
+paper on Newmark's formula)."""
 
 from ._frame import Floor, ShearFrame
 

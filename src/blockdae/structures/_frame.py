@@ -1,4 +1,5 @@
-"""The uniform shear frame of seed 002 (Fig. 3) and the absolute accelerations of its floors.
+"""The uniform shear frame of the SMiRT paper on Newmark's formula (Fig. 3) and the absolute
+accelerations of its floors.
 
 n storeys of equal floor mass m and storey stiffness k, floor 1 the lowest and floor n
 the roof; u (shape (n,)) the floor displacements relative to the ground:
@@ -28,7 +29,7 @@ from ..excitation import Record
 
 @dataclasses.dataclass(frozen=True)
 class ShearFrame:
-    """A uniform shear frame: equal floor masses and storey stiffnesses (seed 002, Fig. 3).
+    """A uniform shear frame: equal floor masses and storey stiffnesses (the SMiRT paper on Newmark's formula, Fig. 3).
 
     Args:
         storeys: number of storeys (= floors above the ground) n >= 1.

@@ -1,4 +1,4 @@
-"""Studies of records × friction × intensity × location (seed 002): a tidy table, its
+"""Studies of records × friction × intensity × location (the SMiRT paper on Newmark's formula): a tidy table, its
 summaries, saving and reloading, and the ``blockdae study`` command."""
 
 from ._io import load_study, save_study

@@ -72,7 +72,7 @@ def add_study_parser(subparsers):
                    help="the unit 'g' [m/s²] of the files and the PGA grid (default 9.80665)")
     set_argument(p)
     p.add_argument("--out", type=pathlib.Path, required=True, help="results table (.csv or .parquet)")
-    p.add_argument("--summary", type=pathlib.Path, default=None, help="also the seed's summaries (.csv)")
+    p.add_argument("--summary", type=pathlib.Path, default=None, help="also the paper's summaries (.csv)")
     p.add_argument("--checkpoint", type=pathlib.Path, default=None, metavar="FOLDER",
                    help="save each finished task in FOLDER (new, empty, or this study's checkpoint): a rerun "
                         "with the same arguments runs only the tasks not saved yet")
@@ -139,7 +139,7 @@ def _block(args):
         raise UsageError(f"--direction {args.direction}: the flexible sliding mass slides downslope in both "
                          "polarities of each record (columns normal_m, inverse_m); leave --direction out")
     if args.summary is not None:
-        raise UsageError("--summary: the seed's summaries are of a block over mu; fit a fragility to the flexible "
+        raise UsageError("--summary: the paper's summaries are of a block over mu; fit a fragility to the flexible "
                          "mass's table instead (bd.hazard.fit_fragility)")
     block, ky = flexible_study_block(args)
     return block, dict(ky=ky), "ky"

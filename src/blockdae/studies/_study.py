@@ -94,7 +94,7 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction=N
             then each table's ky at zero displacement). The model's
             ``study_parameter`` says which of the two it takes; the other is refused.
         pga: target peak accelerations A > 0 [g]: the motion at each location (ground
-            or floor) is scaled so that its peak |a| is A g (seed 002). A value above 2 g
+            or floor) is scaled so that its peak |a| is A g (the SMiRT paper on Newmark's formula). A value above 2 g
             is refused (likely m/s²: 2.94 is 0.3 g in m/s²) unless ``check_peak=False``.
         scale: instead of ``pga``, factors > 0 [-] on the motion at each location.
         where: locations: "ground" and/or floors (``bd.ShearFrame(...).floor(i)``).
@@ -149,7 +149,7 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction=N
         1-D block: "normal" or "inverse", see ``direction``); mu [-] (ky_g [g]); pga_g (peak
         |a| of the motion used [g]); scale (its factor on the location's motion [-]);
         pga_m_s2 [m/s²]; pgv_m_s (peak |v| of the motion used, exact for linear pieces
-        [m/s]); sd_m (Sd [m]: the seed's "absolute displacement spectrum at the low
+        [m/s]); sd_m (Sd [m]: the paper's "absolute displacement spectrum at the low
         frequency end", which it identifies with the largest base displacement; the
         displacement u + x_g of a long-period oscillator tends to 0, its displacement u
         relative to the base to max |x_g|, so Sd = max |u| at ``sd_period``, exact);
@@ -205,11 +205,11 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction=N
 
 
 def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
-    """The seed's summaries of a study normalised by ``pga``: means over the records.
+    """The paper's summaries of a study normalised by ``pga``: means over the records.
 
     Args:
         table: the result of :func:`study` (or :func:`load_study`).
-        adjustment: the factor of seed 002's eq. 4.
+        adjustment: the factor of the SMiRT paper's eq. 4.
 
     Returns:
         One row per location × polarity × μ (or ky_g) × pga_g: location, floor,
@@ -220,7 +220,7 @@ def summary(table, adjustment: AdjustmentFactor = AdjustmentFactor()):
     swept = "ky_g" if "ky_g" in table and "mu" not in table else "mu"
     missing = [c for c in (swept, "max_abs_displacement_m", "sd_m") if c not in table]
     if missing:
-        raise ValueError(f"summary takes a study of a block over mu or ky_g (the seed's Newmark summaries); "
+        raise ValueError(f"summary takes a study of a block over mu or ky_g (the paper's Newmark summaries); "
                          f"the table has no {missing} columns (a flexible mass's study: group it yourself, or fit "
                          "bd.hazard.fit_fragility to it)")
     keys = ["location", "floor", "frame_period_s", *(["polarity"] if "polarity" in table else []), swept, "pga_g"]

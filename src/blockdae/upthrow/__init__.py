@@ -1,5 +1,5 @@
-"""A mass on a compliant support that can leave the ground (seed 004): the supports,
-the spring-supported mass, its solution and flights, the seed's estimates."""
+"""A mass on a compliant support that can leave the ground (Newmark 1969): the supports,
+the spring-supported mass, its solution and flights, the paper's estimates."""
 
 from ._model import SpringDAEForm, SpringSupportedMass
 from ._modes import UpthrowMode

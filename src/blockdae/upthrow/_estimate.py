@@ -1,4 +1,4 @@
-"""Newmark's estimates of upthrow (seed 004, eqs. 5, 8, 12, 13) from the linear response."""
+"""Newmark's estimates of upthrow (Newmark 1969, eqs. 5, 8, 12, 13) from the linear response."""
 
 import dataclasses
 import math
@@ -10,7 +10,7 @@ from ..core._repr import compact_repr
 
 @dataclasses.dataclass(frozen=True)
 class UpthrowEstimate:
-    """The seed's estimates for a mass on a spring support.
+    """The paper's estimates for a mass on a spring support.
 
     Attributes:
         static_deflection: u0 = g / omega² [m] (eq. 5).
@@ -44,7 +44,7 @@ class UpthrowEstimate:
 
 def upthrow_estimate(block: SpringSupportedMass, motion=None, *, response_acceleration=None,
                      t_end=None) -> UpthrowEstimate:
-    """Newmark's estimates of liftoff velocity, height and time to the top (seed 004).
+    """Newmark's estimates of liftoff velocity, height and time to the top (Newmark 1969).
 
     Args:
         block: the mass on its support (frequency, damping, g).

@@ -1,4 +1,4 @@
-"""Figures of a spring-supported mass (seed 004): a flight history."""
+"""Figures of a spring-supported mass (Newmark 1969): a flight history."""
 
 import numpy as np
 

@@ -1,4 +1,4 @@
-"""A compact mass on a unilateral spring-dashpot support, shaken vertically (seed 004,
+"""A compact mass on a unilateral spring-dashpot support, shaken vertically (Newmark 1969,
 Newmark on upthrow).
 
 The support has natural circular frequency omega = 2 pi f [rad/s], damping ratio zeta
@@ -20,7 +20,7 @@ a falling mass lands where u returns to u0 from above (n = -2 zeta omega u' > 0 
 so contact is consistent); with damping a mass can lift off below u0 (the dashpot pulls
 it off while the spring still pushes) and, if it does not rise above u0, it lands while
 still rising, where the law's n returns to 0 from below. Without damping both reduce to
-the seed's rule: separation and landing at u = u0.
+the paper's rule: separation and landing at u = u0.
 
 The law and the landing rows are :class:`~blockdae.SpringSupport`'s, which a
 :class:`~blockdae.PlanarBlock` can stand on too (one rule for both).
@@ -107,7 +107,7 @@ class SpringSupportedMass(AbstractHybridModel):
         """u0 = g / omega² [m] (seed eq. 5)."""
         return self.support.static_deflection(self.g)
 
-    #: the seed's name for the static deflection [m]
+    #: the paper's name for the static deflection [m]
     u0 = static_deflection
 
     def replace(self, **changes) -> "SpringSupportedMass":

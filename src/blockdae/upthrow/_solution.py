@@ -19,7 +19,7 @@ class UpthrowEvent(AbstractEvent):
         kind: "liftoff", "top", "landing" or "bottom" (a flight that rises again
             because the ground falls faster than g).
         u: displacement relative to the ground from the static position [m].
-        u_rate: u' [m/s] (at liftoff the seed's u'0; at landing the impact velocity).
+        u_rate: u' [m/s] (at liftoff the paper's u'0; at landing the impact velocity).
         height: u - u0 [m], the height above the unloaded support (at a top: the
             flight's height; 0 at a falling landing).
     """

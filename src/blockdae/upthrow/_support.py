@@ -1,4 +1,4 @@
-"""What a block stands on: the vertical physics of its contact (seed 004, upthrow).
+"""What a block stands on: the vertical physics of its contact (Newmark 1969, upthrow).
 
 A support gives the normal force per unit mass n [m/s², compression positive] from
 the vertical state (w [m], w' [m/s]) and the rule that ends a flight. w is the
@@ -48,7 +48,7 @@ class RigidSupport:
 
 @dataclasses.dataclass(frozen=True)
 class SpringSupport:
-    """A unilateral spring-dashpot support (seed 004).
+    """A unilateral spring-dashpot support (Newmark 1969).
 
     Args:
         frequency: natural frequency f of the block on the support [Hz], > 0.
