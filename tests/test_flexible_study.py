@@ -233,7 +233,7 @@ def test_cli_study_runs_the_flexible_mass(records, tmp_path, capsys, monkeypatch
                                                           "downslope in both polarities"),
         (column + ["--mu", "0.1"], "--height applies to the flexible sliding mass (--ky or --ky-table with "
                                    "--height and --vs), not to the rigid block of --mu"),
-        (column + ["--ky", "0.1", "--summary", str(tmp_path / "s.csv")], "--summary: the seed's summaries are of "
+        (column + ["--ky", "0.1", "--summary", str(tmp_path / "s.csv")], "--summary: the paper's summaries are of "
                                                                          "a block"),
         (column + ["--ky-table", "0:0.1", "0:0.2"], "--ky-table: KyTable: displacement_m must be strictly "
                                                     "increasing"),
