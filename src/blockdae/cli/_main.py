@@ -24,7 +24,7 @@ from ._common import (UsageError, checked, clean, describe_gravity, describe_rec
                       in_units_out, positive, read, record_arguments, record_fields, recursive_argument,
                       report_failures, save_figure, set_argument, units_out_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
-from ._flexible import add_flexible_parser
+from ._flexible import _table_row, add_flexible_parser
 from ._hazard import add_hazard_parsers
 from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
@@ -40,6 +40,7 @@ from ..core._progress import progress_bar
 from ..excitation._readers import RECORD_SUFFIXES, unit_factor
 from ..excitation._units import PGA_ROUNDINGS, UnitsWarning, pga_factor
 from ..sliding._model import SlidingBlock
+from ..flexible._ky_table import KyTable
 
 _CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
                "g_m_s2", "direction", "backend", "u_end_m", "max_abs_displacement_m", "n_events",
@@ -132,9 +133,13 @@ def _parser():
     newmark_.add_argument("records", type=pathlib.Path, nargs="*", metavar="RECORD",
                           help="accelerogram files or folders of them "
                                f"({', '.join(RECORD_SUFFIXES)}, each also .gz; sorted by name); or --set NAME")
-    newmark_.add_argument("--ky", type=positive("--ky"), nargs="+", required=True,
-                          help="yield acceleration(s) [g]; 0.05 g is 0.49 m/s²: a ky typed in m/s² is read "
-                               "9.8 times too large and gives millimetres")
+    ky = newmark_.add_mutually_exclusive_group(required=True)
+    ky.add_argument("--ky", type=positive("--ky"), nargs="+",
+                    help="yield acceleration(s) [g]; 0.05 g is 0.49 m/s²: a ky typed in m/s² is read "
+                         "9.8 times too large and gives millimetres")
+    ky.add_argument("--ky-table", type=_table_row, nargs="+", metavar="D_M:KY_G",
+                    help="ky [g] against the sliding displacement D [m] instead, linear between the rows "
+                         "(e.g. 0:0.15 0.5:0.05, a slide that softens as it moves)")
     newmark_.add_argument("--pga", type=positive("--pga"), nargs="+", default=None, metavar="PGA_G",
                           help="scale each record so that its peak |a| is PGA_G [g], each value in turn "
                                "(default: as read; above 2 g, likely m/s², refused unless --accept-peak)")
@@ -254,6 +259,10 @@ def _run(args):
 
 
 def _newmark(args):
+    if args.ky_table is not None and (args.history is not None or args.plot is not None or args.derivative):
+        raise UsageError("--ky-table: --history, --plot and --derivative take a constant --ky")
+    ky = np.asarray(args.ky, dtype=float) if args.ky_table is None else \
+        checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
     record_set = files_or_set(args, args.records)
     paths = [] if record_set is not None else \
         [p for arg in args.records for p in (folder_files(arg, args) if arg.is_dir() else [arg])]
@@ -265,7 +274,7 @@ def _newmark(args):
     with warnings.catch_warnings():
         warnings.simplefilter("always", UnitsWarning)
         warnings.showwarning = _prefixed(warnings.showwarning, where)
-        result = checked(lambda: newmark(motions, np.asarray(args.ky, dtype=float), g=args.g, pga=pga,
+        result = checked(lambda: newmark(motions, ky, g=args.g, pga=pga,
                                          pga_rounding=args.pga_rounding, derivative=args.derivative,
                                          check_peak=not args.accept_peak), where)
     table = result.to_dataframe()
@@ -303,6 +312,8 @@ def _print_newmark(args, records, pga, one, rows):
               f"(pga rounding: {args.pga_rounding})")
     u = args.units_out
     print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [{u}]; g = {args.g:g} m/s²")
+    if args.ky_table is not None:
+        print(f"ky against the sliding displacement: {KyTable(*zip(*args.ky_table))} (the column ky [g]: at D = 0)")
     width = 0 if one else max(len("record"), *(len(r.name) for r in records))
     head = "" if one else f"{'record':<{width}} {'PGA [g]':>8} "
     columns = [f"{name}_{u}" for name in ("normal", "inverse", "mean", "max")]

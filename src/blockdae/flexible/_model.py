@@ -73,6 +73,10 @@ class FlexibleSlidingMass(AbstractHybridModel):
     displacement_states = (_S,)
     default_backend = "exact"
     engines = {"exact": solve_exact}
+    #: the share of the column's u'' in HEA, the sliding mass's average acceleration
+    mass_participation = MASS_PARTICIPATION
+    #: HEA at rest as a share of a: u'' = -(4/pi) a there, so HEA = a + (2/pi) u'' = (1 - 8/pi²) a
+    hea_share_at_rest = SLIP_MASS_FRACTION
 
     def __post_init__(self):
         if not isinstance(self.column, ShearColumn):

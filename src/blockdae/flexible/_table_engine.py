@@ -34,7 +34,7 @@ from ..core._driver import AbstractIntegrator, InconsistentStateError, SolverErr
 from ..engines._linear import CHATTER, UNSETTLED
 from ..engines._linear_solution import linear_pieces
 from . import _table_kernel
-from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
+from ._column import MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._modes import FlexibleMode
 from ._table_kernel import EVENT_RESOLUTION, LOWER, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS, UPPER, _bound
 from ._table_kernel import TAYLOR_DEGREE as _TAYLOR_DEGREE
@@ -65,6 +65,7 @@ class _System:
     def __init__(self, model, mode, intercept, slope, breakpoint):
         k, c, g = model.omega**2, 2.0 * model.damping * model.omega, model.g
         kappa, friction = slope * g, intercept * g  # ky(s) g = friction + kappa s
+        participation = model.mass_participation  # of u'' in HEA: 2/pi; 0 for a rigid column (HEA = a)
         M = np.zeros((7, 7))
         M[_U, _V] = M[_A, _AR] = 1.0
         if mode == FlexibleMode.SLIP and model.coupled:  # d1 u'' = -(4/pi) ky(s) g - c u' - k u
@@ -74,7 +75,7 @@ class _System:
             M[_V, [_U, _V, _A]] = -k, -c, -MODE_PARTICIPATION
         if mode == FlexibleMode.SLIP:  # s' = w, w' = a - ky(s) g + (2/pi) u''
             M[_S, _W] = 1.0
-            M[_W] = MASS_PARTICIPATION * M[_V]
+            M[_W] = participation * M[_V]
             M[_W, _A] += 1.0
             M[_W, _S] -= kappa
             M[_W, _ONE] -= friction
@@ -82,7 +83,7 @@ class _System:
             if math.isfinite(breakpoint):
                 guards.append(breakpoint * np.eye(7)[_ONE] - np.eye(7)[_S])
         else:  # ky(s) g - HEA, HEA = a + (2/pi) u''
-            onset = -MASS_PARTICIPATION * M[_V]
+            onset = -participation * M[_V]
             onset[_A] -= 1.0
             onset[_S] += kappa
             onset[_ONE] += friction
@@ -244,14 +245,14 @@ def system_arrays(model):
     """The systems of ``model`` (ky a table) as :func:`._table_kernel._slides` takes them:
     (systems (k, SYSTEM_ROWS, 7): per system (mode * pieces + passed) M~ [1/s], scale,
     weights and rows c M^k of each guard, its numbers (see :mod:`._table_kernel`); pieces
-    of ky; ky g at s = 0 [m/s²])."""
+    of ky; ky g at s = 0 [m/s²]; HEA at rest as a share of a [-])."""
     systems = _Systems(model)
     n_pieces = len(systems.intercepts)
     built = [systems(mode, passed) for mode in FlexibleMode for passed in range(n_pieces)]
     packed = np.zeros((len(built), _table_kernel.SYSTEM_ROWS, 7))
     for k, system in enumerate(built):
         _pack(packed[k], system, system.rows)
-    return packed, n_pieces, float(model.yield_acceleration)
+    return packed, n_pieces, float(model.yield_acceleration), float(model.hea_share_at_rest)
 
 
 def _pack(packed, system, rows):

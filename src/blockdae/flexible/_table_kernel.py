@@ -41,7 +41,6 @@ from numba.extending import register_jitable
 
 from ..core._driver import _ULPS
 from ..engines._linear import CHATTER, FINISHED, UNSETTLED, _falls
-from ._column import SLIP_MASS_FRACTION
 
 _EPS = float(np.finfo(float).eps)
 #: status of a slide whose state contradicts its mode (w < 0 in SLIP beyond rounding)
@@ -454,13 +453,14 @@ def _step(state, counts, systems, kept, scratch, vectors, step, end, stack):
     return index
 
 
-def _slides(t0, h, p0, p1, slots, systems, n_pieces, kyg, log):
+def _slides(t0, h, p0, p1, slots, systems, n_pieces, kyg, share, log):
     """One slide from rest over a record's linear pieces (``t0``, ``h`` [s], a = ``p0`` +
     ``p1`` tau [m/s², m/s³], (n,) each; ``slots`` (n,): the slot of each piece's length,
     or -1, from :func:`step_slots`) by ``systems`` (k, SYSTEM_ROWS, 7) of
     :func:`._table_engine.system_arrays` (system mode * ``n_pieces`` + pieces of ky
-    passed); ``kyg``: ky g at s = 0 [m/s²]. Events go into ``log`` (m, 7) (EVENT_FIELDS)
-    while it has room. Returns the outcome (OUTCOME_FIELDS)."""
+    passed); ``kyg``: ky g at s = 0 [m/s²]; ``share``: HEA at rest as a share of a [-]
+    (1 - 8/pi² for a shear column, 1 for a rigid one). Events go into ``log`` (m, 7)
+    (EVENT_FIELDS) while it has room. Returns the outcome (OUTCOME_FIELDS)."""
     kept = np.empty((systems.shape[0], SLOTS, _DEPTHS, 8, 7))  # transitions; row 7: their tau [s] (0: none)
     kept[:, :, :, 7, 0] = 0.0
     scratch, vectors, stack = np.empty((3, 7, 7)), np.empty((12, 7)), np.empty((_STACK, 10))
@@ -472,7 +472,7 @@ def _slides(t0, h, p0, p1, slots, systems, n_pieces, kyg, log):
         start = t0[k]
         end = t0[k + 1] if k + 1 < n else t0[k] + h[k]
         if _at_rest(state):  # the driver's mode_at_rest at the piece's start
-            excess = SLIP_MASS_FRACTION * p0[k] - kyg
+            excess = share * p0[k] - kyg
             if excess > 0 or (excess == 0 and p1[k] > 0):
                 _log_event(state, counts, start, SLIP, log)
         restarted = True

@@ -24,6 +24,7 @@ from ..excitation import AbstractExcitation, UnitsWarning, pga_factor, read_reco
 from ..excitation._readers import record_files
 from ..excitation._record_set import RecordSet, with_metadata
 from ..excitation._units import check_pga, check_pga_rounding
+from ._ky_table import downslope_with_table
 from ._model import SlidingBlock
 from ._sweep import _labelled
 from ..core._repr import compact_repr
@@ -189,7 +190,10 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
             :func:`blockdae.read_record` (units as the files state them; for files that do not,
             read them with ``bd.read_records(path, units=...)`` and pass the set).
         ky: yield acceleration(s) [g], a number or 1-D array (a batch, one compiled
-            call); see :func:`yield_acceleration` and :meth:`SlidingBlock.on_incline`. A ky
+            call); see :func:`yield_acceleration` and :meth:`SlidingBlock.on_incline`. Or a
+            :class:`KyTable` of ky against the sliding displacement D (a slide that softens
+            or hardens as it moves), exact (the table's ky at D = 0 is the table column
+            ``ky_g``; no derivatives). A ky
             at or above the motion's peak [g] slides nowhere (D = 0): a :class:`UnitsWarning`
             says so; one also above 1 g is refused (likely m/s², e.g. ``ky=9.81``). A ky in
             m/s² below the peak cannot be told from one in g: 0.49 (0.05 g in m/s²) under a
@@ -227,7 +231,10 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
             raise ValueError(f"newmark: pga={pga!r} and target_pga={target_pga!r} name the same target peak [g]; "
                              "give one")
         pga = target_pga
-    ky = _yield_accelerations(ky)
+    ky, table = _yield_accelerations(ky)
+    if table is not None and (derivative or backend != "exact"):
+        raise ValueError(f"ky={table}: a ky table runs on the exact engine without derivatives (backend 'exact', "
+                         "derivative=False)")
     ky_array = np.asarray(ky, dtype=float)
     _require(np.isfinite(ky_array) & (ky_array > 0), "ky", ky_array, "must be a positive yield acceleration [g]")
     if isinstance(motion, AbstractExcitation) and np.ndim(pga) == 0:
@@ -238,39 +245,40 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
             warnings.warn(f"ky={shown} g >= PGA = {peak:.4g} g: the block does not slide, D = 0 m", UnitsWarning,
                           stacklevel=2)
         normal, inverse, normal_dky, inverse_dky = _downslope(motion, ky, polarity, g, t_end, backend, derivative,
-                                                              options)
+                                                              options, table)
         return NewmarkResult(ky=float(ky_array) if ky_array.ndim == 0 else ky_array, normal=normal, inverse=inverse,
                              g=float(g), normal_dky=normal_dky, inverse_dky=inverse_dky)
     return _sweep(motion, ky_array, polarity, g, t_end, backend, pga, pga_rounding, check_peak, progress, derivative,
-                  options)
+                  options, table)
 
 
 def _yield_accelerations(ky):
-    """``ky`` [g] as numbers: a constant ky table (:class:`bd.KyTable`, or pySLAMMER's pair
-    (displacements [m], ky [g])) as its one value; a table of ky varying with the sliding
-    displacement is refused (TypeError saying what is taken), as is anything not numeric."""
+    """(``ky`` [g] as numbers, None), or for a ky table (:class:`bd.KyTable`, or pySLAMMER's
+    pair (displacements [m], ky [g])) that varies with the sliding displacement (its ky at
+    D = 0 [g], the table); a constant table is its one value. A TypeError says what is
+    taken where ``ky`` is none of these."""
     from ..flexible._analysis import as_ky_table
 
     table = as_ky_table(ky)
     if table is not None:
-        if table.constant:
-            return float(table.ky_g[0])
-        raise TypeError(f"ky={table}: newmark takes yield accelerations [g] (a number or a 1-D sequence of "
-                        "them), not ky varying with the sliding displacement; a ky table runs on the flexible "
-                        "sliding mass: bd.flexible(motion, ky=table, height=..., vs=...)")
+        return float(table.ky_g[0]) if table.constant else float(np.interp(0.0, table.displacement_m, table.ky_g)), \
+            None if table.constant else table
     try:
-        return np.asarray(ky, dtype=float) if np.ndim(ky) else float(ky)
+        return np.asarray(ky, dtype=float) if np.ndim(ky) else float(ky), None
     except (TypeError, ValueError):
         raise TypeError(f"ky={ky!r:.80}: newmark takes yield accelerations [g], a number or a 1-D sequence "
-                        "of numbers (or a constant bd.KyTable)") from None
+                        "of numbers, or a bd.KyTable of ky against the sliding displacement") from None
 
 
-def _downslope(motion, ky, polarity, g, t_end, backend, derivative, options):
-    """(D normal, D inverse) [m] of ``motion`` at yield acceleration(s) ``ky`` [g], and if
-    ``derivative`` their dD/dky [m/g] (None where not run or not asked)."""
+def _downslope(motion, ky, polarity, g, t_end, backend, derivative, options, table=None):
+    """(D normal, D inverse) [m] of ``motion`` at yield acceleration(s) ``ky`` [g] (or the
+    :class:`KyTable` ``table``), and if ``derivative`` their dD/dky [m/g] (None where not
+    run or not asked)."""
     block = SlidingBlock(mu=ky, direction="negative", g=g)
 
     def downslope(excitation):
+        if table is not None:
+            return downslope_with_table(excitation, table, g, t_end)
         u = simulate(block, excitation, t_end=t_end, backend=backend, **options).displacement
         return 0.0 - u  # downslope positive; no -0.0 for a block that never slid
 
@@ -284,7 +292,8 @@ def _downslope(motion, ky, polarity, g, t_end, backend, derivative, options):
     return (*values, *slopes)
 
 
-def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, check_peak, progress, derivative, options):
+def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, check_peak, progress, derivative, options,
+           table=None):
     """:func:`newmark` over many motions × target peaks ``pga`` [g] × ``ky`` [g]."""
     metadata = motions.metadata if isinstance(motions, RecordSet) else None
     names, motions = _labelled(_motions(motions, g))
@@ -305,10 +314,10 @@ def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, check_pe
                 peak = scaled.peak_acceleration / g
                 if shown := _not_sliding(ky, peak, where=f"{name}: "):
                     still.append(f"{name} (PGA {peak:.4g} g): ky={shown} g")
-                for table, value in zip(tables, _downslope(scaled, ky, polarity, g, t_end, backend, derivative,
-                                                           options)):
+                for values, value in zip(tables, _downslope(scaled, ky, polarity, g, t_end, backend, derivative,
+                                                            options, table)):
                     if value is not None:
-                        table[i, j] = value
+                        values[i, j] = value
             bar.update()
     if still:
         more = f"; and {len(still) - _CASES_SHOWN} more" if len(still) > _CASES_SHOWN else ""
