@@ -80,7 +80,7 @@ def _stopping_time(table, d, rate, g):
     rows_d = np.asarray(table.displacement_m, dtype=float)
     ahead = np.concatenate([[d], rows_d[rows_d > d]])
     ky = np.interp(ahead, rows_d, table.ky_g)
-    work = rate * rate / (2.0 * g)  # [g m] still to be done by ky
+    work = rate * rate / (2.0 * g)  # [m]: the integral of ky [g] over D still to be done
     for (d0, d1), (k0, k1) in zip(zip(ahead, ahead[1:]), zip(ky, ky[1:])):
         if 0.5 * (k0 + k1) * (d1 - d0) >= work:  # it stops on this piece: where ky's area is the work
             slope = (k1 - k0) / (d1 - d0)
