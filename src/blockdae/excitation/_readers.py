@@ -243,18 +243,18 @@ def _at2_header(line, index, path):
         raise ValueError(f"{path}, line {index + 1}: cannot read NPTS and DT in {line.strip()!r}") from None
 
 
-#: an AT2 header's component (the last field of its second line) that names a vertical channel
-_AT2_VERTICAL = {"UP": "Up", "UD": "Up", "V": "Up", "VER": "Up", "VERT": "Up", "Z": "Up", "DWN": "Down", "DOWN": "Down"}
+#: an AT2 header's components (the last field of its second line) that name a vertical channel
+_AT2_VERTICAL = {"UP", "UD", "V", "VER", "VERT", "Z", "DWN", "DOWN"}
 
 
 def _at2_component(first_lines):
-    """{"component": the last field of an AT2 file's second line (PEER's: "UP", "90", "360",
-    "DWN"), "vertical": whether it names a vertical channel}; {} where there is none."""
+    """{"component": the last field of an AT2 file's second line as written (PEER's: "UP",
+    "90", "360", "DWN"), "vertical": whether it names a vertical channel}; {} where there
+    is none."""
     if len(first_lines) < 2 or "," not in first_lines[1]:
         return {}
     component = first_lines[1].rsplit(",", 1)[1].strip()
-    vertical = _AT2_VERTICAL.get(component.upper())
-    return {"component": vertical or component, "vertical": vertical is not None} if component else {}
+    return {"component": component, "vertical": component.upper() in _AT2_VERTICAL} if component else {}
 
 
 def _at2_units(header_lines, path):
