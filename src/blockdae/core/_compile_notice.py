@@ -12,7 +12,7 @@ import sys
 import warnings
 
 _PACKAGE = str(pathlib.Path(__file__).resolve().parents[1])  # the blockdae folder
-_noticed: set[str] = set()  # engines announced in this process
+_noticed: set[str] = set()  # engines announced, or looked at and found compiled, in this process
 
 
 class CompileNotice(UserWarning):
@@ -36,10 +36,14 @@ def notice(engine: str, what: str) -> None:
 def notice_numba(engine: str, seconds: float, *dispatchers) -> None:
     """:func:`notice` for a numba ``engine`` (its compile takes about ``seconds`` [s])
     whose ``dispatchers`` are about to be called, if one of them will compile (see the
-    module's docstring)."""
-    if engine not in _noticed and any(_will_compile(d) for d in dispatchers):
+    module's docstring). Looked at once per process: a dispatcher that has loaded or
+    compiled its kernel keeps it (asking numba on every call cost a fifth of a warm run)."""
+    if engine in _noticed:
+        return
+    if any(_will_compile(d) for d in dispatchers):
         notice(engine, f"{engine} with numba (its first run after an install or upgrade; about {seconds:g} s, "
                        f"then loaded from numba's disk cache)")
+    _noticed.add(engine)
 
 
 def _will_compile(dispatcher) -> bool:

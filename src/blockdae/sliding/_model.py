@@ -230,6 +230,10 @@ class SlidingBlock(AbstractHybridModel):
         factors of ``scale`` on a(t); set j at factor k is row j * s + k."""
         values = (self.mu, self.friction_kinetic, self.bias, self.g)
         scale = np.asarray(scale, dtype=float).ravel()
+        if not any(isinstance(x, np.ndarray) for x in values):  # one set (floats): the warm single run's path
+            rows = np.empty((scale.size, 5))
+            rows[:, :4], rows[:, 4] = values, scale
+            return rows
         m = max(np.size(x) for x in values)
         rows = np.empty((m, scale.size, 5))
         for column, x in enumerate(values):
