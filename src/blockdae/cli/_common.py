@@ -16,6 +16,7 @@ from ..core._units import STANDARD_GRAVITY
 from ..excitation import RecordSet, RecordWarning, read_record
 from ..excitation._fema import SETS as FEMA_SETS
 from ..excitation._readers import record_files
+from ..flexible._ky_table import KyTable
 from ..motions._baseline import METHODS as BASELINES, baseline_corrected
 
 #: the record sets of --set: name -> the name of bd.RecordSet.fema_p695
@@ -46,6 +47,21 @@ def finite(flag):
 
 def positive(flag):
     return number(flag, lambda x: np.isfinite(x) and x > 0, "a positive finite number")
+
+
+def ky_table_row(text):
+    """One row D:ky of --ky-table: (displacement [m], ky [g])."""
+    try:
+        displacement, ky = (float(part) for part in text.split(":"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"a row of --ky-table is D_M:KY_G (e.g. 0.05:0.12), got {text!r}") from None
+    return displacement, ky
+
+
+def ky_table(args):
+    """The :class:`KyTable` of a command's --ky-table rows (a usage error naming the flag if
+    they are not one), or None without them."""
+    return None if args.ky_table is None else checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
 
 
 def checked(action, where):

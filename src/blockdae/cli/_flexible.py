@@ -1,18 +1,16 @@
 """``blockdae flexible``: the flexible sliding-mass analyses (decoupled or coupled,
 linear-elastic or equivalent-linear, both polarities) of one record, exact in time."""
 
-import argparse
 import json
 
 import pathlib
 
-from ._common import (UsageError, checked, describe_record, in_units_out, number, positive, read, record_arguments,
-                      record_fields, save_figure, units_out_argument)
+from ._common import (UsageError, checked, describe_record, in_units_out, ky_table, ky_table_row, number, positive,
+                      read, record_arguments, record_fields, save_figure, units_out_argument)
 from ..core._simulate import simulate
 from ..core._units import STANDARD_GRAVITY
 from ..flexible._analysis import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
 from ..flexible._column import ShearColumn
-from ..flexible._ky_table import KyTable
 from ..flexible._model import METHODS, FlexibleSlidingMass
 
 def _columns(unit):
@@ -34,7 +32,7 @@ def add_flexible_parser(subparsers):
     ky.add_argument("--ky", type=number("--ky", lambda x: x >= 0, "a yield acceleration >= 0 [g]"), nargs="+",
                     help="yield acceleration(s) [g]; 0.05 g is 0.49 m/s²: a ky typed in m/s² is read 9.8 "
                          "times too large and gives millimetres")
-    ky.add_argument("--ky-table", type=_table_row, nargs="+", metavar="D_M:KY_G",
+    ky.add_argument("--ky-table", type=ky_table_row, nargs="+", metavar="D_M:KY_G",
                     help="ky [g] against the sliding displacement D [m] as rows D:ky, D increasing (linear "
                          "between rows, constant beyond: bd.KyTable)")
     p.add_argument("--height", type=positive("--height"), required=True, help="height H of the sliding mass [m]")
@@ -68,19 +66,11 @@ def add_flexible_parser(subparsers):
     return p
 
 
-def _table_row(text):
-    """One row D:ky of --ky-table: (displacement [m], ky [g])."""
-    try:
-        displacement, ky = (float(part) for part in text.split(":"))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"a row of --ky-table is D_M:KY_G (e.g. 0.05:0.12), got {text!r}") from None
-    return displacement, ky
-
-
 def run_flexible(args) -> int:
     """Run the analyses that ``args`` describe; print one row per ky; the exit status."""
     record = read(args.record, args)
-    ky = args.ky if args.ky_table is None else checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
+    table = ky_table(args)
+    ky = args.ky if table is None else table
     result = checked(lambda: flexible(record, ky, args.height, args.vs, args.vr, args.damping, args.method,
                                       args.reference_strain is not None, args.reference_strain, args.pga,
                                       args.polarity, args.integration, args.g, args.t_end,
@@ -140,7 +130,8 @@ def flexible_study_block(args):
     missing = [flag for flag, value in (("--height", args.height), ("--vs", args.vs)) if value is None]
     if missing:
         raise UsageError(f"--ky and --ky-table study the flexible sliding mass: give {' and '.join(missing)}")
-    ky = args.ky if args.ky_table is None else checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
+    table = ky_table(args)
+    ky = args.ky if table is None else table
     damping = 0.05 if args.soil_damping is None else args.soil_damping
     column = checked(lambda: ShearColumn(args.height, args.vs, args.vr, damping), "--soil-damping")
     return FlexibleSlidingMass(column, ky=0.0, method=args.method or "coupled", g=args.g), ky

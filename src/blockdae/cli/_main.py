@@ -21,10 +21,11 @@ import numpy as np
 
 from .. import backends
 from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, folder_files,
-                      in_units_out, positive, read, record_arguments, record_fields, recursive_argument,
+                      in_units_out, ky_table, ky_table_row, positive, read, record_arguments, record_fields,
+                      recursive_argument,
                       report_failures, save_figure, set_argument, units_out_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
-from ._flexible import _table_row, add_flexible_parser
+from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
 from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
@@ -40,7 +41,6 @@ from ..core._progress import progress_bar
 from ..excitation._readers import RECORD_SUFFIXES, unit_factor
 from ..excitation._units import PGA_ROUNDINGS, UnitsWarning, pga_factor
 from ..sliding._model import SlidingBlock
-from ..flexible._ky_table import KyTable
 
 _CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
                "g_m_s2", "direction", "backend", "u_end_m", "max_abs_displacement_m", "n_events",
@@ -137,7 +137,7 @@ def _parser():
     ky.add_argument("--ky", type=positive("--ky"), nargs="+",
                     help="yield acceleration(s) [g]; 0.05 g is 0.49 m/s²: a ky typed in m/s² is read "
                          "9.8 times too large and gives millimetres")
-    ky.add_argument("--ky-table", type=_table_row, nargs="+", metavar="D_M:KY_G",
+    ky.add_argument("--ky-table", type=ky_table_row, nargs="+", metavar="D_M:KY_G",
                     help="ky [g] against the sliding displacement D [m] instead, linear between the rows "
                          "(e.g. 0:0.15 0.5:0.05, a slide that softens as it moves)")
     newmark_.add_argument("--pga", type=positive("--pga"), nargs="+", default=None, metavar="PGA_G",
@@ -261,8 +261,8 @@ def _run(args):
 def _newmark(args):
     if args.ky_table is not None and (args.history is not None or args.plot is not None or args.derivative):
         raise UsageError("--ky-table: --history, --plot and --derivative take a constant --ky")
-    ky = np.asarray(args.ky, dtype=float) if args.ky_table is None else \
-        checked(lambda: KyTable(*zip(*args.ky_table)), "--ky-table")
+    table = ky_table(args)
+    ky = np.asarray(args.ky, dtype=float) if table is None else table
     record_set = files_or_set(args, args.records)
     paths = [] if record_set is not None else \
         [p for arg in args.records for p in (folder_files(arg, args) if arg.is_dir() else [arg])]
@@ -313,7 +313,7 @@ def _print_newmark(args, records, pga, one, rows):
     u = args.units_out
     print(f"Newmark rigid block, one-way; downslope displacement D >= 0 [{u}]; g = {args.g:g} m/s²")
     if args.ky_table is not None:
-        print(f"ky against the sliding displacement: {KyTable(*zip(*args.ky_table))} (the column ky [g]: at D = 0)")
+        print(f"ky against the sliding displacement: {ky_table(args)} (the column ky [g]: at D = 0)")
     width = 0 if one else max(len("record"), *(len(r.name) for r in records))
     head = "" if one else f"{'record':<{width}} {'PGA [g]':>8} "
     columns = [f"{name}_{u}" for name in ("normal", "inverse", "mean", "max")]

@@ -13,9 +13,9 @@ import time
 
 import numpy as np
 
-from ..cli._common import (UsageError, files_or_set, number, positive, read, record_arguments, recursive_argument,
-                           set_argument)
-from ..cli._flexible import _table_row, add_flexible_study_arguments, flexible_study_block
+from ..cli._common import (UsageError, files_or_set, ky_table_row, number, positive, read, record_arguments,
+                           recursive_argument, set_argument)
+from ..cli._flexible import add_flexible_study_arguments, flexible_study_block
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._readers import RECORD_SUFFIXES, record_files
 from ..structures import ShearFrame
@@ -51,7 +51,7 @@ def add_study_parser(subparsers):
     swept.add_argument("--ky", type=positive("--ky"), nargs="+",
                        help="yield accelerations [g]: of Newmark's rigid block (column ky_g), or with --height "
                             "and --vs of the flexible sliding mass")
-    swept.add_argument("--ky-table", type=_table_row, nargs="+", metavar="D_M:KY_G",
+    swept.add_argument("--ky-table", type=ky_table_row, nargs="+", metavar="D_M:KY_G",
                        help="the flexible sliding mass with ky [g] against the sliding displacement D [m], rows D:ky "
                             "(bd.KyTable; the column ky_g: ky at D = 0)")
     size = p.add_mutually_exclusive_group(required=True)
