@@ -1,6 +1,5 @@
 """The sliding mass as a uniform shear column: its first mode, its damping and the
-equivalent-linear iteration, as SLAMMER 1.1 defines them (the formulation note,
-``../shared/flexible_formulation.md``, sections 2 and 3)."""
+equivalent-linear iteration, as SLAMMER 1.1 defines them (Rathje & Bray 2000; docs/flexible-mass.md, "The model")."""
 
 import dataclasses
 import math

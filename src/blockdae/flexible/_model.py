@@ -1,5 +1,5 @@
-"""The flexible sliding mass as a hybrid automaton (the formulation note,
-``../shared/flexible_formulation.md``, section 8).
+"""The flexible sliding mass as a hybrid automaton (Rathje & Bray 2000; the equations in
+docs/flexible-mass.md, "The model").
 
 The sliding mass is the first mode of a uniform shear column (:class:`ShearColumn`):
 u is the modal coordinate (the top relative to the base of the mass), omega its

@@ -1,6 +1,5 @@
 """SLAMMER 1.1's fixed-step flexible sliding-mass analyses, quirks included, to reproduce
-its results to the printed digits (the formulation note,
-``../shared/flexible_formulation.md``, sections 1 and 4-6).
+its results to the printed digits (docs/flexible-mass.md, "SLAMMER's own scheme").
 
 Newmark average acceleration (gamma = 1/2, beta = 1/4) at the record's dt from a virtual
 zero sample at t = -dt; sliding detected at the samples only; one-way sliding in the
