@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..sliding._solution import BatchSolution
+from ..core._solution import BatchSolution
 from ..excitation import AbstractExcitation
 from ..core._model import AbstractHybridModel
 

@@ -43,3 +43,27 @@ def state_figure(solution, *, n_points, title=None):
     if title:
         fig.suptitle(title)
     return fig
+
+
+def batch_figure(batch, *, title=None):
+    """u(t_end) and max |u| [m] of each parameter set against the parameter that varies."""
+    import matplotlib.pyplot as plt
+
+    grid, block = batch.parameters(), batch.block
+    for tied in (block.tied_parameters().values() if block is not None else ()):
+        for name in tied:  # moves with another parameter of the grid
+            grid.pop(name, None)
+    varied = [name for name, values in grid.items() if np.unique(values).size > 1]
+    if len(varied) == 1:
+        name = varied[0]
+        x, xlabel = grid[name], f"{block.parameter_words.get(name, name)} [{block.parameter_units().get(name, '-')}]"
+    else:
+        x = np.arange(len(batch))
+        xlabel = "parameter set" + (f" ({', '.join(varied)} vary)" if varied else "")
+    fig, ax = plt.subplots(figsize=(6, 4), constrained_layout=True)
+    ax.plot(x, batch.displacement, marker="o", ms=4, color="C3", label="u(t_end)")
+    ax.plot(x, batch.max_abs_displacement, marker="s", ms=4, mfc="none", ls="--", color="0.3", label="max |u|")
+    ax.set(xlabel=xlabel, ylabel="relative displacement (signed) [m]", title=title)
+    ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    ax.legend(loc="best", fontsize="small")
+    return fig

@@ -143,6 +143,15 @@ class AbstractHybridModel(abc.ABC):
         ``value``; raises ValueError where that is no valid model."""
         return self.replace(**{name: value})
 
+    #: parameter name -> words for axis labels and tables ("static friction coefficient
+    #: mu"); a name not here is shown as it is
+    parameter_words: dict = {}
+
+    def parameter_units(self) -> dict:
+        """Parameter name -> its unit ("-" for a dimensionless one); a name not here is
+        dimensionless."""
+        return {}
+
     def tied_parameters(self) -> dict:
         """name -> the parameters that move with it as ``replace(name=...)`` moves them
         (e.g. a kinetic friction that defaults to the static one); none by default."""

@@ -6,6 +6,7 @@ import dataclasses
 from typing import Callable
 
 import numpy as np
+from ..excitation import AbstractExcitation
 from ._repr import compact_repr
 
 
@@ -132,3 +133,76 @@ class DriverSolution(AbstractSolution):
         names = list(self.block.state_names) if self.block is not None else []
         rows = [(e.t, e.mode_before.name, e.mode_after.name, *e.state) for e in self.events]
         return pd.DataFrame(rows, columns=["t_s", "mode_before", "mode_after", *names])
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class BatchSolution:
+    """Results for a batch of parameter sets over one excitation.
+
+    Attributes:
+        displacement: u(t_end) per parameter set [m], shape (n,); for a planar block
+            (u_x, u_y)(t_end), shape (n, 2).
+        max_abs_displacement: max |u| per parameter set [m], shape (n,).
+        n_events: number of events per parameter set, shape (n,).
+        t_end: final time per parameter set [s], shape (n,).
+        backend: name of the backend that produced it.
+        block: the parameter grid, a block whose parameters are arrays of shape (n,)
+            (set by :func:`blockdae.simulate`; None if a backend was called directly).
+        motion: the base excitation.
+    """
+
+    def __repr__(self):
+        u = self.displacement
+        return compact_repr(self, f"{u.size} parameter sets, u(t_end) from {np.min(u):.4g} to {np.max(u):.4g} m "
+                                  "(signed)")
+
+    displacement: np.ndarray
+    max_abs_displacement: np.ndarray
+    n_events: np.ndarray
+    t_end: np.ndarray
+    backend: str
+    solve_one: Callable = dataclasses.field(repr=False)
+    block: object = dataclasses.field(default=None, repr=False)  # the model, with array parameters
+    motion: AbstractExcitation | None = dataclasses.field(default=None, repr=False)
+
+    def __len__(self):
+        return self.displacement.shape[0]
+
+    def __getitem__(self, index: int) -> AbstractSolution:
+        """The full solution (events, dense output) of one parameter set."""
+        solution = self.solve_one(index)
+        if self.block is None:
+            return solution
+        return dataclasses.replace(solution, block=self.block.item(index), motion=self.motion)
+
+    def parameters(self) -> dict:
+        """The grid, each of shape (n,), as the model's ``batch_parameters`` names it
+        (mu, mu_kinetic (the kinetic coefficient in effect) and bias [-] for a 1-D block);
+        empty if the block is unknown."""
+        return {} if self.block is None else self.block.batch_parameters()
+
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """u(t_end) and max |u| [m] against the parameter that varies (the arguments
+        besides ``title`` are unused); a matplotlib Figure."""
+        from ._figures import batch_figure
+
+        return batch_figure(self, title=title)
+
+    def to_dataframe(self):
+        """A pandas DataFrame, one row per parameter set: the grid (mu, mu_kinetic, bias
+        [-], g_m_s2 [m/s²], and the direction of a 1-D block; when the block is known),
+        u_end_m (the signed u at the end [m]; displacement_x_m, displacement_y_m for a planar block),
+        max_abs_displacement_m [m], n_events, t_end_s [s]."""
+        import pandas as pd
+
+        columns = self.parameters()
+        if self.block is not None:
+            columns |= {"g_m_s2": float(self.block.g)}
+            if hasattr(self.block, "direction"):  # the 1-D block's sliding directions
+                columns |= {"direction": self.block.direction}
+        u = np.asarray(self.displacement, dtype=float)
+        columns |= ({"u_end_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]})
+        columns |= {"max_abs_displacement_m": np.asarray(self.max_abs_displacement, dtype=float),
+                    "n_events": np.asarray(self.n_events, dtype=int),
+                    "t_end_s": np.asarray(self.t_end, dtype=float)}
+        return pd.DataFrame(columns, index=pd.RangeIndex(len(self)))

@@ -5,7 +5,7 @@ import dataclasses
 import numpy as np
 
 from ..core._compile_notice import notice_numba
-from ..sliding._solution import BatchSolution
+from ..core._solution import BatchSolution
 from ..excitation import Pieces
 from ..excitation._pieces import accel
 from . import _exact_numba as engine

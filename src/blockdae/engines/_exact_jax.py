@@ -10,7 +10,7 @@ import jax
 import numpy as np
 
 from ..core._jax_config import jax_context
-from ..sliding._solution import BatchSolution
+from ..core._solution import BatchSolution
 from ..excitation import Pieces
 from . import _exact_kernel as kernel
 from ..backends._base import AbstractBackend, cached_per_excitation, check_window

@@ -16,7 +16,7 @@ from ..backends._base import AbstractBackend
 from ..core._compile_notice import notice_numba
 from ..core._driver import HermiteDense
 from ..integrators._sundials import _check_real
-from ..sliding._solution import BatchSolution
+from ..core._solution import BatchSolution
 from . import _planar as engine
 
 #: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)

@@ -11,7 +11,8 @@ import numpy as np
 
 from ..core._driver import drive
 from ..core._jax_config import jax_context
-from ..sliding._solution import BatchSolution, EventLog, Solution
+from ..core._solution import BatchSolution
+from ..sliding._solution import EventLog, Solution
 from ..engines import _jax_kernel as kernel
 from ..sliding._model import never_rests_error
 from ._diffrax import DiffraxIntegrator, Settings

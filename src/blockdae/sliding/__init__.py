@@ -3,6 +3,7 @@ solution; Newmark's conventions, the SMiRT paper's formulas, final numbers and s
 
 from ._model import SlidingBlock, SlidingDAEForm
 from ._modes import Mode
-from ._solution import BatchSolution, Event, EventLog, Solution
+from ..core._solution import BatchSolution
+from ._solution import Event, EventLog, Solution
 
 __all__ = ["BatchSolution", "Event", "EventLog", "Mode", "SlidingBlock", "SlidingDAEForm", "Solution"]

@@ -68,29 +68,6 @@ def _thresholds(ax, block):
             ax.axhline(level, color="C1", ls=style, lw=1.0, label=f"threshold, to {towards}")
 
 
-def batch_figure(batch, *, title=None):
-    """u(t_end) and max |u| [m] of each parameter set against the parameter that varies."""
-    import matplotlib.pyplot as plt
-
-    grid = batch.parameters()
-    if batch.block is not None and batch.block.mu_kinetic is None:
-        del grid["mu_kinetic"]
-    varied = [name for name, values in grid.items() if np.unique(values).size > 1]
-    if len(varied) == 1:
-        x, xlabel = grid[varied[0]], _WORDS.get(varied[0], varied[0]) + " [-]"
-    else:
-        x = np.arange(len(batch))
-        xlabel = "parameter set" + (f" ({', '.join(varied)} vary)" if varied else "")
-    fig, ax = plt.subplots(figsize=(6, 4), constrained_layout=True)
-    ax.plot(x, batch.displacement, marker="o", ms=4, color="C3", label="u(t_end)")
-    ax.plot(x, batch.max_abs_displacement, marker="s", ms=4, mfc="none", ls="--", color="0.3", label="max |u|")
-    ax.set(xlabel=xlabel, ylabel="relative displacement (signed) [m]", title=title)
-    ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
-    ax.legend(loc="best", fontsize="small")
-    return fig
-
-
-
 def newmark_figure(ky, curves, *, key="record", pga=None, polarity=None, title=None):
     """Newmark's D [m] against k_y [g]: a colour per entry of ``curves`` ((label, D of shape
     (n_pga, n_ky) [m]) pairs), a line style per target PGA (``pga`` [g]; None: the records
@@ -176,8 +153,6 @@ def newmark_history_figure(solution, motion, ky, g, *, polarity, n_points, title
     return fig
 
 
-_WORDS = {"mu": "static friction coefficient mu", "mu_kinetic": "kinetic friction coefficient f",
-          "bias": "bias force R/Q"}
 _KY_TICKS = (0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0)  # [g]
 _STYLES = ("-", "--", ":", "-.")
 _MARKERS = ("o", "s", "^", "v", "D")

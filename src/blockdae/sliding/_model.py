@@ -217,6 +217,13 @@ class SlidingBlock(AbstractHybridModel):
         """Whether slip+ (u increasing) is allowed."""
         return self.direction in ("both", "positive")
 
+    parameter_words = {"mu": "static friction coefficient mu", "mu_kinetic": "kinetic friction coefficient f",
+                       "bias": "bias force R/Q"}
+
+    def tied_parameters(self) -> dict:
+        """mu moves the kinetic friction too when ``mu_kinetic`` is None."""
+        return {"mu": ("mu_kinetic",)} if self.mu_kinetic is None else {}
+
     def batch_parameters(self) -> dict:
         """The grid: mu, mu_kinetic (the coefficient in effect) and bias [-], each of
         shape ``batch_shape``."""

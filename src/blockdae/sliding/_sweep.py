@@ -6,7 +6,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..core._simulate import simulate
-from ._solution import BatchSolution
+from ..core._solution import BatchSolution
 from ..excitation import AbstractExcitation, pga_factor
 from ..excitation._record import check_horizontal
 from ..excitation._units import check_pga, check_pga_rounding
