@@ -7,12 +7,12 @@ from ._base import AbstractBackend, Horizon
 
 # name -> "module:class", imported on first use so that unused solvers cost nothing
 _REGISTRY = {
-    "exact": "blockdae.engines._exact:ExactBackend",
-    "exact-jax": "blockdae.engines._exact_jax:ExactJaxBackend",
+    "exact": "blockdae.solvers._exact:ExactBackend",
+    "exact-jax": "blockdae.solvers._exact:ExactJaxBackend",
     "cvode": "blockdae.integrators._cvode:CVODEBackend",
     "ida": "blockdae.integrators._ida:IDABackend",
     "jax": "blockdae.integrators._jax:JaxBackend",
-    "compiled": "blockdae.engines._planar_backend:CompiledBackend",
+    "compiled": "blockdae.solvers._compiled:CompiledBackend",
 }
 
 

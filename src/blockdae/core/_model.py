@@ -46,11 +46,11 @@ class AbstractHybridModel(abc.ABC):
     displacement_states: tuple[int, ...] = (0,)
     #: the backend :func:`blockdae.simulate` uses when none is named
     default_backend: str = "cvode"
-    #: backend name -> the compiled or closed-form engine it runs this model on, by the
-    #: engine's name ("sliding" for the 1-D block's kernels, "linear" for closed-form
-    #: steps of linear modes), or a callable ``(model, excitation, horizon, backend name)
-    #: -> solution``: the model's own engine; a backend not named here runs the model on
-    #: the generic driver ("cvode", "ida", "jax") or not at all ("exact", "exact-jax")
+    #: backend name -> the engine it runs this model on (see :mod:`._engines`: an object
+    #: with ``solve``, and ``solve_batch``/``solve_final`` where it batches), or "linear"
+    #: (the compiled engine of linear modes, for a model that declares its
+    #: ``linear_modes``); a backend not named here runs the model on the generic driver
+    #: ("cvode", "ida", "jax") or not at all ("exact", "exact-jax", "compiled")
     engines: dict = {}
     #: backends whose kernels differentiate the model (others: finite differences)
     differentiated_backends: tuple[str, ...] = ("jax",)

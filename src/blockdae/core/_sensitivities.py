@@ -286,10 +286,11 @@ def _names(wrt):
 def _kernel(solver, block, pieces):
     """(kernel name, its static settings, the pieces padded for it)."""
     from ..engines._exact_jax import _device, _kernel_input
+    from ..sliding._twin import _config
 
     if solver.name == "exact-jax":
         return "exact", (solver.window, pieces.has_sine), _kernel_input(pieces, solver.window)
-    return "jax", solver.config(block, pieces), _device(pieces, 1)
+    return "jax", _config(block, pieces, solver), _device(pieces, 1)
 
 
 def _final_u(params, pieces, n_pieces, allowed, *, kernel, static, until_rest):
@@ -325,7 +326,9 @@ def _jacobian_of_u(params, pieces, n_pieces, allowed, *, kernel, static, until_r
 
 
 def _raise_if_bad(solver, block, aux, where):
+    from ..sliding._twin import _check
+
     if solver.name == "exact-jax":
         check(block, *aux, where)
     else:
-        solver.check(block, *aux, where)
+        _check(block, *aux, solver, where)

@@ -1,6 +1,5 @@
-"""The exact backend: closed forms on every piece, events to machine precision."""
-
-import dataclasses
+"""The 1-D block's exact engine (numba): closed forms on every piece, events to machine
+precision; what the "exact" backend runs a :class:`~blockdae.SlidingBlock` on."""
 
 import numpy as np
 
@@ -9,9 +8,7 @@ from ..core._solution import BatchSolution
 from ..excitation import Pieces
 from ..excitation._pieces import accel
 from . import _exact_numba as engine
-from ..backends._base import AbstractBackend, cached_per_excitation, check_window
-from ._closed_form_linear import solve_closed_form
-from ._linear_solution import linear_pieces, solve_linear_compiled
+from ..backends._base import cached_per_excitation
 from ._results import check, exact_solution
 
 
@@ -20,57 +17,28 @@ from ._results import check, exact_solution
 _PARALLEL_WORK = 3e7
 
 
-@dataclasses.dataclass(frozen=True)
-class ExactBackend(AbstractBackend):
-    """Closed-form integration, compiled with numba (float64, parallel over cores for
-    batches). ``backend="exact-jax"`` runs the same closed forms and rules compiled
-    with JAX, for derivatives and accelerators. Engines: "sliding" (the 1-D block's
-    kernel) and "linear" (closed-form steps of linear modes on the generic driver,
-    :mod:`blockdae.engines._closed_form_linear`; ``window`` is unused there), as the
-    model's ``engines`` name them, or the model's own engine (a callable there).
+class ExactEngine:
+    """The 1-D block's closed forms compiled with numba (float64; batches parallel over
+    cores), with the backend's settings (``window``: pieces of a(t) per block of the onset
+    search's bounds)."""
 
-    Args:
-        window: pieces of a(t) per block of the onset search's bounds; a tuning knob
-            that changes speed, never results.
-        linear: the "linear" engine's path: "compiled" (numba, :mod:`._linear`, for
-            records) or "python" (closed-form steps on the generic driver, the reference;
-            sine excitations always take it).
-    """
-
-    window: int = 64
-    linear: str = "compiled"
-    name = "exact"
-    generic = False
-
-    def __post_init__(self):
-        check_window(self.window)
-        if self.linear not in ("compiled", "python"):
-            raise ValueError(f"linear must be 'compiled' or 'python', got {self.linear!r}")
-
-    def solve(self, block, excitation, horizon):
-        if callable(self.engine(block)):  # the model's own engine: (model, excitation, horizon, name) -> solution
-            return self.engine(block)(block, excitation, horizon, self.name)
-        if self.engine(block) == "linear":
-            found = linear_pieces(excitation, horizon.integration_end(excitation))
-            if self.linear == "python" or found is None or horizon.until_rest:  # closed-form steps on the driver
-                return solve_closed_form(block, excitation, horizon, self.name)
-            return solve_linear_compiled(block, *found, self.name)
-        pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
+    def solve(self, block, excitation, horizon, backend):
+        pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), backend.window)
         run_one, _, _ = engine.kernels()
         notice_numba("the exact engine", 15, run_one)
         params = tuple(float(p) for p in block.engine_parameters()[0])
-        outcome, knots = run_one(exc, self.window, params, _flags(block, horizon), 64)
+        outcome, knots = run_one(exc, backend.window, params, _flags(block, horizon), 64)
         check(block, outcome[6], outcome[7])
-        return exact_solution(block, pieces, knots, int(outcome[8]), self.name)
+        return exact_solution(block, pieces, knots, int(outcome[8]), backend.name)
 
-    def solve_batch(self, block, excitation, horizon):
-        out = self.solve_final(block, [excitation], [horizon])[0]
+    def solve_batch(self, block, excitation, horizon, backend):
+        out = self.solve_final(block, [excitation], [horizon], (1.0,), backend)[0]
         return BatchSolution(
             displacement=out[:, 0], max_abs_displacement=out[:, 3], n_events=out[:, 4].astype(int),
-            t_end=out[:, 5], backend=self.name,
-            solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
+            t_end=out[:, 5], backend=backend.name,
+            solve_one=lambda i: self.solve(block.item(i), excitation, horizon, backend))
 
-    def solve_final(self, block, excitations, horizons, scale=(1.0,)) -> np.ndarray:
+    def solve_final(self, block, excitations, horizons, scale, backend) -> np.ndarray:
         """Final numbers only, for every excitation under every parameter set of
         ``block`` (a batch of m, or one) at every factor of ``scale`` on a(t) (s of
         them), in parallel over cores.
@@ -79,14 +47,14 @@ class ExactBackend(AbstractBackend):
             (len(excitations), m * s, 9), the engine's outcomes (``OUTCOME_FIELDS``);
             parameter set j at factor k in column j * s + k.
         """
-        inputs = [_engine_input(e, h.integration_end(e), self.window)[1] for e, h in zip(excitations, horizons)]
+        inputs = [_engine_input(e, h.integration_end(e), backend.window)[1] for e, h in zip(excitations, horizons)]
         exc, offsets = _concatenated(inputs)
         params = block.engine_parameters(scale)
         _, parallel, serial = engine.kernels()
         run_batch = parallel if len(params) * len(exc[0]) >= _PARALLEL_WORK else serial
         notice_numba("the exact engine", 15, run_batch)
         until_rest = np.array([h.until_rest for h in horizons])
-        out = run_batch(exc, offsets, self.window, params, (block.allow_negative, block.allow_positive, until_rest))
+        out = run_batch(exc, offsets, backend.window, params, (block.allow_negative, block.allow_positive, until_rest))
         if not out[:, :, 6:8].all():  # rests, finished
             for i, j in zip(*np.nonzero((out[:, :, 6] == 0) | (out[:, :, 7] == 0))):
                 where = f" (excitation {i}, parameter set {j})" if len(inputs) > 1 else f" (parameter set {j})"

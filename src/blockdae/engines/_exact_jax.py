@@ -1,10 +1,9 @@
-"""The exact solution compiled with JAX ("exact-jax"): for derivatives and accelerators.
+"""The 1-D block's exact engine compiled with JAX (what the "exact-jax" backend runs it on):
+for derivatives and accelerators.
 
 The same closed forms and rules as the numba engine of ``backend="exact"``; the two are
 cross-checked in the tests.
 """
-
-import dataclasses
 
 import jax
 import numpy as np
@@ -13,32 +12,20 @@ from ..core._jax_config import jax_context
 from ..core._solution import BatchSolution
 from ..excitation import Pieces
 from . import _exact_kernel as kernel
-from ..backends._base import AbstractBackend, cached_per_excitation, check_window
+from ..backends._base import cached_per_excitation
 from ._results import check, exact_solution, max_run
 
 
-@dataclasses.dataclass(frozen=True)
-class ExactJaxBackend(AbstractBackend):
-    """Closed-form integration, compiled with JAX (float64); what
-    :func:`blockdae.sensitivities` differentiates.
+class ExactJaxEngine:
+    """The 1-D block's closed forms compiled with JAX (float64), with the backend's
+    settings (``window``: pieces of a(t) examined per loop iteration)."""
 
-    Args:
-        window: pieces of a(t) examined per loop iteration; a tuning knob that
-            changes speed, never results.
-    """
-
-    window: int = 64
-    name = "exact-jax"
-    generic = False  # engines: "sliding" (the 1-D block's closed forms)
-
-    def __post_init__(self):
-        check_window(self.window)
-
-    def solve(self, block, excitation, horizon):
-        pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
+    def solve(self, block, excitation, horizon, backend):
+        pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), backend.window)
         capacity = _bucket(len(pieces.t0))  # one event per piece; grows if ever needed
         while True:
-            out = self._run(kernel.run, block.engine_parameters()[0], device, len(pieces.t0), horizon, block, pieces, capacity)
+            out = _run(kernel.run, block.engine_parameters()[0], device, len(pieces.t0), horizon, block, pieces,
+                       capacity, backend.window)
             u, v, mode, max_abs_u, n_events, t_final, rests, finished = out.scalars
             if n_events < capacity:  # a full log may have lost its last row
                 break
@@ -46,25 +33,26 @@ class ExactJaxBackend(AbstractBackend):
         check(block, rests, finished)
         log = out.log[: int(n_events)]
         knots = _knots(log, (float(u), float(v), int(mode)), float(t_final))
-        return exact_solution(block, pieces, knots, max_run(log[:, 0]), self.name)
+        return exact_solution(block, pieces, knots, max_run(log[:, 0]), backend.name)
 
-    def solve_batch(self, block, excitation, horizon):
-        pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), self.window)
+    def solve_batch(self, block, excitation, horizon, backend):
+        pieces, device = _pieces_on_device(excitation, horizon.integration_end(excitation), backend.window)
         params = tuple(block.engine_parameters().T)
-        out = self._run(kernel.run_batch, params, device, len(pieces.t0), horizon, block, pieces, 0)
+        out = _run(kernel.run_batch, params, device, len(pieces.t0), horizon, block, pieces, 0, backend.window)
         u, _, _, max_abs_u, n_events, t_final, rests, finished = out.scalars.T
         for i in np.flatnonzero(~(rests.astype(bool) & finished.astype(bool))):
             check(block.item(i), rests[i], finished[i], f" (parameter set {i})")
         return BatchSolution(
             displacement=u, max_abs_displacement=max_abs_u, n_events=n_events.astype(int), t_end=t_final,
-            backend=self.name,
-            solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
+            backend=backend.name,
+            solve_one=lambda i: self.solve(block.item(i), excitation, horizon, backend))
 
-    def _run(self, fn, params, device, n_pieces, horizon, block, pieces, capacity):
-        with jax_context():
-            out = fn(params, (block.allow_negative, block.allow_positive), device, n_pieces,
-                     horizon.until_rest, window=self.window, log_capacity=capacity, is_sine=pieces.has_sine)
-            return kernel.Summary(*map(np.asarray, out))  # ~100 us faster than jax.device_get here
+
+def _run(fn, params, device, n_pieces, horizon, block, pieces, capacity, window):
+    with jax_context():
+        out = fn(params, (block.allow_negative, block.allow_positive), device, n_pieces,
+                 horizon.until_rest, window=window, log_capacity=capacity, is_sine=pieces.has_sine)
+        return kernel.Summary(*map(np.asarray, out))  # ~100 us faster than jax.device_get here
 
 
 def _bucket(n: int) -> int:

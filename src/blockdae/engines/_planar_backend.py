@@ -1,5 +1,5 @@
-"""The "compiled" backend: models whose ``engines`` name "planar" here (the block on a
-plane on a rigid support) run on the compiled planar engine (:mod:`._planar`).
+"""The planar block's compiled engine (what the "compiled" backend runs a
+:class:`~blockdae.PlanarBlock` on a rigid support on): the numba kernel of :mod:`._planar`.
 
 ``solve`` returns the model's own solution (events, knots, the driver's cubic Hermite
 dense output); ``solve_final`` runs parameter sets x motions x factors on a(t) in one
@@ -7,15 +7,12 @@ compiled call, in parallel over cores, and returns final numbers only.
 """
 
 import concurrent.futures
-import dataclasses
 
 import numba
 import numpy as np
 
-from ..backends._base import AbstractBackend
 from ..core._compile_notice import notice_numba
 from ..core._driver import HermiteDense
-from ..integrators._sundials import _check_real
 from ..core._solution import BatchSolution
 from . import _planar as engine
 
@@ -27,60 +24,33 @@ _ENGINE, _COMPILE_SECONDS = "the compiled planar engine", 35
 _PARTS_PER_THREAD = 8
 
 
-@dataclasses.dataclass(frozen=True)
-class CompiledBackend(AbstractBackend):
-    """The compiled planar engine (numba; batches parallel over cores).
+class PlanarEngine:
+    """The compiled planar engine (numba; batches parallel over cores), with the backend's
+    settings (``rtol``, ``atol``, ``max_events_at_one_instant``, ``event_resolution``)."""
 
-    Args:
-        rtol: relative tolerance of the slip's DOP853 steps [-], in [1e-14, 1e-2].
-        atol: absolute tolerance [m, m/s], > 0.
-        max_events_at_one_instant: most consecutive events at one instant [-]; more
-            (chatter) raises an error.
-        event_resolution: events closer than this are one instant [s] (as the driver's).
-    """
-
-    rtol: float = 1e-12
-    atol: float = 1e-14
-    max_events_at_one_instant: int = 5
-    event_resolution: float = 1e-9
-    name = "compiled"
-    generic = False
-
-    def __post_init__(self):
-        _check_real("rtol", self.rtol, lambda x: 1e-14 <= x <= 1e-2, "must lie in [1e-14, 1e-2]")
-        _check_real("atol", self.atol, lambda x: x > 0, "must be > 0")
-        _check_real("event_resolution", self.event_resolution, lambda x: x >= 0, "must be >= 0 [s]")
-        cap = self.max_events_at_one_instant
-        if not (isinstance(cap, int) and not isinstance(cap, bool) and cap >= 1):
-            raise ValueError(f"max_events_at_one_instant must be an integer >= 1, got {cap!r}")
-
-    def options(self, until_rest) -> np.ndarray:
-        """The engine's ``options`` (``OPTION_FIELDS``)."""
-        return np.array([self.rtol, self.atol, self.event_resolution, self.max_events_at_one_instant,
-                         float(until_rest)])
-
-    def solve(self, block, excitation, horizon):
+    def solve(self, block, excitation, horizon, backend):
         _check_support(block)
         T0, H, CF = engine_input(block, excitation, horizon)
         notice_numba(_ENGINE, _COMPILE_SECONDS, engine.kernel())
-        outcome, knots, events = engine.run_one(T0, H, CF, block.engine_parameters()[0], self.options(horizon.until_rest))
-        _check(block, outcome, events, self.max_events_at_one_instant, horizon)
+        outcome, knots, events = engine.run_one(T0, H, CF, block.engine_parameters()[0],
+                                                _options(backend, horizon.until_rest))
+        _check(block, outcome, events, backend.max_events_at_one_instant, horizon)
         t, y, mode = knots[:, 0].copy(), knots[:, 1:8].copy(), knots[:, 8].astype(int)
         logged = tuple(block.event(float(e[0]), block.modes(int(e[1])), block.modes(int(e[2])), e[3:10])
                        for e in events)
         stats = {"max_events_at_one_instant": int(outcome[9]), "n_events": len(logged),
                  "n_steps": int(outcome[10]), "n_rejected_steps": int(outcome[11]), "n_rhs_evals": int(outcome[12])}
-        return block.solution(t=t, y=y, mode=mode, events=logged, backend=self.name,
+        return block.solution(t=t, y=y, mode=mode, events=logged, backend=backend.name,
                               dense=HermiteDense(t, y, knots[:, 9:16].copy(), knots[:, 16:23].copy()), stats=stats)
 
-    def solve_batch(self, block, excitation, horizon):
-        out = self.solve_final(block, [excitation], [horizon])[0]
+    def solve_batch(self, block, excitation, horizon, backend):
+        out = self.solve_final(block, [excitation], [horizon], (1.0,), backend)[0]
         return BatchSolution(
             displacement=out[:, 0:2], max_abs_displacement=out[:, 2], n_events=out[:, 4].astype(int),
-            t_end=out[:, 6], backend=self.name,
-            solve_one=lambda i: self.solve(block.item(i), excitation, horizon))
+            t_end=out[:, 6], backend=backend.name,
+            solve_one=lambda i: self.solve(block.item(i), excitation, horizon, backend))
 
-    def solve_final(self, block, excitations, horizons, scale=(1.0,)) -> np.ndarray:
+    def solve_final(self, block, excitations, horizons, scale, backend) -> np.ndarray:
         """Final numbers of every excitation under every parameter set of ``block`` (a
         batch of m, or one) at every factor of ``scale`` on a(t) (s of them), in one
         compiled call, in parallel over cores.
@@ -99,14 +69,20 @@ class CompiledBackend(AbstractBackend):
         params = block.engine_parameters(scale)
         until_rest = np.array([float(h.until_rest) for h in horizons])
         out = np.empty((len(inputs), len(params), len(engine.OUTCOME_FIELDS)))
-        _run_parallel(T0, H, CF, offsets, params, self.options(False), until_rest, out)
+        _run_parallel(T0, H, CF, offsets, params, _options(backend, False), until_rest, out)
         bad = np.argwhere(out[:, :, 8] != engine.FINISHED)
         if len(bad):
             i, j = bad[0]
             one = block.item(j // len(scale)) if block.batch_shape else block
             where = f" (excitation {i}, parameter set {j // len(scale)}, factor {scale[j % len(scale)]!r})"
-            _check(one, out[i, j], np.empty((0, 10)), self.max_events_at_one_instant, horizons[i], where)
+            _check(one, out[i, j], np.empty((0, 10)), backend.max_events_at_one_instant, horizons[i], where)
         return out
+
+
+def _options(backend, until_rest) -> np.ndarray:
+    """The engine's ``options`` (``OPTION_FIELDS``) from the backend's settings."""
+    return np.array([backend.rtol, backend.atol, backend.event_resolution, backend.max_events_at_one_instant,
+                     float(until_rest)])
 
 
 def _run_parallel(T0, H, CF, offsets, params, options, until_rest, out):

@@ -35,6 +35,13 @@ def check(outcome, where=""):
                           "(a degenerate touch of zero); use backend 'cvode' or 'ida'")
 
 
+class ExactEngine:
+    """The flexible mass's exact engine (numba); the backend's settings are not read."""
+
+    def solve(self, model, excitation, horizon, backend):
+        return solve_exact(model, excitation, horizon, backend.name)
+
+
 def solve_exact(model, excitation, horizon, name):
     """``model`` under ``excitation`` (a record) to ``horizon``: its solution, every onset
     and stop located to adjacent floats; a slip too damped for the closed forms, or a

@@ -27,7 +27,7 @@ from ..core._checks import set_real_fields
 from ..core._model import KNOTS_PER_RADIAN, AbstractHybridModel
 from ..core._units import STANDARD_GRAVITY
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn
-from ._exact import solve_exact
+from ._exact import ExactEngine
 from ._ky_table import KyTable, next_breakpoint, piece_ky, piecewise_ky
 from ._modes import EVENT_KINDS, FlexibleMode
 from ._solution import FlexibleEvent, FlexibleSolution
@@ -72,7 +72,7 @@ class FlexibleSlidingMass(AbstractHybridModel):
     initial_mode = FlexibleMode.STICK
     displacement_states = (_S,)
     default_backend = "exact"
-    engines = {"exact": solve_exact}
+    engines = {"exact": ExactEngine()}
     #: the share of the column's u'' in HEA, the sliding mass's average acceleration
     mass_participation = MASS_PARTICIPATION
     #: HEA at rest as a share of a: u'' = -(4/pi) a there, so HEA = a + (2/pi) u'' = (1 - 8/pi²) a

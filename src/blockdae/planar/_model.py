@@ -40,6 +40,7 @@ from ..excitation._record import check_horizontal
 from ._solution import PlanarEvent, PlanarSolution
 from ..core._model import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
 from ..core._checks import set_real_fields
+from ..core._engines import LazyEngine
 from ._modes import _CX, _CY, _S, _UX, _UY, _W, _WD, PlanarMode, horizontal_velocity
 from ..upthrow._support import RigidSupport, SpringSupport, parse_support
 
@@ -98,7 +99,8 @@ class PlanarBlock(AbstractHybridModel):
     component_names = ("x", "y", "z")
     displacement_states = (_UX, _UY)
     default_backend = "ida"  # CVODE loses the sliding direction on turning slides
-    engines = {"compiled": "planar"}  # the compiled engine (rigid support), for studies
+    #: the compiled engine (rigid support), for studies
+    engines = {"compiled": LazyEngine("blockdae.engines._planar_backend", "PlanarEngine")}
 
     def __post_init__(self):
         set_real_fields(self, ("g", "restitution", "bounce_threshold"))

@@ -17,6 +17,7 @@ import numpy as np
 
 from ..core._units import STANDARD_GRAVITY
 from ._solution import Event, Solution
+from ..core._engines import LazyEngine
 from ..core._model import SCALAR, AbstractHybridModel
 from ._modes import Mode
 
@@ -129,7 +130,9 @@ class SlidingBlock(AbstractHybridModel):
     modes = Mode
     initial_mode = Mode.STICK
     default_backend = "exact"
-    engines = {"exact": "sliding", "exact-jax": "sliding", "jax": "sliding"}
+    engines = {"exact": LazyEngine("blockdae.engines._exact", "ExactEngine"),
+               "exact-jax": LazyEngine("blockdae.engines._exact_jax", "ExactJaxEngine"),
+               "jax": LazyEngine("blockdae.sliding._twin", "TwinEngine")}
     differentiated_backends = ("exact", "exact-jax", "jax")
     derivatives = "sliding"
 

@@ -1,0 +1,47 @@
+"""The "compiled" backend: a model's own compiled engine (its ``engines``) with the settings
+of a compiled hybrid loop: tolerances of its integrated modes, the event rules' bounds."""
+
+import dataclasses
+
+from ..backends._base import AbstractBackend
+from ..integrators._sundials import _check_real
+
+
+@dataclasses.dataclass(frozen=True)
+class CompiledBackend(AbstractBackend):
+    """The model's compiled engine (its ``engines``: the planar block's on a rigid
+    support), numba, batches parallel over cores.
+
+    Args:
+        rtol: relative tolerance of the slip's DOP853 steps [-], in [1e-14, 1e-2].
+        atol: absolute tolerance [m, m/s], > 0.
+        max_events_at_one_instant: most consecutive events at one instant [-]; more
+            (chatter) raises an error.
+        event_resolution: events closer than this are one instant [s] (as the driver's).
+    """
+
+    rtol: float = 1e-12
+    atol: float = 1e-14
+    max_events_at_one_instant: int = 5
+    event_resolution: float = 1e-9
+    name = "compiled"
+    generic = False
+
+    def __post_init__(self):
+        _check_real("rtol", self.rtol, lambda x: 1e-14 <= x <= 1e-2, "must lie in [1e-14, 1e-2]")
+        _check_real("atol", self.atol, lambda x: x > 0, "must be > 0")
+        _check_real("event_resolution", self.event_resolution, lambda x: x >= 0, "must be >= 0 [s]")
+        cap = self.max_events_at_one_instant
+        if not (isinstance(cap, int) and not isinstance(cap, bool) and cap >= 1):
+            raise ValueError(f"max_events_at_one_instant must be an integer >= 1, got {cap!r}")
+
+    def solve(self, block, excitation, horizon):
+        return block.engines[self.name].solve(block, excitation, horizon, self)
+
+    def solve_batch(self, block, excitation, horizon):
+        return block.engines[self.name].solve_batch(block, excitation, horizon, self)
+
+    def solve_final(self, block, excitations, horizons, scale=(1.0,)):
+        """Final numbers of every excitation under every parameter set at every factor of
+        ``scale`` on a(t), in one compiled call (the engine's ``solve_final``)."""
+        return block.engines[self.name].solve_final(block, excitations, horizons, scale, self)

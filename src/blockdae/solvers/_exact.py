@@ -1,0 +1,78 @@
+"""The exact backends: closed forms on every piece of the excitation, events to machine
+precision, on the engine the model declares (its ``engines``) or, for a model of linear modes,
+on the compiled linear engine."""
+
+import dataclasses
+
+from ..backends._base import AbstractBackend, check_window
+from ..engines._closed_form_linear import solve_closed_form
+from ..engines._linear_solution import linear_pieces, solve_linear_compiled
+
+
+@dataclasses.dataclass(frozen=True)
+class ExactBackend(AbstractBackend):
+    """Closed-form integration compiled with numba (float64; batches parallel over cores),
+    on the model's "exact" engine; "linear" there: closed-form steps of its linear modes.
+
+    Args:
+        window: pieces of a(t) per block of the onset search's bounds [-] (the 1-D
+            block's engine); changes speed, never results.
+        linear: the "linear" engine's path: "compiled" (numba, for records) or "python"
+            (closed-form steps on the generic driver, the reference; sine excitations
+            always take it).
+    """
+
+    window: int = 64
+    linear: str = "compiled"
+    name = "exact"
+    generic = False
+
+    def __post_init__(self):
+        check_window(self.window)
+        if self.linear not in ("compiled", "python"):
+            raise ValueError(f"linear must be 'compiled' or 'python', got {self.linear!r}")
+
+    def solve(self, block, excitation, horizon):
+        engine = block.engines[self.name]
+        if engine != "linear":
+            return engine.solve(block, excitation, horizon, self)
+        found = linear_pieces(excitation, horizon.integration_end(excitation))
+        if self.linear == "python" or found is None or horizon.until_rest:  # closed-form steps on the driver
+            return solve_closed_form(block, excitation, horizon, self.name)
+        return solve_linear_compiled(block, *found, self.name)
+
+    def solve_batch(self, block, excitation, horizon):
+        engine = block.engines[self.name]
+        if hasattr(engine, "solve_batch"):
+            return engine.solve_batch(block, excitation, horizon, self)
+        return super().solve_batch(block, excitation, horizon)
+
+    def solve_final(self, block, excitations, horizons, scale=(1.0,)):
+        """Final numbers of every excitation under every parameter set at every factor of
+        ``scale`` on a(t), where the model's engine computes them in one call (its
+        ``solve_final``; the 1-D block's)."""
+        return block.engines[self.name].solve_final(block, excitations, horizons, scale, self)
+
+
+@dataclasses.dataclass(frozen=True)
+class ExactJaxBackend(AbstractBackend):
+    """The same closed forms and rules compiled with JAX (float64), on the model's
+    "exact-jax" engine: what :func:`blockdae.sensitivities` differentiates, and what runs on
+    accelerators.
+
+    Args:
+        window: pieces of a(t) examined per loop iteration [-]; changes speed, never results.
+    """
+
+    window: int = 64
+    name = "exact-jax"
+    generic = False
+
+    def __post_init__(self):
+        check_window(self.window)
+
+    def solve(self, block, excitation, horizon):
+        return block.engines[self.name].solve(block, excitation, horizon, self)
+
+    def solve_batch(self, block, excitation, horizon):
+        return block.engines[self.name].solve_batch(block, excitation, horizon, self)
