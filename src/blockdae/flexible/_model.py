@@ -84,12 +84,12 @@ class FlexibleSlidingMass(AbstractHybridModel):
         if isinstance(self.ky, KyTable) and self.ky.constant:
             object.__setattr__(self, "ky", self.ky.ky_g[0])
         if isinstance(self.ky, KyTable):
-            from ._table_engine import solve_table_exact
+            from ._table_engine import TableEngine
 
             set_real_fields(self, ("g",))
             object.__setattr__(self, "table", self.ky.segments())
             object.__setattr__(self, "state_names", FlexibleSlidingMass.state_names + ("breakpoints_passed",))
-            object.__setattr__(self, "engines", {"exact": solve_table_exact})
+            object.__setattr__(self, "engines", {"exact": TableEngine()})
         else:
             set_real_fields(self, ("ky", "g"))
             object.__setattr__(self, "table", None)

@@ -378,6 +378,14 @@ def record_pieces(excitation, horizon, engine):
     return found
 
 
+class TableEngine:
+    """The exact engine of a flexible mass whose ky is a table (numba); the backend's
+    settings are not read."""
+
+    def solve(self, model, excitation, horizon, backend):
+        return solve_table_exact(model, excitation, horizon, backend.name)
+
+
 def solve_table_exact(model, excitation, horizon, name):
     """``model`` (ky a table) under ``excitation`` (a record) to ``horizon``: its solution,
     every onset, stop and breakpoint located to adjacent floats. The driver's knots are
