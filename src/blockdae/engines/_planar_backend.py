@@ -1,5 +1,5 @@
 """The "compiled" backend: models whose ``engines`` name "planar" here (the block on a
-plane on a rigid support) run on the compiled planar engine (:mod:`._planar`).
+plane on a rigid support) run on the compiled planar engine (:mod:`blockdae.planar._compiled`).
 
 ``solve`` returns the model's own solution (events, knots, the driver's cubic Hermite
 dense output); ``solve_final`` runs parameter sets x motions x factors on a(t) in one
@@ -17,7 +17,7 @@ from ..core._compile_notice import notice_numba
 from ..core._driver import HermiteDense
 from ..integrators._sundials import _check_real
 from ..sliding._solution import BatchSolution
-from . import _planar as engine
+from ..planar import _compiled as engine
 
 #: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)
 _PARALLEL_WORK = 1e5
