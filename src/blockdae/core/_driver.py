@@ -28,6 +28,7 @@ import time
 import numpy as np
 
 from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction
+from ..solvers._events import falls, first_nonpositive
 from ._model import KNOTS_PER_RADIAN, SCALAR
 
 
@@ -317,14 +318,14 @@ class _Run:
     def guard_left_at_once(self):
         """The first guard of the current mode that is at or below zero and falling as a
         flow starts (a slide entered at a sample where its velocity turns against it at
-        once; see :func:`_falls`): it is reached now. An integrator would not see it: its roots are sign
+        once; see :func:`~blockdae.solvers._events.falls`): it is reached now. An integrator would not see it: its roots are sign
         changes, and a guard that starts at zero has none (SUNDIALS: "root functions
         identically 0"). None if there is none."""
         values = self.model.guards(self.mode, self.t, self.y, self.piece_excitation, SCALAR)
         for index, value in enumerate(values):
             if value <= 0:
                 rate, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
-                if _falls(rate, curvature, self.resolution):
+                if falls(rate, curvature, self.resolution):
                     return index
         return None
 
@@ -352,7 +353,7 @@ class _Run:
             crossing = [i for i in range(len(at_b))
                         if at_a[i] > 0 and (at_b[i] < 0 or (at_b[i] == 0 and b < end and guards(end)[i] < 0))]
             if crossing:
-                return min((_bracketed_root(lambda t: guards(t)[i], a, b), i) for i in crossing)
+                return min((first_nonpositive(lambda i, t: guards(t)[i], i, a, b), i) for i in crossing)
         return None
 
     def turning_point(self, end):
@@ -456,26 +457,6 @@ class _Run:
                  **self.integrator.stats}
         return self.model.solution(t=t, y=y, mode=mode, events=tuple(self.events), backend=backend_name,
                                    dense=HermiteDense(t, y, rate_start, rate_end), stats=stats)
-
-
-def _falls(rate, curvature, resolution):
-    """Whether a guard at zero with ``rate`` and ``curvature`` leaves its mode at once:
-    it falls (by its rate, or at a zero rate by its curvature) for longer than
-    ``resolution`` [s]. A rate that turns back within it (-rate / curvature, a rate of
-    rounding size at a located onset) is a graze: the mode holds."""
-    if rate == 0:
-        return curvature < 0
-    return rate < 0 and (curvature <= 0 or -rate / curvature > resolution)
-
-
-def _bracketed_root(fun, a, b):
-    """The t in (a, b] [s] where ``fun`` (> 0 at a, <= 0 at b, monotone) reaches zero:
-    the first float at which it is <= 0, by bisection to adjacent floats."""
-    while True:
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            return b
-        a, b = (mid, b) if fun(mid) > 0 else (a, mid)
 
 
 class _Knots:

@@ -40,7 +40,8 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..core._driver import _ULPS
-from ..engines._linear import CHATTER, FINISHED, UNSETTLED, _falls
+from ..engines._linear import CHATTER, FINISHED, UNSETTLED
+from ..solvers._events import falls
 
 _EPS = float(np.finfo(float).eps)
 #: status of a slide whose state contradicts its mode (w < 0 in SLIP beyond rounding)
@@ -373,7 +374,7 @@ def _left_at_once(systems, i, vectors):
     for g in range(int(systems[i, NUMBERS, 1])):
         row = POWERS + 4 * g
         if _dot(systems, i, row, vectors, _Z0) <= 0:
-            if _falls(_dot(systems, i, row + 1, vectors, _Z0), _dot(systems, i, row + 2, vectors, _Z0),
+            if falls(_dot(systems, i, row + 1, vectors, _Z0), _dot(systems, i, row + 2, vectors, _Z0),
                       EVENT_RESOLUTION):
                 return g
     return -1

@@ -30,8 +30,9 @@ Per mode:
 
 The model's rules (flows, guards, which mode follows a guard, what a mode starts with)
 are :mod:`._rules`, which :class:`~blockdae.PlanarBlock` calls too; this module only
-evaluates the forces they take from the piece's coefficients. The driver's (the graze
-rule of ``_falls``, events at the end of a piece left to the next, chatter, the stop's
+evaluates the forces they take from the piece's coefficients. The driver's graze rule
+and bisections are :mod:`blockdae.solvers._events`, which the driver calls too; its other
+rules (events at the end of a piece left to the next, chatter, the stop's
 uncertainty from the tolerances, the tail to rest) are restated here on floats. The
 knots (piece ends, events, 1 / (32 w) apart on sine pieces) are the driver's, so the
 dense output is its cubic Hermite one.
@@ -56,6 +57,7 @@ from ..excitation import _pieces
 from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
 from ..engines import _dop853, _rodas4
 from ..engines import _xp_scalar as xp
+from ..solvers import _events as events
 from . import _rules as rules
 from ._rules import FLIGHT, SLIP, SLOW_SPEED, STICK
 
@@ -189,24 +191,11 @@ def _turn_rate(mode, t, y, pe, p):
     return rules.turn_rate(mode, y, p[0], p[1], n, n_rate, sx, sy, rx, ry, xp)
 
 
-def _falls(rate, curvature, resolution):
-    """The driver's ``_falls``: a guard at zero leaves its mode at once."""
-    if rate == 0:
-        return curvature < 0
-    return rate < 0 and (curvature <= 0 or -rate / curvature > resolution)
-
-
 # ---- root finding in time --------------------------------------------------------
-def _bracketed_guard(mode, index, y, pe, p, a, b):
-    """The driver's ``_bracketed_root`` on guard ``index`` (> 0 at a, <= 0 at b)."""
-    while True:
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            return b
-        if _guards(mode, mid, y, pe, p)[index] > 0:
-            a = mid
-        else:
-            b = mid
+def _guard_value(args, t):
+    """Guard ``index`` at ``t`` (args: (mode, index, y, pe, p))."""
+    mode, index, y, pe, p = args
+    return _guards(mode, t, y, pe, p)[index]
 
 
 def _turning_point(mode, t, y, end, pe, p):
@@ -271,7 +260,7 @@ def _static_root(t, y, end, pe, p):
         for i in range(2):
             crossing = ga[i] > 0 and (gb[i] < 0 or (gb[i] == 0 and b < end and _guards(STICK, end, y, pe, p)[i] < 0))
             if crossing:
-                root = _bracketed_guard(STICK, i, y, pe, p, a, b)
+                root = events.first_nonpositive(_guard_value, (STICK, i, y, pe, p), a, b)
                 if root < best_t:
                     best_t, best_i = root, i
         if best_i >= 0:
@@ -279,20 +268,7 @@ def _static_root(t, y, end, pe, p):
     return math.nan, -1
 
 
-def _first_nonpositive(fun_args, a, b):
-    """The first float in (a, b] where the monotone ``_time_function(*fun_args)`` is <= 0
-    (> 0 at a, <= 0 at b)."""
-    while True:
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            return b
-        if _time_function(mid, fun_args) > 0:
-            a = mid
-        else:
-            b = mid
-
-
-def _time_function(t, fa):
+def _time_function(fa, t):
     """Functions of time the engine locates roots of: fa = (kind, t_from, y, pe, p):
     kind 0: n; 1: the flight's w; 2: the flight's w'; 3: -n (w'')."""
     kind, t_from, y, pe, p = fa
@@ -308,8 +284,8 @@ def _liftoff_time(t, stop, y, pe, p):
     """The first float in (t, stop) where n <= 0, n > 0 at t (monotone on the piece),
     else nan (a root at ``stop`` is no root: the piece's end is left to the next)."""
     fa = (0, t, y, pe, p)  # n depends on time alone: y is not read
-    if _time_function(t, fa) > 0 and _time_function(stop, fa) <= 0:
-        root = _first_nonpositive(fa, t, stop)
+    if _time_function(fa, t) > 0 and _time_function(fa, stop) <= 0:
+        root = events.first_nonpositive(_time_function, fa, t, stop)
         return root if root < stop else math.nan
     return math.nan
 
@@ -347,9 +323,9 @@ def _flight_to(t, y, stop, pe, p):
     knots[0] = t
     m = 1
     fa_n = (3, t, y, pe, p)
-    na, nb = _time_function(t, fa_n), _time_function(stop, fa_n)
+    na, nb = _time_function(fa_n, t), _time_function(fa_n, stop)
     if (na > 0) != (nb > 0) and na != 0 and nb != 0:
-        knots[m] = _root_between(fa_n, t, stop)
+        knots[m] = events.sign_change(_time_function, fa_n, t, stop)
         m += 1
     knots[m] = stop
     m += 1
@@ -360,33 +336,19 @@ def _flight_to(t, y, stop, pe, p):
         a, b = knots[j], knots[j + 1]
         parts[k] = a
         k += 1
-        va, vb = _time_function(a, fa_v), _time_function(b, fa_v)
+        va, vb = _time_function(fa_v, a), _time_function(fa_v, b)
         if (va > 0 and vb < 0) or (va < 0 and vb > 0):
-            parts[k] = _root_between(fa_v, a, b)
+            parts[k] = events.sign_change(_time_function, fa_v, a, b)
             k += 1
     parts[k] = stop
     k += 1
     fa_w = (1, t, y, pe, p)
     for j in range(k - 1):
         a, b = parts[j], parts[j + 1]
-        if a < b and _time_function(a, fa_w) > 0 and _time_function(b, fa_w) <= 0:
-            root = _first_nonpositive(fa_w, a, b)
+        if a < b and _time_function(fa_w, a) > 0 and _time_function(fa_w, b) <= 0:
+            root = events.first_nonpositive(_time_function, fa_w, a, b)
             return root, _flight_state(t, y, root, pe, p), True
     return stop, _flight_state(t, y, stop, pe, p), False
-
-
-def _root_between(fa, a, b):
-    """A sign change of the monotone ``_time_function(*fa)`` between a and b, to
-    adjacent floats."""
-    sign_a = _time_function(a, fa) > 0
-    while True:
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            return b
-        if (_time_function(mid, fa) > 0) == sign_a:
-            a = mid
-        else:
-            b = mid
 
 
 # ---- slip: DOP853, RODAS where the direction's relaxation is stiff --------------------
@@ -620,6 +582,12 @@ def _dense_minimum(F, y, t, hh, args, work, rate, method):
     return hi
 
 
+def _dense_speed(args, t_mid):
+    """s [m/s] of the step's dense output at ``t_mid`` [s] (args: (F, y, t, hh, method))."""
+    F, y, t, hh, method = args
+    return _dense_value(F, y, (t_mid - t) / hh, _S, method)
+
+
 def _s_after(args, t, y, d, K, K2, work, z, B, method):
     """s [m/s] after a step of ``d`` [s] from (t, y) (K[0]: the rate there; for RODAS
     K[7] and B's J: the derivatives there), the state left in ``z``."""
@@ -637,15 +605,7 @@ def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt, B, method):
     the flow (a step from t to it has s <= 0, to the float before it s > 0); else the
     same bisection on steps from t. The time (0 if the flow has none), the state in ``z``."""
     calls = 6 if method == STIFF else 12
-    a, b = t, upper
-    while True:  # on the dense output
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            break
-        if _dense_value(F, y, (mid - t) / hh, _S, method) > 0:
-            a = mid
-        else:
-            b = mid
+    b = events.first_nonpositive(_dense_speed, (F, y, t, hh, method), t, upper)  # on the dense output
     before = np.nextafter(b, -math.inf)
     cnt[C_RHS] += 2 * calls
     if before <= t or _s_after(args, t, y, before - t, K, K2, work, z, B, method) > 0:
@@ -765,7 +725,7 @@ def _guard_left_at_once(mode, t, y, pe, p, resolution):
     for index in range(1 if mode == FLIGHT else 2):
         if values[index] <= 0:
             rate, curvature = _guard_rates(mode, index, t, y, pe, p)
-            if _falls(rate, curvature, resolution):
+            if events.falls(rate, curvature, resolution):
                 return index
     return -1
 
@@ -955,7 +915,7 @@ def run_one(T0, H, CF, p, options):
 
 _OPTIONS = dict(error_model="numpy")
 #: modules whose functions the engine compiles besides its own
-_SHARED = (_pieces, _dop853, _rodas4, xp, rules, sys.modules[__name__])
+_SHARED = (_pieces, _dop853, _rodas4, xp, events, rules, sys.modules[__name__])
 
 
 def _register():

@@ -1,0 +1,1 @@
+"""Model-agnostic numerical pieces shared by the driver and the compiled engines."""
