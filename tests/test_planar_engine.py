@@ -3,7 +3,6 @@ the JAX twin, the exact 1-D block and closed-form flights (the engine and Planar
 the same rules, blockdae.planar._rules); its stiff steps (RODAS) against their order and
 central differences."""
 
-import math
 import pathlib
 
 import numpy as np

@@ -28,20 +28,11 @@ import time
 import numpy as np
 
 from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction
-from ..solvers._events import falls, first_nonpositive
+from ..solvers._events import (ROUNDING, falls, first_nonpositive, stop_uncertainty, too_short,
+                               turning_point, velocity_error)
 from ._model import KNOTS_PER_RADIAN, SCALAR
 
 
-_EPS = np.finfo(float).eps
-_TURN_BISECTIONS = 60  # halves a piece below 1e-18 of its length
-_ULPS = 8  # intervals shorter than this many ulps are not integrated
-# global error of v in local tolerances: |v'| |t_stop - t_exact| / (rtol max|v| + atol)
-# at every stop on the 18 sample records (two-way mu 0.15, f 0.12, bias 0.03 and
-# one-way mu 0.1) at rtol 1e-10 reaches 1.1 for CVODE and 9.2 for IDA
-_V_ERROR_FACTOR = 10.0
-# a state contradicts its mode only beyond the velocity error and this much of the
-# largest speed [-]: closed forms (the exact upthrow backend, tolerance 0) round
-_ROUNDING = 1e-12
 #: a run shows its progress on a terminal after this long [s], refreshed this often [s]
 PROGRESS_DELAY, PROGRESS_INTERVAL = 2.0, 0.5
 
@@ -292,7 +283,7 @@ class _Run:
                 self.integrator.restart(self.mode, self.t, self.y)
                 self.restarted = False
             target = end if turn is None or turn <= self.t else turn
-            if target - self.t <= _ULPS * _EPS * max(1.0, abs(target)):
+            if too_short(self.t, target):
                 # too short for a solver step (SUNDIALS refuses it): nothing can happen
                 self.t, self.restarted = target, True
                 continue
@@ -360,27 +351,14 @@ class _Run:
         """The time in (t, end) [s] where the model's ``turn_rate`` changes sign (it is
         monotone on a piece), so that the guards are monotone between stops; None if
         there is none or the mode has no turn rate there (None at any time asked)."""
-        rate = lambda t: self.model.turn_rate(self.mode, t, self.y, self.piece_excitation, SCALAR)
-        lo, hi = self.t, end
-        first = rate(lo)
-        if first is None:
-            return None
-        sign_lo = math.copysign(1.0, first)
-        # before the turn: the rate strictly of the sign at lo (a zero of either sign,
-        # +0.0 or -0.0, counts as turned, so that a(t) -> -a(t) mirrors the turn exactly)
-        signed = lambda t: None if (value := rate(t)) is None else sign_lo * value > 0
-        at_end = signed(hi)
-        if at_end is None or at_end:
-            return None
-        for _ in range(_TURN_BISECTIONS):
-            mid = 0.5 * (lo + hi)
-            if mid in (lo, hi):
-                break
-            before = signed(mid)
-            if before is None:
-                return None
-            lo, hi = (mid, hi) if before else (lo, mid)
-        return hi if hi < end else None
+        root = turning_point(self._turn_rate, None, self.t, end)
+        return None if math.isnan(root) else root
+
+    def _turn_rate(self, _, t):
+        """(the model's turn rate at ``t``, whether it has one), as :func:`turning_point`
+        takes it."""
+        value = self.model.turn_rate(self.mode, t, self.y, self.piece_excitation, SCALAR)
+        return (0.0, False) if value is None else (value, True)
 
     def on_guard(self, index):
         """Guard ``index`` of the current mode reached zero at ``self.t``."""
@@ -395,15 +373,14 @@ class _Run:
             self.log_event(self.t, after)
 
     def velocity_error(self):
-        """The error [m/s] of the integrated velocities: ``_V_ERROR_FACTOR`` local tolerances."""
-        rtol, atol = self.velocity_tolerance
-        return _V_ERROR_FACTOR * (rtol * self.v_max + atol)
+        """The error [m/s] of the integrated velocities (:func:`~blockdae.solvers._events.velocity_error`)."""
+        return velocity_error(*self.velocity_tolerance, self.v_max)
 
     def check_consistent(self, t_from):
         """Raise :class:`InconsistentStateError` if the state just integrated from
         ``t_from`` [s] contradicts its mode beyond the velocity error (the model's
         ``contradiction``): a missed event must never become a returned result."""
-        tolerance = self.velocity_error() + _ROUNDING * self.v_max
+        tolerance = self.velocity_error() + ROUNDING * self.v_max
         problem = self.model.contradiction(self.mode, self.y, tolerance)
         if problem is not None:
             raise InconsistentStateError(
@@ -413,16 +390,10 @@ class _Run:
 
     def stop_uncertainty(self, index):
         """How far [s] the located root of guard ``index`` may lie from the true one, at
-        least the event resolution. With the error e of the guard (``_V_ERROR_FACTOR``
-        local tolerances of the velocities) and the guard's rate g' and curvature g''
-        from the model, the root moves by the d that solves |g'| d + |g''| d²/2 = e:
-        e / |g'| at a crossing, sqrt(2 e / |g''|) at a graze."""
-        error = self.velocity_error()
+        least the event resolution (:func:`~blockdae.solvers._events.stop_uncertainty`,
+        with the guard's rate and curvature from the model and the velocity error)."""
         slope, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
-        slope, curvature = abs(slope), abs(curvature)
-        if slope == curvature == 0:  # a guard that does not move: its root is where it was found
-            return self.resolution
-        return max(self.resolution, 2 * error / (slope + math.sqrt(slope**2 + 2 * curvature * error)))
+        return stop_uncertainty(slope, curvature, self.velocity_error(), self.resolution)
 
     def log_event(self, t, after):
         same_instant = bool(self.events) and abs(t - self.events[-1].t) <= self.resolution

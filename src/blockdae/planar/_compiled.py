@@ -63,6 +63,7 @@ from ._rules import FLIGHT, SLIP, SLOW_SPEED, STICK
 
 _UX, _UY, _S, _CX, _CY, _W, _WD, _PATH = range(8)
 N_STATE = 8
+_EPS = float(np.finfo(float).eps)
 #: entries of ``params``: mu, f [-], bias (x, y) [-], g [m/s²], restitution [-],
 #: bounce threshold [m/s], factor on a(t) [-]
 PARAM_FIELDS = ("mu", "mu_kinetic", "bias_x", "bias_y", "g", "restitution", "bounce_threshold", "scale")
@@ -75,10 +76,6 @@ OUTCOME_FIELDS = ("u_x", "u_y", "max_abs_u", "slide_distance", "n_events", "n_fl
 #: outcome ``status``: finished; chatter; the state contradicts its mode; a step below
 #: rounding; no rest within the model's bound; f <= |bias| (never rests)
 FINISHED, CHATTER, INCONSISTENT, STEP_TOO_SMALL, NO_REST, NEVER_RESTS = range(6)
-_EPS = float(np.finfo(float).eps)
-_ULPS = 8  # the driver's: intervals shorter than this many ulps are not integrated
-_TURN_BISECTIONS = 60  # the driver's
-_V_ERROR_FACTOR, _ROUNDING = 10.0, 1e-12  # the driver's
 
 
 # ---- the piece's excitation: pe = (t0 [s], h [s], P (3, 5) scaled (p0, p1, s, w, phi), directions (3,))
@@ -199,28 +196,18 @@ def _guard_value(args, t):
 
 
 def _turning_point(mode, t, y, end, pe, p):
-    """The driver's ``turning_point``: where the turn rate changes sign in (t, end),
-    else nan."""
-    first, defined = _turn_rate(mode, t, y, pe, p)
-    if not defined or mode == FLIGHT:  # in flight the rate is y's w', constant in t
+    """The driver's ``turning_point`` (:func:`blockdae.solvers._events.turning_point`):
+    where the turn rate changes sign in (t, end), else nan; none in flight, where the
+    rate is y's w', constant in t."""
+    if mode == FLIGHT:
         return math.nan
-    sign_lo = math.copysign(1.0, first)
-    value, defined = _turn_rate(mode, end, y, pe, p)
-    if not defined or sign_lo * value > 0:
-        return math.nan
-    lo, hi = t, end
-    for _ in range(_TURN_BISECTIONS):
-        mid = 0.5 * (lo + hi)
-        if mid == lo or mid == hi:
-            break
-        value, defined = _turn_rate(mode, mid, y, pe, p)
-        if not defined:
-            return math.nan
-        if sign_lo * value > 0:
-            lo = mid
-        else:
-            hi = mid
-    return hi if hi < end else math.nan
+    return events.turning_point(_turn_value, (mode, y, pe, p), t, end)
+
+
+def _turn_value(args, t):
+    """:func:`_turn_rate` at ``t`` (args: (mode, y, pe, p))."""
+    mode, y, pe, p = args
+    return _turn_rate(mode, t, y, pe, p)
 
 
 def _is_linear(pe):
@@ -486,7 +473,7 @@ def _slip_to(t, y, stop, pe, p, rtol, atol, B, cnt, fl):
         rest = stop - t
         last = h >= rest
         hh = rest if last else h
-        if not last and hh <= _ULPS * _EPS * max(1.0, abs(t)):
+        if not last and hh <= events.ULPS * _EPS * max(1.0, abs(t)):
             cnt[C_STATUS] = STEP_TOO_SMALL
             break
         if method == STIFF:
@@ -712,12 +699,8 @@ def _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt):
 
 def _stop_uncertainty(mode, index, t, y, pe, p, fl, opt):
     """The driver's ``stop_uncertainty`` [s] with (rtol, atol) of this engine."""
-    error = _V_ERROR_FACTOR * (opt[0] * fl[F_VMAX] + opt[1])
     slope, curvature = _guard_rates(mode, index, t, y, pe, p)
-    slope, curvature = abs(slope), abs(curvature)
-    if slope == 0 and curvature == 0:
-        return opt[2]
-    return max(opt[2], 2 * error / (slope + math.sqrt(slope**2 + 2 * curvature * error)))
+    return events.stop_uncertainty(slope, curvature, events.velocity_error(opt[0], opt[1], fl[F_VMAX]), opt[2])
 
 
 def _guard_left_at_once(mode, t, y, pe, p, resolution):
@@ -764,7 +747,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
                     continue
             cnt[C_RESTARTED] = 0
         target = end if math.isnan(turn) or turn <= t else turn
-        if target - t <= _ULPS * _EPS * max(1.0, abs(target)):
+        if events.too_short(t, target):
             fl[F_T], cnt[C_RESTARTED] = target, 1
             continue
         t_out = min(target, t + _output_step(pe))
@@ -785,8 +768,8 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
         _put(y, z)
         fl[F_VMAX] = max(fl[F_VMAX], rules.speed(y))
         if mode == SLIP:
-            error = _V_ERROR_FACTOR * (opt[0] * fl[F_VMAX] + opt[1])
-            if y[_S] < -(error + _ROUNDING * fl[F_VMAX]):
+            error = events.velocity_error(opt[0], opt[1], fl[F_VMAX])
+            if y[_S] < -(error + events.ROUNDING * fl[F_VMAX]):
                 cnt[C_STATUS] = INCONSISTENT
                 return kb, eb
         if root < 0:
