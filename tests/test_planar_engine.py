@@ -1,9 +1,8 @@
 """The compiled planar engine (backend "compiled") against IDA at rtol 1e-12, CVODE and
-the JAX twin, the exact 1-D block, closed-form flights, and the model's own rules (which
-it restates on floats); its stiff steps (RODAS) against their order and central
-differences."""
+the JAX twin, the exact 1-D block and closed-form flights (the engine and PlanarBlock call
+the same rules, blockdae.planar._rules); its stiff steps (RODAS) against their order and
+central differences."""
 
-import math
 import pathlib
 
 import numpy as np
@@ -11,8 +10,7 @@ import pytest
 
 import blockdae as bd
 from blockdae.core._driver import PieceExcitation
-from blockdae.core._model import SCALAR
-from blockdae.engines import _planar as engine
+from blockdae.planar import _compiled as engine
 from blockdae.planar import _elms as elms
 from conftest import assert_same_events, load_sample_record
 from test_planar import flight_closed_form
@@ -153,22 +151,15 @@ def test_bad_input_gets_the_same_errors():
         bd.simulate(block, bd.BaseMotion(a), backend="compiled", rtol=0.5)
 
 
-# ---- the restated rules equal the model's -------------------------------------------
+# ---- the forces the engine hands to the shared rules --------------------------------
 
-def _states(rng, k):
-    y = np.zeros((k, engine.N_STATE))
-    y[:, :5] = rng.normal(size=(k, 5))
-    y[:, engine._S] = np.abs(y[:, engine._S]) * np.where(rng.random(k) < 0.2, 1e-8, 1.0)
-    y[:, 5:7] = np.abs(rng.normal(size=(k, 2)))
-    return y
-
-
-def test_restated_rules_equal_the_model():
-    """_flow, _guards, _guard_rates, _turn_rate, _circle_margin, _mode_at_rest,
-    _mode_after_guard and _state_on_entry of the engine (plain Python here) against
-    PlanarBlock's methods on random pieces and states: identical floats and modes."""
+def test_the_engine_gives_the_rules_the_models_forces():
+    """The rules (blockdae.planar._rules) are the model's and the engine's alike; what the
+    engine computes itself are their inputs, n, sigma and their rates from the piece's
+    coefficients (plain Python here): identical floats to PlanarBlock's own on random
+    linear and sine pieces."""
     rng = np.random.default_rng(7)
-    block = bd.PlanarBlock(mu=0.6, mu_kinetic=0.45, bias=(0.1, -0.2), g=G, restitution=0.4, bounce_threshold=1e-2)
+    block = bd.PlanarBlock(mu=0.6, mu_kinetic=0.45, bias=(0.1, -0.2), g=G)
     p = block.engine_parameters()[0]
     for _ in range(40):
         coefficients = tuple((rng.normal(scale=5.0), rng.normal(scale=20.0), rng.normal(scale=3.0) * (rng.random() < 0.5),
@@ -176,33 +167,9 @@ def test_restated_rules_equal_the_model():
         t0, h = rng.random(), 0.01 + rng.random() * 0.1
         piece = PieceExcitation(3)
         piece.set(t0, coefficients, h)
-        P = np.array(coefficients)
-        pe = (t0, h, P, np.array(piece.directions))
-        t = t0 + rng.random() * h
-        assert engine._circle_margin(pe, p, t) == block.circle_margin(t, piece)
-        assert engine._mode_at_rest(pe, p, t) == block.mode_at_rest(t, piece)
-        for y in _states(rng, 5):
-            for mode in bd.PlanarMode:
-                np.testing.assert_array_equal(engine._flow(mode, t, y, pe, p)[:7],
-                                              np.array(block.flow(mode, t, y[:7], piece, SCALAR)))
-                guards = engine._guards(mode, t, y, pe, p)
-                assert list(guards[:1 if mode == bd.PlanarMode.FLIGHT else 2]) == \
-                    [float(g) for g in block.guards(mode, t, y[:7], piece, SCALAR)]
-                value, defined = engine._turn_rate(mode, t, y, pe, p)
-                expected = block.turn_rate(mode, t, y[:7], piece, SCALAR)
-                assert (value if defined else None) == expected
-                for index in range(1 if mode == bd.PlanarMode.FLIGHT else 2):
-                    assert engine._guard_rates(mode, index, t, y, pe, p) == \
-                        tuple(block.guard_rates(mode, index, t, y[:7], piece))
-                    for tol in (0.0, 1e-3):
-                        assert engine._mode_after_guard(mode, index, t, y, pe, p, tol) == \
-                            block.mode_after_guard(mode, index, t, y[:7], piece, SCALAR, tol)
-                for after in bd.PlanarMode:
-                    for s in (y[engine._S], 0.0):
-                        z = y.copy()
-                        z[engine._S] = s
-                        np.testing.assert_array_equal(engine._state_on_entry(mode, after, t, z, pe, p)[:7],
-                                                      block.state_on_entry(mode, after, t, z[:7], piece))
+        pe = (t0, h, np.array(coefficients), np.array(piece.directions))
+        for t in (t0, t0 + rng.random() * h, t0 + h):
+            assert engine._forces_and_rates(pe, p, t) == block._forces(t, piece)
 
 
 # ---- batches: final numbers in one compiled call -----------------------------------

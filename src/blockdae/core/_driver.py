@@ -28,19 +28,11 @@ import time
 import numpy as np
 
 from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction
+from ..solvers._events import (ROUNDING, falls, first_nonpositive, stop_uncertainty, too_short,
+                               turning_point, velocity_error)
 from ._model import KNOTS_PER_RADIAN, SCALAR
 
 
-_EPS = np.finfo(float).eps
-_TURN_BISECTIONS = 60  # halves a piece below 1e-18 of its length
-_ULPS = 8  # intervals shorter than this many ulps are not integrated
-# global error of v in local tolerances: |v'| |t_stop - t_exact| / (rtol max|v| + atol)
-# at every stop on the 18 sample records (two-way mu 0.15, f 0.12, bias 0.03 and
-# one-way mu 0.1) at rtol 1e-10 reaches 1.1 for CVODE and 9.2 for IDA
-_V_ERROR_FACTOR = 10.0
-# a state contradicts its mode only beyond the velocity error and this much of the
-# largest speed [-]: closed forms (the exact upthrow backend, tolerance 0) round
-_ROUNDING = 1e-12
 #: a run shows its progress on a terminal after this long [s], refreshed this often [s]
 PROGRESS_DELAY, PROGRESS_INTERVAL = 2.0, 0.5
 
@@ -291,7 +283,7 @@ class _Run:
                 self.integrator.restart(self.mode, self.t, self.y)
                 self.restarted = False
             target = end if turn is None or turn <= self.t else turn
-            if target - self.t <= _ULPS * _EPS * max(1.0, abs(target)):
+            if too_short(self.t, target):
                 # too short for a solver step (SUNDIALS refuses it): nothing can happen
                 self.t, self.restarted = target, True
                 continue
@@ -317,14 +309,14 @@ class _Run:
     def guard_left_at_once(self):
         """The first guard of the current mode that is at or below zero and falling as a
         flow starts (a slide entered at a sample where its velocity turns against it at
-        once; see :func:`_falls`): it is reached now. An integrator would not see it: its roots are sign
+        once; see :func:`~blockdae.solvers._events.falls`): it is reached now. An integrator would not see it: its roots are sign
         changes, and a guard that starts at zero has none (SUNDIALS: "root functions
         identically 0"). None if there is none."""
         values = self.model.guards(self.mode, self.t, self.y, self.piece_excitation, SCALAR)
         for index, value in enumerate(values):
             if value <= 0:
                 rate, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
-                if _falls(rate, curvature, self.resolution):
+                if falls(rate, curvature, self.resolution):
                     return index
         return None
 
@@ -352,34 +344,21 @@ class _Run:
             crossing = [i for i in range(len(at_b))
                         if at_a[i] > 0 and (at_b[i] < 0 or (at_b[i] == 0 and b < end and guards(end)[i] < 0))]
             if crossing:
-                return min((_bracketed_root(lambda t: guards(t)[i], a, b), i) for i in crossing)
+                return min((first_nonpositive(lambda i, t: guards(t)[i], i, a, b), i) for i in crossing)
         return None
 
     def turning_point(self, end):
         """The time in (t, end) [s] where the model's ``turn_rate`` changes sign (it is
         monotone on a piece), so that the guards are monotone between stops; None if
         there is none or the mode has no turn rate there (None at any time asked)."""
-        rate = lambda t: self.model.turn_rate(self.mode, t, self.y, self.piece_excitation, SCALAR)
-        lo, hi = self.t, end
-        first = rate(lo)
-        if first is None:
-            return None
-        sign_lo = math.copysign(1.0, first)
-        # before the turn: the rate strictly of the sign at lo (a zero of either sign,
-        # +0.0 or -0.0, counts as turned, so that a(t) -> -a(t) mirrors the turn exactly)
-        signed = lambda t: None if (value := rate(t)) is None else sign_lo * value > 0
-        at_end = signed(hi)
-        if at_end is None or at_end:
-            return None
-        for _ in range(_TURN_BISECTIONS):
-            mid = 0.5 * (lo + hi)
-            if mid in (lo, hi):
-                break
-            before = signed(mid)
-            if before is None:
-                return None
-            lo, hi = (mid, hi) if before else (lo, mid)
-        return hi if hi < end else None
+        root = turning_point(self._turn_rate, None, self.t, end)
+        return None if math.isnan(root) else root
+
+    def _turn_rate(self, _, t):
+        """(the model's turn rate at ``t``, whether it has one), as :func:`turning_point`
+        takes it."""
+        value = self.model.turn_rate(self.mode, t, self.y, self.piece_excitation, SCALAR)
+        return (0.0, False) if value is None else (value, True)
 
     def on_guard(self, index):
         """Guard ``index`` of the current mode reached zero at ``self.t``."""
@@ -394,15 +373,14 @@ class _Run:
             self.log_event(self.t, after)
 
     def velocity_error(self):
-        """The error [m/s] of the integrated velocities: ``_V_ERROR_FACTOR`` local tolerances."""
-        rtol, atol = self.velocity_tolerance
-        return _V_ERROR_FACTOR * (rtol * self.v_max + atol)
+        """The error [m/s] of the integrated velocities (:func:`~blockdae.solvers._events.velocity_error`)."""
+        return velocity_error(*self.velocity_tolerance, self.v_max)
 
     def check_consistent(self, t_from):
         """Raise :class:`InconsistentStateError` if the state just integrated from
         ``t_from`` [s] contradicts its mode beyond the velocity error (the model's
         ``contradiction``): a missed event must never become a returned result."""
-        tolerance = self.velocity_error() + _ROUNDING * self.v_max
+        tolerance = self.velocity_error() + ROUNDING * self.v_max
         problem = self.model.contradiction(self.mode, self.y, tolerance)
         if problem is not None:
             raise InconsistentStateError(
@@ -412,16 +390,10 @@ class _Run:
 
     def stop_uncertainty(self, index):
         """How far [s] the located root of guard ``index`` may lie from the true one, at
-        least the event resolution. With the error e of the guard (``_V_ERROR_FACTOR``
-        local tolerances of the velocities) and the guard's rate g' and curvature g''
-        from the model, the root moves by the d that solves |g'| d + |g''| d²/2 = e:
-        e / |g'| at a crossing, sqrt(2 e / |g''|) at a graze."""
-        error = self.velocity_error()
+        least the event resolution (:func:`~blockdae.solvers._events.stop_uncertainty`,
+        with the guard's rate and curvature from the model and the velocity error)."""
         slope, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
-        slope, curvature = abs(slope), abs(curvature)
-        if slope == curvature == 0:  # a guard that does not move: its root is where it was found
-            return self.resolution
-        return max(self.resolution, 2 * error / (slope + math.sqrt(slope**2 + 2 * curvature * error)))
+        return stop_uncertainty(slope, curvature, self.velocity_error(), self.resolution)
 
     def log_event(self, t, after):
         same_instant = bool(self.events) and abs(t - self.events[-1].t) <= self.resolution
@@ -456,26 +428,6 @@ class _Run:
                  **self.integrator.stats}
         return self.model.solution(t=t, y=y, mode=mode, events=tuple(self.events), backend=backend_name,
                                    dense=HermiteDense(t, y, rate_start, rate_end), stats=stats)
-
-
-def _falls(rate, curvature, resolution):
-    """Whether a guard at zero with ``rate`` and ``curvature`` leaves its mode at once:
-    it falls (by its rate, or at a zero rate by its curvature) for longer than
-    ``resolution`` [s]. A rate that turns back within it (-rate / curvature, a rate of
-    rounding size at a located onset) is a graze: the mode holds."""
-    if rate == 0:
-        return curvature < 0
-    return rate < 0 and (curvature <= 0 or -rate / curvature > resolution)
-
-
-def _bracketed_root(fun, a, b):
-    """The t in (a, b] [s] where ``fun`` (> 0 at a, <= 0 at b, monotone) reaches zero:
-    the first float at which it is <= 0, by bisection to adjacent floats."""
-    while True:
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            return b
-        a, b = (mid, b) if fun(mid) > 0 else (a, mid)
 
 
 class _Knots:

@@ -24,8 +24,9 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from ..core._driver import AbstractIntegrator, _falls, drive
+from ..core._driver import AbstractIntegrator, drive
 from ..excitation._pieces import rebase
+from ..solvers._events import falls, one_sign
 
 _EPS = np.finfo(float).eps
 #: most intervals one root search may examine (a degenerate touch of zero by the guard
@@ -152,16 +153,6 @@ class _Guard:
             self.f.append(self.f[-1].derivative())
 
 
-def _signed(values_a, values_b, bound, length):
-    """+1 / -1 if a function with these end values and |slope| <= ``bound`` keeps one
-    sign (strictly) inside the interval, else 0."""
-    if values_a >= 0 and values_b >= 0 and values_a + values_b > bound * length:
-        return 1
-    if values_a <= 0 and values_b <= 0 and -(values_a + values_b) > bound * length:
-        return -1
-    return 0
-
-
 def first_down_crossing(guard: _Guard, a: float, b: float, origin: float = 0.0) -> float | None:
     """The first tau in [a, b] [s] where the guard reaches <= 0 from > 0; None if it
     does not. A touch of zero at a minimum that does not go below it (by more than
@@ -171,7 +162,7 @@ def first_down_crossing(guard: _Guard, a: float, b: float, origin: float = 0.0) 
     f, f1, f2, f3 = guard.f
     budget = [_MAX_INTERVALS]
     resolution = 4 * _EPS * max(abs(origin) + abs(b), 1.0)  # [s]: a few ulps of the time
-    if f(a) <= 0 and _falls(f1(a), f2(a), resolution):  # heading down, not turning back within rounding
+    if f(a) <= 0 and falls(f1(a), f2(a), resolution):  # heading down, not turning back within rounding
         return a
 
     def monotone_part(lo, f_lo, hi, f_hi, decreasing):
@@ -190,13 +181,13 @@ def first_down_crossing(guard: _Guard, a: float, b: float, origin: float = 0.0) 
         if budget[0] < 0:
             raise RuntimeError(f"the root search of a guard did not settle on [{a}, {b}] s")
         length = hi - lo
-        if _signed(f_lo, f_hi, f1.bound(lo, hi), length):
+        if one_sign(f_lo, f_hi, f1.bound(lo, hi), length):
             return None  # one sign strictly inside: no crossing in (lo, hi)
         d_lo, d_hi = f1(lo), f1(hi)
-        slope_sign = _signed(d_lo, d_hi, f2.bound(lo, hi), length)
+        slope_sign = one_sign(d_lo, d_hi, f2.bound(lo, hi), length)
         if slope_sign:
             return monotone_part(lo, f_lo, hi, f_hi, slope_sign < 0)
-        if _signed(f2(lo), f2(hi), f3.bound(lo, hi), length):  # f' monotone
+        if one_sign(f2(lo), f2(hi), f3.bound(lo, hi), length):  # f' monotone
             if d_lo * d_hi >= 0:  # f' of one sign inside: f monotone
                 return monotone_part(lo, f_lo, hi, f_hi, d_lo + d_hi < 0)
             turn = brentq(f1, lo, hi, xtol=1e-300, rtol=4 * _EPS)

@@ -21,13 +21,13 @@ import jax.numpy as jnp
 import optimistix as optx
 
 from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction, rebase
+from ..integrators._diffrax import SOLVERS
 from ..sliding._model import comes_to_rest, demand, relative_acceleration, slip_constant, stick_guards
 from ._exact_kernel import Params, _mode_after_stop, _Rules, onset_delta
 
 # guards decrease through their roots (flip=True): no bracket check, which under vmap
 # would also run on members without an event
 _ROOT_FINDER = optx.Bisection(rtol=1e-14, atol=1e-12, flip=True)
-SOLVERS = {"tsit5": diffrax.Tsit5, "dopri5": diffrax.Dopri5, "dopri8": diffrax.Dopri8, "kvaerno5": diffrax.Kvaerno5}
 
 
 class State(NamedTuple):

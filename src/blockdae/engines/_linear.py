@@ -25,6 +25,7 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
+from ..solvers._events import falls, first_nonpositive, one_sign, sign_change
 
 _EPS = float(np.finfo(float).eps)
 #: most intervals one root search may examine; more is reported (outcome ``failed``)
@@ -96,44 +97,6 @@ def _bound(f, a, b):
 
 
 @register_jitable
-def _signed(value_a, value_b, bound, length):
-    """+1 / -1 if a function with these end values and |slope| <= bound keeps one sign
-    strictly inside the interval, else 0."""
-    if value_a >= 0 and value_b >= 0 and value_a + value_b > bound * length:
-        return 1
-    if value_a <= 0 and value_b <= 0 and -(value_a + value_b) > bound * length:
-        return -1
-    return 0
-
-
-@register_jitable
-def _first_nonpositive(f, lo, hi):
-    """The first float in (lo, hi] where f <= 0, for f > 0 at lo and <= 0 at hi, monotone."""
-    while True:
-        mid = lo + 0.5 * (hi - lo)
-        if mid <= lo or mid >= hi:
-            return hi
-        if _eval(f, mid) > 0:
-            lo = mid
-        else:
-            hi = mid
-
-
-@register_jitable
-def _sign_change(f, lo, hi):
-    """A point within adjacent floats of where f (monotone) changes sign on [lo, hi]."""
-    positive_lo = _eval(f, lo) > 0
-    while True:
-        mid = lo + 0.5 * (hi - lo)
-        if mid <= lo or mid >= hi:
-            return hi
-        if (_eval(f, mid) > 0) == positive_lo:
-            lo = mid
-        else:
-            hi = mid
-
-
-@register_jitable
 def _rounding(f, tau):
     """The rounding error of f(tau): a few ulps of the sum of its terms' sizes."""
     poly = abs(f[0]) + abs(f[1] * tau) + abs(f[2] * tau * tau) + abs(f[3] * tau * tau * tau)
@@ -148,7 +111,7 @@ def _monotone_part(f, lo, f_lo, hi, f_hi, decreasing):
     finds it at once."""
     if not decreasing or not (f_lo > 0 > f_hi) or f_hi >= -_rounding(f, hi):
         return math.nan
-    return _first_nonpositive(f, lo, hi)
+    return first_nonpositive(_eval, f, lo, hi)
 
 
 @register_jitable
@@ -156,7 +119,7 @@ def _first_down_crossing(f, f1, f2, f3, a, b, origin, stack):
     """The first tau in [a, b] [s] where f falls to <= 0 (nan: none; -inf: the search did
     not settle). ``stack``: scratch (STACK_DEPTH, 4)."""
     resolution = 4 * _EPS * max(abs(origin) + abs(b), 1.0)
-    if _eval(f, a) <= 0 and _falls(_eval(f1, a), _eval(f2, a), resolution):
+    if _eval(f, a) <= 0 and falls(_eval(f1, a), _eval(f2, a), resolution):
         return a
     return _down_crossing_search(f, f1, f2, f3, a, b, origin, stack)
 
@@ -176,22 +139,22 @@ def _down_crossing_search(f, f1, f2, f3, a, b, origin, stack):
         if budget < 0:
             return -math.inf
         length = hi - lo
-        if _signed(f_lo, f_hi, _bound(f1, lo, hi), length) != 0:
+        if one_sign(f_lo, f_hi, _bound(f1, lo, hi), length) != 0:
             continue
         d_lo, d_hi = _eval(f1, lo), _eval(f1, hi)
-        slope_sign = _signed(d_lo, d_hi, _bound(f2, lo, hi), length)
+        slope_sign = one_sign(d_lo, d_hi, _bound(f2, lo, hi), length)
         if slope_sign != 0:
             root = _monotone_part(f, lo, f_lo, hi, f_hi, slope_sign < 0)
             if not math.isnan(root):
                 return root
             continue
-        if _signed(_eval(f2, lo), _eval(f2, hi), _bound(f3, lo, hi), length) != 0:
+        if one_sign(_eval(f2, lo), _eval(f2, hi), _bound(f3, lo, hi), length) != 0:
             if d_lo * d_hi >= 0:
                 root = _monotone_part(f, lo, f_lo, hi, f_hi, d_lo + d_hi < 0)
                 if not math.isnan(root):
                     return root
                 continue
-            turn = _sign_change(f1, lo, hi)
+            turn = sign_change(_eval, f1, lo, hi)
             f_turn = _eval(f, turn)
             root = _monotone_part(f, lo, f_lo, turn, f_turn, d_lo < 0)
             if math.isnan(root):
@@ -215,15 +178,6 @@ def _down_crossing_search(f, f1, f2, f3, a, b, origin, stack):
 
 
 @register_jitable
-def _falls(rate, curvature, resolution):
-    """The driver's rule (:func:`blockdae.core._driver._falls`): a guard at zero leaves
-    its mode at once if it falls for longer than ``resolution`` [s]."""
-    if rate == 0:
-        return curvature < 0
-    return rate < 0 and (curvature <= 0 or -rate / curvature > resolution)
-
-
-@register_jitable
 def _left_at_once(mode, u, v, a, a_rate, k, c, b, guards):
     """The first guard of ``mode`` at or below zero and falling at (u, v) under a(t) =
     ``a`` with rate ``a_rate``; -1: none."""
@@ -233,7 +187,7 @@ def _left_at_once(mode, u, v, a, a_rate, k, c, b, guards):
             continue
         accel = b[mode] - k[mode] * u - c[mode] * v - a
         jerk = -k[mode] * v - c[mode] * accel - a_rate
-        if _falls(alpha * v + beta * accel, alpha * accel + beta * jerk, EVENT_RESOLUTION):
+        if falls(alpha * v + beta * accel, alpha * accel + beta * jerk, EVENT_RESOLUTION):
             return j
     return -1
 
@@ -282,7 +236,7 @@ def _run(t0, h, p0, p1, scale, k, c, b, guards, next_mode, resets, initial_mode,
                     if alpha == 0 and beta == 0:
                         continue
                     g = _combine(alpha, f, beta, f1, gamma)
-                    if _signed(g[0] + g[4], _eval_at(g, span, cached[3], cached[4], cached[5]),
+                    if one_sign(g[0] + g[4], _eval_at(g, span, cached[3], cached[4], cached[5]),
                                _bound(_derivative(g), 0.0, span), span) > 0:
                         continue  # positive all along the piece: no crossing (the search's first test)
                     g1 = _derivative(g)

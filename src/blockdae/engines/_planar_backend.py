@@ -1,5 +1,6 @@
 """The planar block's compiled engine (what the "compiled" backend runs a
-:class:`~blockdae.PlanarBlock` on a rigid support on): the numba kernel of :mod:`._planar`.
+:class:`~blockdae.PlanarBlock` on a rigid support on): the numba kernel of
+:mod:`blockdae.planar._compiled`.
 
 ``solve`` returns the model's own solution (events, knots, the driver's cubic Hermite
 dense output); ``solve_final`` runs parameter sets x motions x factors on a(t) in one
@@ -14,7 +15,7 @@ import numpy as np
 from ..core._compile_notice import notice_numba
 from ..core._driver import HermiteDense
 from ..core._solution import BatchSolution
-from . import _planar as engine
+from ..planar import _compiled as engine
 
 #: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)
 _PARALLEL_WORK = 1e5

@@ -27,9 +27,9 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..engines._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT,
-                               STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative, _eval, _eval_at, _falls, _signed,
-                               _solve)
+                               STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative, _eval, _eval_at, _solve)
 from ..engines._linear import MAX_INTERVALS  # noqa: F401 -- read through this module (._exact's messages)
+from ..solvers._events import falls, one_sign
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._roots import STACK_COLUMNS, first_fall
 
@@ -213,7 +213,7 @@ def _quick_step(mode, m, row, step, xi, kyg, a0, rate, u, v, s, w):
 def _stick_clear(guard_start, guard_end, rate, row, amplitude, xi, step):
     """Whether the onset guard ky g - HEA [m/s²] stays > 0 on a whole STICK step [s],
     from its end values and bounds of its rate or its curvature."""
-    return _signed(guard_start, guard_end, _hea_rate(rate, row, amplitude, xi), step) > 0 or _clear(
+    return one_sign(guard_start, guard_end, _hea_rate(rate, row, amplitude, xi), step) > 0 or _clear(
         guard_start, guard_end, _hea_curvature(row, amplitude, xi), step)
 
 
@@ -223,7 +223,7 @@ def _slip_clear(w, w_end, a0, rate, kyg, row, amplitude, step):
     of w' = a - ky g + (2/pi) u'' or w'' = a' + (2/pi) u''' (the free part's)."""
     w_rate = (max(abs(a0 - kyg), abs(a0 + rate * step - kyg)) + MASS_PARTICIPATION * row[0] * amplitude) * _WIDEN
     w_curvature = (abs(rate) + MASS_PARTICIPATION * row[0] * row[6] * amplitude) * _WIDEN
-    return _signed(w, w_end, w_rate, step) > 0 or _clear(w, w_end, w_curvature, step)
+    return one_sign(w, w_end, w_rate, step) > 0 or _clear(w, w_end, w_curvature, step)
 
 
 @register_jitable
@@ -258,10 +258,10 @@ def _piece(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg,
         g1 = _derivative(guard)
         g2 = _derivative(g1)
         at_start = guard[0] + guard[4]
-        if at_start <= 0 and (_falls(g1[0] + g1[4], g2[0] + g2[4], EVENT_RESOLUTION) or (  # values at 0
+        if at_start <= 0 and (falls(g1[0] + g1[4], g2[0] + g2[4], EVENT_RESOLUTION) or (  # values at 0
                 at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
             event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
-        elif _signed(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
+        elif one_sign(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
                      _bound(g1, 0.0, span), span) <= 0 and _moves(guard):
             root = first_fall(guard, g1, g2, _derivative(g2), span, t_start + tau, stack, cached[3], cached[4],
                               cached[5])

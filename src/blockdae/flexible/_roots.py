@@ -18,7 +18,8 @@ import math
 import numpy as np
 from numba.extending import register_jitable
 
-from ..engines._linear import MAX_INTERVALS, _eval, _eval_at, _rounding, _signed
+from ..engines._linear import MAX_INTERVALS, _eval, _eval_at, _rounding
+from ..solvers._events import one_sign
 
 _EPS = float(np.finfo(float).eps)
 #: Newton steps before the bracket is closed by bisection alone
@@ -157,15 +158,15 @@ def first_fall(f, f1, f2, f3, span, origin, stack, decay, cos, sin):
         if budget < 0:
             return -math.inf
         length = hi - lo
-        if _signed(f_lo, f_hi, _bound(f1, amplitudes[0], hi, e_lo), length) != 0:
+        if one_sign(f_lo, f_hi, _bound(f1, amplitudes[0], hi, e_lo), length) != 0:
             continue
-        slope_sign = _signed(d_lo, d_hi, _bound(f2, amplitudes[1], hi, e_lo), length)
+        slope_sign = one_sign(d_lo, d_hi, _bound(f2, amplitudes[1], hi, e_lo), length)
         if slope_sign != 0:
             root = _falling_part(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, slope_sign < 0, origin)
             if not math.isnan(root):
                 return root
             continue
-        if _signed(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
+        if one_sign(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
             if d_lo * d_hi >= 0:
                 root = _falling_part(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, d_lo + d_hi < 0, origin)
                 if not math.isnan(root):
@@ -221,9 +222,9 @@ def peak(f, f1, f2, f3, span, best, origin, stack):
         if max(abs(f_lo), abs(f_hi)) + 0.5 * _bound(f1, amplitudes[0], hi, e_lo) * length <= best or \
                 length <= resolution:
             continue  # cannot exceed the best
-        if _signed(d_lo, d_hi, _bound(f2, amplitudes[1], hi, e_lo), length) != 0:
+        if one_sign(d_lo, d_hi, _bound(f2, amplitudes[1], hi, e_lo), length) != 0:
             continue  # monotone: its ends
-        if _signed(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
+        if one_sign(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
             if d_lo * d_hi < 0:  # one extremum inside
                 best = max(best, abs(_eval(f, sign_change(f1, f2, lo, d_lo, c_lo, hi, d_hi, c_hi, origin))))
             continue

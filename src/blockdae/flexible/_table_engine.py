@@ -31,6 +31,7 @@ import numpy as np
 
 from ..core._compile_notice import notice_numba
 from ..core._driver import AbstractIntegrator, InconsistentStateError, SolverError, drive
+from ..solvers._events import first_nonpositive
 from ..engines._linear import CHATTER, UNSETTLED
 from ..engines._linear_solution import linear_pieces
 from . import _table_kernel
@@ -163,14 +164,7 @@ class _Search:
     def bisect(self, lo, hi):
         """The first tau in (lo, hi] where g <= 0, to adjacent floats of t0 + tau, for g
         > 0 at lo, <= 0 at hi and one crossing between."""
-        while True:
-            mid = lo + 0.5 * (hi - lo)
-            if not (self.t0 + lo < self.t0 + mid < self.t0 + hi):
-                return hi
-            if self.value(mid) > 0:
-                lo = mid
-            else:
-                hi = mid
+        return first_nonpositive(lambda _, tau: self.value(tau), None, lo, hi, self.t0)
 
     def search(self, lo, z_lo, hi):
         """The first crossing in (lo, hi] from the state ``z_lo`` at lo (None: none): an
@@ -215,14 +209,7 @@ class _Search:
             return lo
         if self.value(hi, 1) <= 0:
             return hi
-        while True:
-            mid = lo + 0.5 * (hi - lo)
-            if not (self.t0 + lo < self.t0 + mid < self.t0 + hi):
-                return hi
-            if self.value(mid, 1) < 0:
-                lo = mid
-            else:
-                hi = mid
+        return first_nonpositive(lambda _, tau: -self.value(tau, 1), None, lo, hi, self.t0)
 
 
 class _Systems:

@@ -39,8 +39,8 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from ..core._driver import _ULPS
-from ..engines._linear import CHATTER, FINISHED, UNSETTLED, _falls
+from ..engines._linear import CHATTER, FINISHED, UNSETTLED
+from ..solvers._events import falls, too_short
 
 _EPS = float(np.finfo(float).eps)
 #: status of a slide whose state contradicts its mode (w < 0 in SLIP beyond rounding)
@@ -373,7 +373,7 @@ def _left_at_once(systems, i, vectors):
     for g in range(int(systems[i, NUMBERS, 1])):
         row = POWERS + 4 * g
         if _dot(systems, i, row, vectors, _Z0) <= 0:
-            if _falls(_dot(systems, i, row + 1, vectors, _Z0), _dot(systems, i, row + 2, vectors, _Z0),
+            if falls(_dot(systems, i, row + 1, vectors, _Z0), _dot(systems, i, row + 2, vectors, _Z0),
                       EVENT_RESOLUTION):
                 return g
     return -1
@@ -488,7 +488,7 @@ def _slides(t0, h, p0, p1, slots, systems, n_pieces, kyg, share, log):
                         continue
                     i = int(state[_MODE]) * n_pieces + int(state[_PASSED])
                 restarted = False
-            if end - state[_T] <= _ULPS * _EPS * max(1.0, abs(end)):
+            if too_short(state[_T], end):
                 state[_T], restarted = end, True  # too short for a step: nothing can happen
                 continue
             step = (i, slots[k] if state[_T] == start else -1, end - start)

@@ -15,7 +15,7 @@ as
     s' = e . (-sigma) - f n,      s e' = (e_perp . (-sigma)) e_perp,
 
 so that a stop is a simple root of s, not a touch of |v| (seed eqs. 19-20 in SI; below
-``SLOW_SPEED`` the rate of e takes s = SLOW_SPEED, see there). In
+``SLOW_SPEED`` the rate of e takes s = SLOW_SPEED, see :mod:`._rules`). In
 flight (n <= 0) there is no friction: v' = -sigma, and the gap w above the base obeys
 w'' = -n; the block lands when w returns to zero.
 
@@ -42,17 +42,10 @@ from ..core._model import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
 from ..core._checks import set_real_fields
 from ..core._engines import LazyEngine
 from ._modes import _CX, _CY, _S, _UX, _UY, _W, _WD, PlanarMode, horizontal_velocity
+from . import _rules as rules
+from ._rules import SLOW_SPEED
 from ..upthrow._support import RigidSupport, SpringSupport, parse_support
 
-#: below this speed [m/s] the direction relaxes towards the demand at the rate
-#: |sigma| / SLOW_SPEED instead of |sigma| / s. Just after an onset with f = mu,
-#: s ~ tau², and the exact rate |sigma| / s makes the slide so stiff that no solver
-#: steps through it (explicit ones need ~1 / tau steps). The lag of the direction
-#: behind the demand, omega s / |sigma| (omega: its turning rate), is then
-#: omega SLOW_SPEED / |sigma| < 1e-6 rad while s < SLOW_SPEED, which moves u by less
-#: than omega SLOW_SPEED² tau / |sigma| ~ 1e-15 m (Elms's pulse: stops 2e-12 s,
-#: u 1e-11 off a reference with the exact rate, tests/test_planar_jax.py).
-SLOW_SPEED = 1e-6
 #: relative tolerance of the compiled engine in studies [-]: against IDA at rtol 1e-12
 #: on the benchmark's cases (Elms, two record pairs, El Centro in three components)
 #: events within 3.2e-12 s and u within 2.8e-11 relative (bars: 1e-9 s, 1e-9), with
@@ -199,7 +192,7 @@ class PlanarBlock(AbstractHybridModel):
         """n [m/s²] and its rate [m/s³] on the base: g + a_z on a rigid support; on a
         spring the law at the state ``y``, whose rate follows from w'' = n - g - a_z."""
         if not self.support.compliant:
-            return self.g + excitation.component(2, t), excitation.component_rate(2, t)
+            return rules.rigid_normal(self.g, excitation.component(2, t)), excitation.component_rate(2, t)
         n = self.support.law(self.g, y[_W], y[_WD])
         k, c = self.support.stiffness()
         return n, -k * y[_WD] - c * (n - self.g - excitation.component(2, t))
@@ -214,8 +207,7 @@ class PlanarBlock(AbstractHybridModel):
 
     def demand(self, t, excitation):
         """sigma = a_h - b g [m/s²] and its rate [m/s³], as (x, y) pairs."""
-        sigma = (excitation.component(0, t) - self.bias[0] * self.g,
-                 excitation.component(1, t) - self.bias[1] * self.g)
+        sigma = rules.demand(excitation.component(0, t), excitation.component(1, t), *self.bias, self.g)
         return sigma, (excitation.component_rate(0, t), excitation.component_rate(1, t))
 
     def friction(self, mode, t, y, excitation, xp=np):
@@ -232,29 +224,20 @@ class PlanarBlock(AbstractHybridModel):
 
     # ---- hybrid automaton ----------------------------------------------------
     def flow(self, mode, t, y, excitation, xp=np, friction=None):
-        """dy/dt in ``mode`` (zero in stick). ``friction``: (F_x, F_y) [m/s²] in place of
-        the mode's own (:meth:`friction`), so that the relative horizontal acceleration
-        is F - sigma (a DAE backend's algebraic F)."""
+        """dy/dt in ``mode`` (zero in stick on a rigid support; :func:`._rules.flow`).
+        ``friction``: (F_x, F_y) [m/s²] in place of the mode's own (:meth:`friction`), so
+        that the relative horizontal acceleration is F - sigma (a DAE backend's algebraic F)."""
         zero = 0.0 * y[_UX]
-        if mode == PlanarMode.STICK:
-            if not self.support.compliant:
-                return xp.stack([zero] * 7)
-            return xp.stack([zero] * 5 + list(self._vertical_flow(t, y, excitation, self.normal(t, excitation, y)[0])))
+        if mode == PlanarMode.STICK and not self.support.compliant:
+            return xp.stack(rules.flow(mode, y, zero, zero, zero, zero, xp))
         (sx, sy), _ = self.demand(t, excitation)
         rx, ry = (-sx, -sy) if friction is None else (friction[0] - sx, friction[1] - sy)
-        if mode == PlanarMode.FLIGHT:  # w'' = -(g + a_z)
-            return xp.stack([y[_CX], y[_CY], zero, rx, ry, y[_WD], -(self.g + excitation.component(2, t))])
+        if mode == PlanarMode.FLIGHT:
+            return xp.stack(rules.flow(mode, y, rx, ry, zero, -(self.g + excitation.component(2, t)), xp))
         n, _ = self.normal(t, excitation, y)
-        size = xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
-        ex, ey = y[_CX] / size, y[_CY] / size
-        along = ex * rx + ey * ry  # e . (F - sigma)
-        across = ex * ry - ey * rx  # e_perp . (F - sigma), e_perp = (-e_y, e_x)
-        if friction is None:  # the kinetic friction -f n e: along e only
-            along = along - self.friction_kinetic * n
-        s = y[_S]
-        turn = across / xp.where(s > SLOW_SPEED, s, SLOW_SPEED)  # de/dt along e_perp [1/s]
-        return xp.stack([s * ex, s * ey, along, -ey * turn * size, ex * turn * size,
-                         *self._vertical_flow(t, y, excitation, n)])
+        kinetic = self.friction_kinetic * n if friction is None else 0.0
+        rates = rules.flow(mode, y, rx, ry, kinetic, zero, xp)
+        return xp.stack([*rates[:5], *self._vertical_flow(t, y, excitation, n)])
 
     def guards(self, mode, t, y, excitation, xp=np):
         """Stick: (n -> flight, mu n - |sigma| -> slip). Slip: (n -> flight,
@@ -263,15 +246,10 @@ class PlanarBlock(AbstractHybridModel):
         if mode == PlanarMode.FLIGHT:
             if self.support.compliant:
                 return xp.stack([self.support.landing_gap(self.g, y[_W], y[_WD], xp)])
-            return xp.stack([y[_W]])
+            return xp.stack(rules.guards(mode, y, None, None, None, self.mu, 1.0, xp)[:1])
         n, _ = self.normal(t, excitation, y)
-        if self.support.compliant:
-            n = n * self.guard_scale
-        if mode == PlanarMode.STICK:
-            (sx, sy), _ = self.demand(t, excitation)
-            size = xp.sqrt(sx**2 + sy**2)
-            return xp.stack([n, self.mu * n - (size * self.guard_scale if self.support.compliant else size)])
-        return xp.stack([n, y[_S]])
+        sx, sy = self.demand(t, excitation)[0] if mode == PlanarMode.STICK else (None, None)
+        return xp.stack(rules.guards(mode, y, n, sx, sy, self.mu, self.guard_scale, xp))
 
     @property
     def guard_scale(self):
@@ -284,52 +262,32 @@ class PlanarBlock(AbstractHybridModel):
     def circle_margin(self, t, excitation, y=None):
         """mu n - |sigma| [m/s²] (> 0 inside the friction circle) and its rate [m/s³]
         (where sigma = 0, the rate of -|sigma| is -|sigma'|); ``y``: the state (on a spring)."""
+        return rules.circle_margin(self.mu, *self._forces(t, excitation, y))
+
+    def _forces(self, t, excitation, y=None):
+        """(n, n', sigma_x, sigma_y, sigma_x', sigma_y') [m/s², m/s³] at ``t``, as the
+        rules take them."""
         n, n_rate = self.normal(t, excitation, y)
         (sx, sy), (rx, ry) = self.demand(t, excitation)
-        size = math.hypot(sx, sy)
-        return self.mu * n - size, self.mu * n_rate - ((sx * rx + sy * ry) / size if size > 0 else math.hypot(rx, ry))
+        return n, n_rate, sx, sy, rx, ry
 
     def lifts_off(self, t, excitation, y=None):
         """Whether n is negative, or zero and falling, at ``t`` (in state ``y``)."""
-        n, n_rate = self.normal(t, excitation, y)
-        return n < 0 or (n == 0 and n_rate < 0)
+        return rules.lifts_off(*self.normal(t, excitation, y))
 
     def mode_at_rest(self, t, excitation, xp=np, y=None):
         """Flight if n < 0 (or n = 0 falling), else slip if the demand is outside the
         friction circle (or on it moving outwards), else stick (``y``: the state, which
         sets n on a spring)."""
-        margin, margin_rate = self.circle_margin(t, excitation, y)
-        if self.lifts_off(t, excitation, y):
-            return PlanarMode.FLIGHT
-        if margin < 0 or (margin == 0 and margin_rate < 0):
-            return PlanarMode.SLIP
-        return PlanarMode.STICK
+        return PlanarMode(rules.mode_at_rest(self.mu, *self._forces(t, excitation, y)))
 
     def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
-        """Stick or slip: n reaching zero and falling -> flight (a touch of zero keeps the
-        mode); stick: the circle reached -> slip
-        (flight where the demand is zero);
-        a stop -> stick, unless the demand leaves the circle within ``time_tol`` [s]
-        (it then slides on along the demand). Landing -> a rebound (flight) while it is
-        above ``bounce_threshold`` (on a rigid support), else slip if still moving, else
-        the mode at rest."""
-        if mode != PlanarMode.FLIGHT and guard_index == 0:  # n reached zero: falling on, or a touch
-            return PlanarMode.FLIGHT if self.lifts_off(t, excitation, y) else mode
-        if mode == PlanarMode.STICK:
-            (sx, sy), _ = self.demand(t, excitation)
-            # with no demand the circle shrinks to its centre only as n reaches zero: that
-            # is a liftoff (an integrated stick, on a spring, may report either guard)
-            return PlanarMode.FLIGHT if sx == 0 and sy == 0 else PlanarMode.SLIP
-        if mode == PlanarMode.FLIGHT:
-            if not self.support.compliant and -self.restitution * y[_WD] > self.bounce_threshold:
-                return PlanarMode.FLIGHT
-            if y[_CX] != 0 or y[_CY] != 0:
-                return PlanarMode.FLIGHT if self.lifts_off(t, excitation, y) else PlanarMode.SLIP
-        rest = self.mode_at_rest(t, excitation, xp, y)
-        margin, margin_rate = self.circle_margin(t, excitation, y)
-        if rest == PlanarMode.STICK and margin_rate < 0 and (t + margin / -margin_rate) - t <= time_tol:
-            return PlanarMode.SLIP  # it leaves the circle within time_tol: slides on
-        return rest
+        """:func:`._rules.mode_after_guard`: a liftoff, a slide, a stop (that slides on
+        if the demand leaves the circle within ``time_tol`` [s]), a rebound (on a rigid
+        support) or a landing."""
+        return PlanarMode(rules.mode_after_guard(mode, guard_index, t, y, self.mu, *self._forces(t, excitation, y),
+                                                 self.restitution, self.bounce_threshold,
+                                                 not self.support.compliant, time_tol))
 
     # ---- what the hybrid driver asks -----------------------------------------
     def check_motion(self, motion):
@@ -384,26 +342,9 @@ class PlanarBlock(AbstractHybridModel):
         -restitution times the vertical one (a rebound) or zero (contact); on a spring
         the vertical motion goes on. Sliding from rest starts along the relative
         acceleration -sigma (or, where sigma = 0, along its rate)."""
-        vertical = {} if self.support.compliant else {_W: 0.0, _WD: 0.0}
-        if after == PlanarMode.FLIGHT:
-            if before == PlanarMode.FLIGHT:
-                return _with(y, {_W: 0.0, _WD: -self.restitution * y[_WD]}, xp)
-            ex, ey = _unit(y, xp)
-            return _with(y, {_S: 0.0, _CX: y[_S] * ex, _CY: y[_S] * ey, **vertical}, xp)
-        if before == PlanarMode.FLIGHT:  # back to the polar form
-            y = _with(y, {_S: xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2), **vertical}, xp)
-        if after == PlanarMode.STICK:
-            return _with(y, {_S: 0.0}, xp)
-        return xp.where(y[_S] == 0, self._along_demand(t, excitation, y, xp), y)
-
-    def _along_demand(self, t, excitation, y, xp):
         (sx, sy), (rx, ry) = self.demand(t, excitation)
-        size, rate_size = xp.sqrt(sx**2 + sy**2), xp.sqrt(rx**2 + ry**2)
-        on_demand = size > 0
-        x, y_, n = (xp.where(on_demand, a, b) for a, b in ((sx, rx), (sy, ry), (size, rate_size)))
-        moving = n > 0
-        n = xp.where(moving, n, 1.0)
-        return _with(y, {_CX: xp.where(moving, -x / n, y[_CX]), _CY: xp.where(moving, -y_ / n, y[_CY])}, xp)
+        z = rules.state_on_entry(before, after, y, sx, sy, rx, ry, self.restitution, not self.support.compliant, xp)
+        return np.array(z, dtype=float) if xp is np else xp.stack(z)
 
     # ---- parameters ----------------------------------------------------------
     def parameters(self):
@@ -449,14 +390,8 @@ class PlanarBlock(AbstractHybridModel):
         oscillating state; :meth:`output_step` resolves it)."""
         if self.support.compliant:
             return None
-        if mode == PlanarMode.STICK:
-            n, n_rate = self.normal(t, excitation)
-            (sx, sy), (rx, ry) = self.demand(t, excitation)
-            return 2 * (self.mu**2 * n * n_rate - (sx * rx + sy * ry))
-        if mode == PlanarMode.FLIGHT:
-            return y[_WD]
-        rate = self.flow(mode, t, y, excitation, xp)
-        return rate[_S] if rate[_CX] == rate[_CY] == 0 else None
+        value, defined = rules.turn_rate(mode, y, self.mu, self.friction_kinetic, *self._forces(t, excitation), SCALAR)
+        return value if defined else None
 
     def output_step(self):
         """1 / (32 omega) [s] on a spring (its oscillation), else inf."""
@@ -469,16 +404,8 @@ class PlanarBlock(AbstractHybridModel):
             fall = -(self.g + excitation.component(2, t))  # w''
             ratio = 2 * self.support.damping / self.support.omega if y[_WD] > 0 else 0.0
             return y[_WD] + ratio * fall, fall
-        n, n_rate = self.normal(t, excitation, y)
-        if mode == PlanarMode.SLIP and guard_index == 1:
-            _, (rx, ry) = self.demand(t, excitation)
-            rate = self.flow(mode, t, y, excitation, SCALAR)[_S]
-            return rate, math.hypot(rx, ry) + self.friction_kinetic * abs(n_rate)
-        if mode == PlanarMode.FLIGHT:  # w'' = -n
-            return y[_WD], -n
-        if mode == PlanarMode.STICK and guard_index == 1:
-            return self.circle_margin(t, excitation, y)[1] * self.guard_scale, 0.0
-        return n_rate * self.guard_scale, 0.0
+        return rules.guard_rates(mode, guard_index, y, self.mu, self.friction_kinetic, *self._forces(t, excitation, y),
+                                 self.guard_scale, SCALAR)
 
     def contradiction(self, mode, y, velocity_error):
         """A slide with a negative speed s [m/s]."""
@@ -489,7 +416,7 @@ class PlanarBlock(AbstractHybridModel):
     def speed(self, y):
         if self.support.compliant:  # horizontal and vertical
             return math.hypot(y[_S], y[_CX], y[_CY], y[_WD]) if y[_S] == 0 else math.hypot(y[_S], y[_WD])
-        return math.hypot(y[_S], y[_CX], y[_CY]) if y[_S] == 0 else math.hypot(y[_S], y[_WD])
+        return rules.speed(y)
 
     def time_to_rest(self, mode, y):
         """With a = 0 (n = g, relative acceleration b g): the flight ends within
@@ -498,13 +425,12 @@ class PlanarBlock(AbstractHybridModel):
         if self.support.compliant:
             raise ValueError("a block on a spring support never comes to rest exactly after the excitation: "
                              "give t_end [s]")
-        b, f, g = math.hypot(*self.bias), self.friction_kinetic, self.g
-        if f <= b:
+        bound = rules.time_to_rest(mode, y, *self.bias, self.friction_kinetic, self.g)
+        if bound < 0:
             raise ValueError(f"the block never comes to rest after the excitation: kinetic friction "
-                             f"mu_kinetic={f} does not exceed |bias|={b}; give t_end [s]")
-        flight = (y[_WD] + math.sqrt(y[_WD] ** 2 + 2 * g * y[_W])) / g if mode == PlanarMode.FLIGHT else 0.0
-        speed = math.hypot(y[_CX], y[_CY]) if mode == PlanarMode.FLIGHT else abs(y[_S])
-        return flight + 2.0 * (speed + b * g * flight) / ((f - b) * g) + 1e-12
+                             f"mu_kinetic={self.friction_kinetic} does not exceed |bias|={math.hypot(*self.bias)}; "
+                             "give t_end [s]")
+        return bound
 
     def event(self, t, mode_before, mode_after, y):
         vx, vy = horizontal_velocity(mode_before, y)
@@ -548,13 +474,6 @@ def _with(y, changes, xp=np):
             y[index] = value
         return y
     return xp.stack([changes.get(index, y[index]) for index in range(len(y))])
-
-
-def _unit(y, xp):
-    size = xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
-    moving = size > 0
-    size = xp.where(moving, size, 1.0)
-    return xp.where(moving, y[_CX] / size, 0.0), xp.where(moving, y[_CY] / size, 0.0)
 
 
 class PlanarDAEForm:

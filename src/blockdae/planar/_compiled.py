@@ -28,13 +28,14 @@ Per mode:
   the float before it; else bisection on that step). A liftoff (n reaching 0) is a time
   alone.
 
-The rules (which mode follows a guard, what a mode starts with, the graze rule of
-``_falls``, events at the end of a piece left to the next, chatter, the stop's
-uncertainty from the tolerances, the tail to rest) are the driver's and the model's,
-restated here on floats; ``tests/test_planar_engine.py`` checks every restated rule
-against :class:`~blockdae.PlanarBlock`'s own methods. The knots (piece ends, events,
-1 / (32 w) apart on sine pieces) are the driver's, so the dense output is its cubic
-Hermite one.
+The model's rules (flows, guards, which mode follows a guard, what a mode starts with)
+are :mod:`._rules`, which :class:`~blockdae.PlanarBlock` calls too; this module only
+evaluates the forces they take from the piece's coefficients. The driver's graze rule
+and bisections are :mod:`blockdae.solvers._events`, which the driver calls too; its other
+rules (events at the end of a piece left to the next, chatter, the stop's
+uncertainty from the tolerances, the tail to rest) are restated here on floats. The
+knots (piece ends, events, 1 / (32 w) apart on sine pieces) are the driver's, so the
+dense output is its cubic Hermite one.
 
 State (8,): the model's (u_x, u_y, s, c_x, c_y, w, w') and the slide's path length
 [m] (the integral of s while sliding).
@@ -54,13 +55,15 @@ from numba.extending import register_jitable
 from ..core._model import KNOTS_PER_RADIAN
 from ..excitation import _pieces
 from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
-from ..planar._model import SLOW_SPEED
-from . import _dop853, _rodas4
-from . import _xp_scalar as xp
+from ..engines import _dop853, _rodas4
+from ..engines import _xp_scalar as xp
+from ..solvers import _events as events
+from . import _rules as rules
+from ._rules import FLIGHT, SLIP, SLOW_SPEED, STICK
 
-STICK, SLIP, FLIGHT = 0, 1, 2
 _UX, _UY, _S, _CX, _CY, _W, _WD, _PATH = range(8)
 N_STATE = 8
+_EPS = float(np.finfo(float).eps)
 #: entries of ``params``: mu, f [-], bias (x, y) [-], g [m/s²], restitution [-],
 #: bounce threshold [m/s], factor on a(t) [-]
 PARAM_FIELDS = ("mu", "mu_kinetic", "bias_x", "bias_y", "g", "restitution", "bounce_threshold", "scale")
@@ -73,10 +76,6 @@ OUTCOME_FIELDS = ("u_x", "u_y", "max_abs_u", "slide_distance", "n_events", "n_fl
 #: outcome ``status``: finished; chatter; the state contradicts its mode; a step below
 #: rounding; no rest within the model's bound; f <= |bias| (never rests)
 FINISHED, CHATTER, INCONSISTENT, STEP_TOO_SMALL, NO_REST, NEVER_RESTS = range(6)
-_EPS = float(np.finfo(float).eps)
-_ULPS = 8  # the driver's: intervals shorter than this many ulps are not integrated
-_TURN_BISECTIONS = 60  # the driver's
-_V_ERROR_FACTOR, _ROUNDING = 10.0, 1e-12  # the driver's
 
 
 # ---- the piece's excitation: pe = (t0 [s], h [s], P (3, 5) scaled (p0, p1, s, w, phi), directions (3,))
@@ -106,94 +105,46 @@ def _raw_rate(pe, i, t):
     return accel_rate(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], min(t - pe[0], pe[1]), xp)
 
 
-def _normal(pe, p, t):
-    """n = g + a_z [m/s²] and its rate [m/s³] (``PlanarBlock.normal``, rigid support)."""
-    return p[4] + _a(pe, 2, t), _a_rate(pe, 2, t)
-
-
-def _demand(pe, p, t):
-    """sigma = a_h - b g [m/s²] and its rate [m/s³] (``PlanarBlock.demand``)."""
-    return (_a(pe, 0, t) - p[2] * p[4], _a(pe, 1, t) - p[3] * p[4], _a_rate(pe, 0, t), _a_rate(pe, 1, t))
-
-
-def _circle_margin(pe, p, t):
-    """mu n - |sigma| [m/s²] and its rate [m/s³] (``PlanarBlock.circle_margin``)."""
-    n, n_rate = _normal(pe, p, t)
-    sx, sy, rx, ry = _demand(pe, p, t)
-    size = math.hypot(sx, sy)
-    rate = (sx * rx + sy * ry) / size if size > 0 else math.hypot(rx, ry)
-    return p[0] * n - size, p[0] * n_rate - rate
-
-
-def _lifts_off(pe, p, t):
-    n, n_rate = _normal(pe, p, t)
-    return n < 0 or (n == 0 and n_rate < 0)
-
-
 def _forces(pe, p, t):
-    """(n, sigma_x, sigma_y) [m/s²] at ``t`` without their rates (the piece's local time
-    computed once)."""
+    """(n, sigma_x, sigma_y) [m/s²] at ``t`` on a rigid support, without their rates (the
+    piece's local time computed once)."""
     P, tau = pe[2], min(t - pe[0], pe[1])
-    return p[4] + _a_local(P, 2, tau), _a_local(P, 0, tau) - p[2] * p[4], _a_local(P, 1, tau) - p[3] * p[4]
+    sx, sy = rules.demand(_a_local(P, 0, tau), _a_local(P, 1, tau), p[2], p[3], p[4])
+    return rules.rigid_normal(p[4], _a_local(P, 2, tau)), sx, sy
+
+
+def _forces_and_rates(pe, p, t):
+    """(n, n', sigma_x, sigma_y, sigma_x', sigma_y') [m/s², m/s³] at ``t``, as the rules
+    take them (the rates as the driver's decisions see them)."""
+    n, sx, sy = _forces(pe, p, t)
+    return n, _a_rate(pe, 2, t), sx, sy, _a_rate(pe, 0, t), _a_rate(pe, 1, t)
 
 
 def _mode_at_rest(pe, p, t):
-    """``PlanarBlock.mode_at_rest`` (rigid support); the rates only where a value is 0."""
-    n, sx, sy = _forces(pe, p, t)
-    if n < 0 or (n == 0 and _normal(pe, p, t)[1] < 0):
-        return FLIGHT
-    margin = p[0] * n - math.hypot(sx, sy)
-    if margin < 0 or (margin == 0 and _circle_margin(pe, p, t)[1] < 0):
-        return SLIP
-    return STICK
+    """:func:`~blockdae.planar._rules.mode_at_rest` at ``t``."""
+    return rules.mode_at_rest(p[0], *_forces_and_rates(pe, p, t))
 
 
 def _mode_after_guard(mode, index, t, y, pe, p, time_tol):
-    """``PlanarBlock.mode_after_guard`` (rigid support)."""
-    if mode != FLIGHT and index == 0:
-        return FLIGHT if _lifts_off(pe, p, t) else mode
-    if mode == STICK:
-        sx, sy, _, _ = _demand(pe, p, t)
-        return FLIGHT if sx == 0 and sy == 0 else SLIP
-    if mode == FLIGHT:
-        if -p[5] * y[_WD] > p[6]:
-            return FLIGHT
-        if y[_CX] != 0 or y[_CY] != 0:
-            return FLIGHT if _lifts_off(pe, p, t) else SLIP
-    rest = _mode_at_rest(pe, p, t)
-    margin, margin_rate = _circle_margin(pe, p, t)
-    if rest == STICK and margin_rate < 0 and (t + margin / -margin_rate) - t <= time_tol:
-        return SLIP
-    return rest
+    """:func:`~blockdae.planar._rules.mode_after_guard` at ``t`` (rigid support)."""
+    n, n_rate, sx, sy, rx, ry = _forces_and_rates(pe, p, t)
+    return rules.mode_after_guard(mode, index, t, y, p[0], n, n_rate, sx, sy, rx, ry, p[5], p[6], True, time_tol)
 
 
 def _state_on_entry(before, after, t, y, pe, p):
-    """``PlanarBlock.state_on_entry`` (rigid support); the path length is kept."""
+    """:func:`~blockdae.planar._rules.state_on_entry` (rigid support); the path length is
+    kept."""
+    _, _, sx, sy, rx, ry = _forces_and_rates(pe, p, t)
+    entry = rules.state_on_entry(before, after, y, sx, sy, rx, ry, p[5], True, xp)
     z = y.copy()
-    if after == FLIGHT:
-        if before == FLIGHT:
-            z[_W], z[_WD] = 0.0, -p[5] * y[_WD]
-            return z
-        size = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
-        ex, ey = (y[_CX] / size, y[_CY] / size) if size > 0 else (0.0, 0.0)
-        z[_S], z[_CX], z[_CY], z[_W], z[_WD] = 0.0, y[_S] * ex, y[_S] * ey, 0.0, 0.0
-        return z
-    if before == FLIGHT:
-        z[_S], z[_W], z[_WD] = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2), 0.0, 0.0
-    if after == STICK:
-        z[_S] = 0.0
-        return z
-    if z[_S] == 0:  # along the demand, or where it is zero along its rate
-        sx, sy, rx, ry = _demand(pe, p, t)
-        size, rate_size = math.sqrt(sx**2 + sy**2), math.sqrt(rx**2 + ry**2)
-        x, y_, m = (sx, sy, size) if size > 0 else (rx, ry, rate_size)
-        if m > 0:
-            z[_CX], z[_CY] = -x / m, -y_ / m
+    for i in range(N_STATE - 1):
+        z[i] = entry[i]
     return z
 
 
 def _flow(mode, t, y, pe, p):
-    """dy/dt (``PlanarBlock.flow``, rigid support) and the path's rate s in slip."""
+    """dy/dt (:func:`~blockdae.planar._rules.flow`, rigid support) and the path's rate s
+    in slip."""
     out = np.zeros(N_STATE)
     _flow_into(mode, t, y, pe, p, out)
     return out
@@ -201,147 +152,62 @@ def _flow(mode, t, y, pe, p):
 
 def _flow_into(mode, t, y, pe, p, out):
     """:func:`_flow` into ``out`` (N_STATE,)."""
-    for i in range(N_STATE):
-        out[i] = 0.0
-    if mode == STICK:
-        return
-    rx, ry = -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4])
-    if mode == FLIGHT:
-        out[_UX], out[_UY], out[_CX], out[_CY] = y[_CX], y[_CY], rx, ry
-        out[_W], out[_WD] = y[_WD], -(p[4] + _a(pe, 2, t))
-        return
-    _slip_into(y, p, rx, ry, p[4] + _a(pe, 2, t), out)
-
-
-def _slip_into(y, p, rx, ry, n, out):
-    """The slip flow into ``out`` with -sigma = (rx, ry) and n [m/s²]."""
-    ex, ey, along, turn_x, turn_y = _slip_rates(y, p, rx, ry, n)
-    s = y[_S]
-    out[_UX], out[_UY], out[_S], out[_CX], out[_CY], out[_PATH] = s * ex, s * ey, along, turn_x, turn_y, s
-    out[_W], out[_WD] = 0.0, 0.0
-
-
-def _slip_rates(y, p, rx, ry, n):
-    """The slip's e = c / |c| [-], s' [m/s²] and c' [1/s] (``PlanarBlock.flow``), with
-    -sigma = (rx, ry) and n [m/s²]: (e_x, e_y, s', c_x', c_y')."""
-    size = math.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
-    ex, ey = y[_CX] / size, y[_CY] / size
-    along = ex * rx + ey * ry - p[1] * n
-    across = ex * ry - ey * rx
-    s = y[_S]
-    turn = across / (s if s > SLOW_SPEED else SLOW_SPEED)
-    return ex, ey, along, -ey * turn * size, ex * turn * size
-
-
-def _slip_rates_at(t, y, pe, p):
-    """:func:`_slip_rates` at ``t`` [s]."""
-    return _slip_rates(y, p, -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4]), p[4] + _a(pe, 2, t))
+    n, sx, sy = _forces(pe, p, t)
+    rates = rules.flow(mode, y, -sx, -sy, p[1] * n, -n, xp)
+    for i in range(N_STATE - 1):
+        out[i] = rates[i]
+    out[_PATH] = y[_S] if mode == SLIP else 0.0
 
 
 def _slip_rhs(t, y, args, out):
-    """The slip flow as the steps' right-hand side (``args``: (pe, p)); :func:`_flow_into`
-    with the piece's local time computed once."""
+    """The slip flow as the steps' right-hand side (``args``: (pe, p)): :func:`_flow_into`
+    in slip."""
     pe, p = args
-    P, tau = pe[2], min(t - pe[0], pe[1])
-    rx, ry = -(_a_local(P, 0, tau) - p[2] * p[4]), -(_a_local(P, 1, tau) - p[3] * p[4])
-    _slip_into(y, p, rx, ry, p[4] + _a_local(P, 2, tau), out)
+    n, sx, sy = _forces(pe, p, t)
+    u_x, u_y, s, c_x, c_y = rules.slip_flow(y, -sx, -sy, p[1] * n, xp)
+    out[_UX], out[_UY], out[_S], out[_CX], out[_CY], out[_PATH] = u_x, u_y, s, c_x, c_y, y[_S]
+    out[_W], out[_WD] = 0.0, 0.0
 
 
 def _guards(mode, t, y, pe, p):
-    """(guard 0, guard 1) [m/s², m/s or m] (``PlanarBlock.guards``; flight has one: the
-    second is +inf)."""
-    if mode == FLIGHT:
-        return y[_W], math.inf
+    """(guard 0, guard 1) [m/s², m/s or m] (:func:`~blockdae.planar._rules.guards`;
+    flight has one: the second is +inf)."""
     n, sx, sy = _forces(pe, p, t)
-    if mode == STICK:
-        return n, p[0] * n - math.sqrt(sx**2 + sy**2)
-    return n, y[_S]
+    return rules.guards(mode, y, n, sx, sy, p[0], 1.0, xp)
 
 
 def _guard_rates(mode, index, t, y, pe, p):
-    """``PlanarBlock.guard_rates`` (rigid support): (rate, curvature)."""
-    n, n_rate = _normal(pe, p, t)
-    if mode == SLIP and index == 1:
-        _, _, rx, ry = _demand(pe, p, t)
-        return _slip_rates_at(t, y, pe, p)[2], math.hypot(rx, ry) + p[1] * abs(n_rate)
-    if mode == FLIGHT:
-        return y[_WD], -n
-    if mode == STICK and index == 1:
-        return _circle_margin(pe, p, t)[1], 0.0
-    return n_rate, 0.0
+    """(rate, curvature) of guard ``index`` (:func:`~blockdae.planar._rules.guard_rates`)."""
+    n, n_rate, sx, sy, rx, ry = _forces_and_rates(pe, p, t)
+    return rules.guard_rates(mode, index, y, p[0], p[1], n, n_rate, sx, sy, rx, ry, 1.0, xp)
 
 
 def _turn_rate(mode, t, y, pe, p):
-    """``PlanarBlock.turn_rate`` (rigid support): (value, defined)."""
-    if mode == STICK:
-        n, n_rate = _normal(pe, p, t)
-        sx, sy, rx, ry = _demand(pe, p, t)
-        return 2 * (p[0] ** 2 * n * n_rate - (sx * rx + sy * ry)), True
-    if mode == FLIGHT:
-        return y[_WD], True
-    _, _, along, turn_x, turn_y = _slip_rates_at(t, y, pe, p)
-    return along, turn_x == 0 and turn_y == 0
-
-
-def _falls(rate, curvature, resolution):
-    """The driver's ``_falls``: a guard at zero leaves its mode at once."""
-    if rate == 0:
-        return curvature < 0
-    return rate < 0 and (curvature <= 0 or -rate / curvature > resolution)
-
-
-def _speed(y):
-    if y[_S] == 0:
-        return math.sqrt(y[_S] ** 2 + y[_CX] ** 2 + y[_CY] ** 2)
-    return math.hypot(y[_S], y[_WD])
-
-
-def _time_to_rest(mode, y, p):
-    """``PlanarBlock.time_to_rest`` [s] (rigid support); -1 where f <= |bias|."""
-    b, f, g = math.hypot(p[2], p[3]), p[1], p[4]
-    if f <= b:
-        return -1.0
-    flight = (y[_WD] + math.sqrt(y[_WD] ** 2 + 2 * g * y[_W])) / g if mode == FLIGHT else 0.0
-    speed = math.hypot(y[_CX], y[_CY]) if mode == FLIGHT else abs(y[_S])
-    return flight + 2.0 * (speed + b * g * flight) / ((f - b) * g) + 1e-12
+    """(value, defined) (:func:`~blockdae.planar._rules.turn_rate`)."""
+    n, n_rate, sx, sy, rx, ry = _forces_and_rates(pe, p, t)
+    return rules.turn_rate(mode, y, p[0], p[1], n, n_rate, sx, sy, rx, ry, xp)
 
 
 # ---- root finding in time --------------------------------------------------------
-def _bracketed_guard(mode, index, y, pe, p, a, b):
-    """The driver's ``_bracketed_root`` on guard ``index`` (> 0 at a, <= 0 at b)."""
-    while True:
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            return b
-        if _guards(mode, mid, y, pe, p)[index] > 0:
-            a = mid
-        else:
-            b = mid
+def _guard_value(args, t):
+    """Guard ``index`` at ``t`` (args: (mode, index, y, pe, p))."""
+    mode, index, y, pe, p = args
+    return _guards(mode, t, y, pe, p)[index]
 
 
 def _turning_point(mode, t, y, end, pe, p):
-    """The driver's ``turning_point``: where the turn rate changes sign in (t, end),
-    else nan."""
-    first, defined = _turn_rate(mode, t, y, pe, p)
-    if not defined or mode == FLIGHT:  # in flight the rate is y's w', constant in t
+    """The driver's ``turning_point`` (:func:`blockdae.solvers._events.turning_point`):
+    where the turn rate changes sign in (t, end), else nan; none in flight, where the
+    rate is y's w', constant in t."""
+    if mode == FLIGHT:
         return math.nan
-    sign_lo = math.copysign(1.0, first)
-    value, defined = _turn_rate(mode, end, y, pe, p)
-    if not defined or sign_lo * value > 0:
-        return math.nan
-    lo, hi = t, end
-    for _ in range(_TURN_BISECTIONS):
-        mid = 0.5 * (lo + hi)
-        if mid == lo or mid == hi:
-            break
-        value, defined = _turn_rate(mode, mid, y, pe, p)
-        if not defined:
-            return math.nan
-        if sign_lo * value > 0:
-            lo = mid
-        else:
-            hi = mid
-    return hi if hi < end else math.nan
+    return events.turning_point(_turn_value, (mode, y, pe, p), t, end)
+
+
+def _turn_value(args, t):
+    """:func:`_turn_rate` at ``t`` (args: (mode, y, pe, p))."""
+    mode, y, pe, p = args
+    return _turn_rate(mode, t, y, pe, p)
 
 
 def _is_linear(pe):
@@ -381,7 +247,7 @@ def _static_root(t, y, end, pe, p):
         for i in range(2):
             crossing = ga[i] > 0 and (gb[i] < 0 or (gb[i] == 0 and b < end and _guards(STICK, end, y, pe, p)[i] < 0))
             if crossing:
-                root = _bracketed_guard(STICK, i, y, pe, p, a, b)
+                root = events.first_nonpositive(_guard_value, (STICK, i, y, pe, p), a, b)
                 if root < best_t:
                     best_t, best_i = root, i
         if best_i >= 0:
@@ -389,20 +255,7 @@ def _static_root(t, y, end, pe, p):
     return math.nan, -1
 
 
-def _first_nonpositive(fun_args, a, b):
-    """The first float in (a, b] where the monotone ``_time_function(*fun_args)`` is <= 0
-    (> 0 at a, <= 0 at b)."""
-    while True:
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            return b
-        if _time_function(mid, fun_args) > 0:
-            a = mid
-        else:
-            b = mid
-
-
-def _time_function(t, fa):
+def _time_function(fa, t):
     """Functions of time the engine locates roots of: fa = (kind, t_from, y, pe, p):
     kind 0: n; 1: the flight's w; 2: the flight's w'; 3: -n (w'')."""
     kind, t_from, y, pe, p = fa
@@ -418,8 +271,8 @@ def _liftoff_time(t, stop, y, pe, p):
     """The first float in (t, stop) where n <= 0, n > 0 at t (monotone on the piece),
     else nan (a root at ``stop`` is no root: the piece's end is left to the next)."""
     fa = (0, t, y, pe, p)  # n depends on time alone: y is not read
-    if _time_function(t, fa) > 0 and _time_function(stop, fa) <= 0:
-        root = _first_nonpositive(fa, t, stop)
+    if _time_function(fa, t) > 0 and _time_function(fa, stop) <= 0:
+        root = events.first_nonpositive(_time_function, fa, t, stop)
         return root if root < stop else math.nan
     return math.nan
 
@@ -457,9 +310,9 @@ def _flight_to(t, y, stop, pe, p):
     knots[0] = t
     m = 1
     fa_n = (3, t, y, pe, p)
-    na, nb = _time_function(t, fa_n), _time_function(stop, fa_n)
+    na, nb = _time_function(fa_n, t), _time_function(fa_n, stop)
     if (na > 0) != (nb > 0) and na != 0 and nb != 0:
-        knots[m] = _root_between(fa_n, t, stop)
+        knots[m] = events.sign_change(_time_function, fa_n, t, stop)
         m += 1
     knots[m] = stop
     m += 1
@@ -470,33 +323,19 @@ def _flight_to(t, y, stop, pe, p):
         a, b = knots[j], knots[j + 1]
         parts[k] = a
         k += 1
-        va, vb = _time_function(a, fa_v), _time_function(b, fa_v)
+        va, vb = _time_function(fa_v, a), _time_function(fa_v, b)
         if (va > 0 and vb < 0) or (va < 0 and vb > 0):
-            parts[k] = _root_between(fa_v, a, b)
+            parts[k] = events.sign_change(_time_function, fa_v, a, b)
             k += 1
     parts[k] = stop
     k += 1
     fa_w = (1, t, y, pe, p)
     for j in range(k - 1):
         a, b = parts[j], parts[j + 1]
-        if a < b and _time_function(a, fa_w) > 0 and _time_function(b, fa_w) <= 0:
-            root = _first_nonpositive(fa_w, a, b)
+        if a < b and _time_function(fa_w, a) > 0 and _time_function(fa_w, b) <= 0:
+            root = events.first_nonpositive(_time_function, fa_w, a, b)
             return root, _flight_state(t, y, root, pe, p), True
     return stop, _flight_state(t, y, stop, pe, p), False
-
-
-def _root_between(fa, a, b):
-    """A sign change of the monotone ``_time_function(*fa)`` between a and b, to
-    adjacent floats."""
-    sign_a = _time_function(a, fa) > 0
-    while True:
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            return b
-        if (_time_function(mid, fa) > 0) == sign_a:
-            a = mid
-        else:
-            b = mid
 
 
 # ---- slip: DOP853, RODAS where the direction's relaxation is stiff --------------------
@@ -634,7 +473,7 @@ def _slip_to(t, y, stop, pe, p, rtol, atol, B, cnt, fl):
         rest = stop - t
         last = h >= rest
         hh = rest if last else h
-        if not last and hh <= _ULPS * _EPS * max(1.0, abs(t)):
+        if not last and hh <= events.ULPS * _EPS * max(1.0, abs(t)):
             cnt[C_STATUS] = STEP_TOO_SMALL
             break
         if method == STIFF:
@@ -730,6 +569,12 @@ def _dense_minimum(F, y, t, hh, args, work, rate, method):
     return hi
 
 
+def _dense_speed(args, t_mid):
+    """s [m/s] of the step's dense output at ``t_mid`` [s] (args: (F, y, t, hh, method))."""
+    F, y, t, hh, method = args
+    return _dense_value(F, y, (t_mid - t) / hh, _S, method)
+
+
 def _s_after(args, t, y, d, K, K2, work, z, B, method):
     """s [m/s] after a step of ``d`` [s] from (t, y) (K[0]: the rate there; for RODAS
     K[7] and B's J: the derivatives there), the state left in ``z``."""
@@ -747,15 +592,7 @@ def _stop_on_flow(F, args, t, y, hh, upper, K, K2, work, z, cnt, B, method):
     the flow (a step from t to it has s <= 0, to the float before it s > 0); else the
     same bisection on steps from t. The time (0 if the flow has none), the state in ``z``."""
     calls = 6 if method == STIFF else 12
-    a, b = t, upper
-    while True:  # on the dense output
-        mid = 0.5 * (a + b)
-        if mid <= a or mid >= b:
-            break
-        if _dense_value(F, y, (mid - t) / hh, _S, method) > 0:
-            a = mid
-        else:
-            b = mid
+    b = events.first_nonpositive(_dense_speed, (F, y, t, hh, method), t, upper)  # on the dense output
     before = np.nextafter(b, -math.inf)
     cnt[C_RHS] += 2 * calls
     if before <= t or _s_after(args, t, y, before - t, K, K2, work, z, B, method) > 0:
@@ -862,12 +699,8 @@ def _on_guard(kb, eb, cnt, fl, log, y, index, pe, p, opt):
 
 def _stop_uncertainty(mode, index, t, y, pe, p, fl, opt):
     """The driver's ``stop_uncertainty`` [s] with (rtol, atol) of this engine."""
-    error = _V_ERROR_FACTOR * (opt[0] * fl[F_VMAX] + opt[1])
     slope, curvature = _guard_rates(mode, index, t, y, pe, p)
-    slope, curvature = abs(slope), abs(curvature)
-    if slope == 0 and curvature == 0:
-        return opt[2]
-    return max(opt[2], 2 * error / (slope + math.sqrt(slope**2 + 2 * curvature * error)))
+    return events.stop_uncertainty(slope, curvature, events.velocity_error(opt[0], opt[1], fl[F_VMAX]), opt[2])
 
 
 def _guard_left_at_once(mode, t, y, pe, p, resolution):
@@ -875,7 +708,7 @@ def _guard_left_at_once(mode, t, y, pe, p, resolution):
     for index in range(1 if mode == FLIGHT else 2):
         if values[index] <= 0:
             rate, curvature = _guard_rates(mode, index, t, y, pe, p)
-            if _falls(rate, curvature, resolution):
+            if events.falls(rate, curvature, resolution):
                 return index
     return -1
 
@@ -914,7 +747,7 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
                     continue
             cnt[C_RESTARTED] = 0
         target = end if math.isnan(turn) or turn <= t else turn
-        if target - t <= _ULPS * _EPS * max(1.0, abs(target)):
+        if events.too_short(t, target):
             fl[F_T], cnt[C_RESTARTED] = target, 1
             continue
         t_out = min(target, t + _output_step(pe))
@@ -933,10 +766,10 @@ def _advance(kb, eb, cnt, fl, log, y, end, until_rest, pe, p, opt, B):
             root, t_new = -1, t_out
         fl[F_T] = t_new
         _put(y, z)
-        fl[F_VMAX] = max(fl[F_VMAX], _speed(y))
+        fl[F_VMAX] = max(fl[F_VMAX], rules.speed(y))
         if mode == SLIP:
-            error = _V_ERROR_FACTOR * (opt[0] * fl[F_VMAX] + opt[1])
-            if y[_S] < -(error + _ROUNDING * fl[F_VMAX]):
+            error = events.velocity_error(opt[0], opt[1], fl[F_VMAX])
+            if y[_S] < -(error + events.ROUNDING * fl[F_VMAX]):
                 cnt[C_STATUS] = INCONSISTENT
                 return kb, eb
         if root < 0:
@@ -998,7 +831,7 @@ def _run(T0, H, CF, p, opt, log):
         if k == n:
             if cnt[C_MODE] == STICK:
                 break
-            bound = _time_to_rest(cnt[C_MODE], y, p)
+            bound = rules.time_to_rest(cnt[C_MODE], y, p[2], p[3], p[1], p[4])
             if bound < 0:
                 cnt[C_STATUS] = NEVER_RESTS
                 break
@@ -1065,13 +898,13 @@ def run_one(T0, H, CF, p, options):
 
 _OPTIONS = dict(error_model="numpy")
 #: modules whose functions the engine compiles besides its own
-_SHARED = (_pieces, _dop853, _rodas4, xp, sys.modules[__name__])
+_SHARED = (_pieces, _dop853, _rodas4, xp, events, rules, sys.modules[__name__])
 
 
 def _register():
     """Let numba compile this module's plain functions and the excitation's closed forms
     where the entry points call them (``register_jitable``; they stay plain Python)."""
-    for module in (_pieces, sys.modules[__name__]):
+    for module in (_pieces, rules, sys.modules[__name__]):
         for _, fn in inspect.getmembers(module, inspect.isfunction):
             if fn.__module__ == module.__name__ and fn.__name__ not in ("kernel", "run_one", "_register"):
                 register_jitable(**_OPTIONS)(fn)
