@@ -48,18 +48,18 @@ class ExactBackend(AbstractBackend):
             raise ValueError(f"linear must be 'compiled' or 'python', got {self.linear!r}")
 
     def solve(self, block, excitation, horizon):
-        if callable(self.engine(block)):  # the model's own engine: (model, excitation, horizon, name) -> solution
-            return self.engine(block)(block, excitation, horizon, self.name)
-        if self.engine(block) == "linear":
+        own = self.engine(block)
+        if callable(own):  # the model's own engine: (model, excitation, horizon, name) -> solution
+            return own(block, excitation, horizon, self.name)
+        if own == "linear":
             found = linear_pieces(excitation, horizon.integration_end(excitation))
             if self.linear == "python" or found is None or horizon.until_rest:  # closed-form steps on the driver
                 return solve_closed_form(block, excitation, horizon, self.name)
             return solve_linear_compiled(block, *found, self.name)
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), self.window)
-        run_one, _, _ = engine.kernels()
+        run_one = engine.kernels()[0]
         notice_numba("the exact engine", 15, run_one)
-        params = tuple(float(p) for p in block.engine_parameters()[0])
-        outcome, knots = run_one(exc, self.window, params, _flags(block, horizon), 64)
+        outcome, knots = run_one(exc, self.window, block.engine_parameter_set(), _flags(block, horizon), 64)
         check(block, outcome[6], outcome[7])
         return exact_solution(block, pieces, knots, int(outcome[8]), self.name)
 

@@ -149,6 +149,7 @@ class SlidingBlock(AbstractHybridModel):
         except ValueError as err:
             raise ValueError(
                 f"mu, mu_kinetic and bias must broadcast together: {err}") from None
+        object.__setattr__(self, "_batch_shape", mu.shape)
         if not (np.isfinite(self.g) and self.g > 0):
             raise ValueError(f"g must be a positive acceleration [m/s²], got {self.g!r}")
         if self.direction not in _DIRECTIONS:
@@ -204,8 +205,7 @@ class SlidingBlock(AbstractHybridModel):
     @property
     def batch_shape(self) -> tuple[int, ...]:
         """() for one parameter set, (n,) for a batch of n."""
-        shapes = {p.shape for p in (self.mu, self.friction_kinetic, self.bias) if isinstance(p, np.ndarray)}
-        return np.broadcast_shapes(*shapes) if len(shapes) > 1 else next(iter(shapes), ())  # else floats
+        return self._batch_shape
 
     @property
     def allow_negative(self) -> bool:
@@ -230,7 +230,7 @@ class SlidingBlock(AbstractHybridModel):
         factors of ``scale`` on a(t); set j at factor k is row j * s + k."""
         values = (self.mu, self.friction_kinetic, self.bias, self.g)
         scale = np.asarray(scale, dtype=float).ravel()
-        if not any(isinstance(x, np.ndarray) for x in values):  # one set (floats): the warm single run's path
+        if not any(isinstance(x, np.ndarray) for x in values):  # one set (floats)
             rows = np.empty((scale.size, 5))
             rows[:, :4], rows[:, 4] = values, scale
             return rows
@@ -240,6 +240,11 @@ class SlidingBlock(AbstractHybridModel):
             rows[:, :, column] = np.reshape(x, (-1, 1))
         rows[:, :, 4] = scale
         return rows.reshape(m * scale.size, 5)
+
+    def engine_parameter_set(self) -> tuple[float, float, float, float, float]:
+        """The row of :meth:`engine_parameters` of a block of one parameter set, as floats:
+        (mu, f, bias [-], g [m/s²], scale 1 [-])."""
+        return float(self.mu), float(self.friction_kinetic), float(self.bias), float(self.g), 1.0
 
     def item(self, index: int) -> "SlidingBlock":
         """The ``index``-th parameter set of a batch, as a scalar block."""
