@@ -228,16 +228,11 @@ class SlidingBlock(AbstractHybridModel):
         """The 1-D engines' one parameter packing: (m * s, 5) rows of (mu, f, bias [-],
         g [m/s²], scale [-]) for the m parameter sets (1 for one set), each at the s
         factors of ``scale`` on a(t); set j at factor k is row j * s + k."""
-        values = (self.mu, self.friction_kinetic, self.bias, self.g)
         scale = np.asarray(scale, dtype=float).ravel()
-        if not any(isinstance(x, np.ndarray) for x in values):  # one set (floats)
-            rows = np.empty((scale.size, 5))
-            rows[:, :4], rows[:, 4] = values, scale
-            return rows
-        m = max(np.size(x) for x in values)
+        m = self.batch_shape[0] if self.batch_shape else 1
         rows = np.empty((m, scale.size, 5))
-        for column, x in enumerate(values):
-            rows[:, :, column] = np.reshape(x, (-1, 1))
+        for column, x in enumerate((self.mu, self.friction_kinetic, self.bias, self.g)):
+            rows[:, :, column] = x.reshape(-1, 1) if isinstance(x, np.ndarray) else x
         rows[:, :, 4] = scale
         return rows.reshape(m * scale.size, 5)
 
