@@ -20,7 +20,7 @@ def exact_solution(block, pieces: Pieces, knots, max_run: int, backend: str) -> 
     ``knots``: (5, n_events + 2) rows of t [s], u [m], v [m/s], mode after and mode
     before: the start, every event (v = 0) and the end.
     """
-    knots = np.asarray(knots)
+    knots = np.asarray(knots, dtype=float)
     knots.flags.writeable = False  # its rows are the Solution's arrays
     modes = knots[3:].astype(int)
     modes.flags.writeable = False
