@@ -25,6 +25,16 @@ def make_backend(name: str, **options) -> AbstractBackend:
     """The backend called ``name``, configured with ``options``."""
     if name not in _REGISTRY:
         raise ValueError(f"backend={name!r} is unknown; choose one of {available()}")
+    return _configured(name, options) if options else _with_defaults(name)
+
+
+@functools.cache
+def _with_defaults(name: str) -> AbstractBackend:
+    """The backend called ``name`` with its default settings: one object, as backends are immutable."""
+    return _configured(name, {})
+
+
+def _configured(name: str, options: dict) -> AbstractBackend:
     try:
         return _backend_class(name)(**options)
     except TypeError as err:

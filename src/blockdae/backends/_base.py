@@ -24,7 +24,7 @@ class Horizon:
         if t_end is None:
             if not math.isfinite(excitation.duration):
                 raise ValueError(f"{type(excitation).__name__} never ends: give t_end [s]")
-            return cls(None)
+            return _UNTIL_REST
         t_end = float(t_end)
         if not (math.isfinite(t_end) and t_end > 0):
             raise ValueError(f"t_end must be a positive finite time [s], got {t_end!r}")
@@ -37,6 +37,9 @@ class Horizon:
     def integration_end(self, excitation: AbstractExcitation) -> float:
         """End of the part driven by a(t) [s]; a rest-seeking tail may follow."""
         return excitation.duration if self.t_end is None else self.t_end
+
+
+_UNTIL_REST = Horizon(None)
 
 
 def cached_per_excitation(build):

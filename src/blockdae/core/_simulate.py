@@ -1,7 +1,5 @@
 """The one entry point: ``simulate``."""
 
-import dataclasses
-
 from ..backends import Horizon, available, make_backend
 from ._model import AbstractHybridModel
 
@@ -81,4 +79,15 @@ def simulate(block: AbstractHybridModel, motion, t_end: float | None = None, bac
         raise ValueError(f"backend={backend!r} does not run a {type(block).__name__}; choose one of "
                          f"{list(available(block))}")
     result = solver.solve_batch(block, motion, horizon) if block.batch_shape else solver.solve(block, motion, horizon)
-    return dataclasses.replace(result, block=block, motion=motion)
+    return _of_run(result, block, motion)
+
+
+def _of_run(result, block, motion):
+    """``result`` (a solution: a frozen dataclass that checks nothing on construction) with
+    its ``block`` and ``motion`` set: what ``dataclasses.replace`` makes, a shallow copy,
+    without running ``__init__`` again."""
+    copy = object.__new__(type(result))
+    copy.__dict__.update(result.__dict__)
+    object.__setattr__(copy, "block", block)
+    object.__setattr__(copy, "motion", motion)
+    return copy

@@ -24,10 +24,9 @@ class ExactEngine:
 
     def solve(self, block, excitation, horizon, backend):
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), backend.window)
-        run_one, _, _ = engine.kernels()
+        run_one = engine.kernels()[0]
         notice_numba("the exact engine", 15, run_one)
-        params = tuple(float(p) for p in block.engine_parameters()[0])
-        outcome, knots = run_one(exc, backend.window, params, _flags(block, horizon), 64)
+        outcome, knots = run_one(exc, backend.window, block.engine_parameter_set(), _flags(block, horizon), 64)
         check(block, outcome[6], outcome[7])
         return exact_solution(block, pieces, knots, int(outcome[8]), backend.name)
 

@@ -20,14 +20,14 @@ def exact_solution(block, pieces: Pieces, knots, max_run: int, backend: str) -> 
     ``knots``: (5, n_events + 2) rows of t [s], u [m], v [m/s], mode after and mode
     before: the start, every event (v = 0) and the end.
     """
-    knots = np.asarray(knots)
+    knots = np.asarray(knots, dtype=float)
     knots.flags.writeable = False  # its rows are the Solution's arrays
     modes = knots[3:].astype(int)
     modes.flags.writeable = False
     t, u, v = knots[:3]
     after, before = modes
     n = t.shape[0] - 2
-    events = EventLog(t[1:-1], before[1:-1], after[1:-1], u[1:-1], v[1:-1])
+    events = EventLog.of_read_only(t[1:-1], before[1:-1], after[1:-1], u[1:-1], v[1:-1])
     return Solution(t=t, u=u, v=v, mode=after, events=events, backend=backend,
                     dense=DenseOutput(block, pieces, events.t, events.u, events.mode_after),
                     stats={"max_events_at_one_instant": max_run, "n_events": n})

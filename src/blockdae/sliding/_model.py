@@ -152,6 +152,7 @@ class SlidingBlock(AbstractHybridModel):
         except ValueError as err:
             raise ValueError(
                 f"mu, mu_kinetic and bias must broadcast together: {err}") from None
+        object.__setattr__(self, "_batch_shape", mu.shape)
         if not (np.isfinite(self.g) and self.g > 0):
             raise ValueError(f"g must be a positive acceleration [m/s²], got {self.g!r}")
         if self.direction not in _DIRECTIONS:
@@ -207,8 +208,7 @@ class SlidingBlock(AbstractHybridModel):
     @property
     def batch_shape(self) -> tuple[int, ...]:
         """() for one parameter set, (n,) for a batch of n."""
-        shapes = {p.shape for p in (self.mu, self.friction_kinetic, self.bias) if isinstance(p, np.ndarray)}
-        return np.broadcast_shapes(*shapes) if len(shapes) > 1 else next(iter(shapes), ())  # else floats
+        return self._batch_shape
 
     @property
     def allow_negative(self) -> bool:
@@ -238,18 +238,18 @@ class SlidingBlock(AbstractHybridModel):
         """The 1-D engines' one parameter packing: (m * s, 5) rows of (mu, f, bias [-],
         g [m/s²], scale [-]) for the m parameter sets (1 for one set), each at the s
         factors of ``scale`` on a(t); set j at factor k is row j * s + k."""
-        values = (self.mu, self.friction_kinetic, self.bias, self.g)
         scale = np.asarray(scale, dtype=float).ravel()
-        if not any(isinstance(x, np.ndarray) for x in values):  # one set (floats): the warm single run's path
-            rows = np.empty((scale.size, 5))
-            rows[:, :4], rows[:, 4] = values, scale
-            return rows
-        m = max(np.size(x) for x in values)
+        m = self.batch_shape[0] if self.batch_shape else 1
         rows = np.empty((m, scale.size, 5))
-        for column, x in enumerate(values):
-            rows[:, :, column] = np.reshape(x, (-1, 1))
+        for column, x in enumerate((self.mu, self.friction_kinetic, self.bias, self.g)):
+            rows[:, :, column] = x.reshape(-1, 1) if isinstance(x, np.ndarray) else x
         rows[:, :, 4] = scale
         return rows.reshape(m * scale.size, 5)
+
+    def engine_parameter_set(self) -> tuple[float, float, float, float, float]:
+        """The row of :meth:`engine_parameters` of a block of one parameter set, as floats:
+        (mu, f, bias [-], g [m/s²], scale 1 [-])."""
+        return float(self.mu), float(self.friction_kinetic), float(self.bias), float(self.g), 1.0
 
     def item(self, index: int) -> "SlidingBlock":
         """The ``index``-th parameter set of a batch, as a scalar block."""

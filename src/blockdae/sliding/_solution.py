@@ -56,6 +56,20 @@ class EventLog(collections.abc.Sequence):
             object.__setattr__(self, name, array)
         object.__setattr__(self, "_events", None)
 
+    @classmethod
+    def of_read_only(cls, t, mode_before, mode_after, u, v) -> "EventLog":
+        """The log on read-only arrays that already have its dtypes (float, int, int,
+        float, float; an engine's knots), kept as they are without a check."""
+        log = object.__new__(cls)
+        keep = object.__setattr__
+        keep(log, "t", t)
+        keep(log, "mode_before", mode_before)
+        keep(log, "mode_after", mode_after)
+        keep(log, "u", u)
+        keep(log, "v", v)
+        keep(log, "_events", None)
+        return log
+
     def __setattr__(self, name, value):
         raise AttributeError("an EventLog is immutable")
 
