@@ -21,20 +21,21 @@ _PARALLEL_WORK = 3e7
 
 
 @dataclasses.dataclass(frozen=True)
-class ExactBackend(AbstractBackend):
-    """Closed-form integration, compiled with numba (float64, parallel over cores for
-    batches). ``backend="exact-jax"`` runs the same closed forms and rules compiled
-    with JAX, for derivatives and accelerators. Engines: "sliding" (the 1-D block's
-    kernel) and "linear" (closed-form steps of linear modes on the generic driver,
-    :mod:`blockdae.engines._closed_form_linear`; ``window`` is unused there), as the
-    model's ``engines`` name them, or the model's own engine (a callable there).
+class Exact(AbstractBackend):
+    """Closed-form integration (``backend="exact"``), compiled with numba (float64,
+    parallel over cores for batches). :class:`~blockdae.ExactJax` runs the same closed
+    forms and rules compiled with JAX, for derivatives and accelerators. Engines:
+    "sliding" (the 1-D block's kernel) and "linear" (closed-form steps of linear modes
+    on the generic driver, :mod:`blockdae.engines._closed_form_linear`; ``window`` is
+    unused there), as the model's ``engines`` name them, or the model's own engine (a
+    callable there).
 
     Args:
-        window: pieces of a(t) per block of the onset search's bounds; a tuning knob
-            that changes speed, never results.
-        linear: the "linear" engine's path: "compiled" (numba, :mod:`._linear`, for
-            records) or "python" (closed-form steps on the generic driver, the reference;
-            sine excitations always take it).
+        window=64: pieces of a(t) per block of the onset search's bounds [-], an
+            integer >= 1; a tuning knob that changes speed, never results.
+        linear="compiled": the "linear" engine's path [-]: "compiled" (numba, for
+            records) or "python" (closed-form steps on the generic driver, the
+            reference; sine excitations always take it).
     """
 
     window: int = 64

@@ -18,13 +18,14 @@ from ._results import check, exact_solution, max_run
 
 
 @dataclasses.dataclass(frozen=True)
-class ExactJaxBackend(AbstractBackend):
-    """Closed-form integration, compiled with JAX (float64); what
+class ExactJax(AbstractBackend):
+    """Closed-form integration compiled with JAX (float64, ``backend="exact-jax"``):
+    the closed forms and rules of :class:`~blockdae.Exact`; what
     :func:`blockdae.sensitivities` differentiates.
 
     Args:
-        window: pieces of a(t) examined per loop iteration; a tuning knob that
-            changes speed, never results.
+        window=64: pieces of a(t) examined per loop iteration [-], an integer >= 1; a
+            tuning knob that changes speed, never results.
     """
 
     window: int = 64

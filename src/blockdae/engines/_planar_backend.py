@@ -28,15 +28,17 @@ _PARTS_PER_THREAD = 8
 
 
 @dataclasses.dataclass(frozen=True)
-class CompiledBackend(AbstractBackend):
-    """The compiled planar engine (numba; batches parallel over cores).
+class CompiledPlanar(AbstractBackend):
+    """The compiled planar engine (``backend="compiled"``; numba, batches parallel
+    over cores): a PlanarBlock on a rigid support, stick and flight in closed form, slip
+    by DOP853.
 
     Args:
-        rtol: relative tolerance of the slip's DOP853 steps [-], in [1e-14, 1e-2].
-        atol: absolute tolerance [m, m/s], > 0.
-        max_events_at_one_instant: most consecutive events at one instant [-]; more
+        rtol=1e-12: relative tolerance of the slip's DOP853 steps [-], in [1e-14, 1e-2].
+        atol=1e-14: absolute tolerance [m, m/s], > 0.
+        max_events_at_one_instant=5: most consecutive events at one instant [-]; more
             (chatter) raises an error.
-        event_resolution: events closer than this are one instant [s] (as the driver's).
+        event_resolution=1e-9: events closer than this are one instant [s] (as the driver's).
     """
 
     rtol: float = 1e-12
