@@ -57,7 +57,7 @@ class _CVODEIntegrator(SundialsIntegrator):
             yp[:] = block.flow(mode, t, y, piece, SCALAR)
 
         return sksundae.cvode.CVODE(rhs, eventsfn=guards, num_events=len(guards.direction), method="Adams",
-                     first_step=FIRST_STEP, **options)
+                                    first_step=FIRST_STEP, **options)
 
     def _initialise(self, solver, mode, t, y):
         return solver.init_step(t, y)

@@ -84,7 +84,7 @@ class _IDAIntegrator(SundialsIntegrator):
         form = self.form
         algebraic = list(range(form.n_states, form.n_states + form.n_friction))
         return sksundae.ida.IDA(form.residual(mode), eventsfn=guards, num_events=len(guards.direction),
-                   algebraic_idx=algebraic, first_step=FIRST_STEP, **options)
+                                algebraic_idx=algebraic, first_step=FIRST_STEP, **options)
 
     def _initialise(self, solver, mode, t, y):
         """Consistent (y, y') at ``t`` from the model's state (the DAE form's)."""
