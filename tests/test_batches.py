@@ -1,11 +1,5 @@
 """Batches from Python: results that remember their inputs, tables, simulate_many,
-plots of a batch, crosscheck on batches and at bounds, and the options in help(simulate)."""
-
-import ast
-import dataclasses
-import importlib
-import inspect
-import re
+plots of a batch, crosscheck on batches and at bounds."""
 
 import numpy as np
 import pytest
@@ -13,7 +7,7 @@ import pytest
 import blockdae as bd
 from blockdae.core import _crosscheck
 from blockdae.core._sensitivities import _difference, finite_differences
-from blockdae.backends import _REGISTRY, available, make_backend
+from blockdae.backends import make_backend
 
 G = 9.81
 RESULT_COLUMNS = ["u_end_m", "max_abs_displacement_m", "n_events", "t_end_s"]
@@ -274,31 +268,3 @@ def test_crosscheck_of_a_batch_is_one_table_per_parameter_set():
         assert table.row("exact")["displacement"] == bd.simulate(GRID.item(i), motion).displacement
         assert table.row("cvode")["rel_du"] < 1e-7
 
-
-# ---- help(bd.simulate) lists every backend's options --------------------------------
-
-def documented_options():
-    """backend name -> {option: documented default}, parsed from simulate's docstring."""
-    doc = inspect.getdoc(bd.simulate)
-    section = doc[doc.index("**options"):doc.index("Returns:")]
-    options, current = {}, []
-    for line in section.splitlines():
-        names = re.findall(r'backend="([\w-]+)"', line)
-        if line.startswith(" " * 8 + "backend="):
-            current = names
-            for name in names:
-                options.setdefault(name, {})
-        match = re.match(r" {12}(\w+)=(.+?): .*\[", line)
-        if match:
-            for name in current:
-                options[name][match.group(1)] = ast.literal_eval(match.group(2))
-    return options
-
-
-def test_help_lists_every_backend_option_with_its_default_and_unit():
-    options = documented_options()
-    assert set(options) == set(available())
-    for name in available():
-        module, cls = _REGISTRY[name].split(":")
-        fields = dataclasses.fields(getattr(importlib.import_module(module), cls))
-        assert options[name] == {f.name: f.default for f in fields}, name

@@ -6,6 +6,7 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 
 from . import empirical, hazard
 from ._plot import plot
+from .backends import AbstractBackend, register_backend
 from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, DriverSolution, HybridEvent,
                    InconsistentStateError, SolverError)
 from .core._crosscheck import CrossCheck, crosscheck
@@ -61,4 +62,23 @@ __all__ = [
     "Floor", "ShearFrame",
     "load_study", "save_study", "study", "study_summary",
     "empirical", "hazard",
+    "AbstractBackend", "register_backend", "CVODE", "IDA", "JaxTwin", "Exact", "ExactJax", "Compiled",
 ]
+
+#: the backend classes by public name -> their registered name; imported on first use,
+#: so that ``import blockdae`` loads neither JAX nor scikit-sundae
+_BACKEND_CLASSES = {"Exact": "exact", "ExactJax": "exact-jax", "CVODE": "cvode", "IDA": "ida", "JaxTwin": "jax",
+                    "Compiled": "compiled"}
+
+
+def __getattr__(name):
+    if name in _BACKEND_CLASSES:
+        from .backends import backend_class
+
+        cls = globals()[name] = backend_class(_BACKEND_CLASSES[name])
+        return cls
+    raise AttributeError(f"module 'blockdae' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_BACKEND_CLASSES))

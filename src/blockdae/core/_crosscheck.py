@@ -7,7 +7,7 @@ import numpy as np
 
 from ._sensitivities import finite_differences, sensitivities, unit
 from ._simulate import simulate
-from ..backends import make_backend
+from ..backends import AbstractBackend, backend_name, make_backend
 from ._model import AbstractHybridModel
 from ._repr import compact_repr
 
@@ -69,24 +69,26 @@ class CrossCheck:
         """The rows that disagree with the reference beyond their bar."""
         return [row for row in self.rows if not row["agrees"]]
 
-    def row(self, backend: str) -> dict:
-        """The row of ``backend``."""
+    def row(self, backend) -> dict:
+        """The row of ``backend``: its label (a name as given) or the backend object given."""
+        label = _label(backend)
         for row in self.rows:
-            if row["backend"] == backend:
+            if row["backend"] == label:
                 return row
-        raise KeyError(f"backend {backend!r} is not in this cross-check")
+        raise KeyError(f"backend {label!r} is not in this cross-check")
 
     def __str__(self):
         width = max(16, max(len(_values(r["displacement"])) for r in self.rows))
         d_width = max([17] + [len(_values(r["sensitivities"][n])) for r in self.rows for n in self.wrt])
         derivative_heads = "".join(f" {f'du/d{name} [{unit(name)}]':>{d_width}}" for name in self.wrt)
-        head = (f"{'backend':<8} {'u_end [m]':>{width}} {'events':>6} {'max |dt| [s]':>13} "
+        name_width = max(8, max(len(r["backend"]) for r in self.rows))
+        head = (f"{'backend':<{name_width}} {'u_end [m]':>{width}} {'events':>6} {'max |dt| [s]':>13} "
                 f"{'rel |du| [-]':>13} {'first [s]':>9} {'warm [s]':>9}" + derivative_heads
                 + (f" {'rel |dS| [-]':>13}" if self.wrt else "") + f" {'rtol [-]':>8} {'verdict':>9}")
         lines = [head, "-" * len(head)]
         for r in self.rows:
             derivatives = "".join(f" {_values(r['sensitivities'][name], '.10g'):>{d_width}}" for name in self.wrt)
-            lines.append(f"{r['backend']:<8} {_values(r['displacement']):>{width}} {r['n_events']:>6d} "
+            lines.append(f"{r['backend']:<{name_width}} {_values(r['displacement']):>{width}} {r['n_events']:>6d} "
                          f"{r['max_dt']:>13.2e} {r['rel_du']:>13.2e} {r['first']:>9.3f} {r['warm']:>9.3f}"
                          + derivatives
                          + (f" {r['rel_dsens']:>13.2e}" if self.wrt else "")
@@ -106,13 +108,16 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
         block: the block (a SlidingBlock or another model, e.g. a PlanarBlock); for a
             batch of n parameter sets, each is checked on its own.
         motion: base excitation (for a PlanarBlock also a BaseMotion).
-        backends: backend names; the first is the reference (normally "exact"); None:
-            those of "exact", "cvode", "ida", "jax" that run the block, in this order.
+        backends: backend names or backend objects (e.g. ``bd.CVODE(rtol=1e-12)``;
+            its row is labelled "cvode(rtol=1e-12)": its name and the settings that
+            differ from its defaults); the first is the reference (normally "exact");
+            None: those of "exact", "cvode", "ida", "jax" that run the block, in this order.
         t_end: final time [s], or None (until rest after a finite excitation).
         wrt: parameters to differentiate u(t_end) by (see :func:`blockdae.sensitivities`),
             e.g. ("mu", "mu_kinetic", "bias", "A"); none by default (none for a
             SpringSupportedMass, whose derivatives are those of its flights).
-        **options: settings passed to every backend that has them (e.g. ``rtol``).
+        **options: settings passed to every backend given by name that has them (e.g.
+            ``rtol``); a backend object runs with its own.
 
     Returns:
         A :class:`CrossCheck`, or a list of n of them for a batch.
@@ -122,44 +127,47 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
                         f"got {type(block).__name__}")
     if backends is None:
         backends = tuple(name for name in DEFAULT_BACKENDS if make_backend(name).runs(block))
-    accepted = {name: {f.name for f in dataclasses.fields(type(make_backend(name)))} for name in backends}
-    unknown = set(options) - set().union(*accepted.values())
+    backends = tuple(backends)
+    accepted = [set() if isinstance(backend, AbstractBackend) else _fields(make_backend(backend))
+                for backend in backends]
+    labels = [_label(backend) for backend in backends]
+    unknown = set(options) - set().union(*accepted)
     if unknown:
-        raise TypeError(f"no backend in {tuple(backends)} takes the option(s) {sorted(unknown)}")
+        raise TypeError(f"no backend given by name in {tuple(labels)} takes the option(s) {sorted(unknown)}")
     if wrt and block.derivatives == "flights":
         raise ValueError(f"crosscheck's wrt differentiates u(t_end); for a {type(block).__name__} use "
                          "bd.sensitivities(block, motion, t_end, wrt=..., of=...) (its flights)")
     if block.batch_shape:
         return [crosscheck(block.item(i), motion, backends, t_end, wrt, **options)
                 for i in range(block.batch_shape[0])]
-    mine = {name: {key: value for key, value in options.items() if key in accepted[name]} for name in backends}
+    mine = [{key: value for key, value in options.items() if key in fields} for fields in accepted]
     solutions = []
-    for name in backends:
+    for backend, settings in zip(backends, mine):
         walls = []
         for _ in range(2):
             start = time.perf_counter()
-            solution = simulate(block, motion, t_end=t_end, backend=name, **mine[name])
+            solution = simulate(block, motion, t_end=t_end, backend=backend, **settings)
             walls.append(time.perf_counter() - start)
-        solutions.append((name, solution, walls))
-    ref = solutions[0][1]
+        solutions.append((solution, walls))
+    ref = solutions[0][0]
     span = max(1.0, ref.t_end)
-    rtols = {name: _rtol(name, mine[name]) for name in backends}
-    rows = [dict(backend=name, displacement=s.displacement, n_events=len(s.events), t_events=s.t_events,
+    rtols = [_rtol(backend, settings) for backend, settings in zip(backends, mine)]
+    rows = [dict(backend=label, displacement=s.displacement, n_events=len(s.events), t_events=s.t_events,
                  max_dt=_max_event_dt(ref, s), rel_du=_relative(s.displacement, ref.displacement),
-                 first=first, warm=warm, rtol=max(rtols[name], rtols[backends[0]]))
-            for name, s, (first, warm) in solutions]
+                 first=first, warm=warm, rtol=max(rtol, rtols[0]))
+            for label, (s, (first, warm)), rtol in zip(labels, solutions, rtols)]
     for row in rows:
         row["agrees"] = agrees(row, span)
     if wrt:
         wrt = (wrt,) if isinstance(wrt, str) else tuple(wrt)
-        for row in rows:
-            derivative = sensitivities if row["backend"] in block.differentiated_backends else finite_differences
-            row["sensitivities"] = derivative(block, motion, t_end=t_end, wrt=wrt, backend=row["backend"],
-                                           **mine[row["backend"]])
+        for row, backend, settings in zip(rows, backends, mine):
+            differentiated = backend_name(backend) in block.differentiated_backends
+            derivative = sensitivities if differentiated else finite_differences
+            row["sensitivities"] = derivative(block, motion, t_end=t_end, wrt=wrt, backend=backend, **settings)
         ref_sens = rows[0]["sensitivities"]
         for row in rows:
             row["rel_dsens"] = max(_relative(row["sensitivities"][n], ref_sens[n]) for n in wrt)
-    return CrossCheck(rows=rows, reference=backends[0], wrt=tuple(wrt), span=span)
+    return CrossCheck(rows=rows, reference=labels[0], wrt=tuple(wrt), span=span)
 
 
 def agrees(row: dict, span: float) -> bool:
@@ -169,9 +177,26 @@ def agrees(row: dict, span: float) -> bool:
     return bool(row["max_dt"] <= TIME_BAR * row["rtol"] * span and row["rel_du"] <= DISPLACEMENT_BAR * row["rtol"])
 
 
-def _rtol(name, options):
-    """The relative tolerance [-] of backend ``name`` under ``options``; ROUNDING for one without."""
-    return float(getattr(make_backend(name, **options), "rtol", ROUNDING))
+def _rtol(backend, options):
+    """The relative tolerance [-] of ``backend`` (a name or an object) under ``options``;
+    ROUNDING for one without."""
+    return float(getattr(make_backend(backend, **options), "rtol", ROUNDING))
+
+
+def _fields(backend) -> set:
+    """The settings a backend object takes (its dataclass fields; none for another class)."""
+    return {f.name for f in dataclasses.fields(backend)} if dataclasses.is_dataclass(backend) else set()
+
+
+def _label(backend) -> str:
+    """A row's label: a name as given; for a backend object its name and the settings
+    that differ from its class's defaults, e.g. "cvode(rtol=1e-12)"."""
+    if isinstance(backend, str):
+        return backend
+    fields = dataclasses.fields(backend) if dataclasses.is_dataclass(backend) else ()
+    changed = [f"{f.name}={getattr(backend, f.name)!r}" for f in fields
+               if f.default is not dataclasses.MISSING and getattr(backend, f.name) != f.default]
+    return backend.name + (f"({', '.join(changed)})" if changed else "")
 
 
 def _max_event_dt(ref, sol):

@@ -24,7 +24,7 @@ import numpy as np
 
 from ._jax_config import jax_context
 from ._simulate import simulate
-from ..backends import Horizon, make_backend
+from ..backends import AbstractBackend, Horizon, backend_name, make_backend
 from ..engines._results import check
 from ..excitation import BaseMotion
 
@@ -39,8 +39,8 @@ def unit(name: str) -> str:
     return "m/g" if name == "A" else "m"
 
 
-def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: str | None = None, of=None,
-                  **options) -> dict:
+def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: str | AbstractBackend | None = None,
+                  of=None, **options) -> dict:
     """d u(t_end) / d p for each parameter p in ``wrt`` (for a SpringSupportedMass: the
     derivatives of its flights, see ``of``). u is signed (x_block - x_base): for Newmark's
     one-way block (direction "negative") the downslope D = -u, so dD/dp = -du/dp.
@@ -64,13 +64,14 @@ def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: 
             default: ("mu", "mu_kinetic", "bias_x", "bias_y", "A") for a PlanarBlock,
             ("frequency", "damping", "A") for a SpringSupportedMass (also "g").
         backend: "exact" (closed forms, differentiated through the JAX kernel of
-            "exact-jax") or "jax" (the diffrax twin); None: "exact" for a
-            SlidingBlock, "jax" (the only one) for other models.
+            "exact-jax") or "jax" (the diffrax twin), or such a backend object
+            (``bd.Exact(window=32)``, ``bd.ExactJax()``, ``bd.JaxTwin(rtol=1e-12)``);
+            None: "exact" for a SlidingBlock, "jax" (the only one) for other models.
         of: SpringSupportedMass only: the quantities differentiated, any of
             "liftoff_velocity" (u' at the first liftoff [m/s]), "height" (the largest
             u - u0 of a flight [m], at a top) and "flight_time" (the sum of landing -
             liftoff [s]; a flight not landed by t_end counts to t_end); default all three.
-        **options: settings of the backend.
+        **options: settings of the backend given by name.
 
     Returns:
         name -> derivative [m per unit of the parameter; m/g for "A"]: a float, or an
@@ -89,13 +90,13 @@ def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: 
         return _hybrid_sensitivities(block, motion, t_end, wrt, "jax" if backend is None else backend, options)
     backend = "exact" if backend is None else backend
     wrt = _names(DEFAULT_WRT if wrt is None else wrt)
-    if backend not in ("exact", "exact-jax", "jax"):
+    if backend_name(backend) not in ("exact", "exact-jax", "jax"):
         raise ValueError(f"backend={backend!r} has no derivatives; use 'exact' or 'jax'")
     import jax  # loads only when derivatives are asked for
     if "A" in wrt and not motion.peak_acceleration > 0:
         raise ValueError(f"'A' needs a motion with a nonzero peak acceleration, got {motion.peak_acceleration} m/s²")
     horizon = Horizon.resolve(motion, t_end)
-    solver = make_backend("exact-jax" if backend == "exact" else backend, **options)
+    solver = make_backend(_differentiated(backend), **options)
     pieces = motion.pieces(horizon.integration_end(motion))
     kernel, static, device = _kernel(solver, block, pieces)
 
@@ -160,7 +161,7 @@ def _hybrid_sensitivities(block, motion, t_end, wrt, backend, options):
     """:func:`sensitivities` for a model other than SlidingBlock."""
     from . import _hybrid_sensitivities as hybrid
 
-    if backend != "jax":
+    if backend_name(backend) != "jax":
         raise ValueError(f"backend={backend!r} has no derivatives for a {type(block).__name__}; use 'jax'")
     if block.batch_shape:  # one located trajectory per parameter set
         sets = [_hybrid_sensitivities(block.item(i), motion, t_end, wrt, backend, options)
@@ -169,7 +170,7 @@ def _hybrid_sensitivities(block, motion, t_end, wrt, backend, options):
     wrt = _hybrid_names(block, wrt, ("mu", "mu_kinetic", "bias_x", "bias_y", "A"))
     peak = _largest_peak(motion) if "A" in wrt else None
     horizon = Horizon.resolve(motion, t_end)
-    jacobian = hybrid.displacement_jacobian(block, motion, horizon, make_backend("jax", **options))
+    jacobian = hybrid.displacement_jacobian(block, motion, horizon, make_backend(backend, **options))
     return _by_name(block, jacobian.T, wrt, peak)
 
 
@@ -178,7 +179,7 @@ def _upthrow_sensitivities(mass, motion, t_end, wrt, backend, of, options):
     from . import _hybrid_sensitivities as hybrid
     from ..upthrow._sensitivities import QUANTITIES, flight_quantity_jacobians
 
-    if backend != "jax":
+    if backend_name(backend) != "jax":
         raise ValueError(f"backend={backend!r} has no derivatives for a SpringSupportedMass; use 'jax'")
     of = tuple(QUANTITIES) if of is None else ((of,) if isinstance(of, str) else tuple(of))
     unknown = [name for name in of if name not in QUANTITIES]
@@ -187,7 +188,7 @@ def _upthrow_sensitivities(mass, motion, t_end, wrt, backend, of, options):
     wrt = _hybrid_names(mass, wrt, ("frequency", "damping", "A"))
     peak = _largest_peak(motion) if "A" in wrt else None
     horizon = Horizon.resolve(motion, t_end)
-    solution, _, events = hybrid.trajectory_sensitivities(mass, motion, horizon, make_backend("jax", **options))
+    solution, _, events = hybrid.trajectory_sensitivities(mass, motion, horizon, make_backend(backend, **options))
     with jax_context():
         rows = flight_quantity_jacobians(mass, solution, events, of)
     return {quantity: {name: float(value) for name, value in _by_name(mass, row, wrt, peak).items()}
@@ -273,6 +274,14 @@ def _difference(u, change):
         if side in valid and 2 * side in valid:
             return side * (4 * u(*valid[side]) - u(*valid[2 * side]) - 3 * u(*change(0))) / 2
     raise ValueError("no step of the parameter leaves the block valid; use a smaller step")
+
+
+def _differentiated(backend):
+    """The backend whose kernel is differentiated: for "exact" (or a :class:`~blockdae.Exact`)
+    the JAX kernel of the same closed forms, "exact-jax" (at the object's window)."""
+    if isinstance(backend, AbstractBackend) and backend.name == "exact":
+        return make_backend("exact-jax", window=backend.window)
+    return "exact-jax" if backend == "exact" else backend
 
 
 def _names(wrt):

@@ -2,7 +2,7 @@
 
 import dataclasses
 
-from sksundae.cvode import CVODE
+import sksundae.cvode
 
 from ..core._driver import SCALAR
 from ._sundials import Guards, SundialsBackend, SundialsIntegrator
@@ -19,10 +19,21 @@ FIRST_STEP = 1e-11
 
 
 @dataclasses.dataclass(frozen=True)
-class CVODEBackend(SundialsBackend):
-    """SUNDIALS CVODE (Adams) on the hybrid driver; see :class:`SundialsBackend` for the
-    settings (``rtol``, ``atol`` [m, m/s], ``max_step`` [s], ...). CVODE restarts at
-    every piece of a(t), each time from a first step of :data:`FIRST_STEP` [s]."""
+class CVODE(SundialsBackend):
+    """SUNDIALS CVODE (Adams) on the hybrid driver: the model's ODE y' = flow (for a
+    SlidingBlock in u, v), its guards as root functions; ``backend="cvode"``. CVODE
+    restarts at every piece of a(t), each time from a first step of :data:`FIRST_STEP` [s].
+
+    Args:
+        rtol=1e-10: relative tolerance [-], in [1e-14, 1e-2].
+        atol=1e-14: absolute tolerance [m, m/s] (the model's state units), > 0.
+        max_step=None: largest internal step [s]; None: no bound besides the stops at
+            every piece of a(t) and every turning point of v.
+        max_num_steps=5000: most internal steps between two stops [-].
+        max_events_at_one_instant=5: most consecutive events at one instant [-]; more
+            (chatter) raises an error.
+        event_resolution=1e-9: events closer than this are one instant [s].
+    """
 
     name = "cvode"
 
@@ -45,8 +56,8 @@ class _CVODEIntegrator(SundialsIntegrator):
         def rhs(t, y, yp):
             yp[:] = block.flow(mode, t, y, piece, SCALAR)
 
-        return CVODE(rhs, eventsfn=guards, num_events=len(guards.direction), method="Adams",
-                     first_step=FIRST_STEP, **options)
+        return sksundae.cvode.CVODE(rhs, eventsfn=guards, num_events=len(guards.direction), method="Adams",
+                                    first_step=FIRST_STEP, **options)
 
     def _initialise(self, solver, mode, t, y):
         return solver.init_step(t, y)

@@ -11,7 +11,7 @@ consistent (y, y') at a restart; a model without one runs as the explicit ODE y'
 import dataclasses
 
 import numpy as np
-from sksundae.ida import IDA
+import sksundae.ida
 
 from ._sundials import Guards, SundialsBackend, SundialsIntegrator
 
@@ -32,10 +32,24 @@ FIRST_STEP = 1e-7
 
 
 @dataclasses.dataclass(frozen=True)
-class IDABackend(SundialsBackend):
-    """SUNDIALS IDA on the hybrid driver; see :class:`SundialsBackend` for the settings
-    (``rtol``, ``atol`` [m, m/s, m/s²], ``max_step`` [s], ...). IDA restarts at every
-    piece of a(t), each time from a first step of :data:`FIRST_STEP` [s]."""
+class IDA(SundialsBackend):
+    """SUNDIALS IDA on the hybrid driver: the model's DAE (its ``dae_form``: for a
+    SlidingBlock u, v and the friction force per unit mass F, for a PlanarBlock (F_x,
+    F_y), as algebraic variables; the explicit ODE for a model without one);
+    ``backend="ida"``. IDA restarts at every piece of a(t), each time from a first step
+    of :data:`FIRST_STEP` [s].
+
+    Args:
+        rtol=1e-10: relative tolerance [-], in [1e-14, 1e-2].
+        atol=1e-14: absolute tolerance [m, m/s] (the model's state units), > 0; on an
+            algebraic force [m/s²] at least rtol times the form's force scale (mu g).
+        max_step=None: largest internal step [s]; None: no bound besides the stops at
+            every piece of a(t) and every turning point of v.
+        max_num_steps=5000: most internal steps between two stops [-].
+        max_events_at_one_instant=5: most consecutive events at one instant [-]; more
+            (chatter) raises an error.
+        event_resolution=1e-9: events closer than this are one instant [s].
+    """
 
     name = "ida"
 
@@ -69,8 +83,8 @@ class _IDAIntegrator(SundialsIntegrator):
     def _build(self, mode, guards, options):
         form = self.form
         algebraic = list(range(form.n_states, form.n_states + form.n_friction))
-        return IDA(form.residual(mode), eventsfn=guards, num_events=len(guards.direction),
-                   algebraic_idx=algebraic, first_step=FIRST_STEP, **options)
+        return sksundae.ida.IDA(form.residual(mode), eventsfn=guards, num_events=len(guards.direction),
+                                algebraic_idx=algebraic, first_step=FIRST_STEP, **options)
 
     def _initialise(self, solver, mode, t, y):
         """Consistent (y, y') at ``t`` from the model's state (the DAE form's)."""

@@ -14,8 +14,9 @@ from ._diffrax import SOLVERS, DiffraxIntegrator, Settings
 
 
 @dataclasses.dataclass(frozen=True)
-class JaxBackend(AbstractBackend):
-    """diffrax twin of the hybrid automaton, compiled with JAX (float64).
+class JaxTwin(AbstractBackend):
+    """The JAX twin (``backend="jax"``): a diffrax twin of the hybrid automaton,
+    compiled with JAX (float64).
 
     Integrates each mode with a diffrax Runge-Kutta solver under a PID controller,
     piece by piece of a(t); guards are ``diffrax.Event`` roots (bisection on the dense
@@ -26,18 +27,19 @@ class JaxBackend(AbstractBackend):
     on the generic hybrid driver, one compiled diffrax segment per driver step.
 
     Args:
-        rtol, atol: tolerances of the step-size controller [-, m and m/s].
-        solver: "tsit5", "dopri5", "dopri8" (explicit) or "kvaerno5" (implicit; its
-            third-order dense output locates events on sine pieces only to ~1e-9 s);
-            None: "tsit5" for a SlidingBlock, "dopri8" for other models (the polar
-            slide of a PlanarBlock is stiff just after an onset, where a high order
-            keeps the steps few).
-        max_segments: most segments (events + 1) one piece of a(t) may hold; more
+        rtol=1e-10: relative tolerance of the step-size controller [-], in (0, 1).
+        atol=1e-12: absolute tolerance [m, m/s], in (0, 1).
+        solver=None: the diffrax solver [-]: "tsit5", "dopri5", "dopri8" (explicit) or
+            "kvaerno5" (implicit; its third-order dense output locates events on sine
+            pieces only to ~1e-9 s); None: "tsit5" for a SlidingBlock, "dopri8" for
+            other models (the polar slide of a PlanarBlock is stiff just after an
+            onset, where a high order keeps the steps few).
+        max_segments=8: most segments (events + 1) one piece of a(t) may hold [-]; more
             raises an error instead of looping (SlidingBlock).
-        max_steps: most solver steps per segment.
-        max_events_at_one_instant: most consecutive events at one instant (other
+        max_steps=4096: most solver steps per segment [-].
+        max_events_at_one_instant=5: most consecutive events at one instant [-] (other
             models; more: chatter, an error).
-        event_resolution: events closer than this are one instant [s] (other models).
+        event_resolution=1e-9: events closer than this are one instant [s] (other models).
     """
 
     rtol: float = 1e-10

@@ -8,16 +8,18 @@ from ..integrators._sundials import _check_real
 
 
 @dataclasses.dataclass(frozen=True)
-class CompiledBackend(AbstractBackend):
-    """The model's compiled engine (its ``engines``: the planar block's on a rigid
-    support), numba, batches parallel over cores.
+class Compiled(AbstractBackend):
+    """A model's own compiled engine (``backend="compiled"``: its ``engines["compiled"]``;
+    the planar block's on a rigid support), numba, batches parallel over cores, with the
+    settings of a compiled hybrid loop.
 
     Args:
-        rtol: relative tolerance of the slip's DOP853 steps [-], in [1e-14, 1e-2].
-        atol: absolute tolerance [m, m/s], > 0.
-        max_events_at_one_instant: most consecutive events at one instant [-]; more
+        rtol=1e-12: relative tolerance of the integrated modes' steps [-], in [1e-14, 1e-2]
+            (the planar block's slip by DOP853).
+        atol=1e-14: absolute tolerance [m, m/s], > 0.
+        max_events_at_one_instant=5: most consecutive events at one instant [-]; more
             (chatter) raises an error.
-        event_resolution: events closer than this are one instant [s] (as the driver's).
+        event_resolution=1e-9: events closer than this are one instant [s] (as the driver's).
     """
 
     rtol: float = 1e-12

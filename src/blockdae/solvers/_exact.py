@@ -10,16 +10,19 @@ from ..engines._linear_solution import linear_pieces, solve_linear_compiled
 
 
 @dataclasses.dataclass(frozen=True)
-class ExactBackend(AbstractBackend):
-    """Closed-form integration compiled with numba (float64; batches parallel over cores),
-    on the model's "exact" engine; "linear" there: closed-form steps of its linear modes.
+class Exact(AbstractBackend):
+    """Closed-form integration (``backend="exact"``), compiled with numba (float64,
+    parallel over cores for batches), on the engine the model declares for it (its
+    ``engines["exact"]``), or, where that is "linear", on closed-form steps of its linear
+    modes. :class:`~blockdae.ExactJax` runs the same closed forms compiled with JAX.
 
     Args:
-        window: pieces of a(t) per block of the onset search's bounds [-] (the 1-D
-            block's engine); changes speed, never results.
-        linear: the "linear" engine's path: "compiled" (numba, for records) or "python"
-            (closed-form steps on the generic driver, the reference; sine excitations
-            always take it).
+        window=64: pieces of a(t) per block of the onset search's bounds [-], an
+            integer >= 1 (the 1-D block's engine); a tuning knob that changes speed,
+            never results.
+        linear="compiled": the "linear" engine's path [-]: "compiled" (numba, for
+            records) or "python" (closed-form steps on the generic driver, the
+            reference; sine excitations always take it).
     """
 
     window: int = 64
@@ -55,13 +58,15 @@ class ExactBackend(AbstractBackend):
 
 
 @dataclasses.dataclass(frozen=True)
-class ExactJaxBackend(AbstractBackend):
-    """The same closed forms and rules compiled with JAX (float64), on the model's
-    "exact-jax" engine: what :func:`blockdae.sensitivities` differentiates, and what runs on
-    accelerators.
+class ExactJax(AbstractBackend):
+    """Closed-form integration compiled with JAX (float64, ``backend="exact-jax"``), on
+    the engine the model declares for it (its ``engines["exact-jax"]``): the closed forms
+    and rules of :class:`~blockdae.Exact`; what :func:`blockdae.sensitivities`
+    differentiates.
 
     Args:
-        window: pieces of a(t) examined per loop iteration [-]; changes speed, never results.
+        window=64: pieces of a(t) examined per loop iteration [-], an integer >= 1; a
+            tuning knob that changes speed, never results.
     """
 
     window: int = 64
