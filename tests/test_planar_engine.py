@@ -11,7 +11,7 @@ import pytest
 
 import blockdae as bd
 from blockdae.core._driver import PieceExcitation
-from blockdae.core._model import SCALAR
+from blockdae.core.contract import SCALAR
 from blockdae.engines import _planar as engine
 from blockdae.planar import _elms as elms
 from conftest import assert_same_events, load_sample_record

@@ -5,10 +5,10 @@ import time
 
 import numpy as np
 
-from ._sensitivities import finite_differences, sensitivities, unit
+from ._sensitivities import derivative_unit, finite_differences, sensitivities
 from ._simulate import simulate
 from ..backends import make_backend
-from ._model import AbstractHybridModel
+from .contract import AbstractHybridModel, DifferentiableModel
 from ._repr import compact_repr
 
 #: the backends a cross-check runs by default, those that run the block, in this order
@@ -58,6 +58,7 @@ class CrossCheck:
     reference: str
     wrt: tuple = ()
     span: float = 1.0
+    block: object = dataclasses.field(default=None, repr=False)
 
     @property
     def agrees(self) -> bool:
@@ -79,7 +80,8 @@ class CrossCheck:
     def __str__(self):
         width = max(16, max(len(_values(r["displacement"])) for r in self.rows))
         d_width = max([17] + [len(_values(r["sensitivities"][n])) for r in self.rows for n in self.wrt])
-        derivative_heads = "".join(f" {f'du/d{name} [{unit(name)}]':>{d_width}}" for name in self.wrt)
+        derivative_heads = "".join(f" {f'du/d{name} [{derivative_unit(self.block, name)}]':>{d_width}}"
+                                   for name in self.wrt)
         head = (f"{'backend':<8} {'u_end [m]':>{width}} {'events':>6} {'max |dt| [s]':>13} "
                 f"{'rel |du| [-]':>13} {'first [s]':>9} {'warm [s]':>9}" + derivative_heads
                 + (f" {'rel |dS| [-]':>13}" if self.wrt else "") + f" {'rtol [-]':>8} {'verdict':>9}")
@@ -126,9 +128,9 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
     unknown = set(options) - set().union(*accepted.values())
     if unknown:
         raise TypeError(f"no backend in {tuple(backends)} takes the option(s) {sorted(unknown)}")
-    if wrt and block.derivatives == "flights":
-        raise ValueError(f"crosscheck's wrt differentiates u(t_end); for a {type(block).__name__} use "
-                         "bd.sensitivities(block, motion, t_end, wrt=..., of=...) (its flights)")
+    if wrt and not (isinstance(block, DifferentiableModel) and block.differentiates_displacement):
+        raise ValueError(f"crosscheck's wrt differentiates u(t_end); a {type(block).__name__} has no derivatives "
+                         "of it (see bd.sensitivities for the derivatives it has)")
     if block.batch_shape:
         return [crosscheck(block.item(i), motion, backends, t_end, wrt, **options)
                 for i in range(block.batch_shape[0])]
@@ -159,7 +161,7 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
         ref_sens = rows[0]["sensitivities"]
         for row in rows:
             row["rel_dsens"] = max(_relative(row["sensitivities"][n], ref_sens[n]) for n in wrt)
-    return CrossCheck(rows=rows, reference=backends[0], wrt=tuple(wrt), span=span)
+    return CrossCheck(rows=rows, reference=backends[0], wrt=tuple(wrt), span=span, block=block)
 
 
 def agrees(row: dict, span: float) -> bool:

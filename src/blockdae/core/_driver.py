@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction
-from ._model import KNOTS_PER_RADIAN, SCALAR
+from .contract import KNOTS_PER_RADIAN, SCALAR
 
 
 _EPS = np.finfo(float).eps

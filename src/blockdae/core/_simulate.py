@@ -3,7 +3,7 @@
 import dataclasses
 
 from ..backends import Horizon, available, make_backend
-from ._model import AbstractHybridModel
+from .contract import AbstractHybridModel
 
 
 def simulate(block: AbstractHybridModel, motion, t_end: float | None = None, backend: str | None = None,
