@@ -232,6 +232,9 @@ class BatchedModel(AbstractHybridModel):
     ``solve_batch`` (one compiled call where its engine has one) into a
     :class:`~blockdae.BatchSolution`."""
 
+    #: gravity [m/s²] (a batch's table states it)
+    g: float
+
     @property
     @abc.abstractmethod
     def batch_shape(self) -> tuple[int, ...]:
