@@ -287,7 +287,7 @@ class DifferentiableModel(AbstractHybridModel):
     def replace_parameter(self, name: str, value: float) -> "DifferentiableModel":
         """A validated copy with parameter ``name`` (from :meth:`parameters`) set to
         ``value``; raises ValueError where that is no valid model (finite differences
-        step from the valid side)."""
+        step from the valid side). By default through the model's ``replace(**changes)``."""
         return self.replace(**{name: value})
 
     def tied_parameters(self) -> dict:
