@@ -128,9 +128,12 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
     unknown = set(options) - set().union(*accepted.values())
     if unknown:
         raise TypeError(f"no backend in {tuple(backends)} takes the option(s) {sorted(unknown)}")
-    if wrt and not (isinstance(block, DifferentiableModel) and block.differentiates_displacement):
-        raise ValueError(f"crosscheck's wrt differentiates u(t_end); a {type(block).__name__} has no derivatives "
-                         "of it (see bd.sensitivities for the derivatives it has)")
+    if wrt and not isinstance(block, DifferentiableModel):
+        raise ValueError(f"crosscheck's wrt differentiates u(t_end); a {type(block).__name__} declares no "
+                         "derivatives (a bd.DifferentiableModel does)")
+    if wrt and not block.differentiates_displacement:
+        raise ValueError(f"crosscheck's wrt differentiates u(t_end); for a {type(block).__name__} use "
+                         "bd.sensitivities(block, motion, t_end, wrt=..., of=...) (the derivatives it has)")
     if block.batch_shape:
         return [crosscheck(block.item(i), motion, backends, t_end, wrt, **options)
                 for i in range(block.batch_shape[0])]
