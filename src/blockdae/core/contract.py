@@ -55,7 +55,10 @@ class AbstractHybridModel(abc.ABC):
     (``acceleration``/``acceleration_rate``: component 0).
 
     Required: the class attributes ``state_names``, ``modes``, ``initial_mode`` and the
-    abstract methods. Everything else has a default that fits a model without it.
+    abstract methods. Everything else has a default that fits a model without it. What
+    more a model can do it declares by subclassing a capability below
+    (:class:`BatchedModel`, :class:`DifferentiableModel`, :class:`LinearModesModel`,
+    :class:`EngineModel`, :class:`StudyModel`).
     """
 
     # ---- what the model is -----------------------------------------------------
