@@ -6,7 +6,7 @@ import pytest
 
 import blockdae as bd
 from blockdae.core import _crosscheck
-from blockdae.core._sensitivities import _difference, finite_differences
+from blockdae.core._sensitivities import finite_differences, step_difference
 from blockdae.backends import make_backend
 
 G = 9.81
@@ -213,7 +213,7 @@ def test_one_sided_difference_is_second_order_exact():
         return change
 
     for change in (bounded(+1), bounded(-1), lambda s: (x0 + s * h,)):
-        assert _difference(u, change) / h == pytest.approx(6 * x0 - 2, rel=1e-12)
+        assert step_difference(u, change) / h == pytest.approx(6 * x0 - 2, rel=1e-12)
 
     def never_valid(s):
         if s:
@@ -221,7 +221,7 @@ def test_one_sided_difference_is_second_order_exact():
         return (x0,)
 
     with pytest.raises(ValueError, match="no step"):
-        _difference(u, never_valid)
+        step_difference(u, never_valid)
 
 
 def test_kinetic_friction_at_its_bound_is_differenced_from_below():

@@ -7,8 +7,9 @@ answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 from . import empirical, hazard
 from ._plot import plot
 from .backends import AbstractBackend, register_backend
-from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, DriverSolution, HybridEvent,
-                   InconsistentStateError, SolverError)
+from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, BatchedModel, DifferentiableModel,
+                   DriverSolution, EngineModel, HybridEvent, InconsistentStateError, LinearModesModel, SolverError,
+                   StudyBatch, StudyModel)
 from .core._crosscheck import CrossCheck, crosscheck
 from .core._compile_notice import CompileNotice
 from .core._jax_config import set_compilation_cache
@@ -44,6 +45,7 @@ __all__ = [
     "InconsistentStateError", "SolverError",
     "RecordWarning", "UnitsWarning", "pga_factor", "resample",
     "AbstractEvent", "AbstractSolution", "DriverSolution", "HybridEvent",
+    "BatchedModel", "DifferentiableModel", "EngineModel", "LinearModesModel", "StudyBatch", "StudyModel",
     "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",
     "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",
     "upthrow_estimate",

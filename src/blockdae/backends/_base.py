@@ -9,7 +9,7 @@ import numpy as np
 
 from ..core._solution import BatchSolution
 from ..excitation import AbstractExcitation
-from ..core._model import AbstractHybridModel
+from ..core.contract import AbstractHybridModel
 
 
 @dataclasses.dataclass(frozen=True)

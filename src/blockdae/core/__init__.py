@@ -1,11 +1,13 @@
-"""The core: the hybrid-model contract (:class:`AbstractHybridModel`), the generic
-solution and event (:class:`DriverSolution`, :class:`HybridEvent`), the hybrid driver,
-``simulate``, cross-checks and derivatives. It names no concrete model: a model
-declares what the core needs."""
+"""The core: the model contract (:mod:`.contract`: :class:`AbstractHybridModel` and the
+capabilities a model declares), the generic solution and event (:class:`DriverSolution`,
+:class:`HybridEvent`), the hybrid driver, ``simulate``, cross-checks and derivatives
+(:mod:`.derivatives`). It names no concrete model: a model declares what the core needs."""
 
 from ._driver import InconsistentStateError, SolverError
-from ._model import SCALAR, AbstractHybridModel, ExplicitForm
+from .contract import (SCALAR, AbstractHybridModel, BatchedModel, DifferentiableModel, EngineModel, ExplicitForm,
+                       LinearModesModel, StudyBatch, StudyModel)
 from ._solution import AbstractEvent, AbstractSolution, DriverSolution, HybridEvent
 
-__all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "DriverSolution", "ExplicitForm", "HybridEvent",
-           "InconsistentStateError", "SCALAR", "SolverError"]
+__all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchedModel", "DifferentiableModel",
+           "DriverSolution", "EngineModel", "ExplicitForm", "HybridEvent", "InconsistentStateError",
+           "LinearModesModel", "SCALAR", "SolverError", "StudyBatch", "StudyModel"]

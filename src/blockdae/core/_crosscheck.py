@@ -5,10 +5,10 @@ import time
 
 import numpy as np
 
-from ._sensitivities import finite_differences, sensitivities, unit
+from ._sensitivities import derivative_unit, finite_differences, sensitivities
 from ._simulate import simulate
 from ..backends import AbstractBackend, backend_name, make_backend
-from ._model import AbstractHybridModel
+from .contract import AbstractHybridModel, DifferentiableModel
 from ._repr import compact_repr
 
 #: the backends a cross-check runs by default, those that run the block, in this order
@@ -58,6 +58,7 @@ class CrossCheck:
     reference: str
     wrt: tuple = ()
     span: float = 1.0
+    block: object = dataclasses.field(default=None, repr=False)
 
     @property
     def agrees(self) -> bool:
@@ -80,7 +81,8 @@ class CrossCheck:
     def __str__(self):
         width = max(16, max(len(_values(r["displacement"])) for r in self.rows))
         d_width = max([17] + [len(_values(r["sensitivities"][n])) for r in self.rows for n in self.wrt])
-        derivative_heads = "".join(f" {f'du/d{name} [{unit(name)}]':>{d_width}}" for name in self.wrt)
+        derivative_heads = "".join(f" {f'du/d{name} [{derivative_unit(self.block, name)}]':>{d_width}}"
+                                   for name in self.wrt)
         name_width = max(8, max(len(r["backend"]) for r in self.rows))
         head = (f"{'backend':<{name_width}} {'u_end [m]':>{width}} {'events':>6} {'max |dt| [s]':>13} "
                 f"{'rel |du| [-]':>13} {'first [s]':>9} {'warm [s]':>9}" + derivative_heads
@@ -134,9 +136,12 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
     unknown = set(options) - set().union(*accepted)
     if unknown:
         raise TypeError(f"no backend given by name in {tuple(labels)} takes the option(s) {sorted(unknown)}")
-    if wrt and block.derivatives == "flights":
+    if wrt and not isinstance(block, DifferentiableModel):
+        raise ValueError(f"crosscheck's wrt differentiates u(t_end); a {type(block).__name__} declares no "
+                         "derivatives (a bd.DifferentiableModel does)")
+    if wrt and not block.differentiates_displacement:
         raise ValueError(f"crosscheck's wrt differentiates u(t_end); for a {type(block).__name__} use "
-                         "bd.sensitivities(block, motion, t_end, wrt=..., of=...) (its flights)")
+                         "bd.sensitivities(block, motion, t_end, wrt=..., of=...) (the derivatives it has)")
     if block.batch_shape:
         return [crosscheck(block.item(i), motion, backends, t_end, wrt, **options)
                 for i in range(block.batch_shape[0])]
@@ -167,7 +172,7 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
         ref_sens = rows[0]["sensitivities"]
         for row in rows:
             row["rel_dsens"] = max(_relative(row["sensitivities"][n], ref_sens[n]) for n in wrt)
-    return CrossCheck(rows=rows, reference=labels[0], wrt=tuple(wrt), span=span)
+    return CrossCheck(rows=rows, reference=labels[0], wrt=tuple(wrt), span=span, block=block)
 
 
 def agrees(row: dict, span: float) -> bool:

@@ -30,7 +30,7 @@ import numpy as np
 from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction
 from ..solvers._events import (ROUNDING, falls, first_nonpositive, stop_uncertainty, too_short,
                                turning_point, velocity_error)
-from ._model import KNOTS_PER_RADIAN, SCALAR
+from .contract import KNOTS_PER_RADIAN, SCALAR
 
 
 #: a run shows its progress on a terminal after this long [s], refreshed this often [s]

@@ -1,7 +1,7 @@
 """The one entry point: ``simulate``."""
 
 from ..backends import AbstractBackend, Horizon, available, make_backend
-from ._model import AbstractHybridModel
+from .contract import AbstractHybridModel
 
 
 def simulate(block: AbstractHybridModel, motion, t_end: float | None = None,

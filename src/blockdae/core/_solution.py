@@ -34,10 +34,32 @@ class HybridEvent(AbstractEvent):
 
 
 class AbstractSolution(abc.ABC):
-    """What every solution has: knot times ``t`` [s], located ``events``, the ``backend``
-    that produced it; ``t_end``, ``t_events`` and, per system, ``event_table()`` (text with
-    units) and ``to_dataframe()`` (pandas, units in the column names), with named views
-    (u, v; u_x, u_y; flights) on top."""
+    """What every solution has, and all the package reads of one (:func:`blockdae.simulate`,
+    crosscheck, batches, :func:`blockdae.plot`): knot times ``t`` [s], located ``events``,
+    the ``backend`` that produced it, ``displacement`` and ``max_abs_displacement``;
+    ``t_end``, ``t_events`` and, per system, ``event_table()`` (text with units),
+    ``to_dataframe()`` (pandas, units in the column names) and ``figure()``, with named
+    views (u, v; u_x, u_y; flights) on top. :func:`blockdae.simulate` sets ``block`` and ``motion`` (the
+    model and the base motion) on it."""
+
+    #: knot times [s], shape (n,), increasing from 0 to t_end
+    t: np.ndarray
+    #: the located events, in time order (:class:`AbstractEvent` each)
+    events: tuple
+    #: the name of the backend that produced it
+    backend: str
+
+    @property
+    @abc.abstractmethod
+    def displacement(self):
+        """The displacement at t_end: a float [m] (u of the 1-D block), or the model's
+        displacement vector (its ``displacement_states``, e.g. (u_x, u_y) [m])."""
+
+    @property
+    @abc.abstractmethod
+    def max_abs_displacement(self) -> float:
+        """The largest size of the displacement over the run [m] (its Euclidean norm for
+        a vector), at the knots."""
 
     @property
     def t_end(self) -> float:
@@ -53,6 +75,11 @@ class AbstractSolution(abc.ABC):
     @abc.abstractmethod
     def event_table(self, events=None) -> str:
         """``events`` (default: all of them) as an aligned text table with units."""
+
+    @abc.abstractmethod
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """Its own figure (what :func:`blockdae.plot` draws), ``n_points`` samples in time;
+        a matplotlib Figure."""
 
     @abc.abstractmethod
     def to_dataframe(self):
@@ -107,6 +134,12 @@ class DriverSolution(AbstractSolution):
         for one, an array for several [their units]."""
         values = self.state[-1, list(self.block.displacement_states)] if self.block is not None else self.state[-1, :1]
         return float(values[0]) if len(values) == 1 else np.asarray(values, dtype=float)
+
+    @property
+    def max_abs_displacement(self) -> float:
+        """The largest Euclidean norm of the displacement states at the knots [their units]."""
+        states = list(self.block.displacement_states) if self.block is not None else [0]
+        return float(np.max(np.linalg.norm(self.state[:, states], axis=1)))
 
     def event_table(self, events=None) -> str:
         """``events`` (default: all of them) as an aligned text table: time [s], modes

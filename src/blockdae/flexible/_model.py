@@ -24,7 +24,7 @@ import math
 import numpy as np
 
 from ..core._checks import set_real_fields
-from ..core._model import KNOTS_PER_RADIAN, AbstractHybridModel
+from ..core.contract import KNOTS_PER_RADIAN, DifferentiableModel, StudyModel, scale_factor_units
 from ..core._units import STANDARD_GRAVITY
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn
 from ._exact import ExactEngine
@@ -42,7 +42,7 @@ _BEYOND = 1e30
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class FlexibleSlidingMass(AbstractHybridModel):
+class FlexibleSlidingMass(DifferentiableModel, StudyModel):
     """A flexible sliding mass: a shear column on a slip surface of yield acceleration ky.
 
     Args:
@@ -266,6 +266,14 @@ class FlexibleSlidingMass(AbstractHybridModel):
                 named |= {f"{label}_{j}": float(v) for j, v in enumerate(values)}
         return named | ({"slip_mass_fraction": self.slip_mass_fraction} if self.coupled else {})
 
+    def parameter_units(self) -> dict:
+        """Units of :meth:`parameters` (omega [rad/s], ky and intercepts [g], breakpoints
+        [m], slopes [g/m], ...) and of the motion's scale factors (A [g])."""
+        units = {"omega": "rad/s", "damping": "-", "g": "m/s²", "ky": "g", "breakpoint": "m",
+                 "ky_intercept": "g", "ky_slope": "g/m", "slip_mass_fraction": "-"}
+        return {name: units[name.rstrip("0123456789").rstrip("_")] for name in self.parameters()} \
+            | scale_factor_units(self)
+
     def with_parameters(self, values):
         model = object.__new__(FlexibleSlidingMass)
         for name in ("column", "method", "table", "state_names", "ky"):
@@ -289,5 +297,6 @@ class FlexibleSlidingMass(AbstractHybridModel):
 
     # ---- bd.study ------------------------------------------------------------------
     #: what :func:`bd.study` sweeps: its keyword, the table's column, the unit (the
-    #: mass's ``study_batch``, which runs ``bd.flexible``'s rows, is in :mod:`._study`)
+    #: mass's ``study_batch`` and ``study_sweep``, which run ``bd.flexible``'s rows, are in
+    #: :mod:`._study`, attached by the package)
     study_parameter = ("ky", "ky_g", "g")

@@ -8,7 +8,7 @@ For a ky table (:class:`KyTable`) "ky" is a uniform shift of all its ky values [
 each linear piece's intercept moves by as much, its slope and breakpoints stay.
 """
 
-from ..core._sensitivities import sensitivities
+from ..core.derivatives import trajectory_displacement_sensitivities
 from ._column import IMPEDANCE_CAP, IMPEDANCE_EXPONENT
 
 #: the inputs differentiated, name -> unit of the derivative
@@ -27,7 +27,8 @@ def displacement_sensitivities(model, motion, t_end, wrt=tuple(INPUTS), **option
     parameters = tuple(model.parameters())
     friction = ("ky",) if model.table is None else tuple(name for name in parameters
                                                         if name.startswith("ky_intercept_"))
-    core = sensitivities(model, motion, t_end, wrt=("omega", "damping", *friction, "A"), backend="jax", **options)
+    core = trajectory_displacement_sensitivities(model, motion, t_end, ("omega", "damping", *friction, "A"), "jax",
+                                                 None, options)
     d = {name: float(value.ravel()[0]) for name, value in core.items()}
     column = model.column
     impedance = column.impedance_damping

@@ -14,6 +14,7 @@ import dataclasses
 
 import numpy as np
 
+from ..core.contract import StudyBatch
 from ..excitation import Record
 from ._analysis import Analysis, exact_rows, table_rows
 from ._ky_table import KyTable
@@ -27,7 +28,7 @@ STUDY_COLUMNS = ("height_m", "vs_m_s", "normal_m", "inverse_m", "kmax_g", "kmax_
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class FlexibleStudyBatch:
+class FlexibleStudyBatch(StudyBatch):
     """A flexible sliding mass at every yield acceleration of a study.
 
     Attributes:

@@ -112,13 +112,23 @@ def _segment_function(model_type, mode, settings, template):
             diffrax.ODETerm(lambda t, y, args: model.flow(mode, t, y, piece, jnp)), SOLVERS[settings.solver](),
             t0=t_start, t1=t_out, dt0=None, y0=y0, saveat=diffrax.SaveAt(t1=True),
             stepsize_controller=diffrax.PIDController(rtol=settings.rtol, atol=settings.atol),
-            event=diffrax.Event(lambda t, y, args, **_: jnp.min(guards(t, y)), root_finder=ROOT_FINDER,
-                                direction=False),
+            event=diffrax.Event(lambda t, y, args, **_: _started(t, t_start, jnp.min(guards(t, y))),
+                                root_finder=ROOT_FINDER, direction=False),
             max_steps=settings.max_steps, throw=False)
         t, y = sol.ts[-1], sol.ys[-1]
         return t, y, sol.event_mask, jnp.argmin(guards(t, y)), sol.result._value, sol.stats["num_accepted_steps"]
 
     return jax.jit(run)
+
+
+def _started(t, t_start, guard):
+    """The event's condition: the smallest guard, counted as positive at the segment's
+    start. diffrax reports a downward crossing only from a positive value, and the
+    driver starts a flow with a guard at zero after every mode entry on a guard (a
+    slide from v = 0), having checked that none falls there
+    (``guard_left_at_once``): its return through zero within the first segment is a
+    crossing, as SUNDIALS' root finders (which look just past a zero at the start) see it."""
+    return jnp.where(t == t_start, jnp.maximum(guard, 1.0), guard)
 
 
 class DiffraxIntegrator(AbstractIntegrator):

@@ -52,7 +52,7 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from ..core._model import KNOTS_PER_RADIAN
+from ..core.contract import KNOTS_PER_RADIAN
 from ..excitation import _pieces
 from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
 from ..engines import _dop853, _rodas4

@@ -38,7 +38,8 @@ from ..core._units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, BaseMotion
 from ..excitation._record import check_horizontal
 from ._solution import PlanarEvent, PlanarSolution
-from ..core._model import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
+from ..core.contract import (KNOTS_PER_RADIAN, SCALAR, BatchedModel, DifferentiableModel, EngineModel, StudyModel,
+                             scale_factor_units)
 from ..core._checks import set_real_fields
 from ..core._engines import LazyEngine
 from ._modes import _CX, _CY, _S, _UX, _UY, _W, _WD, PlanarMode, horizontal_velocity
@@ -54,7 +55,7 @@ STUDY_RTOL = 1e-10
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class PlanarBlock(AbstractHybridModel):
+class PlanarBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
     """Rigid block on a horizontal plane shaken in x, y and z (Elms 2000).
 
     Args:
@@ -376,6 +377,16 @@ class PlanarBlock(AbstractHybridModel):
             bias[name == "bias_y"] = value
             return self.replace(bias=tuple(bias))
         return self.replace(**{name: value})
+
+    def default_wrt(self):
+        """("mu", "mu_kinetic", "bias_x", "bias_y", "A")."""
+        return ("mu", "mu_kinetic", "bias_x", "bias_y", "A")
+
+    def parameter_units(self):
+        """Units of :meth:`parameters` (g [m/s²], a spring's support_frequency [Hz], the
+        others [-]) and of the motion's scale factors (A [g], A_x, A_y, A_z [-])."""
+        units = {"g": "m/s²", "support_frequency": "Hz"}
+        return {name: units.get(name, "-") for name in self.parameters()} | scale_factor_units(self)
 
     def tied_parameters(self):
         """mu moves the kinetic friction too when ``mu_kinetic`` is None."""

@@ -18,10 +18,15 @@ import numpy as np
 from ..core._units import STANDARD_GRAVITY
 from ._solution import Event, Solution
 from ..core._engines import LazyEngine
-from ..core._model import SCALAR, AbstractHybridModel
+from ..core.contract import SCALAR, BatchedModel, DifferentiableModel, EngineModel, StudyModel
 from ._modes import Mode
 
 _DIRECTIONS = ("both", "positive", "negative")
+#: the names a block is differentiated by -> their units ("A": the peak of a(t) in g;
+#: "scale": a factor on a(t))
+PARAMETER_UNITS = {"mu": "-", "mu_kinetic": "-", "bias": "-", "A": "g", "scale": "-"}
+#: the names differentiated by default
+DEFAULT_WRT = ("mu", "mu_kinetic", "bias", "A")
 
 
 def demand(a, bias, g):
@@ -100,7 +105,7 @@ def stop_mode(mode, slip_rate, sigma_rate, t_stop, mu, f, g, allow_neg, allow_po
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class SlidingBlock(AbstractHybridModel):
+class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
     """Rigid block on a base that accelerates along x (Sawicki & Chybicki 2005).
 
     Args:
@@ -134,7 +139,6 @@ class SlidingBlock(AbstractHybridModel):
                "exact-jax": LazyEngine("blockdae.engines._exact_jax", "ExactJaxEngine"),
                "jax": LazyEngine("blockdae.sliding._twin", "TwinEngine")}
     differentiated_backends = ("exact", "exact-jax", "jax")
-    derivatives = "sliding"
 
     def __post_init__(self):
         for name in ("mu", "mu_kinetic", "bias"):
@@ -260,6 +264,16 @@ class SlidingBlock(AbstractHybridModel):
     def replace(self, **changes) -> "SlidingBlock":
         """A copy with some parameters changed (validated again)."""
         return dataclasses.replace(self, **changes)
+
+    # ---- derivatives: its own, through the compiled kernels (``sensitivities`` and
+    # ``finite_differences`` are attached by the package: the kernels import this module)
+    def default_wrt(self) -> tuple[str, ...]:
+        """("mu", "mu_kinetic", "bias", "A")."""
+        return DEFAULT_WRT
+
+    def parameter_units(self) -> dict:
+        """mu, mu_kinetic, bias, scale [-] and A [g]."""
+        return dict(PARAMETER_UNITS)
 
     #: what :func:`bd.study` sweeps: its keyword, the table's column, the unit
     study_parameter = ("mu", "mu", "-")

@@ -26,6 +26,7 @@ import time
 import numpy as np
 
 from ..sliding._formulas import AdjustmentFactor, newmark_rd_sd
+from ..core.contract import StudyModel
 from ..core._progress import progress_bar
 from ..core._units import STANDARD_GRAVITY
 from ..excitation._units import check_pga
@@ -344,8 +345,7 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
         raise ValueError(f"refine must be an integer >= 1 (floor samples per record step), got {refine!r}")
     if t_end is not None:
         _values("t_end", t_end, "s")
-    if callable(getattr(batch, "check_motions", None)):  # a model that takes only some motions (the flexible mass)
-        batch.check_motions(records, t_end)
+    batch.check_motions(records, t_end)  # a model that takes only some motions (the flexible mass) refuses them
     if by == "pga" and any(_leading(r).peak_acceleration == 0 for r in records):
         zero = next(_name(r) for r in records if _leading(r).peak_acceleration == 0)
         raise ValueError(f"pga cannot normalise a record of zeros: {zero!r}")
@@ -363,14 +363,13 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
 def _swept(block, swept):
     """(keyword, table column, values, sweep) of the parameter ``block`` sweeps, from
     ``swept`` (keyword -> the values given to :func:`study`, None where not given),
-    checked: the model declares ``study_parameter`` and ``study_batch``, and only its
+    checked: the model is a study model (``study_parameter``, ``study_batch``), and only its
     keyword is given. ``values`` are numbers for the table; ``sweep`` is what
     ``study_batch`` takes: the same numbers, or what the model's ``study_sweep(given)``
     makes of what it takes besides numbers (the flexible mass's ky tables; None: numbers)."""
-    if not callable(getattr(block, "study_batch", None)) or not isinstance(getattr(block, "study_parameter", None),
-                                                                           tuple):
-        raise TypeError(f"block must be a model that declares study_parameter and study_batch (bd.SlidingBlock, "
-                        f"bd.PlanarBlock, bd.FlexibleSlidingMass), got {type(block).__name__}")
+    if not isinstance(block, StudyModel):
+        raise TypeError(f"block must be a model that declares study_parameter and study_batch (a bd.StudyModel: "
+                        f"bd.SlidingBlock, bd.PlanarBlock, bd.FlexibleSlidingMass), got {type(block).__name__}")
     parameter, column, unit = block.study_parameter
     if isinstance(block, SlidingBlock) and swept.get("ky") is not None and swept.get("mu") is None \
             and np.all(np.asarray(block.bias) == 0):
@@ -382,7 +381,7 @@ def _swept(block, swept):
                              f"{parameter}= instead")
     if swept.get(parameter) is None:
         raise ValueError(f"give {parameter}= ({model}'s swept parameter [{unit}], a number or a 1-D sequence)")
-    own = block.study_sweep(swept[parameter]) if callable(getattr(block, "study_sweep", None)) else None
+    own = block.study_sweep(swept[parameter])
     if own is not None:
         return parameter, column, *own
     values = _values(parameter, swept[parameter], unit)

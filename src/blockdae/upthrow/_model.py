@@ -37,9 +37,8 @@ import numpy as np
 
 from ..core._units import STANDARD_GRAVITY
 from ._solution import UpthrowEvent, UpthrowSolution
-from ..core._model import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
+from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, LinearModesModel, scale_factor_units
 from ..core._checks import set_real_fields
-from ..core._linear_modes import LinearModes
 from ._modes import EVENT_KINDS, UpthrowMode
 from ._support import SpringSupport
 
@@ -47,7 +46,7 @@ _U, _V = range(2)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class SpringSupportedMass(AbstractHybridModel):
+class SpringSupportedMass(LinearModesModel, DifferentiableModel):
     """A mass resting on a unilateral spring-dashpot support under vertical ground motion.
 
     Args:
@@ -69,7 +68,7 @@ class SpringSupportedMass(AbstractHybridModel):
     horizontal_motion = False  # shaken vertically: a vertical component is its motion
     default_backend = "exact"
     engines = {"exact": "linear"}
-    derivatives = "flights"
+    differentiates_displacement = False  # the derivatives of its flights
 
     def __post_init__(self):
         set_real_fields(self, ("frequency", "damping", "g"))
@@ -133,26 +132,6 @@ class SpringSupportedMass(AbstractHybridModel):
         if mode == UpthrowMode.FLIGHT_UP:
             return ((0.0, 1.0, 0.0), rising_landing)
         return (falling_landing, (0.0, -1.0, 0.0))
-
-    def linear_modes(self) -> LinearModes:
-        """The modes as the compiled linear engine's tables: the flows of
-        :meth:`linear_flow`, the guards of :meth:`affine_guards`, the transitions of
-        :meth:`mode_after_guard` and the resets of :meth:`state_at_guard` (u' = 0 at a
-        top or bottom, u = u0 at a falling landing)."""
-        modes = list(UpthrowMode)
-        flows = np.array([self.linear_flow(mode) for mode in modes])
-        guards = np.tile([0.0, 0.0, 1.0], (len(modes), 2, 1))
-        next_mode = np.zeros((len(modes), 2), dtype=np.int64)
-        resets = np.tile([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], (len(modes), 2, 1, 1))
-        for mode in modes:
-            for j, row in enumerate(self.affine_guards(mode)):
-                guards[mode, j] = row
-                next_mode[mode, j] = self.mode_after_guard(mode, j, 0.0, None, None)
-                # state_at_guard is affine in y: its map from the images of 0 and the unit vectors
-                offset = np.asarray(self.state_at_guard(mode, j, np.zeros(2)), dtype=float)
-                columns = [np.asarray(self.state_at_guard(mode, j, e), dtype=float) - offset for e in np.eye(2)]
-                resets[mode, j] = np.column_stack([*columns, offset])
-        return LinearModes(flows[:, 0], flows[:, 1], flows[:, 2], guards, next_mode, resets, int(self.initial_mode))
 
     def support_force(self, mode, t, y, excitation, xp=np):
         """n [m/s²] the support exerts per unit mass (compression positive; 0 in flight)."""
@@ -218,6 +197,22 @@ class SpringSupportedMass(AbstractHybridModel):
         for name, value in values.items():
             object.__setattr__(model, name, value)
         return model
+
+    # ---- derivatives (its own: of its flights) --------------------------------
+    def default_wrt(self) -> tuple[str, ...]:
+        """("frequency", "damping", "A")."""
+        return ("frequency", "damping", "A")
+
+    def parameter_units(self) -> dict:
+        """frequency [Hz], damping [-], g [m/s²], A [g] and the scale factor of its motion [-]."""
+        return {"frequency": "Hz", "damping": "-", "g": "m/s²", **scale_factor_units(self)}
+
+    def sensitivities(self, motion, t_end, wrt, backend, of, options) -> dict:
+        """The derivatives of its flights: quantity (``of``) -> parameter -> float (see
+        :func:`blockdae.sensitivities`)."""
+        from ._sensitivities import flight_sensitivities
+
+        return flight_sensitivities(self, motion, t_end, wrt, backend, of, options)
 
     def turn_rate(self, mode, t, y, excitation, xp=np):
         """None: the driver's knots (:meth:`output_step`) and the solvers' steps

@@ -3,28 +3,51 @@ largest flight height and the total flight time.
 
 Each is read at located events of the trajectory the JAX twin locates, and is
 differentiated by the chain rule through the event times
-(:func:`._hybrid_sensitivities.trajectory_sensitivities`): a state component q read at
+(:func:`blockdae.core.derivatives.trajectory_sensitivities`): a state component q read at
 an event at t_e(p) has dq/dp = S-[q] + f-[q] dt_e/dp, the total derivative of the
 located state, and a time t_e has dt_e/dp.
 """
 
 import numpy as np
 
-from ..core._hybrid_sensitivities import parameter_names
+from ..backends import Horizon, backend_name, make_backend
+from ..core.derivatives import by_parameter, checked_wrt, jax_context, largest_peak, parameter_names, \
+    trajectory_sensitivities
 
 #: quantity -> its unit
 QUANTITIES = {"liftoff_velocity": "m/s", "height": "m", "flight_time": "s"}
 _U, _V = range(2)
 
 
+def flight_sensitivities(mass, motion, t_end, wrt, backend, of, options) -> dict:
+    """quantity -> parameter -> d(quantity)/dp for each quantity in ``of`` (names of
+    :data:`QUANTITIES`; None: all) and parameter in ``wrt``, along the JAX twin's
+    trajectory (``backend`` "jax" or None), in the quantity's unit per the parameter's."""
+    backend = "jax" if backend is None else backend
+    if backend_name(backend) != "jax":
+        raise ValueError(f"backend={backend!r} has no derivatives for a SpringSupportedMass; use 'jax'")
+    of = tuple(QUANTITIES) if of is None else ((of,) if isinstance(of, str) else tuple(of))
+    unknown = [name for name in of if name not in QUANTITIES]
+    if unknown or not of:
+        raise ValueError(f"of={of!r}: choose among {tuple(QUANTITIES)}")
+    wrt = checked_wrt(mass, wrt)
+    peak = largest_peak(motion) if "A" in wrt else None
+    horizon = Horizon.resolve(motion, t_end)
+    solution, _, events = trajectory_sensitivities(mass, motion, horizon, make_backend(backend, **options))
+    with jax_context():
+        rows = flight_quantity_jacobians(mass, solution, events, of)
+    return {quantity: {name: float(value) for name, value in by_parameter(mass, row, wrt, peak).items()}
+            for quantity, row in rows.items()}
+
+
 def flight_quantity_jacobians(mass, solution, events, of):
     """name -> d(quantity)/dp, shape (n_p,) over the parameters of
-    :func:`._hybrid_sensitivities.parameter_names`, for each quantity in ``of``.
+    :func:`blockdae.core.derivatives.parameter_names`, for each quantity in ``of``.
 
     Args:
         mass: the :class:`~blockdae.SpringSupportedMass`.
         solution: its :class:`~blockdae.UpthrowSolution`.
-        events: one :class:`~._hybrid_sensitivities.EventSensitivity` per event of it.
+        events: one :class:`~blockdae.core.derivatives.EventSensitivity` per event of it.
         of: names from :data:`QUANTITIES`.
     """
     rows = {"liftoff_velocity": _liftoff_velocity, "height": _height, "flight_time": _flight_time}
