@@ -50,7 +50,7 @@ def sampled(function, duration, dt=0.01, name=""):
     return bd.Record(function(t), dt, name=name, units="m/s2")
 
 
-def kobe_segment(start, stop, name):
+def kobe_segment(start, stop, name="Kobe TAK-090, 0-3 s"):
     """Samples ``start:stop`` of Kobe TAK-090 (dt 0.01 s) as a record of its own [m/s²]."""
     kobe = load_sample_record("Kobe_1995_TAK-090")
     return bd.Record(kobe.acceleration_samples[start:stop], kobe.dt, name=name, units="m/s2")
@@ -61,7 +61,8 @@ class Case:
     """One model's small case.
 
     model: one parameter set; motions: excitations, the first is the one-run case's
-    (the others: the many-motions feature); t_end [s] or None (until rest);
+    (the others: the many-motions feature); t_end [s] or None (until rest); record:
+    (a 3 s sample record, its t_end [s]) for the slow record runs;
     reference: (backend, options) of the reference run; batch: the model with 1-D
     array parameters (None: the model has no batch_shape); wrt: parameters for
     sensitivities and crosscheck; of: the flight quantities differentiated (a
@@ -71,6 +72,7 @@ class Case:
     model: object
     motions: tuple
     t_end: float | None
+    record: tuple
     reference: tuple
     batch: object = None
     wrt: tuple = ()
@@ -82,12 +84,13 @@ class Case:
 
 
 EXACT, CVODE_TIGHT = ("exact", {}), ("cvode", {"rtol": 1e-12})
+KOBE = kobe_segment(0, 300)  # peak 0.62 g at 2.71 s
 
 CASES = {
     "SlidingBlock": Case(
         model=bd.SlidingBlock(mu=0.2, mu_kinetic=0.15, bias=0.02),
         motions=(bd.SinePulse(0.5 * G, 0.5), bd.TriangularPulse(-0.6 * G, 0.4), bd.Harmonic(0.3 * G, 0.4, cycles=2)),
-        t_end=None, reference=EXACT,
+        t_end=None, record=(KOBE, None), reference=EXACT,
         batch=bd.SlidingBlock(mu=np.array([0.15, 0.2, 0.3]), mu_kinetic=np.array([0.1, 0.15, 0.25]), bias=0.02),
         wrt=("mu", "mu_kinetic", "bias")),
     "PlanarBlock": Case(
@@ -95,26 +98,26 @@ CASES = {
         motions=(bd.BaseMotion(bd.SinePulse(0.5 * G, 0.5), bd.SinePulse(0.3 * G, 0.4)),
                  bd.BaseMotion(bd.TriangularPulse(-0.6 * G, 0.4)),
                  bd.BaseMotion(bd.Harmonic(0.3 * G, 0.4, cycles=2), bd.Harmonic(0.2 * G, 0.5, cycles=1.5))),
-        t_end=None, reference=CVODE_TIGHT,
+        t_end=None, record=(bd.BaseMotion(KOBE), None), reference=CVODE_TIGHT,
         batch=bd.PlanarBlock(mu=np.array([0.15, 0.2, 0.3]), mu_kinetic=np.array([0.1, 0.15, 0.25]),
                              bias=(0.02, 0.0)),
         wrt=("mu", "mu_kinetic", "bias_x", "bias_y")),
     "SpringSupportedMass": Case(
         model=bd.SpringSupportedMass(frequency=5.0, damping=0.05),
         motions=(bd.SinePulse(-1.5 * G, 0.3), bd.TriangularPulse(-2.0 * G, 0.3), bd.Harmonic(-1.2 * G, 0.25, cycles=2)),
-        t_end=1.0, reference=EXACT,
+        t_end=1.0, record=(KOBE.scaled(-2.5), 3.0), reference=EXACT,
         wrt=("frequency", "damping"), of=("liftoff_velocity", "height", "flight_time")),
     "FlexibleSlidingMass": Case(
         model=bd.FlexibleSlidingMass(bd.ShearColumn(height=20.0, vs=300.0), ky=0.1),
         motions=(sampled(lambda t: 0.5 * G * np.sin(np.pi * t / 0.5), 0.5, name="sine pulse 0.5 g, 0.5 s"),
                  sampled(lambda t: 0.6 * G * (1 - np.abs(t - 0.25) / 0.25), 0.5, name="triangle 0.6 g, 0.5 s"),
                  kobe_segment(245, 296, "Kobe TAK-090, 2.45-2.95 s")),
-        t_end=1.5, reference=EXACT,
+        t_end=1.5, record=(KOBE, 3.0), reference=EXACT,
         wrt=("ky",)),
     "OscillatorOnStop": Case(
         model=custom.OscillatorOnStop(omega=2 * np.pi * 2.0, zeta=0.2, omega_c=2 * np.pi * 8.0, gap=0.005),
         motions=(bd.SinePulse(0.5 * G, 0.5), bd.RectangularPulse(1.0, 2.0), bd.Harmonic(0.3 * G, 0.5, cycles=2)),
-        t_end=1.0, reference=CVODE_TIGHT,
+        t_end=1.0, record=(KOBE, 3.0), reference=CVODE_TIGHT,
         wrt=("omega", "zeta", "omega_c", "gap")),
 }
 
@@ -132,9 +135,13 @@ KNOWN_GAPS = {
     **{("crosscheck_derivatives", "FlexibleSlidingMass", backend): _FD_WRAPS_MOTION for backend in ("cvode", "ida", "jax")},
     **{("crosscheck_derivatives", "OscillatorOnStop", backend): _FD_WRAPS_MOTION for backend in ("ida", "jax")},
 }
-#: (feature, model, backend) run only with ``-m slow``: JAX compilations of a few seconds to
-#: half a minute each on 2 cores
-SLOW = set()
+#: (feature, model, backend) run only with ``-m slow``: each compiles JAX code of its own (a
+#: few seconds to a minute on 2 cores); the cheap features of the JAX twin (one run, events,
+#: dense output, plot, table: one compilation per model) and the exact backends'
+#: derivatives stay in the quick run
+SLOW = {(feature, model, "jax") for model in CASES
+        for feature in ("batch", "many_motions", "sensitivities", "sensitivity_to_A", "sensitivity_shape",
+                        "crosscheck", "crosscheck_derivatives")}
 
 # ---- the bars, a decade above the worst agreement measured (the case's motions) ------------
 #: (model, backend) -> largest |u - u_ref| at t_end "u" [m], largest event-time difference
@@ -158,6 +165,26 @@ BARS = {
     ("OscillatorOnStop", "cvode"): dict(u=5e-11, t=4e-9, dense=5e-8),  # 4.5e-12, 4.0e-10, 4.1e-9 (rtol 1e-10)
     ("OscillatorOnStop", "ida"): dict(u=6e-11, t=8e-9, dense=7e-8),  # 5.9e-12, 7.7e-10, 6.3e-9
     ("OscillatorOnStop", "jax"): dict(u=3e-13, t=5e-11, dense=1e-9),  # 2.9e-14, 4.1e-12, 9.8e-11
+}
+#: as BARS, for the record case (Kobe TAK-090, its first 3 s); measured (u, t, dense)
+RECORD_BARS = {
+    ("SlidingBlock", "exact-jax"): dict(u=6e-16, t=1e-15, dense=2e-15),  # 5.6e-17, 0, 1.1e-16 (rounding)
+    ("SlidingBlock", "cvode"): dict(u=2e-11, t=2e-11, dense=7e-11),  # 1.8e-12, 1.1e-12, 7.0e-12
+    ("SlidingBlock", "ida"): dict(u=5e-9, t=4e-10, dense=3e-8),  # 4.5e-10, 3.2e-11, 2.8e-9
+    ("SlidingBlock", "jax"): dict(u=1e-15, t=1e-15, dense=7e-16),  # 0, 0, 6.6e-17 (rounding)
+    ("PlanarBlock", "cvode"): dict(u=4e-11, t=7e-12, dense=6e-11),  # 3.1e-12, 6.8e-13, 5.8e-12 (rtol 1e-10)
+    ("PlanarBlock", "ida"): dict(u=8e-9, t=4e-10, dense=5e-8),  # 7.4e-10, 3.7e-11, 4.2e-9
+    ("PlanarBlock", "jax"): dict(u=9e-12, t=2e-11, dense=9e-11),  # 9.0e-13, 1.2e-12, 8.2e-12
+    ("PlanarBlock", "compiled"): dict(u=1e-11, t=2e-11, dense=9e-11),  # 9.3e-13, 1.2e-12, 8.3e-12
+    ("SpringSupportedMass", "cvode"): dict(u=9e-9, t=9e-10, dense=3e-8),  # 8.6e-10, 8.8e-11, 2.4e-9
+    ("SpringSupportedMass", "ida"): dict(u=8e-9, t=5e-10, dense=2e-8),  # 7.4e-10, 4.5e-11, 1.8e-9
+    ("SpringSupportedMass", "jax"): dict(u=1e-12, t=2e-13, dense=2e-8),  # 1.0e-13, 1.7e-14, 1.1e-9
+    ("FlexibleSlidingMass", "cvode"): dict(u=2e-10, t=7e-11, dense=8e-9),  # 1.7e-11, 6.6e-12, 7.6e-10
+    ("FlexibleSlidingMass", "ida"): dict(u=6e-9, t=2e-10, dense=2e-8),  # 5.9e-10, 1.3e-11, 1.1e-9
+    ("FlexibleSlidingMass", "jax"): dict(u=2e-13, t=8e-14, dense=2e-9),  # 1.2e-14, 7.5e-15, 1.3e-10
+    ("OscillatorOnStop", "cvode"): dict(u=9e-10, t=4e-10, dense=3e-8),  # 8.1e-11, 3.8e-11, 2.2e-9 (rtol 1e-10)
+    ("OscillatorOnStop", "ida"): dict(u=6e-10, t=9e-10, dense=3e-8),  # 5.6e-11, 8.6e-11, 2.9e-9
+    ("OscillatorOnStop", "jax"): dict(u=2e-11, t=4e-12, dense=4e-10),  # 1.1e-12, 3.7e-13, 3.8e-11
 }
 #: the reference backend against its own run
 THE_REFERENCE = dict(u=0.0, t=0.0, dense=0.0)
@@ -211,13 +238,15 @@ def matrix(feature, backends=None, models=None):
 # ---- runs, each computed once per session -------------------------------------------------
 @functools.cache
 def run(name, backend, index=0, options=()):
-    """Model ``name`` under its motion ``index`` on ``backend`` with ``options`` (pairs)."""
+    """Model ``name`` under its motion ``index`` ("record": its record case) on
+    ``backend`` with ``options`` (pairs)."""
     case = CASES[name]
-    return bd.simulate(case.model, case.motions[index], t_end=case.t_end, backend=backend, **dict(options))
+    motion, t_end = case.record if index == "record" else (case.motions[index], case.t_end)
+    return bd.simulate(case.model, motion, t_end=t_end, backend=backend, **dict(options))
 
 
 def reference(name, index=0):
-    """The reference run of model ``name`` under its motion ``index``."""
+    """The reference run of model ``name`` under its motion ``index`` ("record": its record case)."""
     backend, options = CASES[name].reference
     return run(name, backend, index, tuple(options.items()))
 
@@ -361,6 +390,20 @@ def test_dense_output(model, backend):
     """The states at 41 interior times agree with the reference run's dense output
     within BARS[...]["dense"] of each state's size [-]."""
     assert dense_difference(run(model, backend), reference(model)) <= BARS[model, backend]["dense"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("model, backend", matrix("record", compared))
+def test_record(model, backend):
+    """Under 3 s of a sample record (Kobe TAK-090, peak 0.62 g; scaled by -2.5 as the
+    vertical motion of a SpringSupportedMass): u(t_end), the events and the dense
+    output agree with the reference run within RECORD_BARS."""
+    solution, ref = run(model, backend, "record"), reference(model, "record")
+    bars = RECORD_BARS[model, backend]
+    assert len(ref.events) >= 1
+    assert displacement_difference(solution, ref) <= bars["u"]
+    assert event_time_difference(solution, ref) <= bars["t"]
+    assert dense_difference(solution, ref) <= bars["dense"]
 
 
 @pytest.mark.parametrize("model, backend", matrix("batch", with_batch))
