@@ -123,21 +123,32 @@ CASES = {
 
 
 # ---- what fails today, and the heavier combinations ----------------------------------------
-_FD_WRAPS_MOTION = ("finite differences of a model other than SlidingBlock wrap its motion in a BaseMotion, "
-                    "which a model with the default check_motion refuses (TypeError: motion must be an excitation)")
-#: (feature, model, backend) -> why it fails today; each is a strict xfail
+_FD_WRAPS_MOTION = (TypeError, "finite differences of a model other than SlidingBlock wrap its motion in a "
+                    "BaseMotion, which a model with the default check_motion refuses (motion must be an excitation)")
+#: (feature, model, backend or None) -> (the exception it fails with today, why); each is a
+#: strict xfail that fails the test if it passes or raises anything else
 KNOWN_GAPS = {
-    ("sensitivity_to_A", "OscillatorOnStop", "jax"):
-        "d/dA multiplies by block.g, which the model contract does not declare (AttributeError: no attribute 'g')",
-    **{("sensitivity_shape", model, "jax"): "a derivative of a model with one displacement state has shape (1,), "
-                                            "its solution's displacement is a float"
-       for model in ("FlexibleSlidingMass", "OscillatorOnStop")},
+    ("sensitivity_to_A", "OscillatorOnStop", "jax"): (
+        AttributeError, "d/dA multiplies by block.g, which the model contract does not declare"),
+    **{("sensitivity_shape", model, "jax"): (
+        AssertionError, "a derivative of a model with one displacement state has shape (1,), its solution's "
+                        "displacement is a float") for model in ("FlexibleSlidingMass", "OscillatorOnStop")},
     **{("crosscheck_derivatives", "FlexibleSlidingMass", backend): _FD_WRAPS_MOTION for backend in ("cvode", "ida", "jax")},
     **{("crosscheck_derivatives", "OscillatorOnStop", backend): _FD_WRAPS_MOTION for backend in ("ida", "jax")},
-    ("replace_parameter", "FlexibleSlidingMass", None):
-        "replace_parameter refuses omega, damping and slip_mass_fraction, which parameters() lists (they derive "
-        "from its column and method: TypeError), so they have no finite differences",
+    ("replace_parameter", "FlexibleSlidingMass", None): (
+        TypeError, "replace_parameter refuses omega, damping and slip_mass_fraction, which parameters() lists "
+                   "(they derive from its column and method), so they have no finite differences"),
 }
+
+
+def known_gap(feature, model, backend=None) -> list:
+    """The strict xfail of (feature, model, backend) if it is a known gap, else no mark."""
+    if (feature, model, backend) not in KNOWN_GAPS:
+        return []
+    raises, reason = KNOWN_GAPS[feature, model, backend]
+    return [pytest.mark.xfail(strict=True, raises=raises, reason=reason)]
+
+
 #: (feature, model, backend) run only with ``-m slow``: each compiles JAX code of its own (a
 #: few seconds to a minute on 2 cores); the cheap features of the JAX twin (one run, events,
 #: dense output, plot, table: one compilation per model) and the exact backends'
@@ -218,11 +229,6 @@ CROSSCHECK_BARS = {
 }
 
 
-def _largest_peak(motion) -> float:
-    """The largest peak acceleration of the motion's components [m/s²]."""
-    return float(np.max(motion.peak_acceleration))
-
-
 def matrix(feature, backends=None, models=None):
     """pytest params (model, backend), id "model-backend", for ``feature``: every model of
     ``models`` (default: all) × every backend that runs it (or ``backends(name, case)``)."""
@@ -231,9 +237,7 @@ def matrix(feature, backends=None, models=None):
         if models is not None and name not in models:
             continue
         for backend in (backends_of(case.model) if backends is None else backends(name, case)):
-            marks = [pytest.mark.slow] if (feature, name, backend) in SLOW else []
-            if (feature, name, backend) in KNOWN_GAPS:
-                marks.append(pytest.mark.xfail(strict=True, reason=KNOWN_GAPS[feature, name, backend]))
+            marks = ([pytest.mark.slow] if (feature, name, backend) in SLOW else []) + known_gap(feature, name, backend)
             params.append(pytest.param(name, backend, id=f"{name}-{backend}", marks=marks))
     return params
 
@@ -312,9 +316,12 @@ def parameter_value(model, name) -> float:
 
 def perturbed(case, name, step):
     """(model, motion) with parameter ``name`` moved by the relative ``step`` (by
-    ``step`` where it is 0; "A": the motion scaled by 1 + step) and the move."""
+    ``step`` where it is 0; "A", the largest peak of the motion's components in units
+    of the model's g (standard gravity if it has none): the motion scaled by 1 + step)
+    and the move."""
     if name == "A":
-        return case.model, case.motion.scaled(1 + step), step * _largest_peak(case.motion) / case.model.g
+        peak = float(np.max(case.motion.peak_acceleration)) / getattr(case.model, "g", G)
+        return case.model, case.motion.scaled(1 + step), step * peak
     value = parameter_value(case.model, name)
     move = step * (abs(value) if value != 0 else 1.0)
     return case.model.replace_parameter(name, value + move), case.motion, move
@@ -498,8 +505,7 @@ def test_crosscheck_derivatives(model, backend):
 
 
 @pytest.mark.parametrize("model", [
-    pytest.param(name, marks=[pytest.mark.xfail(strict=True, reason=KNOWN_GAPS["replace_parameter", name, None])]
-                 if ("replace_parameter", name, None) in KNOWN_GAPS else [])
+    pytest.param(name, marks=known_gap("replace_parameter", name))
     for name, case in CASES.items() if case.model.derivatives != "sliding"])
 def test_replace_parameter(model):
     """Every parameter a model lists (what its derivatives are taken by, and finite
