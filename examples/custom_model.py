@@ -74,7 +74,7 @@ class OscillatorOnStop(bd.AbstractHybridModel):
 
     def state_at_guard(self, mode, guard_index, y, xp=np):
         """At either guard the mass is exactly at the stop."""
-        return np.array([-self.gap, y[1]])
+        return xp.stack([-self.gap, y[1]])
 
     def turn_rate(self, mode, t, y, excitation, xp=np):
         return None  # the solvers' steps resolve the oscillation
@@ -100,6 +100,10 @@ class OscillatorOnStop(bd.AbstractHybridModel):
 
     def with_parameters(self, values):
         return dataclasses.replace(self, **values)
+
+    def replace(self, **changes):
+        """A copy with ``changes`` (parameter name -> value in its unit)."""
+        return dataclasses.replace(self, **changes)
 
 
 def record(duration=6.0, dt=0.01):
