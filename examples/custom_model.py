@@ -29,7 +29,7 @@ class StopMode(enum.IntEnum):
 
 
 @dataclasses.dataclass(frozen=True)
-class OscillatorOnStop(bd.AbstractHybridModel):
+class OscillatorOnStop(bd.DifferentiableModel):
     """Args: omega [rad/s], zeta [-], omega_c [rad/s] (the stop's stiffness per unit
     mass is omega_c²), gap [m] > 0 between the rest position and the stop."""
 
@@ -94,9 +94,13 @@ class OscillatorOnStop(bd.AbstractHybridModel):
     def time_to_rest(self, mode, y):
         raise ValueError("an oscillator never comes to rest exactly: give t_end [s]")
 
-    # ---- for the JAX twin ------------------------------------------------------
+    # ---- for the JAX twin and derivatives ----------------------------------------
     def parameters(self):
         return {"omega": self.omega, "zeta": self.zeta, "omega_c": self.omega_c, "gap": self.gap}
+
+    def parameter_units(self):
+        """Units of the parameters and of the motion's scale factors (A [g], A_x [-])."""
+        return {"omega": "rad/s", "zeta": "-", "omega_c": "rad/s", "gap": "m", "A": "g", "A_x": "-"}
 
     def with_parameters(self, values):
         return dataclasses.replace(self, **values)

@@ -126,19 +126,9 @@ CASES = {
 
 
 # ---- what fails today, and the heavier combinations ----------------------------------------
-_FD_WRAPS_MOTION = (TypeError, "finite differences of a model other than SlidingBlock wrap its motion in a "
-                    "BaseMotion, which a model with the default check_motion refuses (motion must be an excitation)")
 #: (feature, model, backend or None) -> (the exception it fails with today, why); each is a
 #: strict xfail that fails the test if it passes or raises anything else
 KNOWN_GAPS = {
-    ("sensitivity_to_A", "OscillatorOnStop", "jax"): (
-        AttributeError, "d/dA multiplies by block.g, which the model contract does not declare"),
-    **{("sensitivity_shape", model, "jax"): (
-        AssertionError, "a derivative of a model with one displacement state has shape (1,), its solution's "
-                        "displacement is a float") for model in ("FlexibleSlidingMass", "OscillatorOnStop")},
-    **{("crosscheck_derivatives", "FlexibleSlidingMass", backend): _FD_WRAPS_MOTION
-       for backend in ("cvode", "ida", "jax")},
-    **{("crosscheck_derivatives", "OscillatorOnStop", backend): _FD_WRAPS_MOTION for backend in ("ida", "jax")},
     ("replace_parameter", "FlexibleSlidingMass", None): (
         TypeError, "replace_parameter refuses omega, damping and slip_mass_fraction, which parameters() lists "
                    "(they derive from its column and method), so they have no finite differences"),
@@ -230,6 +220,11 @@ CROSSCHECK_BARS = {
     ("PlanarBlock", "ida"): 3e-6,  # 2.7e-7
     ("PlanarBlock", "jax"): 5e-6,  # 4.2e-7
     ("PlanarBlock", "compiled"): 2e-6,  # 1.7e-7
+    ("FlexibleSlidingMass", "cvode"): 2e-10,  # 1.4e-11
+    ("FlexibleSlidingMass", "ida"): 2e-8,  # 1.6e-9
+    ("FlexibleSlidingMass", "jax"): 4e-10,  # 3.7e-11
+    ("OscillatorOnStop", "ida"): 9e-5,  # 8.7e-6 (finite differences of an event-rich run: see SENSITIVITY_BARS)
+    ("OscillatorOnStop", "jax"): 4e-4,  # 3.9e-5
 }
 
 
@@ -509,13 +504,21 @@ def test_crosscheck_derivatives(model, backend):
     assert check.row(backend)["rel_dsens"] <= CROSSCHECK_BARS[model, backend]
 
 
+def lists_parameters(model) -> bool:
+    """Whether ``model`` lists its parameters (a SlidingBlock's derivatives come from its
+    own kernels: it lists none)."""
+    try:
+        return bool(model.parameters())
+    except NotImplementedError:
+        return False
+
+
 @pytest.mark.parametrize("model", [
     pytest.param(name, marks=known_gap("replace_parameter", name))
-    for name, case in CASES.items() if case.model.derivatives != "sliding"])
+    for name, case in CASES.items() if lists_parameters(case.model)])
 def test_replace_parameter(model):
     """Every parameter a model lists (what its derivatives are taken by, and finite
-    differences move) can be set by replace_parameter. (A SlidingBlock's derivatives come
-    from its own kernels; it lists none.)"""
+    differences move) can be set by replace_parameter."""
     original = CASES[model].model
     for name, value in original.parameters().items():
         moved = value * 1.01 if value != 0 else 0.01

@@ -100,8 +100,10 @@ def derivative_unit(model, name: str, displacement_unit: str = "m") -> str:
 
 def trajectory_displacement_sensitivities(model, motion, t_end, wrt, backend, of, options):
     """The core's derivatives (where the model has none of its own,
-    :meth:`~blockdae.core.contract.DifferentiableModel.sensitivities`): d displacement(t_end) / dp along the JAX twin's trajectory, shape (len(displacement
-    states),) per name (a batch: one located trajectory per parameter set, stacked)."""
+    :meth:`~blockdae.core.contract.DifferentiableModel.sensitivities`): d displacement(t_end)
+    / dp along the JAX twin's trajectory per name, of the displacement's shape (a float for
+    one displacement state, (len(displacement_states),) for several; a batch: one located
+    trajectory per parameter set, stacked)."""
     from . import _hybrid_sensitivities as hybrid
 
     if of is not None:
@@ -118,7 +120,10 @@ def trajectory_displacement_sensitivities(model, motion, t_end, wrt, backend, of
     peak = largest_peak(motion) if "A" in wrt else None
     horizon = Horizon.resolve(motion, t_end)
     jacobian = hybrid.displacement_jacobian(model, motion, horizon, make_backend(backend, **options))
-    return by_parameter(model, jacobian.T, wrt, peak)
+    derivatives = by_parameter(model, jacobian.T, wrt, peak)
+    if len(model.displacement_states) == 1:  # the solution's displacement is then a float
+        return {name: float(value[0]) for name, value in derivatives.items()}
+    return derivatives
 
 
 def by_parameter(model, columns, wrt, peak):

@@ -24,6 +24,7 @@ import types
 
 import numpy as np
 
+from ._units import STANDARD_GRAVITY
 from ._linear_modes import LinearModes
 from ._solution import DriverSolution, HybridEvent
 from ..excitation import AbstractExcitation
@@ -272,8 +273,9 @@ class DifferentiableModel(AbstractHybridModel):
     twin locates (the variational equation and the saltation jump at every event).
     """
 
-    #: gravity [m/s²]: "A" is in units of it
-    g: float
+    #: gravity [m/s²]: "A" is in units of it (standard gravity unless the model has a g of
+    #: its own)
+    g: float = STANDARD_GRAVITY
     #: backends whose kernels differentiate the model (others: finite differences)
     differentiated_backends: tuple[str, ...] = ("jax",)
     #: whether :meth:`sensitivities` gives derivatives of the displacement at t_end
