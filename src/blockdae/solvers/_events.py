@@ -16,15 +16,21 @@ compiles where an engine calls them (``register_jitable``) and Python calls as t
 
 A function of time is passed with its arguments: ``fun(args, t)``.
 
-Not shared, and why: the exact 1-D engines halve a fixed ``BISECTIONS`` times so that
-numba's loop and the JAX kernel's ``fori_loop`` (a fixed count, and the implicit-function
-derivative at the end) give the same floats; the flexible kernel's bisection advances a
-matrix-exponential state from the last end it kept (no function of time alone); the
-planar engine's stop confirmed on the flow and its dense minimum write a state as they
-go; the derivative-bounded searches themselves read different closed
-forms (a polynomial-exponential row, Python objects with Brent's method, a
-matrix-exponential state with a fourth-derivative bound, Newton on shared exp/cos/sin),
-so only their interval test is one.
+Copies that stay, and why:
+
+* the exact 1-D engines (the numba one and its JAX twin) halve a fixed
+  ``BISECTIONS`` times, so that numba's loop and JAX's ``fori_loop`` (a fixed count, and
+  the implicit-function derivative at the end) give the same floats;
+* the flexible ky-table kernel's bisection advances a matrix-exponential state from the
+  last end it kept (it is no function of time alone), and the fused flexible engine's
+  sign change starts with Newton's method and stops at one ulp of the time;
+* the planar engine's stop confirmed on the flow and its dense minimum write a state as
+  they go;
+* the derivative-bounded root searches read different closed forms (polynomial-
+  exponential rows in numba, Python objects with sine terms and Brent's method, a
+  matrix exponential with a fourth-derivative bound, Newton on shared exp/cos/sin), and
+  the Python ones are the references their compiled twins are tested against: only
+  their interval test (:func:`one_sign`) and graze rule are one.
 """
 
 import math
