@@ -189,10 +189,16 @@ def _turn_rate(mode, t, y, pe, p):
 
 
 # ---- root finding in time --------------------------------------------------------
-def _guard_value(args, t):
-    """Guard ``index`` at ``t`` (args: (mode, index, y, pe, p))."""
-    mode, index, y, pe, p = args
-    return _guards(mode, t, y, pe, p)[index]
+def _guard_values(args, t):
+    """The guards at ``t`` (args: (mode, y, pe, p))."""
+    mode, y, pe, p = args
+    return _guards(mode, t, y, pe, p)
+
+
+def _guard_value(pair, t):
+    """Guard i at ``t`` (pair: ((mode, y, pe, p), i))."""
+    args, index = pair
+    return _guard_values(args, t)[index]
 
 
 def _turning_point(mode, t, y, end, pe, p):
@@ -235,24 +241,12 @@ def _quiet_stick(pe, p, t, end, y):
 
 
 def _static_root(t, y, end, pe, p):
-    """The driver's ``static_root`` in stick: (time, guard) or (nan, -1)."""
+    """The driver's ``static_root`` in stick (:func:`blockdae.solvers._events.static_root`):
+    (time, guard) or (nan, -1)."""
     if _quiet_stick(pe, p, t, end, y):
         return math.nan, -1
     turn = _turning_point(STICK, t, y, end, pe, p)
-    times = (t, end, end) if math.isnan(turn) else (t, turn, end)
-    for k in range(2 if not math.isnan(turn) else 1):
-        a, b = times[k], times[k + 1]
-        ga, gb = _guards(STICK, a, y, pe, p), _guards(STICK, b, y, pe, p)
-        best_t, best_i = math.inf, -1
-        for i in range(2):
-            crossing = ga[i] > 0 and (gb[i] < 0 or (gb[i] == 0 and b < end and _guards(STICK, end, y, pe, p)[i] < 0))
-            if crossing:
-                root = events.first_nonpositive(_guard_value, (STICK, i, y, pe, p), a, b)
-                if root < best_t:
-                    best_t, best_i = root, i
-        if best_i >= 0:
-            return best_t, best_i
-    return math.nan, -1
+    return events.static_root(_guard_values, _guard_value, (STICK, y, pe, p), t, turn, end)
 
 
 def _time_function(fa, t):
@@ -704,13 +698,15 @@ def _stop_uncertainty(mode, index, t, y, pe, p, fl, opt):
 
 
 def _guard_left_at_once(mode, t, y, pe, p, resolution):
-    values = _guards(mode, t, y, pe, p)
-    for index in range(1 if mode == FLIGHT else 2):
-        if values[index] <= 0:
-            rate, curvature = _guard_rates(mode, index, t, y, pe, p)
-            if events.falls(rate, curvature, resolution):
-                return index
-    return -1
+    """The driver's ``guard_left_at_once`` (:func:`blockdae.solvers._events.left_at_once`):
+    the guard index, or -1."""
+    return events.left_at_once(_guards(mode, t, y, pe, p), _rates_at, (mode, t, y, pe, p), resolution)
+
+
+def _rates_at(args, index):
+    """Guard ``index``'s (rate, curvature) (args: (mode, t, y, pe, p))."""
+    mode, t, y, pe, p = args
+    return _guard_rates(mode, index, t, y, pe, p)
 
 
 def _output_step(pe):
