@@ -12,8 +12,8 @@ Per mode:
   cubics under a linear piece); the landing (w = 0 falling) is bracketed on the
   monotone parts of w (w'' = -n is monotone on a piece, so w' has at most one
   extremum) and located by bisection to adjacent floats;
-* slip: DOP853 (:mod:`._dop853`), Dormand and Prince's explicit 8th-order pair with its
-  7th-order dense output, where its step is stable; else RODAS (:mod:`._rodas4`), a
+* slip: DOP853 (:mod:`blockdae.engines._dop853`), Dormand and Prince's explicit 8th-order pair with its
+  7th-order dense output, where its step is stable; else RODAS (:mod:`blockdae.engines._rodas4`), a
   linearly implicit (Rosenbrock) method of order 4 with the flow's exact derivatives
   (:func:`_slip_derivatives`). The flow is stiff only in the direction's relaxation at
   |sigma| / max(s, SLOW_SPEED) [1/s] near a slide's start and end, where DOP853's step
@@ -30,11 +30,11 @@ Per mode:
 
 The model's rules (flows, guards, which mode follows a guard, what a mode starts with)
 are :mod:`._rules`, which :class:`~blockdae.PlanarBlock` calls too; this module only
-evaluates the forces they take from the piece's coefficients. The driver's graze rule
-and bisections are :mod:`blockdae.solvers._events`, which the driver calls too; its other
-rules (events at the end of a piece left to the next, chatter, the stop's
-uncertainty from the tolerances, the tail to rest) are restated here on floats. The
-knots (piece ends, events, 1 / (32 w) apart on sine pieces) are the driver's, so the
+evaluates the forces they take from the piece's coefficients. The driver's event rules
+(the graze rule, bisections, turning points, a static mode's first root, the stop's
+uncertainty from the tolerances) are :mod:`blockdae.solvers._events`, which the driver
+calls too; its loop (events at the end of a piece left to the next, chatter, the tail
+to rest) is restated here on floats. The knots (piece ends, events, 1 / (32 w) apart on sine pieces) are the driver's, so the
 dense output is its cubic Hermite one.
 
 State (8,): the model's (u_x, u_y, s, c_x, c_y, w, w') and the slide's path length
@@ -79,11 +79,6 @@ FINISHED, CHATTER, INCONSISTENT, STEP_TOO_SMALL, NO_REST, NEVER_RESTS = range(6)
 
 
 # ---- the piece's excitation: pe = (t0 [s], h [s], P (3, 5) scaled (p0, p1, s, w, phi), directions (3,))
-def _a(pe, i, t):
-    """Component ``i`` of the base acceleration at ``t`` [m/s²] (the driver's local time)."""
-    return _a_local(pe[2], i, min(t - pe[0], pe[1]))
-
-
 def _a_local(P, i, tau):
     """Component ``i`` at the piece's local time ``tau`` [s] (coefficients ``P``)."""
     if P[i, 2] == 0:  # a linear piece: no sine to evaluate
@@ -342,7 +337,8 @@ def _slip_derivatives(t, y, args, J, f_t):
         f_t[i] = 0.0
         for j in range(N_STATE):
             J[i, j] = 0.0
-    rx, ry = -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4])
+    _, sx, sy = _forces(pe, p, t)
+    rx, ry = -sx, -sy
     drx, dry, dn = -_raw_rate(pe, 0, t), -_raw_rate(pe, 1, t), _raw_rate(pe, 2, t)
     s, cx, cy = y[_S], y[_CX], y[_CY]
     q = math.sqrt(cx**2 + cy**2)
