@@ -309,9 +309,9 @@ class _Run:
     def guard_left_at_once(self):
         """The first guard of the current mode that is at or below zero and falling as a
         flow starts (a slide entered at a sample where its velocity turns against it at
-        once; see :func:`~blockdae.solvers._events.falls`): it is reached now. An integrator
-        would not see it: its roots are sign changes, and a guard that starts at zero has none (SUNDIALS: "root functions
-        identically 0"). None if there is none."""
+        once; see :func:`~blockdae.solvers._events.falls`): it is reached now. An
+        integrator would not see it: its roots are sign changes, and a guard that starts at
+        zero has none (SUNDIALS: "root functions identically 0"). None if there is none."""
         values = self.model.guards(self.mode, self.t, self.y, self.piece_excitation, SCALAR)
         rates = lambda _, index: self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
         index = left_at_once(values, rates, None, self.resolution)

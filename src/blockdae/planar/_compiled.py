@@ -34,8 +34,8 @@ evaluates the forces they take from the piece's coefficients. The driver's event
 (the graze rule, bisections, turning points, a static mode's first root, the stop's
 uncertainty from the tolerances) are :mod:`blockdae.solvers._events`, which the driver
 calls too; its loop (events at the end of a piece left to the next, chatter, the tail
-to rest) is restated here on floats. The knots (piece ends, events, 1 / (32 w) apart on sine pieces) are the driver's, so the
-dense output is its cubic Hermite one.
+to rest) is restated here on floats. The knots (piece ends, events, 1 / (32 w) apart on
+sine pieces) are the driver's, so the dense output is its cubic Hermite one.
 
 State (8,): the model's (u_x, u_y, s, c_x, c_y, w, w') and the slide's path length
 [m] (the integral of s while sliding).
