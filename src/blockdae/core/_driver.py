@@ -28,8 +28,8 @@ import time
 import numpy as np
 
 from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction
-from ..solvers._events import (ROUNDING, falls, first_nonpositive, stop_uncertainty, too_short,
-                               turning_point, velocity_error)
+from ..solvers._events import (ROUNDING, left_at_once, static_root, stop_uncertainty, too_short, turning_point,
+                               velocity_error)
 from .contract import KNOTS_PER_RADIAN, SCALAR
 
 
@@ -309,16 +309,13 @@ class _Run:
     def guard_left_at_once(self):
         """The first guard of the current mode that is at or below zero and falling as a
         flow starts (a slide entered at a sample where its velocity turns against it at
-        once; see :func:`~blockdae.solvers._events.falls`): it is reached now. An integrator would not see it: its roots are sign
-        changes, and a guard that starts at zero has none (SUNDIALS: "root functions
-        identically 0"). None if there is none."""
+        once; see :func:`~blockdae.solvers._events.falls`): it is reached now. An
+        integrator would not see it: its roots are sign changes, and a guard that starts at
+        zero has none (SUNDIALS: "root functions identically 0"). None if there is none."""
         values = self.model.guards(self.mode, self.t, self.y, self.piece_excitation, SCALAR)
-        for index, value in enumerate(values):
-            if value <= 0:
-                rate, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
-                if falls(rate, curvature, self.resolution):
-                    return index
-        return None
+        rates = lambda _, index: self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
+        index = left_at_once(values, rates, None, self.resolution)
+        return None if index < 0 else index
 
     def output_step(self):
         """Largest gap between knots [s]: cubic Hermite is exact for the cubic u of a
@@ -333,19 +330,11 @@ class _Run:
         state is constant): (time, guard index), or None. The model's ``turn_rate``
         splits the piece where a guard may turn, so that each guard is monotone on
         both parts and a root is bracketed where it goes from > 0 to < 0."""
-        guards = lambda t: self.model.guards(self.mode, t, self.y, self.piece_excitation, SCALAR)
+        guards = lambda _, t: self.model.guards(self.mode, t, self.y, self.piece_excitation, SCALAR)
+        guard = lambda pair, t: guards(None, t)[pair[1]]
         turn = self.turning_point(end)
-        times = (self.t, end) if turn is None else (self.t, turn, end)
-        for a, b in zip(times[:-1], times[1:]):
-            at_a, at_b = guards(a), guards(b)
-            # zero at b is a crossing only at the turn, and only if the guard goes on below
-            # zero (else it touches zero there); zero at the end of the piece is left to
-            # the next piece's right-hand limits (enter_piece's mode at rest)
-            crossing = [i for i in range(len(at_b))
-                        if at_a[i] > 0 and (at_b[i] < 0 or (at_b[i] == 0 and b < end and guards(end)[i] < 0))]
-            if crossing:
-                return min((first_nonpositive(lambda i, t: guards(t)[i], i, a, b), i) for i in crossing)
-        return None
+        root, index = static_root(guards, guard, None, self.t, math.nan if turn is None else turn, end)
+        return None if index < 0 else (root, index)
 
     def turning_point(self, end):
         """The time in (t, end) [s] where the model's ``turn_rate`` changes sign (it is

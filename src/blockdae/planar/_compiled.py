@@ -12,8 +12,8 @@ Per mode:
   cubics under a linear piece); the landing (w = 0 falling) is bracketed on the
   monotone parts of w (w'' = -n is monotone on a piece, so w' has at most one
   extremum) and located by bisection to adjacent floats;
-* slip: DOP853 (:mod:`._dop853`), Dormand and Prince's explicit 8th-order pair with its
-  7th-order dense output, where its step is stable; else RODAS (:mod:`._rodas4`), a
+* slip: DOP853 (:mod:`blockdae.engines._dop853`), Dormand and Prince's explicit 8th-order pair with its
+  7th-order dense output, where its step is stable; else RODAS (:mod:`blockdae.engines._rodas4`), a
   linearly implicit (Rosenbrock) method of order 4 with the flow's exact derivatives
   (:func:`_slip_derivatives`). The flow is stiff only in the direction's relaxation at
   |sigma| / max(s, SLOW_SPEED) [1/s] near a slide's start and end, where DOP853's step
@@ -30,12 +30,12 @@ Per mode:
 
 The model's rules (flows, guards, which mode follows a guard, what a mode starts with)
 are :mod:`._rules`, which :class:`~blockdae.PlanarBlock` calls too; this module only
-evaluates the forces they take from the piece's coefficients. The driver's graze rule
-and bisections are :mod:`blockdae.solvers._events`, which the driver calls too; its other
-rules (events at the end of a piece left to the next, chatter, the stop's
-uncertainty from the tolerances, the tail to rest) are restated here on floats. The
-knots (piece ends, events, 1 / (32 w) apart on sine pieces) are the driver's, so the
-dense output is its cubic Hermite one.
+evaluates the forces they take from the piece's coefficients. The driver's event rules
+(the graze rule, bisections, turning points, a static mode's first root, the stop's
+uncertainty from the tolerances) are :mod:`blockdae.solvers._events`, which the driver
+calls too; its loop (events at the end of a piece left to the next, chatter, the tail
+to rest) is restated here on floats. The knots (piece ends, events, 1 / (32 w) apart on
+sine pieces) are the driver's, so the dense output is its cubic Hermite one.
 
 State (8,): the model's (u_x, u_y, s, c_x, c_y, w, w') and the slide's path length
 [m] (the integral of s while sliding).
@@ -79,11 +79,6 @@ FINISHED, CHATTER, INCONSISTENT, STEP_TOO_SMALL, NO_REST, NEVER_RESTS = range(6)
 
 
 # ---- the piece's excitation: pe = (t0 [s], h [s], P (3, 5) scaled (p0, p1, s, w, phi), directions (3,))
-def _a(pe, i, t):
-    """Component ``i`` of the base acceleration at ``t`` [m/s²] (the driver's local time)."""
-    return _a_local(pe[2], i, min(t - pe[0], pe[1]))
-
-
 def _a_local(P, i, tau):
     """Component ``i`` at the piece's local time ``tau`` [s] (coefficients ``P``)."""
     if P[i, 2] == 0:  # a linear piece: no sine to evaluate
@@ -189,10 +184,16 @@ def _turn_rate(mode, t, y, pe, p):
 
 
 # ---- root finding in time --------------------------------------------------------
-def _guard_value(args, t):
-    """Guard ``index`` at ``t`` (args: (mode, index, y, pe, p))."""
-    mode, index, y, pe, p = args
-    return _guards(mode, t, y, pe, p)[index]
+def _guard_values(args, t):
+    """The guards at ``t`` (args: (mode, y, pe, p))."""
+    mode, y, pe, p = args
+    return _guards(mode, t, y, pe, p)
+
+
+def _guard_value(pair, t):
+    """Guard i at ``t`` (pair: ((mode, y, pe, p), i))."""
+    args, index = pair
+    return _guard_values(args, t)[index]
 
 
 def _turning_point(mode, t, y, end, pe, p):
@@ -235,24 +236,12 @@ def _quiet_stick(pe, p, t, end, y):
 
 
 def _static_root(t, y, end, pe, p):
-    """The driver's ``static_root`` in stick: (time, guard) or (nan, -1)."""
+    """The driver's ``static_root`` in stick (:func:`blockdae.solvers._events.static_root`):
+    (time, guard) or (nan, -1)."""
     if _quiet_stick(pe, p, t, end, y):
         return math.nan, -1
     turn = _turning_point(STICK, t, y, end, pe, p)
-    times = (t, end, end) if math.isnan(turn) else (t, turn, end)
-    for k in range(2 if not math.isnan(turn) else 1):
-        a, b = times[k], times[k + 1]
-        ga, gb = _guards(STICK, a, y, pe, p), _guards(STICK, b, y, pe, p)
-        best_t, best_i = math.inf, -1
-        for i in range(2):
-            crossing = ga[i] > 0 and (gb[i] < 0 or (gb[i] == 0 and b < end and _guards(STICK, end, y, pe, p)[i] < 0))
-            if crossing:
-                root = events.first_nonpositive(_guard_value, (STICK, i, y, pe, p), a, b)
-                if root < best_t:
-                    best_t, best_i = root, i
-        if best_i >= 0:
-            return best_t, best_i
-    return math.nan, -1
+    return events.static_root(_guard_values, _guard_value, (STICK, y, pe, p), t, turn, end)
 
 
 def _time_function(fa, t):
@@ -348,7 +337,8 @@ def _slip_derivatives(t, y, args, J, f_t):
         f_t[i] = 0.0
         for j in range(N_STATE):
             J[i, j] = 0.0
-    rx, ry = -(_a(pe, 0, t) - p[2] * p[4]), -(_a(pe, 1, t) - p[3] * p[4])
+    _, sx, sy = _forces(pe, p, t)
+    rx, ry = -sx, -sy
     drx, dry, dn = -_raw_rate(pe, 0, t), -_raw_rate(pe, 1, t), _raw_rate(pe, 2, t)
     s, cx, cy = y[_S], y[_CX], y[_CY]
     q = math.sqrt(cx**2 + cy**2)
@@ -704,13 +694,15 @@ def _stop_uncertainty(mode, index, t, y, pe, p, fl, opt):
 
 
 def _guard_left_at_once(mode, t, y, pe, p, resolution):
-    values = _guards(mode, t, y, pe, p)
-    for index in range(1 if mode == FLIGHT else 2):
-        if values[index] <= 0:
-            rate, curvature = _guard_rates(mode, index, t, y, pe, p)
-            if events.falls(rate, curvature, resolution):
-                return index
-    return -1
+    """The driver's ``guard_left_at_once`` (:func:`blockdae.solvers._events.left_at_once`):
+    the guard index, or -1."""
+    return events.left_at_once(_guards(mode, t, y, pe, p), _rates_at, (mode, t, y, pe, p), resolution)
+
+
+def _rates_at(args, index):
+    """Guard ``index``'s (rate, curvature) (args: (mode, t, y, pe, p))."""
+    mode, t, y, pe, p = args
+    return _guard_rates(mode, index, t, y, pe, p)
 
 
 def _output_step(pe):

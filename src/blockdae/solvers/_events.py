@@ -9,6 +9,8 @@ compiles where an engine calls them (``register_jitable``) and Python calls as t
   sign change either way.
 * :func:`turning_point`: where a monotone rate leaves its sign (the driver splits a piece
   there so that the guards are monotone on both parts).
+* :func:`static_root`: the first guard root of a static mode (guards of time alone);
+  :func:`left_at_once`: the guard a flow leaves as it starts.
 * :func:`velocity_error`, :func:`stop_uncertainty`: how far a located stop may lie from
   the true one, which decides whether a stop slides on; :func:`too_short`: an interval
   not worth a step.
@@ -16,15 +18,21 @@ compiles where an engine calls them (``register_jitable``) and Python calls as t
 
 A function of time is passed with its arguments: ``fun(args, t)``.
 
-Not shared, and why: the exact 1-D engines halve a fixed ``BISECTIONS`` times so that
-numba's loop and the JAX kernel's ``fori_loop`` (a fixed count, and the implicit-function
-derivative at the end) give the same floats; the flexible kernel's bisection advances a
-matrix-exponential state from the last end it kept (no function of time alone); the
-planar engine's stop confirmed on the flow and its dense minimum write a state as they
-go; the derivative-bounded searches themselves read different closed
-forms (a polynomial-exponential row, Python objects with Brent's method, a
-matrix-exponential state with a fourth-derivative bound, Newton on shared exp/cos/sin),
-so only their interval test is one.
+Copies that stay, and why:
+
+* the exact 1-D engines (the numba one and its JAX twin) halve a fixed
+  ``BISECTIONS`` times, so that numba's loop and JAX's ``fori_loop`` (a fixed count, and
+  the implicit-function derivative at the end) give the same floats;
+* the flexible ky-table kernel's bisection advances a matrix-exponential state from the
+  last end it kept (it is no function of time alone), and the fused flexible engine's
+  sign change starts with Newton's method and stops at one ulp of the time;
+* the planar engine's stop confirmed on the flow and its dense minimum write a state as
+  they go;
+* the derivative-bounded root searches read different closed forms (polynomial-
+  exponential rows in numba, Python objects with sine terms and Brent's method, a
+  matrix exponential with a fourth-derivative bound, Newton on shared exp/cos/sin), and
+  the Python ones are the references their compiled twins are tested against: only
+  their interval test (:func:`one_sign`) and graze rule are one.
 """
 
 import math
@@ -152,3 +160,39 @@ def turning_point(fun, args, lo, hi):
         else:
             hi = mid
     return hi if hi < end else math.nan
+
+
+@register_jitable
+def left_at_once(values, rates, args, resolution):
+    """The first guard of ``values`` (at one instant) that is at or below zero and falls at
+    once (:func:`falls`, with ``rates(args, index)`` -> (rate, curvature)); -1: none."""
+    for index in range(len(values)):
+        if values[index] <= 0:
+            rate, curvature = rates(args, index)
+            if falls(rate, curvature, resolution):
+                return index
+    return -1
+
+
+@register_jitable
+def static_root(guards, guard, args, t, turn, end):
+    """The first root in (t, end] [s] of guards that depend on time alone (a static mode):
+    ``guards(args, t)`` -> all of them, ``guard((args, i), t)`` -> guard i, each monotone
+    on (t, turn) and (turn, end) (``turn`` nan: on (t, end)). (time, index), or (nan, -1).
+    A root is bracketed where a guard goes from > 0 to < 0; zero at the turn is a
+    crossing only if the guard goes on below zero (else it touches zero there); zero at
+    ``end`` is left to the next piece's right-hand limits."""
+    split = not math.isnan(turn)
+    for k in range(2 if split else 1):
+        a = t if k == 0 else turn
+        b = end if k == 1 or not split else turn
+        at_a, at_b = guards(args, a), guards(args, b)
+        best_t, best_i = math.inf, -1
+        for i in range(len(at_a)):
+            if at_a[i] > 0 and (at_b[i] < 0 or (at_b[i] == 0 and b < end and guards(args, end)[i] < 0)):
+                root = first_nonpositive(guard, (args, i), a, b)
+                if root < best_t:
+                    best_t, best_i = root, i
+        if best_i >= 0:
+            return best_t, best_i
+    return math.nan, -1
