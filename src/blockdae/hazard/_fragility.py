@@ -17,7 +17,6 @@ import dataclasses
 
 import numpy as np
 from scipy.special import log_ndtr
-from scipy.stats import norm
 from ..core._repr import compact_repr
 
 MIN_RECORDS = 10
@@ -115,6 +114,8 @@ def fit_fragility(table, im="pga_g", displacement="max_abs_displacement_m", *, d
 
 
 def _exceedance(theta, d, x):
+    from scipy.stats import norm  # on use: importing scipy.stats takes about a second
+
     b0, b1, c0, c1, sigma = theta
     ln_x = np.log(x)
     slide = 1.0 if np.isinf(b0) else norm.cdf(b0 + b1 * ln_x)
