@@ -16,7 +16,6 @@ from refitting to records drawn with replacement (all rows of a record together)
 import dataclasses
 
 import numpy as np
-from scipy.special import log_ndtr
 from ..core._repr import compact_repr
 
 MIN_RECORDS = 10
@@ -137,6 +136,8 @@ def _probit(u, y, iterations=50):
     """Maximum-likelihood probit P(y) = Φ(b0 + b1 u) by Newton's method (concave); stops
     when the step or the gradient vanishes (with separated classes the slope grows until
     the gradient does)."""
+    from scipy.special import log_ndtr  # on use, as scipy.stats: a fresh process imports neither
+
     X = np.column_stack([np.ones_like(u), u])
     s = np.where(y, 1.0, -1.0)
     beta = np.zeros(2)
