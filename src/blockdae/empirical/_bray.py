@@ -8,7 +8,6 @@ Sa 0.002-2.7 g, M 4.5-9; a slope with Ts < 0.05 s is rigid (Ts = 0, note 7).
 """
 
 import numpy as np
-from scipy.stats import norm
 
 from ._common import finite, positive, result, warn_outside
 
@@ -40,5 +39,7 @@ def bray_travasarou_2007(ky_g, ts_s, sa_g, magnitude):
     lk, ls = np.log(ky), np.log(sa)
     ln_d = (np.where(rigid, -0.22, -1.10) - 2.83 * lk - 0.333 * lk**2 + 0.566 * lk * ls + 3.04 * ls
             - 0.244 * ls**2 + 1.50 * ts + 0.278 * (m - 7.0))
+    from scipy.stats import norm  # on use: importing scipy.stats takes about a second
+
     p0 = norm.sf(-1.76 - 3.22 * lk - 0.484 * ts * lk + 3.52 * ls)
     return result(np.exp(ln_d), 0.66, p0)

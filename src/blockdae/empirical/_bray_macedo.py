@@ -10,7 +10,6 @@ tests/test_empirical.py).
 """
 
 import numpy as np
-from scipy.stats import norm
 
 from ._common import finite, positive, result
 
@@ -49,5 +48,7 @@ def bray_macedo_2019(ky_g, ts_s, sa_g, magnitude):
             + a2 * ts + a3 * ts**2 + 0.603 * m)
     short_z = -2.48 - 2.97 * lk - 0.12 * lk**2 - 0.72 * ts * lk + 1.70 * ts + 2.78 * ls
     long_z = -3.42 - 4.93 * lk - 0.30 * lk**2 - 0.35 * ts * lk - 0.62 * ts + 2.86 * ls
+    from scipy.stats import norm  # on use: importing scipy.stats takes about a second
+
     p0 = norm.sf(np.where(ts <= LONG_TS, short_z, long_z))
     return result(np.exp(ln_d), SIGMA_LN, p0)

@@ -5,7 +5,6 @@ import typing
 import warnings
 
 import numpy as np
-from scipy.stats import norm
 
 #: one centimetre [m]: the regressions give D in cm
 CM = 0.01
@@ -34,6 +33,8 @@ class EmpiricalDisplacement(typing.NamedTuple):
     def exceedance(self, d_m):
         """P(D > d) = (1 - p_negligible) (1 - Φ((ln d - ln median) / σ)) for d [m] > 0
         (shape: the prediction's broadcast with ``d_m``)."""
+        from scipy.stats import norm  # on use: importing scipy.stats takes about a second
+
         d = positive("d_m", d_m, "m")
         with np.errstate(divide="ignore"):
             z = (np.log(d) - np.log(self.median_m)) / self.sigma_ln

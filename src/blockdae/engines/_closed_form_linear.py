@@ -22,7 +22,6 @@ import dataclasses
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..core._driver import AbstractIntegrator, drive
 from ..excitation._pieces import rebase
@@ -159,6 +158,8 @@ def first_down_crossing(guard: _Guard, a: float, b: float, origin: float = 0.0) 
     rounding) is no crossing; a guard already <= 0 at a and heading down (f' < 0, or f'
     = 0 and f'' < 0; not turning back within the search's resolution) crosses at a.
     ``origin``: the time [s] at tau = 0, which sets the resolution of the search."""
+    from scipy.optimize import brentq  # on use: importing scipy.optimize takes about half a second
+
     f, f1, f2, f3 = guard.f
     budget = [_MAX_INTERVALS]
     resolution = 4 * _EPS * max(abs(origin) + abs(b), 1.0)  # [s]: a few ulps of the time

@@ -16,8 +16,6 @@ from refitting to records drawn with replacement (all rows of a record together)
 import dataclasses
 
 import numpy as np
-from scipy.special import log_ndtr
-from scipy.stats import norm
 from ..core._repr import compact_repr
 
 MIN_RECORDS = 10
@@ -115,6 +113,8 @@ def fit_fragility(table, im="pga_g", displacement="max_abs_displacement_m", *, d
 
 
 def _exceedance(theta, d, x):
+    from scipy.stats import norm  # on use: importing scipy.stats takes about a second
+
     b0, b1, c0, c1, sigma = theta
     ln_x = np.log(x)
     slide = 1.0 if np.isinf(b0) else norm.cdf(b0 + b1 * ln_x)
@@ -136,6 +136,8 @@ def _probit(u, y, iterations=50):
     """Maximum-likelihood probit P(y) = Φ(b0 + b1 u) by Newton's method (concave); stops
     when the step or the gradient vanishes (with separated classes the slope grows until
     the gradient does)."""
+    from scipy.special import log_ndtr  # on use, as scipy.stats: a fresh process imports neither
+
     X = np.column_stack([np.ones_like(u), u])
     s = np.where(y, 1.0, -1.0)
     beta = np.zeros(2)
