@@ -36,15 +36,9 @@ from ._jax_config import jax_context
 from ..integrators._diffrax import SOLVERS, JaxPieceExcitation, ModelTemplate, Settings
 
 
-def parameter_names(model) -> tuple[str, ...]:
-    """The names this module differentiates by: the model's parameters, then
-    "A_<component>" for each component's scale factor [-]."""
-    return tuple(model.parameters()) + tuple(f"A_{name}" for name in model.component_names)
-
-
 @dataclasses.dataclass(frozen=True)
 class EventSensitivity:
-    """Derivatives at one located event, by the parameters of :func:`parameter_names`
+    """Derivatives at one located event, by the parameters of :func:`~blockdae.core.contract.parameter_names`
     (n_p of them) and the n_y states.
 
     Attributes:
@@ -73,7 +67,7 @@ def displacement_jacobian(model, motion, horizon, backend):
 
 def trajectory_sensitivities(model, motion, horizon, backend):
     """The trajectory the JAX twin ``backend`` locates and its derivatives by the
-    parameters of :func:`parameter_names`: (solution, dy(t_end)/dp of shape (n_y, n_p),
+    parameters of :func:`~blockdae.core.contract.parameter_names`: (solution, dy(t_end)/dp of shape (n_y, n_p),
     one :class:`EventSensitivity` per event of the solution, in its order)."""
     trace = []
     solution = drive(model, motion, horizon, backend.integrator, backend.name, backend.max_events_at_one_instant,

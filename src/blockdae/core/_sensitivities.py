@@ -3,7 +3,7 @@
 :func:`sensitivities` and :func:`finite_differences` ask the model
 (:class:`~blockdae.core.contract.DifferentiableModel`): by default its displacement at
 t_end is differentiated along the trajectory the JAX twin locates, by the variational
-equation and the saltation jump at every event (:mod:`._hybrid_sensitivities`); a model
+equation and the saltation jump at every event (the JAX twin's ``displacement_jacobian``); a model
 with a derivative method of its own (the 1-D block's compiled kernels, a spring-supported
 mass's flights) overrides the hook in its own package, from the building blocks here
 (:mod:`blockdae.core.derivatives`).
@@ -11,7 +11,7 @@ mass's flights) overrides the hook in its own package, from the building blocks 
 
 import numpy as np
 
-from .contract import DifferentiableModel
+from .contract import DifferentiableModel, parameter_names
 from ._simulate import simulate
 from ..backends import AbstractBackend, Horizon, backend_name, make_backend
 from ..excitation import BaseMotion
@@ -104,8 +104,6 @@ def trajectory_displacement_sensitivities(model, motion, t_end, wrt, backend, of
     / dp along the JAX twin's trajectory per name, of the displacement's shape (a float for
     one displacement state, (len(displacement_states),) for several; a batch: one located
     trajectory per parameter set, stacked)."""
-    from . import _hybrid_sensitivities as hybrid
-
     if of is not None:
         raise ValueError(f"of={of!r} does not apply to a {type(model).__name__}: it has the derivatives of its "
                          "displacement")
@@ -119,7 +117,7 @@ def trajectory_displacement_sensitivities(model, motion, t_end, wrt, backend, of
     wrt = checked_wrt(model, wrt)
     peak = largest_peak(motion) if "A" in wrt else None
     horizon = Horizon.resolve(motion, t_end)
-    jacobian = hybrid.displacement_jacobian(model, motion, horizon, make_backend(backend, **options))
+    jacobian = make_backend(backend, **options).displacement_jacobian(model, motion, horizon)
     derivatives = by_parameter(model, jacobian.T, wrt, peak)
     if len(model.displacement_states) == 1:  # the solution's displacement is then a float
         return {name: float(value[0]) for name, value in derivatives.items()}
@@ -128,10 +126,8 @@ def trajectory_displacement_sensitivities(model, motion, t_end, wrt, backend, of
 
 def by_parameter(model, columns, wrt, peak):
     """name -> derivative for each name in ``wrt`` from ``columns``, one per parameter
-    of :func:`._hybrid_sensitivities.parameter_names`: "A" sums every component's scale
+    of :func:`.contract.parameter_names`: "A" sums every component's scale
     factor times g / ``peak`` (k = A g / peak), a parameter adds those tied to it."""
-    from ._hybrid_sensitivities import parameter_names
-
     column = dict(zip(parameter_names(model), columns))
     derivatives = {}
     for name in wrt:
@@ -176,9 +172,7 @@ def parameter_differences(model, motion, t_end, wrt, backend, step, options):
 
 def checked_wrt(model, wrt, known=None):
     """``wrt`` (a tuple), checked against ``known`` (default: the names of
-    :func:`._hybrid_sensitivities.parameter_names` and "A"); ValueError names the choice."""
-    from ._hybrid_sensitivities import parameter_names
-
+    :func:`.contract.parameter_names` and "A"); ValueError names the choice."""
     known = parameter_names(model) + ("A",) if known is None else tuple(known)
     unknown = [name for name in wrt if name not in known]
     if unknown or not wrt:

@@ -326,6 +326,12 @@ class DifferentiableModel(AbstractHybridModel):
         return NotImplemented
 
 
+def parameter_names(model) -> tuple[str, ...]:
+    """The names the trajectory's sensitivities are by: the model's parameters, then
+    "A_<component>" for each component's scale factor [-]."""
+    return tuple(model.parameters()) + tuple(f"A_{name}" for name in model.component_names)
+
+
 def scale_factor_units(model) -> dict:
     """The units of the excitation's scale factors a :class:`DifferentiableModel` is
     differentiated by: "A" [g] and each "A_<component>" [-] (to merge into its

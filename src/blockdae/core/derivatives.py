@@ -5,17 +5,10 @@ differences, the JAX context and :func:`simulate` (for differences). JAX loads o
 first call that needs it, not on import."""
 
 from ._jax_config import jax_context
+from .contract import parameter_names
 from ._sensitivities import (by_parameter, checked_wrt, derivative_unit, largest_peak, parameter_differences,
                              step_difference, trajectory_displacement_sensitivities)
 from ._simulate import simulate
-
-
-def parameter_names(model) -> tuple[str, ...]:
-    """The names the trajectory's sensitivities are by: the model's parameters, then
-    "A_<component>" for each component's scale factor [-]."""
-    from ._hybrid_sensitivities import parameter_names
-
-    return parameter_names(model)
 
 
 def trajectory_sensitivities(model, motion, horizon, backend):
@@ -23,9 +16,7 @@ def trajectory_sensitivities(model, motion, horizon, backend):
     of :func:`parameter_names`: (solution, dy(t_end)/dp of shape (n_y, n_p), one
     ``EventSensitivity`` per event: t, dt_dp (n_p,), dy_dp_before and dy_dp_after
     (n_y, n_p), the located state's total derivatives before and after the event's maps)."""
-    from ._hybrid_sensitivities import trajectory_sensitivities
-
-    return trajectory_sensitivities(model, motion, horizon, backend)
+    return backend.trajectory_sensitivities(model, motion, horizon)
 
 
 __all__ = ["by_parameter", "checked_wrt", "derivative_unit", "jax_context", "largest_peak", "parameter_differences",

@@ -77,6 +77,21 @@ class JaxTwin(AbstractBackend):
         settings = Settings(self.solver or "dopri8", float(self.rtol), float(self.atol), self.max_steps)
         return DiffraxIntegrator(model, piece, settings)
 
+    def trajectory_sensitivities(self, model, motion, horizon):
+        """The trajectory this twin locates for ``model`` on the generic driver and its
+        derivatives by :func:`~blockdae.core.contract.parameter_names`: (solution,
+        dy(t_end)/dp of shape (n_y, n_p), one ``EventSensitivity`` per event)."""
+        from ..core._hybrid_sensitivities import trajectory_sensitivities
+
+        return trajectory_sensitivities(model, motion, horizon, self)
+
+    def displacement_jacobian(self, model, motion, horizon):
+        """d(final displacement)/dp [m per unit], shape (len(displacement_states), n_p),
+        along the trajectory this twin locates."""
+        from ..core._hybrid_sensitivities import displacement_jacobian
+
+        return displacement_jacobian(model, motion, horizon, self)
+
     def solve_batch(self, block, excitation, horizon):
         engine = self.engine(block)
         if engine is not None:
