@@ -198,6 +198,6 @@ def test_bad_registrations_are_named(registry):
         register_backend("mine", dict)
     with pytest.raises(ValueError, match="'module:Class'"):
         register_backend("mine", "no_colon_here")
-    register_backend("mine", "blockdae.integrators._cvode:CVODE")  # checked when first used
+    register_backend("mine", "blockdae.solvers._cvode:CVODE")  # checked when first used
     with pytest.raises(ValueError, match=r"CVODE.name is 'cvode'; set it to 'mine'"):
         bd.simulate(BLOCK, PULSE, backend="mine")

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae.engines import _linear
+from blockdae.solvers import _linear
 from blockdae.flexible import _analysis, _fused, _roots
 from conftest import load_sample_record
 

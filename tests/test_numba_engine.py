@@ -18,8 +18,8 @@ import pytest
 from conftest import assert_same_events, load_sample_record, sample_record_paths
 
 import blockdae as bd
-from blockdae.engines import _exact_kernel, _exact_numba
-from blockdae.engines._exact import prepare
+from blockdae.sliding import _exact_kernel, _exact_numba
+from blockdae.sliding._exact import prepare
 
 G = 9.80665
 STEMS = [p.name[:-4] for p in sample_record_paths()]
@@ -200,7 +200,7 @@ def test_compiled_once_then_loaded_from_disk():
     process has filled it) and does not import JAX."""
     code = ("import sys, blockdae as bd\n"
             "bd.simulate(bd.SlidingBlock(0.2), bd.Record([0.0, 3.0, -3.0, 0.0], 0.1))\n"
-            "from blockdae.engines import _exact_numba\n"
+            "from blockdae.sliding import _exact_numba\n"
             "stats = _exact_numba.kernels()[0].stats\n"
             "print(sum(stats.cache_hits.values()), sum(stats.cache_misses.values()), 'jax' in sys.modules)")
     bd.simulate(bd.SlidingBlock(0.2), bd.Record([0.0, 3.0, -3.0, 0.0], 0.1))

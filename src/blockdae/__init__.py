@@ -4,7 +4,7 @@ Exact event times, solver backends that check each other, and derivatives of the
 answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
 """
 
-from . import empirical, hazard
+from . import backends, empirical, hazard
 from ._plot import plot
 from .backends import AbstractBackend, register_backend
 from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, BatchedModel, DifferentiableModel,
@@ -15,8 +15,8 @@ from .core._compile_notice import CompileNotice
 from .core._jax_config import set_compilation_cache
 from .core._sensitivities import sensitivities
 from .core._simulate import simulate
-from .core._units import STANDARD_GRAVITY
-from .engines._linear_solution import simulate_linear_final
+from .units import STANDARD_GRAVITY
+from .solvers._linear_solution import simulate_linear_final
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RecordSet, RecordWarning, RectangularPulse,
                          SinePulse, TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
                          read_record, read_records, resample)

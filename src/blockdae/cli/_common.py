@@ -12,7 +12,7 @@ import warnings
 import numpy as np
 
 from ..core._atomic import atomic_path
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ..excitation import RecordSet, RecordWarning, read_record
 from ..excitation._fema import SETS as FEMA_SETS
 from ..excitation._readers import record_files

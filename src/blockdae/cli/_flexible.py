@@ -8,7 +8,7 @@ import pathlib
 from ._common import (UsageError, checked, describe_record, in_units_out, ky_table, ky_table_row, number, positive,
                       read, record_arguments, record_fields, save_figure, units_out_argument)
 from ..core._simulate import simulate
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ..flexible._analysis import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
 from ..flexible._column import ShearColumn
 from ..flexible._model import METHODS, FlexibleSlidingMass

@@ -9,7 +9,7 @@ import warnings
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ..excitation import UnitsWarning
 from ..hazard import HazardCurve, displacement_hazard, fit_fragility, plot_displacement_hazard, plot_fragility
 from ..sliding._newmark import newmark

@@ -6,7 +6,7 @@ import argparse
 import pathlib
 import warnings
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ..excitation import RecordWarning, read_record
 from ..excitation._formats import read_channels
 from ..excitation._record_checks import OFFSET_FRACTION, offset_fraction

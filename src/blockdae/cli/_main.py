@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 
-from .. import backends
+from ..core import _registry as backends
 from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, folder_files,
                       in_units_out, ky_table, ky_table_row, positive, read, record_arguments, record_fields,
                       recursive_argument,
@@ -34,9 +34,9 @@ from ..core._compile_notice import CompileNotice
 from ..core._jax_config import set_compilation_cache
 from ..sliding._newmark import newmark
 from ..core._simulate import simulate
-from ..core._units import STANDARD_GRAVITY, length_units
-from ..motions._commands import add_spectrum_parser, add_two_point_parser
-from ..studies._command import add_study_parser
+from ..units import STANDARD_GRAVITY, length_units
+from ._motions import add_spectrum_parser, add_two_point_parser
+from ._study import add_study_parser
 from ..core._progress import progress_bar
 from ..excitation._readers import RECORD_SUFFIXES, unit_factor
 from ..excitation._units import PGA_ROUNDINGS, UnitsWarning, pga_factor

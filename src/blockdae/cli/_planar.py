@@ -6,7 +6,7 @@ import time
 
 from ._common import UsageError, checked, describe_gravity, describe_record, read_options, reader_warnings, save_figure
 from ..core._simulate import simulate
-from ..core._units import length_units
+from ..units import length_units
 from ..excitation import BaseMotion, Record, read_motion
 from ..excitation._readers import record_name
 from ..motions._baseline import baseline_corrected

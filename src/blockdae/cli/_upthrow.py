@@ -10,7 +10,7 @@ import time
 from ._common import (checked, clean, describe_record, number, positive, read, record_arguments,
                       record_fields, save_figure)
 from ..core._simulate import simulate
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ..upthrow._estimate import upthrow_estimate
 from ..excitation._readers import unit_factor
 from ..excitation._units import pga_factor

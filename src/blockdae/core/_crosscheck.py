@@ -7,7 +7,7 @@ import numpy as np
 
 from ._sensitivities import derivative_unit, finite_differences, sensitivities
 from ._simulate import simulate
-from ..backends import AbstractBackend, backend_name, make_backend
+from ._registry import AbstractBackend, backend_name, make_backend
 from .contract import AbstractHybridModel, DifferentiableModel
 from ._repr import compact_repr
 

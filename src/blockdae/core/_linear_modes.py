@@ -1,5 +1,5 @@
 """What a model declares to run on the compiled linear engine
-(:mod:`blockdae.engines._linear`): its modes as tables."""
+(:mod:`blockdae.solvers._linear`): its modes as tables."""
 
 import dataclasses
 

@@ -13,7 +13,7 @@ import numpy as np
 
 from .contract import DifferentiableModel, parameter_names
 from ._simulate import simulate
-from ..backends import AbstractBackend, Horizon, backend_name, make_backend
+from ._registry import AbstractBackend, Horizon, backend_name, make_backend
 from ..excitation import BaseMotion
 
 

@@ -1,6 +1,6 @@
 """The one entry point: ``simulate``."""
 
-from ..backends import AbstractBackend, Horizon, available, make_backend
+from ._registry import AbstractBackend, Horizon, available, make_backend
 from .contract import AbstractHybridModel
 
 

@@ -24,7 +24,7 @@ import types
 
 import numpy as np
 
-from ._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ._linear_modes import LinearModes
 from ._solution import DriverSolution, HybridEvent
 from ..excitation import AbstractExcitation

@@ -4,7 +4,7 @@ import dataclasses
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ._base import AbstractExcitation
 from ._pieces import Pieces, rebase
 from ._record import Record

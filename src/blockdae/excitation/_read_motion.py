@@ -4,7 +4,7 @@ channels of one station (COSMOS, K-NET/KiK-net, ESM, SAC, miniSEED) by their ori
 import pathlib
 import warnings
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ._motion import BaseMotion
 from ._formats import FORMAT_OPTIONS, read_channels
 from ._read_record import read_record

@@ -2,7 +2,7 @@
 
 import pathlib
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ._formats import read_channels
 from ._readers import ONE_COMPONENT, read_table, record_name
 from ._record import Record

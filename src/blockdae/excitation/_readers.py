@@ -12,7 +12,7 @@ import zlib
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY  # noqa: F401 (imported from here by blockdae.excitation)
+from ..units import STANDARD_GRAVITY  # noqa: F401 (imported from here by blockdae.excitation)
 from . import _record_checks
 from ._units import _SYMBOLS, canonical_units, check_peak_acceleration, unit_factor, units_named, unstated_units_error
 

@@ -6,7 +6,7 @@ import typing
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ._base import AbstractExcitation, check_finite, check_positive
 from ._pieces import Pieces
 from ._units import check_peak_acceleration, unit_factor

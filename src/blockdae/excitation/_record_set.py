@@ -9,7 +9,7 @@ import warnings
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ._read_record import read_file_records
 from ._readers import record_files, record_name
 from ._record import Record

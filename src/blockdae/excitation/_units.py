@@ -6,7 +6,7 @@ import re
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 
 #: plausible peak acceleration of a record [g]: from about an accelerometer's noise to the
 #: largest peaks recorded (3.9 g, one component); outside it the units are likely wrong

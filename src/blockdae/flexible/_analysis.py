@@ -16,8 +16,8 @@ import numbers
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
-from ..engines._linear_solution import linear_pieces
+from ..units import STANDARD_GRAVITY
+from ..solvers._linear_solution import linear_pieces
 from ..excitation import Record, pga_factor
 from ..excitation._record import check_horizontal
 from . import _engine, _fused, _table_kernel

@@ -1,5 +1,5 @@
 """The compiled exact engine of the flexible sliding mass (section 8 of the formulation
-note), on the linear engine's closed forms (:mod:`blockdae.engines._linear`).
+note), on the linear engine's closed forms (:mod:`blockdae.solvers._linear`).
 
 On a piece of a record, a(tau) = a + rate tau, every mode is linear: u is the
 oscillator's closed form (a "form": cubic + e^{-sigma tau}(C cos w tau + D sin w tau)),
@@ -26,10 +26,10 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from ..engines._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT,
+from ..solvers._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT,
                                STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative, _eval, _eval_at, _solve)
-from ..engines._linear import MAX_INTERVALS  # noqa: F401 -- read through this module (._exact's messages)
-from ..solvers._events import falls, one_sign
+from ..solvers._linear import MAX_INTERVALS  # noqa: F401 -- read through this module (._exact's messages)
+from ..core._events import falls, one_sign
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._roots import STACK_COLUMNS, first_fall
 

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..core._checks import set_real_fields
 from ..core.contract import KNOTS_PER_RADIAN, DifferentiableModel, StudyModel, scale_factor_units
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn
 from ._exact import ExactEngine
 from ._ky_table import KyTable, next_breakpoint, piece_ky, piecewise_ky

@@ -1,5 +1,5 @@
 """The flexible engine's root and peak searches on the closed forms of
-:mod:`blockdae.engines._linear`, by the same rules as its ``_down_crossing_search``: an
+:mod:`blockdae.solvers._linear`, by the same rules as its ``_down_crossing_search``: an
 interval is kept only where bounds of the form's first three derivatives fail to show
 that it keeps one sign, is monotone or is convex/concave, and is halved otherwise.
 
@@ -18,8 +18,8 @@ import math
 import numpy as np
 from numba.extending import register_jitable
 
-from ..engines._linear import MAX_INTERVALS, _eval, _eval_at, _rounding
-from ..solvers._events import one_sign
+from ..solvers._linear import MAX_INTERVALS, _eval, _eval_at, _rounding
+from ..core._events import one_sign
 
 _EPS = float(np.finfo(float).eps)
 #: Newton steps before the bracket is closed by bisection alone

@@ -31,9 +31,9 @@ import numpy as np
 
 from ..core._compile_notice import notice_numba
 from ..core._driver import AbstractIntegrator, InconsistentStateError, SolverError, drive
-from ..solvers._events import first_nonpositive
-from ..engines._linear import CHATTER, UNSETTLED
-from ..engines._linear_solution import linear_pieces
+from ..core._events import first_nonpositive
+from ..solvers._linear import CHATTER, UNSETTLED
+from ..solvers._linear_solution import linear_pieces
 from . import _table_kernel
 from ._column import MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._modes import FlexibleMode

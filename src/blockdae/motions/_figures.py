@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 
 
 def plot_spectrum(spectrum, *, quantity="psa", ax=None, title=None, label=None, tripartite=False,

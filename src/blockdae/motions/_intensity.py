@@ -11,7 +11,7 @@ import dataclasses
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ..excitation._pieces import accel, accel_int1, accel_int2
 from . import _checks
 from ..core._repr import compact_repr

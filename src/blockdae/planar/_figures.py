@@ -5,7 +5,7 @@ import math
 import numpy as np
 
 from ..core._figures import EVENTS, curve, time_grid
-from ..core._units import STANDARD_GRAVITY, length_units
+from ..units import STANDARD_GRAVITY, length_units
 
 
 def planar_figure(solution, *, n_points, title=None):

@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, BaseMotion
 from ..excitation._record import check_horizontal
 from ._solution import PlanarEvent, PlanarSolution
@@ -94,7 +94,7 @@ class PlanarBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
     displacement_states = (_UX, _UY)
     default_backend = "ida"  # CVODE loses the sliding direction on turning slides
     #: the compiled engine (rigid support), for studies
-    engines = {"compiled": LazyEngine("blockdae.engines._planar_backend", "PlanarEngine")}
+    engines = {"compiled": LazyEngine("blockdae.planar._engine", "PlanarEngine")}
 
     def __post_init__(self):
         set_real_fields(self, ("g", "restitution", "bounce_threshold"))
@@ -178,7 +178,7 @@ class PlanarBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         :data:`STUDY_RTOL`). displacement_x_m, displacement_y_m (u at the end [m]),
         displacement_m (|u| at the end [m]), max_abs_displacement_m (max |u| [m]),
         slide_distance_m (path length [m]), n_events, n_flights, t_end_s [s]."""
-        from ..backends import Horizon, make_backend
+        from ..core._registry import Horizon, make_backend
 
         backend = make_backend("compiled", rtol=STUDY_RTOL if rtol is None else rtol)
         out = backend.solve_final(self, list(motions), [Horizon.resolve(m, t_end) for m in motions], scale=tuple(scale))

@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from ..core._solution import AbstractEvent, DriverSolution
-from ..core._units import STANDARD_GRAVITY, length_units
+from ..units import STANDARD_GRAVITY, length_units
 
 from ._modes import PlanarMode, horizontal_velocity
 from ..core._repr import compact_repr

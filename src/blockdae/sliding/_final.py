@@ -4,7 +4,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..backends import Horizon, make_backend
+from ..core._registry import Horizon, make_backend
 from ..excitation import AbstractExcitation
 from ._model import SlidingBlock
 from ..core._repr import compact_repr

@@ -25,7 +25,7 @@ import dataclasses
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 
 
 def newmark_rd(pgv, pga, mu, g: float = STANDARD_GRAVITY):

@@ -15,7 +15,7 @@ import dataclasses
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ._solution import Event, Solution
 from ..core._engines import LazyEngine
 from ..core.contract import SCALAR, BatchedModel, DifferentiableModel, EngineModel, StudyModel
@@ -135,8 +135,8 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
     modes = Mode
     initial_mode = Mode.STICK
     default_backend = "exact"
-    engines = {"exact": LazyEngine("blockdae.engines._exact", "ExactEngine"),
-               "exact-jax": LazyEngine("blockdae.engines._exact_jax", "ExactJaxEngine"),
+    engines = {"exact": LazyEngine("blockdae.sliding._exact", "ExactEngine"),
+               "exact-jax": LazyEngine("blockdae.sliding._exact_jax", "ExactJaxEngine"),
                "jax": LazyEngine("blockdae.sliding._twin", "TwinEngine")}
     differentiated_backends = ("exact", "exact-jax", "jax")
 
@@ -290,7 +290,7 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         A block sliding one way downslope (direction "negative"): D_m (the downslope
         displacement at the end, -u >= 0 [m]); else u_end_m (the signed u at the end [m]);
         then max_abs_displacement_m [m], n_events, t_end_s [s]."""
-        from ..backends import Horizon, make_backend
+        from ..core._registry import Horizon, make_backend
 
         horizons = [Horizon.resolve(motion, t_end) for motion in motions]
         out = make_backend("exact").solve_final(self, list(motions), horizons, np.asarray(scale, dtype=float))

@@ -19,12 +19,12 @@ import numpy as np
 from ..core._progress import progress_bar
 from ..core._sensitivities import sensitivities
 from ..core._simulate import simulate
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, UnitsWarning, pga_factor, read_record
 from ..excitation._readers import record_files
 from ..excitation._record_set import RecordSet, with_metadata
 from ..excitation._units import check_pga, check_pga_rounding
-from ._ky_table import downslope_with_table
+from ..flexible._rigid_ky_table import downslope_with_table
 from ._model import SlidingBlock
 from ._sweep import _labelled
 from ..core._repr import compact_repr

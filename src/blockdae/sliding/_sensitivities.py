@@ -25,7 +25,7 @@ def kernel_sensitivities(block, motion, t_end, wrt, backend, of, options) -> dic
     (n,) for a batch."""
     if of is not None:
         raise ValueError(f"of={of!r} does not apply to a SlidingBlock: it has the derivatives of its displacement")
-    from ..backends import Horizon, backend_name, make_backend  # here: the backends import this package
+    from ..core._registry import Horizon, backend_name, make_backend  # here: the backends import this package
     from ..core.derivatives import checked_wrt, jax_context
 
     backend = "exact" if backend is None else backend
@@ -89,7 +89,7 @@ def block_differences(block, motion, t_end, wrt, backend, step, options) -> dict
 def _differentiated(backend):
     """The backend whose kernel is differentiated: for "exact" (or an :class:`~blockdae.Exact`)
     the JAX kernel of the same closed forms, "exact-jax" (at the object's window)."""
-    from ..backends import AbstractBackend, make_backend
+    from ..core._registry import AbstractBackend, make_backend
 
     if isinstance(backend, AbstractBackend) and backend.name == "exact":
         return make_backend("exact-jax", window=backend.window)
@@ -98,7 +98,7 @@ def _differentiated(backend):
 
 def _kernel(solver, block, pieces):
     """(kernel name, its static settings, the pieces padded for it)."""
-    from ..engines._exact_jax import _device, _kernel_input
+    from ._exact_jax import _device, _kernel_input
     from ._twin import _config
 
     if solver.name == "exact-jax":
@@ -109,13 +109,13 @@ def _kernel(solver, block, pieces):
 def _final_u(params, pieces, n_pieces, allowed, *, kernel, static, until_rest):
     """u(t_end) [m], and what tells whether the run was sound."""
     if kernel == "exact":
-        from ..engines import _exact_kernel
+        from . import _exact_kernel
 
         window, is_sine = static
         _, _, rests, finished = out = _exact_kernel._run(params, allowed, pieces, n_pieces, until_rest,
                                                          window=window, log_capacity=0, is_sine=is_sine)
         return out[0].u, (rests, finished)
-    from ..engines import _jax_kernel
+    from . import _jax_kernel
 
     final, _, rests, flags, _ = _jax_kernel._run(params, pieces, cfg=static, until_rest=until_rest, full_output=False)
     return final.u, (rests, flags)
@@ -139,7 +139,7 @@ def _jacobian_of_u(params, pieces, n_pieces, allowed, *, kernel, static, until_r
 
 
 def _raise_if_bad(solver, block, aux, where):
-    from ..engines._results import check
+    from ._results import check
     from ._twin import _check
 
     if solver.name == "exact-jax":

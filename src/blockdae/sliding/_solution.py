@@ -7,7 +7,7 @@ from typing import Callable
 import numpy as np
 
 from ..core._solution import AbstractEvent, AbstractSolution
-from ..core._units import STANDARD_GRAVITY, length_units
+from ..units import STANDARD_GRAVITY, length_units
 from ..excitation import AbstractExcitation
 from ._modes import Mode
 from ..core._repr import compact_repr

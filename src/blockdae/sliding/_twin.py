@@ -1,5 +1,5 @@
 """The 1-D block's JAX twin (what the "jax" backend runs a :class:`~blockdae.SlidingBlock` on):
-diffrax integration of its automaton in one compiled kernel (:mod:`blockdae.engines._jax_kernel`),
+diffrax integration of its automaton in one compiled kernel (:mod:`blockdae.sliding._jax_kernel`),
 events by root finding, dense output in closed form from the located events."""
 
 import jax
@@ -7,9 +7,9 @@ import numpy as np
 
 from ..core._jax_config import jax_context
 from ..core._solution import BatchSolution
-from ..engines import _jax_kernel as kernel
-from ..engines._exact_jax import _device
-from ..engines._results import DenseOutput, max_run
+from . import _jax_kernel as kernel
+from ._exact_jax import _device
+from ._results import DenseOutput, max_run
 from ._model import never_rests_error
 from ._solution import EventLog, Solution
 

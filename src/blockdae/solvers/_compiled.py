@@ -3,8 +3,8 @@ of a compiled hybrid loop: tolerances of its integrated modes, the event rules' 
 
 import dataclasses
 
-from ..backends._base import AbstractBackend
-from ..integrators._sundials import _check_real
+from ..core._backend import AbstractBackend
+from ._sundials import _check_real
 
 
 @dataclasses.dataclass(frozen=True)

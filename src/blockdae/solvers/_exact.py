@@ -4,9 +4,9 @@ on the compiled linear engine."""
 
 import dataclasses
 
-from ..backends._base import AbstractBackend, check_window
-from ..engines._closed_form_linear import solve_closed_form
-from ..engines._linear_solution import linear_pieces, solve_linear_compiled
+from ..core._backend import AbstractBackend, check_window
+from ._closed_form_linear import solve_closed_form
+from ._linear_solution import linear_pieces, solve_linear_compiled
 
 
 @dataclasses.dataclass(frozen=True)

@@ -28,7 +28,7 @@ import numpy as np
 from ..sliding._formulas import AdjustmentFactor, newmark_rd_sd
 from ..core.contract import StudyModel
 from ..core._progress import progress_bar
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ..excitation._units import check_pga
 from ..excitation import BaseMotion, Record
 from ..excitation._record import check_horizontal

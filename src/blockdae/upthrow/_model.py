@@ -35,7 +35,7 @@ import math
 
 import numpy as np
 
-from ..core._units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY
 from ._solution import UpthrowEvent, UpthrowSolution
 from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, LinearModesModel, scale_factor_units
 from ..core._checks import set_real_fields

@@ -12,7 +12,7 @@ from ..core._jax_config import jax_context
 from ..core._solution import BatchSolution
 from ..excitation import Pieces
 from . import _exact_kernel as kernel
-from ..backends._base import cached_per_excitation
+from ..core._backend import cached_per_excitation
 from ._results import check, exact_solution, max_run
 
 

@@ -8,7 +8,7 @@ from ..core._solution import BatchSolution
 from ..excitation import Pieces
 from ..excitation._pieces import accel
 from . import _exact_numba as engine
-from ..backends._base import cached_per_excitation
+from ..core._backend import cached_per_excitation
 from ._results import check, exact_solution
 
 

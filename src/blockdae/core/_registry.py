@@ -9,15 +9,15 @@ backend. :func:`register_backend` adds a name.
 import functools
 import importlib
 
-from ._base import AbstractBackend, Horizon
+from ._backend import AbstractBackend, Horizon
 
 # name -> a class or "module:class", imported on first use so that unused solvers cost nothing
 _REGISTRY = {
     "exact": "blockdae.solvers._exact:Exact",
     "exact-jax": "blockdae.solvers._exact:ExactJax",
-    "cvode": "blockdae.integrators._cvode:CVODE",
-    "ida": "blockdae.integrators._ida:IDA",
-    "jax": "blockdae.integrators._jax:JaxTwin",
+    "cvode": "blockdae.solvers._cvode:CVODE",
+    "ida": "blockdae.solvers._ida:IDA",
+    "jax": "blockdae.solvers._jax:JaxTwin",
     "compiled": "blockdae.solvers._compiled:Compiled",
 }
 #: the names the package registers itself; register_backend does not replace them

@@ -1,6 +1,6 @@
 """Derivatives of a hybrid model's final state and events along its located trajectory.
 
-The JAX twin (:mod:`blockdae.integrators._diffrax`) runs the generic driver once and
+The JAX twin (:mod:`blockdae.solvers._diffrax`) runs the generic driver once and
 keeps its trace (every integrated stretch, guard root and mode change). The trace is
 then replayed with the sensitivity matrix S = dy/dp of the state y to the parameters
 p (the model's :meth:`~blockdae.AbstractHybridModel.parameters`, then one scale
@@ -31,9 +31,9 @@ import jax.numpy as jnp
 import numpy as np
 import optimistix as optx
 
-from ._driver import drive
-from ._jax_config import jax_context
-from ..integrators._diffrax import SOLVERS, JaxPieceExcitation, ModelTemplate, Settings
+from ..core._driver import drive
+from ..core._jax_config import jax_context
+from ._diffrax import SOLVERS, JaxPieceExcitation, ModelTemplate, Settings
 
 
 @dataclasses.dataclass(frozen=True)

@@ -12,7 +12,7 @@ reference. Each guard's first downward crossing is found the same way: an interv
 kept only where bounds of the guard's first three derivatives fail to show that it stays
 of one sign, is monotone or is convex/concave, bisected otherwise, and a crossing in a
 monotone part is refined by bisection to adjacent floats (the interval test, the
-bisections and the graze rule are :mod:`blockdae.solvers._events`). The driver's rules are
+bisections and the graze rule are :mod:`blockdae.core._events`). The driver's rules are
 those of :mod:`blockdae.core._driver`: a guard at zero and falling as a mode starts is left
 at once (unless it turns back within the event resolution), a guard reaching zero at the
 end of a piece is left to the next piece, and more than ``max_events`` events within the
@@ -26,7 +26,7 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from ..solvers._events import falls, first_nonpositive, one_sign, sign_change
+from ..core._events import falls, first_nonpositive, one_sign, sign_change
 
 _EPS = float(np.finfo(float).eps)
 #: most intervals one root search may examine; more is reported (outcome ``failed``)

@@ -21,8 +21,8 @@ import jax.numpy as jnp
 import optimistix as optx
 
 from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction, rebase
-from ..integrators._diffrax import SOLVERS
-from ..sliding._model import comes_to_rest, demand, relative_acceleration, slip_constant, stick_guards
+from ..solvers._diffrax import SOLVERS
+from ._model import comes_to_rest, demand, relative_acceleration, slip_constant, stick_guards
 from ._exact_kernel import Params, _mode_after_stop, _Rules, onset_delta
 
 # guards decrease through their roots (flip=True): no bracket check, which under vmap

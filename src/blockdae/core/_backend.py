@@ -7,9 +7,9 @@ import math
 
 import numpy as np
 
-from ..core._solution import BatchSolution
+from ._solution import BatchSolution
 from ..excitation import AbstractExcitation
-from ..core.contract import AbstractHybridModel
+from .contract import AbstractHybridModel
 
 
 @dataclasses.dataclass(frozen=True)

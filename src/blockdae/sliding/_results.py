@@ -7,11 +7,11 @@ import dataclasses
 
 import numpy as np
 
-from ..sliding._solution import EventLog, Solution
+from ._solution import EventLog, Solution
 from ..excitation import Pieces
 from ..excitation._pieces import evaluate
-from ..sliding._model import slip_constant
-from ..sliding._model import never_rests_error
+from ._model import slip_constant
+from ._model import never_rests_error
 
 
 def exact_solution(block, pieces: Pieces, knots, max_run: int, backend: str) -> Solution:

@@ -15,9 +15,9 @@ import math
 
 import numpy as np
 
-from ..engines._linear_solution import linear_pieces
-from ..flexible import _table_kernel
-from ..flexible._table_engine import slide_compiled, system_arrays
+from ..solvers._linear_solution import linear_pieces
+from . import _table_kernel
+from ._table_engine import slide_compiled, system_arrays
 
 _FIELD = {name: k for k, name in enumerate(_table_kernel.OUTCOME_FIELDS)}
 

@@ -15,7 +15,7 @@ import numpy as np
 from ..core._compile_notice import notice_numba
 from ..core._driver import HermiteDense
 from ..core._solution import BatchSolution
-from ..planar import _compiled as engine
+from . import _compiled as engine
 
 #: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)
 _PARALLEL_WORK = 1e5

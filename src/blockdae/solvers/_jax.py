@@ -9,7 +9,7 @@ import dataclasses
 import numpy as np
 
 from ..core._driver import drive
-from ..backends._base import AbstractBackend
+from ..core._backend import AbstractBackend
 from ._diffrax import SOLVERS, DiffraxIntegrator, Settings
 
 
@@ -81,14 +81,14 @@ class JaxTwin(AbstractBackend):
         """The trajectory this twin locates for ``model`` on the generic driver and its
         derivatives by :func:`~blockdae.core.contract.parameter_names`: (solution,
         dy(t_end)/dp of shape (n_y, n_p), one ``EventSensitivity`` per event)."""
-        from ..core._hybrid_sensitivities import trajectory_sensitivities
+        from ._trajectory import trajectory_sensitivities
 
         return trajectory_sensitivities(model, motion, horizon, self)
 
     def displacement_jacobian(self, model, motion, horizon):
         """d(final displacement)/dp [m per unit], shape (len(displacement_states), n_p),
         along the trajectory this twin locates."""
-        from ..core._hybrid_sensitivities import displacement_jacobian
+        from ._trajectory import displacement_jacobian
 
         return displacement_jacobian(model, motion, horizon, self)
 

@@ -14,7 +14,7 @@ from numbers import Integral, Real
 import numpy as np
 
 from ..core._driver import SCALAR, AbstractIntegrator, SolverError, drive
-from ..backends._base import AbstractBackend
+from ..core._backend import AbstractBackend
 
 @dataclasses.dataclass(frozen=True)
 class SundialsBackend(AbstractBackend):

@@ -37,10 +37,10 @@ from numba.extending import register_jitable
 
 from ..excitation import _pieces
 from ..excitation._pieces import accel, accel_int1, accel_int2, rebase
-from ..sliding import _model as _block
-from ..sliding._model import demand, rest_mode, slip_constant
+from . import _model as _block
+from ._model import demand, rest_mode, slip_constant
 from . import _closed_form
-from . import _xp_scalar as xp
+from ..solvers import _xp_scalar as xp
 from ._closed_form import (BISECTIONS, BLOCK_SLACK, crosses_zero, departure_rate, leaves_stick, mode_after_stop,
                            onset_delta_linear, onset_gap, onset_side, onset_target, onset_within, rate_turns,
                            sine_stop_bracket, slip_motion, slip_rate, slip_velocity, stop_delta_linear,

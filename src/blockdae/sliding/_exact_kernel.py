@@ -24,7 +24,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from ..excitation._pieces import accel, accel_int1, accel_int2, rebase
-from ..sliding._model import demand, rest_mode, slip_constant
+from ._model import demand, rest_mode, slip_constant
 from ._closed_form import (BISECTIONS, block_may_leave_stick, crosses_zero, departure_rate, leaves_stick,
                            mode_after_stop, onset_delta_linear, onset_gap, onset_side, onset_target, onset_within,
                            rate_turns, sine_stop_bracket, slip_motion, slip_rate, slip_velocity,

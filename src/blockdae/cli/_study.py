@@ -13,14 +13,14 @@ import time
 
 import numpy as np
 
-from ..cli._common import (UsageError, files_or_set, ky_table_row, number, positive, read, record_arguments,
+from ._common import (UsageError, files_or_set, ky_table_row, number, positive, read, record_arguments,
                            recursive_argument, set_argument)
-from ..cli._flexible import add_flexible_study_arguments, flexible_study_block
-from ..core._units import STANDARD_GRAVITY
+from ._flexible import add_flexible_study_arguments, flexible_study_block
+from ..units import STANDARD_GRAVITY
 from ..excitation._readers import RECORD_SUFFIXES, record_files
 from ..structures import ShearFrame
-from ._io import save_study
-from ._study import NoWorkerError, study, summary
+from ..studies._io import save_study
+from ..studies._study import NoWorkerError, study, summary
 
 
 def _grid(text):

@@ -16,7 +16,7 @@ with c = slip_constant(mode) [m/s²] and A1, A2 the first and double integrals o
 """
 
 from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate
-from ..sliding._model import comes_to_rest, demand, slip_constant, stop_mode
+from ._model import comes_to_rest, demand, slip_constant, stop_mode
 
 #: halvings of a bracket: ~1 s down to below one ulp; both engines bisect alike
 BISECTIONS = 64
