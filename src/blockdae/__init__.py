@@ -10,13 +10,13 @@ from .backends import AbstractBackend, register_backend
 from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, BatchedModel, DifferentiableModel,
                    DriverSolution, EngineModel, HybridEvent, InconsistentStateError, LinearModesModel, SolverError,
                    StudyBatch, StudyModel)
-from .core._crosscheck import CrossCheck, crosscheck
-from .core._compile_notice import CompileNotice
-from .core._jax_config import set_compilation_cache
-from .core._sensitivities import sensitivities
-from .core._simulate import simulate
+from .core import CrossCheck, crosscheck
+from .core import CompileNotice
+from .core import set_compilation_cache
+from .core import sensitivities
+from .core import simulate
 from .units import STANDARD_GRAVITY
-from .solvers._linear_solution import simulate_linear_final
+from .solvers import simulate_linear_final
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RecordSet, RecordWarning, RectangularPulse,
                          SinePulse, TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
                          read_record, read_records, resample)
@@ -27,16 +27,16 @@ from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, basel
                       relative_motion, response_spectrum)
 from .planar import PlanarBlock, PlanarEvent, PlanarMode, PlanarSolution
 from .sliding import BatchSolution, Event, EventLog, Mode, SlidingBlock, Solution
-from .sliding._examples import SeedExample, seed_examples
-from .sliding._final import FinalNumbers, simulate_final
-from .sliding._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
-from .sliding._newmark import NewmarkResult, NewmarkSweep, newmark, yield_acceleration
-from .sliding._sweep import SweepSolution, simulate_many
+from .sliding import SeedExample, seed_examples
+from .sliding import FinalNumbers, simulate_final
+from .sliding import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
+from .sliding import NewmarkResult, NewmarkSweep, newmark, yield_acceleration
+from .sliding import SweepSolution, simulate_many
 from .structures import Floor, ShearFrame
 from .studies import load_study, save_study, study, summary as study_summary
 from .upthrow import (Flight, RigidSupport, SpringSupport, SpringSupportedMass, UpthrowEvent, UpthrowMode,
                       UpthrowSolution)
-from .upthrow._estimate import UpthrowEstimate, upthrow_estimate
+from .upthrow import UpthrowEstimate, upthrow_estimate
 
 __all__ = [
     "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",

@@ -2,7 +2,7 @@
 :func:`register_backend`) and the backend contract (:class:`AbstractBackend`, :class:`Horizon`);
 the backend classes themselves are ``blockdae.Exact``, ``blockdae.CVODE``, ... ."""
 
-from .core._registry import (BUILT_IN, AbstractBackend, Horizon, available, backend_class, backend_name,
+from .core import (BUILT_IN, AbstractBackend, Horizon, available, backend_class, backend_name,
                              make_backend, register_backend)
 
 __all__ = ["BUILT_IN", "AbstractBackend", "Horizon", "available", "backend_class", "backend_name", "make_backend",

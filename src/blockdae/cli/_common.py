@@ -11,13 +11,13 @@ import warnings
 
 import numpy as np
 
-from ..core._atomic import atomic_path
+from ..core import atomic_path
 from ..units import STANDARD_GRAVITY
 from ..excitation import RecordSet, RecordWarning, read_record
-from ..excitation._fema import SETS as FEMA_SETS
-from ..excitation._readers import record_files
-from ..flexible._ky_table import KyTable
-from ..motions._baseline import METHODS as BASELINES, baseline_corrected
+from ..excitation import SETS as FEMA_SETS
+from ..excitation import record_files
+from ..flexible import KyTable
+from ..motions import METHODS as BASELINES, baseline_corrected
 
 #: the record sets of --set: name -> the name of bd.RecordSet.fema_p695
 RECORD_SETS = {f"fema-p695-{name}": name for name in FEMA_SETS}

@@ -7,11 +7,11 @@ import pathlib
 
 from ._common import (UsageError, checked, describe_record, in_units_out, ky_table, ky_table_row, number, positive,
                       read, record_arguments, record_fields, save_figure, units_out_argument)
-from ..core._simulate import simulate
+from ..core import simulate
 from ..units import STANDARD_GRAVITY
-from ..flexible._analysis import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
-from ..flexible._column import ShearColumn
-from ..flexible._model import METHODS, FlexibleSlidingMass
+from ..flexible import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
+from ..flexible import ShearColumn
+from ..flexible import METHODS, FlexibleSlidingMass
 
 def _columns(unit):
     """(field, heading, format) of the printed table, displacements in ``unit`` (--units-out)."""

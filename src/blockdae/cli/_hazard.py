@@ -12,7 +12,7 @@ import numpy as np
 from ..units import STANDARD_GRAVITY
 from ..excitation import UnitsWarning
 from ..hazard import HazardCurve, displacement_hazard, fit_fragility, plot_displacement_hazard, plot_fragility
-from ..sliding._newmark import newmark
+from ..sliding import newmark
 from ._common import (UsageError, checked, files_or_set, folder_files, positive, read, record_arguments,
                       recursive_argument, save_figure, set_argument, write_csv)
 

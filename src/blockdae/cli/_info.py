@@ -8,8 +8,8 @@ import warnings
 
 from ..units import STANDARD_GRAVITY
 from ..excitation import RecordWarning, read_record
-from ..excitation._formats import read_channels
-from ..excitation._record_checks import OFFSET_FRACTION, offset_fraction
+from ..excitation import read_channels
+from ..excitation import OFFSET_FRACTION, offset_fraction
 from ._common import UsageError, checked, report_failures
 
 

@@ -29,18 +29,18 @@ from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
 from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
-from ..sliding._examples import seed_examples
-from ..core._compile_notice import CompileNotice
-from ..core._jax_config import set_compilation_cache
-from ..sliding._newmark import newmark
-from ..core._simulate import simulate
+from ..sliding import seed_examples
+from ..core import CompileNotice
+from ..core import set_compilation_cache
+from ..sliding import newmark
+from ..core import simulate
 from ..units import STANDARD_GRAVITY, length_units
 from ._motions import add_spectrum_parser, add_two_point_parser
 from ._study import add_study_parser
-from ..core._progress import progress_bar
-from ..excitation._readers import RECORD_SUFFIXES, unit_factor
-from ..excitation._units import PGA_ROUNDINGS, UnitsWarning, pga_factor
-from ..sliding._model import SlidingBlock
+from ..core import progress_bar
+from ..excitation import RECORD_SUFFIXES, unit_factor
+from ..excitation import PGA_ROUNDINGS, UnitsWarning, pga_factor
+from ..sliding import SlidingBlock
 
 _CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
                "g_m_s2", "direction", "backend", "u_end_m", "max_abs_displacement_m", "n_events",
@@ -353,7 +353,7 @@ def _newmark_plot(args, records, pga, result):
     acceleration with ky, downslope velocity and displacement D >= 0) of the polarity with
     the larger D."""
     from .._plot import plot
-    from ..sliding._figures import newmark_history_figure
+    from ..sliding import newmark_history_figure
 
     if len(records) > 1 or np.ndim(pga) != 0 or len(args.ky) > 1:
         save_figure(plot(result), args.plot)

@@ -13,7 +13,7 @@ import numpy as np
 
 from ._common import UsageError, checked, number, positive, read, record_arguments, save_figure, write_csv
 from ..units import STANDARD_GRAVITY
-from ..excitation._units import pga_factor
+from ..excitation import pga_factor
 
 SEED_LAGS = np.geomspace(0.05, 3.0, 20)  # Christian 1973: 20 lags from 0.05 to 3 s
 DEFAULT_PERIODS = np.geomspace(0.01, 10.0, 100)
@@ -70,7 +70,7 @@ def _record(args):
 
 
 def run_spectrum(args):
-    from ..motions._spectra import response_spectrum
+    from ..motions import response_spectrum
 
     rec = _record(args)
     periods = DEFAULT_PERIODS if args.periods is None else np.array(args.periods)
@@ -96,7 +96,7 @@ def run_spectrum(args):
             print(f"{r['period_s']:9.4g} {r['damping']:5.3g} {r['sd_m']:11.5g} {r['sv_m_s']:11.5g} "
                   f"{r['sa_m_s2']:11.5g} {r['psa_m_s2']:11.5g} {r['sd_abs_m']:11.5g}")
     if args.plot:
-        from ..motions._figures import plot_spectrum
+        from ..motions import plot_spectrum
 
         save_figure(plot_spectrum(spec, title=f"{rec.name}: PSa"), args.plot)
     return 0
@@ -137,7 +137,7 @@ def _print_two_point_table(rows):
 
 
 def run_two_point(args):
-    from ..motions._two_point import relative_motion
+    from ..motions import relative_motion
 
     rec = _record(args)
     lags = SEED_LAGS if args.lags is None else np.array(args.lags)
@@ -156,7 +156,7 @@ def run_two_point(args):
               f"(d from {rm.d_min:.4g} to {rm.d_max:.4g} m), baseline {args.baseline}")
         _print_two_point_table(rows)
     if args.plot:
-        from ..motions._figures import plot_relative_motion
+        from ..motions import plot_relative_motion
 
         save_figure(plot_relative_motion(rm), args.plot)
     return 0

@@ -5,12 +5,12 @@ import json
 import time
 
 from ._common import UsageError, checked, describe_gravity, describe_record, read_options, reader_warnings, save_figure
-from ..core._simulate import simulate
+from ..core import simulate
 from ..units import length_units
 from ..excitation import BaseMotion, Record, read_motion
-from ..excitation._readers import record_name
-from ..motions._baseline import baseline_corrected
-from ..planar._model import PlanarBlock
+from ..excitation import record_name
+from ..motions import baseline_corrected
+from ..planar import PlanarBlock
 
 #: the backend of a planar run unless --backend names one: IDA follows turning slides
 PLANAR_BACKEND = "ida"

@@ -17,10 +17,10 @@ from ._common import (UsageError, files_or_set, ky_table_row, number, positive, 
                            recursive_argument, set_argument)
 from ._flexible import add_flexible_study_arguments, flexible_study_block
 from ..units import STANDARD_GRAVITY
-from ..excitation._readers import RECORD_SUFFIXES, record_files
+from ..excitation import RECORD_SUFFIXES, record_files
 from ..structures import ShearFrame
-from ..studies._io import save_study
-from ..studies._study import NoWorkerError, study, summary
+from ..studies import save_study
+from ..studies import NoWorkerError, study, summary
 
 
 def _grid(text):

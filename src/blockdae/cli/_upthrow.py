@@ -9,12 +9,12 @@ import time
 
 from ._common import (checked, clean, describe_record, number, positive, read, record_arguments,
                       record_fields, save_figure)
-from ..core._simulate import simulate
+from ..core import simulate
 from ..units import STANDARD_GRAVITY
-from ..upthrow._estimate import upthrow_estimate
-from ..excitation._readers import unit_factor
-from ..excitation._units import pga_factor
-from ..upthrow._model import SpringSupportedMass
+from ..upthrow import upthrow_estimate
+from ..excitation import unit_factor
+from ..excitation import pga_factor
+from ..upthrow import SpringSupportedMass
 
 #: the backends that run a SpringSupportedMass
 BACKENDS = ("exact", "cvode", "ida", "jax")

@@ -11,3 +11,21 @@ from ._solution import AbstractEvent, AbstractSolution, DriverSolution, HybridEv
 __all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchedModel", "DifferentiableModel",
            "DriverSolution", "EngineModel", "ExplicitForm", "HybridEvent", "InconsistentStateError",
            "LinearModesModel", "SCALAR", "SolverError", "StudyBatch", "StudyModel"]
+
+# what the other packages of blockdae use
+from ._atomic import atomic_path
+from ._backend import AbstractBackend, cached_per_excitation, check_window
+from ._checks import set_real_fields
+from ._compile_notice import CompileNotice, notice_numba
+from ._crosscheck import CrossCheck, crosscheck
+from ._driver import AbstractIntegrator, HermiteDense, InconsistentStateError, SCALAR, SolverError, drive
+from ._engines import LazyEngine
+from ._events import falls, first_nonpositive, one_sign, sign_change, too_short
+from ._figures import BASE, BLOCK, EVENTS, curve, time_grid
+from ._jax_config import jax_context, set_compilation_cache
+from ._progress import progress_bar
+from ._registry import AbstractBackend, BUILT_IN, Horizon, available, backend_class, backend_name, make_backend, register_backend
+from ._repr import compact_repr
+from ._sensitivities import sensitivities
+from ._simulate import simulate
+from ._solution import AbstractEvent, AbstractSolution, BatchSolution, DriverSolution

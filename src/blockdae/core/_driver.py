@@ -27,7 +27,7 @@ import time
 
 import numpy as np
 
-from ..excitation._pieces import accel, accel_rate, monotone_rate, piece_direction
+from ..excitation import accel, accel_rate, monotone_rate, piece_direction
 from ._events import (ROUNDING, left_at_once, static_root, stop_uncertainty, too_short, turning_point,
                                velocity_error)
 from .contract import KNOTS_PER_RADIAN, SCALAR

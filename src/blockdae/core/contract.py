@@ -28,7 +28,7 @@ from ..units import STANDARD_GRAVITY
 from ._linear_modes import LinearModes
 from ._solution import DriverSolution, HybridEvent
 from ..excitation import AbstractExcitation
-from ..excitation._record import check_horizontal
+from ..excitation import check_horizontal
 
 #: the array namespace of the model's xp-generic rules on Python floats (the driver's
 #: and IDA's callbacks): the names of ``numpy``/``jax.numpy`` a rule may call

@@ -17,3 +17,13 @@ __all__ = ["AbstractExcitation", "BaseMotion", "Harmonic", "MAX_PGA_G", "MAX_STE
            "PLAUSIBLE_PEAK_G", "Pieces", "RESOLVING_STEP_S", "Record", "RecordSet", "RecordWarning", "RectangularPulse",
            "STANDARD_GRAVITY", "SinePulse", "TriangularPulse", "UnitsWarning", "check_peak_acceleration", "pga_factor",
            "read_motion", "read_record", "read_records", "resample"]
+
+# what the other packages of blockdae use
+from ._fema import SETS
+from ._formats import read_channels
+from ._pieces import accel, accel_int1, accel_int2, accel_rate, evaluate, monotone_rate, piece_direction, rebase
+from ._readers import RECORD_SUFFIXES, record_files, record_name, unit_factor
+from ._record import Record, check_horizontal
+from ._record_checks import OFFSET_FRACTION, offset_fraction
+from ._record_set import RecordSet, with_metadata
+from ._units import PGA_ROUNDINGS, UnitsWarning, check_pga, check_pga_rounding, pga_factor

@@ -17,9 +17,9 @@ import numbers
 import numpy as np
 
 from ..units import STANDARD_GRAVITY
-from ..solvers._linear_solution import linear_pieces
+from ..solvers import linear_pieces
 from ..excitation import Record, pga_factor
-from ..excitation._record import check_horizontal
+from ..excitation import check_horizontal
 from . import _engine, _fused, _table_kernel
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, flat_table_model, slip_underdamped
@@ -28,7 +28,7 @@ from ._ky_table import KyTable
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
 from ._table_engine import response_compiled, slide_compiled, system_arrays
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns

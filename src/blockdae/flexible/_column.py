@@ -5,7 +5,7 @@ import dataclasses
 import math
 from typing import Callable, Optional
 
-from ..core._checks import set_real_fields
+from ..core import set_real_fields
 
 #: L/M: the first mode's participation factor, phi(z) = sin(pi z / 2H)
 MODE_PARTICIPATION = 4.0 / math.pi

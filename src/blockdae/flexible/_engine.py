@@ -28,8 +28,8 @@ from numba.extending import register_jitable
 
 from ..solvers._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT,
                                STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative, _eval, _eval_at, _solve)
-from ..solvers._linear import MAX_INTERVALS  # noqa: F401 -- read through this module (._exact's messages)
-from ..core._events import falls, one_sign
+from ..solvers import MAX_INTERVALS  # noqa: F401 -- read through this module (._exact's messages)
+from ..core import falls, one_sign
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._roots import STACK_COLUMNS, first_fall
 

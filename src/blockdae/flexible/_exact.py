@@ -3,7 +3,7 @@ on a record's linear pieces, the solution with dense output in closed form."""
 
 import numpy as np
 
-from ..core._driver import SolverError
+from ..core import SolverError
 from . import _engine
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, UNDERDAMPED_LIMIT, slip_underdamped, solve_damped_slip
 from ._table_engine import record_pieces

@@ -3,7 +3,7 @@ displacement, episodes marked (the figure SLAMMER and pySLAMMER users know)."""
 
 import numpy as np
 
-from ..core._figures import time_grid
+from ..core import time_grid
 
 
 def sliding_figure(solution, *, n_points, title=None):

@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from ..core._checks import set_real_fields
+from ..core import set_real_fields
 from ..core.contract import KNOTS_PER_RADIAN, DifferentiableModel, StudyModel, scale_factor_units
 from ..units import STANDARD_GRAVITY
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn

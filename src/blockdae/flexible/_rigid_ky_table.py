@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from ..solvers._linear_solution import linear_pieces
+from ..solvers import linear_pieces
 from . import _table_kernel
 from ._table_engine import slide_compiled, system_arrays
 

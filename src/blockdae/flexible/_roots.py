@@ -19,7 +19,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..solvers._linear import MAX_INTERVALS, _eval, _eval_at, _rounding
-from ..core._events import one_sign
+from ..core import one_sign
 
 _EPS = float(np.finfo(float).eps)
 #: Newton steps before the bracket is closed by bisection alone

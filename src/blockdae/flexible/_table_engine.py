@@ -29,11 +29,11 @@ import math
 
 import numpy as np
 
-from ..core._compile_notice import notice_numba
-from ..core._driver import AbstractIntegrator, InconsistentStateError, SolverError, drive
-from ..core._events import first_nonpositive
-from ..solvers._linear import CHATTER, UNSETTLED
-from ..solvers._linear_solution import linear_pieces
+from ..core import notice_numba
+from ..core import AbstractIntegrator, InconsistentStateError, SolverError, drive
+from ..core import first_nonpositive
+from ..solvers import CHATTER, UNSETTLED
+from ..solvers import linear_pieces
 from . import _table_kernel
 from ._column import MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._modes import FlexibleMode

@@ -39,8 +39,8 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from ..solvers._linear import CHATTER, FINISHED, UNSETTLED
-from ..core._events import falls, too_short
+from ..solvers import CHATTER, FINISHED, UNSETTLED
+from ..core import falls, too_short
 
 _EPS = float(np.finfo(float).eps)
 #: status of a slide whose state contradicts its mode (w < 0 in SLIP beyond rounding)

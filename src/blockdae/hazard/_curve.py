@@ -6,7 +6,7 @@ import pathlib
 import numpy as np
 
 from . import _formats
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

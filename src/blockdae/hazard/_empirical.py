@@ -5,7 +5,7 @@ import dataclasses
 import inspect
 
 import numpy as np
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

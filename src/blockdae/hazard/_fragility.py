@@ -16,7 +16,7 @@ from refitting to records drawn with replacement (all rows of a record together)
 import dataclasses
 
 import numpy as np
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 MIN_RECORDS = 10
 #: columns that name the slope (or the location) of a row: a fit takes one value of each

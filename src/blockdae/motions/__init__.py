@@ -11,3 +11,9 @@ from ._two_point import RelativeMotion, fourier_amplitude, relative_motion
 __all__ = ["IntensityMeasures", "MEAN_PERIOD_BAND", "RelativeMotion", "ResponseSpectrum", "baseline_corrected",
            "cumulative_arias", "fourier_amplitude", "intensity_measures", "mean_period", "motion_histories",
            "plot_relative_motion", "plot_spectrum", "polynomial_trend", "relative_motion", "response_spectrum"]
+
+# what the other packages of blockdae use
+from ._baseline import METHODS, baseline_corrected
+from ._figures import plot_relative_motion, plot_spectrum
+from ._spectra import response_spectrum
+from ._two_point import relative_motion

@@ -12,9 +12,9 @@ import dataclasses
 import numpy as np
 
 from ..units import STANDARD_GRAVITY
-from ..excitation._pieces import accel, accel_int1, accel_int2
+from ..excitation import accel, accel_int1, accel_int2
 from . import _checks
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)  # exact for a² of linear pieces
 

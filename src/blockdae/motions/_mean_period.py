@@ -3,7 +3,7 @@ flexible sliding mass is compared with (T_s / T_m)."""
 
 import numpy as np
 
-from ..excitation._record import Record
+from ..excitation import Record
 from . import _checks
 
 #: the frequency band of the definition [Hz]

@@ -13,10 +13,10 @@ import dataclasses
 
 import numpy as np
 
-from ..core._compile_notice import notice_numba
-from ..excitation._pieces import accel_int1, accel_int2
+from ..core import notice_numba
+from ..excitation import accel_int1, accel_int2
 from . import _checks
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

@@ -12,11 +12,11 @@ import dataclasses
 
 import numpy as np
 
-from ..core._compile_notice import notice_numba
-from ..excitation._pieces import accel_int1, accel_int2, rebase
+from ..core import notice_numba
+from ..excitation import accel_int1, accel_int2, rebase
 from . import _checks
 from ._intensity import _Chain, intensity_measures
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 

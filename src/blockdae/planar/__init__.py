@@ -6,3 +6,6 @@ from ._modes import PlanarMode
 from ._solution import PlanarEvent, PlanarSolution
 
 __all__ = ["PlanarBlock", "PlanarDAEForm", "PlanarEvent", "PlanarMode", "PlanarSolution"]
+
+# what the other packages of blockdae use
+from ._model import PlanarBlock

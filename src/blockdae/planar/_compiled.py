@@ -54,7 +54,7 @@ from numba.extending import register_jitable
 
 from ..core.contract import KNOTS_PER_RADIAN
 from ..excitation import _pieces
-from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
+from ..excitation import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
 from ..solvers import _dop853, _rodas4
 from ..solvers import _xp_scalar as xp
 from ..core import _events as events

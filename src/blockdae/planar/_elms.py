@@ -8,10 +8,10 @@ and the bias P = mu - N (his eq. 2) pushes the block in -x.
 
 import numpy as np
 
-from ..core._simulate import simulate
+from ..core import simulate
 from ..excitation import BaseMotion, Harmonic
 from ._model import PlanarBlock
-from ..sliding._model import SlidingBlock
+from ..sliding import SlidingBlock
 
 #: Elms's table wave: C_x = sin(pi t) for one period (A = 1, T* = 2 s) [m/s² with g = 1]
 WAVE = Harmonic(1.0, 2.0, cycles=1)

@@ -12,9 +12,9 @@ import concurrent.futures
 import numba
 import numpy as np
 
-from ..core._compile_notice import notice_numba
-from ..core._driver import HermiteDense
-from ..core._solution import BatchSolution
+from ..core import notice_numba
+from ..core import HermiteDense
+from ..core import BatchSolution
 from . import _compiled as engine
 
 #: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from ..core._figures import EVENTS, curve, time_grid
+from ..core import EVENTS, curve, time_grid
 from ..units import STANDARD_GRAVITY, length_units
 
 

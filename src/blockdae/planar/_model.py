@@ -36,16 +36,16 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, BaseMotion
-from ..excitation._record import check_horizontal
+from ..excitation import check_horizontal
 from ._solution import PlanarEvent, PlanarSolution
 from ..core.contract import (KNOTS_PER_RADIAN, SCALAR, BatchedModel, DifferentiableModel, EngineModel, StudyModel,
                              scale_factor_units)
-from ..core._checks import set_real_fields
-from ..core._engines import LazyEngine
+from ..core import set_real_fields
+from ..core import LazyEngine
 from ._modes import _CX, _CY, _S, _UX, _UY, _W, _WD, PlanarMode, horizontal_velocity
 from . import _rules as rules
 from ._rules import SLOW_SPEED
-from ..upthrow._support import RigidSupport, SpringSupport, parse_support
+from ..upthrow import RigidSupport, SpringSupport, parse_support
 
 #: relative tolerance of the compiled engine in studies [-]: against IDA at rtol 1e-12
 #: on the benchmark's cases (Elms, two record pairs, El Centro in three components)
@@ -178,7 +178,7 @@ class PlanarBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         :data:`STUDY_RTOL`). displacement_x_m, displacement_y_m (u at the end [m]),
         displacement_m (|u| at the end [m]), max_abs_displacement_m (max |u| [m]),
         slide_distance_m (path length [m]), n_events, n_flights, t_end_s [s]."""
-        from ..core._registry import Horizon, make_backend
+        from ..core import Horizon, make_backend
 
         backend = make_backend("compiled", rtol=STUDY_RTOL if rtol is None else rtol)
         out = backend.solve_final(self, list(motions), [Horizon.resolve(m, t_end) for m in motions], scale=tuple(scale))

@@ -5,11 +5,11 @@ import math
 
 import numpy as np
 
-from ..core._solution import AbstractEvent, DriverSolution
+from ..core import AbstractEvent, DriverSolution
 from ..units import STANDARD_GRAVITY, length_units
 
 from ._modes import PlanarMode, horizontal_velocity
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

@@ -3,7 +3,7 @@ solution; Newmark's conventions, the SMiRT paper's formulas, final numbers and s
 
 from ._model import SlidingBlock, SlidingDAEForm
 from ._modes import Mode
-from ..core._solution import BatchSolution
+from ..core import BatchSolution
 from ._sensitivities import block_differences, kernel_sensitivities
 from ._solution import Event, EventLog, Solution
 
@@ -13,3 +13,12 @@ SlidingBlock.sensitivities = kernel_sensitivities
 SlidingBlock.finite_differences = block_differences
 
 __all__ = ["BatchSolution", "Event", "EventLog", "Mode", "SlidingBlock", "SlidingDAEForm", "Solution"]
+
+# what the other packages of blockdae use
+from ._examples import SeedExample, seed_examples
+from ._figures import newmark_history_figure
+from ._final import FinalNumbers, simulate_final
+from ._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
+from ._model import SlidingBlock
+from ._newmark import NewmarkResult, NewmarkSweep, newmark, yield_acceleration
+from ._sweep import SweepSolution, simulate_many

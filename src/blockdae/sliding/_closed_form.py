@@ -15,7 +15,7 @@ for linear pieces). In slip the relative velocity is
 with c = slip_constant(mode) [m/s²] and A1, A2 the first and double integrals of a.
 """
 
-from ..excitation._pieces import accel, accel_int1, accel_int2, accel_rate
+from ..excitation import accel, accel_int1, accel_int2, accel_rate
 from ._model import comes_to_rest, demand, slip_constant, stop_mode
 
 #: halvings of a bracket: ~1 s down to below one ulp; both engines bisect alike

@@ -3,12 +3,12 @@ precision; what the "exact" backend runs a :class:`~blockdae.SlidingBlock` on.""
 
 import numpy as np
 
-from ..core._compile_notice import notice_numba
-from ..core._solution import BatchSolution
+from ..core import notice_numba
+from ..core import BatchSolution
 from ..excitation import Pieces
-from ..excitation._pieces import accel
+from ..excitation import accel
 from . import _exact_numba as engine
-from ..core._backend import cached_per_excitation
+from ..core import cached_per_excitation
 from ._results import check, exact_solution
 
 

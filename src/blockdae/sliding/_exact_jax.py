@@ -8,11 +8,11 @@ cross-checked in the tests.
 import jax
 import numpy as np
 
-from ..core._jax_config import jax_context
-from ..core._solution import BatchSolution
+from ..core import jax_context
+from ..core import BatchSolution
 from ..excitation import Pieces
 from . import _exact_kernel as kernel
-from ..core._backend import cached_per_excitation
+from ..core import cached_per_excitation
 from ._results import check, exact_solution, max_run
 
 

@@ -23,7 +23,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ..excitation._pieces import accel, accel_int1, accel_int2, rebase
+from ..excitation import accel, accel_int1, accel_int2, rebase
 from ._model import demand, rest_mode, slip_constant
 from ._closed_form import (BISECTIONS, block_may_leave_stick, crosses_zero, departure_rate, leaves_stick,
                            mode_after_stop, onset_delta_linear, onset_gap, onset_side, onset_target, onset_within,

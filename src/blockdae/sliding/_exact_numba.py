@@ -36,7 +36,7 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..excitation import _pieces
-from ..excitation._pieces import accel, accel_int1, accel_int2, rebase
+from ..excitation import accel, accel_int1, accel_int2, rebase
 from . import _model as _block
 from ._model import demand, rest_mode, slip_constant
 from . import _closed_form

@@ -3,7 +3,7 @@ phase plane) and a batch's displacements against its parameters."""
 
 import numpy as np
 
-from ..core._figures import BASE, BLOCK, EVENTS, curve, time_grid
+from ..core import BASE, BLOCK, EVENTS, curve, time_grid
 
 _LEGEND_ENTRIES = 12  # Newmark's figure has a legend for at most this many curves
 

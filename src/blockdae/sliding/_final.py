@@ -4,10 +4,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core._registry import Horizon, make_backend
+from ..core import Horizon, make_backend
 from ..excitation import AbstractExcitation
 from ._model import SlidingBlock
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 
 class FinalNumbers(NamedTuple):

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ._solution import Event, Solution
-from ..core._engines import LazyEngine
+from ..core import LazyEngine
 from ..core.contract import SCALAR, BatchedModel, DifferentiableModel, EngineModel, StudyModel
 from ._modes import Mode
 
@@ -290,7 +290,7 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         A block sliding one way downslope (direction "negative"): D_m (the downslope
         displacement at the end, -u >= 0 [m]); else u_end_m (the signed u at the end [m]);
         then max_abs_displacement_m [m], n_events, t_end_s [s]."""
-        from ..core._registry import Horizon, make_backend
+        from ..core import Horizon, make_backend
 
         horizons = [Horizon.resolve(motion, t_end) for motion in motions]
         out = make_backend("exact").solve_final(self, list(motions), horizons, np.asarray(scale, dtype=float))

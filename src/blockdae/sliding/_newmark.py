@@ -16,18 +16,18 @@ import warnings
 
 import numpy as np
 
-from ..core._progress import progress_bar
-from ..core._sensitivities import sensitivities
-from ..core._simulate import simulate
+from ..core import progress_bar
+from ..core import sensitivities
+from ..core import simulate
 from ..units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, UnitsWarning, pga_factor, read_record
-from ..excitation._readers import record_files
-from ..excitation._record_set import RecordSet, with_metadata
-from ..excitation._units import check_pga, check_pga_rounding
-from ..flexible._rigid_ky_table import downslope_with_table
+from ..excitation import record_files
+from ..excitation import RecordSet, with_metadata
+from ..excitation import check_pga, check_pga_rounding
+from ..flexible import downslope_with_table
 from ._model import SlidingBlock
 from ._sweep import _labelled
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 _POLARITIES = ("both", "normal", "inverse")
 
@@ -257,7 +257,7 @@ def _yield_accelerations(ky):
     pair (displacements [m], ky [g])) that varies with the sliding displacement (its ky at
     D = 0 [g], the table); a constant table is its one value. A TypeError says what is
     taken where ``ky`` is none of these."""
-    from ..flexible._analysis import as_ky_table
+    from ..flexible import as_ky_table
 
     table = as_ky_table(ky)
     if table is not None:

@@ -9,7 +9,7 @@ import numpy as np
 
 from ._solution import EventLog, Solution
 from ..excitation import Pieces
-from ..excitation._pieces import evaluate
+from ..excitation import evaluate
 from ._model import slip_constant
 from ._model import never_rests_error
 

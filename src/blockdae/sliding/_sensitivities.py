@@ -25,7 +25,7 @@ def kernel_sensitivities(block, motion, t_end, wrt, backend, of, options) -> dic
     (n,) for a batch."""
     if of is not None:
         raise ValueError(f"of={of!r} does not apply to a SlidingBlock: it has the derivatives of its displacement")
-    from ..core._registry import Horizon, backend_name, make_backend  # here: the backends import this package
+    from ..core import Horizon, backend_name, make_backend  # here: the backends import this package
     from ..core.derivatives import checked_wrt, jax_context
 
     backend = "exact" if backend is None else backend
@@ -89,7 +89,7 @@ def block_differences(block, motion, t_end, wrt, backend, step, options) -> dict
 def _differentiated(backend):
     """The backend whose kernel is differentiated: for "exact" (or an :class:`~blockdae.Exact`)
     the JAX kernel of the same closed forms, "exact-jax" (at the object's window)."""
-    from ..core._registry import AbstractBackend, make_backend
+    from ..core import AbstractBackend, make_backend
 
     if isinstance(backend, AbstractBackend) and backend.name == "exact":
         return make_backend("exact-jax", window=backend.window)

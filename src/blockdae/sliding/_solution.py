@@ -6,11 +6,11 @@ from typing import Callable
 
 import numpy as np
 
-from ..core._solution import AbstractEvent, AbstractSolution
+from ..core import AbstractEvent, AbstractSolution
 from ..units import STANDARD_GRAVITY, length_units
 from ..excitation import AbstractExcitation
 from ._modes import Mode
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

@@ -5,13 +5,13 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..core._simulate import simulate
-from ..core._solution import BatchSolution
+from ..core import simulate
+from ..core import BatchSolution
 from ..excitation import AbstractExcitation, pga_factor
-from ..excitation._record import check_horizontal
-from ..excitation._units import check_pga, check_pga_rounding
+from ..excitation import check_horizontal
+from ..excitation import check_pga, check_pga_rounding
 from ._model import SlidingBlock
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

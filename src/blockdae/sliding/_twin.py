@@ -5,8 +5,8 @@ events by root finding, dense output in closed form from the located events."""
 import jax
 import numpy as np
 
-from ..core._jax_config import jax_context
-from ..core._solution import BatchSolution
+from ..core import jax_context
+from ..core import BatchSolution
 from . import _jax_kernel as kernel
 from ._exact_jax import _device
 from ._results import DenseOutput, max_run

@@ -23,9 +23,9 @@ import math
 
 import numpy as np
 
-from ..core._driver import AbstractIntegrator, drive
-from ..excitation._pieces import rebase
-from ..core._events import falls, one_sign
+from ..core import AbstractIntegrator, drive
+from ..excitation import rebase
+from ..core import falls, one_sign
 
 _EPS = np.finfo(float).eps
 #: most intervals one root search may examine (a degenerate touch of zero by the guard

@@ -3,7 +3,7 @@ of a compiled hybrid loop: tolerances of its integrated modes, the event rules' 
 
 import dataclasses
 
-from ..core._backend import AbstractBackend
+from ..core import AbstractBackend
 from ._sundials import _check_real
 
 

@@ -4,7 +4,7 @@ import dataclasses
 
 import sksundae.cvode
 
-from ..core._driver import SCALAR
+from ..core import SCALAR
 from ._sundials import Guards, SundialsBackend, SundialsIntegrator
 
 #: CVODE's first step after every (re)start [s]. A restart begins at order 1, and

@@ -19,9 +19,9 @@ import jax.numpy as jnp
 import numpy as np
 import optimistix as optx
 
-from ..core._driver import AbstractIntegrator, SolverError
-from ..core._jax_config import jax_context
-from ..excitation._pieces import accel, accel_rate
+from ..core import AbstractIntegrator, SolverError
+from ..core import jax_context
+from ..excitation import accel, accel_rate
 
 # guards decrease through their roots (flip=True); 1e-13 s is far below the event
 # accuracy the driver's tolerances allow

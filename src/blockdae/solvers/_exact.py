@@ -4,7 +4,7 @@ on the compiled linear engine."""
 
 import dataclasses
 
-from ..core._backend import AbstractBackend, check_window
+from ..core import AbstractBackend, check_window
 from ._closed_form_linear import solve_closed_form
 from ._linear_solution import linear_pieces, solve_linear_compiled
 

@@ -8,8 +8,8 @@ import dataclasses
 
 import numpy as np
 
-from ..core._driver import drive
-from ..core._backend import AbstractBackend
+from ..core import drive
+from ..core import AbstractBackend
 from ._diffrax import SOLVERS, DiffraxIntegrator, Settings
 
 

@@ -26,7 +26,7 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from ..core._events import falls, first_nonpositive, one_sign, sign_change
+from ..core import falls, first_nonpositive, one_sign, sign_change
 
 _EPS = float(np.finfo(float).eps)
 #: most intervals one root search may examine; more is reported (outcome ``failed``)

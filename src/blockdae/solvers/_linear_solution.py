@@ -4,8 +4,8 @@ many excitations, parameter sets and scales."""
 
 import numpy as np
 
-from ..core._compile_notice import notice_numba
-from ..core._driver import SolverError
+from ..core import notice_numba
+from ..core import SolverError
 from . import _linear
 
 #: knot-log rows per piece of a(t) at the start (one per piece, one per event, grown

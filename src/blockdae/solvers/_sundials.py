@@ -13,8 +13,8 @@ from numbers import Integral, Real
 
 import numpy as np
 
-from ..core._driver import SCALAR, AbstractIntegrator, SolverError, drive
-from ..core._backend import AbstractBackend
+from ..core import SCALAR, AbstractIntegrator, SolverError, drive
+from ..core import AbstractBackend
 
 @dataclasses.dataclass(frozen=True)
 class SundialsBackend(AbstractBackend):

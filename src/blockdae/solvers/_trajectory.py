@@ -31,8 +31,8 @@ import jax.numpy as jnp
 import numpy as np
 import optimistix as optx
 
-from ..core._driver import drive
-from ..core._jax_config import jax_context
+from ..core import drive
+from ..core import jax_context
 from ._diffrax import SOLVERS, JaxPieceExcitation, ModelTemplate, Settings
 
 

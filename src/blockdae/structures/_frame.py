@@ -23,7 +23,7 @@ import operator
 
 import numpy as np
 
-from ..core._compile_notice import notice_numba
+from ..core import notice_numba
 from ..excitation import Record
 
 

@@ -18,7 +18,7 @@ import reprlib
 
 import numpy as np
 
-from ..core._atomic import atomic_path
+from ..core import atomic_path
 from ._io import load_study, save_study
 
 MANIFEST = "manifest.json"

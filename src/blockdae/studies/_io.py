@@ -13,7 +13,7 @@ import os
 import pathlib
 import re
 
-from ..core._atomic import atomic_path
+from ..core import atomic_path
 
 #: the last line of a CSV table written by save_study
 FOOTER = "# blockdae study table: {rows} rows\n"

@@ -25,15 +25,15 @@ import time
 
 import numpy as np
 
-from ..sliding._formulas import AdjustmentFactor, newmark_rd_sd
+from ..sliding import AdjustmentFactor, newmark_rd_sd
 from ..core.contract import StudyModel
-from ..core._progress import progress_bar
+from ..core import progress_bar
 from ..units import STANDARD_GRAVITY
-from ..excitation._units import check_pga
+from ..excitation import check_pga
 from ..excitation import BaseMotion, Record
-from ..excitation._record import check_horizontal
-from ..excitation._record_set import RecordSet, with_metadata
-from ..sliding._model import SlidingBlock
+from ..excitation import check_horizontal
+from ..excitation import RecordSet, with_metadata
+from ..sliding import SlidingBlock
 from ..motions import response_spectrum
 from ..structures import Floor
 from ._checkpoint import Checkpoint, motion_name as _name

@@ -8,3 +8,8 @@ from ._support import RigidSupport, SpringSupport
 
 __all__ = ["Flight", "RigidSupport", "SpringDAEForm", "SpringSupport", "SpringSupportedMass", "UpthrowEvent",
            "UpthrowMode", "UpthrowSolution"]
+
+# what the other packages of blockdae use
+from ._estimate import UpthrowEstimate, upthrow_estimate
+from ._model import SpringSupportedMass
+from ._support import RigidSupport, SpringSupport, parse_support

@@ -5,7 +5,7 @@ import math
 from numbers import Real
 
 from ._model import SpringSupportedMass
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

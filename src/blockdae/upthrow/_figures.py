@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from ..core._figures import BASE, time_grid
+from ..core import BASE, time_grid
 
 
 def flight_figure(solution, *, n_points, title=None):

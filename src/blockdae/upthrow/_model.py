@@ -38,7 +38,7 @@ import numpy as np
 from ..units import STANDARD_GRAVITY
 from ._solution import UpthrowEvent, UpthrowSolution
 from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, LinearModesModel, scale_factor_units
-from ..core._checks import set_real_fields
+from ..core import set_real_fields
 from ._modes import EVENT_KINDS, UpthrowMode
 from ._support import SpringSupport
 

@@ -10,7 +10,7 @@ located state, and a time t_e has dt_e/dp.
 
 import numpy as np
 
-from ..core._registry import Horizon, backend_name, make_backend
+from ..core import Horizon, backend_name, make_backend
 from ..core.derivatives import by_parameter, checked_wrt, jax_context, largest_peak, parameter_names, \
     trajectory_sensitivities
 

@@ -4,9 +4,9 @@ import dataclasses
 
 import numpy as np
 
-from ..core._solution import AbstractEvent, DriverSolution
+from ..core import AbstractEvent, DriverSolution
 from ._modes import UpthrowMode
-from ..core._repr import compact_repr
+from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

@@ -24,7 +24,7 @@ Every rule works on floats, NumPy and JAX arrays (``xp``: the array namespace).
 import dataclasses
 import math
 
-from ..core._checks import set_real_fields
+from ..core import set_real_fields
 
 
 @dataclasses.dataclass(frozen=True)
