@@ -36,9 +36,9 @@ def test_first_fall_matches_the_linear_engines_search():
     stack = np.empty((_linear.STACK_DEPTH, _roots.STACK_COLUMNS))
     for _ in range(300):
         f = _random_form(rng)
-        f1 = _linear._derivative(f)
-        f2 = _linear._derivative(f1)
-        f3 = _linear._derivative(f2)
+        f1 = _linear.form_derivative(f)
+        f2 = _linear.form_derivative(f1)
+        f3 = _linear.form_derivative(f2)
         expected = _linear._down_crossing_search(f, f1, f2, f3, 0.0, span, origin, stack_linear)
         trig = math.exp(-f[6] * span), math.cos(f[7] * span), math.sin(f[7] * span)
         root = _roots.first_fall(f, f1, f2, f3, span, origin, stack, *trig)
@@ -47,7 +47,7 @@ def test_first_fall_matches_the_linear_engines_search():
         else:
             found += 1
             assert abs(root - expected) <= 2 * _EPS * origin
-            assert _linear._eval(f, root) <= 0
+            assert _linear.evaluate_form(f, root) <= 0
     assert found >= 30  # the draw has crossings to compare
 
 
@@ -57,11 +57,11 @@ def test_sign_change_brackets_the_root_to_an_ulp_of_the_time(slopes):
     one ulp of the time (origin 10 s) before it, and r is within that of ln 2; from the
     Hermite start (the ends' slopes known) and from an end (slopes nan)."""
     f = (-1.0, 0.0, 0.0, 0.0, 2.0, 0.0, 1.0, 0.0)
-    f1 = _linear._derivative(f)
+    f1 = _linear.form_derivative(f)
     origin = 10.0
-    d_lo, d_hi = (_linear._eval(f1, 0.0), _linear._eval(f1, 1.0)) if slopes == "known" else (math.nan, math.nan)
-    r = _roots.sign_change(f, f1, 0.0, _linear._eval(f, 0.0), d_lo, 1.0, _linear._eval(f, 1.0), d_hi, origin)
-    assert _linear._eval(f, r) <= 0 < _linear._eval(f, r - _EPS * origin)
+    d_lo, d_hi = (_linear.evaluate_form(f1, 0.0), _linear.evaluate_form(f1, 1.0)) if slopes == "known" else (math.nan, math.nan)
+    r = _roots.sign_change(f, f1, 0.0, _linear.evaluate_form(f, 0.0), d_lo, 1.0, _linear.evaluate_form(f, 1.0), d_hi, origin)
+    assert _linear.evaluate_form(f, r) <= 0 < _linear.evaluate_form(f, r - _EPS * origin)
     assert abs(r - math.log(2.0)) <= 2 * _EPS * origin
 
 

@@ -27,7 +27,8 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..solvers._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT,
-                               STACK_DEPTH, UNSETTLED, _bound, _combine, _derivative, _eval, _eval_at, _solve)
+                               STACK_DEPTH, UNSETTLED, combine_forms, evaluate_form, evaluate_form_at, form_bound,
+                               form_derivative, piece_form)
 from ..solvers import MAX_INTERVALS  # noqa: F401 -- read through this module (._exact's messages)
 from ..core import falls, one_sign
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION
@@ -84,16 +85,16 @@ def _forms(mode, coupled, omega, xi, damped, kyg, a, rate, u, v, s, w):
     """(u, s, w, guard) as forms over tau from the state (u, v, s, w) in ``mode`` under
     a(tau) = a + rate tau [m/s²]; ``damped``: the mode's damped frequency [rad/s]."""
     k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
-    f = _solve(k, c, b, damped, forced * a, forced * rate, u, v)
-    f1 = _derivative(f)
+    f = piece_form(k, c, b, damped, forced * a, forced * rate, u, v)
+    f1 = form_derivative(f)
     if mode == STICK:
-        guard = _plus(_combine(MASS_PARTICIPATION * k, f, MASS_PARTICIPATION * c, f1, kyg - SLIP_MASS_FRACTION * a),
+        guard = _plus(combine_forms(MASS_PARTICIPATION * k, f, MASS_PARTICIPATION * c, f1, kyg - SLIP_MASS_FRACTION * a),
                       0.0, -SLIP_MASS_FRACTION * rate, 0.0, 0.0)
         constant = (s, 0.0, 0.0, 0.0, 0.0, 0.0, f[6], f[7])
         return f, constant, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, f[6], f[7]), guard
     pw, ps = _slip_polynomials(a, rate, kyg, u, v, s, w)
-    wf = _plus(_combine(MASS_PARTICIPATION, f1, 0.0, f1, 0.0), pw[0], pw[1], pw[2], pw[3])
-    sf = _plus(_combine(MASS_PARTICIPATION, f, 0.0, f, 0.0), ps[0], ps[1], ps[2], ps[3])
+    wf = _plus(combine_forms(MASS_PARTICIPATION, f1, 0.0, f1, 0.0), pw[0], pw[1], pw[2], pw[3])
+    sf = _plus(combine_forms(MASS_PARTICIPATION, f, 0.0, f, 0.0), ps[0], ps[1], ps[2], ps[3])
     return f, sf, wf, wf
 
 
@@ -118,9 +119,9 @@ def _step_maps(mode, coupled, omega, xi, damped, kyg, step):
     k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
     maps = np.empty(10)
     for j in range(5):  # unit u, u', a, rate; then b alone
-        f = _solve(k, c, b * (j == 4), damped, forced * (j == 2), forced * (j == 3), 1.0 * (j == 0), 1.0 * (j == 1))
+        f = piece_form(k, c, b * (j == 4), damped, forced * (j == 2), forced * (j == 3), 1.0 * (j == 0), 1.0 * (j == 1))
         row = (0, 1, 4, 5, 8)[j]
-        maps[row], maps[row + 2 if j < 4 else row + 1] = _eval(f, step), _eval(_derivative(f), step)
+        maps[row], maps[row + 2 if j < 4 else row + 1] = evaluate_form(f, step), evaluate_form(form_derivative(f), step)
     return maps
 
 
@@ -159,7 +160,7 @@ def _whole_step(m, row, u, v, a0, rate):
     k, c, b, forced, inverse_k, inverse_damped, _ = row
     u_end = m[4] * a0 + m[5] * rate + m[8] + m[0] * u + m[1] * v  # the state's terms last: a shorter chain
     v_end = m[6] * a0 + m[7] * rate + m[9] + m[2] * u + m[3] * v  # from one step to the next
-    particular = -forced * rate * inverse_k  # _solve's a1
+    particular = -forced * rate * inverse_k  # piece_form's a1
     free = u - (b - forced * a0 - c * particular) * inverse_k
     rotated = (v - particular + 0.5 * c * free) * inverse_damped
     return u_end, v_end, math.sqrt(free * free + rotated * rotated), particular
@@ -255,15 +256,15 @@ def _piece(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg,
             cached[3], cached[4], cached[5] = math.exp(-f[6] * span), math.cos(f[7] * span), math.sin(
                 f[7] * span)
         event_tau = math.nan
-        g1 = _derivative(guard)
-        g2 = _derivative(g1)
+        g1 = form_derivative(guard)
+        g2 = form_derivative(g1)
         at_start = guard[0] + guard[4]
         if at_start <= 0 and (falls(g1[0] + g1[4], g2[0] + g2[4], EVENT_RESOLUTION) or (  # values at 0
                 at_start < 0 and mode == STICK and u == 0.0 and v == 0.0)):
             event_tau = 0.0  # left at once (at rest: an excess at t = 0 slides at once)
-        elif one_sign(at_start, _eval_at(guard, span, cached[3], cached[4], cached[5]),
-                     _bound(g1, 0.0, span), span) <= 0 and _moves(guard):
-            root = first_fall(guard, g1, g2, _derivative(g2), span, t_start + tau, stack, cached[3], cached[4],
+        elif one_sign(at_start, evaluate_form_at(guard, span, cached[3], cached[4], cached[5]),
+                     form_bound(g1, 0.0, span), span) <= 0 and _moves(guard):
+            root = first_fall(guard, g1, g2, form_derivative(g2), span, t_start + tau, stack, cached[3], cached[4],
                               cached[5])
             if root == -math.inf:
                 status = UNSETTLED
@@ -271,14 +272,14 @@ def _piece(t_start, length, a0, rate, step, maps, table, omega, xi, damped, kyg,
             if root < span:  # a root at the end of the piece: the next piece decides
                 event_tau = root
         if math.isnan(event_tau):
-            u, v = _eval_at(f, span, cached[3], cached[4], cached[5]), _eval_at(
-                _derivative(f), span, cached[3], cached[4], cached[5])
-            s = _eval_at(sf, span, cached[3], cached[4], cached[5])
-            w = _eval_at(wf, span, cached[3], cached[4], cached[5])
+            u, v = evaluate_form_at(f, span, cached[3], cached[4], cached[5]), evaluate_form_at(
+                form_derivative(f), span, cached[3], cached[4], cached[5])
+            s = evaluate_form_at(sf, span, cached[3], cached[4], cached[5])
+            w = evaluate_form_at(wf, span, cached[3], cached[4], cached[5])
             break
         decay, cos, sin = math.exp(-f[6] * event_tau), math.cos(f[7] * event_tau), math.sin(f[7] * event_tau)
-        u, v = _eval_at(f, event_tau, decay, cos, sin), _eval_at(_derivative(f), event_tau, decay, cos, sin)
-        s = _eval_at(sf, event_tau, decay, cos, sin)  # sf: u's exponent and frequency
+        u, v = evaluate_form_at(f, event_tau, decay, cos, sin), evaluate_form_at(form_derivative(f), event_tau, decay, cos, sin)
+        s = evaluate_form_at(sf, event_tau, decay, cos, sin)  # sf: u's exponent and frequency
         w = 0.0  # exactly, at an onset and at a stop
         before = mode
         mode = SLIP if before == STICK else STICK
@@ -350,8 +351,8 @@ def _dense(knot_t, knots, knot_mode, t0, p0, p1, scale, omega, xi, kyg, coupled,
         f, sf, wf, _ = _forms(mode, coupled, omega, xi, damped[mode], kyg, a, rate, knots[i, 0], knots[i, 1],
                               knots[i, 2], knots[i, 3])
         tau = t[q] - knot_t[i]
-        out[q, 0], out[q, 1] = _eval(f, tau), _eval(_derivative(f), tau)
-        out[q, 2], out[q, 3] = _eval(sf, tau), _eval(wf, tau)
+        out[q, 0], out[q, 1] = evaluate_form(f, tau), evaluate_form(form_derivative(f), tau)
+        out[q, 2], out[q, 3] = evaluate_form(sf, tau), evaluate_form(wf, tau)
     return out
 
 

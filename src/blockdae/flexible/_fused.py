@@ -22,7 +22,7 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic, register_jitable
 
-from ..solvers._linear import FINISHED, STACK_DEPTH, UNSETTLED, _combine, _derivative, _eval
+from ..solvers._linear import FINISHED, STACK_DEPTH, UNSETTLED, combine_forms, form_derivative, evaluate_form
 from ._column import MASS_PARTICIPATION, SLIP_MASS_FRACTION
 from ._engine import (OUTCOME_FIELDS, SLIP, STICK, _WIDEN, _cubic, _damped, _forms, _hea_curvature, _hea_rate, _piece,
                       _quick_step, _slip_clear, _slip_polynomials, _step_tables, _stick_clear)
@@ -83,7 +83,7 @@ def _response(t0, h, p0, p1, omega, xi, damped, maps, table, step, u, v, hea, am
             v_end = v[i + 1] + m[2] * u_start + m[3] * v_end
         else:
             f, _, _, _ = _forms(STICK, False, omega, xi, damped, 0.0, p0[i], p1[i], u_end, v_end, 0.0, 0.0)
-            u_end, v_end = _eval(f, h[i]), _eval(_derivative(f), h[i])
+            u_end, v_end = evaluate_form(f, h[i]), evaluate_form(form_derivative(f), h[i])
         u[i + 1], v[i + 1] = u_end, v_end
         i += 1
     hea[0] = SLIP_MASS_FRACTION * p0[0] - MASS_PARTICIPATION * (c * v[0] + k * u[0])
@@ -186,14 +186,14 @@ def _sups(t0, h, p0, p1, omega, xi, damped, row, step, u, v, amplitude, reach, h
         if bound > hea_sup or (want_u and u_reach > u_sup):
             f, _, _, guard = _forms(STICK, False, omega, xi, damped, 0.0, p0[i], p1[i], u[i], v[i], 0.0, 0.0)
             if bound > hea_sup:  # the guard is ky g - HEA with ky g = 0
-                g = _combine(-1.0, guard, 0.0, guard, 0.0)
-                g1 = _derivative(g)
-                g2 = _derivative(g1)
-                hea_sup = peak(g, g1, g2, _derivative(g2), h[i], hea_sup, t0[i], stack)
+                g = combine_forms(-1.0, guard, 0.0, guard, 0.0)
+                g1 = form_derivative(g)
+                g2 = form_derivative(g1)
+                hea_sup = peak(g, g1, g2, form_derivative(g2), h[i], hea_sup, t0[i], stack)
             if want_u and u_reach > u_sup:
-                f1 = _derivative(f)
-                f2 = _derivative(f1)
-                u_sup = peak(f, f1, f2, _derivative(f2), h[i], u_sup, t0[i], stack)
+                f1 = form_derivative(f)
+                f2 = form_derivative(f1)
+                u_sup = peak(f, f1, f2, form_derivative(f2), h[i], u_sup, t0[i], stack)
             if hea_sup == -math.inf or u_sup == -math.inf:
                 break
     return hea_sup, u_samples, u_sup

@@ -18,7 +18,7 @@ import math
 import numpy as np
 from numba.extending import register_jitable
 
-from ..solvers._linear import MAX_INTERVALS, _eval, _eval_at, _rounding
+from ..solvers._linear import MAX_INTERVALS, evaluate_form, evaluate_form_at, form_rounding
 from ..core import one_sign
 
 _EPS = float(np.finfo(float).eps)
@@ -41,9 +41,9 @@ def _amplitude(f):
 
 
 @register_jitable
-def _bound(f, amplitude, hi, decay_lo):
+def form_bound(f, amplitude, hi, decay_lo):
     """An upper bound of |f| on [lo, hi], 0 <= lo <= hi, term by term (as the linear
-    engine's ``_bound``), from sqrt(C² + D²) and e^{-sigma lo} given."""
+    engine's ``form_bound``), from sqrt(C² + D²) and e^{-sigma lo} given."""
     poly = abs(f[0]) + abs(f[1]) * hi + abs(f[2]) * hi * hi + abs(f[3]) * hi * hi * hi
     return (poly + amplitude * decay_lo) * (1 + 8 * _EPS)
 
@@ -76,7 +76,7 @@ def _narrowed(f, f1, x, lo, hi, positive):
     """(f(x), f'(x), the bracket [lo, hi] narrowed by x): x replaces the end on its side
     (f > 0 or not, ``positive``: f(lo)'s)."""
     decay, cos, sin = _trig(f, x)
-    fx, dx = _eval_at(f, x, decay, cos, sin), _eval_at(f1, x, decay, cos, sin)
+    fx, dx = evaluate_form_at(f, x, decay, cos, sin), evaluate_form_at(f1, x, decay, cos, sin)
     if (fx > 0) == positive:
         return fx, dx, x, hi
     return fx, dx, lo, x
@@ -112,7 +112,7 @@ def sign_change(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, origin):
     if hi - lo > 2 * gap:  # close the other side by a probe a few ulps across
         probe = x - gap if x == hi else x + gap
         if lo < probe < hi:
-            if (_eval(f, probe) > 0) == positive:
+            if (evaluate_form(f, probe) > 0) == positive:
                 lo = probe
             else:
                 hi = probe
@@ -120,7 +120,7 @@ def sign_change(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, origin):
         mid = lo + 0.5 * (hi - lo)
         if mid <= lo or mid >= hi:
             break
-        if (_eval(f, mid) > 0) == positive:
+        if (evaluate_form(f, mid) > 0) == positive:
             lo = mid
         else:
             hi = mid
@@ -131,7 +131,7 @@ def sign_change(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, origin):
 def _falling_part(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, decreasing, origin):
     """The crossing on [lo, hi] where f is monotone (nan: none), as the linear engine's
     ``_monotone_part``: f must fall below zero by more than its rounding."""
-    if not decreasing or not (f_lo > 0 > f_hi) or f_hi >= -_rounding(f, hi):
+    if not decreasing or not (f_lo > 0 > f_hi) or f_hi >= -form_rounding(f, hi):
         return math.nan
     return sign_change(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, origin)
 
@@ -146,8 +146,8 @@ def first_fall(f, f1, f2, f3, span, origin, stack, decay, cos, sin):
     sin(w span) of f (the caller has them)."""
     resolution = 4 * _EPS * max(abs(origin) + abs(span), 1.0)
     amplitudes = (_amplitude(f1), _amplitude(f2), _amplitude(f3))
-    _put(stack, 0, 0.0, f[0] + f[4], f1[0] + f1[4], f2[0] + f2[4], 1.0, span, _eval_at(f, span, decay, cos, sin),
-         _eval_at(f1, span, decay, cos, sin), _eval_at(f2, span, decay, cos, sin), decay)
+    _put(stack, 0, 0.0, f[0] + f[4], f1[0] + f1[4], f2[0] + f2[4], 1.0, span, evaluate_form_at(f, span, decay, cos, sin),
+         evaluate_form_at(f1, span, decay, cos, sin), evaluate_form_at(f2, span, decay, cos, sin), decay)
     top = 0
     budget = MAX_INTERVALS
     while top >= 0:
@@ -158,15 +158,15 @@ def first_fall(f, f1, f2, f3, span, origin, stack, decay, cos, sin):
         if budget < 0:
             return -math.inf
         length = hi - lo
-        if one_sign(f_lo, f_hi, _bound(f1, amplitudes[0], hi, e_lo), length) != 0:
+        if one_sign(f_lo, f_hi, form_bound(f1, amplitudes[0], hi, e_lo), length) != 0:
             continue
-        slope_sign = one_sign(d_lo, d_hi, _bound(f2, amplitudes[1], hi, e_lo), length)
+        slope_sign = one_sign(d_lo, d_hi, form_bound(f2, amplitudes[1], hi, e_lo), length)
         if slope_sign != 0:
             root = _falling_part(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, slope_sign < 0, origin)
             if not math.isnan(root):
                 return root
             continue
-        if one_sign(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
+        if one_sign(c_lo, c_hi, form_bound(f3, amplitudes[2], hi, e_lo), length) != 0:
             if d_lo * d_hi >= 0:
                 root = _falling_part(f, f1, lo, f_lo, d_lo, hi, f_hi, d_hi, d_lo + d_hi < 0, origin)
                 if not math.isnan(root):
@@ -174,7 +174,7 @@ def first_fall(f, f1, f2, f3, span, origin, stack, decay, cos, sin):
                 continue
             turn = sign_change(f1, f2, lo, d_lo, c_lo, hi, d_hi, c_hi, origin)
             decay, cos, sin = _trig(f, turn)
-            f_turn, d_turn = _eval_at(f, turn, decay, cos, sin), _eval_at(f1, turn, decay, cos, sin)
+            f_turn, d_turn = evaluate_form_at(f, turn, decay, cos, sin), evaluate_form_at(f1, turn, decay, cos, sin)
             root = _falling_part(f, f1, lo, f_lo, d_lo, turn, f_turn, d_turn, d_lo < 0, origin)
             if math.isnan(root):
                 root = _falling_part(f, f1, turn, f_turn, d_turn, hi, f_hi, d_hi, d_hi < 0, origin)
@@ -182,15 +182,15 @@ def first_fall(f, f1, f2, f3, span, origin, stack, decay, cos, sin):
                 return root
             continue
         if length <= resolution:
-            if f_lo > 0 > f_hi and f_hi < -_rounding(f, hi):
+            if f_lo > 0 > f_hi and f_hi < -form_rounding(f, hi):
                 return hi
             continue
         if top + 2 >= stack.shape[0]:
             return -math.inf
         mid = lo + 0.5 * length
         decay, cos, sin = _trig(f, mid)
-        f_mid, d_mid, c_mid = (_eval_at(f, mid, decay, cos, sin), _eval_at(f1, mid, decay, cos, sin),
-                               _eval_at(f2, mid, decay, cos, sin))
+        f_mid, d_mid, c_mid = (evaluate_form_at(f, mid, decay, cos, sin), evaluate_form_at(f1, mid, decay, cos, sin),
+                               evaluate_form_at(f2, mid, decay, cos, sin))
         top += 1
         _put(stack, top, mid, f_mid, d_mid, c_mid, decay, hi, f_hi, d_hi, c_hi, e_hi)
         top += 1
@@ -206,8 +206,8 @@ def peak(f, f1, f2, f3, span, best, origin, stack):
     resolution = 4 * _EPS * max(abs(origin) + abs(span), 1.0)
     amplitudes = (_amplitude(f1), _amplitude(f2), _amplitude(f3))
     decay, cos, sin = _trig(f, span)
-    _put(stack, 0, 0.0, f[0] + f[4], f1[0] + f1[4], f2[0] + f2[4], 1.0, span, _eval_at(f, span, decay, cos, sin),
-         _eval_at(f1, span, decay, cos, sin), _eval_at(f2, span, decay, cos, sin), decay)
+    _put(stack, 0, 0.0, f[0] + f[4], f1[0] + f1[4], f2[0] + f2[4], 1.0, span, evaluate_form_at(f, span, decay, cos, sin),
+         evaluate_form_at(f1, span, decay, cos, sin), evaluate_form_at(f2, span, decay, cos, sin), decay)
     top = 0
     budget = MAX_INTERVALS
     while top >= 0:
@@ -219,21 +219,21 @@ def peak(f, f1, f2, f3, span, best, origin, stack):
             return -math.inf
         best = max(best, abs(f_lo), abs(f_hi))
         length = hi - lo
-        if max(abs(f_lo), abs(f_hi)) + 0.5 * _bound(f1, amplitudes[0], hi, e_lo) * length <= best or \
+        if max(abs(f_lo), abs(f_hi)) + 0.5 * form_bound(f1, amplitudes[0], hi, e_lo) * length <= best or \
                 length <= resolution:
             continue  # cannot exceed the best
-        if one_sign(d_lo, d_hi, _bound(f2, amplitudes[1], hi, e_lo), length) != 0:
+        if one_sign(d_lo, d_hi, form_bound(f2, amplitudes[1], hi, e_lo), length) != 0:
             continue  # monotone: its ends
-        if one_sign(c_lo, c_hi, _bound(f3, amplitudes[2], hi, e_lo), length) != 0:
+        if one_sign(c_lo, c_hi, form_bound(f3, amplitudes[2], hi, e_lo), length) != 0:
             if d_lo * d_hi < 0:  # one extremum inside
-                best = max(best, abs(_eval(f, sign_change(f1, f2, lo, d_lo, c_lo, hi, d_hi, c_hi, origin))))
+                best = max(best, abs(evaluate_form(f, sign_change(f1, f2, lo, d_lo, c_lo, hi, d_hi, c_hi, origin))))
             continue
         if top + 2 >= stack.shape[0]:
             return -math.inf
         mid = lo + 0.5 * length
         decay, cos, sin = _trig(f, mid)
-        f_mid, d_mid, c_mid = (_eval_at(f, mid, decay, cos, sin), _eval_at(f1, mid, decay, cos, sin),
-                               _eval_at(f2, mid, decay, cos, sin))
+        f_mid, d_mid, c_mid = (evaluate_form_at(f, mid, decay, cos, sin), evaluate_form_at(f1, mid, decay, cos, sin),
+                               evaluate_form_at(f2, mid, decay, cos, sin))
         top += 1
         _put(stack, top, mid, f_mid, d_mid, c_mid, decay, hi, f_hi, d_hi, c_hi, e_hi)
         top += 1

@@ -49,7 +49,7 @@ KNOT_FIELDS = ("t", "u", "u_rate", "mode", "mode_before", "is_event")
 
 # ---- closed forms: u(tau) = q0 + q1 tau + q2 tau² + q3 tau³ + e^{-s tau} (C cos w tau + D sin w tau)
 @register_jitable
-def _solve(k, c, b, w, p0, p1, u, v):
+def piece_form(k, c, b, w, p0, p1, u, v):
     """The form of u'' + c u' + k u = b - (p0 + p1 tau) from (u, u') at tau = 0; ``w``:
     the damped frequency sqrt(k - c²/4) [rad/s]."""
     if k > 0:
@@ -63,20 +63,20 @@ def _solve(k, c, b, w, p0, p1, u, v):
 
 
 @register_jitable
-def _derivative(f):
+def form_derivative(f):
     q0, q1, q2, q3, C, D, s, w = f
     return (q1, 2.0 * q2, 3.0 * q3, 0.0, -s * C + w * D, -s * D - w * C, s, w)
 
 
 @register_jitable
-def _combine(alpha, f, beta, g, gamma):
+def combine_forms(alpha, f, beta, g, gamma):
     """alpha f + beta g + gamma (f, g with the same exponent and frequency)."""
     return (alpha * f[0] + beta * g[0] + gamma, alpha * f[1] + beta * g[1], alpha * f[2] + beta * g[2],
             alpha * f[3] + beta * g[3], alpha * f[4] + beta * g[4], alpha * f[5] + beta * g[5], f[6], f[7])
 
 
 @register_jitable
-def _eval(f, tau):
+def evaluate_form(f, tau):
     value = ((f[3] * tau + f[2]) * tau + f[1]) * tau + f[0]
     if f[4] != 0.0 or f[5] != 0.0:
         value += math.exp(-f[6] * tau) * (f[4] * math.cos(f[7] * tau) + f[5] * math.sin(f[7] * tau))
@@ -84,13 +84,13 @@ def _eval(f, tau):
 
 
 @register_jitable
-def _eval_at(f, tau, decay, cos, sin):
+def evaluate_form_at(f, tau, decay, cos, sin):
     """f(tau) with exp(-sigma tau), cos and sin(w tau) given."""
     return ((f[3] * tau + f[2]) * tau + f[1]) * tau + f[0] + decay * (f[4] * cos + f[5] * sin)
 
 
 @register_jitable
-def _bound(f, a, b):
+def form_bound(f, a, b):
     """An upper bound of |f| on [a, b], 0 <= a <= b, term by term."""
     poly = abs(f[0]) + abs(f[1]) * b + abs(f[2]) * b * b + abs(f[3]) * b * b * b
     decay = 1.0 if a == 0 else math.exp(-f[6] * a)
@@ -98,7 +98,7 @@ def _bound(f, a, b):
 
 
 @register_jitable
-def _rounding(f, tau):
+def form_rounding(f, tau):
     """The rounding error of f(tau): a few ulps of the sum of its terms' sizes."""
     poly = abs(f[0]) + abs(f[1] * tau) + abs(f[2] * tau * tau) + abs(f[3] * tau * tau * tau)
     return 8 * _EPS * (poly + math.exp(-f[6] * tau) * (abs(f[4]) + abs(f[5])))
@@ -110,9 +110,9 @@ def _monotone_part(f, lo, f_lo, hi, f_hi, decreasing):
     more than its rounding: a dip within rounding (a touch at a minimum, computed an ulp
     low) is no crossing; one that goes on falls past hi, where the next window or piece
     finds it at once."""
-    if not decreasing or not (f_lo > 0 > f_hi) or f_hi >= -_rounding(f, hi):
+    if not decreasing or not (f_lo > 0 > f_hi) or f_hi >= -form_rounding(f, hi):
         return math.nan
-    return first_nonpositive(_eval, f, lo, hi)
+    return first_nonpositive(evaluate_form, f, lo, hi)
 
 
 @register_jitable
@@ -120,7 +120,7 @@ def _first_down_crossing(f, f1, f2, f3, a, b, origin, stack):
     """The first tau in [a, b] [s] where f falls to <= 0 (nan: none; -inf: the search did
     not settle). ``stack``: scratch (STACK_DEPTH, 4)."""
     resolution = 4 * _EPS * max(abs(origin) + abs(b), 1.0)
-    if _eval(f, a) <= 0 and falls(_eval(f1, a), _eval(f2, a), resolution):
+    if evaluate_form(f, a) <= 0 and falls(evaluate_form(f1, a), evaluate_form(f2, a), resolution):
         return a
     return _down_crossing_search(f, f1, f2, f3, a, b, origin, stack)
 
@@ -131,7 +131,7 @@ def _down_crossing_search(f, f1, f2, f3, a, b, origin, stack):
     decided with its own resolution whether a guard at zero there is left at once."""
     resolution = 4 * _EPS * max(abs(origin) + abs(b), 1.0)
     top = 0
-    stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3] = a, _eval(f, a), b, _eval(f, b)
+    stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3] = a, evaluate_form(f, a), b, evaluate_form(f, b)
     budget = MAX_INTERVALS
     while top >= 0:
         lo, f_lo, hi, f_hi = stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3]
@@ -140,23 +140,23 @@ def _down_crossing_search(f, f1, f2, f3, a, b, origin, stack):
         if budget < 0:
             return -math.inf
         length = hi - lo
-        if one_sign(f_lo, f_hi, _bound(f1, lo, hi), length) != 0:
+        if one_sign(f_lo, f_hi, form_bound(f1, lo, hi), length) != 0:
             continue
-        d_lo, d_hi = _eval(f1, lo), _eval(f1, hi)
-        slope_sign = one_sign(d_lo, d_hi, _bound(f2, lo, hi), length)
+        d_lo, d_hi = evaluate_form(f1, lo), evaluate_form(f1, hi)
+        slope_sign = one_sign(d_lo, d_hi, form_bound(f2, lo, hi), length)
         if slope_sign != 0:
             root = _monotone_part(f, lo, f_lo, hi, f_hi, slope_sign < 0)
             if not math.isnan(root):
                 return root
             continue
-        if one_sign(_eval(f2, lo), _eval(f2, hi), _bound(f3, lo, hi), length) != 0:
+        if one_sign(evaluate_form(f2, lo), evaluate_form(f2, hi), form_bound(f3, lo, hi), length) != 0:
             if d_lo * d_hi >= 0:
                 root = _monotone_part(f, lo, f_lo, hi, f_hi, d_lo + d_hi < 0)
                 if not math.isnan(root):
                     return root
                 continue
-            turn = sign_change(_eval, f1, lo, hi)
-            f_turn = _eval(f, turn)
+            turn = sign_change(evaluate_form, f1, lo, hi)
+            f_turn = evaluate_form(f, turn)
             root = _monotone_part(f, lo, f_lo, turn, f_turn, d_lo < 0)
             if math.isnan(root):
                 root = _monotone_part(f, turn, f_turn, hi, f_hi, d_hi < 0)
@@ -164,11 +164,11 @@ def _down_crossing_search(f, f1, f2, f3, a, b, origin, stack):
                 return root
             continue
         if length <= resolution:
-            if f_lo > 0 > f_hi and f_hi < -_rounding(f, hi):
+            if f_lo > 0 > f_hi and f_hi < -form_rounding(f, hi):
                 return hi
             continue
         mid = lo + 0.5 * length
-        f_mid = _eval(f, mid)
+        f_mid = evaluate_form(f, mid)
         if top + 2 >= stack.shape[0]:
             return -math.inf
         top += 1
@@ -223,26 +223,26 @@ def _run(t0, h, p0, p1, scale, k, c, b, guards, next_mode, resets, initial_mode,
                 event_tau = tau
                 u_new, v_new = u, v
             else:
-                f = _solve(k[mode], c[mode], b[mode], damped[mode], a, q1, u, v)
-                f1 = _derivative(f)
+                f = piece_form(k[mode], c[mode], b[mode], damped[mode], a, q1, u, v)
+                f1 = form_derivative(f)
                 span = length - tau
                 if f[6] != cached[0] or f[7] != cached[1] or span != cached[2]:  # a record: one step
                     cached[0], cached[1], cached[2] = f[6], f[7], span
                     cached[3], cached[4], cached[5] = math.exp(-f[6] * span), math.cos(f[7] * span), math.sin(
                         f[7] * span)
-                u_end = _eval_at(f, span, cached[3], cached[4], cached[5])
-                v_end = _eval_at(f1, span, cached[3], cached[4], cached[5])
+                u_end = evaluate_form_at(f, span, cached[3], cached[4], cached[5])
+                v_end = evaluate_form_at(f1, span, cached[3], cached[4], cached[5])
                 for j in range(guards.shape[1]):
                     alpha, beta, gamma = guards[mode, j, 0], guards[mode, j, 1], guards[mode, j, 2]
                     if alpha == 0 and beta == 0:
                         continue
-                    g = _combine(alpha, f, beta, f1, gamma)
-                    if one_sign(g[0] + g[4], _eval_at(g, span, cached[3], cached[4], cached[5]),
-                               _bound(_derivative(g), 0.0, span), span) > 0:
+                    g = combine_forms(alpha, f, beta, f1, gamma)
+                    if one_sign(g[0] + g[4], evaluate_form_at(g, span, cached[3], cached[4], cached[5]),
+                               form_bound(form_derivative(g), 0.0, span), span) > 0:
                         continue  # positive all along the piece: no crossing (the search's first test)
-                    g1 = _derivative(g)
-                    g2 = _derivative(g1)
-                    root = _first_down_crossing(g, g1, g2, _derivative(g2), 0.0,
+                    g1 = form_derivative(g)
+                    g2 = form_derivative(g1)
+                    root = _first_down_crossing(g, g1, g2, form_derivative(g2), 0.0,
                                                 length - tau if math.isnan(event_tau) else event_tau - tau,
                                                 t0[i] + tau, stack)
                     if root == -math.inf:
@@ -255,7 +255,7 @@ def _run(t0, h, p0, p1, scale, k, c, b, guards, next_mode, resets, initial_mode,
                 if math.isnan(event_tau) or event_tau >= length:  # the end of the piece: the next decides
                     u, v = u_end, v_end
                     break
-                u_new, v_new = _eval(f, event_tau - tau), _eval(f1, event_tau - tau)
+                u_new, v_new = evaluate_form(f, event_tau - tau), evaluate_form(f1, event_tau - tau)
             t_event = t0[i] + event_tau
             before = mode
             u = resets[before, index, 0, 0] * u_new + resets[before, index, 0, 1] * v_new + resets[before, index, 0, 2]
