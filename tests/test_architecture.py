@@ -1,7 +1,9 @@
-"""The shape of the package (issue 20): no import cycle, and the core (the contract, the
-driver, simulate, crosscheck, sensitivities, the backend registry, the integrators)
-names no concrete model; a model declares what it needs (its default backend, engines,
-DAE form, derivatives)."""
+"""The shape of the package: its layers (pyproject.toml's import-linter contract: each
+layer imports only those below it, imports inside functions included), no import cycle
+between modules, no package reaching into another's private modules or names, and the
+core and the solvers (the contract, the driver, simulate, crosscheck, sensitivities, the
+backend registry, the integrators and generic backends) name no concrete model; a model
+declares what it needs (its default backend, engines, DAE form, derivatives)."""
 
 import ast
 import pathlib
@@ -9,7 +11,7 @@ import pathlib
 import blockdae as bd
 
 PACKAGE = pathlib.Path(bd.__file__).resolve().parent
-CORE = ["core", "backends", "integrators"]
+CORE = ["core", "solvers", "backends.py"]
 MODELS = ("SlidingBlock", "PlanarBlock", "SpringSupportedMass", "FlexibleSlidingMass")
 
 
@@ -112,3 +114,35 @@ def test_one_event_shape_and_one_solution_base():
         assert issubclass(solution, bd.AbstractSolution)
     sol = bd.simulate(bd.SpringSupportedMass(frequency=5.0, damping=0.05), bd.Harmonic(-0.8 * 9.81, 0.2), t_end=0.5)
     assert sol.events[0].kind == "liftoff" and sol.t_events[0] == sol.events[0].t
+
+
+def test_the_layers_hold():
+    """The import-linter contracts of pyproject.toml (imports inside functions count): each
+    layer imports only the layers below it; the library never imports the command line."""
+    from importlinter.cli import lint_imports
+
+    root = PACKAGE.parent.parent
+    assert lint_imports(config_filename=str(root / "pyproject.toml"), no_cache=True, no_logo=True) == 0
+
+
+def private_imports():
+    """Imports of another package's private module or name, as 'module:line: statement'."""
+    found = []
+    for path in PACKAGE.rglob("*.py"):
+        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+        mine = parts[1] if len(parts) > 2 else None
+        for node in ast.walk(ast.parse(path.read_text())):
+            if not (isinstance(node, ast.ImportFrom) and node.level):
+                continue
+            base = list(parts[:-1])[: len(parts) - node.level] + (node.module.split(".") if node.module else [])
+            if len(base) < 2 or base[1] == mine:
+                continue
+            names = [a.name for a in node.names]
+            if any(part.startswith("_") for part in base[2:]) or any(n.startswith("_") for n in names):
+                found.append(f"{'.'.join(parts)}:{node.lineno}: {ast.unparse(node)}")
+    return found
+
+
+def test_no_package_imports_another_packages_private_names():
+    """A package reaches another only through what that package's __init__ exports."""
+    assert private_imports() == []

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae.excitation._pieces import accel, evaluate
+from blockdae.excitation.pieces import accel, evaluate
 
 RNG = np.random.default_rng(6)
 LONG = bd.Record(RNG.normal(0.0, 2.0, 301), 0.01, "long")  # 3 s

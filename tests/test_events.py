@@ -1,4 +1,4 @@
-"""The driver's event rules (blockdae.core._events), shared by the Python driver and the
+"""The driver's event rules (blockdae.core.events), shared by the Python driver and the
 compiled engines: each against a closed form, in Python and compiled by numba alike."""
 
 import math

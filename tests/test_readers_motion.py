@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae.excitation._pieces import evaluate
+from blockdae.excitation.pieces import evaluate
 from blockdae.excitation import STANDARD_GRAVITY
 
 G = STANDARD_GRAVITY

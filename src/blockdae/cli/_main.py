@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 
-from ..core import _registry as backends
+from .. import backends
 from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, folder_files,
                       in_units_out, ky_table, ky_table_row, positive, read, record_arguments, record_fields,
                       recursive_argument,

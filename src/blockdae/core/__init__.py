@@ -18,14 +18,14 @@ from ._backend import AbstractBackend, cached_per_excitation, check_window
 from ._checks import set_real_fields
 from ._compile_notice import CompileNotice, notice_numba
 from ._crosscheck import CrossCheck, crosscheck
-from ._driver import AbstractIntegrator, HermiteDense, InconsistentStateError, SCALAR, SolverError, drive
+from ._driver import AbstractIntegrator, HermiteDense, drive
 from ._engines import LazyEngine
-from ._events import falls, first_nonpositive, one_sign, sign_change, too_short
+from .events import falls, first_nonpositive, one_sign, sign_change, too_short
 from ._figures import BASE, BLOCK, EVENTS, curve, time_grid
 from ._jax_config import jax_context, set_compilation_cache
 from ._progress import progress_bar
-from ._registry import AbstractBackend, BUILT_IN, Horizon, available, backend_class, backend_name, make_backend, register_backend
+from ._registry import BUILT_IN, Horizon, available, backend_class, backend_name, make_backend, register_backend
 from ._repr import compact_repr
 from ._sensitivities import sensitivities
 from ._simulate import simulate
-from ._solution import AbstractEvent, AbstractSolution, BatchSolution, DriverSolution
+from ._solution import BatchSolution

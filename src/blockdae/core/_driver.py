@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 from ..excitation import accel, accel_rate, monotone_rate, piece_direction
-from ._events import (ROUNDING, left_at_once, static_root, stop_uncertainty, too_short, turning_point,
+from .events import (ROUNDING, left_at_once, static_root, stop_uncertainty, too_short, turning_point,
                                velocity_error)
 from .contract import KNOTS_PER_RADIAN, SCALAR
 
@@ -309,7 +309,7 @@ class _Run:
     def guard_left_at_once(self):
         """The first guard of the current mode that is at or below zero and falling as a
         flow starts (a slide entered at a sample where its velocity turns against it at
-        once; see :func:`~blockdae.core._events.falls`): it is reached now. An
+        once; see :func:`~blockdae.core.events.falls`): it is reached now. An
         integrator would not see it: its roots are sign changes, and a guard that starts at
         zero has none (SUNDIALS: "root functions identically 0"). None if there is none."""
         values = self.model.guards(self.mode, self.t, self.y, self.piece_excitation, SCALAR)
@@ -362,7 +362,7 @@ class _Run:
             self.log_event(self.t, after)
 
     def velocity_error(self):
-        """The error [m/s] of the integrated velocities (:func:`~blockdae.core._events.velocity_error`)."""
+        """The error [m/s] of the integrated velocities (:func:`~blockdae.core.events.velocity_error`)."""
         return velocity_error(*self.velocity_tolerance, self.v_max)
 
     def check_consistent(self, t_from):
@@ -379,7 +379,7 @@ class _Run:
 
     def stop_uncertainty(self, index):
         """How far [s] the located root of guard ``index`` may lie from the true one, at
-        least the event resolution (:func:`~blockdae.core._events.stop_uncertainty`,
+        least the event resolution (:func:`~blockdae.core.events.stop_uncertainty`,
         with the guard's rate and curvature from the model and the velocity error)."""
         slope, curvature = self.model.guard_rates(self.mode, index, self.t, self.y, self.piece_excitation)
         return stop_uncertainty(slope, curvature, self.velocity_error(), self.resolution)

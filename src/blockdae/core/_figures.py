@@ -49,8 +49,6 @@ def batch_figure(batch, *, title=None):
     """u(t_end) and max |u| [m] of each parameter set against the parameter that varies."""
     import matplotlib.pyplot as plt
 
-    from .contract import DifferentiableModel
-
     grid, block = batch.parameters(), batch.block
     for tied in (block.tied_parameters().values() if block is not None else ()):
         for name in tied:  # moves with another parameter of the grid
@@ -58,8 +56,7 @@ def batch_figure(batch, *, title=None):
     varied = [name for name, values in grid.items() if np.unique(values).size > 1]
     if len(varied) == 1:
         name = varied[0]
-        units = block.parameter_units() if isinstance(block, DifferentiableModel) else {}
-        x, xlabel = grid[name], f"{block.parameter_words.get(name, name)} [{units.get(name, '-')}]"
+        x, xlabel = grid[name], block.parameter_labels.get(name, name)
     else:
         x = np.arange(len(batch))
         xlabel = "parameter set" + (f" ({', '.join(varied)} vary)" if varied else "")

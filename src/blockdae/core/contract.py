@@ -252,9 +252,9 @@ class BatchedModel(AbstractHybridModel):
     def replace(self, **changes) -> "BatchedModel":
         """A copy with some parameters changed (validated again; raises ValueError)."""
 
-    #: parameter name -> words for a figure's axis ("static friction coefficient mu");
-    #: a name not here is shown as it is
-    parameter_words: dict = {}
+    #: parameter name -> a figure's axis label, with its unit ("static friction
+    #: coefficient mu [-]"); a name not here is shown as it is
+    parameter_labels: dict = {}
 
     @abc.abstractmethod
     def batch_parameters(self) -> dict:

@@ -3,7 +3,7 @@
 from ._analytic import Harmonic, RectangularPulse, SinePulse, TriangularPulse
 from ._base import AbstractExcitation
 from ._motion import BaseMotion
-from ._pieces import Pieces
+from .pieces import Pieces
 from ._read_motion import read_motion
 from ._read_record import read_record
 from ._readers import STANDARD_GRAVITY
@@ -21,9 +21,9 @@ __all__ = ["AbstractExcitation", "BaseMotion", "Harmonic", "MAX_PGA_G", "MAX_STE
 # what the other packages of blockdae use
 from ._fema import SETS
 from ._formats import read_channels
-from ._pieces import accel, accel_int1, accel_int2, accel_rate, evaluate, monotone_rate, piece_direction, rebase
+from .pieces import accel, accel_int1, accel_int2, accel_rate, evaluate, monotone_rate, piece_direction, rebase
 from ._readers import RECORD_SUFFIXES, record_files, record_name, unit_factor
-from ._record import Record, check_horizontal
-from ._record_checks import OFFSET_FRACTION, offset_fraction
-from ._record_set import RecordSet, with_metadata
-from ._units import PGA_ROUNDINGS, UnitsWarning, check_pga, check_pga_rounding, pga_factor
+from ._record import check_horizontal
+from ._record_checks import offset_fraction
+from ._record_set import with_metadata
+from ._units import PGA_ROUNDINGS, check_pga, check_pga_rounding

@@ -5,7 +5,7 @@ import dataclasses
 import numpy as np
 
 from ._base import AbstractExcitation, check_finite, check_positive
-from ._pieces import Pieces
+from .pieces import Pieces
 
 
 @dataclasses.dataclass(frozen=True)

@@ -4,7 +4,7 @@ import abc
 
 import numpy as np
 
-from ._pieces import Pieces, evaluate
+from .pieces import Pieces, evaluate
 
 
 class AbstractExcitation(abc.ABC):

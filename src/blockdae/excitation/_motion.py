@@ -6,7 +6,7 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ._base import AbstractExcitation
-from ._pieces import Pieces, rebase
+from .pieces import Pieces, rebase
 from ._record import Record
 
 _NAMES = ("x", "y", "z")

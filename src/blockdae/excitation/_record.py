@@ -8,7 +8,7 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ._base import AbstractExcitation, check_finite, check_positive
-from ._pieces import Pieces
+from .pieces import Pieces
 from ._units import check_peak_acceleration, unit_factor
 
 

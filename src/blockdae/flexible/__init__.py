@@ -24,8 +24,6 @@ __all__ = ["Analysis", "EquivalentLinear", "Episode", "FlexibleEvent", "Flexible
            "displacement_sensitivities", "equivalent_linear", "flexible", "impedance_damping"]
 
 # what the other packages of blockdae use
-from ._analysis import INTEGRATIONS, POLARITIES, as_ky_table, flexible, with_zero_sample
-from ._column import ShearColumn
-from ._ky_table import KyTable
-from ._model import FlexibleSlidingMass, METHODS
+from ._analysis import INTEGRATIONS, POLARITIES, as_ky_table, with_zero_sample
+from ._model import METHODS
 from ._rigid_ky_table import downslope_with_table

@@ -26,9 +26,9 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from ..solvers._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT,
-                               STACK_DEPTH, UNSETTLED, combine_forms, evaluate_form, evaluate_form_at, form_bound,
-                               form_derivative, piece_form)
+from ..solvers import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT, STACK_DEPTH,
+                       UNSETTLED, combine_forms, evaluate_form, evaluate_form_at, form_bound, form_derivative,
+                       piece_form)
 from ..solvers import MAX_INTERVALS  # noqa: F401 -- read through this module (._exact's messages)
 from ..core import falls, one_sign
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION

@@ -22,7 +22,7 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic, register_jitable
 
-from ..solvers._linear import FINISHED, STACK_DEPTH, UNSETTLED, combine_forms, form_derivative, evaluate_form
+from ..solvers import FINISHED, STACK_DEPTH, UNSETTLED, combine_forms, form_derivative, evaluate_form
 from ._column import MASS_PARTICIPATION, SLIP_MASS_FRACTION
 from ._engine import (OUTCOME_FIELDS, SLIP, STICK, _WIDEN, _cubic, _damped, _forms, _hea_curvature, _hea_rate, _piece,
                       _quick_step, _slip_clear, _slip_polynomials, _step_tables, _stick_clear)

@@ -18,7 +18,7 @@ import math
 import numpy as np
 from numba.extending import register_jitable
 
-from ..solvers._linear import MAX_INTERVALS, evaluate_form, evaluate_form_at, form_rounding
+from ..solvers import MAX_INTERVALS, evaluate_form, evaluate_form_at, form_rounding
 from ..core import one_sign
 
 _EPS = float(np.finfo(float).eps)

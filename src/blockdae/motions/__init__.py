@@ -13,7 +13,4 @@ __all__ = ["IntensityMeasures", "MEAN_PERIOD_BAND", "RelativeMotion", "ResponseS
            "plot_relative_motion", "plot_spectrum", "polynomial_trend", "relative_motion", "response_spectrum"]
 
 # what the other packages of blockdae use
-from ._baseline import METHODS, baseline_corrected
-from ._figures import plot_relative_motion, plot_spectrum
-from ._spectra import response_spectrum
-from ._two_point import relative_motion
+from ._baseline import METHODS

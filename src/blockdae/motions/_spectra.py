@@ -124,7 +124,7 @@ def response_spectrum(motion, periods, damping=0.05, *, t_end=None) -> ResponseS
     vg = np.concatenate([c[2] for c in chains])
     best = np.zeros((len(chains), zetas.size, omegas.size, 4))
     when = np.zeros_like(best)
-    from . import _kernels
+    from . import kernels as _kernels
 
     notice_numba("the response kernels", 10, _kernels.spectra)
     _kernels.spectra(*cat, xg, vg, starts, omegas, zetas, best, when)

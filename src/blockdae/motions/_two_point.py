@@ -197,7 +197,7 @@ def _max_lagged_difference(motion, lag, end):
           + w1**2 * np.hypot(rows[:, 6], rows[:, 7]) + w2**2 * np.hypot(rows[:, 8], rows[:, 9]))
     cand = np.flatnonzero(ends + 0.125 * m2 * L**2 > best * (1 + 1e-15))
     if cand.size:
-        from . import _kernels
+        from . import kernels as _kernels
 
         notice_numba("the response kernels", 10, _kernels.max_abs_many)
         params = np.zeros((cand.size, 4))

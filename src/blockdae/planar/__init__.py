@@ -6,6 +6,3 @@ from ._modes import PlanarMode
 from ._solution import PlanarEvent, PlanarSolution
 
 __all__ = ["PlanarBlock", "PlanarDAEForm", "PlanarEvent", "PlanarMode", "PlanarSolution"]
-
-# what the other packages of blockdae use
-from ._model import PlanarBlock

@@ -12,8 +12,8 @@ Per mode:
   cubics under a linear piece); the landing (w = 0 falling) is bracketed on the
   monotone parts of w (w'' = -n is monotone on a piece, so w' has at most one
   extremum) and located by bisection to adjacent floats;
-* slip: DOP853 (:mod:`blockdae.solvers._dop853`), Dormand and Prince's explicit 8th-order pair with its
-  7th-order dense output, where its step is stable; else RODAS (:mod:`blockdae.solvers._rodas4`), a
+* slip: DOP853 (:mod:`blockdae.solvers.dop853`), Dormand and Prince's explicit 8th-order pair with its
+  7th-order dense output, where its step is stable; else RODAS (:mod:`blockdae.solvers.rodas4`), a
   linearly implicit (Rosenbrock) method of order 4 with the flow's exact derivatives
   (:func:`_slip_derivatives`). The flow is stiff only in the direction's relaxation at
   |sigma| / max(s, SLOW_SPEED) [1/s] near a slide's start and end, where DOP853's step
@@ -32,7 +32,7 @@ The model's rules (flows, guards, which mode follows a guard, what a mode starts
 are :mod:`._rules`, which :class:`~blockdae.PlanarBlock` calls too; this module only
 evaluates the forces they take from the piece's coefficients. The driver's event rules
 (the graze rule, bisections, turning points, a static mode's first root, the stop's
-uncertainty from the tolerances) are :mod:`blockdae.core._events`, which the driver
+uncertainty from the tolerances) are :mod:`blockdae.core.events`, which the driver
 calls too; its loop (events at the end of a piece left to the next, chatter, the tail
 to rest) is restated here on floats. The knots (piece ends, events, 1 / (32 w) apart on
 sine pieces) are the driver's, so the dense output is its cubic Hermite one.
@@ -53,11 +53,12 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..core.contract import KNOTS_PER_RADIAN
-from ..excitation import _pieces
+from ..excitation import pieces as _pieces
 from ..excitation import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
-from ..solvers import _dop853, _rodas4
-from ..solvers import _xp_scalar as xp
-from ..core import _events as events
+from ..solvers import dop853 as _dop853
+from ..solvers import rodas4 as _rodas4
+from ..solvers import xp_scalar as xp
+from ..core import events as events
 from . import _rules as rules
 from ._rules import FLIGHT, SLIP, SLOW_SPEED, STICK
 
@@ -197,7 +198,7 @@ def _guard_value(pair, t):
 
 
 def _turning_point(mode, t, y, end, pe, p):
-    """The driver's ``turning_point`` (:func:`blockdae.core._events.turning_point`):
+    """The driver's ``turning_point`` (:func:`blockdae.core.events.turning_point`):
     where the turn rate changes sign in (t, end), else nan; none in flight, where the
     rate is y's w', constant in t."""
     if mode == FLIGHT:
@@ -236,7 +237,7 @@ def _quiet_stick(pe, p, t, end, y):
 
 
 def _static_root(t, y, end, pe, p):
-    """The driver's ``static_root`` in stick (:func:`blockdae.core._events.static_root`):
+    """The driver's ``static_root`` in stick (:func:`blockdae.core.events.static_root`):
     (time, guard) or (nan, -1)."""
     if _quiet_stick(pe, p, t, end, y):
         return math.nan, -1
@@ -694,7 +695,7 @@ def _stop_uncertainty(mode, index, t, y, pe, p, fl, opt):
 
 
 def _guard_left_at_once(mode, t, y, pe, p, resolution):
-    """The driver's ``guard_left_at_once`` (:func:`blockdae.core._events.left_at_once`):
+    """The driver's ``guard_left_at_once`` (:func:`blockdae.core.events.left_at_once`):
     the guard index, or -1."""
     return events.left_at_once(_guards(mode, t, y, pe, p), _rates_at, (mode, t, y, pe, p), resolution)
 

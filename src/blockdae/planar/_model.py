@@ -135,6 +135,9 @@ class PlanarBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         """() for one parameter set, (n,) for a batch of n."""
         return np.broadcast_shapes(*(np.shape(p) for p in (self.mu, self.friction_kinetic, *self.bias)))
 
+    parameter_labels = {"mu": "static friction coefficient mu [-]", "mu_kinetic": "kinetic friction coefficient [-]",
+                        "bias_x": "bias force R_x/Q [-]", "bias_y": "bias force R_y/Q [-]"}
+
     def batch_parameters(self) -> dict:
         """The grid: mu, mu_kinetic (the coefficient in effect), bias_x, bias_y [-], each
         of shape ``batch_shape``."""

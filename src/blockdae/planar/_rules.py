@@ -7,7 +7,7 @@ Each rule takes the forces per unit mass at one instant as numbers: the normal f
 piece's coefficients), and the state y (the model's 7 entries; the engine's 8th, the path
 length, is not read). Rules that JAX traces too (the flows, guards and entry states) use
 only arithmetic, comparisons and ``xp.sqrt/where`` of an array namespace ``xp`` (NumPy,
-``jax.numpy``, the model's ``SCALAR`` or, inside numba, :mod:`blockdae.solvers._xp_scalar`)
+``jax.numpy``, the model's ``SCALAR`` or, inside numba, :mod:`blockdae.solvers.xp_scalar`)
 and branch on the mode alone; the mode rules are scalar (``math``, Python ``if``).
 Modes are the :class:`~blockdae.PlanarMode` values as ints.
 """

@@ -19,6 +19,5 @@ from ._examples import SeedExample, seed_examples
 from ._figures import newmark_history_figure
 from ._final import FinalNumbers, simulate_final
 from ._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
-from ._model import SlidingBlock
 from ._newmark import NewmarkResult, NewmarkSweep, newmark, yield_acceleration
 from ._sweep import SweepSolution, simulate_many

@@ -6,7 +6,7 @@ Written once for both exact engines: the JAX kernel traces them with ``xp = jax.
 ``xp`` = :mod:`._xp_scalar`. Only arithmetic, comparisons, ``& | ~`` on booleans and
 ``xp.where/maximum/minimum/abs/sign/sqrt`` appear. Dense output uses them with NumPy.
 
-Coefficients ``cf = (p0, p1, s, w, phi)`` are those of :mod:`blockdae.excitation._pieces`,
+Coefficients ``cf = (p0, p1, s, w, phi)`` are those of :mod:`blockdae.excitation.pieces`,
 rebased so that local time ``d`` [s] starts at the current point (``s = w = phi = None``
 for linear pieces). In slip the relative velocity is
 

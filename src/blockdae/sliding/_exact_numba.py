@@ -8,7 +8,7 @@ form; the first piece where v returns to zero holds the stop (a quadratic; sine 
 a bracketed bisection) and :func:`~blockdae.sliding._model.stop_mode` decides what follows.
 
 The closed forms and every rule come from :mod:`._closed_form`, :mod:`blockdae.sliding`
-and :mod:`blockdae.excitation._pieces`, compiled here with ``xp`` = :mod:`._xp_scalar`,
+and :mod:`blockdae.excitation.pieces`, compiled here with ``xp`` = :mod:`._xp_scalar`,
 exactly as the JAX kernel traces them; only the loop and :func:`_bisect` are this
 engine's own. The entry points compile on first use and are cached on disk by numba
 (``__pycache__`` beside this file); the cache key includes a hash of the sources of those
@@ -35,12 +35,12 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from ..excitation import _pieces
+from ..excitation import pieces as _pieces
 from ..excitation import accel, accel_int1, accel_int2, rebase
 from . import _model as _block
 from ._model import demand, rest_mode, slip_constant
 from . import _closed_form
-from ..solvers import _xp_scalar as xp
+from ..solvers import xp_scalar as xp
 from ._closed_form import (BISECTIONS, BLOCK_SLACK, crosses_zero, departure_rate, leaves_stick, mode_after_stop,
                            onset_delta_linear, onset_gap, onset_side, onset_target, onset_within, rate_turns,
                            sine_stop_bracket, slip_motion, slip_rate, slip_velocity, stop_delta_linear,

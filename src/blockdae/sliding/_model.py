@@ -224,8 +224,8 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         """Whether slip+ (u increasing) is allowed."""
         return self.direction in ("both", "positive")
 
-    parameter_words = {"mu": "static friction coefficient mu", "mu_kinetic": "kinetic friction coefficient f",
-                       "bias": "bias force R/Q"}
+    parameter_labels = {"mu": "static friction coefficient mu [-]", "mu_kinetic": "kinetic friction coefficient f [-]",
+                        "bias": "bias force R/Q [-]"}
 
     def tied_parameters(self) -> dict:
         """mu moves the kinetic friction too when ``mu_kinetic`` is None."""

@@ -6,5 +6,7 @@ engine (its ``engines``)."""
 
 # what the other packages of blockdae use
 from ._diffrax import SOLVERS
-from ._linear import CHATTER, FINISHED, MAX_INTERVALS, UNSETTLED
+from ._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS,
+                      STACK_DEPTH, UNSETTLED, combine_forms, evaluate_form, evaluate_form_at, form_bound,
+                      form_derivative, form_rounding, piece_form)
 from ._linear_solution import linear_pieces, simulate_linear_final

@@ -12,7 +12,7 @@ reference. Each guard's first downward crossing is found the same way: an interv
 kept only where bounds of the guard's first three derivatives fail to show that it stays
 of one sign, is monotone or is convex/concave, bisected otherwise, and a crossing in a
 monotone part is refined by bisection to adjacent floats (the interval test, the
-bisections and the graze rule are :mod:`blockdae.core._events`). The driver's rules are
+bisections and the graze rule are :mod:`blockdae.core.events`). The driver's rules are
 those of :mod:`blockdae.core._driver`: a guard at zero and falling as a mode starts is left
 at once (unless it turns back within the event resolution), a guard reaching zero at the
 end of a piece is left to the next piece, and more than ``max_events`` events within the

@@ -138,7 +138,7 @@ class ShearFrame:
         The worst cases are the coarsest records (dt = 0.02 s) on the stiffest frame,
         whose highest mode (0.03 s) is then barely sampled: raise ``refine`` there.
         """
-        from ..motions import _kernels
+        from ..motions import kernels as _kernels
 
         if not isinstance(record, Record):
             raise TypeError(f"record must be a bd.Record (samples joined by straight lines), "

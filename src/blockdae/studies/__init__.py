@@ -5,7 +5,3 @@ from ._io import load_study, save_study
 from ._study import NoWorkerError, study, summary
 
 __all__ = ["NoWorkerError", "load_study", "save_study", "study", "summary"]
-
-# what the other packages of blockdae use
-from ._io import save_study
-from ._study import NoWorkerError, study, summary

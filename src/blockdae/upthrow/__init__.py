@@ -11,5 +11,4 @@ __all__ = ["Flight", "RigidSupport", "SpringDAEForm", "SpringSupport", "SpringSu
 
 # what the other packages of blockdae use
 from ._estimate import UpthrowEstimate, upthrow_estimate
-from ._model import SpringSupportedMass
-from ._support import RigidSupport, SpringSupport, parse_support
+from ._support import parse_support

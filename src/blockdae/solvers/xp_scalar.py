@@ -1,6 +1,6 @@
 """The array namespace ``xp`` of the shared closed forms, for scalars inside numba.
 
-:mod:`._closed_form`, :mod:`blockdae.sliding` and :mod:`blockdae.excitation._pieces`
+:mod:`._closed_form`, :mod:`blockdae.sliding` and :mod:`blockdae.excitation.pieces`
 call ``xp.where``, ``xp.sin``, ...; the numba engine passes this module as ``xp``.
 """
 
