@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from numba.extending import register_jitable
 
-from blockdae.solvers import _events as events
+from blockdae.core import events
 
 
 @register_jitable

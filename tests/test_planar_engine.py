@@ -259,7 +259,7 @@ def test_rodas_converges_at_order_4_and_is_stable_where_stiff():
     halved step while the flow is not stiff (lam = 1), and at lam h = 1e5 (an explicit
     step's factor 1 - lam h) the steps stay stable, within 1e-8 of the exact solution
     (measured 2.2e-9). The dense output ends at the step's ends."""
-    from blockdae.solvers import _rodas4
+    from blockdae.solvers import rodas4 as _rodas4
 
     def fun(t, y, lam, out):
         out[0] = -lam * (y[0] - np.sin(t)) + np.cos(t)

@@ -13,7 +13,7 @@ import pytest
 
 import blockdae as bd
 from blockdae.cli._main import main
-from blockdae.studies import _command as command_module
+from blockdae.cli import _study as command_module
 from blockdae.studies import _study as study_module
 from conftest import load_sample_record, sample_record_paths
 from test_benchmarks import _load as _load_benchmark
