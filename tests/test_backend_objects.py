@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae import backends
+from blockdae.core import _registry
 from blockdae.backends import BUILT_IN, available, backend_class, make_backend, register_backend
 
 #: public name -> registered name
@@ -26,12 +26,12 @@ BLOCK, PULSE = bd.SlidingBlock(0.3, 0.2), bd.SinePulse(6.0, 0.5)
 @pytest.fixture
 def registry():
     """The registry as it was, after the test."""
-    saved = dict(backends._REGISTRY)
+    saved = dict(_registry._REGISTRY)
     yield
-    backends._REGISTRY.clear()
-    backends._REGISTRY.update(saved)
+    _registry._REGISTRY.clear()
+    _registry._REGISTRY.update(saved)
     backend_class.cache_clear()
-    backends._default_backend.cache_clear()
+    _registry._default_backend.cache_clear()
 
 
 def documented_options(cls) -> dict:

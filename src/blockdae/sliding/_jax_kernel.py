@@ -21,7 +21,7 @@ import jax.numpy as jnp
 import optimistix as optx
 
 from ..excitation import accel, accel_rate, monotone_rate, piece_direction, rebase
-from ..solvers import SOLVERS
+from ..solvers.diffrax_solvers import SOLVERS
 from ._model import comes_to_rest, demand, relative_acceleration, slip_constant, stick_guards
 from ._exact_kernel import Params, _mode_after_stop, _Rules, onset_delta
 

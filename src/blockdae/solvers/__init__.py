@@ -5,7 +5,6 @@ No physics here: a model brings its rules through the contract and, where it has
 engine (its ``engines``)."""
 
 # what the other packages of blockdae use
-from ._diffrax import SOLVERS
 from ._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS,
                       STACK_DEPTH, UNSETTLED, combine_forms, evaluate_form, evaluate_form_at, form_bound,
                       form_derivative, form_rounding, piece_form)

@@ -22,12 +22,11 @@ import optimistix as optx
 from ..core import AbstractIntegrator, SolverError
 from ..core import jax_context
 from ..excitation import accel, accel_rate
+from .diffrax_solvers import SOLVERS
 
 # guards decrease through their roots (flip=True); 1e-13 s is far below the event
 # accuracy the driver's tolerances allow
 ROOT_FINDER = optx.Bisection(rtol=1e-15, atol=1e-13, flip=True)
-#: diffrax's solvers by the name a backend option gives (the JAX kernel's too)
-SOLVERS = {"tsit5": diffrax.Tsit5, "dopri5": diffrax.Dopri5, "dopri8": diffrax.Dopri8, "kvaerno5": diffrax.Kvaerno5}
 
 
 class JaxPieceExcitation:

@@ -10,7 +10,8 @@ import numpy as np
 
 from ..core import drive
 from ..core import AbstractBackend
-from ._diffrax import SOLVERS, DiffraxIntegrator, Settings
+from ._diffrax import DiffraxIntegrator, Settings
+from .diffrax_solvers import SOLVERS
 
 
 @dataclasses.dataclass(frozen=True)

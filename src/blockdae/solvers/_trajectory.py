@@ -33,7 +33,8 @@ import optimistix as optx
 
 from ..core import drive
 from ..core import jax_context
-from ._diffrax import SOLVERS, JaxPieceExcitation, ModelTemplate, Settings
+from ._diffrax import JaxPieceExcitation, ModelTemplate, Settings
+from .diffrax_solvers import SOLVERS
 
 
 @dataclasses.dataclass(frozen=True)
