@@ -218,3 +218,12 @@ def test_a_fresh_run_imports_no_scipy_module_that_it_does_not_use():
             "print(*(name in sys.modules for name in ('scipy.stats', 'scipy.special', 'scipy.optimize')))")
     out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout
     assert out.split() == ["False", "False", "False"]
+
+
+def test_a_run_without_events_has_dense_output():
+    """A block that never slides (mu g above the peak of a(t)) has no event; its dense
+    output is u = v = 0 at every time, where the mode lookup once indexed an empty log."""
+    sol = bd.simulate(bd.SlidingBlock(mu=0.5), bd.Harmonic(amplitude=1.0, period=1.0), t_end=2.0)
+    assert len(sol.events) == 0
+    u, v = sol(np.array([0.0, 0.7, 2.0]))
+    assert np.array_equal(u, np.zeros(3)) and np.array_equal(v, np.zeros(3))

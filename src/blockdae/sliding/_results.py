@@ -67,6 +67,9 @@ class DenseOutput:
     mode_after: np.ndarray
 
     def mode_at(self, t):
+        """The mode at ``t`` [s]: the last event's mode after, STICK (0) before the first."""
+        if not self.mode_after.size:  # no event: at rest relative to the base throughout
+            return np.zeros(np.shape(t), dtype=int)
         i = np.searchsorted(self.t_events, t, side="right") - 1
         return np.where(i >= 0, self.mode_after[np.maximum(i, 0)], 0).astype(int)
 
