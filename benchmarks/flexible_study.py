@@ -38,7 +38,7 @@ def main(argv=None):
           f"(H = {HEIGHT_M:g} m, Vs = {VS_M_S:g} m/s), both polarities; warm: median of {repeat}")
 
     table, first, warm = timed(run, repeat)
-    by_calls = lambda: pd.concat([bd.flexible(records, ky=ky, height=HEIGHT_M, vs=VS_M_S, target_pga=a)
+    by_calls = lambda: pd.concat([bd.flexible(records, ky=ky, height=HEIGHT_M, vs=VS_M_S, pga=a)
                                   .to_dataframe() for a in pga])
     peer, peer_first, peer_warm = timed(by_calls, repeat)
     worst = _largest_difference(table, peer, records, ky, pga)

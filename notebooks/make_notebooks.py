@@ -819,7 +819,7 @@ heights = np.geomspace(2.0, 60.0, 12)
 rigid = bd.newmark(records, ky, pga=pga).to_dataframe().set_index("record")["max_m"]
 tables = {}
 for method in ("decoupled", "coupled"):
-    table = bd.flexible(records, ky=ky, height=heights, vs=vs, method=method, target_pga=pga).to_dataframe()
+    table = bd.flexible(records, ky=ky, height=heights, vs=vs, method=method, pga=pga).to_dataframe()
     table["ts_over_tm"] = 4 * table["height_m"] / vs / table["record"].map(mean_periods)
     table["ratio"] = table[["normal_m", "inverse_m"]].max(axis=1) / table["record"].map(rigid)
     tables[method] = table

@@ -11,8 +11,8 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import blockdae as bd
-from blockdae.flexible import _analysis as analysis_module
-from blockdae.flexible import FlexibleMode, FlexibleSlidingMass, ShearColumn, equivalent_linear
+from blockdae.flexible_mass import _analysis as analysis_module
+from blockdae.flexible_mass import FlexibleMode, FlexibleSlidingMass, ShearColumn, equivalent_linear
 from closed_forms import oscillator_piece, oscillator_samples, sup_abs
 from conftest import assert_same_events, load_sample_record
 
@@ -292,7 +292,7 @@ def test_flexible_matches_dop853_with_the_virtual_zero_sample():
 def test_flexible_batch_table_and_polarities():
     """Two motions x three parameter sets (ky, height, vs broadcast): one row each, in
     order; each row equals the model's own run (bd.simulate on the record with its zero
-    sample); polarity="normal" leaves inverse_m nan; target_pga scales by the exact peak."""
+    sample); polarity="normal" leaves inverse_m nan; pga scales by the exact peak."""
     records = {"pac": _record("Northridge_1994_PAC-175", duration=10.0),
                "pet": _record("Cape_Mendocino_1992_PET-090", duration=10.0)}
     ky, height = np.array([0.05, 0.1, 0.15]), np.array([5.0, 10.0, 20.0])
@@ -311,7 +311,7 @@ def test_flexible_batch_table_and_polarities():
             assert table["episodes_normal"][3 * i + j] == len(sol.episodes)
     only = bd.flexible(records["pac"], ky=0.1, height=10.0, vs=300.0, polarity="normal").to_dataframe()
     assert np.isnan(only["inverse_m"][0]) and only["episodes_inverse"].isna().all()
-    scaled = bd.flexible(records["pac"], ky=0.1, height=10.0, vs=300.0, target_pga=0.3)
+    scaled = bd.flexible(records["pac"], ky=0.1, height=10.0, vs=300.0, pga=0.3)
     factor = 0.3 * G / records["pac"].peak_acceleration
     same = bd.flexible(records["pac"].scaled(factor), ky=0.1, height=10.0, vs=300.0)
     assert scaled["normal_m"][0] == same["normal_m"][0] and scaled["kmax_g"][0] == same["kmax_g"][0]
@@ -364,8 +364,8 @@ def test_equivalent_linear_on_the_exact_peak():
     (dict(damping=np.nan), r"damping=nan must be a finite number \[-\]"),
     (dict(ky="0.1"), r"ky='0.1' must be a number or a 1-D sequence of numbers \[g\]"),
     (dict(height=[[10.0]]), r"height must be a number or a 1-D sequence of numbers \[m\], got shape \(1, 1\)"),
-    (dict(target_pga=np.nan), r"target_pga=np.float64\(nan\) must be a positive finite peak"),
-    (dict(target_pga=0.0), r"target_pga=np.float64\(0.0\) must be a positive finite peak"),
+    (dict(pga=np.nan), r"pga=np.float64\(nan\) must be a positive finite peak"),
+    (dict(pga=0.0), r"pga=np.float64\(0.0\) must be a positive finite peak"),
     (dict(t_end=0.0), r"t_end=0.0 must be a positive finite time \[s\]"),
     (dict(t_end=-1.0), r"t_end=-1.0 must be a positive finite time \[s\]"),
     (dict(t_end=np.nan), r"t_end=nan must be a positive finite time \[s\]"),
@@ -466,7 +466,7 @@ def test_cli_flexible_prints_the_rows_of_bd_flexible(capsys, tmp_path):
     assert "--ky: must be a yield acceleration >= 0 [g], got -1" in capsys.readouterr().err
     assert main(args + ["--pga", "0.3", "--integration", "slammer"]) == 0  # SLAMMER's scheme and scaling
     lines = capsys.readouterr().out.splitlines()
-    slammer = bd.flexible(bd.read_record(path, units="g"), ky=[0.05, 0.1], height=10.0, vs=250.0, target_pga=0.3,
+    slammer = bd.flexible(bd.read_record(path, units="g"), ky=[0.05, 0.1], height=10.0, vs=250.0, pga=0.3,
                           integration="slammer").rows
     assert [float(line.split()[1]) for line in lines[-2:]] == pytest.approx([r["normal_m"] for r in slammer],
                                                                             rel=1e-5)  # printed to 6 digits
@@ -480,7 +480,7 @@ def test_sensitivities_match_central_differences(method):
     variational equation and saltation jumps) against central differences of the exact
     engine at a relative step of 1e-5 (reference), 4 s of Northridge PAC-175 (4 events);
     vr = 800 m/s so that the impedance damping (0.17, below its cap) moves with vs."""
-    from blockdae.flexible import displacement_sensitivities
+    from blockdae.flexible_mass import displacement_sensitivities
 
     record = _record("Northridge_1994_PAC-175", duration=4.0)
     base = dict(height=10.0, vs=250.0, vr=800.0, damping=0.05, ky=0.1)
@@ -536,16 +536,46 @@ def test_no_motion_at_ky_zero_does_not_slide():
 
 def test_bd_flexible_is_a_function_with_its_own_help():
     """``bd.flexible`` is the analysis function: ``help`` shows its docstring (its
-    arguments), not the package's; the package's classes stay importable from it."""
+    arguments), not the package's. The package has a name of its own,
+    ``blockdae.flexible_mass``: importing it or its modules leaves ``bd.flexible`` the
+    function, and no module ``blockdae.flexible`` is left to shadow it."""
+    import importlib.util
     import inspect
     import pydoc
-    from blockdae.flexible import ShearColumn, flexible as direct_function
+
+    import blockdae.flexible_mass._analysis
+    from blockdae.flexible_mass import ShearColumn, flexible as direct_function
 
     assert inspect.isfunction(bd.flexible) and bd.flexible is direct_function and ShearColumn is bd.ShearColumn
+    assert inspect.ismodule(blockdae.flexible_mass) and bd.flexible is blockdae.flexible_mass._analysis.flexible
+    assert importlib.util.find_spec("blockdae.flexible") is None  # looked for, not imported: nothing rebound
     text = pydoc.render_doc(bd.flexible, renderer=pydoc.plaintext)
     assert "function flexible" in text and "height: height H of the sliding mass [m]" in text
+    assert "Flexible sliding-mass analyses" in text and "pga: target peak ground acceleration [g]" in text
+    assert blockdae.flexible_mass.__doc__.splitlines()[0] not in text  # not the package's text
     assert list(inspect.signature(bd.flexible).parameters)[:4] == ["motion", "ky", "height", "vs"]
     record = bd.Record([0.0, 0.1, 0.3, -0.2, 0.1, 0.0], 0.01, units="g", check_peak=False)
     called = bd.flexible(record, ky=0.05, height=10.0, vs=200.0).to_dataframe()
     direct = direct_function(record, ky=0.05, height=10.0, vs=200.0).to_dataframe()
     assert called.equals(direct) and called["normal_m"].iloc[0] > 0
+
+
+def test_target_pga_is_the_deprecated_name_of_pga():
+    """``target_pga=`` scales as ``pga=`` does, bit for bit, on both integrations, with a
+    DeprecationWarning that names ``pga`` and points at the caller's line; ``pga`` keeps
+    ``target_pga``'s place among the positional arguments; both at once are refused."""
+    record = _record("Northridge_1994_PAC-175", duration=6.0)
+    for integration in ("exact", "slammer"):
+        with pytest.warns(DeprecationWarning, match=r"^bd\.flexible\(\.\.\., target_pga=\.\.\.\) is deprecated; "
+                                                    r"use bd\.flexible\(\.\.\., pga=\.\.\.\)") as caught:
+            old = bd.flexible(record, ky=[0.05, 0.1], height=10.0, vs=250.0, integration=integration,
+                              target_pga=0.3).to_dataframe()
+        assert [w.filename for w in caught if w.category is DeprecationWarning] == [__file__]
+        new = bd.flexible(record, ky=[0.05, 0.1], height=10.0, vs=250.0, integration=integration,
+                          pga=0.3).to_dataframe()
+        assert old.equals(new) and (new["normal_m"] > 0).all()
+    positional = bd.flexible(record, 0.1, 10.0, 250.0, None, 0.05, "coupled", False, None, 0.3).to_dataframe()
+    assert positional.equals(bd.flexible(record, ky=0.1, height=10.0, vs=250.0, pga=0.3).to_dataframe())
+    with pytest.raises(ValueError, match=r"pga=0\.3 and target_pga=0\.4 name the same target peak \[g\]; give pga "
+                                         r"only"):
+        bd.flexible(record, ky=0.1, height=10.0, vs=250.0, pga=0.3, target_pga=0.4)

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae.flexible import FlexibleSlidingMass, ShearColumn
-from blockdae.flexible._damped_slip import COMPILED_RESPONSE_LIMIT, COMPILED_SLIP_LIMIT, slip_underdamped
+from blockdae.flexible_mass import FlexibleSlidingMass, ShearColumn
+from blockdae.flexible_mass._damped_slip import COMPILED_RESPONSE_LIMIT, COMPILED_SLIP_LIMIT, slip_underdamped
 from conftest import assert_same_events, load_sample_record
 from test_flexible import (CLOSED_FORM_BAR, SLIDE_BAR, _compare_with_reference, _record, no_sliding_reference,
                            reference)
@@ -94,7 +94,7 @@ def test_study_runs_a_heavily_damped_column():
     record = load_sample_record("Northridge_1994_PAC-175")
     mass = FlexibleSlidingMass(ShearColumn(20.0, 300.0, damping=0.3), ky=0.15)
     table = bd.study([record], ky=[0.1], pga=[0.4], block=mass)
-    row = bd.flexible(record, ky=0.1, height=20.0, vs=300.0, damping=0.3, target_pga=0.4).rows[0]
+    row = bd.flexible(record, ky=0.1, height=20.0, vs=300.0, damping=0.3, pga=0.4).rows[0]
     assert table["damping_final"][0] == pytest.approx(0.5)
     for name in ("normal_m", "inverse_m"):
         assert table[name][0] == pytest.approx(row[name], rel=1e-12) and row[name] > 0
@@ -148,6 +148,6 @@ def test_equivalent_linear_and_study_from_a_total_damping_next_to_1():
         assert rows[0][name] == pytest.approx(rows[1][name], rel=1e-7)
     mass = FlexibleSlidingMass(ShearColumn(10.0, 250.0, damping=NEAR_CRITICAL - 0.2), ky=0.1)
     table = bd.study([record], ky=[0.05], pga=[0.3], block=mass)
-    row = bd.flexible(record, ky=0.05, height=10.0, vs=250.0, damping=NEAR_CRITICAL - 0.2, target_pga=0.3).rows[0]
+    row = bd.flexible(record, ky=0.05, height=10.0, vs=250.0, damping=NEAR_CRITICAL - 0.2, pga=0.3).rows[0]
     for name in ("normal_m", "inverse_m", "kmax_g", "kmax_sup_g"):
         assert table[name][0] == pytest.approx(row[name], rel=1e-12) and row[name] > 0

@@ -1,4 +1,4 @@
-"""The fast paths of ``bd.flexible`` (issue 22): its event search (``flexible._roots``)
+"""The fast paths of ``bd.flexible`` (issue 22): its event search (``flexible_mass._roots``)
 against the linear engine's bisection on the same forms, and a batch run in parallel
 against the same batch run serially."""
 
@@ -11,7 +11,7 @@ import pytest
 
 import blockdae as bd
 from blockdae.solvers import _linear
-from blockdae.flexible import _analysis, _fused, _roots
+from blockdae.flexible_mass import _analysis, _fused, _roots
 from conftest import load_sample_record
 
 _EPS = np.finfo(float).eps

@@ -11,7 +11,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import blockdae as bd
-from blockdae.flexible import FlexibleSlidingMass, KyTable, ShearColumn
+from blockdae.flexible_mass import FlexibleSlidingMass, KyTable, ShearColumn
 from conftest import assert_same_events, load_sample_record
 
 G = bd.STANDARD_GRAVITY
@@ -231,8 +231,8 @@ def test_sensitivities_with_a_table_match_central_differences_of_bd_flexible(met
     differences of bd.flexible's exact displacement (reference; relative step 1e-5) on 4 s
     of Northridge PAC-175 with its virtual zero sample, within 1e-7 relative (measured
     1.4e-11 to 6.6e-9); vr = 800 m/s so that the impedance damping moves with vs."""
-    from blockdae.flexible import displacement_sensitivities
-    from blockdae.flexible._analysis import with_zero_sample
+    from blockdae.flexible_mass import displacement_sensitivities
+    from blockdae.flexible_mass._analysis import with_zero_sample
 
     record = _record(4.0)
     base = dict(ky=0.0, height=10.0, vs=250.0, damping=0.05, A=record.peak_acceleration / G)
@@ -241,7 +241,7 @@ def test_sensitivities_with_a_table_match_central_differences_of_bd_flexible(met
         p = base | {name: base[name] + step}
         table = KyTable(SOFTENING.displacement_m, [k + p["ky"] for k in SOFTENING.ky_g])
         return bd.flexible(record, ky=table, height=p["height"], vs=p["vs"], vr=800.0, damping=p["damping"],
-                           target_pga=p["A"], method=method, polarity="normal")["normal_m"][0]
+                           pga=p["A"], method=method, polarity="normal")["normal_m"][0]
 
     model = FlexibleSlidingMass(ShearColumn(10.0, 250.0, 800.0, 0.05), ky=SOFTENING, method=method)
     sol = bd.simulate(model, with_zero_sample(record), t_end=4.0 + record.dt)

@@ -10,8 +10,8 @@ import pathlib
 import numpy as np
 import pytest
 
-from blockdae.flexible._column import ShearColumn, equivalent_linear
-from blockdae.flexible._slammer import slammer_flexible, slammer_scale
+from blockdae.flexible_mass._column import ShearColumn, equivalent_linear
+from blockdae.flexible_mass._slammer import slammer_flexible, slammer_scale
 
 #: half of SLAMMER 1.1's results table, shipped with the tests
 TABLE = pathlib.Path(__file__).resolve().parent / "data" / "slammer_1.1_results_part.json.gz"
@@ -182,7 +182,7 @@ def test_equivalent_linear_refuses_a_reference_strain_that_is_not_positive(strai
 
 
 def test_bd_flexible_with_slammer_integration_reproduces_the_table():
-    """The entry point with integration="slammer" and target_pga (SLAMMER's rounded peak)
+    """The entry point with integration="slammer" and pga (the target PGA, by SLAMMER's rounded peak)
     gives the table's numbers, every kind of row and both polarities in one row each."""
     import blockdae as bd
 
@@ -199,7 +199,7 @@ def test_bd_flexible_with_slammer_integration_reproduces_the_table():
                              vr=site["vs_base_mps"], damping=site["damping_ratio"], method=method,
                              equivalent_linear=strain is not None,
                              reference_strain=None if strain is None else strain / 100.0,
-                             target_pga=motion["target_pga_g"], integration="slammer").to_dataframe().iloc[0]
+                             pga=motion["target_pga_g"], integration="slammer").to_dataframe().iloc[0]
         for polarity in ("normal", "inverse"):
             assert abs(100 * result[f"{polarity}_m"] - table[f"{polarity}_displacement_cm"]) <= \
                 TOLERANCES["displacement_cm"], (method, mode, polarity)

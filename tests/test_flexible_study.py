@@ -38,7 +38,7 @@ def table(records):
 @pytest.fixture(scope="module")
 def by_flexible(records):
     """bd.flexible's row of every record, ky and target PGA, in the study's order."""
-    return pd.concat([bd.flexible(record, ky=ky, height=COLUMN.height, vs=COLUMN.vs, target_pga=pga).to_dataframe()
+    return pd.concat([bd.flexible(record, ky=ky, height=COLUMN.height, vs=COLUMN.vs, pga=pga).to_dataframe()
                       .assign(pga_g=pga) for record in records for ky in KY for pga in PGA], ignore_index=True)
 
 
@@ -61,13 +61,13 @@ def test_rows_are_bd_flexible_at_the_same_record_ky_and_pga(table, by_flexible):
 
 
 def test_scale_grid_gives_bd_flexible_bit_for_bit(records):
-    """With scale= the study's motion is bd.flexible's target_pga motion (the record times
+    """With scale= the study's motion is the motion of bd.flexible(..., pga=) (the record times
     pga g / peak): the same rows to the last bit."""
     kobe = records[SHORT.index("Kobe_1995_TAK-090")]
     factors = bd.pga_factor(kobe.peak_acceleration, PGA)
     table = bd.study(kobe, ky=KY, scale=factors, block=MASS)
     for (ky, pga), row in zip([(k, p) for k in KY for p in PGA], table.itertuples()):
-        ref = bd.flexible(kobe, ky=ky, height=COLUMN.height, vs=COLUMN.vs, target_pga=pga).rows[0]
+        ref = bd.flexible(kobe, ky=ky, height=COLUMN.height, vs=COLUMN.vs, pga=pga).rows[0]
         assert [getattr(row, name) for name in FLEXIBLE] == [ref[name] for name in FLEXIBLE]
         assert row.ky_g == ky and row.pga_g == pytest.approx(pga, rel=1e-15)
 
@@ -164,7 +164,7 @@ TABLE = bd.KyTable([0.0, 0.05], [0.1, 0.2])
 
 def test_a_ky_table_study_is_bd_flexible_and_resumes_from_its_checkpoint(records, tmp_path, monkeypatch):
     """ky= a bd.KyTable: its rows are bd.flexible's with the same table and motion (scale=
-    the factors of target_pga: the same record, bit for bit), column ky_g its ky at D = 0;
+    the factors of pga: the same record, bit for bit), column ky_g its ky at D = 0;
     the manifest records the table, a rerun with it resumes, another table is refused."""
     two = records[:2]
     factors = [0.3, 0.6]

@@ -1,5 +1,5 @@
 """The compiled matrix-exponential engine of the flexible sliding mass's slides
-(``flexible/_table_kernel.py``, issue 22): a ky table and an overdamped coupled slip in
+(``flexible_mass/_table_kernel.py``, issue 22): a ky table and an overdamped coupled slip in
 ``bd.flexible``'s rows. Reference: the Python engine of the same mathematics run by the
 generic driver (``solve_table_exact``), itself checked against DOP853 in
 tests/test_flexible_ky_table.py and tests/test_flexible_damped.py; the no-sliding response
@@ -12,12 +12,12 @@ import pytest
 
 import blockdae as bd
 from blockdae.backends import Horizon
-from blockdae.flexible import FlexibleSlidingMass, KyTable, ShearColumn
-from blockdae.flexible._analysis import with_zero_sample
-from blockdae.flexible._damped_slip import flat_table_model
-from blockdae.flexible._table_engine import (record_pieces, response_compiled, slide_compiled, solve_table_exact,
+from blockdae.flexible_mass import FlexibleSlidingMass, KyTable, ShearColumn
+from blockdae.flexible_mass._analysis import with_zero_sample
+from blockdae.flexible_mass._damped_slip import flat_table_model
+from blockdae.flexible_mass._table_engine import (record_pieces, response_compiled, slide_compiled, solve_table_exact,
                                              system_arrays)
-from blockdae.flexible._table_kernel import OUTCOME_FIELDS, step_slots
+from blockdae.flexible_mass._table_kernel import OUTCOME_FIELDS, step_slots
 from conftest import load_sample_record
 
 #: ky falls from 0.1 g to 0.05 g over the first 2 cm of sliding; rises from 0.08 g to 0.14 g over 4 cm

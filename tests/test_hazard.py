@@ -275,7 +275,7 @@ def test_fragility_from_a_flexible_study(ten_records):
     """bd.flexible (coupled, ky = 0.1 g, H = 20 m, Vs = 300 m/s; 8 s of each record) at six
     target PGA, concatenated with a pga_g column: the worse polarity of each row
     (displacement=("normal_m", "inverse_m")) is the maximum likelihood fit's data."""
-    table = pd.concat([bd.flexible(ten_records, ky=0.1, height=20.0, vs=300.0, target_pga=a, t_end=8.0)
+    table = pd.concat([bd.flexible(ten_records, ky=0.1, height=20.0, vs=300.0, pga=a, t_end=8.0)
                        .to_dataframe().assign(pga_g=a) for a in STUDY_PGA], ignore_index=True)
     fit = fit_fragility(table, "pga_g", ("normal_m", "inverse_m"), d0_m=0.005, n_boot=20)
     worse = np.maximum(table["normal_m"].abs(), table["inverse_m"].abs()).to_numpy()

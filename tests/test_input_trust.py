@@ -230,12 +230,12 @@ def test_a_target_pga_in_m_s2_is_refused_in_every_api(kobe_g):
                         "(2.94 m/s² = 0.2998 g)")
     with pytest.raises(ValueError, match="^pga" + message):
         bd.newmark(record, 0.05, pga=2.94)
-    with pytest.raises(ValueError, match="^pga" + message):
-        bd.newmark(record, 0.05, target_pga=2.94)
+    with pytest.warns(DeprecationWarning, match="use bd.newmark"), pytest.raises(ValueError, match="^pga" + message):
+        bd.newmark(record, 0.05, target_pga=2.94)  # the deprecated name, the same rule
     with pytest.raises(ValueError, match="^pga" + message):
         bd.newmark([record], 0.05, pga=[0.3, 2.94])
-    with pytest.raises(ValueError, match="^target_pga" + message):
-        bd.flexible(record, 0.05, 10.0, 200.0, target_pga=2.94)
+    with pytest.raises(ValueError, match="^pga" + message):
+        bd.flexible(record, 0.05, 10.0, 200.0, pga=2.94)
     with pytest.raises(ValueError, match="^pga" + message):
         bd.study([record], mu=[0.05], pga=[2.94])
     with pytest.raises(ValueError, match="^pga" + message):

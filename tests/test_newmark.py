@@ -79,12 +79,26 @@ def test_pga_scales_the_record_to_a_peak_in_g(kobe):
     slammer = bd.newmark(kobe, ky, pga=0.3, pga_rounding="slammer")
     np.testing.assert_array_equal(slammer.normal, bd.newmark(kobe.scaled(0.3 / own), ky).normal)
     assert not np.array_equal(slammer.normal, scaled.normal)
-    target = bd.newmark(kobe, ky, target_pga=0.3)  # bd.flexible's name for the same target [g]
-    np.testing.assert_array_equal(target.normal, scaled.normal)
-    with pytest.raises(ValueError, match=r"pga=0\.3 and target_pga=0\.4 name the same target peak \[g\]; give one"):
-        bd.newmark(kobe, 0.1, pga=0.3, target_pga=0.4)
     with pytest.raises(ValueError, match=r"pga=9\.81 g is implausible .*looks like m/s² \(9\.81 m/s² = 1 g\)"):
         bd.newmark(kobe, 0.1, pga=9.81)
+
+
+def test_target_pga_is_the_deprecated_name_of_pga(kobe):
+    """``target_pga=`` scales as ``pga=`` does, bit for bit (one motion and a sweep), with a
+    DeprecationWarning that names ``pga`` and points at the caller's line; both are refused."""
+    ky = np.array([0.05, 0.1])
+    for pga in (0.3, [0.2, 0.4]):
+        with pytest.warns(DeprecationWarning, match=r"^bd\.newmark\(\.\.\., target_pga=\.\.\.\) is deprecated; "
+                                                    r"use bd\.newmark\(\.\.\., pga=\.\.\.\)") as caught:
+            old = bd.newmark(kobe, ky, target_pga=pga)
+        assert [w.filename for w in caught if w.category is DeprecationWarning] == [__file__]
+        new = bd.newmark(kobe, ky, pga=pga)
+        np.testing.assert_array_equal(old.normal, new.normal)
+        np.testing.assert_array_equal(old.inverse, new.inverse)
+        assert np.all(new.normal > 0)
+    with pytest.raises(ValueError, match=r"pga=0\.3 and target_pga=0\.4 name the same target peak \[g\]; give pga "
+                                         r"only"):
+        bd.newmark(kobe, 0.1, pga=0.3, target_pga=0.4)
 
 
 def test_ky_in_m_s2_is_refused_and_ky_above_the_peak_warns():

@@ -74,8 +74,8 @@ _FIRST_NUMBA_CALLS = """
 import json, warnings
 import numpy as np
 import blockdae as bd
-from blockdae.flexible._column import ShearColumn
-from blockdae.flexible._slammer import slammer_flexible
+from blockdae.flexible_mass._column import ShearColumn
+from blockdae.flexible_mass._slammer import slammer_flexible
 
 def run():
     with warnings.catch_warnings(record=True) as caught:

@@ -20,8 +20,8 @@ from .solvers import simulate_linear_final
 from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RecordSet, RecordWarning, RectangularPulse,
                          SinePulse, TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
                          read_record, read_records, resample)
-from .flexible import (EquivalentLinear, FlexibleEvent, FlexibleMode, FlexibleResult, FlexibleSlidingMass,
-                       FlexibleSolution, KyTable, ShearColumn, flexible)
+from .flexible_mass import (EquivalentLinear, FlexibleEvent, FlexibleMode, FlexibleResult, FlexibleSlidingMass,
+                            FlexibleSolution, KyTable, ShearColumn, flexible)
 from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
                       cumulative_arias, fourier_amplitude, intensity_measures, mean_period, motion_histories,
                       relative_motion, response_spectrum)

@@ -16,7 +16,7 @@ from ..units import STANDARD_GRAVITY
 from ..excitation import RecordSet, RecordWarning, read_record
 from ..excitation import SETS as FEMA_SETS
 from ..excitation import record_files
-from ..flexible import KyTable
+from ..flexible_mass import KyTable
 from ..motions import METHODS as BASELINES, baseline_corrected
 
 #: the record sets of --set: name -> the name of bd.RecordSet.fema_p695

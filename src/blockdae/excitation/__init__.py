@@ -26,4 +26,4 @@ from ._readers import RECORD_SUFFIXES, record_files, record_name, unit_factor
 from ._record import check_horizontal
 from ._record_checks import offset_fraction
 from ._record_set import with_metadata
-from ._units import PGA_ROUNDINGS, check_pga, check_pga_rounding
+from ._units import PGA_ROUNDINGS, check_pga, check_pga_rounding, pga_keyword

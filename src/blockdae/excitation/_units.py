@@ -3,6 +3,7 @@ the peak plausibility rule (one for files, arrays and the command line), the rul
 target peak ground accelerations [g] and the factor that scales a motion to one."""
 
 import re
+import warnings
 
 import numpy as np
 
@@ -131,6 +132,20 @@ def check_pga(pga, name: str = "pga", check_peak: bool = True) -> np.ndarray:
                              f"{MAX_PGA_G:g} g); it looks like m/s² ({value:g} m/s² = "
                              f"{value / STANDARD_GRAVITY:.4g} g): give {name} in g, or {CONFIRM_PEAK} to accept it")
     return values
+
+
+def pga_keyword(function: str, pga, target_pga):
+    """The target peak ground acceleration(s) [g] a call to ``function`` gave: ``pga``, or
+    ``target_pga``, its deprecated name, with a DeprecationWarning naming ``pga``; a
+    ValueError where both are given."""
+    if target_pga is None:
+        return pga
+    if pga is not None:
+        raise ValueError(f"{function}: pga={pga!r} and target_pga={target_pga!r} name the same target peak [g]; "
+                         "give pga only (target_pga is its deprecated name)")
+    warnings.warn(f"{function}(..., target_pga=...) is deprecated; use {function}(..., pga=...), the same target "
+                  "peak ground acceleration [g]", DeprecationWarning, stacklevel=3)
+    return target_pga
 
 
 def check_pga_rounding(rounding):

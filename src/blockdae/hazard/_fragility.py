@@ -82,7 +82,7 @@ def fit_fragility(table, im="pga_g", displacement="max_abs_displacement_m", *, d
         table: a DataFrame with a "record" column and one slope (one value in each of
             :data:`SLOPE_COLUMNS` it has): :func:`bd.study`'s of one μ and one location
             (the 1-D block, or ``block=bd.PlanarBlock(...)``), or ``bd.flexible(...)``'s
-            of one (ky, H, Vs), its runs at several ``target_pga`` concatenated with a
+            of one (ky, H, Vs), its runs at several ``pga`` concatenated with a
             ``pga_g`` column.
         im: the column of the intensity measure (PGA [g], PGV, Arias intensity, Sa(T),
             a flexible mass's kmax_g...).

@@ -23,8 +23,8 @@ from ..units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, UnitsWarning, pga_factor, read_record
 from ..excitation import record_files
 from ..excitation import RecordSet, with_metadata
-from ..excitation import check_pga, check_pga_rounding
-from ..flexible import downslope_with_table
+from ..excitation import check_pga, check_pga_rounding, pga_keyword
+from ..flexible_mass import downslope_with_table
 from ._model import SlidingBlock
 from ._sweep import _labelled
 from ..core import compact_repr
@@ -204,11 +204,11 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         g: the value of one g [m/s²]; standard gravity by default.
         t_end: final time [s]; None: until the block rests after the record.
         backend, **options: as for :func:`blockdae.simulate`.
-        pga: target peak ground acceleration(s) [g], a number or a 1-D sequence: the motion
-            is scaled so that its peak |a| is each ``pga`` g (see :func:`blockdae.pga_factor`);
-            None: as given. A value above 2 g is refused (likely m/s²: 2.94 is 0.3 g in m/s²)
-            unless ``check_peak=False``.
-        target_pga: the same as ``pga`` (the name :func:`blockdae.flexible` uses); give one.
+        pga: target peak ground acceleration(s) [g] (SLAMMER's target PGA), a number or a
+            1-D sequence: the motion is scaled so that its peak |a| is each ``pga`` g (see
+            :func:`blockdae.pga_factor`); None: as given. A value above 2 g is refused (likely
+            m/s²: 2.94 is 0.3 g in m/s²) unless ``check_peak=False``.
+        target_pga: the deprecated name of ``pga`` (a DeprecationWarning); not both.
         pga_rounding: "exact" (default) or "slammer": the motion's own peak rounded to
             0.001 g before scaling, as SLAMMER scales (to reproduce its tables).
         check_peak: False accepts a ``pga`` above 2 g.
@@ -226,11 +226,7 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
     """
     if polarity not in _POLARITIES:
         raise ValueError(f"polarity must be one of {_POLARITIES}, got {polarity!r}")
-    if target_pga is not None:
-        if pga is not None:
-            raise ValueError(f"newmark: pga={pga!r} and target_pga={target_pga!r} name the same target peak [g]; "
-                             "give one")
-        pga = target_pga
+    pga = pga_keyword("bd.newmark", pga, target_pga)
     ky, table = _yield_accelerations(ky)
     if table is not None and (derivative or backend != "exact"):
         raise ValueError(f"ky={table}: a ky table runs on the exact engine without derivatives (backend 'exact', "
@@ -257,7 +253,7 @@ def _yield_accelerations(ky):
     pair (displacements [m], ky [g])) that varies with the sliding displacement (its ky at
     D = 0 [g], the table); a constant table is its one value. A TypeError says what is
     taken where ``ky`` is none of these."""
-    from ..flexible import as_ky_table
+    from ..flexible_mass import as_ky_table
 
     table = as_ky_table(ky)
     if table is not None:

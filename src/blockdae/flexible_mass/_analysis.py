@@ -19,7 +19,7 @@ import numpy as np
 from ..units import STANDARD_GRAVITY
 from ..solvers import linear_pieces
 from ..excitation import Record, pga_factor
-from ..excitation import check_horizontal
+from ..excitation import check_horizontal, pga_keyword
 from . import _engine, _fused, _table_kernel
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, flat_table_model, slip_underdamped
@@ -104,8 +104,8 @@ class FlexibleResult:
 
 
 def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", equivalent_linear=False,
-             reference_strain=None, target_pga=None, polarity="both", integration="exact", g=STANDARD_GRAVITY,
-             t_end=None, *, check_peak=True) -> FlexibleResult:
+             reference_strain=None, pga=None, polarity="both", integration="exact", g=STANDARD_GRAVITY,
+             t_end=None, *, check_peak=True, target_pga=None) -> FlexibleResult:
     """Flexible sliding-mass analyses (Bray & Rathje 1998 decoupled; Rathje & Bray 1999
     coupled), downslope displacement positive, as SLAMMER runs them but exact in time.
 
@@ -128,7 +128,8 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
         equivalent_linear: run SLAMMER's equivalent-linear iteration on the exact
             no-sliding peak |u| (needs ``reference_strain``).
         reference_strain: gamma_ref, a fraction (SLAMMER's GUI takes percent).
-        target_pga: scale each motion to this peak |a| [g]; None: as given. "exact"
+        pga: target peak ground acceleration [g] (SLAMMER's target PGA): each motion is
+            scaled so that its peak |a| is ``pga`` g; None: as given. "exact" integration
             scales by the motion's exact peak, "slammer" by its peak rounded to 0.001 g, as
             SLAMMER does. A value above 2 g is refused (likely m/s²: 2.94 is 0.3 g in m/s²)
             unless ``check_peak=False``.
@@ -139,7 +140,8 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
         g: the value of one g [m/s²].
         t_end: end of each analysis on the record's axis [s]; None: its last sample (the
             only end "slammer" has).
-        check_peak: False accepts a ``target_pga`` above 2 g.
+        check_peak: False accepts a ``pga`` above 2 g.
+        target_pga: the deprecated name of ``pga`` (a DeprecationWarning); not both.
 
     ky, height, vs, vr and damping broadcast together to the parameter sets (use
     ``np.meshgrid`` for a grid); every motion runs every set.
@@ -147,7 +149,8 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     Returns:
         A :class:`FlexibleResult` (``.to_dataframe()``).
     """
-    analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga,
+    pga = pga_keyword("bd.flexible", pga, target_pga)
+    analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga,
                     polarity, integration, g, t_end, check_peak)
     rows_of, _ = INTEGRATIONS[integration]
     if analyses and analyses[0].model.table is not None:  # plan gives every model the table or none
@@ -155,7 +158,7 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration)
 
 
-def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, target_pga, polarity,
+def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
          integration, g, t_end, check_peak=True) -> list[Analysis]:
     """The analyses of a :func:`flexible` call, every input checked before any work."""
     if integration not in INTEGRATIONS:
@@ -192,10 +195,9 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
     polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
     analyses = []
     for name, record in zip(names, records):
-        if target_pga is not None:
+        if pga is not None:
             rounding = INTEGRATIONS[integration][1]
-            record = record.scaled(pga_factor(record.peak_acceleration, target_pga, g, rounding, "target_pga",
-                                              check_peak))
+            record = record.scaled(pga_factor(record.peak_acceleration, pga, g, rounding, "pga", check_peak))
         duration = record.duration
         end = duration if t_end is None else float(t_end)
         if integration == "slammer" and end != duration:
@@ -480,7 +482,7 @@ def slammer_rows(analyses: list[Analysis]) -> list[dict]:
 
 
 #: integration scheme -> (rows of a list of :class:`Analysis`, the rounding of the
-#: motion's peak when scaling to ``target_pga``: see :func:`blockdae.pga_factor`);
+#: motion's peak when scaling to ``pga``: see :func:`blockdae.pga_factor`);
 #: "exact": continuous time, events located, the exact peak; "slammer": SLAMMER 1.1's
 #: fixed-step scheme and its peak rounded to 0.001 g
 INTEGRATIONS = {"exact": (exact_rows, "exact"), "slammer": (slammer_rows, "slammer")}

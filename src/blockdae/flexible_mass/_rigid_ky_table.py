@@ -5,7 +5,7 @@ While it slides, D'' = a(t) - ky(D) g: on each piece of the table ky is linear i
 a(t) is linear on each step of a record, so the slide is linear with constant
 coefficients. It is the flexible sliding mass's decoupled slip with an infinitely stiff
 column (its average acceleration HEA is then a(t) itself), and runs on that mass's
-matrix-exponential engine (:mod:`blockdae.flexible._table_engine`): onsets where a(t)
+matrix-exponential engine (:mod:`blockdae.flexible_mass._table_engine`): onsets where a(t)
 reaches ky(D) g, stops where the sliding rate returns to 0, and the table's breakpoints,
 each located to adjacent floats.
 """

@@ -3,7 +3,8 @@ column above the slip surface, sliding when its average acceleration reaches ky 
 decoupled or coupled.
 
 Its entry point is the function :func:`~._analysis.flexible`, exported at the top level as
-``bd.flexible(motion, ky, height, vs, ...)``; the classes are exported there too.
+``bd.flexible(motion, ky, height, vs, ...)`` (the package's own name, ``flexible_mass``, leaves
+that name to the function); the classes are exported there too.
 """
 
 from ._analysis import Analysis, FlexibleResult, analyse_exact, flexible
