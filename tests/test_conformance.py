@@ -302,7 +302,7 @@ def by_output(case, sensitivities) -> dict:
     """bd.sensitivities' answer as output -> parameter -> derivative."""
     if case.of is None:
         return {"u": {name: np.asarray(value, dtype=float) for name, value in sensitivities.items()}}
-    return sensitivities
+    return {quantity: sensitivities.of(quantity) for quantity in sensitivities.quantities}
 
 
 def parameter_value(model, name) -> float:

@@ -13,7 +13,7 @@ from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, Batched
 from .core import CrossCheck, crosscheck
 from .core import CompileNotice
 from .core import set_compilation_cache
-from .core import sensitivities
+from .core import Sensitivities, sensitivities
 from .core import simulate
 from .units import STANDARD_GRAVITY
 from .solvers import simulate_linear_final
@@ -53,7 +53,7 @@ __all__ = [
     "FinalNumbers", "simulate_final", "simulate_linear_final",
     "CrossCheck", "crosscheck",
     "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
-    "sensitivities", "set_compilation_cache", "CompileNotice",
+    "Sensitivities", "sensitivities", "set_compilation_cache", "CompileNotice",
     "NewmarkResult", "NewmarkSweep", "newmark", "yield_acceleration",
     "EquivalentLinear", "FlexibleEvent", "FlexibleMode", "FlexibleResult", "FlexibleSlidingMass", "FlexibleSolution", "KyTable",
     "ShearColumn", "flexible",

@@ -7,10 +7,11 @@ from ._driver import InconsistentStateError, SolverError
 from .contract import (SCALAR, AbstractHybridModel, BatchedModel, DifferentiableModel, EngineModel, ExplicitForm,
                        LinearModesModel, StudyBatch, StudyModel)
 from ._solution import AbstractEvent, AbstractSolution, DriverSolution, HybridEvent
+from ._sensitivity_result import Sensitivities
 
 __all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchedModel", "DifferentiableModel",
            "DriverSolution", "EngineModel", "ExplicitForm", "HybridEvent", "InconsistentStateError",
-           "LinearModesModel", "SCALAR", "SolverError", "StudyBatch", "StudyModel"]
+           "LinearModesModel", "SCALAR", "Sensitivities", "SolverError", "StudyBatch", "StudyModel"]
 
 # what the other packages of blockdae use
 from ._atomic import atomic_path

@@ -14,11 +14,12 @@ import numpy as np
 from .contract import DifferentiableModel, parameter_names
 from ._simulate import simulate
 from ._registry import AbstractBackend, Horizon, backend_name, make_backend
+from ._sensitivity_result import Sensitivities, per
 from ..excitation import BaseMotion
 
 
 def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: str | AbstractBackend | None = None,
-                  of=None, **options) -> dict:
+                  of=None, **options) -> Sensitivities:
     """d u(t_end) / d p for each parameter p in ``wrt``, by the model's own method (for a
     SpringSupportedMass: the derivatives of its flights, see ``of``). u is signed
     (x_block - x_base): for Newmark's one-way block (direction "negative") the downslope
@@ -53,22 +54,25 @@ def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: 
         **options: settings of the backend.
 
     Returns:
-        name -> derivative [m per unit of the parameter; m/g for "A"]: a float, or an
-        array of shape (n,) for a batch of n parameter sets; for other models an
-        array of shape (2,), d(u_x, u_y)(t_end) / dp, or (n, 2) for a batch. For a
-        SpringSupportedMass: quantity -> parameter -> float, in the quantity's unit
-        per unit of the parameter (per Hz, per unit damping ratio, per g for "A",
-        per m/s² for "g").
+        A :class:`~blockdae.Sensitivities`: ``.quantities`` (("u",); ("u_x", "u_y") for a
+        PlanarBlock; a SpringSupportedMass's flight quantities), ``.parameters`` (``wrt``),
+        ``.array`` of shape (n_quantities, n_parameters), or (n_sets, n_quantities,
+        n_parameters) for a batch, ``.units`` (the quantity's unit per the parameter's:
+        m per unit of the parameter, m/g for "A"), ``.to_dataframe()``. As a mapping by
+        parameter: ``result["mu"]`` is a float for one quantity, (n_quantities,) for
+        several (d(u_x, u_y)(t_end) / dp), and (n_sets,) or (n_sets, n_quantities) for a
+        batch; ``result.of("height")`` is parameter -> derivative of one quantity.
     """
     _check_differentiable(block)
     wrt = _names(block, wrt)
     own = block.sensitivities(motion, t_end, wrt, backend, of, options)
-    return trajectory_displacement_sensitivities(block, motion, t_end, wrt, backend, of, options) \
-        if own is NotImplemented else own
+    if own is NotImplemented:
+        return trajectory_displacement_sensitivities(block, motion, t_end, wrt, backend, of, options)
+    return own if isinstance(own, Sensitivities) else Sensitivities.make(block, own, backend=backend)
 
 
 def finite_differences(block, motion, t_end: float | None = None, wrt=None, backend: str = "cvode",
-                       step: float = 1e-4, **options) -> dict:
+                       step: float = 1e-4, **options) -> Sensitivities:
     """Finite differences of u(t_end) on any backend, for checking derivatives.
 
     Same parameters and units as :func:`sensitivities` (one parameter set; ``wrt`` None:
@@ -77,7 +81,8 @@ def finite_differences(block, motion, t_end: float | None = None, wrt=None, back
     by 1 +- step (other models: each parameter by step times its value, or by step where
     it is 0; each component's scale by step). Central differences, or second-order
     one-sided ones where a step would leave the block invalid (at a bound: mu_kinetic =
-    mu, |bias| near mu), taken from the valid side.
+    mu, |bias| near mu), taken from the valid side. Returns a
+    :class:`~blockdae.Sensitivities` of the displacement.
     """
     _check_differentiable(block)
     if block.batch_shape:
@@ -86,24 +91,23 @@ def finite_differences(block, motion, t_end: float | None = None, wrt=None, back
         raise ValueError(f"step must be a relative step in (0, 0.1), got {step!r}")
     wrt = _names(block, wrt)
     own = block.finite_differences(motion, t_end, wrt, backend, step, options)
-    return parameter_differences(block, motion, t_end, wrt, backend, step, options) if own is NotImplemented else own
+    differences = parameter_differences(block, motion, t_end, wrt, backend, step, options) \
+        if own is NotImplemented else own
+    return Sensitivities.make(block, differences, backend=backend)
 
 
 def derivative_unit(model, name: str, displacement_unit: str = "m") -> str:
     """Unit of d displacement / d ``name``: the displacement's unit per the parameter's
     (the model's ``parameter_units()``): "m" for a dimensionless one, "m/g" for "A"."""
     unit = model.parameter_units().get(name, "-") if isinstance(model, DifferentiableModel) else "-"
-    if unit in ("-", ""):
-        return displacement_unit
-    return f"{displacement_unit}/{unit}" if "/" not in unit else f"{displacement_unit}/({unit})"
+    return per(displacement_unit, unit)
 
 
 def trajectory_displacement_sensitivities(model, motion, t_end, wrt, backend, of, options):
     """The core's derivatives (where the model has none of its own,
     :meth:`~blockdae.core.contract.DifferentiableModel.sensitivities`): d displacement(t_end)
-    / dp along the JAX twin's trajectory per name, of the displacement's shape (a float for
-    one displacement state, (len(displacement_states),) for several; a batch: one located
-    trajectory per parameter set, stacked)."""
+    / dp along the JAX twin's trajectory per name, a :class:`~blockdae.Sensitivities` of the
+    displacement states (a batch: one located trajectory per parameter set, stacked)."""
     if of is not None:
         raise ValueError(f"of={of!r} does not apply to a {type(model).__name__}: it has the derivatives of its "
                          "displacement")
@@ -113,15 +117,13 @@ def trajectory_displacement_sensitivities(model, motion, t_end, wrt, backend, of
     if model.batch_shape:  # one located trajectory per parameter set
         sets = [trajectory_displacement_sensitivities(model.item(i), motion, t_end, wrt, backend, of, options)
                 for i in range(model.batch_shape[0])]
-        return {name: np.array([one[name] for one in sets]) for name in sets[0]}
+        return Sensitivities.make(model, {name: np.array([one[name] for one in sets]) for name in sets[0]},
+                                  backend=backend)
     wrt = checked_wrt(model, wrt)
     peak = largest_peak(motion) if "A" in wrt else None
     horizon = Horizon.resolve(motion, t_end)
     jacobian = make_backend(backend, **options).displacement_jacobian(model, motion, horizon)
-    derivatives = by_parameter(model, jacobian.T, wrt, peak)
-    if len(model.displacement_states) == 1:  # the solution's displacement is then a float
-        return {name: float(value[0]) for name, value in derivatives.items()}
-    return derivatives
+    return Sensitivities.make(model, by_parameter(model, jacobian.T, wrt, peak), backend=backend)
 
 
 def by_parameter(model, columns, wrt, peak):

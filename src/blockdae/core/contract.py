@@ -305,13 +305,15 @@ class DifferentiableModel(AbstractHybridModel):
         default."""
         return {}
 
-    def sensitivities(self, motion, t_end, wrt, backend, of, options) -> dict:
+    def sensitivities(self, motion, t_end, wrt, backend, of, options) -> "Sensitivities | dict":
         """The model's own derivative method: d displacement(t_end) / d p for p in
         ``wrt`` (a tuple of names), on ``backend`` (None: the model's default) with the
         backend's ``options`` (a dict); ``of``: what is differentiated, for a model with
-        more than its displacement (None). Returns name -> a float or an array (a vector
-        displacement, a batch: one row per set) [displacement unit per unit of the
-        parameter]. NotImplemented (the default): :func:`blockdae.sensitivities` takes the
+        more than its displacement (None). Returns a :class:`~blockdae.Sensitivities`
+        (``Sensitivities.make(self, derivatives, ...)``), or name -> a float or an array
+        (a vector displacement, a batch: one row per set) [displacement unit per unit of
+        the parameter], which :func:`blockdae.sensitivities` makes one of.
+        NotImplemented (the default): :func:`blockdae.sensitivities` takes the
         core's, along the JAX twin's trajectory
         (:func:`blockdae.core.derivatives.trajectory_displacement_sensitivities`)."""
         return NotImplemented

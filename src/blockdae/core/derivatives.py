@@ -8,6 +8,7 @@ from ._jax_config import jax_context
 from .contract import parameter_names
 from ._sensitivities import (by_parameter, checked_wrt, derivative_unit, largest_peak, parameter_differences,
                              step_difference, trajectory_displacement_sensitivities)
+from ._sensitivity_result import Sensitivities
 from ._simulate import simulate
 
 
@@ -19,6 +20,6 @@ def trajectory_sensitivities(model, motion, horizon, backend):
     return backend.trajectory_sensitivities(model, motion, horizon)
 
 
-__all__ = ["by_parameter", "checked_wrt", "derivative_unit", "jax_context", "largest_peak", "parameter_differences",
-           "parameter_names", "simulate", "step_difference", "trajectory_displacement_sensitivities",
-           "trajectory_sensitivities"]
+__all__ = ["Sensitivities", "by_parameter", "checked_wrt", "derivative_unit", "jax_context", "largest_peak",
+           "parameter_differences", "parameter_names", "simulate", "step_difference",
+           "trajectory_displacement_sensitivities", "trajectory_sensitivities"]

@@ -18,15 +18,15 @@ import numpy as np
 from ._model import PARAMETER_UNITS
 
 
-def kernel_sensitivities(block, motion, t_end, wrt, backend, of, options) -> dict:
+def kernel_sensitivities(block, motion, t_end, wrt, backend, of, options):
     """:meth:`SlidingBlock.sensitivities`: d u(t_end) / d p [m per unit of p; m/g for "A"]
     for p in ``wrt`` (names of :data:`PARAMETER_UNITS`), through the kernel of ``backend``
-    ("exact": the JAX kernel of "exact-jax"; "jax"; None: "exact"): a float per name, or
-    (n,) for a batch."""
+    ("exact": the JAX kernel of "exact-jax"; "jax"; None: "exact"): a
+    :class:`~blockdae.Sensitivities` of u (n parameter sets for a batch)."""
     if of is not None:
         raise ValueError(f"of={of!r} does not apply to a SlidingBlock: it has the derivatives of its displacement")
     from ..core import Horizon, backend_name, make_backend  # here: the backends import this package
-    from ..core.derivatives import checked_wrt, jax_context
+    from ..core.derivatives import Sensitivities, checked_wrt, jax_context
 
     backend = "exact" if backend is None else backend
     wrt = checked_wrt(block, wrt, PARAMETER_UNITS)
@@ -59,7 +59,7 @@ def kernel_sensitivities(block, motion, t_end, wrt, backend, of, options) -> dic
         "A": d_scale * block.g / motion.peak_acceleration,  # scale = A g / peak
         "scale": d_scale,
     }
-    return {name: (float(derivatives[name]) if not shape else derivatives[name]) for name in wrt}
+    return Sensitivities.make(block, {name: derivatives[name] for name in wrt}, backend=backend)
 
 
 def block_differences(block, motion, t_end, wrt, backend, step, options) -> dict:

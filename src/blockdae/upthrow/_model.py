@@ -207,9 +207,9 @@ class SpringSupportedMass(LinearModesModel, DifferentiableModel):
         """frequency [Hz], damping [-], g [m/s²], A [g] and the scale factor of its motion [-]."""
         return {"frequency": "Hz", "damping": "-", "g": "m/s²", **scale_factor_units(self)}
 
-    def sensitivities(self, motion, t_end, wrt, backend, of, options) -> dict:
-        """The derivatives of its flights: quantity (``of``) -> parameter -> float (see
-        :func:`blockdae.sensitivities`)."""
+    def sensitivities(self, motion, t_end, wrt, backend, of, options):
+        """The derivatives of its flights, a :class:`~blockdae.Sensitivities` of the
+        quantities ``of`` (see :func:`blockdae.sensitivities`)."""
         from ._sensitivities import flight_sensitivities
 
         return flight_sensitivities(self, motion, t_end, wrt, backend, of, options)

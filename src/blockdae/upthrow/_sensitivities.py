@@ -11,18 +11,18 @@ located state, and a time t_e has dt_e/dp.
 import numpy as np
 
 from ..core import Horizon, backend_name, make_backend
-from ..core.derivatives import by_parameter, checked_wrt, jax_context, largest_peak, parameter_names, \
-    trajectory_sensitivities
+from ..core.derivatives import Sensitivities, by_parameter, checked_wrt, jax_context, largest_peak, \
+    parameter_names, trajectory_sensitivities
 
 #: quantity -> its unit
 QUANTITIES = {"liftoff_velocity": "m/s", "height": "m", "flight_time": "s"}
 _U, _V = range(2)
 
 
-def flight_sensitivities(mass, motion, t_end, wrt, backend, of, options) -> dict:
-    """quantity -> parameter -> d(quantity)/dp for each quantity in ``of`` (names of
-    :data:`QUANTITIES`; None: all) and parameter in ``wrt``, along the JAX twin's
-    trajectory (``backend`` "jax" or None), in the quantity's unit per the parameter's."""
+def flight_sensitivities(mass, motion, t_end, wrt, backend, of, options) -> Sensitivities:
+    """d(quantity)/dp for each quantity in ``of`` (names of :data:`QUANTITIES`; None: all)
+    and parameter in ``wrt``, along the JAX twin's trajectory (``backend`` "jax" or None),
+    in the quantity's unit per the parameter's."""
     backend = "jax" if backend is None else backend
     if backend_name(backend) != "jax":
         raise ValueError(f"backend={backend!r} has no derivatives for a SpringSupportedMass; use 'jax'")
@@ -36,8 +36,9 @@ def flight_sensitivities(mass, motion, t_end, wrt, backend, of, options) -> dict
     solution, _, events = trajectory_sensitivities(mass, motion, horizon, make_backend(backend, **options))
     with jax_context():
         rows = flight_quantity_jacobians(mass, solution, events, of)
-    return {quantity: {name: float(value) for name, value in by_parameter(mass, row, wrt, peak).items()}
-            for quantity, row in rows.items()}
+    derivatives = {quantity: {name: float(value) for name, value in by_parameter(mass, row, wrt, peak).items()}
+                   for quantity, row in rows.items()}
+    return Sensitivities.make(mass, derivatives, quantity_units=[QUANTITIES[q] for q in of], backend=backend)
 
 
 def flight_quantity_jacobians(mass, solution, events, of):
