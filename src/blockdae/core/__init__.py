@@ -8,9 +8,9 @@ from .contract import (SCALAR, AbstractHybridModel, BatchedModel, Differentiable
                        LinearModesModel, StudyBatch, StudyModel)
 from ._solution import AbstractEvent, AbstractSolution, DriverSolution, HybridEvent
 
-__all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchedModel", "DifferentiableModel",
-           "DriverSolution", "EngineModel", "ExplicitForm", "HybridEvent", "InconsistentStateError",
-           "LinearModesModel", "SCALAR", "SolverError", "StudyBatch", "StudyModel"]
+__all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchSolution", "BatchedModel", "CrossCheck",
+           "DifferentiableModel", "DriverSolution", "EngineModel", "ExplicitForm", "HybridEvent",
+           "InconsistentStateError", "LinearModesModel", "SCALAR", "SolverError", "StudyBatch", "StudyModel"]
 
 # what the other packages of blockdae use
 from ._atomic import atomic_path

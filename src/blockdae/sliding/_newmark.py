@@ -205,7 +205,7 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         t_end: final time [s]; None: until the block rests after the record.
         backend, **options: as for :func:`blockdae.simulate`.
         pga: target peak ground acceleration(s) [g], a number or a 1-D sequence: the motion
-            is scaled so that its peak |a| is each ``pga`` g (see :func:`blockdae.pga_factor`);
+            is scaled so that its peak |a| is each ``pga`` g (see :func:`blockdae.excitation.pga_factor`);
             None: as given. A value above 2 g is refused (likely m/s²: 2.94 is 0.3 g in m/s²)
             unless ``check_peak=False``.
         target_pga: the same as ``pga`` (the name :func:`blockdae.flexible` uses); give one.
