@@ -239,7 +239,7 @@ def test_resample_joins_records_of_mixed_steps_into_one_base_motion():
     other components) to the finer step makes one motion with the same a(t)."""
     x = bd.Record([0.0, 1.0, 0.0, -1.0, 0.0], 0.01, "x", units="m/s2", check_peak=False)
     y = bd.Record([0.0, 2.0, 0.0], 0.02, "y", units="m/s2", check_peak=False)
-    with pytest.raises(ValueError, match=r"blockdae\.resample\(record, dt\) on each in Python, --resample DT"):
+    with pytest.raises(ValueError, match=r"blockdae\.excitation\.resample\(record, dt\) on each in Python, --resample DT"):
         bd.BaseMotion(x, y)
     motion = bd.BaseMotion(bd.excitation.resample(x, 0.01), bd.excitation.resample(y, 0.01))
     np.testing.assert_array_equal(motion.y.acceleration_samples, [0.0, 1.0, 2.0, 1.0, 0.0])
