@@ -23,7 +23,7 @@ PLANNED = ("exact", "cvode", "ida", "jax")
 
 def cases(quick=False):
     """(label, block, motion, t_end [s] or None) for every comparison."""
-    examples = bd.seed_examples()
+    examples = bd.sliding.seed_examples()
     if quick:
         examples = [e for e in examples if e.name in ("Example 1", "Example 5")]
     out = [(e.name, e.block, e.motion, e.t_end) for e in examples]

@@ -58,9 +58,9 @@ def batch(quick):
     frequencies = np.linspace(3.0, 12.0, 4 if quick else 10)
     models = [bd.SpringSupportedMass(f, z) for f in frequencies for z in (0.02, 0.05, 0.1, 0.15, 0.2)]
     scales = np.linspace(0.2, 1.5, 3 if quick else 111)
-    bd.simulate_linear_final(models, motions, 15.0, scales[:1])  # compiled (or loaded) first
+    bd.solvers.simulate_linear_final(models, motions, 15.0, scales[:1])  # compiled (or loaded) first
     start = time.perf_counter()
-    table = bd.simulate_linear_final(models, motions, 15.0, scales)
+    table = bd.solvers.simulate_linear_final(models, motions, 15.0, scales)
     wall = time.perf_counter() - start
     print(f"final numbers: {len(table)} analyses ({len(records)} records x {len(models)} masses x "
           f"{len(scales)} scales, first 15 s) in {wall:.2f} s "

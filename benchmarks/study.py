@@ -51,7 +51,7 @@ def main(argv=None):
           f"(the longest record has {largest:,} samples, {len(where)} locations, floors 4x refined; "
           f"all {samples:,} ground samples: {samples * 8 / 2**20:.1f} MiB); a scaled copy per analysis "
           f"would need ~{copies / 2**30:.1f} GiB")
-    s = bd.study_summary(table)
+    s = bd.studies.summary(table)
     ground = s[(s["floor"] == 0) & (s["pga_g"] == pga[-1])]
     print(f"\nsummary, ground, PGA {pga[-1]:g} g (means over {len(records)} records):")
     print_table(["mu [-]", "R_c [m]", "Sd [m]", "R_d eq.3 [m]", "adjusted R_d [m]"],

@@ -38,7 +38,7 @@ def cases(quick=False):
         t_end = min(record.duration, QUICK_WINDOW if quick else RECORD_WINDOW)
         for frequency in (5.0,) if quick else (5.0, 10.0):
             mass = bd.SpringSupportedMass(frequency, 0.05)
-            if bd.upthrow_estimate(mass, motion, t_end=t_end).lifts_off:
+            if bd.upthrow.upthrow_estimate(mass, motion, t_end=t_end).lifts_off:
                 out.append((f"{record.name}, {frequency:g} Hz 5 %", mass, motion, t_end))
     return out
 

@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 import blockdae as bd
+from blockdae.core.contract import DifferentiableModel
 
 
 class StopMode(enum.IntEnum):
@@ -29,7 +30,7 @@ class StopMode(enum.IntEnum):
 
 
 @dataclasses.dataclass(frozen=True)
-class OscillatorOnStop(bd.DifferentiableModel):
+class OscillatorOnStop(DifferentiableModel):
     """Args: omega [rad/s], zeta [-], omega_c [rad/s] (the stop's stiffness per unit
     mass is omega_c²), gap [m] > 0 between the rest position and the stop."""
 

@@ -28,7 +28,7 @@ import numpy as np
 import blockdae as bd
 from blockdae.sliding._examples import rectangular_pulse_displacement
 
-examples = {e.name: e for e in bd.seed_examples()}
+examples = {e.name: e for e in bd.sliding.seed_examples()}
 solutions = {name: bd.simulate(e.block, e.motion, e.t_end) for name, e in examples.items()}"""),
     ("md", """## Exact event times beside the paper's
 
@@ -62,7 +62,7 @@ practically no common motion, as the paper notes (compare Figures 7, 8 with 3, 5
     ("code", """e = examples["Example 2"]
 sol = bd.simulate(e.block, e.motion, 6.0)
 fig = bd.plot(sol, e.motion, e.block, title=f"Example 2: {e.description}")
-stuck = sum(ev.mode_after == bd.Mode.STICK for ev in sol.events)
+stuck = sum(ev.mode_after == bd.sliding.Mode.STICK for ev in sol.events)
 print(f"{len(sol.events)} events in 6 s, {stuck} of them back to stick")"""),
     ("md", """## Example 3: ratcheting under R/Q = 0.3 (Figures 9 and 10)
 
@@ -199,7 +199,7 @@ print("backends of the 1-D block:", ", ".join(names))
 G = 9.80665
 folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
 kobe = bd.read_record(folder / "Kobe_1995_TAK-090.csv", units="g", g=G)
-cases = [(e.name, e.block, e.motion, e.t_end) for e in bd.seed_examples()]
+cases = [(e.name, e.block, e.motion, e.t_end) for e in bd.sliding.seed_examples()]
 cases.append(("Kobe, mu = 0.2, two-way", bd.SlidingBlock(0.2, g=G), kobe, None))"""),
     ("code", """for label, block, motion, t_end in cases:
     print(f"--- {label}")
@@ -260,12 +260,12 @@ files = [elcentro_file] + sorted(p for p in samples.iterdir() if p.name.endswith
 
 
 def normalised(path):
-    record = bd.baseline_corrected(bd.read_record(path))
+    record = bd.motions.baseline_corrected(bd.read_record(path))
     return record.scaled(0.1 * G / record.peak_acceleration)
 
 
 motions = [normalised(path) for path in files]
-results = [bd.relative_motion(m, lags) for m in motions]
+results = [bd.motions.relative_motion(m, lags) for m in motions]
 print(f"{len(results)} records, {len(lags)} lags each")"""),
     ("md", """## Figures 4-6: the methods compared, per record
 
@@ -289,7 +289,7 @@ assert worst <= 1 + 1e-12"""),
     ("md", """## Table I in the paper's layout (El Centro, SI units)
 
 R calculated, v_m tau, and eq. 1 with both signs, for tau = 0.05, 0.1, 0.2, 0.5 and 1 s."""),
-    ("code", """table = pd.DataFrame(bd.relative_motion(motions[0], [0.05, 0.1, 0.2, 0.5, 1.0]).table())
+    ("code", """table = pd.DataFrame(bd.motions.relative_motion(motions[0], [0.05, 0.1, 0.2, 0.5, 1.0]).table())
 table[["lag_s", "r_m", "velocity_bound_m", "eq1_minus_m", "eq1_plus_m"]]"""),
 ]
 
@@ -317,12 +317,12 @@ frames = {tn: bd.ShearFrame(storeys=5, period=tn, damping=0.05) for tn in (0.2, 
 where = ["ground"] + [f.floor(i) for f in frames.values() for i in (1, 5)]
 mus, pgas = [0.1, 0.2, 0.3], np.linspace(0.05, 1.0, 20)
 table = bd.study(records, mu=mus, pga=pgas, where=where, direction="negative", progress=False)  # one-way
-summary = bd.study_summary(table)
+summary = bd.studies.summary(table)
 print(f"{len(table)} analyses over {len(records)} records and {len(where)} locations")"""),
     ("md", """## Figure 4: mean displacement response spectra of the ground (records at 1 g)"""),
     ("code", """periods = np.geomspace(0.05, 10.0, 60)
 at_1g = [r.scaled(bd.STANDARD_GRAVITY / r.peak_acceleration) for r in records]
-spectrum = bd.response_spectrum(at_1g, periods, 0.05)
+spectrum = bd.motions.response_spectrum(at_1g, periods, 0.05)
 fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
 ax.loglog(periods, spectrum.sd.mean(axis=0), label="relative, Sd")
 ax.loglog(periods, spectrum.sd_abs.mean(axis=0), "--", label="absolute")
@@ -353,8 +353,8 @@ for tn in (0.3, 0.5, 0.2):
 
 Least squares on log R_c = log(adj(A, mu) R_d) over every location, mu and A where both
 are positive (R_d = 0 for A_gx <= mu)."""),
-    ("code", """fit = bd.fit_adjustment_factor(summary.rc_m, summary.rd_m, summary.pga_g, summary.mu)
-seed = bd.AdjustmentFactor()
+    ("code", """fit = bd.sliding.fit_adjustment_factor(summary.rc_m, summary.rd_m, summary.pga_g, summary.mu)
+seed = bd.sliding.AdjustmentFactor()
 both = (summary.rc_m > 0) & (summary.rd_m > 0)  # A_gx > mu and the body slid
 for label, adj in (("seed (as read)", seed), ("refitted", fit)):
     ratio = np.log((adj(summary.pga_g, summary.mu) * summary.rd_m)[both] / summary.rc_m[both])
@@ -402,7 +402,7 @@ end and k_x reaches a negative, passive plateau; Elms estimates it as
     \"\"\"Absolute block acceleration coefficient: C_x sticking, eq. 14 sliding [-].\"\"\"
     _, _, v_x, v_y, _ = sol(t)
     speed = np.hypot(v_x, v_y)
-    sliding = sol.mode[np.clip(np.searchsorted(sol.t, t, side="right") - 1, 0, len(sol.t) - 1)] == bd.PlanarMode.SLIP
+    sliding = sol.mode[np.clip(np.searchsorted(sol.t, t, side="right") - 1, 0, len(sol.t) - 1)] == bd.planar.PlanarMode.SLIP
     c_x = elms.WAVE.acceleration(t)
     return np.where(sliding & (speed > 0), -v_x / np.where(speed > 0, speed, 1.0) * mu - (mu - n_over_a), c_x)
 
@@ -432,7 +432,7 @@ print(f"{'R':>4} {'d_x(end) [-]':>13} {'d_y(end) [-]':>13} {'events':>7} {'max v
       f"{'k_x sliding: min [-]':>21} {'max [-]':>8}")
 for ratio, sol in figures.items():
     inside = np.linspace(0.0, sol.t_end, 4001)
-    sliding = sol.mode[np.clip(np.searchsorted(sol.t, inside, side="right") - 1, 0, None)] == bd.PlanarMode.SLIP
+    sliding = sol.mode[np.clip(np.searchsorted(sol.t, inside, side="right") - 1, 0, None)] == bd.planar.PlanarMode.SLIP
     k_sliding = k_x(sol, inside)[sliding]
     print(f"{ratio:4.1f} {sol.displacement[0]:+13.6f} {sol.displacement[1]:+13.6f} {len(sol.events):7d} "
           f"{np.max(sol(inside)[2]):+12.6f} {k_sliding.min():+21.6f} {k_sliding.max():+8.4f}")
@@ -507,7 +507,7 @@ for period in (2 / 1.618**3, 2 / 3.3, 0.37):
 A table falling faster than g (a_z = -1.5 sin(4 pi t), 4 cycles) throws the block off:
 no friction in flight, it lands (restitution 0) and slides on. With R = 0.4:"""),
     ("code", """flight = elms.elms_run(0.5, 0.8, 0.4, z=bd.Harmonic(-1.5, 0.5, cycles=4))
-flights = [e for e in flight.events if e.mode_after == bd.PlanarMode.FLIGHT]
+flights = [e for e in flight.events if e.mode_after == bd.planar.PlanarMode.FLIGHT]
 print(f"{len(flights)} flights; d = ({flight.displacement[0]:+.6f}, {flight.displacement[1]:+.6f}) [g s²], "
       f"{100 * (flight.displacement[0] / base - 1):+.1f} % in x against the 1-D block")
 print(flight.event_table())
@@ -587,7 +587,7 @@ the flight, eqs. 8 and 13 are exact too."""),
     ("code", """block = bd.SpringSupportedMass(5.0)
 pulse = bd.RectangularPulse(-0.9 * G, 1.5 / block.omega)
 flight = bd.simulate(block, pulse, t_end=0.2).flights[0]
-est = bd.upthrow_estimate(block, pulse, t_end=0.2)
+est = bd.upthrow.upthrow_estimate(block, pulse, t_end=0.2)
 print(f"A = {est.response_acceleration:.6f} g")
 print(f"u'0: exact {flight.liftoff_velocity:.12f} m/s, eq. 12 {est.liftoff_velocity:.12f} m/s")
 print(f"height: exact {flight.height * 1e3:.9f} mm, eq. 13 {est.height * 1e3:.9f} mm")
@@ -602,8 +602,8 @@ against the exact first and largest flight heights (max of u - u0), and 2 Delta 
 (eq. 8) against the first flight's duration. A < 1 means no liftoff, exactly (n = g + x''),
 so those cases are not simulated."""),
     ("code", """def compare(name, block, motion, t_end):
-    est = bd.upthrow_estimate(block, motion, t_end=t_end)
-    t_A = float(bd.response_spectrum(motion, 1 / block.frequency, block.damping, t_end=t_end).t_sa)
+    est = bd.upthrow.upthrow_estimate(block, motion, t_end=t_end)
+    t_A = float(bd.motions.response_spectrum(motion, 1 / block.frequency, block.damping, t_end=t_end).t_sa)
     flights = bd.simulate(block, motion, t_end=t_end).flights if est.lifts_off else ()
     first = flights[0] if flights else None
     pick = lambda f, field: getattr(f, field) if f is not None else 0.0
@@ -693,7 +693,7 @@ print(f"{'scale of z':>10} {'peak a_z [g]':>12} {'A [g]':>6} {'flights':>7}   (v
 exact = {}
 for scale in (1.0, 4.5, 5.0, 5.5, 6.0):
     vertical = quake.z.scaled(scale)
-    est = bd.upthrow_estimate(mass, vertical)
+    est = bd.upthrow.upthrow_estimate(mass, vertical)
     exact[scale] = bd.simulate(mass, vertical, t_end=quake.duration).flights if est.lifts_off else ()
     print(f"{scale:10.1f} {vertical.peak_acceleration / G:12.3f} {est.response_acceleration:6.3f} {len(exact[scale]):7d}")"""),
     ("md", """As recorded, the vertical gives A = 0.23 g at 5 Hz, 5 %: no liftoff. Scale 5.5 is the
@@ -713,8 +713,8 @@ runs = {name: bd.simulate(bd.PlanarBlock(0.5, support=support), motion, t_end=T_
 
 def flight_events(sol):
     \"\"\"(liftoff, landing) pairs of a PlanarSolution's events.\"\"\"
-    return list(zip([e for e in sol.events if e.mode_after == bd.PlanarMode.FLIGHT],
-                    [e for e in sol.events if e.mode_before == bd.PlanarMode.FLIGHT]))
+    return list(zip([e for e in sol.events if e.mode_after == bd.planar.PlanarMode.FLIGHT],
+                    [e for e in sol.events if e.mode_before == bd.planar.PlanarMode.FLIGHT]))
 
 
 def flight_table(sol):
@@ -806,7 +806,7 @@ import blockdae as bd
 
 folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
 records = {p.name[:-4]: bd.read_record(p, units="g") for p in sorted(folder.iterdir()) if p.name.endswith(".csv")}
-mean_periods = {name: bd.mean_period(record) for name, record in records.items()}
+mean_periods = {name: bd.motions.mean_period(record) for name, record in records.items()}
 print(f"{len(records)} records (pySLAMMER's samples); mean period T_m from "
       f"{min(mean_periods.values()):.3f} s to {max(mean_periods.values()):.3f} s")"""),
     ("md", """## Rigid, decoupled and coupled against T_s / T_m
@@ -857,7 +857,7 @@ compared = []
 for row in rows:
     motion, site = row["ground_motion_parameters"], row["site_parameters"]
     record = records[motion["ground_motion_file"][:-4]]
-    scaled = record.scaled(bd.pga_factor(record.peak_acceleration, motion["target_pga_g"], rounding="slammer"))
+    scaled = record.scaled(bd.excitation.pga_factor(record.peak_acceleration, motion["target_pga_g"], rounding="slammer"))
     strain = site.get("reference_strain")
     options = dict(ky=site["ky_g"], height=site["height_m"], vs=site["vs_slope_mps"], vr=site["vs_base_mps"],
                    damping=site["damping_ratio"], method=row["analysis"]["method"],

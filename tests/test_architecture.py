@@ -107,11 +107,11 @@ def test_one_event_shape_and_one_solution_base():
     is an AbstractSolution with t_events, event_table and to_dataframe."""
     import dataclasses
 
-    for event in (bd.Event, bd.PlanarEvent, bd.UpthrowEvent, bd.HybridEvent):
-        assert issubclass(event, bd.AbstractEvent)
+    for event in (bd.sliding.Event, bd.planar.PlanarEvent, bd.upthrow.UpthrowEvent, bd.core.HybridEvent):
+        assert issubclass(event, bd.core.AbstractEvent)
         assert [f.name for f in dataclasses.fields(event)][:3] == ["t", "mode_before", "mode_after"]
-    for solution in (bd.Solution, bd.PlanarSolution, bd.UpthrowSolution, bd.DriverSolution):
-        assert issubclass(solution, bd.AbstractSolution)
+    for solution in (bd.sliding.Solution, bd.planar.PlanarSolution, bd.upthrow.UpthrowSolution, bd.core.DriverSolution):
+        assert issubclass(solution, bd.core.AbstractSolution)
     sol = bd.simulate(bd.SpringSupportedMass(frequency=5.0, damping=0.05), bd.Harmonic(-0.8 * 9.81, 0.2), t_end=0.5)
     assert sol.events[0].kind == "liftoff" and sol.t_events[0] == sol.events[0].t
 

@@ -53,7 +53,7 @@ def test_the_public_names_are_the_registered_classes():
     for public, name in PUBLIC.items():
         cls = getattr(bd, public)
         assert cls is backend_class(name) and cls.__name__ == public and cls.name == name
-        assert issubclass(cls, bd.AbstractBackend) and make_backend(name) == cls()
+        assert issubclass(cls, bd.backends.AbstractBackend) and make_backend(name) == cls()
 
 
 @pytest.mark.parametrize("name", BUILT_IN)

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.sliding import Mode
 from blockdae.excitation.pieces import accel, evaluate
 
 RNG = np.random.default_rng(6)
@@ -219,6 +220,6 @@ def test_finite_harmonic_slides_until_rest_on_both_backends():
     assert exact.t_events[-1] > 2.0  # the last slip ends after the shaking
     assert exact.displacement == pytest.approx(cvode.displacement, abs=1e-8)
     np.testing.assert_allclose(exact.t_events, cvode.t_events, rtol=0, atol=1e-8)
-    assert exact.events[-1].mode_after == bd.Mode.STICK and exact.t_end == exact.t_events[-1]
+    assert exact.events[-1].mode_after == Mode.STICK and exact.t_end == exact.t_events[-1]
     unending = bd.simulate(block, bd.Harmonic(3.0, 1.0), t_end=2.0)
     assert exact(2.0)[0] == pytest.approx(unending.displacement, abs=1e-14)

@@ -86,7 +86,7 @@ def test_kinetic_column_is_the_friction_in_effect():
 
 def test_records_times_scales_times_grid_equal_one_by_one_runs():
     records = synthetic_records()
-    sweep = bd.simulate_many(GRID, records, scale=[1.0, 2.0, -1.0])
+    sweep = bd.sliding.simulate_many(GRID, records, scale=[1.0, 2.0, -1.0])
     assert sweep.shape == (2, 3, 3) and sweep.names == ("rec0", "rec1")
     df = sweep.to_dataframe()
     assert list(df.columns) == ["record", "scale", "pga_m_s2", "mu", "mu_kinetic", "bias", "g_m_s2",
@@ -113,7 +113,7 @@ def test_target_pga_against_the_rectangular_pulse_closed_form():
     t0, mu = 0.5, np.array([0.2, 0.3, 0.4])
     motions = {"small": bd.RectangularPulse(1.0, t0), "large": bd.RectangularPulse(-7.0, t0)}
     A = np.array([0.5, 0.8])
-    sweep = bd.simulate_many(bd.SlidingBlock(mu, g=G), motions, pga=A)
+    sweep = bd.sliding.simulate_many(bd.SlidingBlock(mu, g=G), motions, pga=A)
     assert sweep.names == ("small", "large")
     np.testing.assert_allclose(sweep.scale, [A * G / 1.0, A * G / 7.0], rtol=1e-15)
     expected = A[:, None] * G * t0**2 / 2 * (1 - A[:, None] / mu)
@@ -126,20 +126,20 @@ def test_pga_is_in_g_and_equals_scaling_the_record():
     """simulate_many(pga=[0.3]) is the record scaled to a peak of 0.3 g (was m/s²: 0 m);
     pga_rounding="slammer" scales by 0.3 / (the record's peak rounded to 0.001 g)."""
     record, block = synthetic_records(n=1)[0], bd.SlidingBlock(0.1, g=bd.STANDARD_GRAVITY)
-    sweep = bd.simulate_many(block, [record], pga=[0.3])
+    sweep = bd.sliding.simulate_many(block, [record], pga=[0.3])
     scaled = record.scaled(0.3 * bd.STANDARD_GRAVITY / record.peak_acceleration)
     assert sweep.displacement[0, 0, 0] == bd.simulate(block, scaled).displacement != 0.0
     assert sweep[0, 0].motion.peak_acceleration == pytest.approx(0.3 * bd.STANDARD_GRAVITY, rel=1e-15)
     own = round(record.peak_acceleration / bd.STANDARD_GRAVITY, 3)
     assert own != record.peak_acceleration / bd.STANDARD_GRAVITY  # the rounding matters here
-    slammer = bd.simulate_many(block, [record], pga=0.3, pga_rounding="slammer")
+    slammer = bd.sliding.simulate_many(block, [record], pga=0.3, pga_rounding="slammer")
     assert slammer.scale[0, 0] == 0.3 / own
     assert slammer.displacement[0, 0, 0] == bd.simulate(block, record.scaled(0.3 / own)).displacement
 
 
 def test_one_parameter_set_is_a_grid_of_one():
     motion = bd.SinePulse(5.0, 0.5)
-    sweep = bd.simulate_many(bd.SlidingBlock(0.2), [motion])
+    sweep = bd.sliding.simulate_many(bd.SlidingBlock(0.2), [motion])
     assert sweep.shape == (1, 1, 1)
     assert sweep.displacement[0, 0, 0] == pytest.approx(bd.simulate(bd.SlidingBlock(0.2), motion).displacement,
                                                          rel=1e-12)
@@ -161,7 +161,7 @@ def test_one_parameter_set_is_a_grid_of_one():
 ])
 def test_bad_sweeps_are_named(args, kwargs, error, match):
     with pytest.raises(error, match=match):
-        bd.simulate_many(bd.SlidingBlock(0.2), *args, **kwargs)
+        bd.sliding.simulate_many(bd.SlidingBlock(0.2), *args, **kwargs)
 
 
 # ---- plot of a batch ----------------------------------------------------------------
@@ -264,7 +264,7 @@ def test_crosscheck_of_a_batch_is_one_table_per_parameter_set():
     tables = bd.crosscheck(GRID, motion, backends=("exact", "cvode"))
     assert isinstance(tables, list) and len(tables) == 3
     for i, table in enumerate(tables):
-        assert isinstance(table, bd.CrossCheck)
+        assert isinstance(table, bd.core.CrossCheck)
         assert table.row("exact")["displacement"] == bd.simulate(GRID.item(i), motion).displacement
         assert table.row("cvode")["rel_du"] < 1e-7
 

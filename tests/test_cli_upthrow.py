@@ -1,7 +1,7 @@
 """``blockdae upthrow``: a mass on a spring support under a vertical record (seed 004).
 
 Reference values: the closed-form flights under a constant downward ground acceleration
-(derived below), and ``bd.simulate`` / ``bd.upthrow_estimate`` called directly on the same
+(derived below), and ``bd.simulate`` / ``bd.upthrow.upthrow_estimate`` called directly on the same
 record (the CLI must print the API's numbers)."""
 
 import json
@@ -87,7 +87,7 @@ def test_long_flight_lists_are_summarised(tmp_path, capsys):
 
 def test_kobe_as_vertical_motion_prints_the_apis_numbers(tmp_path, capsys):
     """Kobe TAK-090 used as vertical motion, scaled to 0.6 g, 5 Hz, 5 %: the JSON holds the
-    numbers of bd.simulate and bd.upthrow_estimate called directly (same floats), the text
+    numbers of bd.simulate and bd.upthrow.upthrow_estimate called directly (same floats), the text
     prints them to its digits with units, --quiet and --plot."""
     from conftest import load_sample_record, sample_record_paths
 
@@ -96,7 +96,7 @@ def test_kobe_as_vertical_motion_prints_the_apis_numbers(tmp_path, capsys):
     record = record.scaled(0.6 * G / record.peak_acceleration)
     block = bd.SpringSupportedMass(F, damping=0.05)
     solution = bd.simulate(block, record, t_end=record.duration)
-    estimate = bd.upthrow_estimate(block, record)
+    estimate = bd.upthrow.upthrow_estimate(block, record)
     flights = solution.flights
     assert len(flights) == 5 and all(math.isfinite(f.landing) for f in flights)
 

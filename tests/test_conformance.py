@@ -431,12 +431,12 @@ def test_batch(model, backend):
 
 @pytest.mark.parametrize("model, backend", matrix("many_motions"))
 def test_many_motions(model, backend):
-    """The model under each of its motions (bd.simulate_many for a SlidingBlock, which
+    """The model under each of its motions (bd.sliding.simulate_many for a SlidingBlock, which
     gives each motion's single run; one bd.simulate per motion otherwise) agrees with
     the reference run of that motion within the one-run bars."""
     case = CASES[model]
     if isinstance(case.model, bd.SlidingBlock):
-        sweep = bd.simulate_many(case.model, case.motions, t_end=case.t_end, backend=backend)
+        sweep = bd.sliding.simulate_many(case.model, case.motions, t_end=case.t_end, backend=backend)
         assert sweep.shape == (len(case.motions), 1, 1)
         for i in range(len(case.motions)):
             one = run(model, backend, i)

@@ -100,7 +100,7 @@ class FrictionRules:
 
 
 @dataclasses.dataclass(frozen=True)
-class FrictionBlock(FrictionRules, bd.DifferentiableModel):
+class FrictionBlock(FrictionRules, bd.core.contract.DifferentiableModel):
     """The block, differentiable: by mu alone unless asked otherwise."""
 
     mu: float

@@ -53,7 +53,7 @@ def test_free_flight_matches_the_closed_form_oscillator(example):
 def test_a_custom_model_gets_the_default_backend_and_a_clear_refusal(example):
     model = example.OscillatorOnStop(omega=2 * np.pi, zeta=0.1, omega_c=8 * np.pi, gap=0.01)
     sol = bd.simulate(model, bd.RectangularPulse(1.0, 2.0), t_end=1.0)
-    assert sol.backend == "cvode" and isinstance(sol, bd.DriverSolution)
+    assert sol.backend == "cvode" and isinstance(sol, bd.core.DriverSolution)
     assert "t [s]" in sol.event_table() and list(sol.to_dataframe().columns) == [
         "t_s", "mode_before", "mode_after", "u", "u_rate"]
     with pytest.raises(ValueError, match=r"backend='exact' does not run a OscillatorOnStop; choose one of "

@@ -64,7 +64,7 @@ def test_scale_grid_gives_bd_flexible_bit_for_bit(records):
     """With scale= the study's motion is the motion of bd.flexible(..., pga=) (the record times
     pga g / peak): the same rows to the last bit."""
     kobe = records[SHORT.index("Kobe_1995_TAK-090")]
-    factors = bd.pga_factor(kobe.peak_acceleration, PGA)
+    factors = bd.excitation.pga_factor(kobe.peak_acceleration, PGA)
     table = bd.study(kobe, ky=KY, scale=factors, block=MASS)
     for (ky, pga), row in zip([(k, p) for k in KY for p in PGA], table.itertuples()):
         ref = bd.flexible(kobe, ky=ky, height=COLUMN.height, vs=COLUMN.vs, pga=pga).rows[0]

@@ -6,7 +6,7 @@ References, each independent of the code under test:
 - the closed-form step response of a damped oscillator, summed over those modes;
 - the closed form of each mode under a record (linear between samples) summed over the
   modes, in mpmath at the samples (tests/closed_forms.py);
-- the exact response spectrum (``bd.response_spectrum``) of a one-storey frame.
+- the exact response spectrum (``bd.motions.response_spectrum``) of a one-storey frame.
 """
 
 import numpy as np
@@ -111,7 +111,7 @@ def test_one_storey_frame_peak_approaches_the_spectral_acceleration(kobe):
     short by at most (ωh)²/4 on the grid h = dt/m (twice the (ωh)²/8 of a pure sinusoid
     of frequency ω sampled within h/2 of its crest)."""
     frame = bd.ShearFrame(storeys=1, period=0.4, damping=0.05)
-    sa = bd.response_spectrum(kobe, 0.4, 0.05).sa
+    sa = bd.motions.response_spectrum(kobe, 0.4, 0.05).sa
     for m in (1, 4, 16, 64):
         gap = 1 - frame.floor_motions(kobe, refine=m)[0].peak_acceleration / sa
         assert -1e-14 <= gap <= 0.25 * (frame.omegas[0] * kobe.dt / m) ** 2
@@ -136,9 +136,9 @@ def test_floor_selector_and_spectra_of_ground_and_floors(kobe):
     frame = bd.ShearFrame()
     floors = frame.floor_motions(kobe)
     roof = frame.floor(5)
-    assert roof == bd.Floor(frame, 5) and roof.level == 5
+    assert roof == bd.structures.Floor(frame, 5) and roof.level == 5
     np.testing.assert_array_equal(roof.motion(kobe).acceleration_samples, floors[4].acceleration_samples)
-    spectra = bd.response_spectrum([kobe, *floors], periods=[0.3, 1.0], damping=0.05)
+    spectra = bd.motions.response_spectrum([kobe, *floors], periods=[0.3, 1.0], damping=0.05)
     assert spectra.sa.shape == (6, 2) and spectra.names[1] == "Kobe_1995_TAK-090 floor 1"
     assert spectra.sa[5, 0] > spectra.sa[0, 0]  # the roof amplifies at the frame's period
 
@@ -166,7 +166,7 @@ def test_bad_floor_and_motion_input(kobe):
     with pytest.raises(ValueError, match=r"level must be an integer floor number, got 1\.5"):
         frame.floor(1.5)
     with pytest.raises(TypeError, match=r"frame must be a bd\.ShearFrame"):
-        bd.Floor("frame", 1)
+        bd.structures.Floor("frame", 1)
     with pytest.raises(ValueError, match=r"refine must be an integer >= 1 .* got 0"):
         frame.floor_motions(kobe, refine=0)
     with pytest.raises(ValueError, match=r"t_end must be a positive finite time \[s\], got -1\.0"):

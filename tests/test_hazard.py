@@ -318,7 +318,9 @@ def test_fragility_from_a_planar_study(ten_records):
 
 
 def test_exported():
-    assert bd.hazard.fit_fragility is fit_fragility and "hazard" in bd.__all__ and "empirical" in bd.__all__
+    """The subpackages are attributes of the top level (their names are not in its short __all__)."""
+    assert bd.hazard.fit_fragility is fit_fragility and "fit_fragility" in bd.hazard.__all__
+    assert bd.empirical.jibson_2007 is em.jibson_2007 and "jibson_2007" in bd.empirical.__all__
 
 
 def test_benchmark_quick(monkeypatch, capsys):

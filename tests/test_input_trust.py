@@ -207,7 +207,8 @@ def test_cli_knet_offset_removed_reported_and_kept_on_request(capsys):
 
 
 def test_cli_remove_mean_and_baseline_on_a_table(tmp_path, capsys, kobe_g):
-    """--remove-mean subtracts the mean; --baseline mean corrects it (bd.baseline_corrected), without the warning."""
+    """--remove-mean subtracts the mean; --baseline mean corrects it (bd.motions.baseline_corrected), without the
+    warning."""
     table, _ = kobe_g
     path = write_table(tmp_path / "k.csv", table[:, 0], table[:, 1] + 0.1, "time (s), acc (g)")
     status, _, err = run_cli(capsys, "newmark", path, "--ky", "0.1")
@@ -215,7 +216,7 @@ def test_cli_remove_mean_and_baseline_on_a_table(tmp_path, capsys, kobe_g):
     with pytest.warns(bd.RecordWarning):
         offset = bd.read_record(path)
     for flags, record in ((["--remove-mean"], bd.read_record(path, remove_mean=True)),
-                          (["--baseline", "mean"], bd.baseline_corrected(offset, "mean"))):
+                          (["--baseline", "mean"], bd.motions.baseline_corrected(offset, "mean"))):
         status, out, err = run_cli(capsys, "newmark", path, "--ky", "0.1", "--json", *flags)
         assert status == 0 and "warning" not in err
         got = json.loads(out)["results"][0]["normal_m"]
@@ -239,7 +240,7 @@ def test_a_target_pga_in_m_s2_is_refused_in_every_api(kobe_g):
     with pytest.raises(ValueError, match="^pga" + message):
         bd.study([record], mu=[0.05], pga=[2.94])
     with pytest.raises(ValueError, match="^pga" + message):
-        bd.simulate_many(bd.SlidingBlock(0.05), [record], pga=2.94)
+        bd.sliding.simulate_many(bd.SlidingBlock(0.05), [record], pga=2.94)
     confirmed = bd.newmark(record, 0.5, pga=2.94, check_peak=False)
     scaled = record.scaled(2.94 * G / record.peak_acceleration)
     assert confirmed.normal == pytest.approx(bd.newmark(scaled, 0.5).normal, rel=1e-12)

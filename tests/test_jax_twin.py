@@ -60,7 +60,7 @@ def test_batch_is_vectorised_and_matches_single_runs():
     block = bd.SlidingBlock(np.array([0.1, 0.25, 0.4]), np.array([0.08, 0.2, 0.3]), bias=0.02)
     twin = bd.simulate(block, record, backend="jax")
     exact = bd.simulate(block, record)
-    assert isinstance(twin, bd.BatchSolution) and twin.backend == "jax"
+    assert isinstance(twin, bd.core.BatchSolution) and twin.backend == "jax"
     np.testing.assert_allclose(twin.displacement, exact.displacement, rtol=1e-7)
     np.testing.assert_array_equal(twin.n_events, exact.n_events)
     np.testing.assert_allclose(twin.displacement[1], twin[1].displacement, rtol=1e-12)

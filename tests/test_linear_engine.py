@@ -91,7 +91,7 @@ def test_the_compiled_engine_agrees_with_cvode(kobe_vertical):
     assert_same_run(compiled, cvode, dt_max=1e-10)
 
 
-class BilinearOscillator(bd.LinearModesModel):
+class BilinearOscillator(bd.core.contract.LinearModesModel):
     """A second model on the engine, unknown to it: an oscillator whose stiffness is k_pos
     for u > 0 and k_neg for u < 0 (modes POS, NEG; guards u and -u); its tables are the
     contract's, from its linear flows and affine guards."""
@@ -211,7 +211,7 @@ def test_final_numbers_equal_full_runs(kobe_vertical):
     event count, first liftoff and highest top."""
     masses = [bd.SpringSupportedMass(5.0, 0.05), bd.SpringSupportedMass(8.0, 0.1)]
     scales = [0.8, 1.0]
-    table = bd.simulate_linear_final(masses, {"kobe": kobe_vertical}, 15.0, scales)
+    table = bd.solvers.simulate_linear_final(masses, {"kobe": kobe_vertical}, 15.0, scales)
     assert len(table) == 4 and list(table.scale) == [0.8, 1.0, 0.8, 1.0]
     for row in table.itertuples():
         sol = bd.simulate(masses[row.model], kobe_vertical.scaled(row.scale), t_end=15.0)
@@ -225,6 +225,6 @@ def test_final_numbers_equal_full_runs(kobe_vertical):
 
 def test_final_numbers_refuse_other_models_and_sine_motions():
     with pytest.raises(ValueError, match="models on the linear engine"):
-        bd.simulate_linear_final([bd.SlidingBlock(0.2)], [bd.Record([0.0, 1.0], 0.1, units="m/s2")], 0.1)
+        bd.solvers.simulate_linear_final([bd.SlidingBlock(0.2)], [bd.Record([0.0, 1.0], 0.1, units="m/s2")], 0.1)
     with pytest.raises(ValueError, match="has sine pieces"):
-        bd.simulate_linear_final([bd.SpringSupportedMass(5.0)], [bd.Harmonic(1.0, 0.2)], 0.5)
+        bd.solvers.simulate_linear_final([bd.SpringSupportedMass(5.0)], [bd.Harmonic(1.0, 0.2)], 0.5)

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.sliding import Mode
 
 G = bd.STANDARD_GRAVITY
 
@@ -41,12 +42,12 @@ def test_batch_over_ky_matches_the_signed_block_on_both_polarities(kobe):
 
 def test_yield_acceleration_from_factor_of_safety():
     """Jibson (1993): k_y = (FS - 1) sin(alpha); FS 1.5 at 30 degrees gives 0.25 g."""
-    assert bd.yield_acceleration(1.5, 30.0) == pytest.approx(0.25, rel=1e-15)
-    np.testing.assert_allclose(bd.yield_acceleration([1.0, 2.0], 30.0), [0.0, 0.5], rtol=1e-15)
+    assert bd.sliding.yield_acceleration(1.5, 30.0) == pytest.approx(0.25, rel=1e-15)
+    np.testing.assert_allclose(bd.sliding.yield_acceleration([1.0, 2.0], 30.0), [0.0, 0.5], rtol=1e-15)
     with pytest.raises(ValueError, match=r"factor_of_safety=0\.9 must be >= 1"):
-        bd.yield_acceleration(0.9, 30.0)
+        bd.sliding.yield_acceleration(0.9, 30.0)
     with pytest.raises(ValueError, match=r"thrust_angle=95\.0"):
-        bd.yield_acceleration(1.2, 95.0)
+        bd.sliding.yield_acceleration(1.2, 95.0)
 
 
 def test_block_on_incline_yields_at_the_jibson_acceleration():
@@ -55,11 +56,11 @@ def test_block_on_incline_yields_at_the_jibson_acceleration():
     k_y = (FS - 1) sin 20 under the downslope pulse (same equation of motion)."""
     block = bd.SlidingBlock.on_incline(slope_angle=20.0, friction_angle=35.0)
     fs = np.tan(np.radians(35.0)) / np.tan(np.radians(20.0))
-    ky = bd.yield_acceleration(fs, 20.0)
+    ky = bd.sliding.yield_acceleration(fs, 20.0)
     assert block.mu - block.bias == pytest.approx(ky, rel=1e-14)
     a = 2.5 * ky * G
     sol = bd.simulate(block, bd.RectangularPulse(-a, 0.4))
-    assert [e.mode_after for e in sol.events] == [bd.Mode.SLIP_POS, bd.Mode.STICK]
+    assert [e.mode_after for e in sol.events] == [Mode.SLIP_POS, Mode.STICK]
     assert sol.displacement == pytest.approx(rectangular_pulse_downslope(a, 0.4, ky), rel=1e-12)
     held = bd.simulate(block, bd.RectangularPulse(-0.999 * ky * G, 0.4))
     assert held.events == ()
@@ -143,7 +144,7 @@ def test_many_records_by_pga_by_ky_is_one_row_per_case_equal_to_single_runs(samp
     several pga is a sweep of one record."""
     records, ky, pga = sample_records[:3], np.array([0.05, 0.1, 0.2]), [0.3, 0.5]
     sweep = bd.newmark(records, ky, pga=pga)
-    assert isinstance(sweep, bd.NewmarkSweep) and sweep.shape == (3, 2, 3)
+    assert isinstance(sweep, bd.sliding.NewmarkSweep) and sweep.shape == (3, 2, 3)
     table = sweep.to_dataframe()
     assert list(table.columns) == ["record", "pga_g", "ky_g", "normal_m", "inverse_m", "mean_m", "max_m"]
     assert len(table) == 18

@@ -18,6 +18,7 @@ import pytest
 from conftest import assert_same_events, load_sample_record, sample_record_paths
 
 import blockdae as bd
+from blockdae.sliding import Mode
 from blockdae.sliding import _exact_kernel, _exact_numba
 from blockdae.sliding._exact import prepare
 
@@ -53,7 +54,7 @@ def record_variants(record):
             "bias": bd.SlidingBlock(mu, mu_kinetic=0.8 * mu, bias=0.25 * mu, g=G)}
 
 
-@pytest.mark.parametrize("example", bd.seed_examples(), ids=lambda e: e.name)
+@pytest.mark.parametrize("example", bd.sliding.seed_examples(), ids=lambda e: e.name)
 def test_seed_examples(example):
     """Examples 1-6: harmonic (sine pieces, grazing at f = mu in 3a), pulses until rest."""
     assert_engines_agree(example.block, example.motion, example.t_end, min_events=2)
@@ -119,7 +120,7 @@ def test_grazing_is_one_slide():
     """f = mu: v touches zero at t = 4 s where a reaches mu g and rises on; both engines
     slide on without an event (test_rules.py has the closed forms)."""
     sol = assert_engines_agree(*RULE_CASES["graze"])
-    assert [e.mode_after for e in sol.events] == [bd.Mode.SLIP_NEG, bd.Mode.STICK]
+    assert [e.mode_after for e in sol.events] == [Mode.SLIP_NEG, Mode.STICK]
 
 
 def test_never_resting_block_raises():
@@ -159,14 +160,14 @@ def test_final_numbers_over_records_and_sets(sample_records):
     each record; a finite t_end applies to every motion."""
     motions = sample_records[:3] + [bd.SinePulse(6.0, 0.8)]
     block = bd.SlidingBlock(mu=np.array([0.05, 0.1, 0.2]), g=G)
-    final = bd.simulate_final(block, motions)
+    final = bd.sliding.simulate_final(block, motions)
     assert final.displacement.shape == (4, 3)
     for i, motion in enumerate(motions):
         batch = bd.simulate(block, motion)
         np.testing.assert_array_equal(final.displacement[i], batch.displacement)
         np.testing.assert_array_equal(final.n_events[i], batch.n_events)
         np.testing.assert_array_equal(final.t_end[i], batch.t_end)
-    cut = bd.simulate_final(block.item(1), motions, t_end=5.0)
+    cut = bd.sliding.simulate_final(block.item(1), motions, t_end=5.0)
     assert cut.displacement.shape == (4,) and np.allclose(cut.t_end, 5.0, rtol=1e-15)
     assert cut.displacement[0] == bd.simulate(block.item(1), motions[0], t_end=5.0).displacement
 
@@ -185,9 +186,9 @@ def test_bisections_are_twins():
 def test_event_log_reads_like_a_tuple(kobe):
     sol = bd.simulate(bd.SlidingBlock(mu=0.1, direction="negative", g=G), kobe)
     events = sol.events
-    assert isinstance(events, bd.EventLog) and len(events) == len(tuple(events)) > 2
+    assert isinstance(events, bd.sliding.EventLog) and len(events) == len(tuple(events)) > 2
     assert events == tuple(events) and tuple(events) == events and events[1:] == tuple(events)[1:]
-    assert events[-1] is events[len(events) - 1] and events[0].mode_after == bd.Mode.SLIP_NEG
+    assert events[-1] is events[len(events) - 1] and events[0].mode_after == Mode.SLIP_NEG
     np.testing.assert_array_equal(sol.t_events, [e.t for e in events])
     with pytest.raises(AttributeError):
         events.t = None

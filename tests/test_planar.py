@@ -10,6 +10,8 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 import blockdae as bd
+from blockdae.sliding import Mode
+from blockdae.planar import PlanarMode
 from conftest import load_sample_record
 
 G = 9.81
@@ -27,14 +29,14 @@ def assert_reduces(sol, ref, event_dt=1e-9, rel=1e-8):
     of either sign is SLIP), events within ``event_dt`` [s], u_x within ``rel`` of the
     largest |u| (the 1-D CVODE backend itself is 1.5e-10 m off on Example 1, whose final
     u is 3 % of its largest)."""
-    slip = lambda m: "STICK" if m == bd.Mode.STICK else "SLIP"
+    slip = lambda m: "STICK" if m == Mode.STICK else "SLIP"
     assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == \
         [(slip(e.mode_before), slip(e.mode_after)) for e in ref.events]
     np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=event_dt)
     assert abs(sol.displacement[0] - ref.displacement) <= rel * ref.max_abs_displacement
 
 
-@pytest.mark.parametrize("example", bd.seed_examples(), ids=lambda e: e.name)
+@pytest.mark.parametrize("example", bd.sliding.seed_examples(), ids=lambda e: e.name)
 def test_x_only_motion_reduces_to_the_1d_block(example):
     ref = bd.simulate(example.block, example.motion, t_end=example.t_end)  # exact closed forms
     sol = bd.simulate(planar_twin(example.block), example.motion, t_end=example.t_end, backend=CVODE)
@@ -89,7 +91,7 @@ def test_a_motion_along_a_rotated_line_is_the_1d_block_rotated(angle):
     degrees (a stop against the drive, where the direction is unstable) CVODE's stop was
     ~9e-6 s off before the direction's relaxation rate was capped below
     ``SLOW_SPEED``; measured since: 5.4e-12 s, 7.5e-9 of u."""
-    example = bd.seed_examples()[3]  # Example 3b: bias 0.3, f 0.4 < mu 0.6, harmonic
+    example = bd.sliding.seed_examples()[3]  # Example 3b: bias 0.3, f 0.4 < mu 0.6, harmonic
     c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
     motion = bd.BaseMotion(example.motion.scaled(c), example.motion.scaled(s))
     block = bd.PlanarBlock(mu=0.6, mu_kinetic=0.4, bias=(0.3 * c, 0.3 * s), g=G)
@@ -185,9 +187,9 @@ def test_bounces_shrink_by_the_restitution_and_end_in_contact():
     restitution, threshold = 0.5, 1e-3
     motion = bd.BaseMotion(bd.SinePulse(2.0, 0.5), None, bd.SinePulse(-15.0, 0.3))
     sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G, restitution=restitution, bounce_threshold=threshold), motion, backend=CVODE)
-    landings = [e for e in sol.events if e.mode_before == bd.PlanarMode.FLIGHT]
-    rebounds = [e for e in landings if e.mode_after == bd.PlanarMode.FLIGHT]
-    assert len(rebounds) >= 3 and landings[-1].mode_after != bd.PlanarMode.FLIGHT
+    landings = [e for e in sol.events if e.mode_before == PlanarMode.FLIGHT]
+    rebounds = [e for e in landings if e.mode_after == PlanarMode.FLIGHT]
+    assert len(rebounds) >= 3 and landings[-1].mode_after != PlanarMode.FLIGHT
     # after the base stops moving vertically, each flight is ballistic: the next impact
     # is as fast as the last rebound, which is restitution times the impact
     late = [e for e in landings if e.t > 0.3]
@@ -195,7 +197,7 @@ def test_bounces_shrink_by_the_restitution_and_end_in_contact():
         assert second.v_z == pytest.approx(restitution * first.v_z, rel=1e-6)
     # finitely many bounces: the rebound falls below the threshold after at most this many
     assert len(late) <= 1 + math.ceil(math.log(threshold / -late[0].v_z) / math.log(restitution)) + 1
-    assert sol.mode[-1] != bd.PlanarMode.FLIGHT and sol.gap[-1] == 0.0
+    assert sol.mode[-1] != PlanarMode.FLIGHT and sol.gap[-1] == 0.0
 
 
 @pytest.mark.parametrize("kwargs, field", [
@@ -227,7 +229,7 @@ def test_planar_solution_tables_and_dense_output():
                       bd.BaseMotion(wave, wave.scaled(0.8)), backend=CVODE)
     u_x, u_y, v_x, v_y, gap = sol(sol.t)
     np.testing.assert_allclose(u_x, sol.u_x, atol=1e-15)
-    np.testing.assert_allclose(np.hypot(v_x, v_y)[sol.mode == bd.PlanarMode.STICK], 0.0, atol=1e-15)
+    np.testing.assert_allclose(np.hypot(v_x, v_y)[sol.mode == PlanarMode.STICK], 0.0, atol=1e-15)
     table = sol.to_dataframe()
     assert list(table.mode_after) == ["SLIP", "STICK"] and "direction_deg" in table
     assert "u_x [g s²]" in sol.event_table()  # g = 1: lengths in g s²

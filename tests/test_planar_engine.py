@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.sliding import Mode
+from blockdae.planar import PlanarMode
 from blockdae.core._driver import PieceExcitation
 from blockdae.planar import _compiled as engine
 from blockdae.planar import _elms as elms
@@ -39,7 +41,7 @@ def test_elms_cases_match_ida(ratio):
     """Elms N/A = 0.5, mu = f = 0.8, one sine wave, C_y = R C_x (g = 1). Measured: events
     within 3.2e-12 s, u within 5e-12 relative."""
     sol, _ = assert_matches_ida(elms.elms_block(0.5, 0.8), elms.elms_motion(ratio))
-    assert isinstance(sol, bd.PlanarSolution) and sol.backend == "compiled"
+    assert isinstance(sol, bd.planar.PlanarSolution) and sol.backend == "compiled"
     u_x, u_y, *_ = sol(sol.t)  # the dense output passes through the knots
     np.testing.assert_array_equal(u_x, sol.u_x)
 
@@ -84,7 +86,7 @@ def test_vertical_shaking_and_flight_match_ida():
     block = bd.PlanarBlock(mu=0.3, g=G)
     motion = bd.BaseMotion(bd.Harmonic(4.0, 1.0), bd.Harmonic(2.0, 1.3), bd.Harmonic(12.0, 0.5))
     sol, _ = assert_matches_ida(block, motion, t_end=2.0)
-    assert sum(e.mode_after == bd.PlanarMode.FLIGHT for e in sol.events) >= 2
+    assert sum(e.mode_after == PlanarMode.FLIGHT for e in sol.events) >= 2
 
 
 def test_x_only_motion_is_the_exact_1d_block():
@@ -95,7 +97,7 @@ def test_x_only_motion_is_the_exact_1d_block():
     for motion in (bd.SinePulse(4.0, 0.5), load_sample_record("Kobe_1995_TAK-090").scaled(0.8)):
         ref = bd.simulate(twin, motion)
         sol = bd.simulate(block, bd.BaseMotion(motion), backend="compiled")
-        slip = lambda m: "STICK" if m == bd.Mode.STICK else "SLIP"
+        slip = lambda m: "STICK" if m == Mode.STICK else "SLIP"
         assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == \
             [(slip(e.mode_before), slip(e.mode_after)) for e in ref.events]
         np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=1e-12)
@@ -118,8 +120,8 @@ def test_bounces_end_in_contact_as_on_the_driver():
     sol = bd.simulate(block, motion, backend="compiled")
     ref = bd.simulate(block, motion, **REFERENCE)
     assert_same_events(sol, ref, 1e-9)
-    assert sum(e.mode_before == e.mode_after == bd.PlanarMode.FLIGHT for e in sol.events) >= 3
-    assert sol.mode[-1] != bd.PlanarMode.FLIGHT and sol.gap[-1] == 0.0
+    assert sum(e.mode_before == e.mode_after == PlanarMode.FLIGHT for e in sol.events) >= 3
+    assert sol.mode[-1] != PlanarMode.FLIGHT and sol.gap[-1] == 0.0
 
 
 def test_a_slide_whose_speed_dips_below_zero_within_a_sample_stops():

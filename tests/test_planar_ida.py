@@ -16,6 +16,8 @@ from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
 import blockdae as bd
+from blockdae.sliding import Mode
+from blockdae.planar import PlanarMode
 from blockdae.backends import make_backend
 from conftest import assert_same_events, load_sample_record
 
@@ -40,7 +42,7 @@ def assert_reduces(sol, ref, dt_max=1e-9, rel_du_max=1e-7):
     reversal is a stop that slides on), events within ``dt_max`` [s], u_x within
     ``rel_du_max`` of the largest |u| (a harmonic's final u is a small net of its slides),
     and u_y = 0 exactly."""
-    slip = lambda m: "STICK" if m == bd.Mode.STICK else "SLIP"
+    slip = lambda m: "STICK" if m == Mode.STICK else "SLIP"
     assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == \
         [(slip(e.mode_before), slip(e.mode_after)) for e in ref.events]
     np.testing.assert_allclose(sol.t_events, ref.t_events, rtol=0, atol=dt_max)
@@ -61,7 +63,7 @@ def test_ida_runs_a_planar_block():
     assert make_backend("ida").runs(bd.PlanarBlock(mu=0.5))
     block, _, motion, _ = X_ONLY["pulse"]
     sol = bd.simulate(block, motion, backend="ida")
-    assert isinstance(sol, bd.PlanarSolution) and sol.backend == "ida"
+    assert isinstance(sol, bd.planar.PlanarSolution) and sol.backend == "ida"
     assert sol.state.shape[1] == 7  # the model's states; F is IDA's own
     assert sol.stats["n_restarts"] > 0
 
@@ -89,7 +91,7 @@ def test_a_motion_along_a_rotated_line_is_the_1d_block_rotated():
     """Seed-000 Example 3b along a line at 135 degrees (bias along it): the 1-D problem
     rotated, with the block driven against the bias, where CVODE's stop is 8.9e-6 s off
     (tests/test_planar.py). Measured for IDA: 3.0e-10 s, 3.3e-10 of u."""
-    example = bd.seed_examples()[3]
+    example = bd.sliding.seed_examples()[3]
     c, s = math.cos(math.radians(135.0)), math.sin(math.radians(135.0))
     block = bd.PlanarBlock(mu=0.6, mu_kinetic=0.4, bias=(0.3 * c, 0.3 * s), g=G)
     sol = bd.simulate(block, bd.BaseMotion(example.motion.scaled(c), example.motion.scaled(s)),
@@ -266,5 +268,5 @@ def test_flight_agrees_with_cvode():
     block = bd.PlanarBlock(mu=0.3, g=G)
     motion = bd.BaseMotion(bd.Harmonic(4.0, 1.0), z=bd.Harmonic(12.0, 0.5))
     ida, cvode = both(block, motion, 2.0)
-    assert any(e.mode_after == bd.PlanarMode.FLIGHT for e in ida.events)
+    assert any(e.mode_after == PlanarMode.FLIGHT for e in ida.events)
     assert_agrees(ida, cvode)

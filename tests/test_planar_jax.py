@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.planar import PlanarMode
 from blockdae.core._sensitivities import finite_differences
 from blockdae.backends import make_backend
 from conftest import load_sample_record
@@ -38,7 +39,7 @@ def test_jax_runs_a_planar_block():
     assert make_backend("jax").runs(bd.PlanarBlock(mu=0.5))
     block, _, motion, _ = X_ONLY["pulse"]
     sol = bd.simulate(block, motion, backend="jax")
-    assert isinstance(sol, bd.PlanarSolution) and sol.backend == "jax"
+    assert isinstance(sol, bd.planar.PlanarSolution) and sol.backend == "jax"
     assert sol.stats["n_steps"] > 0
 
 
@@ -162,7 +163,7 @@ def test_flight_agrees_with_cvode_and_its_derivatives_match_differences():
     block = bd.PlanarBlock(mu=0.3, g=9.81)
     motion = bd.BaseMotion(bd.Harmonic(4.0, 1.0), z=bd.Harmonic(12.0, 0.5))
     sol = bd.simulate(block, motion, t_end=2.0, backend="jax", rtol=RTOL)
-    assert any(e.mode_after == bd.PlanarMode.FLIGHT for e in sol.events)
+    assert any(e.mode_after == PlanarMode.FLIGHT for e in sol.events)
     assert_agrees(sol, bd.simulate(block, motion, t_end=2.0, backend="cvode", rtol=RTOL))
     assert_derivatives_match_differences(block, motion, 2.0, wrt=("mu", "bias_x", "A", "A_x", "A_z", "g"))
 

@@ -11,7 +11,7 @@ import blockdae as bd
 def example_5():
     """Seed 000, Example 5: triangular pulse; slides from t* = 0.1635 s to t** = 0.4588 s."""
     matplotlib.use("Agg", force=True)
-    example = next(e for e in bd.seed_examples() if e.name == "Example 5")
+    example = next(e for e in bd.sliding.seed_examples() if e.name == "Example 5")
     return example, bd.simulate(example.block, example.motion, example.t_end)
 
 
@@ -78,7 +78,7 @@ def test_plot_draws_spectra_and_relative_motion():
     import matplotlib.pyplot as plt
 
     record = bd.Record(np.sin(np.linspace(0, 30, 1501)), 0.01, units="m/s2")
-    spectrum = bd.response_spectrum(record, np.geomspace(0.05, 5, 30))
+    spectrum = bd.motions.response_spectrum(record, np.geomspace(0.05, 5, 30))
     fig = bd.plot(spectrum)
     try:
         ax = fig.axes[0]
@@ -86,7 +86,7 @@ def test_plot_draws_spectra_and_relative_motion():
         np.testing.assert_allclose(ax.lines[0].get_ydata(), spectrum.psa)
     finally:
         plt.close(fig)
-    fig = bd.plot(bd.relative_motion(record, [0.1, 0.5, 1.0]))
+    fig = bd.plot(bd.motions.relative_motion(record, [0.1, 0.5, 1.0]))
     try:
         assert "[s]" in fig.axes[0].get_xlabel() and "[m]" in fig.axes[0].get_ylabel()
     finally:

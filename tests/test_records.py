@@ -208,18 +208,18 @@ def test_derived_records_are_not_rechecked_and_from_samples_takes_units():
 def test_resample_is_exact_at_the_new_samples_and_keeps_name_start_and_units():
     """Issue 23 item 4. Independent: a(t) of the old record by hand (linear between samples)."""
     record = bd.Record([0.0, 2.0, -1.0, 3.0, 0.5], 0.02, "r", start_time=1.5, units="g")
-    new = bd.resample(record, 0.015)
+    new = bd.excitation.resample(record, 0.015)
     assert (new.name, new.start_time, new.dt) == ("r", 1.5, 0.015)
     assert new.acceleration_samples.size == 6  # t = 0, 0.015, ..., 0.075 <= duration 0.08; the tail is dropped
     g = bd.STANDARD_GRAVITY
     by_hand = g * np.array([0.0, 1.5, 0.5, 0.0, 3.0, 1.125])  # e.g. t = 0.015 s: 3/4 of the way 0 -> 2
     np.testing.assert_allclose(new.acceleration_samples, by_hand, rtol=1e-14, atol=1e-14)
     # a step dividing the old one gives a(t) itself: the same pieces, so the same sliding
-    fine = bd.resample(record, 0.005)
+    fine = bd.excitation.resample(record, 0.005)
     t = np.linspace(0.0, record.duration, 97)
     np.testing.assert_allclose(fine.acceleration(t), record.acceleration(t), rtol=0, atol=1e-12)
     # between new samples the result is linear in them: the old peak 3 g at t = 0.06 s is cut
-    coarse = bd.resample(record, 0.025)
+    coarse = bd.excitation.resample(record, 0.025)
     np.testing.assert_allclose(coarse.acceleration_samples, g * np.array([0.0, 1.25, 1.0, 1.125]), rtol=1e-14)
     assert coarse.peak_acceleration == pytest.approx(1.25 * g, rel=1e-14)
 
@@ -231,24 +231,24 @@ def test_resample_is_exact_at_the_new_samples_and_keeps_name_start_and_units():
 def test_resample_refuses_a_bad_step_naming_it(dt, message):
     record = bd.Record([0.0, 2.0, -1.0], 0.02, "r", units="m/s2")
     with pytest.raises(ValueError, match=message):
-        bd.resample(record, dt)
+        bd.excitation.resample(record, dt)
 
 
 def test_resample_joins_records_of_mixed_steps_into_one_base_motion():
-    """The BaseMotion error points to bd.resample; resampling the motion's Records (not its
+    """The BaseMotion error points to bd.excitation.resample; resampling the motion's Records (not its
     other components) to the finer step makes one motion with the same a(t)."""
     x = bd.Record([0.0, 1.0, 0.0, -1.0, 0.0], 0.01, "x", units="m/s2", check_peak=False)
     y = bd.Record([0.0, 2.0, 0.0], 0.02, "y", units="m/s2", check_peak=False)
-    with pytest.raises(ValueError, match=r"blockdae\.resample\(record, dt\) on each in Python, --resample DT"):
+    with pytest.raises(ValueError, match=r"blockdae\.excitation\.resample\(record, dt\) on each in Python, --resample DT"):
         bd.BaseMotion(x, y)
-    motion = bd.BaseMotion(bd.resample(x, 0.01), bd.resample(y, 0.01))
+    motion = bd.BaseMotion(bd.excitation.resample(x, 0.01), bd.excitation.resample(y, 0.01))
     np.testing.assert_array_equal(motion.y.acceleration_samples, [0.0, 1.0, 2.0, 1.0, 0.0])
     np.testing.assert_array_equal(motion.x.acceleration_samples, x.acceleration_samples)
-    coarse = bd.resample(bd.BaseMotion(x, None, bd.Harmonic(1.0, 2.0)), 0.02)  # a whole motion: its Records
+    coarse = bd.excitation.resample(bd.BaseMotion(x, None, bd.Harmonic(1.0, 2.0)), 0.02)  # a whole motion: its Records
     assert coarse.x.dt == 0.02 and coarse.y is None and isinstance(coarse.z, bd.Harmonic)
     np.testing.assert_array_equal(coarse.x.acceleration_samples, [0.0, 0.0, 0.0])
     with pytest.raises(TypeError, match=r"record must be a Record or a BaseMotion, got list"):
-        bd.resample([0.0, 1.0], 0.01)
+        bd.excitation.resample([0.0, 1.0], 0.01)
 
 
 def test_record_attributes_say_what_they_hold_and_in_which_unit():

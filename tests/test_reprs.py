@@ -27,8 +27,8 @@ def test_solutions_and_batches(record):
     solution = bd.simulate(block, record)
     assert f"u(t_end) = {solution.displacement:.6g} m (signed" in _short(solution)
     assert "30 parameter sets" in _short(bd.simulate(block.replace(mu=np.linspace(0.05, 0.2, 30)), record))
-    _short(bd.simulate_final(block.replace(mu=np.linspace(0.05, 0.2, 30)), record))
-    _short(bd.simulate_many(block, [record, record.scaled(0.5)]))
+    _short(bd.sliding.simulate_final(block.replace(mu=np.linspace(0.05, 0.2, 30)), record))
+    _short(bd.sliding.simulate_many(block, [record, record.scaled(0.5)]))
     flexible = bd.simulate(bd.FlexibleSlidingMass(bd.ShearColumn(10.0, 200.0), ky=0.1), record, t_end=20.0)
     assert f"D = {flexible.sliding_displacement:.6g} m" in _short(flexible)
 
@@ -36,8 +36,8 @@ def test_solutions_and_batches(record):
 def test_tables_and_spectra(record):
     result = bd.flexible([record, record.scaled(0.5)], ky=np.linspace(0.02, 0.2, 10), height=10.0, vs=200.0)
     assert "20 rows" in _short(result) and "rows=<20 dict>" in repr(result)
-    _short(bd.response_spectrum(record, np.linspace(0.1, 3.0, 50)))
-    _short(bd.intensity_measures(record))
+    _short(bd.motions.response_spectrum(record, np.linspace(0.1, 3.0, 50)))
+    _short(bd.motions.intensity_measures(record))
 
 
 def test_a_fragility_shows_its_parameters_not_its_bootstrap_array():

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.sliding import Mode
 
 G = 10.0  # makes mu g exact in binary for mu = 0.5
 
@@ -14,7 +15,7 @@ def test_onset_is_strict_at_threshold():
     at = bd.simulate(block, bd.RectangularPulse(5.0, 1.0))
     above = bd.simulate(block, bd.RectangularPulse(5.0 * (1 + 1e-9), 1.0))
     assert at.events == () and at.displacement == 0.0
-    assert [e.mode_after for e in above.events] == [bd.Mode.SLIP_NEG, bd.Mode.STICK]
+    assert [e.mode_after for e in above.events] == [Mode.SLIP_NEG, Mode.STICK]
 
 
 def test_bias_shifts_both_thresholds():
@@ -23,7 +24,7 @@ def test_bias_shifts_both_thresholds():
     held = bd.simulate(block, bd.RectangularPulse(-1.9, 1.0))
     slides = bd.simulate(block, bd.RectangularPulse(-2.1, 1.0))
     assert held.events == ()
-    assert slides.events[0].t == 0.0 and slides.events[0].mode_after == bd.Mode.SLIP_POS
+    assert slides.events[0].t == 0.0 and slides.events[0].mode_after == Mode.SLIP_POS
 
 
 def test_sliding_law_with_bias_and_kinetic_friction():
@@ -48,21 +49,21 @@ def test_stop_reverses_when_demand_exceeds_static_friction():
     # on [1, 2] a falls linearly from 8 to -8: v' = 5 - a(t) = 5 - 8 + 16 (t - 1)
     tau = np.roots([8.0, -3.0, -3.0]).max()  # v(1 + tau) = -3 - 3 tau + 8 tau² = 0
     transitions = [(e.mode_before, e.mode_after) for e in sol.events]
-    assert transitions[:2] == [(bd.Mode.STICK, bd.Mode.SLIP_NEG), (bd.Mode.SLIP_NEG, bd.Mode.SLIP_POS)]
+    assert transitions[:2] == [(Mode.STICK, Mode.SLIP_NEG), (Mode.SLIP_NEG, Mode.SLIP_POS)]
     assert sol.events[1].t == pytest.approx(1.0 + tau, rel=1e-14)
 
 
 def test_onset_at_time_zero_is_an_event():
     sol = bd.simulate(bd.SlidingBlock(mu=0.5, g=G), bd.RectangularPulse(7.0, 0.2))
     first = sol.events[0]
-    assert (first.t, first.mode_before, first.mode_after) == (0.0, bd.Mode.STICK, bd.Mode.SLIP_NEG)
+    assert (first.t, first.mode_before, first.mode_after) == (0.0, Mode.STICK, Mode.SLIP_NEG)
 
 
 def test_direction_restricts_sliding():
     """Harmonic forcing slides both ways; "negative" keeps u non-increasing, "positive"
     non-decreasing, each never entering the forbidden slip mode."""
     motion = bd.Harmonic(9.0, 1.0)
-    for direction, forbidden, sign in (("negative", bd.Mode.SLIP_POS, -1), ("positive", bd.Mode.SLIP_NEG, 1)):
+    for direction, forbidden, sign in (("negative", Mode.SLIP_POS, -1), ("positive", Mode.SLIP_NEG, 1)):
         sol = bd.simulate(bd.SlidingBlock(mu=0.5, g=G, direction=direction), motion, t_end=3.0)
         assert forbidden not in {e.mode_after for e in sol.events}
         u = sol(np.linspace(0, 3, 301))[0]
@@ -78,7 +79,7 @@ def test_grazing_keeps_sliding_without_events():
     """
     motion = bd.Record(5.0 + np.array([0.0, 1.0, 0.0, -1.0, 0.0, 1.0, 0.0]), dt=1.0)
     sol = bd.simulate(bd.SlidingBlock(mu=0.5, g=G), motion)
-    assert [(e.t, e.mode_after) for e in sol.events][:1] == [(0.0, bd.Mode.SLIP_NEG)]
+    assert [(e.t, e.mode_after) for e in sol.events][:1] == [(0.0, Mode.SLIP_NEG)]
     assert all(e.t > 6.0 for e in sol.events[1:]) and len(sol.events) == 2
     assert sol.stats["max_events_at_one_instant"] == 1
     # after the excitation, v(6) = -1 decays at mu g: rests at 6.2 s
@@ -98,8 +99,8 @@ def test_stop_just_before_threshold_sticks_then_slides_again():
     motion = bd.Record(5.0 + np.array([0.0, 1.0, 0.0, -1.01, 0.0, 1.0, 0.0]), dt=1.0)
     sol = bd.simulate(bd.SlidingBlock(mu=0.5, g=G), motion)
     stop = 3.0 + 1.0 - np.sqrt(1.0 - 0.495 / 0.505)
-    assert [e.mode_after for e in sol.events] == [bd.Mode.SLIP_NEG, bd.Mode.STICK, bd.Mode.SLIP_NEG,
-                                                   bd.Mode.STICK]
+    assert [e.mode_after for e in sol.events] == [Mode.SLIP_NEG, Mode.STICK, Mode.SLIP_NEG,
+                                                   Mode.STICK]
     np.testing.assert_allclose(sol.t_events[1:3], [stop, 4.0], rtol=1e-14)
 
 
@@ -109,9 +110,9 @@ def test_events_at_the_end_of_a_record_and_until_rest():
     block = bd.SlidingBlock(mu=0.5, g=G)
     cut = bd.simulate(block, motion, t_end=0.5)
     assert cut.t_end == 0.5 and cut.v[-1] == pytest.approx(-1.5, rel=1e-14)
-    assert [e.mode_after for e in cut.events] == [bd.Mode.SLIP_NEG]
+    assert [e.mode_after for e in cut.events] == [Mode.SLIP_NEG]
     full = bd.simulate(block, motion)
-    assert full.t_end == pytest.approx(1.6, rel=1e-14) and full.events[-1].mode_after == bd.Mode.STICK
+    assert full.t_end == pytest.approx(1.6, rel=1e-14) and full.events[-1].mode_after == Mode.STICK
     longer = bd.simulate(block, motion, t_end=3.0)
     assert longer.t_end == 3.0 and longer.displacement == pytest.approx(full.displacement, rel=1e-14)
 
@@ -155,7 +156,7 @@ def test_onset_at_start_wins_over_a_later_crossing_in_the_same_piece():
     record = bd.Record([-1.0] + [1.0] * 47, dt=0.02, units="m/s2")
     sol = bd.simulate(block, record, t_end=1.5)
     inv = bd.simulate(block, record.inverted(), t_end=1.5)
-    assert [(e.t, e.mode_after) for e in sol.events] == [(0.0, bd.Mode.SLIP_POS), (0.02, bd.Mode.SLIP_NEG)]
+    assert [(e.t, e.mode_after) for e in sol.events] == [(0.0, Mode.SLIP_POS), (0.02, Mode.SLIP_NEG)]
     assert sol.events[1].u == pytest.approx(2 / 30000, rel=1e-12)
     assert inv.displacement == pytest.approx(-sol.displacement, rel=1e-14)
     # then slip- under a = 1 to 0.94 s (v = -0.92 m/s) and coasting to 1.5 s

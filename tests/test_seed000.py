@@ -11,6 +11,7 @@ import pytest
 from scipy.optimize import brentq
 
 import blockdae as bd
+from blockdae.sliding import Mode
 
 G = 9.81
 MU = 0.6
@@ -30,8 +31,8 @@ def test_example1_event_times_exact_and_paper():
     t_onset = np.arcsin(MUG / 9.0) / W  # a_s = mu g
     t_stop = _harmonic_slip_end(t_onset, MUG)
     expected = [t_onset, t_stop, t_onset + 0.5, t_stop + 0.5]  # half-period symmetry
-    assert [e.mode_after for e in sol.events] == [bd.Mode.SLIP_NEG, bd.Mode.STICK,
-                                                    bd.Mode.SLIP_POS, bd.Mode.STICK]
+    assert [e.mode_after for e in sol.events] == [Mode.SLIP_NEG, Mode.STICK,
+                                                    Mode.SLIP_POS, Mode.STICK]
     np.testing.assert_allclose(sol.t_events, expected, rtol=0, atol=1e-13)
     np.testing.assert_allclose(sol.t_events, [0.113, 0.535, 0.614, 1.035], atol=6e-4)  # paper
     # the paper's text says t* = 0.1125 s; the exact onset is 0.11346 s
@@ -53,7 +54,7 @@ def test_example2_kinetic_friction_no_common_motion():
     motion settles to a periodic one (the paper's Figs. 7-8)."""
     sol = bd.simulate(bd.SlidingBlock(mu=MU, mu_kinetic=0.3, g=G), bd.Harmonic(9.0, 1.0), t_end=8.0)
     late = [e for e in sol.events if e.t > 1.0]
-    assert all(bd.Mode.STICK not in (e.mode_before, e.mode_after) for e in late)
+    assert all(Mode.STICK not in (e.mode_before, e.mode_after) for e in late)
     times = np.array([e.t for e in late])
     periods = np.diff(times[::2])
     assert abs(periods[-1] - 1.0) < 1e-4 and abs(periods[-1] - 1.0) < abs(periods[0] - 1.0)
@@ -66,7 +67,7 @@ def test_example3_bias_ratchets_in_positive_x(f):
     slides in +x and u grows every cycle (Figs. 9-10); f = 0.4 drifts faster."""
     block = bd.SlidingBlock(mu=MU, mu_kinetic=f, bias=0.3, g=G)
     sol = bd.simulate(block, bd.Harmonic(7.0, 1.0), t_end=5.0)
-    assert {e.mode_after for e in sol.events} <= {bd.Mode.SLIP_POS, bd.Mode.STICK}
+    assert {e.mode_after for e in sol.events} <= {Mode.SLIP_POS, Mode.STICK}
     u_cycle = sol(np.arange(6.0))[0]
     assert np.all(np.diff(u_cycle) > 0.2)
     # onset of slip+ at a - 0.3 g = -mu g
@@ -82,7 +83,7 @@ def test_example4_rectangular_pulse_eq14():
     expected = 9 * 0.5**2 / 2 * (1 - 9 / MUG)
     assert sol.displacement == pytest.approx(expected, rel=1e-13)
     assert round(sol.displacement, 4) == -0.5952
-    assert sol.events[0].t == 0.0 and sol.events[0].mode_after == bd.Mode.SLIP_NEG
+    assert sol.events[0].t == 0.0 and sol.events[0].mode_after == Mode.SLIP_NEG
     # stop: v(t0) = (mu g - A) t0 decays at mu g
     assert sol.events[-1].t == pytest.approx(0.5 + (9 - MUG) * 0.5 / MUG, rel=1e-14)
 

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.planar import PlanarMode
 from blockdae.planar import _elms as elms
 
 #: reading "almost / about / nearly X %" off the text: within 10 % of X (relative)
@@ -39,7 +40,7 @@ def test_fig6_v_x_turns_positive_and_k_x_reaches_a_passive_plateau():
     sol = elms.elms_run(0.5, 0.8, 0.8)
     t = np.linspace(1.3, 1.7, 81)
     _, _, v_x, v_y, _ = sol(t)
-    assert np.all(sol.mode[np.searchsorted(sol.t, t, side="right") - 1] == bd.PlanarMode.SLIP)
+    assert np.all(sol.mode[np.searchsorted(sol.t, t, side="right") - 1] == PlanarMode.SLIP)
     k_x = -v_x / np.hypot(v_x, v_y) * 0.8 - 0.3
     assert np.max(sol(np.linspace(1.3, sol.t_events[-1], 200))[2]) > 0
     assert abs(np.mean(k_x) - (-0.8)) <= WORDS * 0.8

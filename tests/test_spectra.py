@@ -168,7 +168,7 @@ def _rect_like(rec, period):
 
 def test_long_and_short_period_limits(kobe):
     """T -> ∞: Sd -> PGD (the mass stays still); T -> 0: absolute displacement -> PGD."""
-    pgd = bd.intensity_measures(kobe).pgd
+    pgd = bd.motions.intensity_measures(kobe).pgd
     spec = response_spectrum(kobe, [1e-4, 1e4], 0.05)
     assert spec.sd[1] == pytest.approx(pgd, rel=1e-3)
     assert spec.sd_abs[0] == pytest.approx(pgd, rel=1e-6)

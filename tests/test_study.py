@@ -62,9 +62,9 @@ def test_rows_equal_independent_simulations(table, records, row):
     np.testing.assert_allclose(r["D_m"], -sol.displacement, rtol=1e-12, atol=1e-300)
     assert r["n_events"] == len(sol.events)
     assert r["n_slips"] == sum(int(e.mode_after) != 0 for e in sol.events)
-    im = bd.intensity_measures(used)
+    im = bd.motions.intensity_measures(used)
     np.testing.assert_allclose([r["pga_m_s2"], r["pgv_m_s"]], [im.pga, im.pgv], rtol=1e-12)
-    np.testing.assert_allclose(r["sd_m"], bd.response_spectrum(used, 10.0, 0.05).sd, rtol=1e-12)
+    np.testing.assert_allclose(r["sd_m"], bd.motions.response_spectrum(used, 10.0, 0.05).sd, rtol=1e-12)
 
 
 def test_scale_grid_is_the_pga_grid_by_other_names(records, table):
@@ -177,16 +177,16 @@ def test_a_record_with_nan_fails_before_work(records, monkeypatch):
 
 
 def test_summary_follows_the_formulas(table):
-    s = bd.study_summary(table)
+    s = bd.studies.summary(table)
     assert len(s) == len(WHERE) * 2 * len(MU) * len(PGA) and (s["n_records"] == len(SHORT)).all()
     for _, row in s.sample(4, random_state=1).iterrows():
         cases = table[(table["location"] == row["location"]) & (table["mu"] == row["mu"])
                       & (table["pga_g"] == row["pga_g"]) & (table["polarity"] == row["polarity"])]
         assert row["rc_m"] == pytest.approx(cases["max_abs_displacement_m"].mean(), rel=1e-14)
         assert row["sd_m"] == pytest.approx(cases["sd_m"].mean(), rel=1e-14)
-        rd = bd.newmark_rd_sd(row["sd_m"], row["pga_g"], row["mu"])
+        rd = bd.sliding.newmark_rd_sd(row["sd_m"], row["pga_g"], row["mu"])
         assert row["rd_m"] == pytest.approx(rd, rel=1e-14)
-        adj = bd.AdjustmentFactor()(row["pga_g"], row["mu"])
+        adj = bd.sliding.AdjustmentFactor()(row["pga_g"], row["mu"])
         assert row["rd_adjusted_m"] == pytest.approx(adj * rd, rel=1e-14)
 
 
@@ -279,14 +279,14 @@ def test_benchmark_quick(monkeypatch, capsys):
 def test_simulate_final_scale_equals_scaled_motions(records):
     block = bd.SlidingBlock(mu=np.array([0.1, 0.25]), direction="both")
     factors = [0.5, 1.5, -1.0]
-    out = bd.simulate_final(block, records[:2], scale=factors)
+    out = bd.sliding.simulate_final(block, records[:2], scale=factors)
     assert out.displacement.shape == (2, 2, 3)
     for k, factor in enumerate(factors):
-        ref = bd.simulate_final(block, [r.scaled(factor) for r in records[:2]])
+        ref = bd.sliding.simulate_final(block, [r.scaled(factor) for r in records[:2]])
         for got, want in zip(out, ref):
             np.testing.assert_allclose(got[..., k], want, rtol=1e-12, atol=1e-300)
     with pytest.raises(ValueError, match="scale must be"):
-        bd.simulate_final(block, records[:1], scale=[])
+        bd.sliding.simulate_final(block, records[:1], scale=[])
 
 
 def test_rigid_ky_study_is_newmark_in_both_polarities(records):
@@ -297,7 +297,7 @@ def test_rigid_ky_study_is_newmark_in_both_polarities(records):
     table = bd.study(records[:2], ky=ky, pga=pga)
     assert "ky_g" in table and "mu" not in table and list(table["polarity"].unique()) == ["normal", "inverse"]
     for record in records[:2]:
-        scaled = record.scaled(bd.pga_factor(record.peak_acceleration, pga[0]))
+        scaled = record.scaled(bd.excitation.pga_factor(record.peak_acceleration, pga[0]))
         want = bd.newmark(scaled, ky=np.array(ky))
         rows = table[table["record"] == record.name]
         for polarity in ("normal", "inverse"):

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.sliding import Mode
 from blockdae.core import _crosscheck
 from blockdae.core._driver import SolverError
 from blockdae.backends import make_backend
@@ -144,8 +145,8 @@ def test_trap2_stops_in_both_directions(backend, exact_cache):
     are both found (two-way sliding, Example 2)."""
     block, motion, t_end = SEED_CASES["ex2"]
     sol = bd.simulate(block, motion, t_end=t_end, backend=backend)
-    stopped = {e.mode_before for e in sol.events if e.mode_before != bd.Mode.STICK}
-    assert stopped == {bd.Mode.SLIP_POS, bd.Mode.SLIP_NEG}
+    stopped = {e.mode_before for e in sol.events if e.mode_before != Mode.STICK}
+    assert stopped == {Mode.SLIP_POS, Mode.SLIP_NEG}
     assert_agrees(sol, exact_cache("ex2", block, motion, t_end))
 
 
@@ -220,7 +221,7 @@ def test_trap7_stop_at_the_threshold_reverses_at_once(backend, exact_cache):
     block, motion = _reversal_at_threshold()
     ref = exact_cache("reversal", block, motion, 3.0)
     sol = bd.simulate(block, motion, t_end=3.0, backend=backend)
-    assert [e.mode_after for e in ref.events[1:]] == [bd.Mode.SLIP_POS, bd.Mode.SLIP_NEG] * 2 + [bd.Mode.SLIP_POS]
+    assert [e.mode_after for e in ref.events[1:]] == [Mode.SLIP_POS, Mode.SLIP_NEG] * 2 + [Mode.SLIP_POS]
     assert_agrees(sol, ref)
     assert sol.stats["max_events_at_one_instant"] == ref.stats["max_events_at_one_instant"] == 1
 
@@ -239,7 +240,7 @@ def test_trap7_tangential_graze_keeps_sliding(backend):
     resolution: without that allowance the run shows a stop and a restart at 4 s."""
     block, motion = _lobes(1.0)
     sol = bd.simulate(block, motion, backend=backend)
-    assert [e.mode_after for e in sol.events] == [bd.Mode.SLIP_NEG, bd.Mode.STICK]
+    assert [e.mode_after for e in sol.events] == [Mode.SLIP_NEG, Mode.STICK]
     assert sol.events[-1].t == pytest.approx(6.2, abs=1e-9)
     assert sol.displacement == pytest.approx(-3.1, rel=1e-7)
 
@@ -252,8 +253,8 @@ def test_trap7_stop_before_the_threshold_still_sticks(backend):
     block, motion = _lobes(1.01)
     sol = bd.simulate(block, motion, backend=backend)
     stop = 4.0 - math.sqrt(1.0 - 0.495 / 0.505)
-    assert [e.mode_after for e in sol.events] == [bd.Mode.SLIP_NEG, bd.Mode.STICK, bd.Mode.SLIP_NEG,
-                                                   bd.Mode.STICK]
+    assert [e.mode_after for e in sol.events] == [Mode.SLIP_NEG, Mode.STICK, Mode.SLIP_NEG,
+                                                   Mode.STICK]
     np.testing.assert_allclose(sol.t_events[1:3], [stop, 4.0], atol=1e-9)
 
 
@@ -301,7 +302,7 @@ def test_inverting_the_record_flips_u(backend):
     record = bd.Record([-1.0] + [1.0] * 47, dt=0.02, units="m/s2")
     sol = bd.simulate(block, record, t_end=1.5, backend=backend)
     inv = bd.simulate(block, record.inverted(), t_end=1.5, backend=backend)
-    assert [(e.t, e.mode_after) for e in sol.events] == [(0.0, bd.Mode.SLIP_POS), (pytest.approx(0.02), bd.Mode.SLIP_NEG)]
+    assert [(e.t, e.mode_after) for e in sol.events] == [(0.0, Mode.SLIP_POS), (pytest.approx(0.02), Mode.SLIP_NEG)]
     assert [(e.t, -e.mode_after) for e in inv.events] == [(e.t, e.mode_after) for e in sol.events]
     assert inv.displacement == pytest.approx(-sol.displacement, rel=1e-12)
     assert sol.displacement == pytest.approx(-0.9383333333333, rel=1e-10)
@@ -410,7 +411,7 @@ def test_verdict_of_hand_made_rows():
     late, off, other = _row("late", 1.01 * bar_dt), _row("off", rel_du=1.01 * bar_du), _row("other", np.inf)
     assert not (late["agrees"] or off["agrees"] or other["agrees"])
     assert _row("loose", 1.01 * bar_dt, rtol=1e-8)["agrees"]  # a looser rtol, a wider bar
-    table = bd.CrossCheck(rows=[_row("ref", rtol=_crosscheck.ROUNDING), late], reference="ref", span=2.0)
+    table = bd.core.CrossCheck(rows=[_row("ref", rtol=_crosscheck.ROUNDING), late], reference="ref", span=2.0)
     assert not table.agrees and table.disagreements == [late]
     lines = str(table).splitlines()
     assert lines[2].split()[-1] == "ok" and lines[3].split()[-1] == "DISAGREES"

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.planar import PlanarMode
 from conftest import load_sample_record
 
 G = bd.STANDARD_GRAVITY
@@ -20,8 +21,8 @@ REL_FD = 1e-6
 
 def flights(sol):
     """(liftoff, landing) event pairs of a planar solution."""
-    lifts = [e for e in sol.events if e.mode_after == bd.PlanarMode.FLIGHT and e.mode_before != bd.PlanarMode.FLIGHT]
-    lands = [e for e in sol.events if e.mode_before == bd.PlanarMode.FLIGHT]
+    lifts = [e for e in sol.events if e.mode_after == PlanarMode.FLIGHT and e.mode_before != PlanarMode.FLIGHT]
+    lands = [e for e in sol.events if e.mode_before == PlanarMode.FLIGHT]
     return list(zip(lifts, lands))
 
 
@@ -80,7 +81,7 @@ def test_no_horizontal_motion_is_the_spring_supported_mass(damping, motion, back
     base = bd.BaseMotion(bd.RectangularPulse(0.0, 0.5), z=motion)
     sol = bd.simulate(block, base, t_end=0.5, backend=backend, rtol=RTOL)
     assert len(ref_times) >= 3
-    assert all({e.mode_before, e.mode_after} == {bd.PlanarMode.STICK, bd.PlanarMode.FLIGHT} for e in sol.events)
+    assert all({e.mode_before, e.mode_after} == {PlanarMode.STICK, PlanarMode.FLIGHT} for e in sol.events)
     np.testing.assert_allclose(sol.t_events, ref_times, rtol=0, atol=1e-9)
     assert np.all(sol.u_x == 0) and np.all(sol.u_y == 0)
     heights = ref(ref.t)[0]

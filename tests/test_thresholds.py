@@ -23,6 +23,8 @@ import numpy as np
 import pytest
 
 import blockdae as bd
+from blockdae.sliding import Mode
+from blockdae.planar import PlanarMode
 from blockdae.core import _driver as driver
 from threshold_cases import G, MU, planar_cases, sliding_cases
 
@@ -61,7 +63,7 @@ def timed_events(ref):
     slide whose speed stays below V_FLOOR (see the module)."""
     timed = np.ones(len(ref.events), bool)
     for i, speed in enumerate(_slide_speeds(ref)):
-        if ref.events[i].mode_after != bd.Mode.STICK and speed < V_FLOOR:
+        if ref.events[i].mode_after != Mode.STICK and speed < V_FLOOR:
             timed[i] = timed[i + 1] = False
     return timed
 
@@ -122,7 +124,7 @@ def test_planar_backends_agree_on_thresholds(case, twin):
     backends = ("cvode", "ida") if case.fast else ("cvode", "ida", "jax")
     sols = {b: bd.simulate(case.block, case.motion, t_end=case.t_end, backend=b, rtol=RTOL) for b in backends}
     for sol in sols.values():
-        assert all(e.mode_after != bd.PlanarMode.FLIGHT for e in sol.events)
+        assert all(e.mode_after != PlanarMode.FLIGHT for e in sol.events)
     if twin is not None:
         ref = bd.simulate(twin, case.motion, t_end=case.t_end, backend="exact")
         timed = timed_events(ref)
@@ -156,7 +158,7 @@ class _WrongKick(bd.SlidingBlock):
     against it, so its velocity contradicts its mode until it turns."""
 
     def state_on_entry(self, before, after, t, y, excitation, xp):
-        return np.array([y[0], -float(after) * 1.0]) if after != bd.Mode.STICK else y
+        return np.array([y[0], -float(after) * 1.0]) if after != Mode.STICK else y
 
 
 @pytest.mark.parametrize("backend", ["cvode", "ida"])

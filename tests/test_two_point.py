@@ -57,7 +57,7 @@ def test_seed_bounds_hold_for_every_record_and_lag(normalised):
         rm = relative_motion(rec, LAGS, estimates=False)
         assert np.all(rm.r <= rm.pgv * LAGS * (1 + 1e-12)), rec.name
         for lag, r in zip(LAGS, rm.r):
-            m = bd.intensity_measures(rec, rec.duration + lag)
+            m = bd.motions.intensity_measures(rec, rec.duration + lag)
             assert r <= (m.d_max - m.d_min) * (1 + 1e-12), (rec.name, lag)
             assert r <= 2 * m.pgd * (1 + 1e-12)
 

@@ -67,7 +67,7 @@ def test_free_vibration_after_a_pulse_matches_eqs_8_12_13_exactly():
     w, u0, duration = block.omega, block.static_deflection, 1.5 / block.omega
     pulse = bd.RectangularPulse(-0.9 * G, duration)
     sol = bd.simulate(block, pulse, t_end=0.2)
-    estimate = bd.upthrow_estimate(block, pulse, t_end=0.2)
+    estimate = bd.upthrow.upthrow_estimate(block, pulse, t_end=0.2)
     u_d, v_d = 0.9 * u0 * (1 - math.cos(w * duration)), 0.9 * u0 * w * math.sin(w * duration)
     amplitude, psi = math.hypot(u_d, v_d / w), math.atan2(v_d / w, u_d)
     t_lift = duration + (psi - math.acos(u0 / amplitude)) / w
@@ -275,7 +275,7 @@ def test_cvode_agrees_with_exact_on_every_sample_record(path):
     t_end = min(record.duration, 15.0)
     for frequency in (5.0, 10.0):
         block = bd.SpringSupportedMass(frequency, 0.05)
-        if not bd.upthrow_estimate(block, motion, t_end=t_end).lifts_off:
+        if not bd.upthrow.upthrow_estimate(block, motion, t_end=t_end).lifts_off:
             continue
         exact = bd.simulate(block, motion, t_end=t_end)
         if exact.events:
@@ -370,14 +370,14 @@ def test_events_table_and_dataframe():
 def test_estimate_validation():
     block = bd.SpringSupportedMass(10.0)
     with pytest.raises(ValueError, match="exactly one"):
-        bd.upthrow_estimate(block)
+        bd.upthrow.upthrow_estimate(block)
     with pytest.raises(ValueError, match="response_acceleration"):
-        bd.upthrow_estimate(block, response_acceleration=-1.0)
-    below = bd.upthrow_estimate(block, response_acceleration=0.9)
+        bd.upthrow.upthrow_estimate(block, response_acceleration=-1.0)
+    below = bd.upthrow.upthrow_estimate(block, response_acceleration=0.9)
     assert not below.lifts_off and below.liftoff_velocity == 0
     with pytest.raises(ValueError, match="response_acceleration"):
-        bd.upthrow_estimate(block, response_acceleration=True)
-    single = bd.upthrow_estimate(block, response_acceleration=np.float32(2.0))  # numpy floats are numbers
+        bd.upthrow.upthrow_estimate(block, response_acceleration=True)
+    single = bd.upthrow.upthrow_estimate(block, response_acceleration=np.float32(2.0))  # numpy floats are numbers
     assert single.height == pytest.approx(block.static_deflection * 1.5, rel=1e-15)  # eq. 13: u0 (A² - 1) / 2
 
 

@@ -58,7 +58,7 @@ def test_a_model_shaken_vertically_and_a_planar_z_take_it():
 
 
 def test_baseline_correction_keeps_the_header():
-    corrected = bd.baseline_corrected(bd.read_record(UP), "mean")
+    corrected = bd.motions.baseline_corrected(bd.read_record(UP), "mean")
     assert corrected.metadata["vertical"] and corrected.metadata["baseline"] == "mean"
     with pytest.raises(ValueError, match=REFUSED):
         bd.newmark(corrected, ky=0.01)

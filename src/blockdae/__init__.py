@@ -2,69 +2,53 @@
 
 Exact event times, solver backends that check each other, and derivatives of the
 answer with respect to its parameters. Units are SI throughout (m, s, m/s²).
+
+The top level holds what an analysis uses every day: the models, ``simulate``,
+``sensitivities``, ``crosscheck``, ``newmark``, ``flexible``, ``study``, ``plot``, the
+motions and record readers, the backends, the errors and warnings. The rest lives in
+the subpackages named for what they hold: ``blockdae.motions`` (spectra, intensity
+measures, baseline correction, relative motion), ``blockdae.hazard``,
+``blockdae.empirical``, ``blockdae.backends`` (the registry), ``blockdae.excitation``
+(resampling and unit checks), ``blockdae.core.contract`` (a model's capabilities) and each
+system's package (``blockdae.sliding``, ``blockdae.planar``, ``blockdae.upthrow``: events,
+solutions, modes, the papers' formulas).
 """
 
-from . import backends, empirical, hazard
+import importlib as _importlib
+import warnings as _warnings
+
+from . import backends, empirical, hazard, motions
 from ._plot import plot
-from .backends import AbstractBackend, register_backend
-from .core import (AbstractEvent, AbstractHybridModel, AbstractSolution, BatchedModel, DifferentiableModel,
-                   DriverSolution, EngineModel, HybridEvent, InconsistentStateError, LinearModesModel, SolverError,
-                   StudyBatch, StudyModel)
-from .core import CrossCheck, crosscheck
-from .core import CompileNotice
-from .core import set_compilation_cache
-from .core import Sensitivities, sensitivities
-from .core import simulate
+from .core import AbstractHybridModel, CompileNotice, InconsistentStateError, SolverError
+from .core import Sensitivities, crosscheck, sensitivities, simulate
 from .units import STANDARD_GRAVITY
-from .solvers import simulate_linear_final
-from .excitation import (AbstractExcitation, BaseMotion, Harmonic, Record, RecordSet, RecordWarning, RectangularPulse,
-                         SinePulse, TriangularPulse, UnitsWarning, check_peak_acceleration, pga_factor, read_motion,
-                         read_record, read_records, resample)
+from .excitation import (BaseMotion, Harmonic, Record, RecordSet, RecordWarning, RectangularPulse, SinePulse,
+                         TriangularPulse, UnitsWarning, read_motion, read_record, read_records)
 from .flexible_mass import (EquivalentLinear, FlexibleEvent, FlexibleMode, FlexibleResult, FlexibleSlidingMass,
                             FlexibleSolution, KyTable, ShearColumn, flexible)
-from .motions import (IntensityMeasures, RelativeMotion, ResponseSpectrum, baseline_corrected,
-                      cumulative_arias, fourier_amplitude, intensity_measures, mean_period, motion_histories,
-                      relative_motion, response_spectrum)
-from .planar import PlanarBlock, PlanarEvent, PlanarMode, PlanarSolution
-from .sliding import BatchSolution, Event, EventLog, Mode, SlidingBlock, Solution
-from .sliding import SeedExample, seed_examples
-from .sliding import FinalNumbers, simulate_final
-from .sliding import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
-from .sliding import NewmarkResult, NewmarkSweep, newmark, yield_acceleration
-from .sliding import SweepSolution, simulate_many
-from .structures import Floor, ShearFrame
-from .studies import load_study, save_study, study, summary as study_summary
-from .upthrow import (Flight, RigidSupport, SpringSupport, SpringSupportedMass, UpthrowEvent, UpthrowMode,
-                      UpthrowSolution)
-from .upthrow import UpthrowEstimate, upthrow_estimate
+from .planar import PlanarBlock
+from .sliding import SlidingBlock, newmark
+from .structures import ShearFrame
+from .studies import load_study, save_study, study
+from .upthrow import RigidSupport, SpringSupport, SpringSupportedMass
 
 __all__ = [
-    "AbstractExcitation", "AbstractHybridModel", "BaseMotion", "BatchSolution", "Event", "EventLog", "Harmonic", "Mode",
-    "Record", "RectangularPulse", "SinePulse", "SlidingBlock", "Solution", "TriangularPulse",
-    "check_peak_acceleration", "read_motion", "read_record", "read_records", "RecordSet", "simulate",
-    "InconsistentStateError", "SolverError",
-    "RecordWarning", "UnitsWarning", "pga_factor", "resample",
-    "AbstractEvent", "AbstractSolution", "DriverSolution", "HybridEvent",
-    "BatchedModel", "DifferentiableModel", "EngineModel", "LinearModesModel", "StudyBatch", "StudyModel",
-    "PlanarBlock", "PlanarEvent", "PlanarMode", "PlanarSolution", "RigidSupport", "SpringSupport",
-    "Flight", "SpringSupportedMass", "UpthrowEstimate", "UpthrowEvent", "UpthrowMode", "UpthrowSolution",
-    "upthrow_estimate",
-    "SweepSolution", "simulate_many",
-    "FinalNumbers", "simulate_final", "simulate_linear_final",
-    "CrossCheck", "crosscheck",
-    "SeedExample", "STANDARD_GRAVITY", "plot", "seed_examples",
-    "Sensitivities", "sensitivities", "set_compilation_cache", "CompileNotice",
-    "NewmarkResult", "NewmarkSweep", "newmark", "yield_acceleration",
-    "EquivalentLinear", "FlexibleEvent", "FlexibleMode", "FlexibleResult", "FlexibleSlidingMass", "FlexibleSolution", "KyTable",
-    "ShearColumn", "flexible",
-    "IntensityMeasures", "baseline_corrected", "cumulative_arias", "intensity_measures", "mean_period",
-    "motion_histories",
-    "ResponseSpectrum", "response_spectrum", "RelativeMotion", "fourier_amplitude", "relative_motion",
-    "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd",
-    "Floor", "ShearFrame",
-    "load_study", "save_study", "study", "study_summary",
-    "empirical", "hazard",
-    "AbstractBackend", "register_backend", "CVODE", "IDA", "JaxTwin", "Exact", "ExactJax", "Compiled",
+    # the models (and what builds them)
+    "AbstractHybridModel", "SlidingBlock", "PlanarBlock", "SpringSupportedMass", "SpringSupport", "RigidSupport",
+    "FlexibleSlidingMass", "ShearFrame",
+    # the analyses
+    "simulate", "sensitivities", "Sensitivities", "crosscheck", "newmark", "flexible", "study", "load_study",
+    "save_study", "plot",
+    # the flexible mass's inputs and results, and ky against D
+    "FlexibleResult", "FlexibleSolution", "FlexibleEvent", "FlexibleMode", "EquivalentLinear", "ShearColumn",
+    "KyTable",
+    # the motions and the records
+    "BaseMotion", "Harmonic", "SinePulse", "RectangularPulse", "TriangularPulse", "Record", "RecordSet",
+    "read_record", "read_records", "read_motion", "STANDARD_GRAVITY",
+    # the backends
+    "Exact", "ExactJax", "CVODE", "IDA", "JaxTwin", "Compiled",
+    # the errors and warnings
+    "InconsistentStateError", "SolverError", "UnitsWarning", "RecordWarning", "CompileNotice",
 ]
 
 #: the backend classes by public name -> their registered name; imported on first use,
@@ -73,12 +57,46 @@ _BACKEND_CLASSES = {"Exact": "exact", "ExactJax": "exact-jax", "CVODE": "cvode",
                     "Compiled": "compiled"}
 
 
+def _homes(module, *names):
+    return {name: (module, name) for name in names}
+
+
+#: the names that left the top level -> (their module, their name there); the old name
+#: works with a DeprecationWarning until the next release
+_MOVED = {
+    **_homes("blockdae.motions", "IntensityMeasures", "RelativeMotion", "ResponseSpectrum", "baseline_corrected",
+             "cumulative_arias", "fourier_amplitude", "intensity_measures", "mean_period", "motion_histories",
+             "relative_motion", "response_spectrum"),
+    **_homes("blockdae.excitation", "AbstractExcitation", "check_peak_acceleration", "pga_factor", "resample"),
+    **_homes("blockdae.core.contract", "BatchedModel", "DifferentiableModel", "EngineModel", "LinearModesModel",
+             "StudyBatch", "StudyModel"),
+    **_homes("blockdae.core", "AbstractEvent", "AbstractSolution", "BatchSolution", "CrossCheck", "DriverSolution",
+             "HybridEvent"),
+    **_homes("blockdae.backends", "AbstractBackend", "register_backend", "set_compilation_cache"),
+    **_homes("blockdae.sliding", "Event", "EventLog", "Mode", "Solution", "FinalNumbers", "simulate_final",
+             "SweepSolution", "simulate_many", "NewmarkResult", "NewmarkSweep", "yield_acceleration",
+             "AdjustmentFactor", "fit_adjustment_factor", "newmark_rd", "newmark_rd_sd", "pulse_sd", "SeedExample",
+             "seed_examples"),
+    **_homes("blockdae.planar", "PlanarEvent", "PlanarMode", "PlanarSolution"),
+    **_homes("blockdae.upthrow", "Flight", "UpthrowEvent", "UpthrowMode", "UpthrowSolution", "UpthrowEstimate",
+             "upthrow_estimate"),
+    **_homes("blockdae.structures", "Floor"),
+    **_homes("blockdae.solvers", "simulate_linear_final"),
+    "study_summary": ("blockdae.studies", "summary"),
+}
+
+
 def __getattr__(name):
     if name in _BACKEND_CLASSES:
         from .backends import backend_class
 
         cls = globals()[name] = backend_class(_BACKEND_CLASSES[name])
         return cls
+    if name in _MOVED:
+        module, new_name = _MOVED[name]
+        _warnings.warn(f"bd.{name} is {module}.{new_name}; the top-level name goes in the next release",
+                      DeprecationWarning, stacklevel=2)
+        return getattr(_importlib.import_module(module), new_name)
     raise AttributeError(f"module 'blockdae' has no attribute {name!r}")
 
 

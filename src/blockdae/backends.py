@@ -2,8 +2,8 @@
 :func:`register_backend`) and the backend contract (:class:`AbstractBackend`, :class:`Horizon`);
 the backend classes themselves are ``blockdae.Exact``, ``blockdae.CVODE``, ... ."""
 
-from .core import (BUILT_IN, AbstractBackend, Horizon, available, backend_class, backend_name,
-                             make_backend, register_backend)
+from .core import (BUILT_IN, AbstractBackend, Horizon, available, backend_class, backend_name, make_backend,
+                   register_backend, set_compilation_cache)
 
 __all__ = ["BUILT_IN", "AbstractBackend", "Horizon", "available", "backend_class", "backend_name", "make_backend",
-           "register_backend"]
+           "register_backend", "set_compilation_cache"]

@@ -90,7 +90,7 @@ def record_arguments(parser, baseline="none", horizontal=True):
                         help="subtract each record's mean (default: for K-NET/KiK-net files only, whose samples "
                              "carry an offset; --no-remove-mean keeps it)")
     parser.add_argument("--baseline", choices=BASELINES, default=baseline,
-                        help=f"baseline correction after reading (bd.baseline_corrected; default {baseline})")
+                        help=f"baseline correction after reading (bd.motions.baseline_corrected; default {baseline})")
     if horizontal:
         parser.add_argument("--as-horizontal", action="store_true",
                             help="run a vertical component (as its header says) as horizontal motion (else refused)")

@@ -117,7 +117,7 @@ def _parser():
     record_arguments(run)
     run.add_argument("--resample", type=positive("--resample"), default=None, metavar="DT",
                      help="resample every component to the step DT [s] first (linear a(t), exact at the "
-                          "new samples; see blockdae.resample): files of mixed steps make one motion")
+                          "new samples; see blockdae.excitation.resample): files of mixed steps make one motion")
     run.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure")
     run.add_argument("--history", type=pathlib.Path, default=None, metavar="CSV",
                      help="write the history as CSV: t, base acceleration, u, v (signed) and mode at the record's "

@@ -9,9 +9,10 @@ from .contract import (SCALAR, AbstractHybridModel, BatchedModel, Differentiable
 from ._solution import AbstractEvent, AbstractSolution, DriverSolution, HybridEvent
 from ._sensitivity_result import Sensitivities
 
-__all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchedModel", "DifferentiableModel",
-           "DriverSolution", "EngineModel", "ExplicitForm", "HybridEvent", "InconsistentStateError",
-           "LinearModesModel", "SCALAR", "Sensitivities", "SolverError", "StudyBatch", "StudyModel"]
+__all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchSolution", "BatchedModel", "CrossCheck",
+           "DifferentiableModel", "DriverSolution", "EngineModel", "ExplicitForm", "HybridEvent",
+           "InconsistentStateError", "LinearModesModel", "SCALAR", "Sensitivities", "SolverError", "StudyBatch",
+           "StudyModel"]
 
 # what the other packages of blockdae use
 from ._atomic import atomic_path

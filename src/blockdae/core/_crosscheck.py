@@ -138,7 +138,7 @@ def crosscheck(block, motion, backends=None, t_end=None, wrt=(), **options) -> C
         raise TypeError(f"no backend given by name in {tuple(labels)} takes the option(s) {sorted(unknown)}")
     if wrt and not isinstance(block, DifferentiableModel):
         raise ValueError(f"crosscheck's wrt differentiates u(t_end); a {type(block).__name__} declares no "
-                         "derivatives (a bd.DifferentiableModel does)")
+                         "derivatives (a bd.core.contract.DifferentiableModel does)")
     if wrt and not block.differentiates_displacement:
         raise ValueError(f"crosscheck's wrt differentiates u(t_end); for a {type(block).__name__} use "
                          "bd.sensitivities(block, motion, t_end, wrt=..., of=...) (the derivatives it has)")

@@ -211,7 +211,8 @@ def step_difference(u, change):
 def _check_differentiable(block):
     if not isinstance(block, DifferentiableModel):
         raise TypeError(f"a {type(block).__name__} declares no derivatives: a model is differentiated when it "
-                        "subclasses bd.DifferentiableModel (parameters, with_parameters, parameter_units)")
+                        "subclasses blockdae.core.contract.DifferentiableModel (parameters, with_parameters, "
+                        "parameter_units)")
 
 
 def _names(block, wrt):

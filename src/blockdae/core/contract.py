@@ -30,6 +30,9 @@ from ._solution import DriverSolution, HybridEvent
 from ..excitation import AbstractExcitation
 from ..excitation import check_horizontal
 
+__all__ = ["AbstractHybridModel", "BatchedModel", "DifferentiableModel", "EngineModel", "ExplicitForm", "LinearModes",
+           "LinearModesModel", "SCALAR", "StudyBatch", "StudyModel"]
+
 #: the array namespace of the model's xp-generic rules on Python floats (the driver's
 #: and IDA's callbacks): the names of ``numpy``/``jax.numpy`` a rule may call
 SCALAR = types.SimpleNamespace(
@@ -213,14 +216,14 @@ class AbstractHybridModel(abc.ABC):
 
     def event(self, t, mode_before, mode_after, y):
         """The event record of a mode change at ``t`` [s] in state ``y`` (a
-        :class:`~blockdae.HybridEvent` by default)."""
+        :class:`~blockdae.core.HybridEvent` by default)."""
         return HybridEvent(float(t), mode_before, mode_after, tuple(float(v) for v in y))
 
     # ---- what the driver returns ---------------------------------------------------
     def solution(self, *, t, y, mode, events, backend, dense, stats):
         """The model's solution from the driver's knots: ``t`` (n,), ``y`` (n, k),
-        ``mode`` (n,), ``dense(t)`` -> k arrays (a :class:`~blockdae.DriverSolution` by
-        default; any :class:`~blockdae.AbstractSolution`)."""
+        ``mode`` (n,), ``dense(t)`` -> k arrays (a :class:`~blockdae.core.DriverSolution` by
+        default; any :class:`~blockdae.core.AbstractSolution`)."""
         return DriverSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
 
     # ---- for IDA ---------------------------------------------------------------------
@@ -234,7 +237,7 @@ class AbstractHybridModel(abc.ABC):
 class BatchedModel(AbstractHybridModel):
     """A model whose parameters may be 1-D arrays: a batch of parameter sets, run by
     ``solve_batch`` (one compiled call where its engine has one) into a
-    :class:`~blockdae.BatchSolution`."""
+    :class:`~blockdae.core.BatchSolution`."""
 
     #: gravity [m/s²] (a batch's table states it)
     g: float

@@ -25,7 +25,7 @@ class BaseMotion:
         y, z: second horizontal and vertical components; None: zero.
 
     Components of any kinds mix; Records must share one ``dt`` (lengths may differ;
-    :func:`blockdae.resample` brings records of mixed steps to one).
+    :func:`blockdae.excitation.resample` brings records of mixed steps to one).
     Past its own duration a component is zero, as a 1-D record is.
     """
 
@@ -44,8 +44,8 @@ class BaseMotion:
             if not np.isclose(record.dt, other.dt, rtol=_SAME_DT, atol=0.0):
                 raise ValueError(f"components {_label(first, other)} and {_label(name, record)} are Records "
                                  f"with different dt ({first}: dt={other.dt:g} s, {name}: dt={record.dt:g} s); "
-                                 "resample them to one sample step first: blockdae.resample(record, dt) on each "
-                                 "in Python, --resample DT on the command line")
+                                 "resample them to one sample step first: blockdae.excitation.resample(record, dt) "
+                                 "on each in Python, --resample DT on the command line")
 
     @classmethod
     def from_samples(cls, ax, ay=None, az=None, *, dt: float, name: str = "", units=None, g=STANDARD_GRAVITY,

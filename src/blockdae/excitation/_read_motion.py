@@ -32,7 +32,7 @@ def read_motion(x, y=None, z=None, *, units=None, dt=None, g=STANDARD_GRAVITY, n
     channels) are placed by their own orientation: the vertical (U-D, Up, HNZ) is z; of the
     horizontals, the one nearer north-south (N-S, azimuth 0 or 180, HNN) is x, the other
     (E-W, HNE) y; horizontals of unknown azimuth (H1, H2) keep their order. Channels of
-    different steps are resampled to the smallest (:func:`blockdae.resample`, with a
+    different steps are resampled to the smallest (:func:`blockdae.excitation.resample`, with a
     warning) unless ``resample_dt`` is given; a channel pointing down, two verticals,
     three horizontals or two stations are refused.
 
@@ -43,7 +43,7 @@ def read_motion(x, y=None, z=None, *, units=None, dt=None, g=STANDARD_GRAVITY, n
         name: label of the components; by default the files' names less their suffixes
             (:func:`~blockdae.excitation._readers.record_name`).
         resample_dt: None (default): the files' own steps; else every component is
-            resampled to this step [s] (see :func:`blockdae.resample`) before the
+            resampled to this step [s] (see :func:`blockdae.excitation.resample`) before the
             components are joined, so that files of mixed steps make one motion.
         options: ``gain``: as for :func:`read_record`, for the formats that take it.
 
@@ -101,7 +101,7 @@ def _station_motion(records, resample_dt, source):
         if len(steps) > 1:
             resample_dt = min(steps)
             warnings.warn(f"{source}: channels of steps {', '.join(f'{s:g}' for s in sorted(steps))} s resampled "
-                          f"to {resample_dt:g} s (blockdae.resample: linear a(t), exact at the new samples)",
+                          f"to {resample_dt:g} s (blockdae.excitation.resample: linear a(t), exact at the new samples)",
                           UserWarning, stacklevel=3)
     if resample_dt is not None:
         placed = [None if r is None else resample(r, resample_dt) for r in placed]

@@ -16,7 +16,7 @@ OFFSET_FRACTION = 0.05
 #: how a caller confirms a step above :data:`MAX_STEP_S` (Python; the command line's flag)
 CONFIRM_STEP = "check_step=False (command line: --accept-step)"
 #: how a caller removes an offset (Python; the command line's flags)
-REMOVE_OFFSET = ("remove_mean=True or bd.baseline_corrected(record) (command line: --remove-mean or "
+REMOVE_OFFSET = ("remove_mean=True or bd.motions.baseline_corrected(record) (command line: --remove-mean or "
                  "--baseline polynomial)")
 
 

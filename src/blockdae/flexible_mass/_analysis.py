@@ -482,7 +482,7 @@ def slammer_rows(analyses: list[Analysis]) -> list[dict]:
 
 
 #: integration scheme -> (rows of a list of :class:`Analysis`, the rounding of the
-#: motion's peak when scaling to ``pga``: see :func:`blockdae.pga_factor`);
+#: motion's peak when scaling to ``pga``: see :func:`blockdae.excitation.pga_factor`);
 #: "exact": continuous time, events located, the exact peak; "slammer": SLAMMER 1.1's
 #: fixed-step scheme and its peak rounded to 0.001 g
 INTEGRATIONS = {"exact": (exact_rows, "exact"), "slammer": (slammer_rows, "slammer")}

@@ -9,7 +9,7 @@ length, is not read). Rules that JAX traces too (the flows, guards and entry sta
 only arithmetic, comparisons and ``xp.sqrt/where`` of an array namespace ``xp`` (NumPy,
 ``jax.numpy``, the model's ``SCALAR`` or, inside numba, :mod:`blockdae.solvers.xp_scalar`)
 and branch on the mode alone; the mode rules are scalar (``math``, Python ``if``).
-Modes are the :class:`~blockdae.PlanarMode` values as ints.
+Modes are the :class:`~blockdae.planar.PlanarMode` values as ints.
 """
 
 import math

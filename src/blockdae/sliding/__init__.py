@@ -12,12 +12,16 @@ from ._solution import Event, EventLog, Solution
 SlidingBlock.sensitivities = kernel_sensitivities
 SlidingBlock.finite_differences = block_differences
 
-__all__ = ["BatchSolution", "Event", "EventLog", "Mode", "SlidingBlock", "SlidingDAEForm", "Solution"]
-
-# what the other packages of blockdae use
 from ._examples import SeedExample, seed_examples
-from ._figures import newmark_history_figure
 from ._final import FinalNumbers, simulate_final
 from ._formulas import AdjustmentFactor, fit_adjustment_factor, newmark_rd, newmark_rd_sd, pulse_sd
 from ._newmark import NewmarkResult, NewmarkSweep, newmark, yield_acceleration
 from ._sweep import SweepSolution, simulate_many
+
+__all__ = ["AdjustmentFactor", "BatchSolution", "Event", "EventLog", "FinalNumbers", "Mode", "NewmarkResult",
+           "NewmarkSweep", "SeedExample", "SlidingBlock", "SlidingDAEForm", "Solution", "SweepSolution",
+           "fit_adjustment_factor", "newmark", "newmark_rd", "newmark_rd_sd", "pulse_sd", "seed_examples",
+           "simulate_final", "simulate_many", "yield_acceleration"]
+
+# what the other packages of blockdae use
+from ._figures import newmark_history_figure

@@ -206,7 +206,7 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         backend, **options: as for :func:`blockdae.simulate`.
         pga: target peak ground acceleration(s) [g] (SLAMMER's target PGA), a number or a
             1-D sequence: the motion is scaled so that its peak |a| is each ``pga`` g (see
-            :func:`blockdae.pga_factor`); None: as given. A value above 2 g is refused (likely
+            :func:`blockdae.excitation.pga_factor`); None: as given. A value above 2 g is refused (likely
             m/s²: 2.94 is 0.3 g in m/s²) unless ``check_peak=False``.
         target_pga: the deprecated name of ``pga`` (a DeprecationWarning); not both.
         pga_rounding: "exact" (default) or "slammer": the motion's own peak rounded to

@@ -99,7 +99,7 @@ def simulate_many(block: SlidingBlock, motions, t_end: float | None = None, back
         scale: factor(s) on a(t) [-], a number or a 1-D sequence (default 1; -1 inverts).
         pga: instead of ``scale``, target peak ground acceleration(s) [g], a number or a
             1-D sequence: each motion is scaled so that max |a(t)| is each value times the
-            block's g (see :func:`blockdae.pga_factor`; values above 2, likely m/s², are refused).
+            block's g (see :func:`blockdae.excitation.pga_factor`; values above 2, likely m/s², are refused).
         pga_rounding: "exact" (default) or "slammer": each motion's own peak rounded to
             0.001 g before scaling, as SLAMMER scales.
         check_peak: False accepts a ``pga`` above 2 g.

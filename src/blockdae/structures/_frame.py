@@ -37,7 +37,7 @@ class ShearFrame:
         damping: modal damping ratio 0 <= ζ < 1 [-], the same on every mode.
 
     The mass itself does not enter the floor accelerations; only k/m does.
-    ``bd.response_spectrum([record, *frame.floor_motions(record)], periods)`` gives the
+    ``bd.motions.response_spectrum([record, *frame.floor_motions(record)], periods)`` gives the
     spectra of the ground and of every floor in one call.
     """
 

@@ -325,7 +325,7 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
         raise ValueError('where is empty: give "ground" and/or floors (frame.floor(i))')
     for place in where:
         if not (place == "ground" or isinstance(place, Floor)):
-            raise ValueError(f'where must hold "ground" or bd.Floor objects, got {place!r}')
+            raise ValueError(f'where must hold "ground" or bd.structures.Floor objects, got {place!r}')
     if len(set(where)) < len(where):
         raise ValueError(f"where repeats a location: {where!r}")
     polarities = ()
@@ -368,8 +368,9 @@ def _swept(block, swept):
     ``study_batch`` takes: the same numbers, or what the model's ``study_sweep(given)``
     makes of what it takes besides numbers (the flexible mass's ky tables; None: numbers)."""
     if not isinstance(block, StudyModel):
-        raise TypeError(f"block must be a model that declares study_parameter and study_batch (a bd.StudyModel: "
-                        f"bd.SlidingBlock, bd.PlanarBlock, bd.FlexibleSlidingMass), got {type(block).__name__}")
+        raise TypeError(f"block must be a model that declares study_parameter and study_batch "
+                        f"(a bd.core.contract.StudyModel: bd.SlidingBlock, bd.PlanarBlock, bd.FlexibleSlidingMass), "
+                        f"got {type(block).__name__}")
     parameter, column, unit = block.study_parameter
     if isinstance(block, SlidingBlock) and swept.get("ky") is not None and swept.get("mu") is None \
             and np.all(np.asarray(block.bias) == 0):

@@ -50,7 +50,7 @@ def upthrow_estimate(block: SpringSupportedMass, motion=None, *, response_accele
         block: the mass on its support (frequency, damping, g).
         motion: the vertical ground acceleration; A is then the largest absolute
             acceleration of the linear oscillator of the block's frequency and damping
-            under it (:func:`blockdae.response_spectrum`), in g.
+            under it (:func:`blockdae.motions.response_spectrum`), in g.
         response_acceleration: A [-] directly (instead of ``motion``).
         t_end: end of the response window [s] (default: the motion's duration).
     """

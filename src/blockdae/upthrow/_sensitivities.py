@@ -47,7 +47,7 @@ def flight_quantity_jacobians(mass, solution, events, of):
 
     Args:
         mass: the :class:`~blockdae.SpringSupportedMass`.
-        solution: its :class:`~blockdae.UpthrowSolution`.
+        solution: its :class:`~blockdae.upthrow.UpthrowSolution`.
         events: one :class:`~blockdae.core.derivatives.EventSensitivity` per event of it.
         of: names from :data:`QUANTITIES`.
     """
@@ -65,7 +65,7 @@ def _liftoff_velocity(mass, solution, events):
 
 
 def _height(mass, solution, events):
-    """The largest u - u0 over the flights [m], as :attr:`~blockdae.UpthrowSolution.flights`
+    """The largest u - u0 over the flights [m], as :attr:`~blockdae.upthrow.UpthrowSolution.flights`
     has it: at a top (u' = 0), or at the liftoff or landing of a flight that lands still
     rising; a flight still rising at t_end has no height yet."""
     candidates, liftoff = [], None
