@@ -18,6 +18,7 @@ Units are SI (m, s, m/s²) unless stated; ``g`` [m/s²] is the model's gravity.
 """
 
 import abc
+from collections.abc import Mapping
 import enum
 import math
 import types
@@ -308,7 +309,7 @@ class DifferentiableModel(AbstractHybridModel):
         default."""
         return {}
 
-    def sensitivities(self, motion, t_end, wrt, backend, of, options) -> "Sensitivities | dict":
+    def sensitivities(self, motion, t_end, wrt, backend, of, options) -> Mapping:
         """The model's own derivative method: d displacement(t_end) / d p for p in
         ``wrt`` (a tuple of names), on ``backend`` (None: the model's default) with the
         backend's ``options`` (a dict); ``of``: what is differentiated, for a model with
