@@ -13,9 +13,7 @@ import numpy as np
 
 from ..core import atomic_path
 from ..units import STANDARD_GRAVITY
-from ..excitation import RecordSet, RecordWarning, read_record
-from ..excitation import SETS as FEMA_SETS
-from ..excitation import record_files
+from ..excitation import SETS as FEMA_SETS, RecordSet, RecordWarning, read_record, record_files
 from ..flexible_mass import KyTable
 from ..motions import METHODS as BASELINES, baseline_corrected
 

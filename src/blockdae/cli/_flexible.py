@@ -9,9 +9,8 @@ from ._common import (UsageError, checked, describe_record, in_units_out, ky_tab
                       read, record_arguments, record_fields, save_figure, units_out_argument)
 from ..core import simulate
 from ..units import STANDARD_GRAVITY
-from ..flexible_mass import INTEGRATIONS, POLARITIES, flexible, with_zero_sample
-from ..flexible_mass import ShearColumn
-from ..flexible_mass import METHODS, FlexibleSlidingMass
+from ..flexible_mass import (INTEGRATIONS, METHODS, POLARITIES, FlexibleSlidingMass, ShearColumn, flexible,
+                             with_zero_sample)
 
 def _columns(unit):
     """(field, heading, format) of the printed table, displacements in ``unit`` (--units-out)."""

@@ -7,9 +7,7 @@ import pathlib
 import warnings
 
 from ..units import STANDARD_GRAVITY
-from ..excitation import RecordWarning, read_record
-from ..excitation import read_channels
-from ..excitation import OFFSET_FRACTION, offset_fraction
+from ..excitation import OFFSET_FRACTION, RecordWarning, offset_fraction, read_channels, read_record
 from ._common import UsageError, checked, report_failures
 
 

@@ -29,18 +29,12 @@ from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
 from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
-from ..sliding import seed_examples
-from ..core import CompileNotice
-from ..core import set_compilation_cache
-from ..sliding import newmark
-from ..core import simulate
+from ..sliding import SlidingBlock, newmark, seed_examples
+from ..core import CompileNotice, progress_bar, set_compilation_cache, simulate
 from ..units import STANDARD_GRAVITY, length_units
 from ._motions import add_spectrum_parser, add_two_point_parser
 from ._study import add_study_parser
-from ..core import progress_bar
-from ..excitation import RECORD_SUFFIXES, unit_factor
-from ..excitation import PGA_ROUNDINGS, UnitsWarning, pga_factor
-from ..sliding import SlidingBlock
+from ..excitation import PGA_ROUNDINGS, RECORD_SUFFIXES, UnitsWarning, pga_factor, unit_factor
 
 _CSV_FIELDS = ("record", "n_samples", "dt_s", "start_time_s", "peak_acceleration_m_s2", "mu", "mu_kinetic", "bias",
                "g_m_s2", "direction", "backend", "u_end_m", "max_abs_displacement_m", "n_events",

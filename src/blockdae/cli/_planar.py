@@ -7,8 +7,7 @@ import time
 from ._common import UsageError, checked, describe_gravity, describe_record, read_options, reader_warnings, save_figure
 from ..core import simulate
 from ..units import length_units
-from ..excitation import BaseMotion, Record, read_motion
-from ..excitation import record_name
+from ..excitation import BaseMotion, Record, read_motion, record_name
 from ..motions import baseline_corrected
 from ..planar import PlanarBlock
 

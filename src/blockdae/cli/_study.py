@@ -19,8 +19,7 @@ from ._flexible import add_flexible_study_arguments, flexible_study_block
 from ..units import STANDARD_GRAVITY
 from ..excitation import RECORD_SUFFIXES, record_files
 from ..structures import ShearFrame
-from ..studies import save_study
-from ..studies import NoWorkerError, study, summary
+from ..studies import NoWorkerError, save_study, study, summary
 
 
 def _grid(text):

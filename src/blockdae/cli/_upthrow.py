@@ -11,10 +11,8 @@ from ._common import (checked, clean, describe_record, number, positive, read, r
                       record_fields, save_figure)
 from ..core import simulate
 from ..units import STANDARD_GRAVITY
-from ..upthrow import upthrow_estimate
-from ..excitation import unit_factor
-from ..excitation import pga_factor
-from ..upthrow import SpringSupportedMass
+from ..upthrow import SpringSupportedMass, upthrow_estimate
+from ..excitation import pga_factor, unit_factor
 
 #: the backends that run a SpringSupportedMass
 BACKENDS = ("exact", "cvode", "ida", "jax")

@@ -28,8 +28,7 @@ import numpy as np
 from ..units import STANDARD_GRAVITY
 from ._linear_modes import LinearModes
 from ._solution import DriverSolution, HybridEvent
-from ..excitation import AbstractExcitation
-from ..excitation import check_horizontal
+from ..excitation import AbstractExcitation, check_horizontal
 
 __all__ = ["AbstractHybridModel", "BatchedModel", "DifferentiableModel", "EngineModel", "ExplicitForm", "LinearModes",
            "LinearModesModel", "SCALAR", "StudyBatch", "StudyModel"]

@@ -1,9 +1,8 @@
 """Record formats with a header (COSMOS, K-NET/KiK-net, ESM, SAC, miniSEED): found by content,
 each read by its module into :class:`~._header.Channel` s, made Records here with the caller's options."""
 
-from . import _cosmos, _esm, _knet, _seismo
+from . import _cosmos, _esm, _knet, _record_checks, _seismo
 from ._readers import _resolve_units, _sample_step, decode, file_bytes, record_name
-from . import _record_checks
 from ._record import Record
 from ._units import check_peak_acceleration, unit_factor
 

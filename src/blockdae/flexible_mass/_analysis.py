@@ -18,8 +18,7 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ..solvers import linear_pieces
-from ..excitation import Record, pga_factor
-from ..excitation import check_horizontal, pga_keyword
+from ..excitation import Record, check_horizontal, pga_factor, pga_keyword
 from . import _engine, _fused, _table_kernel
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, flat_table_model, slip_underdamped

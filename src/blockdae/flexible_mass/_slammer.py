@@ -13,8 +13,7 @@ from typing import Optional
 import numpy as np
 from numba import njit
 
-from ..core import set_real_fields
-from ..core import notice_numba
+from ..core import notice_numba, set_real_fields
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn, equivalent_linear
 
 METHODS = ("coupled", "decoupled")

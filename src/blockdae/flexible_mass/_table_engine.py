@@ -29,16 +29,13 @@ import math
 
 import numpy as np
 
-from ..core import notice_numba
-from ..core import AbstractIntegrator, InconsistentStateError, SolverError, drive
-from ..core import first_nonpositive
-from ..solvers import CHATTER, UNSETTLED
-from ..solvers import linear_pieces
+from ..core import AbstractIntegrator, InconsistentStateError, SolverError, drive, first_nonpositive, notice_numba
+from ..solvers import CHATTER, UNSETTLED, linear_pieces
 from . import _table_kernel
 from ._column import MODE_PARTICIPATION, SLIP_MASS_FRACTION
 from ._modes import FlexibleMode
-from ._table_kernel import EVENT_RESOLUTION, LOWER, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS, UPPER, _bound
-from ._table_kernel import TAYLOR_DEGREE as _TAYLOR_DEGREE
+from ._table_kernel import (EVENT_RESOLUTION, LOWER, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS,
+                            TAYLOR_DEGREE as _TAYLOR_DEGREE, UPPER, _bound)
 
 _U, _V, _S, _W, _A, _AR, _ONE = range(7)
 _EPS = float(np.finfo(float).eps)

@@ -13,10 +13,9 @@ import dataclasses
 
 import numpy as np
 
-from ..core import notice_numba
+from ..core import compact_repr, notice_numba
 from ..excitation import accel_int1, accel_int2
 from . import _checks
-from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

@@ -12,11 +12,10 @@ import dataclasses
 
 import numpy as np
 
-from ..core import notice_numba
+from ..core import compact_repr, notice_numba
 from ..excitation import accel_int1, accel_int2, rebase
 from . import _checks
 from ._intensity import _Chain, intensity_measures
-from ..core import compact_repr
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 

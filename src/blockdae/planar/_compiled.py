@@ -53,11 +53,8 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..core.contract import KNOTS_PER_RADIAN
-from ..excitation import pieces as _pieces
-from ..excitation import accel, accel_int1, accel_int2, accel_rate, monotone_rate, rebase
-from ..solvers import dop853 as _dop853
-from ..solvers import rodas4 as _rodas4
-from ..solvers import xp_scalar as xp
+from ..excitation import accel, accel_int1, accel_int2, accel_rate, monotone_rate, pieces as _pieces, rebase
+from ..solvers import dop853 as _dop853, rodas4 as _rodas4, xp_scalar as xp
 from ..core import events as events
 from . import _rules as rules
 from ._rules import FLIGHT, SLIP, SLOW_SPEED, STICK

@@ -12,9 +12,7 @@ import concurrent.futures
 import numba
 import numpy as np
 
-from ..core import notice_numba
-from ..core import HermiteDense
-from ..core import BatchSolution
+from ..core import BatchSolution, HermiteDense, notice_numba
 from . import _compiled as engine
 
 #: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)

@@ -35,13 +35,11 @@ import math
 import numpy as np
 
 from ..units import STANDARD_GRAVITY
-from ..excitation import AbstractExcitation, BaseMotion
-from ..excitation import check_horizontal
+from ..excitation import AbstractExcitation, BaseMotion, check_horizontal
 from ._solution import PlanarEvent, PlanarSolution
 from ..core.contract import (KNOTS_PER_RADIAN, SCALAR, BatchedModel, DifferentiableModel, EngineModel, StudyModel,
                              scale_factor_units)
-from ..core import set_real_fields
-from ..core import LazyEngine
+from ..core import LazyEngine, set_real_fields
 from ._modes import _CX, _CY, _S, _UX, _UY, _W, _WD, PlanarMode, horizontal_velocity
 from . import _rules as rules
 from ._rules import SLOW_SPEED

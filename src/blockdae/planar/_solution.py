@@ -5,11 +5,10 @@ import math
 
 import numpy as np
 
-from ..core import AbstractEvent, DriverSolution
+from ..core import AbstractEvent, DriverSolution, compact_repr
 from ..units import STANDARD_GRAVITY, length_units
 
 from ._modes import PlanarMode, horizontal_velocity
-from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

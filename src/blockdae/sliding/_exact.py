@@ -3,12 +3,9 @@ precision; what the "exact" backend runs a :class:`~blockdae.SlidingBlock` on.""
 
 import numpy as np
 
-from ..core import notice_numba
-from ..core import BatchSolution
-from ..excitation import Pieces
-from ..excitation import accel
+from ..core import BatchSolution, cached_per_excitation, notice_numba
+from ..excitation import Pieces, accel
 from . import _exact_numba as engine
-from ..core import cached_per_excitation
 from ._results import check, exact_solution
 
 

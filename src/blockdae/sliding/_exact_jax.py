@@ -8,11 +8,9 @@ cross-checked in the tests.
 import jax
 import numpy as np
 
-from ..core import jax_context
-from ..core import BatchSolution
+from ..core import BatchSolution, cached_per_excitation, jax_context
 from ..excitation import Pieces
 from . import _exact_kernel as kernel
-from ..core import cached_per_excitation
 from ._results import check, exact_solution, max_run
 
 

@@ -35,11 +35,9 @@ import numba
 import numpy as np
 from numba.extending import register_jitable
 
-from ..excitation import pieces as _pieces
-from ..excitation import accel, accel_int1, accel_int2, rebase
-from . import _model as _block
+from ..excitation import accel, accel_int1, accel_int2, pieces as _pieces, rebase
+from . import _closed_form, _model as _block
 from ._model import demand, rest_mode, slip_constant
-from . import _closed_form
 from ..solvers import xp_scalar as xp
 from ._closed_form import (BISECTIONS, BLOCK_SLACK, crosses_zero, departure_rate, leaves_stick, mode_after_stop,
                            onset_delta_linear, onset_gap, onset_side, onset_target, onset_within, rate_turns,

@@ -4,10 +4,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core import Horizon, make_backend
+from ..core import Horizon, compact_repr, make_backend
 from ..excitation import AbstractExcitation
 from ._model import SlidingBlock
-from ..core import compact_repr
 
 
 class FinalNumbers(NamedTuple):

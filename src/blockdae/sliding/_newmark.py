@@ -16,18 +16,13 @@ import warnings
 
 import numpy as np
 
-from ..core import progress_bar
-from ..core import sensitivities
-from ..core import simulate
+from ..core import compact_repr, progress_bar, sensitivities, simulate
 from ..units import STANDARD_GRAVITY
-from ..excitation import AbstractExcitation, UnitsWarning, pga_factor, read_record
-from ..excitation import record_files
-from ..excitation import RecordSet, with_metadata
-from ..excitation import check_pga, check_pga_rounding, pga_keyword
+from ..excitation import (AbstractExcitation, RecordSet, UnitsWarning, check_pga, check_pga_rounding, pga_factor,
+                          pga_keyword, read_record, record_files, with_metadata)
 from ..flexible_mass import downslope_with_table
 from ._model import SlidingBlock
 from ._sweep import _labelled
-from ..core import compact_repr
 
 _POLARITIES = ("both", "normal", "inverse")
 

@@ -8,10 +8,8 @@ import dataclasses
 import numpy as np
 
 from ._solution import EventLog, Solution
-from ..excitation import Pieces
-from ..excitation import evaluate
-from ._model import slip_constant
-from ._model import never_rests_error
+from ..excitation import Pieces, evaluate
+from ._model import never_rests_error, slip_constant
 
 
 def exact_solution(block, pieces: Pieces, knots, max_run: int, backend: str) -> Solution:

@@ -6,11 +6,10 @@ from typing import Callable
 
 import numpy as np
 
-from ..core import AbstractEvent, AbstractSolution
+from ..core import AbstractEvent, AbstractSolution, compact_repr
 from ..units import STANDARD_GRAVITY, length_units
 from ..excitation import AbstractExcitation
 from ._modes import Mode
-from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)

@@ -5,13 +5,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..core import simulate
-from ..core import BatchSolution
-from ..excitation import AbstractExcitation, pga_factor
-from ..excitation import check_horizontal
-from ..excitation import check_pga, check_pga_rounding
+from ..core import BatchSolution, compact_repr, simulate
+from ..excitation import AbstractExcitation, check_horizontal, check_pga, check_pga_rounding, pga_factor
 from ._model import SlidingBlock
-from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

@@ -5,8 +5,7 @@ events by root finding, dense output in closed form from the located events."""
 import jax
 import numpy as np
 
-from ..core import jax_context
-from ..core import BatchSolution
+from ..core import BatchSolution, jax_context
 from . import _jax_kernel as kernel
 from ._exact_jax import _device
 from ._results import DenseOutput, max_run

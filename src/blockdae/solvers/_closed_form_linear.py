@@ -23,9 +23,8 @@ import math
 
 import numpy as np
 
-from ..core import AbstractIntegrator, drive
+from ..core import AbstractIntegrator, drive, falls, one_sign
 from ..excitation import rebase
-from ..core import falls, one_sign
 
 _EPS = np.finfo(float).eps
 #: most intervals one root search may examine (a degenerate touch of zero by the guard

@@ -19,8 +19,7 @@ import jax.numpy as jnp
 import numpy as np
 import optimistix as optx
 
-from ..core import AbstractIntegrator, SolverError
-from ..core import jax_context
+from ..core import AbstractIntegrator, SolverError, jax_context
 from ..excitation import accel, accel_rate
 from .diffrax_solvers import SOLVERS
 

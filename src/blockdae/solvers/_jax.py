@@ -8,8 +8,7 @@ import dataclasses
 
 import numpy as np
 
-from ..core import drive
-from ..core import AbstractBackend
+from ..core import AbstractBackend, drive
 from ._diffrax import DiffraxIntegrator, Settings
 from .diffrax_solvers import SOLVERS
 

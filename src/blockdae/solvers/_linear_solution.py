@@ -4,8 +4,7 @@ many excitations, parameter sets and scales."""
 
 import numpy as np
 
-from ..core import notice_numba
-from ..core import SolverError
+from ..core import SolverError, notice_numba
 from . import _linear
 
 #: knot-log rows per piece of a(t) at the start (one per piece, one per event, grown

@@ -13,8 +13,7 @@ from numbers import Integral, Real
 
 import numpy as np
 
-from ..core import SCALAR, AbstractIntegrator, SolverError, drive
-from ..core import AbstractBackend
+from ..core import SCALAR, AbstractBackend, AbstractIntegrator, SolverError, drive
 
 @dataclasses.dataclass(frozen=True)
 class SundialsBackend(AbstractBackend):

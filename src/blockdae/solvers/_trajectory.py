@@ -31,8 +31,7 @@ import jax.numpy as jnp
 import numpy as np
 import optimistix as optx
 
-from ..core import drive
-from ..core import jax_context
+from ..core import drive, jax_context
 from ._diffrax import JaxPieceExcitation, ModelTemplate, Settings
 from .diffrax_solvers import SOLVERS
 

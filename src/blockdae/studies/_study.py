@@ -25,15 +25,11 @@ import time
 
 import numpy as np
 
-from ..sliding import AdjustmentFactor, newmark_rd_sd
+from ..sliding import AdjustmentFactor, SlidingBlock, newmark_rd_sd
 from ..core.contract import StudyModel
 from ..core import progress_bar
 from ..units import STANDARD_GRAVITY
-from ..excitation import check_pga
-from ..excitation import BaseMotion, Record
-from ..excitation import check_horizontal
-from ..excitation import RecordSet, with_metadata
-from ..sliding import SlidingBlock
+from ..excitation import BaseMotion, Record, RecordSet, check_horizontal, check_pga, with_metadata
 from ..motions import response_spectrum
 from ..structures import Floor
 from ._checkpoint import Checkpoint, motion_name as _name

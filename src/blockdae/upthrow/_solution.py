@@ -4,9 +4,8 @@ import dataclasses
 
 import numpy as np
 
-from ..core import AbstractEvent, DriverSolution
+from ..core import AbstractEvent, DriverSolution, compact_repr
 from ._modes import UpthrowMode
-from ..core import compact_repr
 
 
 @dataclasses.dataclass(frozen=True)
