@@ -61,9 +61,6 @@ class PlanarBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         mu_kinetic: kinetic friction coefficient f [-], 0 <= f <= mu; default ``mu``.
         bias: (b_x, b_y), a constant horizontal force on the block as a fraction of
             its weight [-], |bias| < mu (Elms's P acts in -x: ``bias=(-P, 0)``).
-
-    ``mu``, ``mu_kinetic``, ``b_x`` and ``b_y`` may be 1-D arrays (broadcast together):
-    the block is then a batch of parameter sets.
         g: gravitational acceleration [m/s²]; standard gravity by default.
         restitution: vertical coefficient of restitution at landing [-], in [0, 1):
             the vertical relative velocity is multiplied by -restitution, the
@@ -75,6 +72,9 @@ class PlanarBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
             :class:`SpringSupport` (n from its spring-dashpot law, w its deflection
             from the static position; ``restitution`` then plays no part: the block
             lands on the unloaded spring and stays on it while it pushes).
+
+    ``mu``, ``mu_kinetic``, ``b_x`` and ``b_y`` may be 1-D arrays (broadcast together):
+    the block is then a batch of parameter sets.
     """
 
     mu: float
