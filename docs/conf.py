@@ -33,6 +33,7 @@ nb_execution_mode = "off"           # notebooks are stored executed; never run a
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
+autodoc_preserve_defaults = True   # defaults as written (xp=np), not their repr
 autodoc_default_options = {"members": True, "undoc-members": False, "show-inheritance": True}
 napoleon_google_docstring = True
 napoleon_numpy_docstring = False
@@ -41,3 +42,7 @@ napoleon_use_ivar = True          # Attributes: sections as fields, not a second
 html_theme = "furo"
 html_title = "blockdae"
 html_static_path = []
+
+# a docstring's "shape (n,)" or "s" in a return type is read as a cross-reference that
+# several attributes of that name could answer; the link then goes to one of them
+suppress_warnings = ["ref.python"]

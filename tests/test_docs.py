@@ -1,6 +1,6 @@
 """The documentation site builds offline with no warning, and its reference covers every
 public name and every command. Runs where the `docs` extra is installed (CI installs it);
-the build takes about 20 s on 2 cores."""
+the build takes about 40 s on 2 cores."""
 
 import argparse
 import os

@@ -77,7 +77,18 @@ def escape_bars(app, what, name, obj, options, lines):
                                for part in LITERAL.split(line))
 
 
+def skip_top_level_names(app, what, name, obj, skip, options):
+    """A subpackage's page leaves out what the top level exports: it is documented once,
+    under its top-level name, on the API page."""
+    import blockdae
+
+    if what == "module" and any(getattr(blockdae, top, None) is obj for top in blockdae.__all__):
+        return True
+    return None
+
+
 def setup(app):
     app.add_directive("blockdae-api", BlockdaeApi)
     app.connect("autodoc-process-docstring", escape_bars)
+    app.connect("autodoc-skip-member", skip_top_level_names)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -18,7 +18,7 @@ class ValidityWarning(UserWarning):
 class EmpiricalDisplacement(typing.NamedTuple):
     """A regression's prediction, arrays broadcast over its arguments.
 
-    Fields:
+    Attributes:
         median_m: median displacement where D is not negligible [m] (0 where ky >= PGA
             for the rigid-block models).
         sigma_ln: standard deviation of ln D [-].

@@ -21,9 +21,9 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)  # exact for a² of linear pi
 
 @dataclasses.dataclass(frozen=True)
 class IntensityMeasures:
-    """Peak values with the times where they occur, Arias intensity and duration.
+    """Peak values with the times where they occur, Arias intensity and duration, in SI units.
 
-    Attributes (SI units):
+    Attributes:
         name: the record's name ("" for analytic excitations).
         pga, t_pga: max |a| [m/s²] and its time [s].
         pgv, t_pgv: max |v| [m/s] and its time [s].
