@@ -66,14 +66,22 @@ class BlockdaeApi(SphinxDirective):
 
 
 LITERAL = re.compile(r"(``.+?``)")
+KEYWORDS = re.compile(r"(?<![\\*])\*\*(?=[A-Za-z_])")
 
 
-def escape_bars(app, what, name, obj, options, lines):
-    """The docstrings write |x| for a magnitude, as plain text does; reStructuredText would
-    read it as a substitution. Escape every bar outside ``inline literals``."""
+def _plain_text(part):
+    """``part`` (outside inline literals) with the marks plain text uses escaped: |x| for a
+    magnitude, which reStructuredText reads as a substitution, and an unpaired **name
+    (``backend, **options:``), which it reads as the start of bold text."""
+    part = part.replace("|", r"\|")
+    return KEYWORDS.sub(r"\*\*", part) if part.count("**") % 2 else part
+
+
+def escape_plain_text(app, what, name, obj, options, lines):
+    """Escape, outside ``inline literals``, what plain-text docstrings mean literally."""
     for i, line in enumerate(lines):
-        if "|" in line:
-            lines[i] = "".join(part if part.startswith("``") else part.replace("|", r"\|")
+        if "|" in line or "**" in line:
+            lines[i] = "".join(part if part.startswith("``") else _plain_text(part)
                                for part in LITERAL.split(line))
 
 
@@ -89,6 +97,6 @@ def skip_top_level_names(app, what, name, obj, skip, options):
 
 def setup(app):
     app.add_directive("blockdae-api", BlockdaeApi)
-    app.connect("autodoc-process-docstring", escape_bars)
+    app.connect("autodoc-process-docstring", escape_plain_text)
     app.connect("autodoc-skip-member", skip_top_level_names)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

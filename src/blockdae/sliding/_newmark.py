@@ -198,8 +198,7 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
             sliding while a(t) > ky g) or "inverse" (the record inverted).
         g: the value of one g [m/s²]; standard gravity by default.
         t_end: final time [s]; None: until the block rests after the record.
-        backend: as for :func:`blockdae.simulate`.
-        **options: the backend's options, as for :func:`blockdae.simulate`.
+        backend, **options: as for :func:`blockdae.simulate`.
         pga: target peak ground acceleration(s) [g] (SLAMMER's target PGA), a number or a
             1-D sequence: the motion is scaled so that its peak |a| is each ``pga`` g (see
             :func:`blockdae.excitation.pga_factor`); None: as given. A value above 2 g is refused (likely

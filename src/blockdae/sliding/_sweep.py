@@ -91,8 +91,7 @@ def simulate_many(block: SlidingBlock, motions, t_end: float | None = None, back
         motions: base excitations, a sequence or a mapping label -> excitation; a
             sequence is labelled by each :class:`Record`'s ``name`` (else its repr).
         t_end: final time [s]; None: until the block rests after each motion ends.
-        backend: as for :func:`blockdae.simulate`.
-        **options: the backend's options, as for :func:`blockdae.simulate`.
+        backend, **options: as for :func:`blockdae.simulate`.
         scale: factor(s) on a(t) [-], a number or a 1-D sequence (default 1; -1 inverts).
         pga: instead of ``scale``, target peak ground acceleration(s) [g], a number or a
             1-D sequence: each motion is scaled so that max |a(t)| is each value times the
