@@ -8,9 +8,10 @@ from .contract import (SCALAR, AbstractHybridModel, BatchedModel, Differentiable
                        LinearModesModel, StudyBatch, StudyModel)
 from ._solution import AbstractEvent, AbstractSolution, DriverSolution, HybridEvent
 from ._sensitivity_result import Sensitivities
+from ._ensemble import Ensemble
 
 __all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchSolution", "BatchedModel", "CrossCheck",
-           "DifferentiableModel", "DriverSolution", "EngineModel", "ExplicitForm", "HybridEvent",
+           "DifferentiableModel", "DriverSolution", "EngineModel", "Ensemble", "ExplicitForm", "HybridEvent",
            "InconsistentStateError", "LinearModesModel", "SCALAR", "Sensitivities", "SolverError", "StudyBatch",
            "StudyModel"]
 
