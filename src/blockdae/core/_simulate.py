@@ -48,8 +48,10 @@ def simulate(model: AbstractHybridModel, motion, t_end: float | None = None,
         final_only: keep the final numbers of each case only (no events or dense output:
             the path for large studies); on the exact backend of a :class:`SlidingBlock`
             and the compiled backend of a :class:`PlanarBlock` every case then runs in one
-            compiled call, in parallel over cores. ``ensemble[i]`` still gives a case's
-            full solution (it runs that case again).
+            compiled call, in parallel over cores, each ``scale`` a factor inside the
+            engine (equal to running a scaled copy, to the rounding of a(t) times the
+            factor). ``ensemble[i]`` still gives a case's full solution (it runs that case
+            again).
         pga_rounding: "exact" (default) or "slammer": each motion's own peak rounded to
             0.001 g before scaling, as SLAMMER scales (to reproduce its tables).
         check_peak: False accepts a ``pga`` above 2 g.
@@ -145,15 +147,26 @@ def _finals_in_one_call(model, solver) -> bool:
 
 
 def _compiled_finals(model, runs, t_end, solver):
-    """Every case's final numbers from one call of the model's engine: the scaled motions
-    as excitations, the polarities as its factors on a(t) (-1 negates exactly)."""
+    """Every case's final numbers from one call of the model's engine, the polarities as its
+    factors on a(t) (-1 negates exactly). Scales common to every motion are factors too
+    (no scaled copy: equal to a scaled copy's run to the rounding of the product); target
+    PGAs scale a copy of each motion."""
     n_motions, n_scales, n_polarities = runs.shape
-    motions = [runs.scaled(i, k) for i in range(n_motions) for k in range(n_scales)]
-    signs = tuple(1.0 if polarity == "normal" else -1.0 for polarity in runs.polarities)
-    out = solver.solve_final(model, motions, [Horizon.resolve(m, _end(m, t_end)) for m in motions], signs)
-    engine = model.engines[solver.name]
-    return tuple(tuple(tuple(Finals(*engine.final_numbers(out[i * n_scales + k, p::n_polarities]))
-                             for p in range(n_polarities)) for k in range(n_scales)) for i in range(n_motions))
+    signs = [1.0 if polarity == "normal" else -1.0 for polarity in runs.polarities]
+    if runs.by == "scale":
+        motions, factors, per_motion = list(runs.motions), [k * sign for k in runs.targets for sign in signs], 1
+    else:
+        motions = [runs.scaled(i, k) for i in range(n_motions) for k in range(n_scales)]
+        factors, per_motion = signs, n_scales
+    out = solver.solve_final(model, motions, [Horizon.resolve(m, _end(m, t_end)) for m in motions], tuple(factors))
+    engine, stride = model.engines[solver.name], len(factors)
+
+    def finals(i, k, p):
+        row, column = (i, k * n_polarities + p) if per_motion == 1 else (i * n_scales + k, p)
+        return Finals(*engine.final_numbers(out[row, column::stride]))
+
+    return tuple(tuple(tuple(finals(i, k, p) for p in range(n_polarities)) for k in range(n_scales))
+                 for i in range(n_motions))
 
 
 def _of_run(result, block, motion):
