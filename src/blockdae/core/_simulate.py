@@ -127,15 +127,17 @@ def _each_case(model, runs, t_end, solver, executor, progress):
     keys = [(i, k, p) for i in range(n_motions) for k in range(n_scales) for p in range(n_polarities)]
     done = {}
     with progress_bar(len(keys), "simulate", "case", progress) as bar:
-        if executor is None:
-            for key in keys:
-                done[key] = solve(model, runs.motion(*key), t_end, solver)
-                bar.update()
-        else:
-            futures = {key: executor.submit(solve, model, runs.motion(*key), t_end, solver) for key in keys}
-            for key in keys:
-                done[key] = futures[key].result()
-                bar.update()
+        futures = {} if executor is None else \
+            {key: executor.submit(solve, model, runs.motion(*key), t_end, solver) for key in keys}
+        for key in keys:
+            try:
+                done[key] = futures[key].result() if futures else solve(model, runs.motion(*key), t_end, solver)
+            except Exception as err:
+                i, k, p = key
+                err.add_note(f"in the case {runs.names[i]} at {runs.by} {runs.targets[k]:g}, {runs.polarities[p]} "
+                             "polarity")
+                raise
+            bar.update()
     return tuple(tuple(tuple(done[i, k, p] for p in range(n_polarities)) for k in range(n_scales))
                  for i in range(n_motions))
 
