@@ -84,6 +84,8 @@ def simulate(model: AbstractHybridModel, motion, t_end: float | None = None,
     if not solver.runs(model):
         raise ValueError(f"backend={solver.name!r} does not run a {type(model).__name__}; choose one of "
                          f"{list(available(model))}")
+    if one and scale is None and pga is None and polarity == "normal":
+        return solve(model, motion, t_end, solver)
     runs = cases(motion, scale=scale, pga=pga, polarity=polarity, g=float(getattr(model, "g", STANDARD_GRAVITY)),
                  pga_rounding=pga_rounding, check_peak=check_peak)
     if one:
@@ -104,9 +106,8 @@ def simulate(model: AbstractHybridModel, motion, t_end: float | None = None,
 
 
 def solve(model, motion, t_end, solver):
-    """The solution of ``model`` (one parameter set or a batch) under ``motion`` to
-    ``t_end`` [s] (None: until rest) on the backend object ``solver``."""
-    model.check_motion(motion)
+    """The solution of ``model`` (one parameter set or a batch) under ``motion`` (checked by
+    the model already) to ``t_end`` [s] (None: until rest) on the backend object ``solver``."""
     horizon = Horizon.resolve(motion, _end(motion, t_end))
     result = solver.solve_batch(model, motion, horizon) if model.batch_shape else solver.solve(model, motion, horizon)
     return _of_run(result, model, motion)
