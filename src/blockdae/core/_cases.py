@@ -75,8 +75,7 @@ def cases(motions, *, scale=None, pga=None, polarity="normal", g: float, pga_rou
     sequence each) in ``polarity`` ("normal", "inverse" or "both")."""
     if polarity not in POLARITIES:
         raise ValueError(f"polarity must be one of {POLARITIES}, got {polarity!r}")
-    metadata = motions.metadata if isinstance(motions, RecordSet) else None
-    names, motions = _labelled(_read(motions, g))
+    names, motions, metadata = labelled_motions(motions, g)
     if scale is not None and pga is not None:
         raise ValueError("give scale or pga, not both")
     if pga is None:
@@ -89,6 +88,14 @@ def cases(motions, *, scale=None, pga=None, polarity="normal", g: float, pga_rou
                             for name, motion in zip(names, motions)])
     polarities = ("normal", "inverse") if polarity == "both" else (polarity,)
     return Cases(names, tuple(motions), factors, "scale" if pga is None else "pga", targets, polarities, metadata)
+
+
+def labelled_motions(motions, g: float):
+    """(labels, motions, a record set's metadata or None) of one motion, a sequence, a
+    mapping name -> motion, a :class:`RecordSet`, or a path to a record file or a folder of
+    them (read with one g = ``g`` [m/s²]); a sequence is labelled by each record's name."""
+    metadata = motions.metadata if isinstance(motions, RecordSet) else None
+    return *_labelled(_read(motions, g)), metadata
 
 
 def _read(motions, g):
@@ -105,9 +112,9 @@ def _read(motions, g):
 
 def _labelled(motions):
     """(labels, excitations) of a sequence or mapping of excitations; a sequence is
-    labelled by each record's ``name`` (else its repr)."""
+    labelled by each record's ``name`` (else "motion i", i its position)."""
     items = list(motions.items()) if isinstance(motions, Mapping) else \
-        [(getattr(m, "name", "") or repr(m), m) for m in motions]
+        [(getattr(m, "name", "") or f"motion {i}", m) for i, m in enumerate(motions)]
     if not items:
         raise ValueError("motions is empty: give at least one excitation")
     for name, motion in items:

@@ -203,8 +203,9 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         pga_rounding: "exact" (default) or "slammer": the motion's own peak rounded to
             0.001 g before scaling, as SLAMMER scales (to reproduce its tables).
         check_peak: False accepts a ``pga`` above 2 g.
-        progress: over many motions, a tqdm bar over them on stderr; None (default): only
-            when stderr is a terminal.
+        progress: where the cases run one by one (a backend other than "exact"), a tqdm
+            bar over them on stderr; None (default): only when stderr is a terminal. On
+            "exact" every case runs in one compiled call.
         derivative: also dD/dky [m/g] of each polarity run (``normal_dky``,
             ``inverse_dky``), exact: differentiated through the closed-form engine
             (:func:`blockdae.sensitivities` with respect to "mu"; its first call in a
