@@ -8,7 +8,7 @@ ky = 0.1 through ``bd.simulate``, and a 64-value ky grid (0.05-0.3) batched thro
 ``bd.simulate``, each beside pySLAMMER and beside the limit, a bare compiled loop that
 only reads the record once. Then, in fresh processes, a user's loop (180 analyses:
 every record read from its file, scaled to a target PGA, both polarities, five ky;
-compilation included), and 10^6 analyses with final numbers only (``bd.sliding.simulate_final``).
+compilation included), and 10^6 analyses with final numbers only (``bd.simulate(..., final_only=True)``).
 
     python benchmarks/vs_pyslammer.py [--quick]
 """
@@ -178,9 +178,9 @@ def _final_numbers(records, n_analyses):
     block = bd.SlidingBlock(mu=np.linspace(0.05, 0.3, per_record), direction="negative", g=G)
     # compile (or load) outside the timing the kernel that the timed call runs: the whole grid on
     # the shortest record takes the same one (two ky values alone would take the serial kernel)
-    bd.sliding.simulate_final(block, [min(records, key=lambda r: r.acceleration_samples.size)])
+    bd.simulate(block, [min(records, key=lambda r: r.acceleration_samples.size)], final_only=True)
     start = time.perf_counter()
-    final = bd.sliding.simulate_final(block, records)
+    final = bd.simulate(block, records, final_only=True)
     seconds = time.perf_counter() - start
     print(f"{final.displacement.size} analyses ({len(records)} records x {per_record} ky), final numbers only: "
           f"{seconds:.2f} s ({1e6 * seconds / final.displacement.size:.2f} us per analysis, "

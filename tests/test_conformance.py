@@ -431,17 +431,19 @@ def test_batch(model, backend):
 
 @pytest.mark.parametrize("model, backend", matrix("many_motions"))
 def test_many_motions(model, backend):
-    """The model under each of its motions (bd.sliding.simulate_many for a SlidingBlock, which
-    gives each motion's single run; one bd.simulate per motion otherwise) agrees with
-    the reference run of that motion within the one-run bars."""
+    """bd.simulate over the model's motions gives one bd.Ensemble whose every row is that
+    motion's single run (the same displacement and event times, exactly), and each run
+    agrees with the reference run of that motion within the one-run bars."""
     case = CASES[model]
-    if isinstance(case.model, bd.SlidingBlock):
-        sweep = bd.sliding.simulate_many(case.model, case.motions, t_end=case.t_end, backend=backend)
-        assert sweep.shape == (len(case.motions), 1, 1)
-        for i in range(len(case.motions)):
-            one = run(model, backend, i)
-            assert sweep.displacement[i, 0, 0] == one.displacement
-            assert event_time_difference(sweep[i, 0][0], one) == 0.0
+    ensemble = bd.simulate(case.model, list(case.motions), t_end=case.t_end, backend=backend)
+    assert isinstance(ensemble, bd.Ensemble) and len(ensemble) == len(case.motions)
+    assert ensemble.shape == (len(case.motions), 1, 1)
+    table = ensemble.to_dataframe()
+    for i in range(len(case.motions)):
+        one = run(model, backend, i)
+        np.testing.assert_array_equal(ensemble.displacement[i, 0, 0], one.displacement)
+        assert table["max_abs_displacement_m"][i] == one.max_abs_displacement
+        assert event_time_difference(ensemble[i], one) == 0.0
     for i in range(len(case.motions)):
         solution, ref = run(model, backend, i), reference(model, i)
         bars = BARS.get((model, backend), THE_REFERENCE)

@@ -297,8 +297,8 @@ def test_flexible_batch_table_and_polarities():
                "pet": _record("Cape_Mendocino_1992_PET-090", duration=10.0)}
     ky, height = np.array([0.05, 0.1, 0.15]), np.array([5.0, 10.0, 20.0])
     table = bd.flexible(records, ky=ky, height=height, vs=300.0, method="decoupled").to_dataframe()
-    assert list(table.columns) == ["record", "ky_g", "height_m", "vs_m_s", "normal_m", "inverse_m", "kmax_g",
-                                   "kmax_sup_g", "vs_final_m_s", "damping_final", "episodes_normal",
+    assert list(table.columns) == ["record", "pga_g", "ky_g", "height_m", "vs_m_s", "normal_m", "inverse_m", "mean_m",
+                                   "max_m", "kmax_g", "kmax_sup_g", "vs_final_m_s", "damping_final", "episodes_normal",
                                    "episodes_inverse"]
     assert list(table["record"]) == ["pac"] * 3 + ["pet"] * 3
     np.testing.assert_array_equal(table["ky_g"], np.tile(ky, 2))
@@ -309,8 +309,12 @@ def test_flexible_batch_table_and_polarities():
             sol = bd.simulate(model, shifted, t_end=10.0 + record.dt)
             assert table["normal_m"][3 * i + j] == pytest.approx(sol.displacement, rel=1e-13)
             assert table["episodes_normal"][3 * i + j] == len(sol.episodes)
+    np.testing.assert_array_equal(table["pga_g"], np.repeat([r.peak_acceleration / G for r in records.values()], 3))
+    np.testing.assert_array_equal(table["mean_m"], 0.5 * (table["normal_m"] + table["inverse_m"]))
+    np.testing.assert_array_equal(table["max_m"], np.maximum(table["normal_m"], table["inverse_m"]))
     only = bd.flexible(records["pac"], ky=0.1, height=10.0, vs=300.0, polarity="normal").to_dataframe()
     assert np.isnan(only["inverse_m"][0]) and only["episodes_inverse"].isna().all()
+    assert only["mean_m"][0] == only["max_m"][0] == only["normal_m"][0]
     scaled = bd.flexible(records["pac"], ky=0.1, height=10.0, vs=300.0, pga=0.3)
     factor = 0.3 * G / records["pac"].peak_acceleration
     same = bd.flexible(records["pac"].scaled(factor), ky=0.1, height=10.0, vs=300.0)
@@ -381,8 +385,8 @@ def test_flexible_refuses_bad_input(kwargs, message, monkeypatch):
         bd.flexible(record, **args)
 
 
-@pytest.mark.parametrize("motion, message", [({}, r"motion=\{\} holds no record"),
-                                             ([], r"motion=\[\] holds no record")])
+@pytest.mark.parametrize("motion, message", [({}, r"motions is empty: give at least one excitation"),
+                                             ([], r"motions is empty: give at least one excitation")])
 def test_flexible_refuses_no_motion(motion, message):
     with pytest.raises(ValueError, match=message):
         bd.flexible(motion, ky=0.1, height=10.0, vs=250.0)

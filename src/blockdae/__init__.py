@@ -20,7 +20,7 @@ import warnings as _warnings
 from . import backends, empirical, hazard, motions
 from ._plot import plot
 from .core import AbstractHybridModel, CompileNotice, InconsistentStateError, SolverError
-from .core import Sensitivities, crosscheck, sensitivities, simulate
+from .core import Ensemble, Sensitivities, crosscheck, sensitivities, simulate
 from .units import STANDARD_GRAVITY
 from .excitation import (BaseMotion, Harmonic, Record, RecordSet, RecordWarning, RectangularPulse, SinePulse,
                          TriangularPulse, UnitsWarning, read_motion, read_record, read_records)
@@ -37,7 +37,7 @@ __all__ = [
     "AbstractHybridModel", "SlidingBlock", "PlanarBlock", "SpringSupportedMass", "SpringSupport", "RigidSupport",
     "FlexibleSlidingMass", "ShearFrame",
     # the analyses
-    "simulate", "sensitivities", "Sensitivities", "crosscheck", "newmark", "flexible", "study", "load_study",
+    "simulate", "Ensemble", "sensitivities", "Sensitivities", "crosscheck", "newmark", "flexible", "study", "load_study",
     "save_study", "plot",
     # the flexible mass's inputs and results, and ky against D
     "FlexibleResult", "FlexibleSolution", "FlexibleEvent", "FlexibleMode", "EquivalentLinear", "ShearColumn",

@@ -8,15 +8,17 @@ from .contract import (SCALAR, AbstractHybridModel, BatchedModel, Differentiable
                        LinearModesModel, StudyBatch, StudyModel)
 from ._solution import AbstractEvent, AbstractSolution, DriverSolution, HybridEvent
 from ._sensitivity_result import Sensitivities
+from ._ensemble import Ensemble
 
 __all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchSolution", "BatchedModel", "CrossCheck",
-           "DifferentiableModel", "DriverSolution", "EngineModel", "ExplicitForm", "HybridEvent",
+           "DifferentiableModel", "DriverSolution", "EngineModel", "Ensemble", "ExplicitForm", "HybridEvent",
            "InconsistentStateError", "LinearModesModel", "SCALAR", "Sensitivities", "SolverError", "StudyBatch",
            "StudyModel"]
 
 # what the other packages of blockdae use
 from ._atomic import atomic_path
 from ._backend import AbstractBackend, cached_per_excitation, check_window
+from ._cases import labelled_motions
 from ._checks import set_real_fields
 from ._compile_notice import CompileNotice, notice_numba
 from ._crosscheck import CrossCheck, crosscheck

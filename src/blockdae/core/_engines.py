@@ -4,7 +4,9 @@ backend's settings. The contract of an engine:
 - ``solve(model, excitation, horizon, backend) -> solution`` (one parameter set);
 - optionally ``solve_batch(model, excitation, horizon, backend) -> BatchSolution`` (a
   batch of parameter sets) and ``solve_final(model, excitations, horizons, scale, backend)
-  -> array`` (final numbers of many motions at many factors on a(t), in one call).
+  -> array`` (final numbers of many motions at many factors on a(t), in one call), with
+  ``final_numbers(rows) -> (displacement (n, d) [m], max |displacement| (n,) [m], events
+  (n,), t_end (n,) [s])`` reading n rows of that array.
 
 ``backend`` is the backend object: the engine reads the settings it documents from it (its
 ``name``, ``window``, ``rtol``, ...)."""
@@ -35,3 +37,6 @@ class LazyEngine:
 
     def solve_final(self, model, excitations, horizons, scale, backend):
         return self.engine.solve_final(model, excitations, horizons, scale, backend)
+
+    def final_numbers(self, rows):
+        return self.engine.final_numbers(rows)

@@ -3,6 +3,8 @@ time grid; matplotlib is imported by the figures themselves, on demand."""
 
 import numpy as np
 
+from ..units import STANDARD_GRAVITY
+
 BASE = dict(color="0.3", lw=1.2, label="base")
 BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")
 EVENTS = dict(ls="none", marker="o", ms=4, mfc="none", color="C0", label="events")
@@ -66,4 +68,33 @@ def batch_figure(batch, *, title=None):
     ax.set(xlabel=xlabel, ylabel="relative displacement (signed) [m]", title=title)
     ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
     ax.legend(loc="best", fontsize="small")
+    return fig
+
+
+#: lines of an ensemble's figure labelled in a legend; beyond, the lines stay unlabelled
+ENSEMBLE_LEGEND = 12
+
+
+def ensemble_figure(ensemble, *, title=None):
+    """max |displacement| [m] against the scaled motion's peak [g]: a line per (motion,
+    polarity, parameter set) across the factors, a marker per case."""
+    import matplotlib.pyplot as plt
+
+    g = float(getattr(ensemble.model, "g", STANDARD_GRAVITY))
+    peak = ensemble.cases.peak_g(g)  # (n_motions, n_scales)
+    largest = ensemble.max_abs_displacement.reshape(ensemble.cases.shape + (-1,))
+    n_motions, _, n_polarities, n_sets = largest.shape
+    labelled = n_motions * n_polarities * n_sets <= ENSEMBLE_LEGEND
+    fig, ax = plt.subplots(figsize=(6.5, 4), constrained_layout=True)
+    for i, name in enumerate(ensemble.cases.names):
+        for p, polarity in enumerate(ensemble.cases.polarities):
+            for j in range(n_sets):
+                label = " ".join([name] + ([polarity] if n_polarities > 1 else []) + ([f"set {j}"] if n_sets > 1
+                                                                                       else []))
+                ax.plot(peak[i], largest[i, :, p, j], marker="o" if polarity == "normal" else "s", ms=4,
+                        ls="-" if polarity == "normal" else "--", color=f"C{i % 10}",
+                        label=label if labelled else None)
+    ax.set(xlabel="peak ground acceleration of the scaled motion [g]", ylabel="max |displacement| [m]", title=title)
+    if labelled:
+        ax.legend(loc="best", fontsize="small")
     return fig

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ..solvers import linear_pieces
-from ..excitation import Record, check_horizontal, pga_factor, pga_keyword
+from ..excitation import Record, RecordSet, check_horizontal, with_metadata, pga_factor, pga_keyword
 from . import _engine, _fused, _table_kernel
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, flat_table_model, slip_underdamped
@@ -27,7 +27,7 @@ from ._ky_table import KyTable
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
 from ._table_engine import response_compiled, slide_compiled, system_arrays
-from ..core import compact_repr
+from ..core import compact_repr, labelled_motions
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns
@@ -85,15 +85,26 @@ class FlexibleResult:
     rows: list
     method: str
     integration: str
+    pga_g: tuple = ()
+    metadata: object = None
 
     def to_dataframe(self):
-        """The rows as a pandas DataFrame (units in the column names)."""
+        """The rows as a pandas DataFrame, units in the column names, in the columns of
+        :func:`bd.newmark`'s tables: record, a record set's metadata columns, pga_g (the
+        analysed motion's peak [g]), ky_g, height_m, vs_m_s, normal_m, inverse_m, mean_m and
+        max_m (of the polarities run [m]), then kmax_g, ..., episodes_inverse."""
         import pandas as pd
 
         table = pd.DataFrame(self.rows, columns=list(COLUMNS))
         for name in ("episodes_normal", "episodes_inverse"):
             table[name] = table[name].astype("Int64")
-        return table
+        table.insert(1, "pga_g", np.asarray(self.pga_g, dtype=float))
+        normal, inverse = table["normal_m"].to_numpy(), table["inverse_m"].to_numpy()
+        ran = np.where(np.isnan(normal), inverse, normal), np.where(np.isnan(inverse), normal, inverse)
+        at = table.columns.get_loc("inverse_m") + 1
+        table.insert(at, "mean_m", 0.5 * (ran[0] + ran[1]))
+        table.insert(at + 1, "max_m", np.maximum(*ran))
+        return with_metadata(table, self.metadata)
 
     def __getitem__(self, column):
         """One column over the rows as an array (e.g. ``result["normal_m"]``)."""
@@ -109,8 +120,10 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     coupled), downslope displacement positive, as SLAMMER runs them but exact in time.
 
     Args:
-        motion: a :class:`Record` of the ground acceleration along the slope, or a
-            sequence or dict (name -> record) of them (a batch).
+        motion: a :class:`Record` of the ground acceleration along the slope, or many (a
+            batch): a sequence or dict (name -> record) of them, a :class:`RecordSet` (its
+            metadata carried into the table), or a path to a record file or a folder of
+            them (read by :func:`blockdae.read_record` with the units their files state).
         ky: yield acceleration [g], >= 0; or a :class:`KyTable` (ky [g] against the
             sliding displacement [m], linear between rows, constant beyond), also as
             pySLAMMER's pair ``(disp_values [m], ky_values [g])`` of two sequences. A ky
@@ -154,7 +167,9 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     rows_of, _ = INTEGRATIONS[integration]
     if analyses and analyses[0].model.table is not None:  # plan gives every model the table or none
         rows_of = table_rows
-    return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration)
+    return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration,
+                          pga_g=tuple(a.record.peak_acceleration / a.model.g for a in analyses),
+                          metadata=motion.metadata if isinstance(motion, RecordSet) else None)
 
 
 def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
@@ -179,7 +194,7 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
         ky = 0.0  # a placeholder in the broadcast: every model gets the table
     elif table is not None:
         ky, table = table.ky_g[0], None
-    names, records = _motions(motion)
+    names, records, _ = _motions(motion, g)
     for record in records:
         check_horizontal(record)
     if t_end is not None and not (isinstance(t_end, numbers.Real) and not isinstance(t_end, bool) and
@@ -284,22 +299,14 @@ def as_ky_table(ky):
     return None
 
 
-def _motions(motion):
-    """(names, records) of one record, a sequence or a dict of them."""
-    if isinstance(motion, Record):
-        return [motion.name or "motion 0"], [motion]
-    if isinstance(motion, dict):
-        names, records = list(motion), list(motion.values())
-    else:
-        records = [motion] if isinstance(motion, Record) else list(motion)
-        names = [record.name if isinstance(record, Record) and record.name else f"motion {i}"
-                 for i, record in enumerate(records)]
+def _motions(motion, g):
+    """(names, records, a record set's metadata or None) of one record, a sequence or dict
+    of them, a :class:`RecordSet` or a path to a record file or a folder (one g = ``g`` [m/s²])."""
+    names, records, metadata = labelled_motions(motion, g)
     for name, record in zip(names, records):
         if not isinstance(record, Record):
             raise TypeError(f"motion {name!r} must be a Record (samples at dt), got {type(record).__name__}")
-    if not records:
-        raise ValueError(f"motion={motion!r} holds no record: give a Record, or a sequence or dict of them")
-    return names, records
+    return names, records, metadata
 
 
 def with_zero_sample(record) -> Record:

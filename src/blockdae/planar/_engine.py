@@ -43,11 +43,17 @@ class PlanarEngine:
                               dense=HermiteDense(t, y, knots[:, 9:16].copy(), knots[:, 16:23].copy()), stats=stats)
 
     def solve_batch(self, block, excitation, horizon, backend):
-        out = self.solve_final(block, [excitation], [horizon], (1.0,), backend)[0]
-        return BatchSolution(
-            displacement=out[:, 0:2], max_abs_displacement=out[:, 2], n_events=out[:, 4].astype(int),
-            t_end=out[:, 6], backend=backend.name,
-            solve_one=lambda i: self.solve(block.item(i), excitation, horizon, backend))
+        u, largest, n_events, t_end = self.final_numbers(self.solve_final(block, [excitation], [horizon], (1.0,),
+                                                                          backend)[0])
+        return BatchSolution(displacement=u, max_abs_displacement=largest, n_events=n_events, t_end=t_end,
+                             backend=backend.name, solve_one=lambda i: self.solve(block.item(i), excitation, horizon,
+                                                                                  backend))
+
+    @staticmethod
+    def final_numbers(rows):
+        """((u_x, u_y)(t_end) (n, 2) [m], max |u| (n,) [m], events (n,), t_end (n,) [s]) of n
+        rows of :meth:`solve_final`'s outcomes."""
+        return rows[:, 0:2], rows[:, 2], rows[:, 4].astype(int), rows[:, 6]
 
     def solve_final(self, block, excitations, horizons, scale, backend) -> np.ndarray:
         """Final numbers of every excitation under every parameter set of ``block`` (a

@@ -28,11 +28,17 @@ class ExactEngine:
         return exact_solution(block, pieces, knots, int(outcome[8]), backend.name)
 
     def solve_batch(self, block, excitation, horizon, backend):
-        out = self.solve_final(block, [excitation], [horizon], (1.0,), backend)[0]
-        return BatchSolution(
-            displacement=out[:, 0], max_abs_displacement=out[:, 3], n_events=out[:, 4].astype(int),
-            t_end=out[:, 5], backend=backend.name,
-            solve_one=lambda i: self.solve(block.item(i), excitation, horizon, backend))
+        u, largest, n_events, t_end = self.final_numbers(self.solve_final(block, [excitation], [horizon], (1.0,),
+                                                                          backend)[0])
+        return BatchSolution(displacement=u[:, 0], max_abs_displacement=largest, n_events=n_events, t_end=t_end,
+                             backend=backend.name, solve_one=lambda i: self.solve(block.item(i), excitation, horizon,
+                                                                                  backend))
+
+    @staticmethod
+    def final_numbers(rows):
+        """(u(t_end) (n, 1) [m], max |u| (n,) [m], events (n,), t_end (n,) [s]) of n rows of
+        :meth:`solve_final`'s outcomes."""
+        return rows[:, 0:1], rows[:, 3], rows[:, 4].astype(int), rows[:, 5]
 
     def solve_final(self, block, excitations, horizons, scale, backend) -> np.ndarray:
         """Final numbers only, for every excitation under every parameter set of

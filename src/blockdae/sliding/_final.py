@@ -1,5 +1,6 @@
 """Final numbers only, for large studies: many motions × parameter sets in one call."""
 
+import warnings
 from typing import NamedTuple
 
 import numpy as np
@@ -39,7 +40,13 @@ def simulate_final(block: SlidingBlock, motions, t_end: float | None = None, *, 
             axis of the results, each factor equal to sliding on ``motion.scaled(k)``
             (to rounding of the product) without a scaled copy of any motion.
         **options: settings of the exact backend (``window``).
+
+    Deprecated: ``bd.simulate(block, motions, scale=..., final_only=True)`` runs the same
+    compiled call for every model with such an engine into one :class:`blockdae.Ensemble`.
     """
+    warnings.warn("blockdae.sliding.simulate_final is deprecated; use bd.simulate(block, motions, scale=..., "
+                  "final_only=True), the same compiled call, which returns a bd.Ensemble", DeprecationWarning,
+                  stacklevel=2)
     if not isinstance(block, SlidingBlock):
         raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
     motions = [motions] if isinstance(motions, AbstractExcitation) else list(motions)

@@ -10,19 +10,15 @@ the downslope displacement is D = -u(t_end). :func:`newmark` runs one record
 """
 
 import dataclasses
-import os
-import pathlib
 import warnings
 
 import numpy as np
 
-from ..core import compact_repr, progress_bar, sensitivities, simulate
+from ..core import compact_repr, sensitivities, simulate
 from ..units import STANDARD_GRAVITY
-from ..excitation import (AbstractExcitation, RecordSet, UnitsWarning, check_pga, check_pga_rounding, pga_factor,
-                          pga_keyword, read_record, record_files, with_metadata)
+from ..excitation import AbstractExcitation, RecordSet, UnitsWarning, pga_keyword, with_metadata
 from ..flexible_mass import downslope_with_table
 from ._model import SlidingBlock
-from ._sweep import _labelled
 
 _POLARITIES = ("both", "normal", "inverse")
 
@@ -207,8 +203,9 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         pga_rounding: "exact" (default) or "slammer": the motion's own peak rounded to
             0.001 g before scaling, as SLAMMER scales (to reproduce its tables).
         check_peak: False accepts a ``pga`` above 2 g.
-        progress: over many motions, a tqdm bar over them on stderr; None (default): only
-            when stderr is a terminal.
+        progress: where the cases run one by one (a backend other than "exact"), a tqdm
+            bar over them on stderr; None (default): only when stderr is a terminal. On
+            "exact" every case runs in one compiled call.
         derivative: also dD/dky [m/g] of each polarity run (``normal_dky``,
             ``inverse_dky``), exact: differentiated through the closed-form engine
             (:func:`blockdae.sensitivities` with respect to "mu"; its first call in a
@@ -228,19 +225,32 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
                          "derivative=False)")
     ky_array = np.asarray(ky, dtype=float)
     _require(np.isfinite(ky_array) & (ky_array > 0), "ky", ky_array, "must be a positive yield acceleration [g]")
-    if isinstance(motion, AbstractExcitation) and np.ndim(pga) == 0:
-        if pga is not None:
-            motion = motion.scaled(pga_factor(motion.peak_acceleration, pga, g, pga_rounding, check_peak=check_peak))
-        peak = motion.peak_acceleration / g
-        if shown := _not_sliding(ky_array, peak):
-            warnings.warn(f"ky={shown} g >= PGA = {peak:.4g} g: the block does not slide, D = 0 m", UnitsWarning,
-                          stacklevel=2)
-        normal, inverse, normal_dky, inverse_dky = _downslope(motion, ky, polarity, g, t_end, backend, derivative,
-                                                              options, table)
-        return NewmarkResult(ky=float(ky_array) if ky_array.ndim == 0 else ky_array, normal=normal, inverse=inverse,
-                             g=float(g), normal_dky=normal_dky, inverse_dky=inverse_dky)
-    return _sweep(motion, ky_array, polarity, g, t_end, backend, pga, pga_rounding, check_peak, progress, derivative,
-                  options, table)
+    one = isinstance(motion, AbstractExcitation) and np.ndim(pga) == 0
+    if not one and ky_array.ndim > 1:
+        raise ValueError(f"ky must be a number or a 1-D sequence of yield accelerations [g], got shape {ky_array.shape}")
+    runs = simulate(SlidingBlock(mu=np.atleast_1d(ky_array), direction="negative", g=g), motion, t_end,
+                    backend, pga=pga, polarity=polarity, final_only=True, pga_rounding=pga_rounding,
+                    check_peak=check_peak, progress=progress, **options)
+    _warn_not_sliding(runs.cases, np.atleast_1d(ky_array), g)
+    downslope = np.moveaxis(0.0 - runs.displacement, 2, 0)  # (polarity, record, pga, ky); no -0.0 where none slid
+    slopes = _slopes(runs, np.atleast_1d(ky_array), g, t_end) if derivative else None
+    if table is not None:
+        downslope = np.array([[[[downslope_with_table(runs.cases.motion(i, k, p), table, g, t_end)]
+                                for k in range(runs.cases.shape[1])] for i in range(runs.cases.shape[0])]
+                              for p in range(runs.cases.shape[2])])
+    columns = dict(zip(runs.cases.polarities, downslope))
+    derivatives = dict(zip(runs.cases.polarities, slopes)) if derivative else {}
+    if one:
+        squeeze = (lambda d: d[0, 0]) if ky_array.ndim else (lambda d: float(d[0, 0, 0]))
+        pick = lambda name, values: None if name not in values else squeeze(values[name])
+        return NewmarkResult(ky=float(ky_array) if ky_array.ndim == 0 else ky_array, normal=pick("normal", columns),
+                             inverse=pick("inverse", columns), g=float(g), normal_dky=pick("normal", derivatives),
+                             inverse_dky=pick("inverse", derivatives))
+    metadata = motion.metadata if isinstance(motion, RecordSet) else None
+    return NewmarkSweep(records=runs.cases.names, peak=np.array([m.peak_acceleration / g for m in runs.cases.motions]),
+                        pga=None if pga is None else runs.cases.targets, ky=np.atleast_1d(ky_array), g=float(g),
+                        metadata=metadata, normal=columns.get("normal"), inverse=columns.get("inverse"),
+                        normal_dky=derivatives.get("normal"), inverse_dky=derivatives.get("inverse"))
 
 
 def _yield_accelerations(ky):
@@ -261,80 +271,34 @@ def _yield_accelerations(ky):
                         "of numbers, or a bd.KyTable of ky against the sliding displacement") from None
 
 
-def _downslope(motion, ky, polarity, g, t_end, backend, derivative, options, table=None):
-    """(D normal, D inverse) [m] of ``motion`` at yield acceleration(s) ``ky`` [g] (or the
-    :class:`KyTable` ``table``), and if ``derivative`` their dD/dky [m/g] (None where not
-    run or not asked)."""
+def _slopes(runs, ky, g, t_end) -> np.ndarray:
+    """dD/dky [m/g] of every case of ``runs``, (polarity, record, pga, ky): exact, through the
+    closed-form engine (mu = ky moves the kinetic coefficient too: mu_kinetic is None)."""
     block = SlidingBlock(mu=ky, direction="negative", g=g)
-
-    def downslope(excitation):
-        if table is not None:
-            return downslope_with_table(excitation, table, g, t_end)
-        u = simulate(block, excitation, t_end=t_end, backend=backend, **options).displacement
-        return 0.0 - u  # downslope positive; no -0.0 for a block that never slid
-
-    def slope(excitation):  # mu = ky moves the kinetic coefficient too (mu_kinetic is None)
-        return -sensitivities(block, excitation, t_end=t_end, wrt=("mu",))["mu"]
-
-    runs = [motion if polarity in ("both", "normal") else None,
-            motion.inverted() if polarity in ("both", "inverse") else None]
-    values = [None if m is None else downslope(m) for m in runs]
-    slopes = [None if m is None or not derivative else slope(m) for m in runs]
-    return (*values, *slopes)
+    n_motions, n_scales, n_polarities = runs.cases.shape
+    return np.array([[[-np.asarray(sensitivities(block, runs.cases.motion(i, k, p), t_end=t_end, wrt=("mu",))["mu"])
+                       for k in range(n_scales)] for i in range(n_motions)] for p in range(n_polarities)])
 
 
-def _sweep(motions, ky, polarity, g, t_end, backend, pga, pga_rounding, check_peak, progress, derivative, options,
-           table=None):
-    """:func:`newmark` over many motions × target peaks ``pga`` [g] × ``ky`` [g]."""
-    metadata = motions.metadata if isinstance(motions, RecordSet) else None
-    names, motions = _labelled(_motions(motions, g))
-    if ky.ndim > 1:
-        raise ValueError(f"ky must be a number or a 1-D sequence of yield accelerations [g], got shape {ky.shape}")
-    ky = np.atleast_1d(ky)
-    targets = None if pga is None else check_pga(pga, check_peak=check_peak)
-    check_pga_rounding(pga_rounding)
-    shape = (len(motions), 1 if targets is None else targets.size, ky.size)
-    tables = [np.full(shape, np.nan) for _ in range(4)]  # D normal, D inverse, their dD/dky
-    still = []  # (record, PGA) cases where some ky >= PGA
-    with progress_bar(len(motions), "newmark", "record", progress) as bar:
-        for i, (name, motion) in enumerate(zip(names, motions)):
-            factors = [1.0] if targets is None else pga_factor(motion.peak_acceleration, targets, g, pga_rounding,
-                                                               name=f"pga ({name})", check_peak=check_peak)
-            for j, factor in enumerate(factors):
-                scaled = motion.scaled(float(factor))
-                peak = scaled.peak_acceleration / g
-                if shown := _not_sliding(ky, peak, where=f"{name}: "):
-                    still.append(f"{name} (PGA {peak:.4g} g): ky={shown} g")
-                for values, value in zip(tables, _downslope(scaled, ky, polarity, g, t_end, backend, derivative,
-                                                            options, table)):
-                    if value is not None:
-                        values[i, j] = value
-            bar.update()
-    if still:
+def _warn_not_sliding(cases, ky, g):
+    """A UnitsWarning naming the (record, PGA) cases where some ky [g] is at or above the
+    motion's peak (no sliding: D = 0); a ValueError where such a ky is also above
+    :data:`MAX_KY_G` (it reads as m/s²)."""
+    still = []
+    for name, peaks in zip(cases.names, cases.peak_g(g)):
+        for peak in peaks:
+            if shown := _not_sliding(ky, peak, where=f"{name}: " if len(cases.names) > 1 else ""):
+                still.append((name, peak, shown))
+    if len(still) == 1 and len(cases.names) * cases.factors.shape[1] == 1:
+        _, peak, shown = still[0]
+        warnings.warn(f"ky={shown} g >= PGA = {peak:.4g} g: the block does not slide, D = 0 m", UnitsWarning,
+                      stacklevel=3)
+    elif still:
+        cases_shown = [f"{name} (PGA {peak:.4g} g): ky={shown} g" for name, peak, shown in still]
         more = f"; and {len(still) - _CASES_SHOWN} more" if len(still) > _CASES_SHOWN else ""
-        warnings.warn(f"ky >= PGA in {len(still)} of {shape[0] * shape[1]} (record, PGA) cases: the block does not "
-                      f"slide there, D = 0 m: {'; '.join(still[:_CASES_SHOWN])}{more}", UnitsWarning, stacklevel=3)
-    peak = np.array([m.peak_acceleration / g for m in motions])
-    run = [polarity in ("both", "normal"), polarity in ("both", "inverse")] * 2
-    normal, inverse, normal_dky, inverse_dky = (table if ran else None for table, ran in zip(tables, run))
-    if not derivative:
-        normal_dky = inverse_dky = None
-    return NewmarkSweep(records=names, peak=peak, pga=targets, ky=ky, g=float(g), metadata=metadata, normal=normal,
-                        inverse=inverse, normal_dky=normal_dky, inverse_dky=inverse_dky)
-
-
-def _motions(motions, g):
-    """Excitations from a folder or file path (read with one g = ``g`` [m/s²]), else ``motions``
-    (one excitation: a list of it)."""
-    if isinstance(motions, AbstractExcitation):
-        return [motions]
-    if isinstance(motions, RecordSet):
-        return list(motions)
-    if not isinstance(motions, (str, os.PathLike)):
-        return motions
-    path = pathlib.Path(motions)
-    paths = record_files(path) if path.is_dir() else [path]
-    return [read_record(p, g=g) for p in paths]
+        warnings.warn(f"ky >= PGA in {len(still)} of {cases.factors.size} (record, PGA) cases: the block does not "
+                      f"slide there, D = 0 m: {'; '.join(cases_shown[:_CASES_SHOWN])}{more}", UnitsWarning,
+                      stacklevel=3)
 
 
 #: a yield acceleration [g] above this that no motion exceeds is refused: likely m/s²

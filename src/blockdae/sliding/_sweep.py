@@ -1,6 +1,7 @@
 """A parameter grid over several motions and amplitude scales in one call: ``simulate_many``."""
 
 import dataclasses
+import warnings
 from collections.abc import Mapping
 
 import numpy as np
@@ -102,7 +103,12 @@ def simulate_many(block: SlidingBlock, motions, t_end: float | None = None, back
 
     Returns:
         A :class:`SweepSolution` of shape (n_motions, n_scales, n_sets).
+
+    Deprecated: :func:`blockdae.simulate` with many motions runs every model, in
+    both polarities where asked, into one :class:`blockdae.Ensemble`.
     """
+    warnings.warn("blockdae.sliding.simulate_many is deprecated; use bd.simulate(block, motions, scale=..., pga=...), "
+                  "which runs every model and returns a bd.Ensemble", DeprecationWarning, stacklevel=2)
     if not isinstance(block, SlidingBlock):
         raise TypeError(f"block must be a SlidingBlock, got {type(block).__name__}")
     names, motions = _labelled(motions)
