@@ -90,12 +90,19 @@ def simulate(model: AbstractHybridModel, motion, t_end: float | None = None,
                  pga_rounding=pga_rounding, check_peak=check_peak)
     if one:
         return solve(model, runs.motion(0, 0, 0), t_end, solver)
+    return _ensemble(model, runs, t_end, solver, final_only, executor, progress)
+
+
+def _ensemble(model, runs, t_end, solver, final_only, executor, progress) -> Ensemble:
+    """Every case of ``runs``: in one compiled call where only final numbers are kept and
+    the model's engine has one, else one run per case (here, or on ``executor``)."""
     for name, given in zip(runs.names, runs.motions):
         try:
             model.check_motion(given)
             Horizon.resolve(given, _end(given, t_end))
-        except (TypeError, ValueError) as err:
-            raise type(err)(f"{name}: {err}") from None
+        except Exception as err:
+            err.add_note(f"in the motion {name}")
+            raise
     run = functools.partial(solve, t_end=t_end, solver=solver)
     if final_only and _finals_in_one_call(model, solver):
         return Ensemble(model, runs, _compiled_finals(model, runs, t_end, solver), run=run)
