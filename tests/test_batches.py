@@ -9,6 +9,12 @@ from blockdae.core import _crosscheck
 from blockdae.core._sensitivities import finite_differences, step_difference
 from blockdae.backends import make_backend
 
+
+#: the deprecated many-motion functions keep their tests for the release they stay
+pytestmark = [pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_many is deprecated:DeprecationWarning"),
+              pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_final is deprecated:DeprecationWarning")]
+
+
 G = 9.81
 RESULT_COLUMNS = ["u_end_m", "max_abs_displacement_m", "n_events", "t_end_s"]
 

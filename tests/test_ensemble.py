@@ -174,3 +174,17 @@ def test_bad_cases_are_refused_naming_what_is_wrong(three):
         bd.simulate(bd.PlanarBlock(mu=0.2), [motion], pga=0.3)
     with pytest.raises(IndexError, match="row 3 is out of range for 3 cases"):
         bd.simulate(block, three)[3]
+
+
+def test_the_replaced_functions_warn_and_give_the_ensembles_numbers(three):
+    """simulate_many and simulate_final (kept one release) warn, naming bd.simulate, and
+    give the numbers of the ensemble that replaces them."""
+    grid = bd.SlidingBlock(mu=np.array([0.05, 0.1]), direction="negative")
+    ensemble = bd.simulate(grid, three, scale=[1.0, 2.0], final_only=True)
+    with pytest.warns(DeprecationWarning, match=r"simulate_many is deprecated; use bd\.simulate\(block, motions"):
+        sweep = bd.sliding.simulate_many(grid, three, scale=[1.0, 2.0])
+    np.testing.assert_array_equal(sweep.displacement, ensemble.displacement[:, :, 0])
+    with pytest.warns(DeprecationWarning, match=r"simulate_final is deprecated; use bd\.simulate\(block, motions, "
+                                                r"scale=\.\.\., final_only=True\)"):
+        final = bd.sliding.simulate_final(grid, three, scale=[1.0, 2.0])
+    np.testing.assert_array_equal(np.moveaxis(final.displacement, -1, 1), ensemble.displacement[:, :, 0])

@@ -20,6 +20,12 @@ import pytest
 import blockdae as bd
 from blockdae.cli._main import main
 
+
+#: the deprecated many-motion functions keep their tests for the release they stay
+pytestmark = [pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_many is deprecated:DeprecationWarning"),
+              pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_final is deprecated:DeprecationWarning")]
+
+
 G = bd.STANDARD_GRAVITY
 KOBE = importlib.resources.files("pyslammer") / "sample_ground_motions" / "Kobe_1995_TAK-090.csv"
 KNET = (pathlib.Path(importlib.util.find_spec("obspy").origin).parent / "io" / "nied" / "tests" / "data" / "test.knet"

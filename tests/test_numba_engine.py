@@ -22,6 +22,12 @@ from blockdae.sliding import Mode
 from blockdae.sliding import _exact_kernel, _exact_numba
 from blockdae.sliding._exact import prepare
 
+
+#: the deprecated many-motion functions keep their tests for the release they stay
+pytestmark = [pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_many is deprecated:DeprecationWarning"),
+              pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_final is deprecated:DeprecationWarning")]
+
+
 G = 9.80665
 STEMS = [p.name[:-4] for p in sample_record_paths()]
 QUICK_STEMS = ("Northridge_1994_PAC-175", "Cape_Mendocino_1992_PET-090", "Kobe_1995_TAK-090")

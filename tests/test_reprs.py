@@ -5,6 +5,12 @@ import pytest
 
 import blockdae as bd
 
+
+#: the deprecated many-motion functions keep their tests for the release they stay
+pytestmark = [pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_many is deprecated:DeprecationWarning"),
+              pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_final is deprecated:DeprecationWarning")]
+
+
 #: the longest repr allowed [characters]
 LONGEST = 400
 

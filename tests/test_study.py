@@ -18,6 +18,12 @@ from blockdae.studies import _study as study_module
 from conftest import load_sample_record, sample_record_paths
 from test_benchmarks import _load as _load_benchmark
 
+
+#: the deprecated many-motion functions keep their tests for the release they stay
+pytestmark = [pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_many is deprecated:DeprecationWarning"),
+              pytest.mark.filterwarnings("ignore:blockdae.sliding.simulate_final is deprecated:DeprecationWarning")]
+
+
 SHORT = ("Northridge_1994_PAC-175", "Cape_Mendocino_1992_PET-090", "Kobe_1995_TAK-090")
 FRAME = bd.ShearFrame(5, 0.3, 0.05)
 WHERE = ["ground", FRAME.floor(1), FRAME.floor(5)]
