@@ -6,7 +6,6 @@ import dataclasses
 import math
 
 import numpy as np
-from scipy import integrate, special
 
 
 def _check_positive(field, value, what):
@@ -23,10 +22,16 @@ def _check_finite(field, value):
 
 
 def _normal_ppf(u):
+    """The standard normal's quantile at ``u`` (scipy.special on first use: slow to import)."""
+    from scipy import special
+
     return special.ndtri(u)
 
 
 def _normal_cdf(z):
+    """The standard normal's distribution function at ``z``."""
+    from scipy import special
+
     return special.ndtr(z)
 
 
@@ -169,6 +174,8 @@ class Truncated:
     @property
     def mean(self):
         """The mean, by quadrature of the quantile function over (0, 1)."""
+        from scipy import integrate
+
         return integrate.quad(lambda u: float(self.ppf(u)), 0.0, 1.0, limit=200)[0]
 
     def scaled(self, factor):

@@ -12,8 +12,6 @@ step that leaves the bracket bisects it."""
 import dataclasses
 
 import numpy as np
-from scipy import optimize
-
 from ._records import record_set
 from ._study import Draws
 
@@ -128,6 +126,8 @@ def ky_for_percentile(records, model, parameters, allowable, *, percentile=50.0,
     if excess(KY_FLOOR) <= 0:
         raise ValueError(f"the {percentile}th percentile of D stays below allowable={allowable!r} m even at ky = "
                          f"{KY_FLOOR} g: no ky is needed")
+    from scipy import optimize  # on first use: slow to import
+
     return optimize.brentq(excess, KY_FLOOR, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
 
 

@@ -6,8 +6,6 @@ for log-normal parameters that of their logarithms)."""
 import math
 
 import numpy as np
-from scipy.stats import qmc
-
 from ._distributions import DISTRIBUTIONS, _normal_cdf, _normal_ppf
 
 #: the samplers: "mc" (Monte Carlo), "lhs" (Latin hypercube, each block of runs its own
@@ -61,7 +59,9 @@ class RecordSampler:
 
     def __init__(self, sampling, dimension, seed_sequence):
         self.sampling, self.dimension = sampling, dimension
-        self.rng = np.random.default_rng(seed_sequence)
+        from scipy.stats import qmc  # on first use: scipy.stats is slow to import
+
+        self.qmc, self.rng = qmc, np.random.default_rng(seed_sequence)
         self.sobol = qmc.Sobol(dimension, scramble=True, seed=self.rng) if sampling == "sobol" else None
 
     def uniforms(self, n):
@@ -69,7 +69,7 @@ class RecordSampler:
         if self.sampling == "mc":
             return self.rng.random((n, self.dimension))
         if self.sampling == "lhs":
-            return qmc.LatinHypercube(self.dimension, seed=self.rng).random(n)
+            return self.qmc.LatinHypercube(self.dimension, seed=self.rng).random(n)
         return self.sobol.random(n)
 
 

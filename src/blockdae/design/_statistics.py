@@ -2,14 +2,15 @@
 Wilson score interval of an exceedance probability."""
 
 import numpy as np
-from scipy import special
+
+from ._distributions import _normal_ppf
 
 
 def z_value(confidence):
     """The standard-normal quantile of a two-sided ``confidence`` (0.95 -> 1.96)."""
     if not 0 < confidence < 1:
         raise ValueError(f"confidence={confidence!r} must lie in (0, 1)")
-    return float(special.ndtri(0.5 + 0.5 * confidence))
+    return float(_normal_ppf(0.5 + 0.5 * confidence))
 
 
 def wilson(k, n, confidence):
