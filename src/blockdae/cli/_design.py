@@ -17,6 +17,10 @@ KINDS = {"lognormal": (lambda a, b: LogNormal(mean=a, cov=b), "MEAN:COV"),
          "uniform": (lambda a, b: Uniform(a, b), "LOW:HIGH")}
 
 
+#: samples a record of the mean-ky design (--allowable, --target)
+DESIGN_RUNS = 64
+
+
 def parameter(text):
     """NAME=VALUE or NAME=KIND:A:B (e.g. ky=lognormal:0.13:0.2) -> (name, number or distribution)."""
     name, _, value = text.partition("=")
@@ -61,7 +65,8 @@ def add_design_parser(sub):
                    help="and once the 95 %% interval of P(D > threshold) is at most +- this")
     p.add_argument("--runs", type=int, default=None, help="a fixed number of runs instead (one sample a record a run)")
     p.add_argument("--allowable", type=positive("--allowable"), default=None, metavar="D_M",
-                   help="with --target: the mean ky [g] (same cov) for which P(D > allowable) <= target")
+                   help="with --target: the mean ky [g] (same cov) for which P(D > allowable) <= target, on 64 "
+                        "samples a record kept for every mean")
     p.add_argument("--target", type=positive("--target"), default=None, help="the probability allowed (e.g. 0.1)")
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                    help="the unit 'g' [m/s²] of the files and the PGA (default 9.80665)")
@@ -74,6 +79,10 @@ def add_design_parser(sub):
 
 def _design(args) -> int:
     paths = [p for arg in args.records for p in (folder_files(arg, args) if arg.is_dir() else [arg])]
+    stems = [path.stem for path in paths]
+    if len(set(stems)) != len(stems):
+        raise UsageError(f"two record files share a name: {sorted({s for s in stems if stems.count(s) > 1})}; "
+                         "each record is labelled by its file name")
     records = {path.stem: read(path, args) for path in paths}
     parameters = dict(args.param)
     if args.model == "rigid":
@@ -101,9 +110,8 @@ def _design(args) -> int:
     if (args.allowable is None) != (args.target is None):
         raise UsageError("--allowable and --target go together")
     if args.allowable is not None:
-        runs_design = 64 if args.sampling == "sobol" else max(int(runs), 2)
         design = checked(lambda: mean_ky_for_probability(records, model, parameters, args.allowable, args.target,
-                                                         pga=args.pga, runs=runs_design, sampling=args.sampling,
+                                                         pga=args.pga, runs=DESIGN_RUNS, sampling=args.sampling,
                                                          seed=args.seed), "")
         print(f"\nmean ky for P(D > {args.allowable:g} m) <= {args.target:g}: {design.mean_ky_g:.4f} g "
               f"({len(design.table)} samples, common random numbers)")

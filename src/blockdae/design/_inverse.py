@@ -167,7 +167,8 @@ def mean_ky_for_probability(records, model, parameters, allowable, target, *, pg
     its own critical mean (its ky for D = allowable, found as :func:`ky_for_displacement`
     finds it, over its ratio), and P(m) is the fraction of the critical means above m.
     The answer is the smallest m with P(m) <= target: a sample's critical mean, at which
-    that sample moves exactly ``allowable``.
+    that sample moves exactly ``allowable`` (0 where the target holds at any mean: too few
+    samples exceed the allowable even at ky = 1e-4 g).
 
     Args:
         parameters: name -> number or distribution as for :func:`exceedance`; ``ky`` a
