@@ -187,3 +187,25 @@ def test_figures_draw():
                            runs=8, runs_per_block=8)
     assert "P(D > d)" in result.figure().axes[0].get_ylabel()
     assert "ky" in result.ky_figure().axes[0].get_xlabel()
+
+
+def test_a_checkpoint_resumes_to_the_same_result(tmp_path, monkeypatch):
+    """A rerun with the checkpoint runs only the missing block and gives the table of an
+    uninterrupted run, bit for bit; another study's folder is refused, naming what differs."""
+    parameters = {"ky": dz.LogNormal(mean=0.12, cov=0.4)}
+    run = lambda **kw: dz.exceedance(RECORDS, dz.Rigid(), parameters, pga=0.4, threshold=0.03, runs_per_block=4,
+                                     rse=0.03, sampling="lhs", seed=4, **kw)
+    whole = run()
+    first = run(checkpoint=tmp_path / "c")
+    assert first.table.equals(whole.table) and first.history.equals(whole.history)
+    blocks = sorted((tmp_path / "c").glob("block-*.csv"))
+    assert len(blocks) == len(whole.history) >= 2
+    blocks[1].unlink()
+    calls = []
+    original = dz.Rigid.displacements
+    monkeypatch.setattr(dz.Rigid, "displacements", lambda self, *a, **k: calls.append(1) or original(self, *a, **k))
+    again = run(checkpoint=tmp_path / "c")
+    assert again.table.equals(whole.table) and len(calls) == len(RECORDS)  # block 1 only, each record once
+    with pytest.raises(ValueError, match="seed differ"):
+        dz.exceedance(RECORDS, dz.Rigid(), parameters, pga=0.4, threshold=0.03, runs_per_block=4, rse=0.03,
+                      sampling="lhs", seed=5, checkpoint=tmp_path / "c")

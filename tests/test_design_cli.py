@@ -44,3 +44,15 @@ def test_a_missing_parameter_is_named(folder, capsys):
     assert main(["design", str(folder), "--model", "flexible", "--param", "ky=0.1", "--threshold", "0.1",
                  "--runs", "2"]) == 2
     assert "needs the parameters ['height', 'vs']" in capsys.readouterr().err
+
+
+def test_design_resumes_from_its_checkpoint(folder, capsys):
+    arguments = ["design", str(folder), "--param", "ky=lognormal:0.15:0.3", "--pga", "0.4", "--threshold", "0.1",
+                 "--runs", "8", "--checkpoint", str(folder.parent / "saved")]
+    assert main(arguments) == 0
+    first = capsys.readouterr().out.splitlines()[1:]
+    assert len(list((folder.parent / "saved").glob("block-*.csv"))) == 1
+    assert main(arguments) == 0
+    assert capsys.readouterr().out.splitlines()[1:] == first  # the timing line aside
+    assert main(arguments[:-1] + [str(folder)]) == 2  # a folder of record files is no checkpoint
+    assert "not a new or an empty folder" in capsys.readouterr().err

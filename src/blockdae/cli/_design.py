@@ -72,6 +72,8 @@ def add_design_parser(sub):
                    help="the unit 'g' [m/s²] of the files and the PGA (default 9.80665)")
     record_arguments(p)
     recursive_argument(p)
+    p.add_argument("--checkpoint", type=pathlib.Path, default=None, metavar="FOLDER",
+                   help="save each finished block of runs there; rerun the same command to resume")
     p.add_argument("--csv", type=pathlib.Path, default=None, metavar="PATH", help="write every sample as CSV")
     p.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save the exceedance curve")
     p.set_defaults(command=_design)
@@ -94,7 +96,7 @@ def _design(args) -> int:
     start = time.perf_counter()
     result = checked(lambda: exceedance(records, model, parameters, pga=args.pga, threshold=args.threshold,
                                         sampling=args.sampling, seed=args.seed, rse=args.rse,
-                                        halfwidth=args.halfwidth, runs=args.runs), "")
+                                        halfwidth=args.halfwidth, runs=args.runs, checkpoint=args.checkpoint), "")
     wall = time.perf_counter() - start
     low, high = result.probability_interval
     runs = result.history["runs"].iloc[-1]

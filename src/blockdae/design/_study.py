@@ -3,6 +3,7 @@ over a record set, sampled run after run until the estimate is precise enough.""
 
 import numpy as np
 
+from ._checkpoint import Checkpoint, manifest
 from ._records import record_set
 from ._result import Exceedance, column_name
 from ._sampling import RecordSampler, check_sampling, correlation_matrix, split_parameters, to_parameters
@@ -30,7 +31,8 @@ class Draws:
 
 
 def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sobol", seed=0, correlation=None,
-               rse=0.05, halfwidth=None, confidence=0.95, runs=None, runs_per_block=16, max_runs=4096) -> Exceedance:
+               rse=0.05, halfwidth=None, confidence=0.95, runs=None, runs_per_block=16, max_runs=4096,
+               checkpoint=None) -> Exceedance:
     """The probability that the displacement D exceeds ``threshold`` over a record set,
     for a slope whose parameters are uncertain.
 
@@ -62,6 +64,9 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
         runs: a fixed number of runs instead of a stopping rule (rse and halfwidth then unused).
         runs_per_block: runs between checks of the stopping rule.
         max_runs: the most runs before the study stops unconverged (``converged`` False).
+        checkpoint: a folder where each finished block is saved as it completes; a rerun
+            of the same study with it resumes (the result bit-identical to an
+            uninterrupted run's); a folder of another study is refused (ValueError).
 
     Returns:
         An :class:`Exceedance`.
@@ -75,16 +80,27 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
     if not (isinstance(max_runs, int) and max_runs >= runs_per_block):
         raise ValueError(f"max_runs={max_runs!r} must be an integer >= runs_per_block={runs_per_block!r}")
     draws = Draws(model, parameters, len(entries), sampling, seed, correlation, runs_per_block)
+    saved = None if checkpoint is None else Checkpoint(checkpoint, manifest(entries, model, parameters, sampling, seed,
+                                                                             correlation, runs_per_block))
     limit = runs if runs is not None else max_runs
-    blocks, history, done, converged = [], [], 0, runs is not None
+    tables, history, done, converged = [], [], 0, runs is not None
+    everything = np.empty((0, len(entries)))
     while done < limit:
         n = min(runs_per_block, limit - done)
         values = [draws.block(i, n) for i in range(len(entries))]
-        d = np.stack([model.displacements(record, target, v) for (_, record, target), v in zip(entries, values)],
-                     axis=1)
-        blocks.append((values, d))
+        table = None if saved is None else saved.load(len(tables))
+        if table is None:
+            d = np.stack([model.displacements(record, target, v) for (_, record, target), v in zip(entries, values)],
+                         axis=1)
+            table = _block_table(entries, model, values, d, done)
+            if saved is not None:
+                saved.save(len(tables), table)
+        else:
+            _check_saved(table, _block_table(entries, model, values, np.full((n, len(entries)), np.nan), done),
+                         saved.path(len(tables)))
+        tables.append(table)
         done += n
-        everything = np.concatenate([b[1] for b in blocks])
+        everything = np.concatenate([everything, table["D_m"].to_numpy().reshape(n, len(entries))])
         mean, error = relative_standard_error(everything)
         exceed = int(np.count_nonzero(everything > threshold))
         low, high = wilson(exceed, everything.size, confidence)
@@ -93,30 +109,41 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
         if runs is None and (rse is None or error <= rse) and (halfwidth is None or history[-1]["halfwidth"] <= halfwidth):
             converged = True
             break
-    return Exceedance(table=_table(entries, model, blocks), threshold_m=threshold, confidence=confidence,
-                      sampling=sampling, seed=seed, converged=converged, history=_frame(history))
-
-
-def _table(entries, model, blocks):
-    """The tidy table: one row per (run, record)."""
     import pandas as pd
 
-    frames, start = [], 0
-    for values, d in blocks:
-        n = d.shape[0]
-        for i, (name, record, target) in enumerate(entries):
-            columns = {"run": np.arange(start, start + n), "record": name,
-                       "pga_g": np.nan if target is None else target}
-            columns |= {column_name(p, model): values[i][p] for p in model.PARAMETERS if p in values[i]}
-            frames.append(pd.DataFrame(columns | {"D_m": d[:, i]}))
-        start += n
+    return Exceedance(table=pd.concat(tables, ignore_index=True), threshold_m=threshold, confidence=confidence,
+                      sampling=sampling, seed=seed, converged=converged, history=pd.DataFrame(history))
+
+
+def _block_table(entries, model, values, d, start):
+    """The tidy table of one block (runs ``start`` on, ``d`` of shape (runs, records)):
+    one row per (run, record), by run, the records in their order within each."""
+    import pandas as pd
+
+    frames = []
+    for i, (name, record, target) in enumerate(entries):
+        columns = {"run": np.arange(start, start + d.shape[0]), "record": name,
+                   "pga_g": np.nan if target is None else target}
+        columns |= {column_name(p, model): values[i][p] for p in model.PARAMETERS if p in values[i]}
+        frames.append(pd.DataFrame(columns | {"D_m": d[:, i]}))
     return pd.concat(frames, ignore_index=True).sort_values("run", kind="stable", ignore_index=True)
 
 
-def _frame(history):
-    import pandas as pd
+def _check_saved(saved, drawn, path):
+    """ValueError naming ``path`` unless the saved block holds the parameter sets drawn now."""
+    columns = [c for c in drawn.columns if c != "D_m"]
+    same = list(saved.columns) == list(drawn.columns) and len(saved) == len(drawn) and all(
+        _same(saved[c].to_numpy(), drawn[c].to_numpy()) for c in columns)
+    if not same:
+        raise ValueError(f"{path}: its samples are not those this study draws (another version, or an edited file): "
+                         "delete the file to run the block again")
 
-    return pd.DataFrame(history)
+
+def _same(a, b):
+    """Whether two columns hold the same values (numbers to the last bit, nan equal to nan)."""
+    if a.dtype.kind in "fiu" and b.dtype.kind in "fiu":
+        return np.array_equal(a.astype(float), b.astype(float), equal_nan=True)
+    return a.tolist() == b.tolist()
 
 
 def _positive(field, value, unit):
