@@ -209,3 +209,25 @@ def test_a_checkpoint_resumes_to_the_same_result(tmp_path, monkeypatch):
     with pytest.raises(ValueError, match="seed differ"):
         dz.exceedance(RECORDS, dz.Rigid(), parameters, pga=0.4, threshold=0.03, runs_per_block=4, rse=0.03,
                       sampling="lhs", seed=5, checkpoint=tmp_path / "c")
+
+
+def test_an_executor_gives_the_local_result():
+    """Each record's block submitted to a concurrent.futures executor (a Dask Client has the
+    same submit/result): the table of the local run, bit for bit."""
+    import concurrent.futures
+
+    parameters = {"ky": dz.LogNormal(mean=0.12, cov=0.4)}
+    run = lambda **kw: dz.exceedance(RECORDS, dz.Rigid(), parameters, pga=0.4, threshold=0.03, runs=8,
+                                     runs_per_block=4, **kw)
+    with concurrent.futures.ThreadPoolExecutor(2) as executor:
+        assert run(executor=executor).table.equals(run().table)
+
+
+@pytest.mark.slow
+def test_a_dask_client_gives_the_local_result():
+    distributed = pytest.importorskip("dask.distributed")
+    parameters = {"ky": dz.LogNormal(mean=0.12, cov=0.4)}
+    run = lambda **kw: dz.exceedance(RECORDS, dz.Rigid(), parameters, pga=0.4, threshold=0.03, runs=8,
+                                     runs_per_block=4, **kw)
+    with distributed.Client(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None) as client:
+        assert run(executor=client).table.equals(run().table)

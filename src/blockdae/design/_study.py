@@ -32,7 +32,7 @@ class Draws:
 
 def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sobol", seed=0, correlation=None,
                rse=0.05, halfwidth=None, confidence=0.95, runs=None, runs_per_block=16, max_runs=4096,
-               checkpoint=None) -> Exceedance:
+               checkpoint=None, executor=None) -> Exceedance:
     """The probability that the displacement D exceeds ``threshold`` over a record set,
     for a slope whose parameters are uncertain.
 
@@ -67,6 +67,9 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
         checkpoint: a folder where each finished block is saved as it completes; a rerun
             of the same study with it resumes (the result bit-identical to an
             uninterrupted run's); a folder of another study is refused (ValueError).
+        executor: None (run here, on every core), a ``dask.distributed.Client`` or a
+            ``concurrent.futures.Executor``: each record's block is submitted to it as a
+            task (the stopping rule is checked here after each block).
 
     Returns:
         An :class:`Exceedance`.
@@ -90,8 +93,7 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
         values = [draws.block(i, n) for i in range(len(entries))]
         table = None if saved is None else saved.load(len(tables))
         if table is None:
-            d = np.stack([model.displacements(record, target, v) for (_, record, target), v in zip(entries, values)],
-                         axis=1)
+            d = np.stack(_displacements(model, entries, values, executor), axis=1)
             table = _block_table(entries, model, values, d, done)
             if saved is not None:
                 saved.save(len(tables), table)
@@ -113,6 +115,14 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
 
     return Exceedance(table=pd.concat(tables, ignore_index=True), threshold_m=threshold, confidence=confidence,
                       sampling=sampling, seed=seed, converged=converged, history=pd.DataFrame(history))
+
+
+def _displacements(model, entries, values, executor):
+    """D [m] of each record's block of parameter sets ``values``, here or on ``executor``."""
+    if executor is None:
+        return [model.displacements(record, target, v) for (_, record, target), v in zip(entries, values)]
+    futures = [executor.submit(model.displacements, record, target, v) for (_, record, target), v in zip(entries, values)]
+    return [future.result() for future in futures]
 
 
 def _block_table(entries, model, values, d, start):
