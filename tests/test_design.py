@@ -168,6 +168,8 @@ def test_bad_parameters_are_named(parameters, match):
 
 def test_bad_inputs_are_named():
     ky = {"ky": dz.LogNormal(mean=0.1, cov=0.2)}
+    with pytest.raises(ValueError, match="model="):
+        dz.exceedance(RECORDS, bd.SlidingBlock(mu=0.1), ky, threshold=0.1, runs=2)
     with pytest.raises(ValueError, match="missing \\['second'\\]"):
         dz.exceedance(RECORDS, dz.Rigid(), ky, pga={"first": 0.3}, threshold=0.1, runs=2)
     with pytest.raises(ValueError, match="power of 2"):
