@@ -100,5 +100,7 @@ def test_design_inputs_are_checked():
         dz.ky_for_displacement(RECORDS["first"], FLEXIBLE, COLUMN, 50.0, pga=0.1)
     with pytest.raises(ValueError, match="target"):
         dz.mean_ky_for_probability(RECORDS, dz.Rigid(), {"ky": dz.LogNormal(mean=0.1, cov=0.2)}, 0.1, 1.5)
+    with pytest.raises(ValueError, match="runs=12"):
+        dz.mean_ky_for_probability(RECORDS, dz.Rigid(), {"ky": dz.LogNormal(mean=0.1, cov=0.2)}, 0.1, 0.1, runs=12)
     with pytest.raises(ValueError, match="must be a distribution"):
         dz.mean_ky_for_probability(RECORDS, dz.Rigid(), {"ky": 0.1}, 0.1, 0.1)

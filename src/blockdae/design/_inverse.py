@@ -180,6 +180,8 @@ def mean_ky_for_probability(records, model, parameters, allowable, target, *, pg
     allowable = _check_allowable(allowable)
     if not 0 < target < 1:
         raise ValueError(f"target={target!r} must be a probability in (0, 1)")
+    if not (isinstance(runs, int) and runs >= 2) or (sampling == "sobol" and runs & (runs - 1)):
+        raise ValueError(f"runs={runs!r} must be an integer >= 2 (a power of 2 for sampling='sobol', e.g. 64)")
     entries = record_set(records, pga)
     draws = Draws(model, parameters, len(entries), sampling, seed, correlation, runs)
     if "ky" not in draws.uncertain:
