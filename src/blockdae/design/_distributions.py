@@ -75,10 +75,6 @@ class LogNormal:
         with np.errstate(divide="ignore"):
             return np.where(x > 0, _normal_cdf(np.log(np.maximum(x, 1e-300) / self.median) / self.sigma_ln), 0.0)
 
-    def scaled(self, factor):
-        """The distribution of ``factor`` X (same cov)."""
-        return LogNormal(median=self.median * factor, sigma_ln=self.sigma_ln)
-
 
 @dataclasses.dataclass(frozen=True)
 class Normal:
@@ -101,10 +97,6 @@ class Normal:
         """P(X <= x) (an array)."""
         return _normal_cdf((np.asarray(x, dtype=float) - self.mean) / self.std)
 
-    def scaled(self, factor):
-        """The distribution of ``factor`` X (same cov)."""
-        return Normal(self.mean * factor, self.std * abs(factor))
-
 
 @dataclasses.dataclass(frozen=True)
 class Uniform:
@@ -120,6 +112,7 @@ class Uniform:
 
     @property
     def mean(self):
+        """The mean (low + high) / 2."""
         return 0.5 * (self.low + self.high)
 
     def ppf(self, u):
@@ -129,10 +122,6 @@ class Uniform:
     def cdf(self, x):
         """P(X <= x) (an array)."""
         return np.clip((np.asarray(x, dtype=float) - self.low) / (self.high - self.low), 0.0, 1.0)
-
-    def scaled(self, factor):
-        """The distribution of ``factor`` X (same cov)."""
-        return Uniform(*sorted((self.low * factor, self.high * factor)))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -177,13 +166,6 @@ class Truncated:
         from scipy import integrate
 
         return integrate.quad(lambda u: float(self.ppf(u)), 0.0, 1.0, limit=200)[0]
-
-    def scaled(self, factor):
-        """The distribution of ``factor`` X (same cov): the parent and the bounds scaled."""
-        bounds = [None if b is None else b * factor for b in (self.low, self.high)]
-        if factor < 0:
-            bounds.reverse()
-        return Truncated(self.distribution.scaled(factor), *bounds)
 
 
 #: the distributions a parameter may follow
