@@ -10,5 +10,5 @@ from ._models import Flexible, Rigid
 from ._result import Exceedance
 from ._study import exceedance
 
-__all__ = ["Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Rigid", "Truncated", "Uniform", "exceedance",
-           "exceedance_figure", "ky_for_displacement", "ky_for_percentile", "mean_ky_for_probability"]
+__all__ = ["Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Rigid", "Truncated", "Uniform",
+           "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile", "mean_ky_for_probability"]

@@ -108,7 +108,8 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
         low, high = wilson(exceed, everything.size, confidence)
         history.append({"runs": done, "analyses": everything.size, "mean_D_m": mean, "rse": error,
                         "P_exceed": exceed / everything.size, "halfwidth": float(high - low) / 2})
-        if runs is None and (rse is None or error <= rse) and (halfwidth is None or history[-1]["halfwidth"] <= halfwidth):
+        precise = (rse is None or error <= rse) and (halfwidth is None or history[-1]["halfwidth"] <= halfwidth)
+        if runs is None and precise:
             converged = True
             break
     import pandas as pd
@@ -121,7 +122,8 @@ def _displacements(model, entries, values, executor):
     """D [m] of each record's block of parameter sets ``values``, here or on ``executor``."""
     if executor is None:
         return [model.displacements(record, target, v) for (_, record, target), v in zip(entries, values)]
-    futures = [executor.submit(model.displacements, record, target, v) for (_, record, target), v in zip(entries, values)]
+    futures = [executor.submit(model.displacements, record, target, v)
+               for (_, record, target), v in zip(entries, values)]
     return [future.result() for future in futures]
 
 
