@@ -118,3 +118,10 @@ def test_linear_engine_quick(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "worst event-time difference" in out and "median CVODE / compiled" in out
     assert "NOT met" not in out and out.count("smoke run, not a measurement") >= 2
+
+
+def test_design_quick(monkeypatch, capsys):
+    assert _load("design", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "pySLAMMER Coupled, one analysis a call" in out and "P_B / P_A = " in out
+    assert out.count("bar ") == 2 and out.count("smoke run, not a measurement") == 2

@@ -154,3 +154,15 @@ def test_flexible_notebook_runs(monkeypatch, jax_cache_dir):
     found = re.search(r"^2520 analyses; SLAMMER's scheme against its own table: largest difference ([\d.e+-]+) cm$",
                       text, re.M)
     assert found and float(found.group(1)) <= 2e-5
+
+
+@pytest.mark.slow  # executing it takes about 20 s on 2 cores; the generator test above runs fast
+def test_design_notebook_runs(monkeypatch, jax_cache_dir):
+    """The headline (B about twice as likely as A to exceed 25 cm) and the design checked
+    independently: a fresh study (another seed) at the mean ky found has P(D > 25 cm) with
+    a 95 % interval that holds the 10 % target."""
+    text = _text(_execute("11_design.ipynb", monkeypatch, jax_cache_dir))
+    ratio = float(re.search(r"P_B / P_A = ([\d.]+)", text).group(1))
+    assert 1.5 < ratio < 3.0
+    low, high = (float(x) for x in re.search(r"fresh study .*interval ([\d.]+)-([\d.]+)\)", text).groups())
+    assert low <= 0.10 <= high

@@ -17,7 +17,7 @@ solutions, modes, the papers' formulas).
 import importlib as _importlib
 import warnings as _warnings
 
-from . import backends, empirical, hazard, motions
+from . import backends, design, empirical, hazard, motions
 from ._plot import plot
 from .core import AbstractHybridModel, CompileNotice, InconsistentStateError, SolverError
 from .core import Ensemble, Sensitivities, crosscheck, sensitivities, simulate

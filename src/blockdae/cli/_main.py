@@ -25,6 +25,7 @@ from ._common import (UsageError, checked, clean, describe_gravity, describe_rec
                       recursive_argument,
                       report_failures, save_figure, set_argument, units_out_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
+from ._design import add_design_parser
 from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
 from ._info import add_info_parser
@@ -182,6 +183,7 @@ def _parser():
 
     add_study_parser(sub)
     add_hazard_parsers(sub)
+    add_design_parser(sub)
     add_info_parser(sub)
     return parser
 

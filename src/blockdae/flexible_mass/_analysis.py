@@ -20,7 +20,7 @@ from ..units import STANDARD_GRAVITY
 from ..solvers import linear_pieces
 from ..excitation import Record, RecordSet, check_horizontal, with_metadata, pga_factor, pga_keyword
 from . import _engine, _fused, _table_kernel
-from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear
+from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear, equivalent_linear_steps
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, flat_table_model, slip_underdamped
 from ._exact import check, engine_settings
 from ._ky_table import KyTable
@@ -346,14 +346,18 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
         others = [analysis for q, analysis in enumerate(analyses) if q not in near]
         rest = iter(exact_rows(others) if others else ())
         return [_near_critical_row(analysis) if q in near else next(rest) for q, analysis in enumerate(analyses)]
-    inputs, index, tasks, response_of, vs_finals, first_with, damped = [], {}, [], [], [], {}, set()
-    for q, analysis in enumerate(analyses):
+    inputs, index, input_of = [], {}, []
+    for analysis in analyses:
         key = (id(analysis.record), analysis.t_end)
-        r = index.get(key)
-        if r is None:
-            r = index[key] = len(inputs)
+        if key not in index:
+            index[key] = len(inputs)
             inputs.append(_engine_input(analysis.record, analysis.t_end))
-        (omega, xi, kyg, coupled), vs_final = _final_column(analysis, inputs[r])
+        input_of.append(index[key])
+    finals = _final_columns(analyses, inputs, input_of)
+    tasks, response_of, vs_finals, first_with, damped = [], [], [], {}, set()
+    for q, analysis in enumerate(analyses):
+        r = input_of[q]
+        (omega, xi, kyg, coupled), vs_final = finals[q]
         response_of.append(first_with.setdefault((r, omega, xi), q))
         slides = slip_underdamped(xi, coupled)  # else its slides run on ._damped_slip, after
         if not slides:
@@ -447,25 +451,35 @@ def _offsets(n):
     return np.array([0, n], dtype=np.int64)
 
 
-def _final_column(analysis, arrays):
-    """The engine's settings (omega, xi, ky g, coupled) of ``analysis`` after its
+def _final_columns(analyses, inputs, input_of):
+    """The engine's settings (omega, xi, ky g, coupled) of each of ``analyses`` after its
     equivalent-linear iteration (on the exact no-sliding sup |u|), if any, and the
-    column's vs then [m/s]."""
-    model = analysis.model
-    if analysis.reference_strain is None:
-        return _settings(model), model.column.vs
-    column = model.column
-
-    def peak_displacement(vs, xi):
-        outcome = _run_analyses([arrays], [(0, np.pi * vs / (2 * column.height), xi, 0.0, False, False, False, True,
-                                             True)])[0, _fused.RESPONSE]
-        check(outcome, f" ({analysis.name}, equivalent-linear pass at vs={vs!r} m/s)")
-        return outcome[_FIELD["u_sup"]]
-
-    final = iterate_equivalent_linear(peak_displacement, column, analysis.reference_strain)
-    settings = engine_settings(model.with_parameters({"omega": np.pi * final.vs / (2 * column.height),
-                                                      "damping": final.damping}))
-    return settings, final.vs
+    column's vs then [m/s]. The iterations run in step: each pass's responses, of every
+    analysis still iterating, in one compiled call (analysis q on ``inputs[input_of[q]]``)."""
+    finals, iterating = [None] * len(analyses), {}
+    for q, analysis in enumerate(analyses):
+        if analysis.reference_strain is None:
+            finals[q] = _settings(analysis.model), analysis.model.column.vs
+        else:
+            steps = equivalent_linear_steps(analysis.model.column, analysis.reference_strain)
+            iterating[q] = steps, next(steps)
+    while iterating:
+        order = list(iterating)
+        tasks = [(input_of[q], np.pi * iterating[q][1][0] / (2 * analyses[q].model.column.height),
+                  iterating[q][1][1], 0.0, False, False, False, True, True) for q in order]
+        outcomes = _run_analyses(inputs, tasks)[:, _fused.RESPONSE]
+        for q, outcome in zip(order, outcomes):
+            steps, (vs, _) = iterating[q]
+            check(outcome, f" ({analyses[q].name}, equivalent-linear pass at vs={vs!r} m/s)")
+            try:
+                iterating[q] = steps, steps.send(outcome[_FIELD["u_sup"]])
+            except StopIteration as done:
+                del iterating[q]
+                model, final = analyses[q].model, done.value
+                settings = engine_settings(model.with_parameters({"omega": np.pi * final.vs / (2 * model.column.height),
+                                                                  "damping": final.damping}))
+                finals[q] = settings, final.vs
+    return finals
 
 
 def slammer_rows(analyses: list[Analysis]) -> list[dict]:

@@ -114,12 +114,26 @@ def equivalent_linear(peak_displacement: Callable[[float, float], float], column
     Raises:
         ValueError: a reference strain <= 0, or no convergence in ``max_passes`` passes.
     """
+    steps = equivalent_linear_steps(column, reference_strain, max_passes)
+    request = next(steps)
+    try:
+        while True:
+            request = steps.send(peak_displacement(*request))
+    except StopIteration as finished:
+        return finished.value
+
+
+def equivalent_linear_steps(column: ShearColumn, reference_strain: float, max_passes: int = MAX_PASSES):
+    """:func:`equivalent_linear` as a generator, so that many iterations can run in
+    step (their responses of a pass in one batch): it yields (vs [m/s], damping ratio)
+    of each response it needs, is sent that response's max |u| [m], and returns the
+    :class:`EquivalentLinear` (StopIteration's value). Raises as :func:`equivalent_linear`."""
     if isinstance(reference_strain, bool) or not isinstance(reference_strain, (int, float)) or \
             not math.isfinite(reference_strain) or reference_strain <= 0:
         raise ValueError(f"reference_strain must be a fraction > 0, got {reference_strain!r}")
     vs, damping, soil_damping = column.vs, column.total_damping, None
     for passes in range(1, max_passes + 1):
-        strain = STRAIN_PER_DRIFT * peak_displacement(vs, damping) / column.height
+        strain = STRAIN_PER_DRIFT * (yield vs, damping) / column.height
         modulus_ratio = 1.0 / (1.0 + strain / reference_strain)
         degraded_vs = column.vs * math.sqrt(modulus_ratio)
         new_soil_damping = 0.62 * modulus_ratio**0.1 * _masing_damping(strain, reference_strain) + 0.01

@@ -1,0 +1,71 @@
+"""Design-study checkpoints: each finished block of runs saved as it completes (by
+:func:`blockdae.save_study`: atomically, floats to the last bit); a rerun of the same
+study reads them back, checks that its samplers draw the very parameter sets saved, and
+runs only the blocks still missing, so its result is bit-identical to an uninterrupted
+run's. A rerun of another study is refused (ValueError naming the folder and what differs).
+
+A folder holds ``manifest.json`` (what the study is: the model, the parameters, the
+target PGAs, the sampling, the seed, the correlation, the blocks, and each record's name,
+sample step [s], sample count and SHA-256 of its samples) and ``block-000003.csv`` per
+finished block."""
+
+import hashlib
+import json
+import pathlib
+
+import numpy as np
+
+from ..studies import load_study, save_study
+
+MANIFEST = "manifest.json"
+#: the layout of a checkpoint folder; another one is refused
+FORMAT = 1
+
+
+def manifest(entries, model, parameters, sampling, seed, correlation, runs_per_block) -> dict:
+    """What a design study is, as JSON values (floats and distributions by their repr)."""
+    records = [{"name": name, "pga_g": pga, "dt": record.dt, "samples": int(record.acceleration_samples.size),
+                "sha256": hashlib.sha256(np.ascontiguousarray(record.acceleration_samples,
+                                                              dtype=np.float64).tobytes()).hexdigest()}
+               for name, record, pga in entries]
+    return {"format": FORMAT, "model": repr(model), "parameters": {k: repr(v) for k, v in parameters.items()},
+            "sampling": sampling, "seed": repr(seed), "correlation": repr(correlation),
+            "runs_per_block": runs_per_block, "records": records}
+
+
+class Checkpoint:
+    """The checkpoint folder of one design study."""
+
+    def __init__(self, folder, study):
+        self.folder = pathlib.Path(folder)
+        path = self.folder / MANIFEST
+        if path.is_file():
+            try:
+                saved = json.loads(path.read_text())
+            except ValueError as err:
+                raise ValueError(f"{path}: not a design checkpoint's manifest ({err})") from None
+            differences = [key for key in sorted(set(saved) | set(study)) if saved.get(key) != study.get(key)]
+            if differences:
+                raise ValueError(f"checkpoint {self.folder} holds another study: its "
+                                 f"{', '.join(differences)} differ. Rerun with the same arguments to resume it, or "
+                                 "give a new or an empty folder")
+        else:
+            if self.folder.exists() and (not self.folder.is_dir() or any(self.folder.iterdir())):
+                raise ValueError(f"checkpoint {self.folder}: not a new or an empty folder, and no {MANIFEST} in it")
+            self.folder.mkdir(parents=True, exist_ok=True)
+            temporary = path.with_suffix(".tmp")
+            temporary.write_text(json.dumps(study, indent=1) + "\n")
+            temporary.replace(path)
+
+    def path(self, index) -> pathlib.Path:
+        """The table of block ``index``."""
+        return self.folder / f"block-{index:06d}.csv"
+
+    def load(self, index):
+        """The saved table of block ``index``, or None."""
+        path = self.path(index)
+        return load_study(path) if path.is_file() else None
+
+    def save(self, index, table):
+        """Save block ``index``'s table, atomically."""
+        save_study(table, self.path(index))
