@@ -227,8 +227,8 @@ def history_figure(record, settings: Settings, row: dict, polarity: str):
 
     solution, motion, _ = case_solution(record, settings, row, polarity)
     d = row[f"{polarity}_m"]
-    title = f"{row['record']}, {polarity} polarity: {METHODS[settings.method].lower()}, ky = {row['ky_g']:g} g, " \
-            f"PGA {row['pga_g']:.3g} g, D = {d:.4g} m"
+    title = f"{row['record']}, {polarity} polarity, PGA {row['pga_g']:.3g} g\n" \
+            f"{METHODS[settings.method].lower()}: ky = {row['ky_g']:g} g, D = {d:.4g} m"
     if not settings.flexible:
         return newmark_history_figure(solution, motion, row["ky_g"], STANDARD_GRAVITY, polarity=polarity,
                                       n_points=3000, title=title)

@@ -136,8 +136,7 @@ def _analysis_callbacks(app, session):
 
     @app.callback(Output("poll", "disabled"), Output("progress", "children"), Output("analysis-messages", "children"),
                   Output("analysis-notes", "children"), Output("results-view", "children"),
-                  Output("case", "options"), Output("case", "value"), Output("dky-figure", "src"),
-                  Output("cancel", "disabled"),
+                  Output("case", "options"), Output("case", "value"), Output("cancel", "disabled"),
                   Input("run", "n_clicks"), Input("cancel", "n_clicks"), Input("poll", "n_intervals"),
                   *(State(name, "value") for name in _FORM), prevent_initial_call=True)
     def run(_run, _cancel, _poll, *values):
@@ -147,17 +146,16 @@ def _analysis_callbacks(app, session):
             try:
                 job = session.start(parse_settings(form))
             except (FieldError, ValueError) as err:
-                return True, "", str(err), no_update, no_update, no_update, no_update, no_update, True
+                return True, "", str(err), no_update, no_update, no_update, no_update, True
             job.finished.wait(_WAIT_S)
         elif trigger == "cancel" and session.job is not None:
             session.job.cancelled.set()
             session.job.finished.wait(_WAIT_S)
         job = session.job
         if job is None:
-            return True, "", no_update, no_update, no_update, no_update, no_update, no_update, True
+            return True, "", no_update, no_update, no_update, no_update, no_update, True
         if not job.finished.is_set():
-            return False, f"running: {job.done} of {job.total} records", "", "", no_update, no_update, no_update, \
-                no_update, False
+            return False, f"running: {job.done} of {job.total} records", "", "", no_update, no_update, no_update, False
         return _finished(session, job)
 
 
@@ -168,14 +166,19 @@ def _finished(session, job):
                 f"done: {job.total} records in {job.seconds:.2f} s")
     results = session.finish(job)
     if results is None:
-        return True, progress, "\n".join(job.errors), "\n".join(job.notes), no_update, no_update, no_update, \
-            no_update, True
+        return True, progress, "\n".join(job.errors), "\n".join(job.notes), no_update, no_update, no_update, True
     best = int(np.nanargmax([row["max_m"] if row["max_m"] == row["max_m"] else -1.0 for row in results.rows]))
     return (True, progress, "\n".join(job.errors), "\n".join(job.notes), results_view(results), case_options(results),
-            best, data_url(drawn(displacement_figure, results.rows)), True)
+            best, True)
 
 
 def _result_callbacks(app, session):
+    @app.callback(Output("dky-figure", "src"), Input("case", "options"), prevent_initial_call=True)
+    def displacements(_):
+        if session.results is None:
+            return no_update
+        return data_url(drawn(displacement_figure, session.results.rows))
+
     @app.callback(Output("history-figure", "src"), Output("history-messages", "children"),
                   Input("case", "value"), Input("history-polarity", "value"), prevent_initial_call=True)
     def history(case, polarity):

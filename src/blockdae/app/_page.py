@@ -7,7 +7,7 @@ from ._analysis import METHODS
 
 _SECTION = {"border": "1px solid #ccc", "borderRadius": "6px", "padding": "10px 16px", "margin": "12px 0"}
 _DROP = {"border": "2px dashed #888", "borderRadius": "6px", "padding": "14px", "textAlign": "center",
-         "display": "inline-block", "width": "44%", "marginRight": "2%", "cursor": "pointer"}
+         "width": "100%", "cursor": "pointer"}
 _LABEL = {"display": "inline-block", "width": "260px"}
 MESSAGES = {"color": "#a00000", "whiteSpace": "pre-wrap"}
 NOTES = {"color": "#7a5a00", "whiteSpace": "pre-wrap"}
@@ -29,10 +29,11 @@ def layout():
         dcc.Interval(id="engine-poll", interval=500),
         html.Div(style=_SECTION, children=[
             html.H3("1. Records"),
-            dcc.Upload(id="upload-files", multiple=True, style=_DROP,
-                       children=html.Div(["Drop record files here or ", html.A("pick files")])),
-            dcc.Upload(id="upload-folder", multiple=True, enable_folder_selection=True, style=_DROP,
-                       children=html.Div(["Pick a folder of records"])),
+            html.Div(style={"display": "flex", "gap": "2%"}, children=[
+                dcc.Upload(id="upload-files", multiple=True, style=_DROP,
+                           children=html.Div(["Drop record files here or ", html.A("pick files")])),
+                dcc.Upload(id="upload-folder", multiple=True, enable_folder_selection=True, style=_DROP,
+                           children=html.Div(["Pick a folder of records"]))]),
             html.Div("Every format blockdae reads: two columns (time [s], acceleration), one column with its step, "
                      "PEER AT2, COSMOS V1/V2, K-NET/KiK-net, ESM; each also .gz. A file whose header does not "
                      "state its units asks for them here.", style={"color": "#555", "fontSize": "small"}),
