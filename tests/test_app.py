@@ -80,14 +80,17 @@ def test_a_file_without_units_asks_for_them(tmp_path):
 
 
 def test_the_analyses_are_the_librarys():
-    """Rigid: bd.newmark's D, mean and max; equivalent-linear: bd.flexible's row, and the
-    history's final D is the table's (the converged column drawn)."""
+    """Rigid: bd.newmark's D, mean and max; equivalent-linear: bd.flexible's row; the
+    history drawn of a case ends at the table's D (for the equivalent-linear mass: the
+    converged column is drawn)."""
     kobe = load_sample_record("Kobe_1995_TAK-090")
     rows, notes = analyse("kobe", kobe, Settings("rigid", (0.1, 0.2), pga=0.4))
     expected = bd.newmark({"kobe": kobe}, [0.1, 0.2], pga=0.4).to_dataframe()
     for column in ("pga_g", "ky_g", "normal_m", "inverse_m", "mean_m", "max_m"):
         np.testing.assert_array_equal([row[column] for row in rows], expected[column], err_msg=column)
     assert notes == []
+    solution, _, _ = case_solution(kobe, Settings("rigid", (0.1, 0.2), pga=0.4), rows[1], "inverse")
+    assert 0.0 - solution.displacement == pytest.approx(rows[1]["inverse_m"], rel=1e-12)
     settings = Settings("equivalent-linear", (0.1,), 20.0, 300.0, 0.05, 0.0005, polarity="normal")
     (row,), _ = analyse("kobe", kobe, settings)
     library = bd.flexible(kobe, 0.1, 20.0, 300.0, damping=0.05, equivalent_linear=True, reference_strain=0.0005,

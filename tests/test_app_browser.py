@@ -87,7 +87,8 @@ def browser(app, downloads):
 @pytest.fixture(scope="module")
 def files(tmp_path_factory):
     """Two records: one as pySLAMMER ships it (its header says g), one the same numbers
-    without a header (its units unstated)."""
+    without a header (its units unstated); a file with a word for a number; one column of
+    accelerations (neither step nor units stated)."""
     folder = tmp_path_factory.mktemp("app-records")
     stated = {p.stem: p for p in sample_record_paths()}["Kobe_1995_TAK-090"]
     unstated = folder / "Cape_Mendocino_no_header.csv"
@@ -96,7 +97,9 @@ def files(tmp_path_factory):
                                 if not line.startswith("#")))
     bad = folder / "broken.csv"
     bad.write_text("time (s), acceleration (g)\n0.0, 0.01\n0.01, 0.2\n0.02, zero point one\n")
-    return {"stated": pathlib.Path(stated), "unstated": unstated, "bad": bad}
+    column = folder / "column.txt"
+    column.write_text("\n".join(line.split(",")[1] for line in unstated.read_text().splitlines()) + "\n")
+    return {"stated": pathlib.Path(stated), "unstated": unstated, "bad": bad, "column": column}
 
 
 def _wait(driver, timeout, poll=0.05):
@@ -107,6 +110,7 @@ def _wait(driver, timeout, poll=0.05):
 
 def _upload(driver, *paths):
     field = driver.find_element(By.CSS_SELECTOR, "#upload-files input[type=file]")
+    driver.execute_script("arguments[0].value = ''", field)  # chromedriver adds to the files picked before
     field.send_keys("\n".join(str(p) for p in paths))
 
 
@@ -210,6 +214,8 @@ def test_a_single_record_analysis_appears_within_a_second(browser, screenshots):
     seconds = _wait(browser, 30).until(lambda d: d.execute_script("return window.blockdaeSeconds"))
     print(f"\na single-record coupled analysis appeared {seconds:.3f} s after the click on Run (in the browser)")
     assert len(_table(browser, "results-table")[1]) == 1
+    _wait(browser, 60).until(lambda d: (d.find_element(By.ID, "history-figure").get_attribute("src") or "")
+                             .startswith("data:image/png"))
     _shoot(browser, screenshots, "4-single-record")
     assert seconds < RESULT_WITHIN_S
 
@@ -242,6 +248,20 @@ def test_a_bad_file_and_a_bad_field_get_messages_and_lose_nothing(browser, files
     assert "broken.csv" in message and "line 4" in message and "zero point one" in message
     assert len(_table(browser, "records-table")[1]) == 1
     _shoot(browser, screenshots, "5-bad-file")
+
+    _upload(browser, files["column"])  # one column: its step, then its units
+    _wait(browser, 30).until(lambda d: d.find_element(By.CLASS_NAME, "needs-step"))
+    for step, wanted in (("abc", "needs-step"), ("0.02", "needs-units")):
+        question = browser.find_element(By.CLASS_NAME, "needs-step")
+        question.find_element(By.TAG_NAME, "input").send_keys(step)
+        question.find_element(By.TAG_NAME, "button").click()
+        _wait(browser, 30).until(lambda d: d.find_elements(By.CLASS_NAME, wanted) and (
+            step != "abc" or "column.txt: sample step dt [s] 'abc' is not a number" in
+            d.find_element(By.ID, "record-messages").text))
+    browser.find_element(By.CSS_SELECTOR, ".needs-units input").click()  # g
+    headings, rows = _rows_of(browser, "records-table", 2)
+    column = dict(zip(headings, rows[1]))
+    assert (column["file"], column["dt [s]"], column["units"]) == ("column.txt", "0.02", "g (given)")
 
     _type(browser, "height", "abc")
     browser.find_element(By.ID, "run").click()

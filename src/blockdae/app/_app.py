@@ -137,6 +137,8 @@ def _analysis_callbacks(app, session):
     @app.callback(Output("poll", "disabled"), Output("progress", "children"), Output("analysis-messages", "children"),
                   Output("analysis-notes", "children"), Output("results-view", "children"),
                   Output("case", "options"), Output("case", "value"), Output("cancel", "disabled"),
+                  Output("results-stamp", "data"), Output("dky-figure", "src"),
+                  Output("history-figure", "src", allow_duplicate=True),
                   Input("run", "n_clicks"), Input("cancel", "n_clicks"), Input("poll", "n_intervals"),
                   *(State(name, "value") for name in _FORM), prevent_initial_call=True)
     def run(_run, _cancel, _poll, *values):
@@ -146,42 +148,54 @@ def _analysis_callbacks(app, session):
             try:
                 job = session.start(parse_settings(form))
             except (FieldError, ValueError) as err:
-                return True, "", str(err), no_update, no_update, no_update, no_update, True
+                return True, "", str(err), no_update, no_update, no_update, no_update, True, *_UNCHANGED
             job.finished.wait(_WAIT_S)
         elif trigger == "cancel" and session.job is not None:
             session.job.cancelled.set()
             session.job.finished.wait(_WAIT_S)
         job = session.job
         if job is None:
-            return True, "", no_update, no_update, no_update, no_update, no_update, True
+            return True, "", no_update, no_update, no_update, no_update, no_update, True, *_UNCHANGED
         if not job.finished.is_set():
-            return False, f"running: {job.done} of {job.total} records", "", "", no_update, no_update, no_update, False
+            return False, f"running: {job.done} of {_records(job.total)}", "", "", no_update, no_update, no_update, False, \
+            *_UNCHANGED
         return _finished(session, job)
+
+
+#: the last outputs of :func:`run` where no new results came: the results stamp, the two figures
+_UNCHANGED = (no_update, no_update, no_update)
+
+
+def _records(n):
+    return f"{n} record{'' if n == 1 else 's'}"
 
 
 def _finished(session, job):
     """The outputs of :func:`run` once ``job`` has finished: the results, or what stopped them."""
     stopped = job.cancelled.is_set() and job.done < job.total
-    progress = (f"cancelled after {job.done} of {job.total} records ({job.seconds:.2f} s)" if stopped else
-                f"done: {job.total} records in {job.seconds:.2f} s")
+    progress = (f"cancelled after {job.done} of {_records(job.total)} ({job.seconds:.3f} s)" if stopped else
+                f"done: {_records(job.total)} in {job.seconds:.3f} s")
     results = session.finish(job)
     if results is None:
-        return True, progress, "\n".join(job.errors), "\n".join(job.notes), no_update, no_update, no_update, True
+        return True, progress, "\n".join(job.errors), "\n".join(job.notes), no_update, no_update, no_update, True, \
+            *_UNCHANGED
     best = int(np.nanargmax([row["max_m"] if row["max_m"] == row["max_m"] else -1.0 for row in results.rows]))
     return (True, progress, "\n".join(job.errors), "\n".join(job.notes), results_view(results), case_options(results),
-            best, True)
+            best, True, time.time(), "", "")  # the figures of the new results follow
 
 
 def _result_callbacks(app, session):
-    @app.callback(Output("dky-figure", "src"), Input("case", "options"), prevent_initial_call=True)
+    @app.callback(Output("dky-figure", "src", allow_duplicate=True), Input("results-stamp", "data"),
+                  prevent_initial_call=True)
     def displacements(_):
         if session.results is None:
             return no_update
         return data_url(drawn(displacement_figure, session.results.rows))
 
     @app.callback(Output("history-figure", "src"), Output("history-messages", "children"),
-                  Input("case", "value"), Input("history-polarity", "value"), prevent_initial_call=True)
-    def history(case, polarity):
+                  Input("case", "value"), Input("history-polarity", "value"), Input("results-stamp", "data"),
+                  prevent_initial_call=True)
+    def history(case, polarity, _):
         results = session.results
         if results is None or case is None or case >= len(results.rows):
             return no_update, ""

@@ -90,6 +90,7 @@ def layout():
                 html.Button("Download the history (PNG)", id="download-history-button", n_clicks=0,
                             style={"marginLeft": "8px"})]),
             dcc.Download(id="download"),
+            dcc.Store(id="results-stamp"),
             html.Img(id="dky-figure", style={"maxWidth": "100%"}),
             html.H4("History of one case"),
             html.Div(style={"display": "flex", "gap": "12px", "alignItems": "center"}, children=[
