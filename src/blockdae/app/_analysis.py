@@ -236,19 +236,33 @@ def history_figure(record, settings: Settings, row: dict, polarity: str):
 
 
 def displacement_figure(rows):
-    """D (the larger polarity) [m] against ky [g], one line per (record, PGA); a matplotlib Figure."""
+    """D (the larger polarity) [m] against ky [g], one line per (record, PGA); with one ky,
+    a bar per (record, PGA). A matplotlib Figure."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(7.5, 4.2), layout="constrained")
-    ax = fig.subplots()
     cases = {}
     for row in rows:
         cases.setdefault((row["record"], row["pga_g"]), []).append((row["ky_g"], row["max_m"]))
-    for (name, pga), points in cases.items():
+    fig = Figure(figsize=(8.5, max(3.0, 1.2 + 0.22 * len(cases))) if len({r["ky_g"] for r in rows}) == 1 else
+                 (8.5, 4.5), layout="constrained")
+    ax = fig.subplots()
+    labels = [f"{name} (PGA {pga:.3g} g)" for name, pga in cases]
+    if len({row["ky_g"] for row in rows}) == 1:
+        ax.barh(labels[::-1], [points[0][1] for points in cases.values()][::-1], color="C0")
+        ax.set(xlabel="downslope displacement D [m] (larger polarity)", title=f"D at ky = {rows[0]['ky_g']:g} g")
+        ax.tick_params(axis="y", labelsize="small")
+        ax.grid(True, axis="x", alpha=0.3)
+        return fig
+    for label, points in zip(labels, cases.values()):
         ky, d = np.array(sorted(points)).T
-        ax.plot(ky, d, marker="o", ms=4, lw=1.2, label=f"{name} (PGA {pga:.3g} g)")
+        ax.plot(ky, d, marker="o", ms=3.5, lw=1.2, label=label)
     ax.set(xlabel="yield acceleration ky [g]", ylabel="downslope displacement D [m]\n(larger polarity)",
            title="D against ky")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small", loc="upper right")
+    if len(cases) <= _LEGEND_ENTRIES:
+        fig.legend(loc="outside right upper", fontsize="x-small")
     return fig
+
+
+#: the most curves of D against ky that get a legend (beyond, the table names them)
+_LEGEND_ENTRIES = 20

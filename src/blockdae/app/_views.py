@@ -13,7 +13,8 @@ from ._records import unit_choices, summary
 
 _FIGURES = threading.Lock()  # pyplot's figure list is not thread-safe; requests come on threads
 _CELL = {"border": "1px solid #ddd", "padding": "2px 8px", "textAlign": "right"}
-_HEAD = {**_CELL, "background": "#f0f0f0"}
+_HEAD = {**_CELL, "background": "#f0f0f0", "position": "sticky", "top": "0"}
+_SCROLL = {"maxHeight": "480px", "overflowY": "auto"}  # a long list scrolls in its box
 #: the records table's (key, heading, format)
 RECORD_COLUMNS = (("file", "file", "{}"), ("record", "record", "{}"), ("format", "format", "{}"),
                   ("units", "units", "{}"), ("dt_s", "dt [s]", "{:.4g}"), ("samples", "samples", "{}"),
@@ -63,12 +64,12 @@ def records_view(session, thumbnails: dict):
             row = summary(loaded)
             rows.append([fmt.format(row[key]) for key, _, fmt in RECORD_COLUMNS] +
                         [html.Button("remove", id={"type": "remove", "file": loaded.label}, n_clicks=0)])
-        parts.append(_table("records-table", [h for _, h, _ in RECORD_COLUMNS] + [""], rows))
+        parts.append(html.Div(_table("records-table", [h for _, h, _ in RECORD_COLUMNS] + [""], rows), style=_SCROLL))
         notes = [f"{f.label}: {note}" for f in ready for note in f.notes]
         if notes:
             parts.append(html.Div("\n".join(notes), style={"color": "#7a5a00", "whiteSpace": "pre-wrap",
                                                             "fontSize": "small"}))
-        parts.append(html.Div(id="record-figures", children=[
+        parts.append(html.Div(id="record-figures", style=_SCROLL, children=[
             html.Img(src=thumbnails[f.label], title=f.label, style={"width": "49%"}) for f in ready
             if f.label in thumbnails]))
     return parts
@@ -107,7 +108,7 @@ def results_view(results):
     """The table of D per (record, PGA, ky)."""
     columns = result_columns(results.settings)
     rows = [[_shown(row[c], c) for c in columns] for row in results.rows]
-    return [_table("results-table", [HEADINGS[c] for c in columns], rows)]
+    return [html.Div(_table("results-table", [HEADINGS[c] for c in columns], rows), style=_SCROLL)]
 
 
 def case_options(results):
