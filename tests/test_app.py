@@ -5,6 +5,7 @@ own calls (the reference: bd.newmark and bd.flexible on the same inputs), a canc
 and ``blockdae app`` serving the page on 127.0.0.1. Skipped without the app extra."""
 
 import re
+import socket
 import subprocess
 import sys
 import threading
@@ -142,3 +143,14 @@ def test_the_command_serves_the_page_on_this_computer():
     finally:
         process.terminate()
         process.wait(30)
+
+
+def test_a_port_in_use_is_named():
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        done = subprocess.run([sys.executable, "-m", "blockdae.cli", "app", "--no-browser", "--port", str(port)],
+                              capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    assert done.stderr.startswith(f"blockdae: error: --port: port {port} on 127.0.0.1 is not free"), done.stderr

@@ -19,5 +19,5 @@ def __getattr__(name):
     try:
         from . import _server
     except ImportError as err:
-        raise ImportError(f"the app needs Dash ({err}): pip install 'blockdae[app]'") from err
+        raise ImportError(f"the app needs its extra, Dash: pip install 'blockdae[app]' ({err})") from err
     return getattr(_server, name)

@@ -2,6 +2,7 @@
 opened on it; the uploaded files in a temporary folder removed at the end."""
 
 import logging
+import socket
 import tempfile
 import threading
 import webbrowser
@@ -20,6 +21,8 @@ class LocalApp:
     """
 
     def __init__(self, port: int = 0, host: str = "127.0.0.1"):
+        if port:
+            _check_free(host, port)
         self._folder = tempfile.TemporaryDirectory(prefix="blockdae-app-")
         self.app = create_app(self._folder.name)
         logging.getLogger("werkzeug").setLevel(logging.WARNING)  # no line per request
@@ -44,6 +47,16 @@ class LocalApp:
         if self._thread is not None:
             self._thread.join()
         self._folder.cleanup()
+
+
+def _check_free(host, port):
+    """OSError naming ``port`` where another program serves on it (werkzeug would exit)."""
+    with socket.socket() as probe:
+        try:
+            probe.bind((host, port))
+        except OSError as err:
+            raise OSError(f"port {port} on {host} is not free ({err.strerror}): give another, or 0 for a free one") \
+                from None
 
 
 def serve(open_browser: bool = True, port: int = 0):

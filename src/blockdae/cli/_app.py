@@ -24,5 +24,5 @@ def run_app(args) -> int:
     except ImportError as err:
         raise UsageError(str(err)) from None
     except OSError as err:
-        raise UsageError(f"--port {args.port}: {err}") from None
+        raise UsageError(f"--port: {err}") from None
     return 0
