@@ -5,7 +5,6 @@ record; the history of one case and D against ky."""
 
 import dataclasses
 import math
-import warnings
 
 import numpy as np
 
@@ -13,6 +12,7 @@ from ..core import simulate
 from ..flexible_mass import FlexibleSlidingMass, KyTable, ShearColumn, flexible, with_zero_sample
 from ..sliding import SlidingBlock, newmark, newmark_history_figure, yield_acceleration
 from ..units import STANDARD_GRAVITY
+from ._caught import caught_warnings
 
 #: the analyses offered, in SLAMMER's order
 METHODS = {"rigid": "Rigid block (Newmark)", "decoupled": "Decoupled", "coupled": "Coupled",
@@ -152,13 +152,11 @@ def scaled(record, settings, g=STANDARD_GRAVITY):
 def analyse(name, record, settings: Settings) -> tuple[list[dict], list[str]]:
     """(the rows of one record: dicts with the keys :data:`COLUMNS`; the library's warnings
     and the app's notes as lines). ValueError naming the record where the library refuses."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        try:
-            table = _library_table(name, record, settings)
-        except ValueError as err:
-            raise ValueError(f"{name}: {err}") from None
-    notes = [str(w.message) for w in caught if "compiling" not in str(w.message)]
+    try:
+        with caught_warnings() as notes:
+            table = library_table(name, record, settings)
+    except ValueError as err:
+        raise ValueError(f"{name}: {err}") from None
     rows = [_row(row, name, record, settings) for row in table.to_dict(orient="records")]
     peak = scaled(record, settings).peak_acceleration / STANDARD_GRAVITY
     for row in rows:
@@ -167,7 +165,7 @@ def analyse(name, record, settings: Settings) -> tuple[list[dict], list[str]]:
     return rows, notes
 
 
-def _library_table(name, record, settings):
+def library_table(name, record, settings):
     """The library's table (pandas) of one record under ``settings``."""
     ky = settings.ky if isinstance(settings.ky, KyTable) else np.asarray(settings.ky)
     if not settings.flexible:

@@ -5,13 +5,13 @@ or computed is dropped on an error."""
 import math
 import threading
 import time
-import warnings
 
 import numpy as np
 from dash import ALL, Dash, Input, Output, State, ctx, dcc, no_update
 
 from ..excitation import Record
-from ._analysis import FieldError, displacement_figure, history_figure, parse_settings
+from ._analysis import (FieldError, Settings, case_solution, displacement_figure, history_figure, library_table,
+                        parse_settings)
 from ._page import HIDDEN, SHOWN, layout
 from ._records import record_figure
 from ._session import Session
@@ -42,6 +42,8 @@ def create_app(folder) -> Dash:
         if warm.seconds is None:
             return ("Preparing the solvers (on a first start after an install they are compiled: up to a "
                     "minute; an analysis started now waits for them)."), False
+        if warm.error:
+            return f"The solvers could not be prepared ({warm.error}).", True
         return f"Solvers ready ({warm.seconds:.1f} s to prepare).", True
 
     app.blockdae_session = session  # for a look from Python (tests)
@@ -50,26 +52,25 @@ def create_app(folder) -> Dash:
 
 class _WarmUp:
     """Runs each analysis once on a short synthetic motion, on a thread; ``seconds`` is its
-    wall time [s] when done (None before)."""
+    wall time [s] when done (None before), ``error`` what stopped it (None if nothing)."""
 
     def __init__(self):
-        self.seconds = None
+        self.seconds, self.error = None, None
         threading.Thread(target=self._run, name="blockdae-app-warm-up", daemon=True).start()
 
     def _run(self):
-        from ._analysis import Settings, analyse, case_solution
-
         start = time.perf_counter()
         t = np.arange(0.0, 2.0, 0.01)
         motion = Record(0.3 * np.sin(2 * np.pi * 2.0 * t), 0.01, name="warm-up", units="g")
         cases = [Settings("rigid", (0.1,)), Settings("coupled", (0.1,), 10.0, 200.0, 0.05),
                  Settings("decoupled", (0.1,), 10.0, 200.0, 0.05),
                  Settings("equivalent-linear", (0.1,), 10.0, 200.0, 0.05, 0.0005)]
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
+        try:  # the library's own calls: its notice of compiling goes to the terminal
             for settings in cases:
-                rows, _ = analyse("warm-up", motion, settings)
-                case_solution(motion, settings, rows[0], "normal")
+                row = library_table("warm-up", motion, settings).to_dict(orient="records")[0]
+                case_solution(motion, settings, row, "normal")
+        except Exception as err:  # the page says so; each analysis then reports its own error
+            self.error = f"{type(err).__name__}: {err}"
         self.seconds = time.perf_counter() - start
 
 

@@ -4,12 +4,12 @@ of each, and the figure of each record."""
 
 import dataclasses
 import pathlib
-import warnings
 
 import numpy as np
 
 from ..excitation import read_record, unit_factor
 from ..units import STANDARD_GRAVITY
+from ._caught import caught_warnings
 
 #: the units a user may give a file that does not state them, with their symbols
 UNITS = {"g": "g", "m/s2": "m/s²", "cm/s2": "cm/s²"}
@@ -66,10 +66,9 @@ def load(label, path, units=None, dt=None) -> LoadedFile:
 
 def _read(path, units, dt, check_peak=True):
     """(the record, its reading warnings as lines)."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
+    with caught_warnings() as notes:
         record = read_record(path, units=units, dt=dt, check_peak=check_peak)
-    return record, list(dict.fromkeys(str(w.message) for w in caught))
+    return record, notes
 
 
 def _named(message, label, path):
