@@ -199,7 +199,7 @@ def _value(value):
 
 def case_solution(record, settings: Settings, row: dict, polarity: str):
     """(the solution of one case: ``record`` under ``settings`` at the row's ky, the
-    polarity run; the motion it ran on; its model)."""
+    polarity run; the motion it ran on)."""
     motion = scaled(record, settings)
     motion = motion.inverted() if polarity == "inverse" else motion
     ky = settings.ky if isinstance(settings.ky, KyTable) else row["ky_g"]
@@ -207,7 +207,7 @@ def case_solution(record, settings: Settings, row: dict, polarity: str):
         if isinstance(ky, KyTable):
             raise ValueError("the history of a rigid block with a ky(D) table is not drawn; give ky directly")
         block = SlidingBlock(mu=ky, direction="negative", g=STANDARD_GRAVITY)
-        return simulate(block, motion), motion, block
+        return simulate(block, motion), motion
     method = "coupled" if settings.method == "equivalent-linear" else settings.method
     if settings.method == "equivalent-linear":  # the converged column, its damping total
         column = ShearColumn(settings.height, row["vs_final_m_s"], settings.vs, row["damping_final"],
@@ -215,7 +215,7 @@ def case_solution(record, settings: Settings, row: dict, polarity: str):
     else:
         column = ShearColumn(settings.height, settings.vs, None, settings.damping)
     model = FlexibleSlidingMass(column, ky, method, STANDARD_GRAVITY)
-    return simulate(model, with_zero_sample(motion), t_end=motion.duration + motion.dt), motion, model
+    return simulate(model, with_zero_sample(motion), t_end=motion.duration + motion.dt), motion
 
 
 def history_figure(record, settings: Settings, row: dict, polarity: str):
@@ -223,7 +223,7 @@ def history_figure(record, settings: Settings, row: dict, polarity: str):
     D; sliding shaded); a matplotlib Figure."""
     from .._plot import plot
 
-    solution, motion, _ = case_solution(record, settings, row, polarity)
+    solution, motion = case_solution(record, settings, row, polarity)
     d = row[f"{polarity}_m"]
     title = f"{row['record']}, {polarity} polarity, PGA {row['pga_g']:.3g} g\n" \
             f"{METHODS[settings.method].lower()}: ky = {row['ky_g']:g} g, D = {d:.4g} m"

@@ -10,7 +10,7 @@ import numpy as np
 from dash import ALL, Dash, Input, Output, State, ctx, dcc, no_update
 
 from ..excitation import Record
-from ._analysis import (FieldError, Settings, case_solution, displacement_figure, history_figure, library_table,
+from ._analysis import (Settings, case_solution, displacement_figure, history_figure, library_table,
                         parse_settings)
 from ._page import HIDDEN, SHOWN, layout
 from ._records import record_figure
@@ -46,7 +46,6 @@ def create_app(folder) -> Dash:
             return f"The solvers could not be prepared ({warm.error}).", True
         return f"Solvers ready ({warm.seconds:.1f} s to prepare).", True
 
-    app.blockdae_session = session  # for a look from Python (tests)
     return app
 
 
@@ -77,11 +76,12 @@ class _WarmUp:
 def _record_callbacks(app, session, thumbnails):
     @app.callback(Output("records-view", "children"), Output("record-messages", "children"),
                   Input("upload-files", "contents"), Input("upload-folder", "contents"),
-                  Input({"type": "units", "file": ALL}, "value"), Input({"type": "step-apply", "file": ALL}, "n_clicks"),
+                  Input({"type": "units", "file": ALL}, "value"),
+                  Input({"type": "step-apply", "file": ALL}, "n_clicks"),
                   Input({"type": "remove", "file": ALL}, "n_clicks"),
                   State("upload-files", "filename"), State("upload-folder", "filename"),
                   State({"type": "step", "file": ALL}, "value"), prevent_initial_call=True)
-    def records(files, folder, _units, _steps, _removes, file_names, folder_names, steps):
+    def records(files, folder, _units, _step_clicks, _removes, file_names, folder_names, typed_steps):
         trigger = ctx.triggered_id
         messages = []
         if trigger in ("upload-files", "upload-folder"):
@@ -100,7 +100,8 @@ def _record_callbacks(app, session, thumbnails):
                 if trigger["type"] == "units":
                     loaded = session.give(label, units=ctx.triggered[0]["value"])
                 elif trigger["type"] == "step-apply":
-                    typed = next((s["value"] for s in ctx.states_list[2] if s["id"]["file"] == label), "")
+                    typed = next((value for spec, value in zip(ctx.states_list[2], typed_steps)
+                                  if spec["id"]["file"] == label), "")
                     loaded = session.give(label, dt=_step(label, typed))
                 else:
                     session.remove(label)
@@ -148,7 +149,7 @@ def _analysis_callbacks(app, session):
             form = dict(zip((name.replace("-", "_") for name in _FORM), values))
             try:
                 job = session.start(parse_settings(form))
-            except (FieldError, ValueError) as err:
+            except ValueError as err:  # a FieldError too
                 return True, "", str(err), no_update, no_update, no_update, no_update, True, *_UNCHANGED
             job.finished.wait(_WAIT_S)
         elif trigger == "cancel" and session.job is not None:
@@ -158,8 +159,8 @@ def _analysis_callbacks(app, session):
         if job is None:
             return True, "", no_update, no_update, no_update, no_update, no_update, True, *_UNCHANGED
         if not job.finished.is_set():
-            return False, f"running: {job.done} of {_records(job.total)}", "", "", no_update, no_update, no_update, False, \
-            *_UNCHANGED
+            return (False, f"running: {job.done} of {_records(job.total)}", "", "", no_update, no_update, no_update,
+                    False, *_UNCHANGED)
         return _finished(session, job)
 
 

@@ -9,6 +9,7 @@ import threading
 from dash import dcc, html
 
 from ._analysis import COLUMNS
+from ._page import NOTES
 from ._records import unit_choices, summary
 
 _FIGURES = threading.Lock()  # pyplot's figure list is not thread-safe; requests come on threads
@@ -67,8 +68,7 @@ def records_view(session, thumbnails: dict):
         parts.append(html.Div(_table("records-table", [h for _, h, _ in RECORD_COLUMNS] + [""], rows), style=_SCROLL))
         notes = [f"{f.label}: {note}" for f in ready for note in f.notes]
         if notes:
-            parts.append(html.Div("\n".join(notes), style={"color": "#7a5a00", "whiteSpace": "pre-wrap",
-                                                            "fontSize": "small"}))
+            parts.append(html.Div("\n".join(notes), style={**NOTES, "fontSize": "small"}))
         parts.append(html.Div(id="record-figures", style=_SCROLL, children=[
             html.Img(src=thumbnails[f.label], title=f.label, style={"width": "49%"}) for f in ready
             if f.label in thumbnails]))
