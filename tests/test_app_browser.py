@@ -270,3 +270,28 @@ def test_a_bad_file_and_a_bad_field_get_messages_and_lose_nothing(browser, files
     assert message == "slope height H [m]: 'abc' is not a number"
     assert _table(browser, "results-table") == before
     _shoot(browser, screenshots, "6-bad-field")
+
+
+def test_a_folder_of_records_shows_what_each_header_says(browser, tmp_path, screenshots):
+    """A folder picked in the page (COSMOS V2, K-NET, ESM files written to their published
+    descriptions): each record's format, units, station and component as its header states."""
+    from record_formats import cosmos_v2, esm, knet
+
+    folder = tmp_path / "station records"
+    folder.mkdir()
+    for name, text in (("CE12345.V2", cosmos_v2()), ("MYG0041103111446.NS", knet()), ("IT.NRC..HNE.ASC", esm())):
+        (folder / name).write_text(text)
+    before = len(_table(browser, "records-table")[1])
+    field = browser.find_element(By.CSS_SELECTOR, "#upload-folder input[type=file]")
+    field.send_keys(str(folder))
+    headings, rows = _rows_of(browser, "records-table", before + 3)
+    shown = {row[0]: dict(zip(headings, row)) for row in rows}
+    wanted = {"CE12345.V2": ("COSMOS V2 (v01.20)", "cm/s²", "CE.12345", "360"),
+              "MYG0041103111446.NS": ("K-NET", "cm/s²", "MYG004", "N-S"),
+              "IT.NRC..HNE.ASC": ("ESM", "cm/s²", "IT.NRC", "HNE")}
+    for name, (file_format, units, station, component) in wanted.items():
+        row = shown[name]
+        assert (row["format"], row["units"], row["station"], row["component"]) == (file_format, units, station,
+                                                                                     component)
+        assert (row["dt [s]"], row["samples"], row["PGA [g]"]) == ("0.01", "200", "0.1018")  # 99.8 cm/s²
+    _shoot(browser, screenshots, "7-folder-of-records")

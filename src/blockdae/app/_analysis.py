@@ -246,7 +246,7 @@ def displacement_figure(rows):
     ax = fig.subplots()
     labels = [f"{name} (PGA {pga:.3g} g)" for name, pga in cases]
     if len({row["ky_g"] for row in rows}) == 1:
-        ax.barh(labels[::-1], [points[0][1] for points in cases.values()][::-1], color="C0")
+        ax.barh(labels[::-1], [points[0][1] for points in cases.values()][::-1], height=0.6, color="C0")
         ax.set(xlabel="downslope displacement D [m] (larger polarity)", title=f"D at ky = {rows[0]['ky_g']:g} g")
         ax.tick_params(axis="y", labelsize="small")
         ax.grid(True, axis="x", alpha=0.3)
