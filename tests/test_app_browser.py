@@ -134,6 +134,12 @@ def _type(driver, id_, text):
     field.send_keys(Keys.DELETE, text)
 
 
+def _figures_drawn(driver):
+    """Wait for the figures of the results (D against ky, the history) to be drawn."""
+    _wait(driver, 60).until(lambda d: all((d.find_element(By.ID, id_).get_attribute("src") or "").startswith(
+        "data:image/png") for id_ in ("dky-figure", "history-figure")))
+
+
 def _shoot(driver, folder, name):
     path = folder / f"{name}.png"
     driver.save_screenshot(str(path))
@@ -175,8 +181,7 @@ def test_two_records_coupled_table_and_csv_match_the_library(browser, files, dow
     headings, rows = _rows_of(browser, "results-table", 2, timeout=120)
     assert headings == ["record", "PGA [g]", "ky [g]", "D normal [m]", "D inverse [m]", "D mean [m]", "D max [m]",
                         "kmax [g]"]
-    _wait(browser, 60).until(
-        lambda d: (d.find_element(By.ID, "history-figure").get_attribute("src") or "").startswith("data:image/png"))
+    _figures_drawn(browser)
     _shoot(browser, screenshots, "3-coupled-results")
 
     browser.find_element(By.ID, "download-csv-button").click()
@@ -214,8 +219,7 @@ def test_a_single_record_analysis_appears_within_a_second(browser, screenshots):
     seconds = _wait(browser, 30).until(lambda d: d.execute_script("return window.blockdaeSeconds"))
     print(f"\na single-record coupled analysis appeared {seconds:.3f} s after the click on Run (in the browser)")
     assert len(_table(browser, "results-table")[1]) == 1
-    _wait(browser, 60).until(lambda d: (d.find_element(By.ID, "history-figure").get_attribute("src") or "")
-                             .startswith("data:image/png"))
+    _figures_drawn(browser)
     _shoot(browser, screenshots, "4-single-record")
     assert seconds < RESULT_WITHIN_S
 
