@@ -40,7 +40,7 @@ def create_app(folder) -> Dash:
                   Input("engine-poll", "n_intervals"))
     def engine_status(_):
         if warm.seconds is None:
-            return ("Preparing the solvers (on a first start after an install they are compiled: up to a "
+            return ("Preparing the solvers (on a first start after an install they are compiled: about a "
                     "minute; an analysis started now waits for them)."), False
         if warm.error:
             return f"The solvers could not be prepared ({warm.error}).", True
