@@ -25,6 +25,7 @@ from ._common import (UsageError, checked, clean, describe_gravity, describe_rec
                       recursive_argument,
                       report_failures, save_figure, set_argument, units_out_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
+from ._app import add_app_parser
 from ._design import add_design_parser
 from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
@@ -95,7 +96,7 @@ def _parser():
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
     sub = parser.add_subparsers(required=True,
                                 metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,"
-                                        "fragility,hazard,info}")
+                                        "fragility,hazard,info,app}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
                                      "plane under two or three components (u_x, u_y)")
@@ -185,6 +186,7 @@ def _parser():
     add_hazard_parsers(sub)
     add_design_parser(sub)
     add_info_parser(sub)
+    add_app_parser(sub)
     return parser
 
 

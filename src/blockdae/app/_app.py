@@ -1,0 +1,233 @@
+"""The Dash app: the page and what each click does. Files and the running analysis live in a
+:class:`Session`; every message names the file or field and the value, and nothing loaded
+or computed is dropped on an error."""
+
+import math
+import threading
+import time
+
+import numpy as np
+from dash import ALL, Dash, Input, Output, State, ctx, dcc, no_update
+
+from ..excitation import Record
+from ._analysis import (Settings, case_solution, displacement_figure, history_figure, library_table,
+                        parse_settings)
+from ._page import HIDDEN, SHOWN, layout
+from ._records import record_figure
+from ._session import Session
+from ._views import case_options, csv_text, data_url, drawn, records_view, results_view
+
+#: how long a click on Run waits for the analysis before showing progress instead [s]
+_WAIT_S = 0.8
+_FORM = ("method", "ky-mode", "ky", "factor-of-safety", "thrust-angle", "ky-table", "height", "vs", "damping",
+         "reference-strain", "pga", "polarity")
+
+
+def create_app(folder) -> Dash:
+    """The app, its uploaded files kept under ``folder``; it prepares the solvers on a thread
+    (their first run after an install compiles them) while the page loads."""
+    session = Session(folder)
+    app = Dash(__name__, title="blockdae", serve_locally=True, update_title=None)
+    app.layout = layout()
+    app.server.config["MAX_CONTENT_LENGTH"] = None
+    warm = _WarmUp()
+    thumbnails = {}  # file label -> the PNG data URL of its record
+    _record_callbacks(app, session, thumbnails)
+    _analysis_callbacks(app, session)
+    _result_callbacks(app, session)
+
+    @app.callback(Output("engine-status", "children"), Output("engine-poll", "disabled"),
+                  Input("engine-poll", "n_intervals"))
+    def engine_status(_):
+        if warm.seconds is None:
+            return ("Preparing the solvers (on a first start after an install they are compiled: about a "
+                    "minute; an analysis started now waits for them)."), False
+        if warm.error:
+            return f"The solvers could not be prepared ({warm.error}).", True
+        return f"Solvers ready ({warm.seconds:.1f} s to prepare).", True
+
+    return app
+
+
+class _WarmUp:
+    """Runs each analysis once on a short synthetic motion, on a thread; ``seconds`` is its
+    wall time [s] when done (None before), ``error`` what stopped it (None if nothing)."""
+
+    def __init__(self):
+        self.seconds, self.error = None, None
+        threading.Thread(target=self._run, name="blockdae-app-warm-up", daemon=True).start()
+
+    def _run(self):
+        start = time.perf_counter()
+        t = np.arange(0.0, 2.0, 0.01)
+        motion = Record(0.3 * np.sin(2 * np.pi * 2.0 * t), 0.01, name="warm-up", units="g")
+        cases = [Settings("rigid", (0.1,)), Settings("coupled", (0.1,), 10.0, 200.0, 0.05),
+                 Settings("decoupled", (0.1,), 10.0, 200.0, 0.05),
+                 Settings("equivalent-linear", (0.1,), 10.0, 200.0, 0.05, 0.0005)]
+        try:  # the library's own calls: its notice of compiling goes to the terminal
+            for settings in cases:
+                row = library_table("warm-up", motion, settings).to_dict(orient="records")[0]
+                case_solution(motion, settings, row, "normal")
+        except Exception as err:  # the page says so; each analysis then reports its own error
+            self.error = f"{type(err).__name__}: {err}"
+        self.seconds = time.perf_counter() - start
+
+
+def _record_callbacks(app, session, thumbnails):
+    @app.callback(Output("records-view", "children"), Output("record-messages", "children"),
+                  Input("upload-files", "contents"), Input("upload-folder", "contents"),
+                  Input({"type": "units", "file": ALL}, "value"),
+                  Input({"type": "step-apply", "file": ALL}, "n_clicks"),
+                  Input({"type": "remove", "file": ALL}, "n_clicks"),
+                  State("upload-files", "filename"), State("upload-folder", "filename"),
+                  State({"type": "step", "file": ALL}, "value"), prevent_initial_call=True)
+    def records(files, folder, _units, _step_clicks, _removes, file_names, folder_names, typed_steps):
+        trigger = ctx.triggered_id
+        messages = []
+        if trigger in ("upload-files", "upload-folder"):
+            contents, names = (files, file_names) if trigger == "upload-files" else (folder, folder_names)
+            for name, content in zip(names or [], contents or []):
+                try:
+                    loaded = session.add_upload(name, content)
+                except ValueError as err:
+                    messages.append(str(err))
+                    continue
+                if loaded.record is not None:
+                    thumbnails[loaded.label] = data_url(drawn(record_figure, loaded.record))
+        elif isinstance(trigger, dict) and ctx.triggered[0]["value"]:
+            label = trigger["file"]
+            try:
+                if trigger["type"] == "units":
+                    loaded = session.give(label, units=ctx.triggered[0]["value"])
+                elif trigger["type"] == "step-apply":
+                    typed = next((value for spec, value in zip(ctx.states_list[2], typed_steps)
+                                  if spec["id"]["file"] == label), "")
+                    loaded = session.give(label, dt=_step(label, typed))
+                else:
+                    session.remove(label)
+                    thumbnails.pop(label, None)
+                    loaded = None
+                if loaded is not None and loaded.record is not None:
+                    thumbnails[label] = data_url(drawn(record_figure, loaded.record))
+            except ValueError as err:
+                messages.append(str(err))
+        else:
+            return no_update, no_update
+        return records_view(session, thumbnails), "\n".join(messages)
+
+
+def _step(label, typed):
+    """The sample step [s] typed for the file ``label``; ValueError naming both."""
+    try:
+        dt = float(typed)
+    except (TypeError, ValueError):
+        raise ValueError(f"{label}: sample step dt [s] {typed!r} is not a number") from None
+    if not (math.isfinite(dt) and dt > 0):
+        raise ValueError(f"{label}: sample step dt [s] {typed!r} must be a positive number")
+    return dt
+
+
+def _analysis_callbacks(app, session):
+    @app.callback(Output("ky-direct", "style"), Output("ky-safety", "style"), Output("ky-table-box", "style"),
+                  Output("flexible-box", "style"), Output("strain-box", "style"),
+                  Input("ky-mode", "value"), Input("method", "value"))
+    def visible(mode, method):
+        return (SHOWN if mode == "direct" else HIDDEN, SHOWN if mode == "safety" else HIDDEN,
+                SHOWN if mode == "table" else HIDDEN, HIDDEN if method == "rigid" else SHOWN,
+                SHOWN if method == "equivalent-linear" else HIDDEN)
+
+    @app.callback(Output("poll", "disabled"), Output("progress", "children"), Output("analysis-messages", "children"),
+                  Output("analysis-notes", "children"), Output("results-view", "children"),
+                  Output("case", "options"), Output("case", "value"), Output("cancel", "disabled"),
+                  Output("results-stamp", "data"), Output("dky-figure", "src"),
+                  Output("history-figure", "src", allow_duplicate=True),
+                  Input("run", "n_clicks"), Input("cancel", "n_clicks"), Input("poll", "n_intervals"),
+                  *(State(name, "value") for name in _FORM), prevent_initial_call=True)
+    def run(_run, _cancel, _poll, *values):
+        trigger = ctx.triggered_id
+        if trigger == "run":
+            form = dict(zip((name.replace("-", "_") for name in _FORM), values))
+            try:
+                job = session.start(parse_settings(form))
+            except ValueError as err:  # a FieldError too
+                return True, "", str(err), no_update, no_update, no_update, no_update, True, *_UNCHANGED
+            job.finished.wait(_WAIT_S)
+        elif trigger == "cancel" and session.job is not None:
+            session.job.cancelled.set()
+            session.job.finished.wait(_WAIT_S)
+        job = session.job
+        if job is None:
+            return True, "", no_update, no_update, no_update, no_update, no_update, True, *_UNCHANGED
+        if not job.finished.is_set():
+            return (False, f"running: {job.done} of {_records(job.total)}", "", "", no_update, no_update, no_update,
+                    False, *_UNCHANGED)
+        return _finished(session, job)
+
+
+#: the last outputs of :func:`run` where no new results came: the results stamp, the two figures
+_UNCHANGED = (no_update, no_update, no_update)
+
+
+def _records(n):
+    return f"{n} record{'' if n == 1 else 's'}"
+
+
+def _finished(session, job):
+    """The outputs of :func:`run` once ``job`` has finished: the results, or what stopped them."""
+    stopped = job.cancelled.is_set() and job.done < job.total
+    progress = (f"cancelled after {job.done} of {_records(job.total)} ({job.seconds:.3f} s)" if stopped else
+                f"done: {_records(job.total)} in {job.seconds:.3f} s")
+    results = session.finish(job)
+    if results is None:
+        return True, progress, "\n".join(job.errors), "\n".join(job.notes), no_update, no_update, no_update, True, \
+            *_UNCHANGED
+    best = int(np.nanargmax([row["max_m"] if row["max_m"] == row["max_m"] else -1.0 for row in results.rows]))
+    return (True, progress, "\n".join(job.errors), "\n".join(job.notes), results_view(results), case_options(results),
+            best, True, time.time(), "", "")  # the figures of the new results follow
+
+
+def _result_callbacks(app, session):
+    @app.callback(Output("dky-figure", "src", allow_duplicate=True), Input("results-stamp", "data"),
+                  prevent_initial_call=True)
+    def displacements(_):
+        if session.results is None:
+            return no_update
+        return data_url(drawn(displacement_figure, session.results.rows))
+
+    @app.callback(Output("history-figure", "src"), Output("history-messages", "children"),
+                  Input("case", "value"), Input("history-polarity", "value"), Input("results-stamp", "data"),
+                  prevent_initial_call=True)
+    def history(case, polarity, _):
+        results = session.results
+        if results is None or case is None or case >= len(results.rows):
+            return no_update, ""
+        row = results.rows[case]
+        if row[f"{polarity}_m"] != row[f"{polarity}_m"]:
+            return "", f"the {polarity} polarity was not run: choose the other one"
+        try:
+            return data_url(drawn(history_figure, results.records[row["record"]], results.settings, row,
+                                  polarity)), ""
+        except ValueError as err:
+            return "", str(err)
+
+    @app.callback(Output("download", "data"), Output("history-messages", "children", allow_duplicate=True),
+                  Input("download-csv-button", "n_clicks"), Input("download-dky-button", "n_clicks"),
+                  Input("download-history-button", "n_clicks"), State("case", "value"),
+                  State("history-polarity", "value"), prevent_initial_call=True)
+    def download(_csv, _dky, _history, case, polarity):
+        results = session.results
+        if results is None:
+            return no_update, "nothing to download yet: run an analysis first"
+        trigger = ctx.triggered_id
+        if trigger == "download-csv-button":
+            return dcc.send_string(csv_text(results), "blockdae-results.csv"), ""
+        if trigger == "download-dky-button":
+            return dcc.send_bytes(drawn(displacement_figure, results.rows), "blockdae-D-against-ky.png"), ""
+        if case is None:
+            return no_update, "choose a case first"
+        row = results.rows[case]
+        try:
+            data = drawn(history_figure, results.records[row["record"]], results.settings, row, polarity)
+        except ValueError as err:
+            return no_update, str(err)
+        return dcc.send_bytes(data, f"blockdae-history-{row['record']}-{polarity}.png"), ""

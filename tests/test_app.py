@@ -1,0 +1,156 @@
+"""The web app without a browser: the form's checks (each message names the field and the
+value), the records' rules (a file that does not state its units asks for them, with its
+peak in each unit; a bad file is named with its line), the analyses against the library's
+own calls (the reference: bd.newmark and bd.flexible on the same inputs), a cancelled run,
+and ``blockdae app`` serving the page on 127.0.0.1. Skipped without the app extra."""
+
+import re
+import socket
+import subprocess
+import sys
+import threading
+import urllib.request
+
+import numpy as np
+import pytest
+
+import blockdae as bd
+from conftest import load_sample_record
+
+pytest.importorskip("dash", reason="the app extra is not installed: pip install 'blockdae[app]'")
+
+from blockdae.app._analysis import FieldError, Settings, analyse, case_solution, parse_settings  # noqa: E402
+from blockdae.app._records import load, unit_choices  # noqa: E402
+from blockdae.app._session import Job  # noqa: E402
+
+FORM = {"method": "coupled", "ky_mode": "direct", "ky": "0.1", "height": "20", "vs": "300", "damping": "0.05",
+        "reference_strain": "0.0005", "pga": "", "polarity": "both"}
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"height": "abc"}, "slope height H [m]: 'abc' is not a number"),
+    ({"vs": "-300"}, "shear-wave velocity Vs [m/s]: '-300' must be > 0"),
+    ({"ky": "0.1, 9.81"}, "ky [g]: '9.81' is above 1 g: a ky in m/s²? (0.05 g is 0.49 m/s²)"),
+    ({"ky": ""}, "ky [g]: '' is empty: give one or more yield accelerations in g"),
+    ({"pga": "2.94"}, "target PGA [g]: '2.94' is above 2 g: a PGA in m/s²? (0.3 g is 2.94 m/s²)"),
+    ({"ky_mode": "safety", "factor_of_safety": "0.9", "thrust_angle": "25"},
+     "factor of safety [-]: '0.9' must be > 1"),
+    ({"ky_mode": "safety", "factor_of_safety": "1.2", "thrust_angle": "95"}, "thrust angle [°]: '95' must be < 90"),
+    ({"ky_mode": "table", "ky_table": "0, 0.15\n0.5, 0.05\n0.5, 0.02"},
+     "ky(D) table: '0, 0.15\\n0.5, 0.05\\n0.5, 0.02' is refused: KyTable: displacement_m must be strictly "
+     "increasing; displacement_m[1] = 0.5 m, displacement_m[2] = 0.5 m"),
+    ({"method": "equivalent-linear", "reference_strain": "0"}, "reference strain [-]: '0' must be > 0"),
+])
+def test_a_bad_field_is_named_with_its_value(change, message):
+    with pytest.raises(FieldError) as err:
+        parse_settings({**FORM, **change})
+    assert str(err.value) == message
+
+
+def test_the_form_gives_the_settings():
+    """ky from a factor of safety and a thrust angle is (FS - 1) sin(alpha) (Jibson 1993);
+    the rigid block takes no slope properties."""
+    settings = parse_settings({**FORM, "method": "rigid", "ky_mode": "safety", "factor_of_safety": "1.2",
+                               "thrust_angle": "30", "pga": "0.3", "polarity": "inverse"})
+    assert settings == Settings("rigid", (pytest.approx(0.1, rel=1e-12),), pga=0.3, polarity="inverse")
+    table = parse_settings({**FORM, "ky_mode": "table", "ky_table": "0, 0.15\n0.5: 0.05"}).ky
+    assert table == bd.KyTable((0.0, 0.5), (0.15, 0.05))
+
+
+def test_a_file_without_units_asks_for_them(tmp_path):
+    """The peak is given in each unit; the file reads once the units are given; a one-column
+    file asks for its step first; a bad file is named as the user named it, with its line."""
+    path = tmp_path / "x"
+    path.mkdir()
+    path = path / "plain.csv"
+    path.write_text("0.0, 0.01\n0.01, 0.2\n0.02, -0.15\n0.03, 0.02\n")
+    waiting = load("plain.csv", path)
+    assert (waiting.needs, waiting.record, waiting.raw_peak) == ("units", None, 0.2)
+    assert unit_choices(0.2) == [("g", "g: peak 0.2 g"), ("m/s2", "m/s²: peak 0.2 m/s² = 0.02039 g"),
+                                 ("cm/s2", "cm/s²: peak 0.2 cm/s² = 0.0002039 g")]
+    read = load("plain.csv", path, units="cm/s2")
+    assert read.needs is None and read.record.peak_acceleration == pytest.approx(0.002, rel=1e-12)
+    column = tmp_path / "column.txt"
+    column.write_text("0.01\n0.2\n-0.15\n")
+    assert load("column.txt", column).needs == "step"
+    assert load("column.txt", column, dt=0.01).needs == "units"
+    bad = tmp_path / "x" / "bad.csv"
+    bad.write_text("time (s), acceleration (g)\n0, 0.1\n0.01, abc\n")
+    with pytest.raises(ValueError, match=r"^bad.csv, line 3: not a number in '0.01, abc'$"):
+        load("bad.csv", bad)
+
+
+def test_the_analyses_are_the_librarys():
+    """Rigid: bd.newmark's D, mean and max; equivalent-linear: bd.flexible's row; the
+    history drawn of a case ends at the table's D (for the equivalent-linear mass: the
+    converged column is drawn)."""
+    kobe = load_sample_record("Kobe_1995_TAK-090")
+    rows, notes = analyse("kobe", kobe, Settings("rigid", (0.1, 0.2), pga=0.4))
+    expected = bd.newmark({"kobe": kobe}, [0.1, 0.2], pga=0.4).to_dataframe()
+    for column in ("pga_g", "ky_g", "normal_m", "inverse_m", "mean_m", "max_m"):
+        np.testing.assert_array_equal([row[column] for row in rows], expected[column], err_msg=column)
+    assert notes == []
+    solution, _ = case_solution(kobe, Settings("rigid", (0.1, 0.2), pga=0.4), rows[1], "inverse")
+    assert 0.0 - solution.displacement == pytest.approx(rows[1]["inverse_m"], rel=1e-12)
+    settings = Settings("equivalent-linear", (0.1,), 20.0, 300.0, 0.05, 0.0005, polarity="normal")
+    (row,), _ = analyse("kobe", kobe, settings)
+    library = bd.flexible(kobe, 0.1, 20.0, 300.0, damping=0.05, equivalent_linear=True, reference_strain=0.0005,
+                          polarity="normal").rows[0]
+    assert row["normal_m"] == library["normal_m"] and np.isnan(row["inverse_m"])
+    assert row["mean_m"] == row["max_m"] == row["normal_m"]
+    solution, _ = case_solution(kobe, settings, row, "normal")
+    assert solution.sliding_displacement == pytest.approx(row["normal_m"], rel=1e-9)
+
+
+def test_a_ky_above_the_peak_is_noted():
+    kobe = load_sample_record("Kobe_1995_TAK-090")
+    (row,), notes = analyse("kobe", kobe, Settings("decoupled", (0.7,), 20.0, 300.0, 0.05, pga=0.5))
+    assert row["max_m"] == 0.0
+    assert notes == ["kobe: ky = 0.7 g is at or above the PGA 0.5 g: no sliding, D = 0 m"]
+
+
+def test_a_cancelled_run_stops_between_records(monkeypatch):
+    """The first record blocks until the run is cancelled: the others are not run."""
+    release = threading.Event()
+
+    def analyse_slowly(name, record, settings):
+        release.wait(10)
+        return [{"record": name}], []
+
+    monkeypatch.setattr("blockdae.app._session.analyse", analyse_slowly)
+    kobe = load_sample_record("Kobe_1995_TAK-090")
+    job = Job({"a": kobe, "b": kobe, "c": kobe}, Settings("rigid", (0.1,)))
+    job.cancelled.set()
+    release.set()
+    assert job.finished.wait(10)
+    assert (job.done, job.total, job.rows, job.errors) == (1, 3, [{"record": "a"}], [])
+
+
+def test_the_command_serves_the_page_on_this_computer():
+    """``blockdae app --no-browser`` prints its address on 127.0.0.1 and serves the page and
+    Dash's scripts from the installed wheel."""
+    process = subprocess.Popen([sys.executable, "-m", "blockdae.cli", "app", "--no-browser"], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    try:
+        line = process.stdout.readline()
+        url = re.fullmatch(r"blockdae app: (http://127\.0\.0\.1:\d+/) \(Ctrl\+C stops it\)\n", line)
+        assert url, (line, process.stderr.read() if process.poll() is not None else "")
+        page = urllib.request.urlopen(url[1], timeout=30).read().decode()
+        assert "<title>blockdae</title>" in page
+        scripts = re.findall(r'<script src="([^"]+)"', page)
+        assert scripts and all(src.startswith("/") for src in scripts), scripts
+        assert urllib.request.urlopen(url[1] + scripts[-1].lstrip("/"), timeout=30).status == 200
+    finally:
+        process.terminate()
+        process.wait(30)
+
+
+def test_a_port_in_use_is_named():
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        done = subprocess.run([sys.executable, "-m", "blockdae.cli", "app", "--no-browser", "--port", str(port)],
+                              capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    assert done.stderr.startswith(f"blockdae: error: --port: port {port} on 127.0.0.1 is not free"), done.stderr
