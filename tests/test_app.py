@@ -12,15 +12,18 @@ import threading
 import urllib.request
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import blockdae as bd
+from blockdae import design
 from conftest import load_sample_record
 
 pytest.importorskip("dash", reason="the app extra is not installed: pip install 'blockdae[app]'")
 
 from blockdae.app._analysis import FieldError, Settings, analyse, case_solution, parse_settings  # noqa: E402
 from blockdae.app._records import load, unit_choices  # noqa: E402
+from blockdae.app._design import DesignJob, parse_design, parse_inverse  # noqa: E402
 from blockdae.app._session import Job  # noqa: E402
 
 FORM = {"method": "coupled", "ky_mode": "direct", "ky": "0.1", "height": "20", "vs": "300", "damping": "0.05",
@@ -154,3 +157,84 @@ def test_a_port_in_use_is_named():
                               capture_output=True, text=True, timeout=120)
     assert done.returncode == 2
     assert done.stderr.startswith(f"blockdae: error: --port: port {port} on 127.0.0.1 is not free"), done.stderr
+
+
+DESIGN = {"method": "rigid", "polarity": "normal", "ky_mean": "0.1", "ky_cov": "0.3", "height_mean": "20",
+          "height_cov": "0", "vs_mean": "300", "vs_cov": "0.15", "damping": "0.05", "reference_strain": "0.0005",
+          "pga": "0.3", "sampling": "sobol", "seed": "7", "rse": "", "halfwidth": "", "runs_per_block": "8",
+          "max_runs": "16", "threshold": "0.05", "allowable": "0.05", "target": "0.2", "inverse_runs": "8"}
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"ky_mean": "0.98x"}, "mean ky [g]: '0.98x' is not a number"),
+    ({"ky_mean": "1.5"}, "mean ky [g]: '1.5' is above 1 g: a ky in m/s²? (0.05 g is 0.49 m/s²)"),
+    ({"method": "coupled", "vs_cov": "-0.1"}, "cov of shear-wave velocity Vs [-]: '-0.1' must be >= 0"),
+    ({"seed": "1.5"}, "seed: '1.5' is not an integer"),
+    ({"runs_per_block": "12"}, "runs per block: '12' must be a power of 2 for Sobol samples (e.g. 16)"),
+    ({"max_runs": "4"}, "at most runs: '4' must be >= 8"),
+    ({"threshold": "0"}, "threshold displacement [m]: '0' must be > 0"),
+])
+def test_a_bad_design_field_is_named_with_its_value(change, message):
+    with pytest.raises(FieldError) as err:
+        parse_design({**DESIGN, **change})
+    assert str(err.value) == message
+
+
+def test_a_bad_inverse_field_is_named_with_its_value():
+    settings = parse_design(DESIGN)
+    for change, message in (({"target": "1"}, "target probability [-]: '1' must be < 1"),
+                            ({"inverse_runs": "6"}, "samples per record: '6' must be a power of 2 for Sobol samples "
+                                                    "(e.g. 64)")):
+        with pytest.raises(FieldError) as err:
+            parse_inverse({**DESIGN, **change}, settings)
+        assert str(err.value) == message
+    with pytest.raises(FieldError, match=r"^cov of ky \[-\]: '0' must be > 0 for the design inverse"):
+        parse_inverse(DESIGN, parse_design({**DESIGN, "ky_cov": "0"}))
+
+
+def _finished(job):
+    assert job.finished.wait(300)
+    assert job.error is None, job.error
+    return job.result
+
+
+def test_the_design_form_gives_the_librarys_model_and_parameters():
+    """Equivalent-linear: the coupled flexible mass with its iteration; a cov of 0 keeps the value fixed."""
+    settings = parse_design({**DESIGN, "method": "equivalent-linear", "height_cov": "0", "polarity": "larger"})
+    assert settings.model == design.Flexible("coupled", True, 0.0005, "larger")
+    assert settings.parameters == {"ky": design.LogNormal(mean=0.1, cov=0.3), "height": 20.0,
+                                   "vs": design.LogNormal(mean=300.0, cov=0.15), "damping": 0.05}
+
+
+def test_the_design_is_the_librarys():
+    """P(D > threshold), its interval and every sample of the page's study are those of
+    design.exceedance called directly on the same records, parameters and seed; the
+    design inverse's mean ky and each record's ky those of mean_ky_for_probability and
+    ky_for_displacement; the analyses counted are the library's (2 records x 16 runs)."""
+    records = {"kobe": load_sample_record("Kobe_1995_TAK-090"),
+               "cape": load_sample_record("Cape_Mendocino_1992_PET-090")}
+    settings = parse_design(DESIGN)
+    result = _finished(job := DesignJob(records, settings, "exceedance"))
+    expected = design.exceedance(records, design.Rigid(), {"ky": design.LogNormal(mean=0.1, cov=0.3)}, pga=0.3,
+                                 threshold=0.05, seed=7, runs=16, runs_per_block=8, max_runs=16)
+    pd.testing.assert_frame_equal(result.table, expected.table)
+    assert (result.probability, result.probability_interval) == (expected.probability, expected.probability_interval)
+    assert 0 < expected.probability < 1 and job.analyses == 32
+    inverse = parse_inverse(DESIGN, settings)
+    found = _finished(DesignJob(records, settings, "inverse", inverse))
+    need = design.mean_ky_for_probability(records, design.Rigid(), {"ky": design.LogNormal(mean=0.1, cov=0.3)},
+                                          0.05, 0.2, pga=0.3, runs=8, seed=7)
+    assert found.design.mean_ky_g == need.mean_ky_g
+    assert found.per_record == [(name, 0.3, design.ky_for_displacement(record, design.Rigid(), {}, 0.05, pga=0.3))
+                                for name, record in records.items()]
+
+
+def test_a_cancelled_design_stops_at_its_next_batch():
+    """A fixed 4096 runs on one record, cancelled once analyses are counted: it stops with no result."""
+    settings = parse_design({**DESIGN, "max_runs": "4096", "runs_per_block": "8"})
+    job = DesignJob({"kobe": load_sample_record("Kobe_1995_TAK-090")}, settings, "exceedance")
+    while job.analyses == 0 and not job.finished.is_set():
+        job.finished.wait(0.01)
+    job.cancelled.set()
+    assert job.finished.wait(60)
+    assert job.result is None and job.error is None and 0 < job.analyses < 4096

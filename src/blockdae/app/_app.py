@@ -12,6 +12,7 @@ from dash import ALL, Dash, Input, Output, State, ctx, dcc, no_update
 from ..excitation import Record
 from ._analysis import (Settings, case_solution, displacement_figure, history_figure, library_table,
                         parse_settings)
+from ._design_page import design_callbacks, design_section
 from ._page import HIDDEN, SHOWN, layout
 from ._records import record_figure
 from ._session import Session
@@ -28,13 +29,14 @@ def create_app(folder) -> Dash:
     (their first run after an install compiles them) while the page loads."""
     session = Session(folder)
     app = Dash(__name__, title="blockdae", serve_locally=True, update_title=None)
-    app.layout = layout()
+    app.layout = layout(design_section())
     app.server.config["MAX_CONTENT_LENGTH"] = None
     warm = _WarmUp()
     thumbnails = {}  # file label -> the PNG data URL of its record
     _record_callbacks(app, session, thumbnails)
     _analysis_callbacks(app, session)
     _result_callbacks(app, session)
+    design_callbacks(app, session)
 
     @app.callback(Output("engine-status", "children"), Output("engine-poll", "disabled"),
                   Input("engine-poll", "n_intervals"))

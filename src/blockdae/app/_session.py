@@ -9,7 +9,9 @@ import threading
 import time
 
 from ._analysis import Settings, analyse
+from ._design import DesignJob, DesignSettings, InverseSettings
 from ._records import LoadedFile, load
+
 
 class Job:
     """An analysis of ``records`` (name -> Record) under ``settings`` on a thread of its own,
@@ -59,13 +61,16 @@ class Results:
 
 
 class Session:
-    """The files, the running job and the last results of one app; files are written under ``folder``."""
+    """The files, the running jobs (an analysis, a design study) and the last results of
+    one app; files are written under ``folder``."""
 
     def __init__(self, folder):
         self.folder = pathlib.Path(folder)
         self.files: dict[str, LoadedFile] = {}
         self.job: Job | None = None
         self.results: Results | None = None
+        self.design_job: DesignJob | None = None
+        self.design = None  # the last design study that finished (an Exceedance)
         self._lock = threading.Lock()
 
     def add_upload(self, filename: str, contents: str) -> LoadedFile:
@@ -116,3 +121,14 @@ class Session:
         if job.rows:
             self.results = Results(job.settings, job.records, job.rows)
         return self.results if job.rows else None
+
+    def start_design(self, settings: DesignSettings, kind: str, inverse: InverseSettings | None = None) -> DesignJob:
+        """A design study (``kind``: "exceedance" or "inverse") over the ready records;
+        ValueError if none is ready or a study is running."""
+        if self.design_job is not None and not self.design_job.finished.is_set():
+            raise ValueError("a design study is running: wait for it or cancel it")
+        records = self.ready()
+        if not records:
+            raise ValueError("no record is loaded (or every file still waits for its units): load a record first")
+        self.design_job = DesignJob(records, settings, kind, inverse)
+        return self.design_job

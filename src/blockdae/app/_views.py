@@ -46,7 +46,7 @@ def data_url(data: bytes) -> str:
     return "data:image/png;base64," + base64.b64encode(data).decode()
 
 
-def _table(id_, headings, rows):
+def table(id_, headings, rows):
     return html.Table(id=id_, style={"borderCollapse": "collapse", "fontSize": "small", "margin": "6px 0"}, children=[
         html.Thead(html.Tr([html.Th(h, style=_HEAD) for h in headings])),
         html.Tbody([html.Tr([html.Td(cell, style=_CELL) for cell in row]) for row in rows])])
@@ -65,7 +65,7 @@ def records_view(session, thumbnails: dict):
             row = summary(loaded)
             rows.append([fmt.format(row[key]) for key, _, fmt in RECORD_COLUMNS] +
                         [html.Button("remove", id={"type": "remove", "file": loaded.label}, n_clicks=0)])
-        parts.append(html.Div(_table("records-table", [h for _, h, _ in RECORD_COLUMNS] + [""], rows), style=_SCROLL))
+        parts.append(html.Div(table("records-table", [h for _, h, _ in RECORD_COLUMNS] + [""], rows), style=_SCROLL))
         notes = [f"{f.label}: {note}" for f in ready for note in f.notes]
         if notes:
             parts.append(html.Div("\n".join(notes), style={**NOTES, "fontSize": "small"}))
@@ -108,7 +108,7 @@ def results_view(results):
     """The table of D per (record, PGA, ky)."""
     columns = result_columns(results.settings)
     rows = [[_shown(row[c], c) for c in columns] for row in results.rows]
-    return [html.Div(_table("results-table", [HEADINGS[c] for c in columns], rows), style=_SCROLL)]
+    return [html.Div(table("results-table", [HEADINGS[c] for c in columns], rows), style=_SCROLL)]
 
 
 def case_options(results):
