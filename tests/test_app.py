@@ -1,7 +1,8 @@
 """The web app without a browser: the form's checks (each message names the field and the
 value), the records' rules (a file that does not state its units asks for them, with its
 peak in each unit; a bad file is named with its line), the analyses against the library's
-own calls (the reference: bd.newmark and bd.flexible on the same inputs), a cancelled run,
+own calls (the reference: bd.newmark and bd.flexible on the same inputs), the design
+page's form and studies against blockdae.design called directly, a cancelled run,
 and ``blockdae app`` serving the page on 127.0.0.1. Skipped without the app extra."""
 
 import re

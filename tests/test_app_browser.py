@@ -3,7 +3,8 @@ Selenium): records loaded through the page (one asks for its units), a coupled a
 run, its table read and its CSV downloaded and compared with ``bd.flexible`` on the same
 inputs (the reference: the library's own call, run here), a bad file and a bad field
 answered by a message that names them while the loaded records and results stay; the time
-from a click on Run to a single-record table, measured. A screenshot of each step is
+from a click on Run to a single-record table, measured; a design run in the page, its
+P(D > threshold) and mean ky compared with ``blockdae.design`` on the same inputs and seed. A screenshot of each step is
 saved; its folder is printed (``pytest -s``) and is ``$BLOCKDAE_APP_SCREENSHOTS`` where set.
 
 Skipped, saying why, without the app extra (``pip install 'blockdae[app]'``), Selenium,
@@ -299,3 +300,61 @@ def test_a_folder_of_records_shows_what_each_header_says(browser, tmp_path, scre
                                                                                      component)
         assert (row["dt [s]"], row["samples"], row["PGA [g]"]) == ("0.01", "200", "0.1018")  # 99.8 cm/s²
     _shoot(browser, screenshots, "7-folder-of-records")
+
+
+#: the design run in the page: a coupled flexible mass, ky and Vs log-normal, 16 Sobol runs per record
+DESIGN_FIELDS = {"design-ky-mean": "0.15", "design-ky-cov": "0.3", "design-height-mean": "20", "design-height-cov": "0",
+                 "design-vs-mean": "300", "design-vs-cov": "0.15", "design-damping": "0.05", "design-pga": "",
+                 "design-seed": "3", "design-rse": "", "design-halfwidth": "", "design-runs-per-block": "16",
+                 "design-max-runs": "16", "design-threshold": "0.3", "design-allowable": "0.3",
+                 "design-target": "0.25", "design-inverse-runs": "8"}
+
+
+def test_a_design_in_the_page_is_the_librarys(browser, files, screenshots):
+    """A fresh app: two records loaded, a design of 16 runs per record run; P(D > 0.3 m) read
+    from the page (its count of analyses above the threshold) equals that of
+    design.exceedance called here on the same records, parameters and seed (the reference:
+    the library's own call); then the mean ky for P <= 0.25, as mean_ky_for_probability finds it."""
+    from blockdae import design
+
+    local = LocalApp().start()
+    try:
+        browser.get(local.url)
+        _wait(browser, WARM_UP_S).until(lambda d: "Solvers ready" in d.find_element(By.ID, "engine-status").text)
+        cape = {p.stem: p for p in sample_record_paths()}["Cape_Mendocino_1992_PET-090"]
+        _upload(browser, files["stated"], cape)
+        _rows_of(browser, "records-table", 2)
+        browser.find_element(By.CSS_SELECTOR, "#design-method input[value=coupled]").click()
+        for id_, value in DESIGN_FIELDS.items():
+            _type(browser, id_, value)
+        browser.find_element(By.ID, "design-run").click()
+        _, rows = _rows_of(browser, "design-summary", 7, timeout=120)
+        shown = dict(rows)
+        records = {"Kobe_1995_TAK-090": _read_g(files["stated"]), "Cape_Mendocino_1992_PET-090": _read_g(cape)}
+        parameters = {"ky": design.LogNormal(mean=0.15, cov=0.3), "height": 20.0,
+                      "vs": design.LogNormal(mean=300.0, cov=0.15), "damping": 0.05}
+        expected = design.exceedance(records, design.Flexible("coupled"), parameters, threshold=0.3, seed=3, runs=16,
+                                     runs_per_block=16, max_runs=16)
+        above = int((expected.table["D_m"] > 0.3).sum())
+        low, high = expected.probability_interval
+        assert shown["P(D > threshold) [-]"] == f"{expected.probability:.4f} ({above} of 32 analyses)"
+        assert shown["95% interval (Wilson) [-]"] == f"{low:.4f} to {high:.4f}"
+        assert 0 < above < 32  # some samples exceed, some do not: the comparison means something
+        _, parts = _table(browser, "design-contributions")
+        assert [row[0] for row in parts] == list(records)
+        _wait(browser, 60).until(lambda d: (d.find_element(By.ID, "design-figure").get_attribute("src") or "")
+                                 .startswith("data:image/png"))
+
+        browser.find_element(By.ID, "design-inverse-run").click()
+        text = _wait(browser, 120).until(lambda d: d.find_elements(By.ID, "design-mean-ky") and
+                                         d.find_element(By.ID, "design-mean-ky").text)
+        need = design.mean_ky_for_probability(records, design.Flexible("coupled"), parameters, 0.3, 0.25, runs=8,
+                                              seed=3)
+        assert text.startswith(f"mean ky needed: {need.mean_ky_g:.4f} g for P(D > 0.3 m) <= 0.25 over 16 samples")
+        _rows_of(browser, "design-ky-table", 2)
+        browser.execute_script("document.getElementById('design-result').scrollIntoView()")
+        _shoot(browser, screenshots, "8-design")
+        print(f"\nthe design in the page: P(D > 0.3 m) = {shown['P(D > threshold) [-]']}, "
+              f"{browser.find_element(By.ID, 'design-progress').text}; {text}")
+    finally:
+        local.stop()

@@ -5,8 +5,9 @@ The workflow, in SLAMMER's order: records (every format the readers know; a file
 does not state its units asks for them), the analysis (rigid block, decoupled, coupled,
 equivalent-linear; ky directly, from a factor of safety and thrust angle, or a ky(D) table;
 a target PGA; both polarities), the results (D per record, the history of a case, D against
-ky; CSV and PNG). Built on Dash, whose scripts come from its installed wheel: nothing is
-loaded from the internet.
+ky; CSV and PNG), and the design (the slope's properties uncertain: the probability that D
+exceeds a threshold, the mean ky a design needs). Built on Dash, whose scripts come from
+its installed wheel: nothing is loaded from the internet.
 """
 
 __all__ = ["LocalApp", "serve"]

@@ -52,10 +52,10 @@ def design_section():
         field("allowable displacement [m]", "design-allowable", "0.1"),
         field("target probability of exceeding it [-]", "design-target", "0.1"),
         field("samples per record (Sobol: a power of 2)", "design-inverse-runs", "64"),
+        html.Button("Find the ky", id="design-inverse-run", n_clicks=0,
+                    style={"fontSize": "large", "padding": "4px 24px"}),
         html.Div(style={"margin": "10px 0"}, children=[
-            html.Button("Find the ky", id="design-inverse-run", n_clicks=0,
-                        style={"fontSize": "large", "padding": "4px 24px"}),
-            html.Button("Cancel", id="design-cancel", n_clicks=0, disabled=True, style={"marginLeft": "12px"}),
+            html.Button("Cancel", id="design-cancel", n_clicks=0, disabled=True),
             html.Span(id="design-progress", style={"marginLeft": "16px"})]),
         dcc.Interval(id="design-poll", interval=250, disabled=True),
         html.Div(id="design-messages", role="alert", style=MESSAGES),
@@ -134,11 +134,18 @@ def _views(job: DesignJob):
         return no_update, no_update, no_update
     if job.kind == "inverse":
         return no_update, no_update, inverse_view(job.result, job.inverse)
-    return exceedance_view(job.result), data_url(drawn(job.result.figure)), no_update
+    return exceedance_view(job.result, job.settings), data_url(drawn(job.result.figure)), no_update
 
 
-def exceedance_view(result):
-    """P(D > threshold) with its interval and the study's numbers; each record's part."""
+def _stopping(result, settings):
+    if settings.rse is None and settings.halfwidth is None:
+        return "none: a fixed number of runs"
+    return "met" if result.converged else "not met: the runs allowed are done"
+
+
+def exceedance_view(result, settings):
+    """P(D > threshold) with its interval and the study's numbers (``settings``: the
+    study's :class:`DesignSettings`); each record's part."""
     low, high = result.probability_interval
     d = result.table["D_m"].to_numpy()
     above = int((d > result.threshold_m).sum())
@@ -149,7 +156,7 @@ def exceedance_view(result):
             ["mean D [m]", f"{result.mean_m:.4g}"],
             ["relative standard error of the mean D [-]", f"{result.rse:.3g}"],
             ["runs (one set of properties per record each)", f"{runs}"],
-            ["stopping rule met", "yes" if result.converged else "no: the runs allowed are done"]]
+            ["stopping rule", _stopping(result, settings)]]
     parts = [[row["record"], f"{row['samples']}", f"{row['mean_D_m']:.4g}", f"{row['P_exceed']:.4f}",
               f"{row['share']:.3f}"] for _, row in result.contributions().iterrows()]
     return [table("design-summary", ["", "value"], rows),

@@ -1,5 +1,5 @@
-"""The page: records, analysis and results, in the order SLAMMER's users know (Dash
-components; the ids are what the callbacks and the browser tests address)."""
+"""The page: records, analysis and results, in the order SLAMMER's users know, then the
+design (Dash components; the ids are what the callbacks and the browser tests address)."""
 
 from dash import dcc, html
 
