@@ -173,6 +173,7 @@ DESIGN = {"method": "rigid", "polarity": "normal", "ky_mean": "0.1", "ky_cov": "
     ({"seed": "1.5"}, "seed: '1.5' is not an integer"),
     ({"runs_per_block": "12"}, "runs per block: '12' must be a power of 2 for Sobol samples (e.g. 16)"),
     ({"max_runs": "4"}, "at most runs: '4' must be >= 8"),
+    ({"max_runs": "20"}, "at most runs: '20' must be a multiple of the runs per block (8) for Sobol samples"),
     ({"threshold": "0"}, "threshold displacement [m]: '0' must be > 0"),
 ])
 def test_a_bad_design_field_is_named_with_its_value(change, message):

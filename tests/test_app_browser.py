@@ -310,11 +310,13 @@ DESIGN_FIELDS = {"design-ky-mean": "0.15", "design-ky-cov": "0.3", "design-heigh
                  "design-target": "0.25", "design-inverse-runs": "8"}
 
 
-def test_a_design_in_the_page_is_the_librarys(browser, files, screenshots):
+def test_a_design_in_the_page_is_the_librarys(browser, files, downloads, screenshots):
     """A fresh app: two records loaded, a design of 16 runs per record run; P(D > 0.3 m) read
-    from the page (its count of analyses above the threshold) equals that of
-    design.exceedance called here on the same records, parameters and seed (the reference:
-    the library's own call); then the mean ky for P <= 0.25, as mean_ky_for_probability finds it."""
+    from the page (its count of analyses above the threshold) and the samples' CSV equal
+    those of design.exceedance called here on the same records, parameters and seed (the
+    reference: the library's own call); then the mean ky for P <= 0.25, as
+    mean_ky_for_probability finds it, and each record's ky as ky_for_displacement; a bad
+    threshold is named and the results stay."""
     from blockdae import design
 
     local = LocalApp().start()
@@ -323,14 +325,16 @@ def test_a_design_in_the_page_is_the_librarys(browser, files, screenshots):
         _wait(browser, WARM_UP_S).until(lambda d: "Solvers ready" in d.find_element(By.ID, "engine-status").text)
         cape = {p.stem: p for p in sample_record_paths()}["Cape_Mendocino_1992_PET-090"]
         _upload(browser, files["stated"], cape)
-        _rows_of(browser, "records-table", 2)
+        headings, loaded = _rows_of(browser, "records-table", 2)
+        order = [dict(zip(headings, row))["record"] for row in loaded]  # the records' order seeds their samples
         browser.find_element(By.CSS_SELECTOR, "#design-method input[value=coupled]").click()
         for id_, value in DESIGN_FIELDS.items():
             _type(browser, id_, value)
         browser.find_element(By.ID, "design-run").click()
         _, rows = _rows_of(browser, "design-summary", 7, timeout=120)
         shown = dict(rows)
-        records = {"Kobe_1995_TAK-090": _read_g(files["stated"]), "Cape_Mendocino_1992_PET-090": _read_g(cape)}
+        paths = {"Kobe_1995_TAK-090": files["stated"], "Cape_Mendocino_1992_PET-090": cape}
+        records = {name: _read_g(paths[name]) for name in order}
         parameters = {"ky": design.LogNormal(mean=0.15, cov=0.3), "height": 20.0,
                       "vs": design.LogNormal(mean=300.0, cov=0.15), "damping": 0.05}
         expected = design.exceedance(records, design.Flexible("coupled"), parameters, threshold=0.3, seed=3, runs=16,
@@ -344,6 +348,10 @@ def test_a_design_in_the_page_is_the_librarys(browser, files, screenshots):
         assert [row[0] for row in parts] == list(records)
         _wait(browser, 60).until(lambda d: (d.find_element(By.ID, "design-figure").get_attribute("src") or "")
                                  .startswith("data:image/png"))
+        browser.find_element(By.ID, "design-download-button").click()
+        csv = downloads / "blockdae-design-samples.csv"
+        _wait(browser, 30).until(lambda d: csv.exists() and csv.stat().st_size > 0)
+        pd.testing.assert_frame_equal(pd.read_csv(csv), expected.table, check_exact=True)
 
         browser.find_element(By.ID, "design-inverse-run").click()
         text = _wait(browser, 120).until(lambda d: d.find_elements(By.ID, "design-mean-ky") and
@@ -351,10 +359,18 @@ def test_a_design_in_the_page_is_the_librarys(browser, files, screenshots):
         need = design.mean_ky_for_probability(records, design.Flexible("coupled"), parameters, 0.3, 0.25, runs=8,
                                               seed=3)
         assert text.startswith(f"mean ky needed: {need.mean_ky_g:.4f} g for P(D > 0.3 m) <= 0.25 over 16 samples")
-        _rows_of(browser, "design-ky-table", 2)
+        _, per_record = _rows_of(browser, "design-ky-table", 2)
+        at_means = {"height": 20.0, "vs": 300.0, "damping": 0.05}
+        kys = [design.ky_for_displacement(r, design.Flexible("coupled"), at_means, 0.3) for r in records.values()]
+        assert per_record == [[name, "as recorded", f"{ky:.4f}"] for name, ky in zip(records, kys)]
+        print(f"\nthe design in the page: P(D > 0.3 m) = {shown['P(D > threshold) [-]']}; "
+              f"{browser.find_element(By.ID, 'design-progress').text}; {text}")
+        _type(browser, "design-threshold", "abc")
+        browser.find_element(By.ID, "design-run").click()
+        message = _wait(browser, 30).until(lambda d: d.find_element(By.ID, "design-messages").text or None)
+        assert message == "threshold displacement [m]: 'abc' is not a number"
+        assert dict(_table(browser, "design-summary")[1]) == shown
         browser.execute_script("document.getElementById('design-result').scrollIntoView()")
         _shoot(browser, screenshots, "8-design")
-        print(f"\nthe design in the page: P(D > 0.3 m) = {shown['P(D > threshold) [-]']}, "
-              f"{browser.find_element(By.ID, 'design-progress').text}; {text}")
     finally:
         local.stop()

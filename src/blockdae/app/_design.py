@@ -139,6 +139,9 @@ def parse_design(form: dict) -> DesignSettings:
         raise FieldError("runs per block", form.get("runs_per_block"),
                          "must be a power of 2 for Sobol samples (e.g. 16)")
     max_runs = _integer("at most runs", form.get("max_runs"), block)
+    if sampling == "sobol" and max_runs % block:
+        raise FieldError("at most runs", form.get("max_runs"),
+                         f"must be a multiple of the runs per block ({block}) for Sobol samples")
     threshold = _number("threshold displacement [m]", form.get("threshold"), low=0.0)
     return DesignSettings(method, parameters, strain, polarity, pga, sampling, seed, rse, halfwidth, block, max_runs,
                           threshold)
