@@ -191,7 +191,7 @@ def test_a_bad_inverse_field_is_named_with_its_value():
             parse_inverse({**DESIGN, **change}, settings)
         assert str(err.value) == message
     with pytest.raises(FieldError, match=r"^cov of ky \[-\]: '0' must be > 0 for the design inverse"):
-        parse_inverse(DESIGN, parse_design({**DESIGN, "ky_cov": "0"}))
+        parse_inverse({**DESIGN, "ky_cov": "0"}, parse_design({**DESIGN, "ky_cov": "0"}))
 
 
 def _finished(job):

@@ -151,7 +151,8 @@ def parse_inverse(form: dict, settings: DesignSettings) -> InverseSettings:
     """The :class:`InverseSettings` of the form (keys: allowable, target, inverse_runs);
     FieldError naming a bad field (ky must be uncertain: its mean is what is found)."""
     if not isinstance(settings.parameters["ky"], LogNormal):
-        raise FieldError("cov of ky [-]", "0", "must be > 0 for the design inverse (it scales the mean of ky)")
+        raise FieldError("cov of ky [-]", form.get("ky_cov"),
+                         "must be > 0 for the design inverse (it scales the mean of ky)")
     allowable = _number("allowable displacement [m]", form.get("allowable"), low=0.0)
     target = _number("target probability [-]", form.get("target"), low=0.0, high=1.0)
     runs = _integer("samples per record", form.get("inverse_runs"), 2)
