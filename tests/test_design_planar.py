@@ -41,6 +41,7 @@ def test_each_sample_is_the_block_run_alone():
         full = max(_alone(RECORDS[row.record], row.mu, 0.4, p, row.bias_x, final_only=False)
                    for p in ("normal", "inverse"))
         assert full == row.D_m
+    assert "friction coefficient mu" in result.ky_figure().axes[0].get_xlabel()
 
 
 def test_nothing_slides_above_the_largest_friction_demand():
@@ -114,3 +115,44 @@ def test_planar_inputs_are_checked():
         dz.ky_for_displacement(RECORDS["first"], dz.Planar(), {"bias_x": BIAS}, 50.0, pga=0.1)
     with pytest.raises(ValueError, match="polarity"):
         dz.Planar(polarity="both")
+
+
+def _three_components():
+    """Decaying sines along x, y and z [m/s²] (peaks 3, 2 and 1.5 m/s²: the base never
+    falls faster than g), one step of 0.01 s."""
+    t = np.arange(600) * 0.01
+    return bd.BaseMotion.from_samples(3.0 * np.sin(2 * np.pi * 1.5 * t) * np.exp(-0.4 * t),
+                                      2.0 * np.sin(2 * np.pi * 1.1 * t + 0.7) * np.exp(-0.3 * t),
+                                      1.5 * np.sin(2 * np.pi * 3.0 * t) * np.exp(-0.5 * t), dt=0.01, name="three")
+
+
+def test_a_base_motion_of_three_components():
+    """Each sample against the PlanarBlock run alone on the same BaseMotion (bit for bit);
+    the friction limit against its closed form |(a_x - b_x g, a_y - b_y g)| / (g + a_z) at
+    the samples (D = 0 there, D > 0 just below); the mu for an allowable D rerun alone
+    (1e-6 relative)."""
+    motion, bias = _three_components(), (BIAS, 0.01)
+    result = dz.exceedance({"three": motion}, dz.Planar(), {"mu": dz.LogNormal(mean=0.15, cov=0.3), "bias_x": bias[0],
+                                                             "bias_y": bias[1]}, threshold=0.05, runs=4,
+                           runs_per_block=4)
+    for row in result.table.itertuples():
+        solution = bd.simulate(bd.PlanarBlock(mu=row.mu, bias=bias), motion, backend="compiled")
+        assert row.D_m == float(np.hypot(*solution.displacement)) > 0
+    g = bd.STANDARD_GRAVITY
+    a_x, a_y, a_z = (c.acceleration_samples for c in motion.components)
+    limit = np.max(np.hypot(a_x - bias[0] * g, a_y - bias[1] * g) / (g + a_z))
+    values = {"mu": np.array([limit, limit * (1 - 1e-6)]), "bias_x": np.full(2, bias[0]), "bias_y": np.full(2, bias[1])}
+    assert dz.Planar().sliding_limit(motion, None, values)[0] == pytest.approx(limit, rel=1e-15)
+    d = dz.Planar().displacements(motion, None, values)
+    assert d[0] == 0 and d[1] > 0
+    mu = dz.ky_for_displacement(motion, dz.Planar(), {"bias_x": bias[0], "bias_y": bias[1]}, ALLOWABLE)
+    solution = bd.simulate(bd.PlanarBlock(mu=mu, bias=bias), motion, backend="compiled")
+    assert float(np.hypot(*solution.displacement)) == pytest.approx(ALLOWABLE, rel=1e-6)
+
+
+def test_a_base_motion_is_taken_as_given_and_by_the_plane_only():
+    motion = _three_components()
+    with pytest.raises(ValueError, match="a target PGA scales a record of one component"):
+        dz.exceedance(motion, dz.Planar(), {"mu": 0.2}, pga=0.3, threshold=0.1, runs=2)
+    with pytest.raises(ValueError, match="must be a Record, got BaseMotion"):
+        dz.exceedance(motion, dz.Rigid(), {"ky": 0.2}, threshold=0.1, runs=2)

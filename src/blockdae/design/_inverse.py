@@ -105,7 +105,7 @@ def ky_for_displacement(record, model, parameters, allowable, *, pga=None):
         ValueError: D stays below ``allowable`` even at ky = 1e-4 g (no ky is needed;
             on a plane, at mu = |bias| + 1e-4).
     """
-    (_, record, pga), = record_set(record, pga)
+    (_, record, pga), = record_set(record, pga, model)
     ky = critical_ky(model, record, pga, dict(parameters), allowable, newton=model.kind == "rigid")[0]
     if ky == 0:
         raise ValueError(f"D stays below allowable={allowable!r} m even at {_floor_words(model, parameters)}: "
@@ -129,7 +129,7 @@ def ky_for_percentile(records, model, parameters, allowable, *, percentile=50.0,
     allowable = _check_allowable(allowable)
     if not 0 <= percentile <= 100:
         raise ValueError(f"percentile={percentile!r} must lie in [0, 100]")
-    entries = record_set(records, pga)
+    entries = record_set(records, pga, model)
     key = model.DESIGN
     fixed = {name: float(v) for name, v in parameters.items() if name != key}
 
@@ -214,7 +214,7 @@ def mean_ky_for_probability(records, model, parameters, allowable, target, *, pg
         raise ValueError(f"target={target!r} must be a probability in (0, 1)")
     if not (isinstance(runs, int) and runs >= 2) or (sampling == "sobol" and runs & (runs - 1)):
         raise ValueError(f"runs={runs!r} must be an integer >= 2 (a power of 2 for sampling='sobol', e.g. 64)")
-    entries = record_set(records, pga)
+    entries = record_set(records, pga, model)
     draws = Draws(model, parameters, len(entries), sampling, seed, correlation, runs)
     key = model.DESIGN
     if key not in draws.uncertain:

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ..core import simulate
-from ..excitation import UnitsWarning, pga_factor
+from ..excitation import BaseMotion, Record, UnitsWarning, pga_factor
 from ..flexible_mass import flexible
 from ..planar import PlanarBlock
 from ..sliding import newmark
@@ -148,14 +148,16 @@ class Flexible:
 @dataclasses.dataclass(frozen=True)
 class Planar:
     """The block on a plane (:class:`blockdae.PlanarBlock`) shaken by one horizontal
-    component along x (a Record), run by :func:`blockdae.simulate` on the compiled engine
-    with final numbers only: a record's batch of parameter sets (at its target PGA, in
-    both polarities where asked) in one compiled call.
+    component along x (a Record, scaled to its target PGA) or by a
+    :class:`blockdae.BaseMotion` of Records (x, y and the vertical z, at its own
+    amplitude), run by :func:`blockdae.simulate` on the compiled engine with final
+    numbers only: a record's batch of parameter sets (in both polarities where asked) in
+    one compiled call.
 
     D [m] is the permanent sliding distance: |u| = sqrt(u_x² + u_y²) at the end, once
     the block has come to rest. Its parameters (all [-]) are mu (the static friction
     coefficient, the plane's counterpart of ky: the block sticks while
-    |a(t) - bias g| <= mu g), mu_kinetic (default mu), and bias_x, bias_y (a constant
+    |a_h(t) - bias g| <= mu (g + a_z(t)), a_h horizontal, a_z vertical), mu_kinetic (default mu), and bias_x, bias_y (a constant
     horizontal force on the block as a fraction of its weight: a slope's downslope pull
     is ``bias_x=-sin(angle)``; |bias| < mu_kinetic, or the block would never stop).
     The design inverses solve for mu; they need D to fall as mu rises, as it does with a
@@ -175,6 +177,8 @@ class Planar:
     DESIGN = "mu"
     #: the table's columns: the names :class:`blockdae.PlanarBlock` gives them
     COLUMNS = {name: name for name in PARAMETERS}
+    #: what a record of a study may be
+    MOTIONS = (Record, BaseMotion)
     kind = "planar"
 
     def __post_init__(self):
@@ -209,17 +213,29 @@ class Planar:
         return _read(self.polarity, d[0], d[-1])
 
     def sliding_limit(self, record, pga, values):
-        """The mu [-] at and above which D = 0: max over the samples of
-        |(s a(t) - bias_x g, -bias_y g)| / g, s the factor to ``pga`` [g] (and -s in the
-        inverse polarity); a(t) is piecewise linear, so its largest demand is at a sample."""
+        """The mu [-] at and above which D = 0: the largest friction demand
+        |(s a_x - bias_x g, s a_y - bias_y g)| / (g + s a_z) over the record's samples, s
+        the factor to ``pga`` [g] (and -s in the inverse polarity); the components are
+        linear between samples, so the largest demand is at one. ValueError where the
+        base falls faster than g (the block flies whatever mu is)."""
         s = 1.0 if pga is None else pga_factor(record.peak_acceleration, pga, self.g)
-        a = np.asarray(record.acceleration_samples, dtype=float)[:, None]
+        if isinstance(record, BaseMotion):
+            a_x, a_y, a_z = record.acceleration(record.breakpoints)[:, :, None]
+        else:
+            a_x, a_y, a_z = np.asarray(record.acceleration_samples, dtype=float)[:, None], 0.0, 0.0
         n = np.size(values["mu"])
         bias_x, bias_y = (np.broadcast_to(np.asarray(values.get(k, 0.0), dtype=float), (n,))
                           for k in ("bias_x", "bias_y"))
         signs = {"normal": (1.0,), "inverse": (-1.0,), "larger": (1.0, -1.0)}[self.polarity]
-        return np.max([np.max(np.hypot(sign * s * a - bias_x * self.g, bias_y * self.g), axis=0) / self.g
-                       for sign in signs], axis=0)
+        demands = []
+        for sign in signs:
+            normal = self.g + sign * s * a_z
+            if np.any(normal <= 0):
+                raise ValueError(f"the base falls faster than g (its vertical acceleration down to "
+                                 f"{float(np.min(normal)) - self.g:.4g} m/s²): the block flies whatever mu is")
+            demands.append(np.max(np.hypot(sign * s * a_x - bias_x * self.g, sign * s * a_y - bias_y * self.g)
+                                  / normal, axis=0))
+        return np.max(demands, axis=0)
 
     def floor(self, values):
         """The smallest mu [-] the inverses try, per parameter set: above |bias| (and at
