@@ -5,10 +5,11 @@ For the block on a plane the same inverses solve for the friction coefficient mu
 
 D falls as ky (mu) rises, to 0 at the value above which nothing slides (the scaled
 record's peak for the rigid block, the supremum of the no-sliding |HEA| for the flexible
-mass, the largest friction demand for the plane): every root is bracketed. For one record the rigid block steps by Newton on its exact dD/dky
-(:func:`blockdae.newmark`'s ``derivative=True``); otherwise the steps are the Illinois
-variant of regula falsi (a batch of roots at once) or Brent's method (a percentile); a
-step that leaves the bracket bisects it."""
+mass, the largest friction demand for the plane): every root is bracketed. For one
+record the rigid block steps by Newton on its exact dD/dky (:func:`blockdae.newmark`'s
+``derivative=True``); otherwise the steps are the Illinois variant of regula falsi (a
+batch of roots at once) or Brent's method (a percentile); a step that leaves the bracket
+bisects it."""
 
 import dataclasses
 
@@ -93,7 +94,8 @@ def ky_for_displacement(record, model, parameters, allowable, *, pga=None):
     mu [-].
 
     Args:
-        record: a Record (ground acceleration along the slope [m/s²]).
+        record: a Record (ground acceleration along the slope [m/s²]); for
+            :class:`Planar` also a BaseMotion of Records (``pga`` None).
         model: :class:`Rigid`, :class:`Flexible` or :class:`Planar`.
         parameters: the model's other parameters (name -> number): flexible height [m],
             vs [m/s], vr [m/s], damping [-]; the plane's mu_kinetic, bias_x, bias_y [-];
@@ -229,7 +231,7 @@ def mean_ky_for_probability(records, model, parameters, allowable, target, *, pg
     import pandas as pd
 
     table = pd.concat(frames, ignore_index=True)
-    means = np.sort(table[table.columns[-1]].to_numpy())[::-1]  # the critical means
+    means = np.sort(table[table.columns[-1]].to_numpy())[::-1]  # the critical means, largest first
     allowed = int(np.floor(target * means.size + 1e-9))  # samples that may exceed
     return MeanKyDesign(mean=float(means[allowed]), parameter=key, allowable_m=allowable, target=target, table=table)
 

@@ -157,9 +157,10 @@ class Planar:
     D [m] is the permanent sliding distance: |u| = sqrt(u_x² + u_y²) at the end, once
     the block has come to rest. Its parameters (all [-]) are mu (the static friction
     coefficient, the plane's counterpart of ky: the block sticks while
-    |a_h(t) - bias g| <= mu (g + a_z(t)), a_h horizontal, a_z vertical), mu_kinetic (default mu), and bias_x, bias_y (a constant
-    horizontal force on the block as a fraction of its weight: a slope's downslope pull
-    is ``bias_x=-sin(angle)``; |bias| < mu_kinetic, or the block would never stop).
+    |a_h(t) - bias g| <= mu (g + a_z(t)), a_h the horizontal and a_z the vertical base
+    acceleration), mu_kinetic (default mu), and bias_x, bias_y (a constant horizontal
+    force on the block as a fraction of its weight, a slope's pull downhill: Elms's P
+    along -x is ``bias_x=-P``; |bias| < mu_kinetic, or the block would never stop).
     The design inverses solve for mu; they need D to fall as mu rises, as it does with a
     bias (sliding one way); on a level plane slides to either side may cancel.
 
@@ -199,8 +200,8 @@ class Planar:
         return PlanarBlock(mu=mu, mu_kinetic=sets.get("mu_kinetic"), bias=bias, g=self.g)
 
     def displacements(self, record, pga, values, derivative=False):
-        """D [m], the final |u|, of ``record`` (along x) scaled to ``pga`` [g] (None: as
-        given) for each parameter set of ``values`` (name -> an array of shape (n,) or a
+        """D [m], the final |u|, of ``record`` (a Record along x, or a BaseMotion) scaled
+        to ``pga`` [g] (None: as given) for each parameter set of ``values`` (name -> an array of shape (n,) or a
         number); no derivative (``derivative`` must be False). Shape (n,)."""
         if derivative:
             raise ValueError("the block on a plane has no dD/dmu here; root finding brackets instead")
