@@ -12,4 +12,5 @@ from ._result import Exceedance
 from ._study import exceedance
 
 __all__ = ["Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Planar", "Rigid", "Truncated",
-           "Uniform", "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile", "mean_ky_for_probability"]
+           "Uniform", "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile",
+           "mean_ky_for_probability"]
