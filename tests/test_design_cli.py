@@ -34,6 +34,19 @@ def test_design_prints_the_study_of_the_files(folder, capsys):
     assert (folder / "out.csv").read_text().startswith("run,record,pga_g,ky_g,D_m")
 
 
+def test_design_runs_the_block_on_a_plane(folder, capsys):
+    assert main(["design", str(folder), "--model", "planar", "--param", "mu=lognormal:0.15:0.3", "--param",
+                 "bias_x=-0.03", "--pga", "0.4", "--threshold", "0.05", "--runs", "8", "--allowable", "0.05",
+                 "--target", "0.2"]) == 0
+    out = capsys.readouterr().out
+    records = {path.stem: bd.read_record(path) for path in sorted(folder.glob("*.csv"))}
+    parameters = {"mu": dz.LogNormal(mean=0.15, cov=0.3), "bias_x": -0.03}
+    study = dz.exceedance(records, dz.Planar(), parameters, pga=0.4, threshold=0.05, runs=8)
+    assert f"P(D > 0.05 m) = {study.probability:.4f}" in out
+    design = dz.mean_ky_for_probability(records, dz.Planar(), parameters, 0.05, 0.2, pga=0.4, runs=64)
+    assert re.search(rf"mean mu for P\(D > 0.05 m\) <= 0.2: {design.mean:.4f} \[-\]", out)
+
+
 @pytest.mark.parametrize("argument, message", [("ky=gamma:1:2", "KIND one of"), ("ky=lognormal:0.1", "KIND one of")])
 def test_a_bad_parameter_is_a_usage_error(folder, capsys, argument, message):
     assert main(["design", str(folder), "--param", argument, "--threshold", "0.1"]) == 2

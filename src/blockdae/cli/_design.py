@@ -6,7 +6,7 @@ import argparse
 import pathlib
 import time
 
-from ..design import (Flexible, LogNormal, Normal, Rigid, Uniform, exceedance, mean_ky_for_probability)
+from ..design import (Flexible, LogNormal, Normal, Planar, Rigid, Uniform, exceedance, mean_ky_for_probability)
 from ..units import STANDARD_GRAVITY
 from ._common import (UsageError, checked, folder_files, positive, read, record_arguments, recursive_argument,
                       save_figure)
@@ -42,11 +42,13 @@ def add_design_parser(sub):
                                       "(Monte Carlo, Latin hypercube or Sobol), and the mean ky a design needs")
     p.add_argument("records", type=pathlib.Path, nargs="+", metavar="RECORD",
                    help="accelerogram files or folders of them (ground acceleration along the slope)")
-    p.add_argument("--model", choices=("rigid", "flexible"), default="rigid",
-                   help="rigid block (parameter ky) or flexible sliding mass (ky, height, vs, vr, damping)")
+    p.add_argument("--model", choices=("rigid", "flexible", "planar"), default="rigid",
+                   help="rigid block (parameter ky), flexible sliding mass (ky, height, vs, vr, damping) or block on "
+                        "a plane (mu, mu_kinetic, bias_x, bias_y; D its final sliding distance |u|)")
     p.add_argument("--param", type=parameter, action="append", required=True, metavar="NAME=SPEC",
                    help="a parameter, a number (height=25) or a distribution: lognormal:MEAN:COV, normal:MEAN:STD, "
-                        "uniform:LOW:HIGH (ky [g], height [m], vs and vr [m/s], damping [-]); repeat it")
+                        "uniform:LOW:HIGH (ky [g], height [m], vs and vr [m/s], damping, mu, bias_x [-]); "
+                        "repeat it")
     p.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
                    help="target PGA [g] every record is scaled to (default: as given)")
     p.add_argument("--threshold", type=positive("--threshold"), required=True, metavar="D_M",
@@ -65,8 +67,8 @@ def add_design_parser(sub):
                    help="and once the 95 %% interval of P(D > threshold) is at most +- this")
     p.add_argument("--runs", type=int, default=None, help="a fixed number of runs instead (one sample a record a run)")
     p.add_argument("--allowable", type=positive("--allowable"), default=None, metavar="D_M",
-                   help="with --target: the mean ky [g] (same cov) for which P(D > allowable) <= target, on 64 "
-                        "samples a record kept for every mean")
+                   help="with --target: the mean ky [g] (mu [-] on a plane; same cov) for which "
+                        "P(D > allowable) <= target, on 64 samples a record kept for every mean")
     p.add_argument("--target", type=positive("--target"), default=None, help="the probability allowed (e.g. 0.1)")
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
                    help="the unit 'g' [m/s²] of the files and the PGA (default 9.80665)")
@@ -89,6 +91,8 @@ def _design(args) -> int:
     parameters = dict(args.param)
     if args.model == "rigid":
         model = checked(lambda: Rigid(polarity=args.polarity, g=args.g), "")
+    elif args.model == "planar":
+        model = checked(lambda: Planar(polarity=args.polarity, g=args.g), "")
     else:
         model = checked(lambda: Flexible(method=args.method, equivalent_linear=args.reference_strain is not None,
                                          reference_strain=args.reference_strain, polarity=args.polarity, g=args.g),
@@ -115,7 +119,8 @@ def _design(args) -> int:
         design = checked(lambda: mean_ky_for_probability(records, model, parameters, args.allowable, args.target,
                                                          pga=args.pga, runs=DESIGN_RUNS, sampling=args.sampling,
                                                          seed=args.seed), "")
-        print(f"\nmean ky for P(D > {args.allowable:g} m) <= {args.target:g}: {design.mean_ky_g:.4f} g "
+        unit = "g" if design.parameter == "ky" else "[-]"
+        print(f"\nmean {design.parameter} for P(D > {args.allowable:g} m) <= {args.target:g}: {design.mean:.4f} {unit} "
               f"({len(design.table)} samples, common random numbers)")
     if args.csv is not None:
         checked(lambda: result.table.to_csv(args.csv, index=False), f"--csv {args.csv}")

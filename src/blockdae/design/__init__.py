@@ -1,14 +1,16 @@
-"""Performance-based design: slopes with uncertain properties (log-normal, normal,
-uniform, truncated, correlated), the probability that their seismic displacement
-exceeds a threshold over a record set (Monte Carlo, Latin hypercube or scrambled Sobol
-samples, run until precise enough), and the yield acceleration a design needs."""
+"""Performance-based design: slopes (and blocks on a plane) with uncertain properties
+(log-normal, normal, uniform, truncated, correlated), the probability that their seismic
+displacement exceeds a threshold over a record set (Monte Carlo, Latin hypercube or
+scrambled Sobol samples, run until precise enough), and the yield acceleration (the
+friction coefficient, on a plane) a design needs."""
 
 from ._figures import exceedance_figure
 from ._distributions import LogNormal, Normal, Truncated, Uniform
 from ._inverse import MeanKyDesign, ky_for_displacement, ky_for_percentile, mean_ky_for_probability
-from ._models import Flexible, Rigid
+from ._models import Flexible, Planar, Rigid
 from ._result import Exceedance
 from ._study import exceedance
 
-__all__ = ["Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Rigid", "Truncated", "Uniform",
-           "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile", "mean_ky_for_probability"]
+__all__ = ["Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Planar", "Rigid", "Truncated",
+           "Uniform", "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile",
+           "mean_ky_for_probability"]

@@ -24,13 +24,20 @@ FORMAT = 1
 
 def manifest(entries, model, parameters, sampling, seed, correlation, runs_per_block) -> dict:
     """What a design study is, as JSON values (floats and distributions by their repr)."""
-    records = [{"name": name, "pga_g": pga, "dt": record.dt, "samples": int(record.acceleration_samples.size),
-                "sha256": hashlib.sha256(np.ascontiguousarray(record.acceleration_samples,
-                                                              dtype=np.float64).tobytes()).hexdigest()}
-               for name, record, pga in entries]
+    records = [{"name": name, "pga_g": pga} | _fingerprint(record) for name, record, pga in entries]
     return {"format": FORMAT, "model": repr(model), "parameters": {k: repr(v) for k, v in parameters.items()},
             "sampling": sampling, "seed": repr(seed), "correlation": repr(correlation),
             "runs_per_block": runs_per_block, "records": records}
+
+
+def _fingerprint(record) -> dict:
+    """A Record's sample step [s], sample count and SHA-256 of its samples; a
+    BaseMotion's of each of its components (x, y, z) present."""
+    components = getattr(record, "components", None)
+    if components is not None:
+        return {axis: _fingerprint(c) for axis, c in zip("xyz", components) if c is not None}
+    samples = np.ascontiguousarray(record.acceleration_samples, dtype=np.float64)
+    return {"dt": record.dt, "samples": int(samples.size), "sha256": hashlib.sha256(samples.tobytes()).hexdigest()}
 
 
 class Checkpoint:

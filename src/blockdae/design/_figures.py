@@ -27,18 +27,20 @@ def exceedance_figure(results, *, title=None):
 
 
 def ky_figure(result, *, title=None):
-    """D [m] against ky [g] of each sample of ``result``, a colour per record; a
-    matplotlib Figure."""
+    """D [m] against ky [g] (mu [-] for the block on a plane) of each sample of
+    ``result``, a colour per record; a matplotlib Figure."""
     import matplotlib.pyplot as plt
 
+    plane = "ky_g" not in result.table
+    column, label = ("mu", "friction coefficient mu [-]") if plane else ("ky_g", "yield acceleration ky [g]")
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     for name, rows in result.table.groupby("record", sort=False):
-        ax.scatter(rows["ky_g"], np.maximum(rows["D_m"], 1e-4), s=8, label=name)
+        ax.scatter(rows[column], np.maximum(rows["D_m"], 1e-4), s=8, label=name)
     ax.axhline(result.threshold_m, color="0.4", ls=":", lw=1)
     ax.set_yscale("log")
-    ax.set_xlabel("yield acceleration ky [g]")
+    ax.set_xlabel(label)
     ax.set_ylabel("displacement D [m] (1e-4 m where none)")
     ax.legend(fontsize="x-small", ncol=2)
-    ax.set_title(title or "Displacement against ky")
+    ax.set_title(title or f"Displacement against {column.split('_')[0]}")
     fig.tight_layout()
     return fig

@@ -1,22 +1,24 @@
 """The yield acceleration a design needs: per record, the ky at which D equals an
 allowable displacement; over a record set, the ky whose p-th percentile of D equals it;
 under uncertainty, the mean ky (same spread) that brings P(D > allowable) to a target.
+For the block on a plane the same inverses solve for the friction coefficient mu.
 
-D falls monotonically as ky rises, to 0 at the ky above which nothing slides (the
-scaled record's peak for the rigid block, the supremum of the no-sliding |HEA| for the
-flexible mass): every root is bracketed. For one record the rigid block steps by Newton on its exact dD/dky
-(:func:`blockdae.newmark`'s ``derivative=True``); otherwise the steps are the Illinois
-variant of regula falsi (a batch of roots at once) or Brent's method (a percentile); a
-step that leaves the bracket bisects it."""
+D falls as ky (mu) rises, to 0 at the value above which nothing slides (the scaled
+record's peak for the rigid block, the supremum of the no-sliding |HEA| for the flexible
+mass, the largest friction demand for the plane): every root is bracketed. For one
+record the rigid block steps by Newton on its exact dD/dky (:func:`blockdae.newmark`'s
+``derivative=True``); otherwise the steps are the Illinois variant of regula falsi (a
+batch of roots at once) or Brent's method (a percentile); a step that leaves the bracket
+bisects it."""
 
 import dataclasses
 
 import numpy as np
+from ._models import PARAMETER_FLOOR as KY_FLOOR
 from ._records import record_set
+from ._result import column_name
 from ._study import Draws
 
-#: the smallest ky tried [g]: a D still below the allowable there gives ky 0 (no ky needed)
-KY_FLOOR = 1e-4
 #: the relative tolerance of D at the root [-]
 D_TOLERANCE = 1e-10
 
@@ -29,19 +31,21 @@ def _check_allowable(allowable):
 
 
 def critical_ky(model, record, pga, values, allowable, newton=False, max_iterations=100):
-    """The ky [g] at which D of each parameter set of ``values`` (name -> array (n,) or a
-    number; ky, if there, ignored) equals ``allowable`` [m] on ``record`` scaled to
-    ``pga`` [g]; 0 where D stays below it even at ky = :data:`KY_FLOOR`. Shape (n,).
+    """The ky [g] (the model's design parameter: mu [-] on a plane) at which D of each
+    parameter set of ``values`` (name -> array (n,) or a number; ky, if there, ignored)
+    equals ``allowable`` [m] on ``record`` scaled to ``pga`` [g]; 0 where D stays below
+    it even at the model's floor (ky = :data:`KY_FLOOR`). Shape (n,).
     ``newton``: Newton steps on the exact dD/dky (the rigid block only; its derivative
     kernel compiles once per batch shape, so it suits one parameter set, not many)."""
     allowable = _check_allowable(allowable)
-    n = max([np.size(v) for name, v in values.items() if name != "ky"] + [1])
-    others = {name: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for name, v in values.items() if name != "ky"}
-    hi = np.asarray(model.sliding_limit(record, pga, others | {"ky": np.full(n, KY_FLOOR)}), dtype=float)
-    lo = np.full(n, KY_FLOOR)
+    key = model.DESIGN
+    n = max([np.size(v) for name, v in values.items() if name != key] + [1])
+    others = {name: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for name, v in values.items() if name != key}
+    lo = np.asarray(model.floor(others | {key: np.full(n, KY_FLOOR)}), dtype=float)
+    hi = np.asarray(model.sliding_limit(record, pga, others | {key: lo}), dtype=float)
 
     def excess(ky, where):
-        chosen = {name: v[where] for name, v in others.items()} | {"ky": ky}
+        chosen = {name: v[where] for name, v in others.items()} | {key: ky}
         if newton:
             d, slope = model.displacements(record, pga, chosen, derivative=True)
             return d - allowable, slope
@@ -79,87 +83,117 @@ def critical_ky(model, record, pga, values, allowable, newton=False, max_iterati
         if newton:
             slope[pending] = slope_new
     else:
-        raise ValueError(f"the ky for D = {allowable!r} m did not converge in {max_iterations} iterations")
+        raise ValueError(f"the {key} for D = {allowable!r} m did not converge in {max_iterations} iterations")
     result[active] = x
     return result
 
 
 def ky_for_displacement(record, model, parameters, allowable, *, pga=None):
     """The yield acceleration ky [g] at which ``record`` (scaled to ``pga`` [g]) moves
-    ``model`` by exactly ``allowable`` [m].
+    ``model`` by exactly ``allowable`` [m]; for :class:`Planar` the friction coefficient
+    mu [-].
 
     Args:
-        record: a Record (ground acceleration along the slope [m/s²]).
-        model: :class:`Rigid` or :class:`Flexible`.
+        record: a Record (ground acceleration along the slope [m/s²]); for
+            :class:`Planar` also a BaseMotion of Records (``pga`` None).
+        model: :class:`Rigid`, :class:`Flexible` or :class:`Planar`.
         parameters: the model's other parameters (name -> number): flexible height [m],
-            vs [m/s], vr [m/s], damping [-]; nothing for the rigid block.
+            vs [m/s], vr [m/s], damping [-]; the plane's mu_kinetic, bias_x, bias_y [-];
+            nothing for the rigid block.
         allowable: the allowable displacement [m].
         pga: target PGA [g] (None: the record as given).
 
     Raises:
-        ValueError: D stays below ``allowable`` even at ky = 1e-4 g (no ky is needed).
+        ValueError: D stays below ``allowable`` even at ky = 1e-4 g (no ky is needed;
+            on a plane, at mu = |bias| + 1e-4).
     """
-    (_, record, pga), = record_set(record, pga)
+    (_, record, pga), = record_set(record, pga, model)
     ky = critical_ky(model, record, pga, dict(parameters), allowable, newton=model.kind == "rigid")[0]
     if ky == 0:
-        raise ValueError(f"D stays below allowable={allowable!r} m even at ky = {KY_FLOOR} g: no ky is needed")
+        raise ValueError(f"D stays below allowable={allowable!r} m even at {_floor_words(model, parameters)}: "
+                         f"no {model.DESIGN} is needed")
     return float(ky)
 
 
+def _floor_words(model, parameters):
+    """'ky = 0.0001 g' or 'mu = 0.0301 [-]': the lowest value of the design parameter the inverses try."""
+    key = model.DESIGN
+    floor = float(model.floor({name: float(v) for name, v in parameters.items()} | {key: np.array([KY_FLOOR])})[0])
+    unit = model.PARAMETERS[key]
+    return f"{key} = {floor:.6g} {unit if unit == 'g' else f'[{unit}]'}"
+
+
 def ky_for_percentile(records, model, parameters, allowable, *, percentile=50.0, pga=None):
-    """The ky [g] at which the ``percentile``-th percentile of D over ``records`` (linear
-    interpolation between them, numpy's default) equals ``allowable`` [m]. Arguments as
-    for :func:`ky_for_displacement`; ``records`` a sequence or dict name -> Record,
-    ``pga`` a number or a dict name -> number."""
+    """The ky [g] (mu [-] for :class:`Planar`) at which the ``percentile``-th percentile
+    of D over ``records`` (linear interpolation between them, numpy's default) equals
+    ``allowable`` [m]. Arguments as for :func:`ky_for_displacement`; ``records`` a
+    sequence or dict name -> Record, ``pga`` a number or a dict name -> number."""
     allowable = _check_allowable(allowable)
     if not 0 <= percentile <= 100:
         raise ValueError(f"percentile={percentile!r} must lie in [0, 100]")
-    entries = record_set(records, pga)
-    fixed = {name: float(v) for name, v in parameters.items()}
+    entries = record_set(records, pga, model)
+    key = model.DESIGN
+    fixed = {name: float(v) for name, v in parameters.items() if name != key}
 
     def excess(ky):
-        d = [model.displacements(record, target, fixed | {"ky": np.array([ky])})[0] for _, record, target in entries]
+        d = [model.displacements(record, target, fixed | {key: np.array([ky])})[0] for _, record, target in entries]
         return float(np.percentile(d, percentile)) - allowable
 
-    hi = max(float(model.sliding_limit(record, target, fixed | {"ky": np.array([KY_FLOOR])})[0])
+    lo = float(model.floor(fixed | {key: np.array([KY_FLOOR])})[0])
+    hi = max(float(model.sliding_limit(record, target, fixed | {key: np.array([lo])})[0])
              for _, record, target in entries)
-    if excess(KY_FLOOR) <= 0:
-        raise ValueError(f"the {percentile}th percentile of D stays below allowable={allowable!r} m even at ky = "
-                         f"{KY_FLOOR} g: no ky is needed")
+    if excess(lo) <= 0:
+        raise ValueError(f"the {percentile}th percentile of D stays below allowable={allowable!r} m even at "
+                         f"{_floor_words(model, fixed)}: no {key} is needed")
     from scipy import optimize  # on first use: slow to import
 
-    return optimize.brentq(excess, KY_FLOOR, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+    return optimize.brentq(excess, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class MeanKyDesign:
-    """The mean ky a design needs under uncertainty.
+    """The mean ky a design needs under uncertainty (the mean mu for :class:`Planar`).
 
     Attributes:
-        mean_ky_g: the smallest mean ky [g] (the distribution scaled, its cov kept)
-            for which P(D > allowable) over the samples is at most ``target``.
+        mean: the smallest mean of the design parameter (ky [g]; mu [-] on a plane; the
+            distribution scaled, its cov kept) for which P(D > allowable) over the
+            samples is at most ``target``.
+        parameter: which parameter that is: "ky" or "mu".
         allowable_m: the allowable displacement [m]; target: the probability [-].
         table: one row per (run, record) (pandas): the samples at the distribution's
-            own mean (ky_g and the other parameters with units in the names),
-            ky_ratio (ky over the mean [-], common to every mean: the common random
-            numbers) and critical_mean_ky_g [g], the mean above which that sample stays
-            within the allowable.
+            own mean (ky_g or mu and the other parameters, units in the names),
+            ky_ratio (mu_ratio: the sample over the mean [-], common to every mean: the
+            common random numbers) and critical_mean_ky_g [g] (critical_mean_mu [-]),
+            the mean above which that sample stays within the allowable.
     """
 
-    mean_ky_g: float
+    mean: float
+    parameter: str
     allowable_m: float
     target: float
     table: object
 
-    def probability(self, mean_ky):
-        """P(D > allowable) [-] over the same samples at a mean ky [g]."""
-        return float(np.mean(self.table["critical_mean_ky_g"].to_numpy() > mean_ky))
+    @property
+    def mean_ky_g(self) -> float:
+        """The mean ky [g] (:attr:`mean` of a design over ky)."""
+        if self.parameter != "ky":
+            raise AttributeError(f"this design is over {self.parameter}, not ky: read .mean")
+        return self.mean
+
+    def probability(self, mean):
+        """P(D > allowable) [-] over the same samples at a mean ky [g] (mu [-])."""
+        return float(np.mean(self.critical_means > mean))
+
+    @property
+    def critical_means(self) -> np.ndarray:
+        """Each sample's critical mean (the table's last column) [g] or [-], shape (samples,)."""
+        return self.table[self.table.columns[-1]].to_numpy()
 
 
 def mean_ky_for_probability(records, model, parameters, allowable, target, *, pga=None, runs=64,
                             sampling="sobol", seed=0, correlation=None) -> MeanKyDesign:
     """The mean ky [g] (its distribution scaled: same cov) that brings P(D > allowable)
-    to at most ``target`` over ``records``.
+    to at most ``target`` over ``records``; for :class:`Planar` the mean mu [-].
 
     The samples are drawn once (``runs`` per record, as :func:`exceedance` draws them) and
     kept for every mean (common random numbers): at mean m each sample's ky is m times its
@@ -171,8 +205,8 @@ def mean_ky_for_probability(records, model, parameters, allowable, target, *, pg
     samples exceed the allowable even at ky = 1e-4 g).
 
     Args:
-        parameters: name -> number or distribution as for :func:`exceedance`; ``ky`` a
-            distribution (its mean scaled).
+        parameters: name -> number or distribution as for :func:`exceedance`; ``ky``
+            (the plane's ``mu``) a distribution (its mean scaled).
         target: the probability of exceedance allowed, in (0, 1).
         runs: samples per record (a power of 2 for "sobol").
         Others as for :func:`exceedance`.
@@ -182,30 +216,31 @@ def mean_ky_for_probability(records, model, parameters, allowable, target, *, pg
         raise ValueError(f"target={target!r} must be a probability in (0, 1)")
     if not (isinstance(runs, int) and runs >= 2) or (sampling == "sobol" and runs & (runs - 1)):
         raise ValueError(f"runs={runs!r} must be an integer >= 2 (a power of 2 for sampling='sobol', e.g. 64)")
-    entries = record_set(records, pga)
+    entries = record_set(records, pga, model)
     draws = Draws(model, parameters, len(entries), sampling, seed, correlation, runs)
-    if "ky" not in draws.uncertain:
-        raise ValueError("parameters['ky'] must be a distribution (its mean is what the design finds)")
-    base_mean = float(draws.uncertain["ky"].mean)
+    key = model.DESIGN
+    if key not in draws.uncertain:
+        raise ValueError(f"parameters[{key!r}] must be a distribution (its mean is what the design finds)")
+    base_mean = float(draws.uncertain[key].mean)
     frames = []
     for i, (name, record, target_pga) in enumerate(entries):
         values = draws.block(i, runs)
         critical = critical_ky(model, record, target_pga, values, allowable)
-        ratio = values["ky"] / base_mean
+        ratio = values[key] / base_mean
         frames.append(_frame(name, target_pga, model, values, ratio, critical / ratio))
     import pandas as pd
 
     table = pd.concat(frames, ignore_index=True)
-    means = np.sort(table["critical_mean_ky_g"].to_numpy())[::-1]
+    means = np.sort(table[table.columns[-1]].to_numpy())[::-1]  # the critical means, largest first
     allowed = int(np.floor(target * means.size + 1e-9))  # samples that may exceed
-    return MeanKyDesign(mean_ky_g=float(means[allowed]), allowable_m=allowable, target=target, table=table)
+    return MeanKyDesign(mean=float(means[allowed]), parameter=key, allowable_m=allowable, target=target, table=table)
 
 
 def _frame(name, pga, model, values, ratio, critical_mean):
+    """One record's rows of a :class:`MeanKyDesign` table, the critical means last."""
     import pandas as pd
 
-    from ._result import column_name
-
+    key = model.DESIGN
     columns = {"run": np.arange(ratio.size), "record": name, "pga_g": np.nan if pga is None else pga}
     columns |= {column_name(p, model): values[p] for p in model.PARAMETERS if p in values}
-    return pd.DataFrame(columns | {"ky_ratio": ratio, "critical_mean_ky_g": critical_mean})
+    return pd.DataFrame(columns | {f"{key}_ratio": ratio, f"critical_mean_{column_name(key, model)}": critical_mean})

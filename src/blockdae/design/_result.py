@@ -14,8 +14,10 @@ _SUFFIX = {"g": "g", "m": "m", "m/s": "m_s", "-": "ratio"}
 
 
 def column_name(parameter, model):
-    """The table column of ``parameter`` of ``model``, its unit in the name (ky_g, vs_m_s, damping_ratio)."""
-    return f"{parameter}_{_SUFFIX[model.PARAMETERS[parameter]]}"
+    """The table column of ``parameter`` of ``model``, its unit in the name (ky_g, vs_m_s,
+    damping_ratio), or the model's own name for it (the plane's mu, bias_x: coefficients)."""
+    own = getattr(model, "COLUMNS", {})
+    return own[parameter] if parameter in own else f"{parameter}_{_SUFFIX[model.PARAMETERS[parameter]]}"
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -25,7 +27,8 @@ class Exceedance:
     Attributes:
         table: one row per (run, record) (pandas): run, record, pga_g [g] (the target;
             nan: as given), the parameters with their units in the names (ky_g, height_m,
-            vs_m_s, vr_m_s, damping_ratio) and D_m, the displacement [m].
+            vs_m_s, vr_m_s, damping_ratio; the plane's mu, mu_kinetic, bias_x, bias_y [-])
+            and D_m, the displacement [m].
         threshold_m: the displacement of interest [m].
         confidence: the level of the intervals [-].
         sampling, seed: how the samples were drawn.
@@ -111,8 +114,8 @@ class Exceedance:
         return exceedance_figure({label or "samples": self}, title=title)
 
     def ky_figure(self, *, title=None):
-        """D [m] against ky [g] of every sample (a colour per record), the threshold
-        marked; a matplotlib Figure."""
+        """D [m] against ky [g] (the plane's mu [-]) of every sample (a colour per
+        record), the threshold marked; a matplotlib Figure."""
         from ._figures import ky_figure
 
         return ky_figure(self, title=title)

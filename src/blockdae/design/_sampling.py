@@ -18,7 +18,7 @@ def split_parameters(parameters, model):
     """(fixed: name -> float, uncertain: name -> distribution) of ``parameters`` (name
     -> a number or a distribution), checked against ``model``'s parameters."""
     if not isinstance(model, MODELS):
-        raise ValueError(f"model={model!r} must be design.Rigid(...) or design.Flexible(...)")
+        raise ValueError(f"model={model!r} must be design.Rigid(...), design.Flexible(...) or design.Planar(...)")
     if not isinstance(parameters, dict):
         raise ValueError(f"parameters must be a dict name -> number or distribution, got {parameters!r}")
     fixed, uncertain = {}, {}

@@ -42,12 +42,12 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
 
     Args:
         records: a Record, a sequence or a dict name -> Record (ground acceleration along
-            the slope [m/s²]).
-        model: :class:`Rigid` or :class:`Flexible`.
+            the slope [m/s²]); for :class:`Planar` also BaseMotions of Records (pga None).
+        model: :class:`Rigid`, :class:`Flexible` or :class:`Planar`.
         parameters: name -> a number or a distribution (:class:`LogNormal`,
             :class:`Normal`, :class:`Uniform`, :class:`Truncated`) for the model's
             parameters (rigid: ky [g]; flexible: ky [g], height [m], vs [m/s], vr [m/s],
-            damping [-]).
+            damping [-]; planar: mu, mu_kinetic, bias_x, bias_y [-]).
         pga: target PGA [g]: a number for every record, a dict name -> number, or None
             (the records as given).
         threshold: the displacement of interest [m] (e.g. 0.25).
@@ -75,7 +75,7 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
         An :class:`Exceedance`.
     """
     threshold = _positive("threshold", threshold, "m")
-    entries = record_set(records, pga)
+    entries = record_set(records, pga, model)
     if runs is None and rse is None and halfwidth is None:
         raise ValueError("give a stopping rule (rse and/or halfwidth) or a fixed number of runs")
     if runs is not None and not (isinstance(runs, int) and runs >= 2):
