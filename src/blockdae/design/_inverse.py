@@ -202,14 +202,14 @@ def mean_ky_for_probability(records, model, parameters, allowable, target, *, pg
     finds it, over its ratio), and P(m) is the fraction of the critical means above m.
     The answer is the smallest m with P(m) <= target: a sample's critical mean, at which
     that sample moves exactly ``allowable`` (0 where the target holds at any mean: too few
-    samples exceed the allowable even at ky = 1e-4 g).
+    samples exceed the allowable even at ky = 1e-4 g). The arguments not listed below are
+    those of :func:`exceedance`.
 
     Args:
         parameters: name -> number or distribution as for :func:`exceedance`; ``ky``
             (the plane's ``mu``) a distribution (its mean scaled).
         target: the probability of exceedance allowed, in (0, 1).
         runs: samples per record (a power of 2 for "sobol").
-        Others as for :func:`exceedance`.
     """
     allowable = _check_allowable(allowable)
     if not 0 < target < 1:
