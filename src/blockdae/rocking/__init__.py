@@ -1,0 +1,8 @@
+"""The free-standing rectangular block: rest, slide, rock with impacts and the Zeno rest,
+overturning (Housner 1963); its model, modes and solution."""
+
+from ._model import RockingBlock, housner_restitution
+from ._modes import RockingMode
+from ._solution import RockingEvent, RockingSolution
+
+__all__ = ["RockingBlock", "RockingEvent", "RockingMode", "RockingSolution", "housner_restitution"]
