@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core import set_real_fields
 from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, scale_factor_units
-from ..excitation import AbstractExcitation, BaseMotion
+from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import relative_acceleration, rest_mode, slip_constant, stop_mode
 from ..units import STANDARD_GRAVITY
 from ._modes import RockingMode, event_kind, rock_mode, side
@@ -81,7 +81,7 @@ class RockingBlock(DifferentiableModel):
     p: float | None = None
     theta0: float = 0.0
     linearised: bool = False
-    zeno_arc: float = 1e-8
+    zeno_arc: float = 1e-5
     strict: bool = False
     g: float = STANDARD_GRAVITY
 
@@ -167,9 +167,12 @@ class RockingBlock(DifferentiableModel):
         super().check_motion(motion)
 
     def excitation_pieces(self, excitation, t_end):
-        """(a_x, a_z) pieces on one partition of [0, t_end] [s]."""
-        motion = excitation if isinstance(excitation, BaseMotion) else BaseMotion(excitation)
-        ax, _, az = motion.aligned_pieces(t_end)
+        """(a_x, a_z) pieces on one partition of [0, t_end] [s] (a_x's own, a_z = 0, for
+        a horizontal excitation alone)."""
+        if not isinstance(excitation, BaseMotion):
+            ax = excitation.pieces(t_end)
+            return ax, Pieces.linear(ax.t0, ax.h, 0.0, 0.0)
+        ax, _, az = excitation.aligned_pieces(t_end)
         return ax, az
 
     # ---- the physics (xp: numpy, jax.numpy or SCALAR) ---------------------------------
@@ -215,21 +218,22 @@ class RockingBlock(DifferentiableModel):
         return (ax + radius * xp.cos(phi) * accel + radius * xp.sin(phi) * rate ** 2,
                 ge + radius * xp.sin(phi) * accel - radius * xp.cos(phi) * rate ** 2)
 
-    def deceleration(self, s, t, excitation):
+    def deceleration(self, s, t, excitation, xp=SCALAR):
         """-s theta'' at theta = 0 on side ``s`` [rad/s²]: how fast an arc from the base
         about that corner turns back (<= 0: the demand holds it out)."""
-        return -s * self.angular_acceleration(s, 0.0, t, excitation, SCALAR)
+        return -s * self.angular_acceleration(s, 0.0, t, excitation, xp)
 
     def _limit(self, ge, xp):
         """g_e times the smaller of mu and b/h [m/s²]: where rest ends."""
         return xp.minimum(self.mu, self.b / self.h) * ge
 
-    def _settle_rate(self, s, t, excitation):
+    def _settle_rate(self, s, t, excitation, xp=SCALAR):
         """d theta'/dt [rad/s²] of the Zeno envelope on side ``s``: with the excitation
         frozen the arcs last 2 |w| / d_s and 2 r |w| / d_-s in turn, so the rest comes
         after |w| K, K = 2 (1/d_s + r/d_-s) / (1 - r²), and the envelope falls by 1/K."""
-        _, _, _, r = self._geometry(SCALAR)
-        k = 2.0 * (1.0 / self.deceleration(s, t, excitation) + r / self.deceleration(-s, t, excitation)) / (1 - r * r)
+        _, _, _, r = self._geometry(xp)
+        k = 2.0 * (1.0 / self.deceleration(s, t, excitation, xp) + r / self.deceleration(-s, t, excitation, xp)) / (
+            1 - r * r)
         return -s / k
 
     # ---- the automaton ----------------------------------------------------------------
@@ -243,12 +247,12 @@ class RockingBlock(DifferentiableModel):
         if kind in (_OUT, _IN, _BEYOND):
             return xp.stack([y[_RATE], self.angular_acceleration(s, y[_Q], t, excitation, xp)])
         if kind == _SETTLE:
-            return xp.stack([zero, zero + self._settle_rate(s, t, excitation)])
+            return xp.stack([zero, zero + self._settle_rate(s, t, excitation, xp)])
         return xp.stack([zero, zero])
 
     def guards(self, mode, t, y, excitation, xp=np):
         """Guards of ``mode`` (each left as it falls through zero); the last, g_e, is a
-        flight of the whole block (an error). REST: (limit - a_x, limit + a_x) with limit
+        flight of the whole block (an error; at rest and rocking). REST: (limit - a_x, limit + a_x) with limit
         = min(mu, b/h) g_e; SLIDE: (s u'); OUT: (s theta' -> apex, alpha - s theta);
         IN: (s theta -> impact, -s theta' -> outward again); BEYOND: (s theta', pi/2 - s
         theta -> overturned); SETTLE: (s theta' -> rest, the two onsets)."""
@@ -259,7 +263,7 @@ class RockingBlock(DifferentiableModel):
             limit = self._limit(ge, xp)
             return xp.stack([limit - ax, limit + ax, ge])
         if kind == 1:
-            return xp.stack([mode * y[_RATE], ge])
+            return xp.stack([mode * y[_RATE]])
         if kind == _OUT:
             return xp.stack([s * y[_RATE], xp.arctan2(self.b, self.h) - s * y[_Q], ge])
         if kind == _IN:
@@ -285,6 +289,13 @@ class RockingBlock(DifferentiableModel):
             return RockingMode.REST
         return RockingMode(direction) if self.slides else rock_mode(_OUT, direction)
 
+    def _is_flight_guard(self, mode, guard_index, t, y, excitation):
+        """Whether guard ``guard_index`` of ``mode`` is g_e (the last one, at rest and
+        rocking; a slide keeps the sliding block's guards alone)."""
+        kind = abs(int(mode))
+        return (kind not in (1, _OVERTURNED) and mode != RockingMode.RELEASE
+                and guard_index == len(self.guards(mode, t, y, excitation, SCALAR)) - 1)
+
     def _flight(self, t, excitation):
         ax, ge, _, _ = self._base(t, excitation)
         return ValueError(f"at t = {t:.12g} s the base falls faster than g (g + a_z = {ge:.6g} m/s²): a flight "
@@ -301,8 +312,7 @@ class RockingBlock(DifferentiableModel):
         enters the other side's OUT, or SETTLE where the next arc is shorter than
         ``zeno_arc`` [s] and both corners restore."""
         kind, s = abs(int(mode)), side(mode)
-        n_guards = len(self.guards(mode, t, y, excitation, SCALAR))
-        if mode not in (RockingMode.RELEASE,) and kind != _OVERTURNED and guard_index == n_guards - 1:
+        if self._is_flight_guard(mode, guard_index, t, y, excitation):
             raise self._flight(t, excitation)
         if mode == RockingMode.REST:
             return self._start(-1 if guard_index == 0 else 1)
@@ -378,13 +388,16 @@ class RockingBlock(DifferentiableModel):
         return np.array([y[_Q], 0.0])
 
     def output_step(self):
-        """Largest gap between dense-output knots [s]: 1 / (32 p)."""
-        return 1.0 / (KNOTS_PER_RADIAN * self.frequency)
+        """Largest gap between dense-output knots [s]: 1 / (32 p) rocking (inf sliding:
+        the excitation sets it, as for the sliding block)."""
+        return math.inf if self.slides else 1.0 / (KNOTS_PER_RADIAN * self.frequency)
 
     def turn_rate(self, mode, t, y, excitation, xp=np):
-        """In a slide, u'' (as the sliding block); rocking modes are split where theta'
-        turns, so their guards are monotone in each (None)."""
-        if abs(int(mode)) == 1:
+        """In a slide, u'' (as the sliding block); rocking, theta'' at the state ``y``
+        (monotone in t on a piece: a_x and a_z are), so that the integrator stops where
+        theta' may turn and no step hides an apex and its return."""
+        kind = abs(int(mode))
+        if kind == 1 or kind in (_OUT, _IN, _BEYOND):
             return self.flow(mode, t, y, excitation, xp)[_RATE]
         return None
 
@@ -392,12 +405,11 @@ class RockingBlock(DifferentiableModel):
         """(rate, curvature) of guard ``guard_index`` of ``mode`` in time [its unit /s, /s²]."""
         kind, s = abs(int(mode)), side(mode)
         ax, ge, ax_rate, az_rate = self._base(t, excitation)
-        n_guards = len(self.guards(mode, t, y, excitation, SCALAR))
         if mode == RockingMode.RELEASE:
             return -1.0, 0.0
         if kind == _OVERTURNED:
             return 0.0, 0.0
-        if guard_index == n_guards - 1:
+        if self._is_flight_guard(mode, guard_index, t, y, excitation):
             return az_rate, 0.0
         if mode == RockingMode.REST or (kind == _SETTLE and guard_index > 0):
             coefficient = self.b / self.h if kind == _SETTLE else min(self.mu, self.b / self.h)

@@ -1,0 +1,159 @@
+"""The free-standing block (Housner 1963): closed forms of the linearised block, the
+quadrature of the exact one, agreement of the backends, and the sliding regime.
+
+References: the linearised block's free rocking in closed form (cosh; each arc 2
+atanh(w / (p alpha)) / p; impact velocities times r), summed in 40-digit mpmath;
+Housner's (1963) rectangular-pulse criterion a_p / (g alpha) > 1 / (1 - exp(-p t_d));
+the exact block's energy integral theta'² / 2 = p² [cos(alpha - theta0) - cos(alpha -
+theta)] integrated by mpmath's tanh-sinh quadrature; the 1-D SlidingBlock for mu < b/h.
+"""
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+import blockdae as bd
+from blockdae.rocking import RockingBlock, RockingMode, housner_restitution
+from conftest import load_sample_record
+
+G = bd.STANDARD_GRAVITY
+QUIET = bd.Record(np.zeros(3), 0.01, name="no shaking", units="m/s2")
+mpmath.mp.dps = 40
+
+
+def free_rocking_times(block, theta0):
+    """Impact times [s] of the linearised block released at ``theta0`` [rad] (closed form,
+    mpmath), and the accumulation point of the whole series [s]."""
+    p, r, alpha = mpmath.mpf(block.frequency), mpmath.mpf(block.r), mpmath.mpf(block.alpha)
+    theta0 = mpmath.mpf(theta0)
+    times = [mpmath.acosh(alpha / (alpha - theta0)) / p]
+    w = p * mpmath.sqrt(alpha**2 - (alpha - theta0) ** 2)
+    while True:
+        w *= r
+        arc = 2 * mpmath.atanh(w / (p * alpha)) / p
+        times.append(times[-1] + arc)
+        if arc < mpmath.mpf(10) ** -30:
+            return np.array([float(t) for t in times[:-1]]), float(times[-1])
+
+
+@pytest.fixture(scope="module")
+def linear_free():
+    block = RockingBlock(b=0.2, h=1.0, mu=0.5, linearised=True)
+    block = block.replace(theta0=block.alpha / 2)
+    return block, bd.simulate(block, QUIET, backend="cvode", rtol=1e-12, atol=1e-14)
+
+
+def test_housner_restitution_and_frequency():
+    """r = 1 - 3/2 sin² alpha and p = sqrt(3 g / (4 R)) of a uniform block."""
+    block = RockingBlock(b=0.3, h=1.2, mu=0.6)
+    assert block.r == housner_restitution(math.atan(0.25)) == 1 - 1.5 * math.sin(math.atan(0.25)) ** 2
+    assert block.frequency == pytest.approx(math.sqrt(0.75 * G / math.hypot(0.3, 1.2)), rel=1e-15)
+
+
+def test_linearised_free_rocking_first_impacts_closed_form(linear_free):
+    """Linearised free rocking from alpha/2: the impact times against the closed form.
+    CVODE at rtol 1e-12 locates the first impact to 1e-11 s (measured 6e-12 s) and the
+    first ten to 1e-9 s (measured 1.4e-10 s); the error grows as the arcs shorten."""
+    block, sol = linear_free
+    times, _ = free_rocking_times(block, block.alpha / 2)
+    located = sol.impact_times
+    assert abs(located[0] - times[0]) < 1e-11
+    assert np.max(np.abs(located[:10] - times[:10])) < 1e-9
+    # every impact multiplies theta' by r, and the pivot switches side
+    for event in sol.impacts:
+        assert event.rate_after == pytest.approx(block.r * event.rate, rel=1e-15)
+        assert np.sign(int(event.mode_after)) == -np.sign(int(event.mode_before))
+
+
+def test_linearised_free_rocking_zeno_rest(linear_free):
+    """The rest comes at the accumulation point of the impact series (closed form) after
+    finitely many located impacts and one summed tail; theta is 0 from then on."""
+    block, sol = linear_free
+    times, t_rest = free_rocking_times(block, block.alpha / 2)
+    assert sol.events[-1].kind == "rest" and sol.events[-2].kind == "zeno"
+    assert 50 < len(sol.impacts) < len(times)
+    assert abs(sol.rest_time - t_rest) < 1e-6 * t_rest
+    assert 0 < sol.zeno_tail < 1e-3
+    assert sol.mode[-1] == RockingMode.REST and sol.state[-1, 0] == 0.0
+
+
+def test_housner_rectangular_pulse_threshold():
+    """The linearised block under a rectangular pulse toward the side that tilts it
+    overturns iff a_p / (g alpha) > 1 / (1 - exp(-p t_d)) (Housner 1963): bisection on
+    the amplitude finds the threshold to 1e-9 relative; just above overturns, just below
+    does not."""
+    block = RockingBlock(b=0.25, h=1.5, mu=0.8, linearised=True)
+    t_d = 0.4
+    threshold = 1.0 / (1.0 - math.exp(-block.frequency * t_d))
+
+    def overturns(ratio):
+        pulse = bd.RectangularPulse(-ratio * G * block.alpha, t_d)
+        return bd.simulate(block, pulse, backend="cvode", rtol=1e-12, atol=1e-14).overturned
+
+    low, high = 0.98 * threshold, 1.02 * threshold
+    assert overturns(high) and not overturns(low)
+    while high - low > 1e-9 * threshold:
+        mid = 0.5 * (low + high)
+        low, high = (low, mid) if overturns(mid) else (mid, high)
+    assert abs(0.5 * (low + high) - threshold) < 1e-9 * threshold
+
+
+def test_exact_free_rocking_first_impact_quadrature():
+    """The exact block released at theta0: its first impact time is the quadrature of
+    dtheta / theta' with theta'² = 2 p² [cos(alpha - theta0) - cos(alpha - theta)]."""
+    block = RockingBlock(b=0.3, h=0.9, mu=0.7, theta0=0.2)
+    sol = bd.simulate(block, QUIET, t_end=1.5, backend="cvode", rtol=1e-12, atol=1e-14)
+    p, alpha, theta0 = (mpmath.mpf(v) for v in (block.frequency, block.alpha, block.theta0))
+    rate = lambda theta: p * mpmath.sqrt(2 * (mpmath.cos(alpha - theta0) - mpmath.cos(alpha - theta)))
+    t1 = float(mpmath.quad(lambda theta: 1 / rate(theta), [0, theta0]))
+    assert abs(sol.impact_times[0] - t1) < 1e-10
+    assert sol.impacts[0].rate == pytest.approx(-float(rate(0)), rel=1e-9)
+
+
+def test_backends_agree_on_impacts_under_a_record():
+    """CVODE, IDA and the JAX twin locate the same impacts under a recorded motion (Kobe
+    TAK-090, its first 6 s at 0.7 times, so that a 0.6 m x 1.8 m block rocks without overturning):
+    against CVODE at rtol 1e-12."""
+    kobe = load_sample_record("Kobe_1995_TAK-090")
+    record = bd.Record(0.7 * kobe.acceleration_samples[:600], kobe.dt, name="Kobe TAK-090, 0-6 s, x 0.7",
+                       units="m/s2")
+    block = RockingBlock(b=0.3, h=0.9, mu=0.8)
+    reference = bd.simulate(block, record, t_end=6.0, backend="cvode", rtol=1e-12, atol=1e-14)
+    assert len(reference.impacts) >= 4 and not reference.overturned
+    # bars a decade above the worst differences measured: 5.3e-10 s (CVODE), 2.3e-9 s (IDA),
+    # 8.1e-11 s (JAX), each at its default tolerances (rtol 1e-10)
+    for backend, bar in (("cvode", 5e-9), ("ida", 3e-8), ("jax", 1e-9)):
+        sol = bd.simulate(block, record, t_end=6.0, backend=backend)
+        assert len(sol.impacts) == len(reference.impacts), backend
+        assert np.max(np.abs(sol.impact_times - reference.impact_times)) < bar, backend
+
+
+def test_slides_exactly_as_the_sliding_block():
+    """mu < b/h: the block slides, never rocks, and its displacement is bit-identical to
+    the SlidingBlock's on CVODE under the same record (Kobe TAK-090, 10 s)."""
+    kobe = load_sample_record("Kobe_1995_TAK-090")
+    block = RockingBlock(b=0.5, h=0.6, mu=0.3)
+    assert block.slides
+    rocking = bd.simulate(block, kobe, t_end=10.0, backend="cvode")
+    sliding = bd.simulate(bd.SlidingBlock(mu=0.3), kobe, t_end=10.0, backend="cvode")
+    assert rocking.displacement == sliding.displacement != 0.0
+    assert np.array_equal(rocking.state, np.column_stack([sliding.u, sliding.v]))
+    assert [e.t for e in rocking.events] == [e.t for e in sliding.events]
+    assert {int(m) for m in rocking.mode} <= {-1, 0, 1}
+
+
+def test_overturns_and_passes_alpha_first():
+    """A strong pulse overturns the exact block: it passes alpha before it lies on its side."""
+    block = RockingBlock(b=0.1, h=0.5, mu=0.6)
+    sol = bd.simulate(block, bd.SinePulse(-1.0 * G, 0.6), backend="cvode")
+    assert sol.overturned and 0 < sol.time_beyond_alpha < sol.overturn_time
+    assert sol.state[-1, 0] == pytest.approx(math.pi / 2, abs=0)
+
+
+def test_bad_input_names_the_field():
+    with pytest.raises(ValueError, match="restitution"):
+        RockingBlock(b=0.2, h=1.0, mu=0.5, restitution=1.5)
+    with pytest.raises(ValueError, match="theta0"):
+        RockingBlock(b=0.5, h=0.6, mu=0.3, theta0=0.1)
