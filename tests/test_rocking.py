@@ -157,3 +157,20 @@ def test_bad_input_names_the_field():
         RockingBlock(b=0.2, h=1.0, mu=0.5, restitution=1.5)
     with pytest.raises(ValueError, match="theta0"):
         RockingBlock(b=0.5, h=0.6, mu=0.3, theta0=0.1)
+
+
+def test_contact_limits_located_and_reported():
+    """Under Kobe TAK-090 a 0.2 m x 1 m block with mu = 0.3 rocks and overturns; on its way
+    the base friction it needs reaches mu N: located where mu N - |F| is zero (to the dense
+    output's error), warned, and an error naming the time with strict."""
+    kobe = load_sample_record("Kobe_1995_TAK-090")
+    sol = bd.simulate(RockingBlock(b=0.1, h=0.5, mu=0.3), kobe, t_end=6.0)
+    assert sol.overturned
+    slips = [row for row in sol.contact_events if row[1] == "slip_limit"]
+    assert slips and slips[0][0] < sol.overturn_time
+    t, _, theta, rate, force, normal = slips[0]
+    assert normal > 0 and abs(0.3 * normal - abs(force)) < 1e-6 * normal
+    with pytest.warns(bd.rocking.ContactWarning, match=f"t = {t:.9f} s"):
+        sol.check_contact()
+    with pytest.raises(ValueError, match=f"t = {t:.9f} s"):
+        sol.check_contact(strict=True)

@@ -3,6 +3,6 @@ overturning (Housner 1963); its model, modes and solution."""
 
 from ._model import RockingBlock, housner_restitution
 from ._modes import RockingMode
-from ._solution import RockingEvent, RockingSolution
+from ._solution import ContactWarning, RockingEvent, RockingSolution
 
-__all__ = ["RockingBlock", "RockingEvent", "RockingMode", "RockingSolution", "housner_restitution"]
+__all__ = ["ContactWarning", "RockingBlock", "RockingEvent", "RockingMode", "RockingSolution", "housner_restitution"]

@@ -1,11 +1,17 @@
 """Results of a free-standing block: impacts, the Zeno rest, overturning, max |theta|/alpha."""
 
 import dataclasses
+import functools
+import warnings
 
 import numpy as np
 
 from ..core import AbstractEvent, DriverSolution, compact_repr
 from ._modes import RockingMode
+
+
+class ContactWarning(UserWarning):
+    """The contact force of a rocking block left its limits (N <= 0 or |F| > mu N)."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -105,6 +111,38 @@ class RockingSolution(DriverSolution):
         if self.block is None or self.block.slides:
             return 0.0
         return float(np.max(np.abs(self.state[:, 0]))) / self.block.alpha
+
+    @functools.cached_property
+    def contact_events(self) -> tuple:
+        """Where the contact force left its limits while the block rocked: rows (t [s],
+        kind, theta [rad], theta' [rad/s], F [m/s²], N [m/s²]), kind "lift_limit" (N fell
+        to 0: the pivot would lift) or "slip_limit" (|F| reached mu N: it would slip),
+        located on the dense output; Housner's model goes on through them. Empty for a
+        sliding block."""
+        from ._contact import locate_contact_events
+
+        if self.block is None or self.block.slides:
+            return ()
+        return tuple(locate_contact_events(self))
+
+    def check_contact(self, strict=None) -> tuple:
+        """:attr:`contact_events`, with a :class:`ContactWarning` naming the first of each
+        kind, or a ValueError with ``strict`` (None: the block's own ``strict``)."""
+        events = self.contact_events
+        strict = self.block.strict if strict is None else strict
+        for kind in ("lift_limit", "slip_limit"):
+            first = next((row for row in events if row[1] == kind), None)
+            if first is None:
+                continue
+            t, _, theta, rate, force, normal = first
+            what = "N <= 0: the pivot would lift" if kind == "lift_limit" else "|F| >= mu N: the pivot would slip"
+            message = (f"at t = {t:.9f} s the contact force leaves its limits ({what}; theta = {theta:+.6g} rad, "
+                       f"theta' = {rate:+.6g} rad/s, F = {force:+.6g} m/s², N = {normal:+.6g} m/s², mu = "
+                       f"{self.block.mu}); Housner's model keeps its pivot")
+            if strict:
+                raise ValueError(message)
+            warnings.warn(message, ContactWarning, stacklevel=2)
+        return events
 
     def event_table(self, events=None) -> str:
         """``events`` (default: all) as an aligned text table with units (q: theta [rad]
