@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from ..core import set_real_fields
+from ..core import LazyEngine, set_real_fields
 from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, scale_factor_units
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import relative_acceleration, rest_mode, slip_constant, stop_mode
@@ -88,6 +88,8 @@ class RockingBlock(DifferentiableModel):
     modes = RockingMode
     component_names = ("x", "z")
     default_backend = "cvode"
+    #: the linearised rocking block's closed form, compiled (``backend="exact"``)
+    _exact = {"exact": LazyEngine("blockdae.rocking._engine", "LinearisedEngine")}
 
     def __post_init__(self):
         set_real_fields(self, ("b", "h", "mu", "theta0", "zeno_arc", "g"))
@@ -141,6 +143,12 @@ class RockingBlock(DifferentiableModel):
     def slides(self) -> bool:
         """Whether the block slides (mu < b/h) rather than rocks: it never does both."""
         return self.mu < self.b / self.h
+
+    @property
+    def engines(self):
+        """backend name -> engine: "exact" (the compiled closed form) for the linearised
+        block that rocks; the generic driver otherwise."""
+        return self._exact if self.linearised and not self.slides else {}
 
     @property
     def state_names(self):
