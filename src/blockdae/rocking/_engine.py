@@ -7,7 +7,6 @@ import math
 import numpy as np
 
 from ..core import HermiteDense
-from ._contact import MotionAt
 from ._kernel import KNOT_COLUMNS, kernel
 from ._modes import RockingMode
 
@@ -57,17 +56,15 @@ def knots_solution(model, excitation, log, backend_name):
     events = []
     for k in np.flatnonzero(log[:, 5] == 1.0):
         before, after = RockingMode(int(log[k, 4])), RockingMode(int(log[k, 3]))
-        pre = k > 0 and before != RockingMode.RELEASE and log[k - 1, 0] == log[k, 0] and log[k - 1, 3] == log[k, 4] and log[k - 1, 5] == 0.0
-        events.append(model.event(log[k, 0], before, after, log[k - 1 if pre else k, 1:3]))
+        pre = k > 0 and before != RockingMode.RELEASE and log[k - 1, 0] == log[k, 0] and log[k - 1, 3] == log[k, 4] \
+            and log[k - 1, 5] == 0.0
+        row = log[k - 1 if pre else k]
+        events.append(model.event(row[0], before, after, (row[1], row[2])))
     events = tuple(events)
-    motion = MotionAt(excitation)
-    rate_start, rate_end = np.zeros_like(state), np.zeros_like(state)
-    for value in np.unique(mode):  # the flow of each mode on all its knots at once
-        at = np.flatnonzero(mode == value)
-        m = RockingMode(int(value))
-        rate_start[at] = np.transpose(model.flow(m, t[at], state[at].T, motion, np))
-        inner = at[at + 1 < len(t)]
-        rate_end[inner] = np.transpose(model.flow(m, t[inner + 1], state[inner + 1].T, motion, np))
+    rate_start = np.column_stack([state[:, 1], log[:, 6]])
+    # the interval after knot i ends at knot i + 1 in mode i: that knot's theta'' where the
+    # mode holds (a piece's end, an event's pre-knot); an event's zero-length step else
+    rate_end = np.append(rate_start[1:], np.zeros((1, 2)), axis=0)
     stats = {"n_events": len(events), "n_knots": len(t)}
     return model.solution(t=t, y=state, mode=mode, events=events, backend=backend_name,
                           dense=HermiteDense(t, state, rate_start, rate_end), stats=stats)

@@ -23,8 +23,9 @@ from numba.extending import register_jitable
 
 #: mode values (RockingMode)
 REST, OUT, IN, BEYOND, SETTLE, OVERTURNED, RELEASE = 0, 2, 3, 4, 5, 6, 7
-#: columns of the knot log: t [s], theta [rad], theta' [rad/s], mode after, mode before, is an event
-KNOT_COLUMNS = 6
+#: columns of the knot log: t [s], theta [rad], theta' [rad/s], mode after, mode before, is an
+#: event, theta'' in the mode after [rad/s²]
+KNOT_COLUMNS = 7
 #: the longest closed-form step [p tau]: e^{p tau} stays far from overflow
 MAX_EXPONENT = 300.0
 _GL_X = np.array([-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
@@ -154,10 +155,17 @@ def _envelope_integral(s, q0, q1, alpha, p2, g, r, x):
 
 
 @register_jitable
-def _log(log, n, t, theta, rate, mode, before, is_event):
+def _log(log, n, t, theta, rate, mode, before, is_event, a, alpha, p2, g, r):
+    """Log a knot; theta'' [rad/s²] in ``mode`` under a_x = ``a`` [m/s²]."""
     if n < log.shape[0]:
+        kind, s = abs(mode), (1 if mode > 0 else -1)
+        accel = 0.0
+        if kind in (OUT, IN, BEYOND):
+            accel = p2 * theta - p2 * (s * alpha + a / g)
+        elif kind == SETTLE:
+            accel = -s * _envelope_rate(s, a, alpha, p2, g, r)
         log[n, 0], log[n, 1], log[n, 2] = t, theta, rate
-        log[n, 3], log[n, 4], log[n, 5] = mode, before, is_event
+        log[n, 3], log[n, 4], log[n, 5], log[n, 6] = mode, before, is_event, accel
     return n + 1
 
 
@@ -171,15 +179,15 @@ def _run(t0, h, p0, p1, alpha, p, g, r, zeno_arc, theta0, log):
     if theta0 != 0:
         s = 1 if theta0 > 0 else -1
         theta = theta0
-        n = _log(log, n, 0.0, 0.0, 0.0, RELEASE, RELEASE, 0.0)
+        n = _log(log, n, 0.0, 0.0, 0.0, RELEASE, RELEASE, 0.0, p0[0], alpha, p2, g, r)
         accel = p2 * theta - p2 * (s * alpha + p0[0] / g)
         if s * accel <= 0:
             mode = IN * s
         else:
             mode = (OUT if s * theta < alpha else BEYOND) * s
-        n = _log(log, n, 0.0, theta, rate, mode, RELEASE, 1.0)
+        n = _log(log, n, 0.0, theta, rate, mode, RELEASE, 1.0, p0[0], alpha, p2, g, r)
     else:
-        n = _log(log, n, 0.0, 0.0, 0.0, REST, REST, 0.0)
+        n = _log(log, n, 0.0, 0.0, 0.0, REST, REST, 0.0, p0[0], alpha, p2, g, r)
     for i in range(t0.shape[0]):
         length, tau = h[i], 0.0
         while True:
@@ -211,7 +219,7 @@ def _run(t0, h, p0, p1, alpha, p, g, r, zeno_arc, theta0, log):
                         break
                     tau += best
                 mode = OUT * start
-                n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, REST, 1.0)
+                n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, REST, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
                 continue
             if kind == SETTLE:
                 w = abs(rate)
@@ -230,15 +238,15 @@ def _run(t0, h, p0, p1, alpha, p, g, r, zeno_arc, theta0, log):
                         if abs(step) <= 1e-16 * x:
                             break
                     tau += x
-                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, mode, 0.0)
+                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, mode, 0.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
                     mode, theta, rate = REST, 0.0, 0.0
-                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, REST, SETTLE * s, 1.0)
+                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, REST, SETTLE * s, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
                     continue
                 if onset < span:
                     tau += onset
                     before = mode
                     mode, theta, rate = (OUT if q1 < 0 else -OUT), 0.0, 0.0
-                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, before, 1.0)
+                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, before, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
                     continue
                 rate -= s * _envelope_integral(s, q0, q1, alpha, p2, g, r, span)
                 break
@@ -290,13 +298,14 @@ def _run(t0, h, p0, p1, alpha, p, g, r, zeno_arc, theta0, log):
                     mode = -SETTLE * s
                 else:
                     mode = -OUT * s
-            n = _log(log, n, t, theta, rate, before, before, 0.0)
+            n = _log(log, n, t, theta, rate, before, before, 0.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
             if abs(before) == IN and index == 0:
                 rate = r * rate
             if abs(mode) == OVERTURNED:
                 rate = 0.0
-            n = _log(log, n, t, theta, rate, mode, before, 1.0)
-        n = _log(log, n, t0[i] + h[i] if h[i] < math.inf else t0[i] + tau, theta, rate, mode, mode, 0.0)
+            n = _log(log, n, t, theta, rate, mode, before, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
+        end = h[i] if h[i] < math.inf else tau
+        n = _log(log, n, t0[i] + end, theta, rate, mode, mode, 0.0, p0[i] + p1[i] * end, alpha, p2, g, r)
     return n
 
 

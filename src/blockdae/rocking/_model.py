@@ -39,6 +39,8 @@ from ._solution import RockingEvent, RockingSolution
 
 _Q, _RATE = range(2)
 _OUT, _IN, _BEYOND, _SETTLE, _OVERTURNED = 2, 3, 4, 5, 6
+#: a rotation rate below RATE_FLOOR p alpha [rad/s] is no contradiction of its mode
+RATE_FLOOR = 1e-10
 
 
 def housner_restitution(alpha: float) -> float:
@@ -435,10 +437,13 @@ class RockingBlock(DifferentiableModel):
         return (s * accel, s * jerk) if guard_index == 0 else (-s * y[_RATE], -s * accel)
 
     def contradiction(self, mode, y, velocity_error):
-        """A slide or a rotation whose rate points against its mode."""
+        """A slide or a rotation whose rate points against its mode: beyond the velocity
+        error, and for a rotation beyond 1e-10 p alpha [rad/s] (an apex that grazes zero
+        where a(t) turns at a sample dips below it by the integrator's error)."""
         kind, s = abs(int(mode)), side(mode)
         if kind == 1 and mode * y[_RATE] < -velocity_error:
             return f"u' = {y[_RATE]:+.6g} m/s points against the slide"
+        velocity_error = max(velocity_error, RATE_FLOOR * self.frequency * self.alpha)
         if kind in (_OUT, _BEYOND) and s * y[_RATE] < -velocity_error:
             return f"theta' = {y[_RATE]:+.6g} rad/s points toward the base"
         if kind == _IN and s * y[_RATE] > velocity_error:
