@@ -475,9 +475,11 @@ class RockingBlock(DifferentiableModel):
 
     # ---- parameters, for the JAX twin and derivatives --------------------------------
     def parameters(self):
-        """b [m], h [m], mu [-], mu_kinetic [-], restitution [-] and p [rad/s] where given,
+        """b [m], h [m], mu [-]; mu_kinetic [-], restitution [-] and p [rad/s] where given;
         theta0 [rad], g [m/s²] (and the flag "linearised" [-] of the linearised block)."""
-        values = {"b": self.b, "h": self.h, "mu": self.mu, "mu_kinetic": self.friction_kinetic}
+        values = {"b": self.b, "h": self.h, "mu": self.mu}
+        if self.mu_kinetic is not None:
+            values["mu_kinetic"] = self.mu_kinetic
         if self.restitution is not None:
             values["restitution"] = self.restitution
         if self.p is not None:

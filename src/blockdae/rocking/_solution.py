@@ -144,6 +144,13 @@ class RockingSolution(DriverSolution):
             warnings.warn(message, ContactWarning, stacklevel=2)
         return events
 
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """theta / alpha (or u) against time with the impacts, over a_x (``excitation``
+        and ``block`` unused); a matplotlib Figure."""
+        from ._figures import rocking_figure
+
+        return rocking_figure(self, n_points=n_points, title=title)
+
     def event_table(self, events=None) -> str:
         """``events`` (default: all) as an aligned text table with units (q: theta [rad]
         or u [m]; rates in rad/s or m/s)."""
