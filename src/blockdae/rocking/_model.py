@@ -261,11 +261,12 @@ class RockingBlock(DifferentiableModel):
         return xp.stack([zero, zero])
 
     def guards(self, mode, t, y, excitation, xp=np):
-        """Guards of ``mode`` (each left as it falls through zero); the last, g_e, is a
-        flight of the whole block (an error; at rest and rocking). REST: (limit - a_x, limit + a_x) with limit
-        = min(mu, b/h) g_e; SLIDE: (s u'); OUT: (s theta' -> apex, alpha - s theta);
-        IN: (s theta -> impact, -s theta' -> outward again); BEYOND: (s theta', pi/2 - s
-        theta -> overturned); SETTLE: (s theta' -> rest, the two onsets)."""
+        """Guards of ``mode``, each left as it falls through zero; the last one at rest and
+        rocking, g_e [m/s²], is a flight of the whole block (an error). REST: (limit -
+        a_x, limit + a_x) with limit = min(mu, b/h) g_e; SLIDE: (s u'); OUT: (s theta' ->
+        apex, alpha - s theta); IN: (s theta -> impact, -s theta' -> outward again);
+        BEYOND: (s theta', pi/2 - s theta -> overturned); SETTLE: (s theta' -> rest, the
+        two onsets)."""
         kind, s = abs(int(mode)), side(mode)
         ax, ge, _, _ = self._base(t, excitation)
         one = 0.0 * y[_Q] + 1.0
