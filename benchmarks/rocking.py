@@ -7,7 +7,10 @@ max |theta|/alpha, the largest event-time difference of the compiled engine (bac
 "exact") from CVODE at rtol 1e-12 [s] (inf where the event lists differ), and the warm
 wall times of the engine and of CVODE at its default rtol 1e-10 [s] (median of --repeat).
 The bar: the compiled record path at least 100 times faster than CVODE over the 18
-records (their total times).
+records (their total times). The event-time differences are CVODE's: even at rtol 1e-12 it
+drifts by about 1e-11 s per impact (against the closed form of free rocking, where the
+compiled path stays within 2e-14 s: tests/test_rocking.py), and the rocking motion, unstable
+between impacts, amplifies a drift over a record; a near-graze can then end differently.
 
     python benchmarks/rocking.py [--quick] [--repeat N]
 """
@@ -57,7 +60,9 @@ def main(argv=None):
     speedup = total_cvode / total_exact
     print(f"\ntotal: exact {total_exact:.3f} s, CVODE (rtol 1e-10) {total_cvode:.2f} s: {speedup:.0f} times faster; "
           f"bar {SPEED_BAR:g}x: " + verdict(speedup >= SPEED_BAR, args.quick))
-    print(f"worst event-time difference from CVODE at rtol 1e-12: {worst[0]:.1e} s ({worst[1]})")
+    same = [float(row[6]) for row in rows if row[6] != "inf"]
+    print(f"event lists identical to CVODE's (rtol 1e-12) on {len(same)} of {len(rows)} records; their median "
+          f"largest event-time difference {np.median(same):.1e} s; worst {worst[0]:.1e} s ({worst[1]})")
     return 0
 
 

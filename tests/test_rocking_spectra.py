@@ -7,7 +7,6 @@ the onset rules of rest (mu g_e, g_e b/h)."""
 
 import math
 
-import numpy as np
 import pytest
 
 import blockdae as bd

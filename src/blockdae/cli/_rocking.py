@@ -84,7 +84,8 @@ def run_rocking(args) -> int:
     if block.slides:
         print(f"slides: u(t_end) = {solution.displacement:+.6f} m, {len(solution.events)} events")
     else:
-        print(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; impacts located: {len(solution.impacts)}")
+        print(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; "
+              f"impacts located: {len(solution.impacts)}")
         if solution.overturned:
             print(f"overturned at t = {solution.overturn_time:.6f} s (|theta| passed alpha at "
                   f"t = {solution.time_beyond_alpha:.6f} s)")

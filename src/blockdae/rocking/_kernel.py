@@ -61,11 +61,6 @@ def _motion(theta, rate, d, c1, p, tau):
 
 
 @register_jitable
-def _value(f, p, tau):
-    return f[0] + f[1] * tau + f[2] * math.exp(p * tau) + f[3] * math.exp(-p * tau)
-
-
-@register_jitable
 def _slope(f, p, tau):
     return f[1] + p * (f[2] * math.exp(p * tau) - f[3] * math.exp(-p * tau))
 

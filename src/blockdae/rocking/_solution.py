@@ -7,7 +7,6 @@ import warnings
 import numpy as np
 
 from ..core import AbstractEvent, DriverSolution, compact_repr
-from ._modes import RockingMode
 
 
 class ContactWarning(UserWarning):
