@@ -222,3 +222,17 @@ def test_vertical_shaking_scales_gravity():
                         units="m/s2", check_peak=False)
     with pytest.raises(ValueError, match=r"at t = 0\.49\d* s the base falls faster than g"):
         bd.simulate(RockingBlock(b=0.2, h=1.0, mu=0.5), bd.BaseMotion(quiet, z=falling), t_end=3.0)
+
+
+def test_strict_stops_where_the_contact_force_leaves_its_limits():
+    """strict=True: the run stops with an error at the first contact limit, located as a
+    guard, at the time check_contact() locates on the dense output of the run that goes
+    on (within 1e-6 s: the dense output's error)."""
+    kobe = load_sample_record("Kobe_1995_TAK-090")
+    block = RockingBlock(b=0.1, h=0.5, mu=0.3)
+    goes_on = bd.simulate(block, kobe, t_end=6.0)
+    first = goes_on.contact_events[0]
+    with pytest.raises(ValueError, match="strict=True stops here") as error:
+        bd.simulate(block.replace(strict=True), kobe, t_end=6.0)
+    t_stop = float(str(error.value).split("at t = ")[1].split(" s")[0])
+    assert abs(t_stop - first[0]) < 1e-6

@@ -46,7 +46,12 @@ class LinearisedEngine:
             if n <= rows:
                 break
             rows = 2 * n
-        return knots_solution(model, excitation, log[:n], backend.name)
+        solution = knots_solution(model, excitation, log[:n], backend.name)
+        if model.strict:  # located on the closed form's dense output
+            object.__setattr__(solution, "block", model)
+            object.__setattr__(solution, "motion", excitation)
+            solution.check_contact(strict=True)
+        return solution
 
 
 def knots_solution(model, excitation, log, backend_name):

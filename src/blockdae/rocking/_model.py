@@ -67,8 +67,9 @@ class RockingBlock(DifferentiableModel):
         linearised: the linearised block (sin phi -> phi, cos phi -> 1: slender,
             small rotations).
         zeno_arc: the arc duration [s] below which the remaining impacts are summed.
-        strict: raise on a contact force out of its limits (N <= 0: flight, |F| > mu N:
-            slip of the pivot) instead of a warning.
+        strict: stop with an error where the contact force leaves its limits (N <= 0: the
+            pivot would lift, |F| > mu N: it would slip), located as a guard; otherwise
+            Housner's model goes on and ``solution.check_contact()`` reports them.
         g: gravitational acceleration [m/s²].
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x
@@ -228,6 +229,12 @@ class RockingBlock(DifferentiableModel):
         return (ax + radius * xp.cos(phi) * accel + radius * xp.sin(phi) * rate ** 2,
                 ge + radius * xp.sin(phi) * accel - radius * xp.cos(phi) * rate ** 2)
 
+    def contact_margins(self, s, theta, rate, t, excitation, xp=np):
+        """(N, mu N - |F|) [m/s²] about side ``s``: where either falls through zero the
+        pivot would lift or slip (see :meth:`contact_force`)."""
+        force, normal = self.contact_force(s, theta, rate, t, excitation, xp)
+        return normal, self.mu * normal - xp.abs(force)
+
     def deceleration(self, s, t, excitation, xp=SCALAR):
         """-s theta'' at theta = 0 on side ``s`` [rad/s²]: how fast an arc from the base
         about that corner turns back (<= 0: the demand holds it out)."""
@@ -275,12 +282,14 @@ class RockingBlock(DifferentiableModel):
             return xp.stack([limit - ax, limit + ax, ge])
         if kind == 1:
             return xp.stack([mode * y[_RATE]])
-        if kind == _OUT:
-            return xp.stack([s * y[_RATE], xp.arctan2(self.b, self.h) - s * y[_Q], ge])
-        if kind == _IN:
-            return xp.stack([s * y[_Q], -s * y[_RATE], ge])
-        if kind == _BEYOND:
-            return xp.stack([s * y[_RATE], 0.5 * xp.pi - s * y[_Q], ge])
+        if kind in (_OUT, _IN, _BEYOND):
+            if kind == _IN:
+                own = [s * y[_Q], -s * y[_RATE]]
+            else:
+                edge = xp.arctan2(self.b, self.h) if kind == _OUT else 0.5 * xp.pi
+                own = [s * y[_RATE], edge - s * y[_Q]]
+            contact = list(self.contact_margins(s, y[_Q], y[_RATE], t, excitation, xp)) if self.strict else []
+            return xp.stack([*own, *contact, ge])
         if kind == _SETTLE:
             limit = self.b / self.h * ge
             return xp.stack([s * y[_RATE], limit - ax, limit + ax, ge])
@@ -307,6 +316,17 @@ class RockingBlock(DifferentiableModel):
         return (kind not in (1, _OVERTURNED) and mode != RockingMode.RELEASE
                 and guard_index == len(self.guards(mode, t, y, excitation, SCALAR)) - 1)
 
+    def _is_contact_guard(self, mode, guard_index):
+        """Whether guard ``guard_index`` of ``mode`` is a contact limit (rocking, strict)."""
+        return self.strict and abs(int(mode)) in (_OUT, _IN, _BEYOND) and guard_index in (2, 3)
+
+    def _contact_error(self, s, t, y, excitation, lifts):
+        force, normal = self.contact_force(s, y[_Q], y[_RATE], t, excitation, SCALAR)
+        what = "N <= 0: the pivot would lift" if lifts else "|F| >= mu N: the pivot would slip"
+        return ValueError(f"at t = {t:.9f} s the contact force leaves its limits ({what}; theta = {y[_Q]:+.6g} rad, "
+                          f"theta' = {y[_RATE]:+.6g} rad/s, F = {force:+.6g} m/s², N = {normal:+.6g} m/s², "
+                          f"mu = {self.mu}); strict=True stops here")
+
     def _flight(self, t, excitation):
         ax, ge, _, _ = self._base(t, excitation)
         return ValueError(f"at t = {t:.12g} s the base falls faster than g (g + a_z = {ge:.6g} m/s²): a flight "
@@ -327,6 +347,8 @@ class RockingBlock(DifferentiableModel):
             raise self._flight(t, excitation)
         if mode == RockingMode.REST:
             return self._start(-1 if guard_index == 0 else 1)
+        if self._is_contact_guard(mode, guard_index):
+            raise self._contact_error(s, t, y, excitation, guard_index == 2)
         if kind == 1:
             ax, ge, ax_rate, _ = self._base(t, excitation)
             slip_rate = self.flow(mode, t, y, excitation, SCALAR)[_RATE]
@@ -422,6 +444,8 @@ class RockingBlock(DifferentiableModel):
             return 0.0, 0.0
         if self._is_flight_guard(mode, guard_index, t, y, excitation):
             return az_rate, 0.0
+        if self._is_contact_guard(mode, guard_index):
+            return self._contact_rate(s, guard_index - 2, t, y, excitation), 0.0
         if mode == RockingMode.REST or (kind == _SETTLE and guard_index > 0):
             coefficient = self.b / self.h if kind == _SETTLE else min(self.mu, self.b / self.h)
             sign = -1.0 if guard_index in (0, 1) and (mode == RockingMode.REST) == (guard_index == 0) else 1.0
@@ -436,6 +460,15 @@ class RockingBlock(DifferentiableModel):
             return (s * y[_RATE], s * accel) if guard_index == 0 else (-s * accel, -s * jerk)
         # OUT, BEYOND: s theta' (apex), alpha or pi/2 - s theta
         return (s * accel, s * jerk) if guard_index == 0 else (-s * y[_RATE], -s * accel)
+
+    def _contact_rate(self, s, index, t, y, excitation):
+        """d/dt of contact margin ``index`` [m/s³] along the flow, by central differences
+        over 1e-7 s."""
+        step = 1e-7
+        rate = np.array(self.flow(rock_mode(_OUT, s), t, y, excitation, SCALAR))
+        ahead, behind = np.asarray(y) + step * rate, np.asarray(y) - step * rate
+        value = lambda when, state: self.contact_margins(s, state[_Q], state[_RATE], when, excitation, SCALAR)[index]
+        return (value(t + step, ahead) - value(t - step, behind)) / (2 * step)
 
     def contradiction(self, mode, y, velocity_error):
         """A slide or a rotation whose rate points against its mode: beyond the velocity
@@ -477,7 +510,7 @@ class RockingBlock(DifferentiableModel):
     # ---- parameters, for the JAX twin and derivatives --------------------------------
     def parameters(self):
         """b [m], h [m], mu [-]; mu_kinetic [-], restitution [-] and p [rad/s] where given;
-        theta0 [rad], g [m/s²] (and the flag "linearised" [-] of the linearised block)."""
+        theta0 [rad], g [m/s²] (and the flags "linearised" and "strict" [-] where set)."""
         values = {"b": self.b, "h": self.h, "mu": self.mu}
         if self.mu_kinetic is not None:
             values["mu_kinetic"] = self.mu_kinetic
@@ -485,14 +518,15 @@ class RockingBlock(DifferentiableModel):
             values["restitution"] = self.restitution
         if self.p is not None:
             values["p"] = self.p
-        if self.linearised:
-            values["linearised"] = 1.0  # a name of its own: the JAX twin compiles its rules apart
+        for flag in ("linearised", "strict"):
+            if getattr(self, flag):
+                values[flag] = 1.0  # a name of its own: the JAX twin compiles its rules apart
         return {**values, "theta0": self.theta0, "g": self.g}
 
     def with_parameters(self, values):
         model = copy.copy(self)
         for name, value in {**self.parameters(), **values}.items():
-            if name != "linearised":
+            if name not in ("linearised", "strict"):
                 object.__setattr__(model, name, value)
         return model
 
