@@ -35,13 +35,13 @@ def test_spectrum_threshold_is_a_threshold():
     spectrum = rocking.overturning_spectrum(block, [1.0, 3.0], "sine", backend="exact", rtol=1e-6)
     for ratio, amplitude in zip(spectrum.frequency_ratio, spectrum.amplitude):
         period = 2 * math.pi / (ratio * block.frequency)
-        unit = G * block.b / block.h
+        unit = G * block.alpha  # the linearised block's threshold
         assert rocking.overturns(block, rocking.pulse("sine", amplitude * unit, period), backend="exact")
         assert not rocking.overturns(block, rocking.pulse("sine", 0.999 * amplitude * unit, period), backend="exact")
     cvode = rocking.overturning_amplitude(block, "sine", 3.0, backend="cvode", rtol=1e-6)
     assert cvode == pytest.approx(spectrum.amplitude[1], rel=1e-3)
     assert 1.0 < spectrum.amplitude[0] < spectrum.amplitude[1]
-    assert list(spectrum.to_dataframe().columns) == ["frequency_ratio", "amplitude_g_tan_alpha", "amplitude_g"]
+    assert list(spectrum.to_dataframe().columns) == ["frequency_ratio", "amplitude_over_threshold", "amplitude_g"]
 
 
 def test_rest_slide_rock_map():

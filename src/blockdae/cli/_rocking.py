@@ -26,7 +26,7 @@ def add_rocking_parser(subparsers):
     p.add_argument("--b", type=positive("--b"), required=True, help="half-width b of the block [m]")
     p.add_argument("--h", type=positive("--h"), required=True, help="half-height h of the block [m]")
     p.add_argument("--mu", type=number("--mu", lambda x: math.isfinite(x) and x >= 0, "a finite number >= 0"),
-                   required=True, help="friction coefficient at the base [-] (below b/h the block slides)")
+                   required=True, help="friction coefficient at the base [-] (below b/h the block slides; linearised: below alpha)")
     p.add_argument("--restitution", type=number("--restitution", lambda x: 0 <= x <= 1, "in [0, 1]"), default=None,
                    help="ratio of angular velocities through an impact [-] (default Housner's 1 - 1.5 sin² alpha)")
     p.add_argument("--linearised", action="store_true", help="the linearised block (slender, small rotations)")
@@ -79,7 +79,8 @@ def run_rocking(args) -> int:
         print(f"scaled by {factor:.6g} [-] to a peak of {record.peak_acceleration / block.g:.6g} g")
     print(f"block: b = {block.b:g} m, h = {block.h:g} m, alpha = {block.alpha:.6f} rad, p = {block.frequency:.6f} "
           f"rad/s, r = {block.r:.6f}, mu = {block.mu:g} ({'slides' if block.slides else 'rocks'}: mu "
-          f"{'<' if block.slides else '>='} b/h = {block.b / block.h:.6g}){'; linearised' if block.linearised else ''}")
+          f"{'<' if block.slides else '>='} {'alpha' if block.linearised else 'b/h'} = "
+          f"{block.rocking_threshold:.6g}){'; linearised' if block.linearised else ''}")
     print(f"backend {solution.backend}; t_end = {solution.t_end:.4f} s")
     if block.slides:
         print(f"slides: u(t_end) = {solution.displacement:+.6f} m, {len(solution.events)} events")

@@ -12,7 +12,7 @@ corner on side s (+1: x = +b, theta > 0), with phi = s alpha - theta:
 exact (the linearised block: sin phi -> phi, cos phi -> 1). From rest it rocks about +b
 when a_x < -g_e tan(alpha) (about -b when a_x > g_e tan(alpha)) and slides when |a_x| >
 mu g_e: for mu < tan(alpha) the block only slides (the 1-D sliding block's rules with g_e
-for g), otherwise it only rocks. When theta returns to 0 the other corner strikes the
+for g), otherwise it only rocks (the linearised block: alpha for tan(alpha)). When theta returns to 0 the other corner strikes the
 base: theta' -> r theta' (Housner's r = 1 - 3/2 sin² alpha unless given) and the pivot
 switches. The impacts accumulate before rest: when the next arc would be shorter than
 ``zeno_arc`` [s], the rest of the geometric series is summed (mode SETTLE, in which
@@ -113,8 +113,8 @@ class RockingBlock(DifferentiableModel):
         if not abs(self.theta0) < math.pi / 2:
             raise ValueError(f"theta0={self.theta0!r} must be in (-pi/2, pi/2) [rad]")
         if self.theta0 != 0 and self.slides:
-            raise ValueError(f"theta0={self.theta0!r}: a block with mu={self.mu} < b/h={self.b / self.h:.6g} "
-                             "slides and never rocks; a tilt needs mu >= b/h")
+            raise ValueError(f"theta0={self.theta0!r}: a block with mu={self.mu} below its rocking threshold "
+                             f"{self.rocking_threshold:.6g} slides and never rocks")
 
     # ---- what the block is ----------------------------------------------------------
     @property
@@ -143,9 +143,20 @@ class RockingBlock(DifferentiableModel):
         return self.mu if self.mu_kinetic is None else self.mu_kinetic
 
     @property
+    def rocking_threshold(self):
+        """|a_x| / g_e [-] that lifts a corner from rest: b/h = tan(alpha), or alpha for the
+        linearised block."""
+        return self.alpha if self.linearised else self.b / self.h
+
+    def _threshold(self, xp):
+        """:attr:`rocking_threshold` from the (possibly traced) parameters."""
+        return xp.arctan2(self.b, self.h) if self.linearised else self.b / self.h
+
+    @property
     def slides(self) -> bool:
-        """Whether the block slides (mu < b/h) rather than rocks: it never does both."""
-        return self.mu < self.b / self.h
+        """Whether the block slides (mu below the rocking threshold, b/h) rather than rocks:
+        it never does both."""
+        return self.mu < self.rocking_threshold
 
     @property
     def engines(self):
@@ -241,8 +252,8 @@ class RockingBlock(DifferentiableModel):
         return -s * self.angular_acceleration(s, 0.0, t, excitation, xp)
 
     def _limit(self, ge, xp):
-        """g_e times the smaller of mu and b/h [m/s²]: where rest ends."""
-        return xp.minimum(self.mu, self.b / self.h) * ge
+        """g_e times the smaller of mu and the rocking threshold [m/s²]: where rest ends."""
+        return xp.minimum(self.mu, self._threshold(xp)) * ge
 
     def _settle_rate(self, s, t, excitation, xp=SCALAR):
         """d theta'/dt [rad/s²] of the Zeno envelope on side ``s``: with the excitation
@@ -291,7 +302,7 @@ class RockingBlock(DifferentiableModel):
             contact = list(self.contact_margins(s, y[_Q], y[_RATE], t, excitation, xp)) if self.strict else []
             return xp.stack([*own, *contact, ge])
         if kind == _SETTLE:
-            limit = self.b / self.h * ge
+            limit = self._threshold(xp) * ge
             return xp.stack([s * y[_RATE], limit - ax, limit + ax, ge])
         if mode == RockingMode.RELEASE:
             return xp.stack([-one])
@@ -300,7 +311,7 @@ class RockingBlock(DifferentiableModel):
     def mode_at_rest(self, t, excitation, xp=np, y=None):
         """REST, or the slide or rock the demand starts (its rate decides at a threshold)."""
         ax, ge, ax_rate, _ = self._base(t, excitation)
-        direction = int(rest_mode(ax, ax_rate, min(self.mu, self.b / self.h), ge, True, True, SCALAR))
+        direction = int(rest_mode(ax, ax_rate, min(self.mu, self.rocking_threshold), ge, True, True, SCALAR))
         return self._start(direction)
 
     def _start(self, direction):
@@ -447,7 +458,7 @@ class RockingBlock(DifferentiableModel):
         if self._is_contact_guard(mode, guard_index):
             return self._contact_rate(s, guard_index - 2, t, y, excitation), 0.0
         if mode == RockingMode.REST or (kind == _SETTLE and guard_index > 0):
-            coefficient = self.b / self.h if kind == _SETTLE else min(self.mu, self.b / self.h)
+            coefficient = self.rocking_threshold if kind == _SETTLE else min(self.mu, self.rocking_threshold)
             sign = -1.0 if guard_index in (0, 1) and (mode == RockingMode.REST) == (guard_index == 0) else 1.0
             return coefficient * az_rate + sign * ax_rate, 0.0
         if kind == 1:

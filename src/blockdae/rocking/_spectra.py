@@ -60,12 +60,12 @@ def overturns(block, motion, backend=None, **options) -> bool:
 def overturning_amplitude(block, shape, frequency_ratio, *, max_factor=30.0, steps=30, rtol=1e-4, backend=None,
                           **options) -> float:
     """The smallest amplitude of a one-``shape`` pulse of angular frequency
-    ``frequency_ratio`` p that overturns ``block``, in units of g tan(alpha) [-] (the
-    pulse's onset threshold: 1); found on a geometric grid of ``steps`` from 1 to
+    ``frequency_ratio`` p that overturns ``block``, in units of its rocking threshold g
+    tan(alpha) (g alpha linearised) [-] (a pulse below 1 does not lift it); found on a geometric grid of ``steps`` from 1 to
     ``max_factor`` and bisected to ``rtol``. inf where none on the grid overturns."""
     if not frequency_ratio > 0:
         raise ValueError(f"frequency_ratio={frequency_ratio!r} must be > 0")
-    unit = block.g * block.b / block.h
+    unit = block.g * block.rocking_threshold
     period = 2 * math.pi / (frequency_ratio * block.frequency)
     tips = lambda factor: overturns(block, pulse(shape, factor * unit, period), backend, **options)
     grid = np.geomspace(1.0, max_factor, steps)
@@ -87,8 +87,9 @@ class OverturningSpectrum:
 
     Attributes:
         frequency_ratio: omega_p / p of the pulses [-], shape (n,).
-        amplitude: the smallest amplitude that overturns, in g tan(alpha) [-] (inf: none
-            up to the search's largest), shape (n,).
+        amplitude: the smallest amplitude that overturns, in units of the block's rocking
+            threshold g tan(alpha) (g alpha linearised) [-] (inf: none up to the search's
+            largest), shape (n,).
         shape: "sine" or "cosine".
         block: the block.
     """
@@ -99,21 +100,21 @@ class OverturningSpectrum:
     block: object
 
     def to_dataframe(self):
-        """frequency_ratio [-], amplitude_g_tan_alpha [-], amplitude_g [g]."""
+        """frequency_ratio [-], amplitude_over_threshold [-], amplitude_g [g]."""
         import pandas as pd
 
-        tan_alpha = self.block.b / self.block.h
-        return pd.DataFrame({"frequency_ratio": self.frequency_ratio, "amplitude_g_tan_alpha": self.amplitude,
-                             "amplitude_g": self.amplitude * tan_alpha})
+        return pd.DataFrame({"frequency_ratio": self.frequency_ratio, "amplitude_over_threshold": self.amplitude,
+                             "amplitude_g": self.amplitude * self.block.rocking_threshold})
 
     def figure(self, ax=None):
-        """a_p / (g tan alpha) against omega_p / p; a matplotlib Figure."""
+        """a_p over the rocking threshold against omega_p / p; a matplotlib Figure."""
         import matplotlib.pyplot as plt
 
         fig = plt.figure(figsize=(6, 4), constrained_layout=True) if ax is None else ax.figure
         ax = ax or fig.add_subplot()
         ax.plot(self.frequency_ratio, self.amplitude, marker="o", ms=3, label=f"one-{self.shape} pulse")
-        ax.set(xlabel="omega_p / p [-]", ylabel="a_p / (g tan alpha) [-]", title="overturning spectrum")
+        ax.set(xlabel="omega_p / p [-]", ylabel="a_p / (g tan alpha) [-] (g alpha linearised)",
+               title="overturning spectrum")
         ax.legend(fontsize="small")
         return fig
 
@@ -128,7 +129,8 @@ def overturning_spectrum(block, frequency_ratios, shape="sine", **search) -> Ove
 def motion_regime(mu, aspect, demand):
     """What a block at rest does first under a horizontal demand |a_x| / g_e = ``demand``
     [-], by friction ``mu`` [-] and aspect ratio b/h = ``aspect`` [-] (arrays broadcast):
-    "rest" below min(mu, b/h), else "slide" where mu < b/h and "rock" where not."""
+    "rest" below min(mu, b/h), else "slide" where mu < b/h and "rock" where not (the exact
+    block's rules; the linearised block's threshold is atan(b/h))."""
     mu, aspect, demand = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (mu, aspect, demand)))
     moving = np.where(mu < aspect, "slide", "rock")
     return np.where(demand <= np.minimum(mu, aspect), "rest", moving)
