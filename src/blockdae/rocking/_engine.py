@@ -42,7 +42,7 @@ class LinearisedEngine:
         rows = ROWS_PER_PIECE * len(pieces[0]) + 64
         while True:
             log = np.empty((rows, KNOT_COLUMNS))
-            n = run(*pieces, model.alpha, model.frequency, model.g, model.r, model.zeno_arc, model.theta0, False, log)
+            n = run(*pieces, model.alpha, model.frequency, model.g, model.r, model.zeno_arc, model.theta0, log)
             if n <= rows:
                 break
             rows = 2 * n

@@ -132,73 +132,70 @@ def _guard(row, theta, rate, d, c1, p, tau):
 
 
 @register_jitable
-def _accel(s, theta, a, alpha, p2, g, exact):
-    """theta'' [rad/s²] about side ``s`` at ``theta`` [rad] under a_x = ``a`` [m/s²]: the
-    exact equation, or the linearised one."""
-    phi = s * alpha - theta
-    if exact:
-        return -p2 * (math.sin(phi) + a / g * math.cos(phi))
-    return -p2 * (phi + a / g)
+def _accel(s, theta, a, alpha, p2, g):
+    """theta'' [rad/s²] of the linearised block about side ``s`` at ``theta`` [rad] under
+    a_x = ``a`` [m/s²]."""
+    return -p2 * (s * alpha - theta + a / g)
 
 
 @register_jitable
-def _decel(s, a, alpha, p2, g, exact):
+def _decel(s, a, alpha, p2, g):
     """-s theta'' at theta = 0 on side ``s`` [rad/s²] (the model's ``deceleration``)."""
-    return -s * _accel(s, 0.0, a, alpha, p2, g, exact)
+    return -s * _accel(s, 0.0, a, alpha, p2, g)
 
 
 @register_jitable
-def _envelope_rate(s, q, alpha, p2, g, r, exact):
+def _envelope_rate(s, q, alpha, p2, g, r):
     """1 / K [rad/s²] of the Zeno envelope on side ``s`` under a_x = ``q`` (the model's
     ``_settle_rate`` magnitude)."""
-    d_s, d_o = _decel(s, q, alpha, p2, g, exact), _decel(-s, q, alpha, p2, g, exact)
+    d_s, d_o = _decel(s, q, alpha, p2, g), _decel(-s, q, alpha, p2, g)
     return (1 - r * r) / (2.0 * (1.0 / d_s + r / d_o))
 
 
 @register_jitable
-def _envelope_integral(s, q0, q1, alpha, p2, g, r, x, exact):
+def _envelope_integral(s, q0, q1, alpha, p2, g, r, x):
     """The integral of 1 / K over [0, x] [rad/s] (Gauss-Legendre, 8 points)."""
     total = 0.0
     for k in range(8):
         tau = 0.5 * x * (_GL_X[k] + 1.0)
-        total += _GL_W[k] * _envelope_rate(s, q0 + q1 * tau, alpha, p2, g, r, exact)
+        total += _GL_W[k] * _envelope_rate(s, q0 + q1 * tau, alpha, p2, g, r)
     return 0.5 * x * total
 
 
 @register_jitable
-def _log(log, n, t, theta, rate, mode, before, is_event, a, alpha, p2, g, r, exact):
+def _log(log, n, t, theta, rate, mode, before, is_event, a, alpha, p2, g, r):
     """Log a knot; theta'' [rad/s²] in ``mode`` under a_x = ``a`` [m/s²]."""
     if n < log.shape[0]:
         kind, s = abs(mode), (1 if mode > 0 else -1)
         accel = 0.0
         if kind in (OUT, IN, BEYOND):
-            accel = _accel(s, theta, a, alpha, p2, g, exact)
+            accel = _accel(s, theta, a, alpha, p2, g)
         elif kind == SETTLE:
-            accel = -s * _envelope_rate(s, a, alpha, p2, g, r, exact)
+            accel = -s * _envelope_rate(s, a, alpha, p2, g, r)
         log[n, 0], log[n, 1], log[n, 2] = t, theta, rate
         log[n, 3], log[n, 4], log[n, 5], log[n, 6] = mode, before, is_event, accel
     return n + 1
 
 
-def _run(t0, h, p0, p1, alpha, p, g, r, zeno_arc, theta0, exact, log):
+def _run(t0, h, p0, p1, alpha, p, g, r, zeno_arc, theta0, log):
     """One run over the pieces (t0 [s], h [s], p0 [m/s²], p1 [m/s³]) (the last may be
     the rest-seeking tail, h = inf); returns the number of knot rows (more than the
     log holds: it was full)."""
     p2 = p * p
-    limit = g * (math.tan(alpha) if exact else alpha)  # |a_x| that lifts a corner [m/s²]
+    limit = g * alpha  # |a_x| that lifts a corner of the linearised block [m/s²]
     mode, theta, rate, n = REST, 0.0, 0.0, 0
     if theta0 != 0:
         s = 1 if theta0 > 0 else -1
         theta = theta0
-        n = _log(log, n, 0.0, 0.0, 0.0, RELEASE, RELEASE, 0.0, p0[0], alpha, p2, g, r, exact)
-        accel = _accel(s, theta, p0[0], alpha, p2, g, exact)
+        n = _log(log, n, 0.0, 0.0, 0.0, RELEASE, RELEASE, 0.0, p0[0], alpha, p2, g, r)
+        accel = _accel(s, theta, p0[0], alpha, p2, g)
         if s * accel <= 0:
             mode = IN * s
         else:
             mode = (OUT if s * theta < alpha else BEYOND) * s
-        n = _log(log, n, 0.0, theta, rate, mode, RELEASE, 1.0, p0[0], alpha, p2, g, r, exact)
+        n = _log(log, n, 0.0, theta, rate, mode, RELEASE, 1.0, p0[0], alpha, p2, g, r)
     else:
-        n = _log(log, n, 0.0, 0.0, 0.0, REST, REST, 0.0, p0[0], alpha, p2, g, r, exact)
+        n = _log(log, n, 0.0, 0.0, 0.0, REST, REST, 0.0, p0[0], alpha, p2, g, r)
     for i in range(t0.shape[0]):
         length, tau = h[i], 0.0
         while True:
@@ -230,7 +227,7 @@ def _run(t0, h, p0, p1, alpha, p, g, r, zeno_arc, theta0, exact, log):
                         break
                     tau += best
                 mode = OUT * start
-                n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, REST, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r, exact)
+                n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, REST, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
                 continue
             if kind == SETTLE:
                 w = abs(rate)
@@ -240,26 +237,26 @@ def _run(t0, h, p0, p1, alpha, p, g, r, zeno_arc, theta0, exact, log):
                 if q1 > 0 and q0 < limit:
                     onset = min(onset, (limit - q0) / q1)
                 horizon = min(span, onset)
-                if _envelope_integral(s, q0, q1, alpha, p2, g, r, min(horizon, 1e6), exact) >= w:
-                    x = w / _envelope_rate(s, q0, alpha, p2, g, r, exact)
+                if _envelope_integral(s, q0, q1, alpha, p2, g, r, min(horizon, 1e6)) >= w:
+                    x = w / _envelope_rate(s, q0, alpha, p2, g, r)
                     for _ in range(20):
-                        step = (_envelope_integral(s, q0, q1, alpha, p2, g, r, x, exact) - w) / _envelope_rate(
-                            s, q0 + q1 * x, alpha, p2, g, r, exact)
+                        step = (_envelope_integral(s, q0, q1, alpha, p2, g, r, x) - w) / _envelope_rate(
+                            s, q0 + q1 * x, alpha, p2, g, r)
                         x -= step
                         if abs(step) <= 1e-16 * x:
                             break
                     tau += x
-                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, mode, 0.0, p0[i] + p1[i] * tau, alpha, p2, g, r, exact)
+                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, mode, 0.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
                     mode, theta, rate = REST, 0.0, 0.0
-                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, REST, SETTLE * s, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r, exact)
+                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, REST, SETTLE * s, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
                     continue
                 if onset < span:
                     tau += onset
                     before = mode
                     mode, theta, rate = (OUT if q1 < 0 else -OUT), 0.0, 0.0
-                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, before, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r, exact)
+                    n = _log(log, n, t0[i] + tau, 0.0, 0.0, mode, before, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
                     continue
-                rate -= s * _envelope_integral(s, q0, q1, alpha, p2, g, r, span, exact)
+                rate -= s * _envelope_integral(s, q0, q1, alpha, p2, g, r, span)
                 break
             # rocking: the guards of the mode as (ag, bg, gg)
             if kind == OUT:
@@ -303,21 +300,21 @@ def _run(t0, h, p0, p1, alpha, p, g, r, zeno_arc, theta0, exact, log):
                 theta = 0.0
                 w = r * rate
                 a = q0 + q1 * x
-                d_new, d_old = _decel(-s, a, alpha, p2, g, exact), _decel(s, a, alpha, p2, g, exact)
+                d_new, d_old = _decel(-s, a, alpha, p2, g), _decel(s, a, alpha, p2, g)
                 if w == 0:
                     mode = REST
                 elif d_new > 0 and d_old > 0 and 2 * abs(w) / d_new < zeno_arc:
                     mode = -SETTLE * s
                 else:
                     mode = -OUT * s
-            n = _log(log, n, t, theta, rate, before, before, 0.0, p0[i] + p1[i] * tau, alpha, p2, g, r, exact)
+            n = _log(log, n, t, theta, rate, before, before, 0.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
             if abs(before) == IN and index == 0:
                 rate = r * rate
             if abs(mode) == OVERTURNED:
                 rate = 0.0
-            n = _log(log, n, t, theta, rate, mode, before, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r, exact)
+            n = _log(log, n, t, theta, rate, mode, before, 1.0, p0[i] + p1[i] * tau, alpha, p2, g, r)
         end = h[i] if h[i] < math.inf else tau
-        n = _log(log, n, t0[i] + end, theta, rate, mode, mode, 0.0, p0[i] + p1[i] * end, alpha, p2, g, r, exact)
+        n = _log(log, n, t0[i] + end, theta, rate, mode, mode, 0.0, p0[i] + p1[i] * end, alpha, p2, g, r)
     return n
 
 
