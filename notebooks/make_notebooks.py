@@ -1390,12 +1390,90 @@ its exceedances. Raising B's mean ky from 0.15 g to 0.164 g (the same cov) bring
 P(D > 25 cm) to 10 %; a fresh study at that mean gives 0.104 (0.087-0.125)."""),
 ]
 
+
+
+ROCKING = [
+    ("md", """# The free-standing block: rocking, impacts, overturning spectra and fragility
+
+A rectangular block of half-width b and half-height h standing free on a shaking base
+(Housner 1963): it rests, slides (friction mu below b/h) or rocks about a base corner,
+strikes the base with the other corner as it returns (restitution r = 1 - 1.5 sin² alpha),
+comes to rest after a converging series of impacts, or overturns. Units: m, s, m/s²; angles
+in rad; amplitudes of pulses in g tan(alpha)."""),
+    ("code", """import matplotlib.pyplot as plt
+import numpy as np
+
+import blockdae as bd
+from blockdae import rocking
+
+g = bd.STANDARD_GRAVITY
+block = bd.RockingBlock(b=0.2, h=1.0, mu=0.6)
+print(f"alpha = {block.alpha:.4f} rad, p = {block.frequency:.4f} rad/s, r = {block.r:.4f}")"""),
+    ("md", """## Free rocking from a tilt: the impacts and the rest
+
+Released from alpha / 2, the linearised block's impacts follow its closed form (first
+impact at acosh(2) / p), each arc shorter by the factor r of the velocity; the series of
+impacts converges, and the block rests at its accumulation point."""),
+    ("code", """linear = block.replace(linearised=True, theta0=block.alpha / 2)
+quiet = bd.Record(np.zeros(3), 0.01, name="no shaking", units="m/s2")
+free = bd.simulate(linear, quiet, backend="exact")
+print(f"first impact {free.impact_times[0]:.12f} s, closed form {np.arccosh(2.0) / linear.frequency:.12f} s")
+print(f"{len(free.impacts)} impacts located, the rest summed: at rest from {free.rest_time:.9f} s")
+assert abs(free.impact_times[0] - np.arccosh(2.0) / linear.frequency) < 1e-12
+fig = bd.plot(free, title="free rocking from alpha / 2 (linearised)")"""),
+    ("md", """## Under a record
+
+Kobe TAK-090 scaled to 0.4 g: the exact equation on CVODE; the impacts are marked. Where
+the contact force leaves its limits (the pivot would lift or slip) the model keeps its
+pivot and says so."""),
+    ("code", """import importlib.resources
+folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
+records = [bd.read_record(p, units="g") for p in sorted(folder.iterdir()) if p.name.endswith(".csv")]
+kobe = next(r for r in records if r.name.startswith("Kobe"))
+motion = kobe.scaled(0.4 * g / kobe.peak_acceleration)
+sol = bd.simulate(block, motion, t_end=15.0)
+print(f"max |theta|/alpha = {sol.max_theta_over_alpha:.4f}, overturned: {sol.overturned}, "
+      f"{len(sol.impacts)} impacts")
+print(f"contact limits met: {len(sol.contact_events)}")
+fig = bd.plot(sol, title="Kobe TAK-090 at 0.4 g: b = 0.2 m, h = 1 m")"""),
+    ("md", """## Overturning spectra (Zhang & Makris 2001)
+
+The smallest amplitude of a one-sine and of a one-cosine pulse that overturns the
+linearised block, against the pulse's frequency over p."""),
+    ("code", """ratios = np.geomspace(0.5, 8.0, 12)
+fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
+for shape in ("sine", "cosine"):
+    spectrum = rocking.overturning_spectrum(block.replace(linearised=True), ratios, shape, backend="exact",
+                                            max_factor=60.0)
+    spectrum.figure(ax)
+ax.set_yscale("log")"""),
+    ("md", """## Overturning fragility over the 18 pySLAMMER records
+
+Each record scaled to each PGA; the fraction that overturns the linearised block."""),
+    ("code", """pga = np.array([0.2, 0.3, 0.4, 0.6, 0.8, 1.0])
+fragility = rocking.overturning_fragility(block.replace(linearised=True), records, pga, backend="exact")
+print(fragility.to_dataframe().to_string(index=False))
+fig = fragility.figure()"""),
+    ("md", """## The rest/slide/rock map
+
+What a block at rest does first under a peak demand |a_x| / g: it rests below the smaller
+of mu and b/h, then slides where mu < b/h and rocks where not."""),
+    ("code", """mu, aspect = np.meshgrid(np.linspace(0.05, 0.8, 200), np.linspace(0.05, 0.8, 200))
+regime = rocking.motion_regime(mu, aspect, 0.4)
+codes = np.select([regime == "rest", regime == "slide"], [0, 1], 2)
+fig, ax = plt.subplots(figsize=(5, 4), constrained_layout=True)
+ax.contourf(mu, aspect, codes, levels=[-0.5, 0.5, 1.5, 2.5], colors=["0.9", "C0", "C3"])
+ax.set(xlabel="mu [-]", ylabel="b / h [-]", title="demand 0.4 g: rest (grey), slide (blue), rock (red)")"""),
+]
+
+
 NOTEBOOKS = {"01_seed000.ipynb": SEED_000, "02_sensitivities.ipynb": SENSITIVITIES,
              "03_backends.ipynb": BACKENDS, "04_planar.ipynb": PLANAR, "05_upthrow.ipynb": UPTHROW,
              "06_two_points.ipynb": TWO_POINTS,
              "07_newmark_formula.ipynb": NEWMARK_FORMULA, "08_flexible.ipynb": FLEXIBLE,
              "09_planar_study.ipynb": PLANAR_STUDY,
-             "10_displacement_hazard.ipynb": HAZARD, "11_design.ipynb": DESIGN}
+             "10_displacement_hazard.ipynb": HAZARD, "11_design.ipynb": DESIGN,
+             "12_rocking.ipynb": ROCKING}
 
 
 def build(cells) -> nbformat.NotebookNode:

@@ -117,6 +117,11 @@ CASES = {
                  kobe_segment(245, 296, "Kobe TAK-090, 2.45-2.95 s")),
         t_end=1.5, record=(KOBE, 3.0), reference=EXACT,
         wrt=("ky",)),
+    "RockingBlock": Case(
+        model=bd.RockingBlock(b=0.2, h=0.8, mu=0.6),
+        motions=(bd.SinePulse(-0.4 * G, 0.5), bd.TriangularPulse(0.5 * G, 0.4), bd.Harmonic(0.3 * G, 0.5, cycles=2)),
+        t_end=2.0, record=(KOBE.scaled(0.5), 3.0), reference=CVODE_TIGHT,
+        wrt=("b", "h")),
     "OscillatorOnStop": Case(
         model=custom.OscillatorOnStop(omega=2 * np.pi * 2.0, zeta=0.2, omega_c=2 * np.pi * 8.0, gap=0.005),
         motions=(bd.SinePulse(0.5 * G, 0.5), bd.RectangularPulse(1.0, 2.0), bd.Harmonic(0.3 * G, 0.5, cycles=2)),
@@ -170,6 +175,9 @@ BARS = {
     ("FlexibleSlidingMass", "cvode"): dict(u=8e-11, t=2e-10, dense=2e-8),  # 8.0e-12, 1.2e-11, 1.3e-9
     ("FlexibleSlidingMass", "ida"): dict(u=3e-9, t=8e-10, dense=2e-8),  # 2.9e-10, 7.7e-11, 1.3e-9
     ("FlexibleSlidingMass", "jax"): dict(u=3e-14, t=2e-13, dense=2e-8),  # 2.7e-15, 1.5e-14, 1.5e-9
+    ("RockingBlock", "cvode"): dict(u=5e-9, t=2e-8, dense=8e-8),  # 4.6e-10 rad, 1.4e-9, 7.2e-9 (rtol 1e-10)
+    ("RockingBlock", "ida"): dict(u=6e-9, t=2e-8, dense=9e-8),  # 5.6e-10 rad, 1.7e-9, 9.0e-9
+    ("RockingBlock", "jax"): dict(u=7e-11, t=4e-10, dense=1e-9),  # 6.3e-12 rad, 3.8e-11, 1.0e-10
     ("OscillatorOnStop", "cvode"): dict(u=5e-11, t=4e-9, dense=5e-8),  # 4.5e-12, 4.0e-10, 4.1e-9 (rtol 1e-10)
     ("OscillatorOnStop", "ida"): dict(u=6e-11, t=8e-9, dense=7e-8),  # 5.9e-12, 7.7e-10, 6.3e-9
     ("OscillatorOnStop", "jax"): dict(u=3e-13, t=5e-11, dense=1e-9),  # 2.9e-14, 4.1e-12, 9.8e-11
@@ -190,6 +198,11 @@ RECORD_BARS = {
     ("FlexibleSlidingMass", "cvode"): dict(u=2e-10, t=7e-11, dense=8e-9),  # 1.7e-11, 6.6e-12, 7.6e-10
     ("FlexibleSlidingMass", "ida"): dict(u=6e-9, t=2e-10, dense=2e-8),  # 5.9e-10, 1.3e-11, 1.1e-9
     ("FlexibleSlidingMass", "jax"): dict(u=2e-13, t=8e-14, dense=2e-9),  # 1.2e-14, 7.5e-15, 1.3e-10
+    # the rocking block: 34 events, among them tails of impacts whose small differences the
+    # unstable rocking motion amplifies
+    ("RockingBlock", "cvode"): dict(u=2e-8, t=2e-6, dense=9e-6),  # 1.3e-9 rad, 1.1e-7, 8.8e-7 (rtol 1e-10)
+    ("RockingBlock", "ida"): dict(u=9e-8, t=8e-6, dense=6e-5),  # 8.6e-9 rad, 7.3e-7, 5.8e-6
+    ("RockingBlock", "jax"): dict(u=5e-9, t=4e-7, dense=3e-6),  # 4.3e-10 rad, 3.6e-8, 2.9e-7
     ("OscillatorOnStop", "cvode"): dict(u=9e-10, t=4e-10, dense=3e-8),  # 8.1e-11, 3.8e-11, 2.2e-9 (rtol 1e-10)
     ("OscillatorOnStop", "ida"): dict(u=6e-10, t=9e-10, dense=3e-8),  # 5.6e-11, 8.6e-11, 2.9e-9
     ("OscillatorOnStop", "jax"): dict(u=2e-11, t=4e-12, dense=4e-10),  # 1.1e-12, 3.7e-13, 3.8e-11
@@ -208,6 +221,7 @@ SENSITIVITY_BARS = {
     "SpringSupportedMass": 2e-7,  # 1.2e-8 (liftoff velocity by frequency; 3.6e-8)
     "FlexibleSlidingMass": 1e-9,  # 1.0e-10 (A; 3.1e-10)
     "OscillatorOnStop": 4e-4,  # 3.9e-5 (gap; 1.1e-4)
+    "RockingBlock": 2e-5,  # 1.8e-6 (theta(t_end) by b, through 2 impacts; 5.5e-6)
 }
 #: (model, backend) -> largest relative difference rel_dsens [-] of a cross-check row's
 #: derivatives against the reference row's (finite differences at the cross-check's own
@@ -223,6 +237,8 @@ CROSSCHECK_BARS = {
     ("FlexibleSlidingMass", "cvode"): 2e-10,  # 1.4e-11
     ("FlexibleSlidingMass", "ida"): 2e-8,  # 1.6e-9
     ("FlexibleSlidingMass", "jax"): 4e-10,  # 3.7e-11
+    ("RockingBlock", "ida"): 1e-7,  # 9.8e-9
+    ("RockingBlock", "jax"): 2e-5,  # 1.8e-6 (the twin's derivatives against finite differences on CVODE)
     ("OscillatorOnStop", "ida"): 9e-5,  # 8.7e-6 (finite differences of an event-rich run: see SENSITIVITY_BARS)
     ("OscillatorOnStop", "jax"): 4e-4,  # 3.9e-5
 }

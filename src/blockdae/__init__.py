@@ -10,7 +10,8 @@ the subpackages named for what they hold: ``blockdae.motions`` (spectra, intensi
 measures, baseline correction, relative motion), ``blockdae.hazard``,
 ``blockdae.empirical``, ``blockdae.backends`` (the registry), ``blockdae.excitation``
 (resampling and unit checks), ``blockdae.core.contract`` (a model's capabilities) and each
-system's package (``blockdae.sliding``, ``blockdae.planar``, ``blockdae.upthrow``: events,
+system's package (``blockdae.sliding``, ``blockdae.planar``, ``blockdae.upthrow``,
+``blockdae.rocking``: events,
 solutions, modes, the papers' formulas).
 """
 
@@ -27,6 +28,7 @@ from .excitation import (BaseMotion, Harmonic, Record, RecordSet, RecordWarning,
 from .flexible_mass import (EquivalentLinear, FlexibleEvent, FlexibleMode, FlexibleResult, FlexibleSlidingMass,
                             FlexibleSolution, KyTable, ShearColumn, flexible)
 from .planar import PlanarBlock
+from .rocking import RockingBlock
 from .sliding import SlidingBlock, newmark
 from .structures import ShearFrame
 from .studies import load_study, save_study, study
@@ -35,7 +37,7 @@ from .upthrow import RigidSupport, SpringSupport, SpringSupportedMass
 __all__ = [
     # the models (and what builds them)
     "AbstractHybridModel", "SlidingBlock", "PlanarBlock", "SpringSupportedMass", "SpringSupport", "RigidSupport",
-    "FlexibleSlidingMass", "ShearFrame",
+    "FlexibleSlidingMass", "ShearFrame", "RockingBlock",
     # the analyses
     "simulate", "Ensemble", "sensitivities", "Sensitivities", "crosscheck", "newmark", "flexible", "study", "load_study",
     "save_study", "plot",

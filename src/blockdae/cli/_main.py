@@ -31,6 +31,7 @@ from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
 from ._info import add_info_parser
 from ._upthrow import add_upthrow_parser
+from ._rocking import add_rocking_parser
 from ..sliding import SlidingBlock, newmark, seed_examples
 from ..core import CompileNotice, progress_bar, set_compilation_cache, simulate
 from ..units import STANDARD_GRAVITY, length_units
@@ -95,7 +96,7 @@ def _parser():
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
     sub = parser.add_subparsers(required=True,
-                                metavar="{run,newmark,flexible,spectrum,two-point,upthrow,examples,batch,study,"
+                                metavar="{run,newmark,flexible,spectrum,two-point,upthrow,rocking,examples,batch,study,design,"
                                         "fragility,hazard,info,app}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
@@ -165,6 +166,7 @@ def _parser():
     add_spectrum_parser(sub)
     add_two_point_parser(sub)
     add_upthrow_parser(sub)
+    add_rocking_parser(sub)
 
     examples = sub.add_parser("examples", help="Sawicki & Chybicki's (2005) Examples 1-6: exact vs the paper")
     examples.set_defaults(command=_examples)

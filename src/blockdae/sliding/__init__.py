@@ -25,3 +25,4 @@ __all__ = ["AdjustmentFactor", "BatchSolution", "Event", "EventLog", "FinalNumbe
 
 # what the other packages of blockdae use
 from ._figures import newmark_history_figure
+from ._model import relative_acceleration, rest_mode, slip_constant, stop_mode

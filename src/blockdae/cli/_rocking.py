@@ -1,0 +1,122 @@
+"""``blockdae rocking``: a free-standing block under one horizontal record: whether it
+rests, slides, rocks or overturns (Housner 1963), its impacts and its rest."""
+
+import json
+import math
+import pathlib
+import time
+import warnings
+
+from ._common import (checked, clean, describe_record, number, positive, read, record_arguments,
+                      record_fields, save_figure)
+from ..core import simulate
+from ..excitation import pga_factor, unit_factor
+from ..rocking import ContactWarning, RockingBlock
+from ..units import STANDARD_GRAVITY
+
+#: the backends that run a RockingBlock ("exact": the linearised block)
+BACKENDS = ("cvode", "ida", "jax", "exact")
+
+
+def add_rocking_parser(subparsers):
+    """The ``rocking`` subcommand on an argparse ``subparsers`` object."""
+    p = subparsers.add_parser("rocking", help="a free-standing block under a horizontal record: rest, slide, rock "
+                                              "with impacts or overturn (Housner 1963)")
+    p.add_argument("record", type=pathlib.Path, help="horizontal base acceleration (CSV t,a / one column / .AT2)")
+    p.add_argument("--b", type=positive("--b"), required=True, help="half-width b of the block [m]")
+    p.add_argument("--h", type=positive("--h"), required=True, help="half-height h of the block [m]")
+    p.add_argument("--mu", type=number("--mu", lambda x: math.isfinite(x) and x >= 0, "a finite number >= 0"),
+                   required=True, help="friction coefficient at the base [-] (below b/h the block slides; linearised: below alpha)")
+    p.add_argument("--restitution", type=number("--restitution", lambda x: 0 <= x <= 1, "in [0, 1]"), default=None,
+                   help="ratio of angular velocities through an impact [-] (default Housner's 1 - 1.5 sin² alpha)")
+    p.add_argument("--linearised", action="store_true", help="the linearised block (slender, small rotations)")
+    p.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
+                   help="scale the record so that its peak |a| is PGA_G [g]")
+    p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
+                   help="gravitational acceleration [m/s²], also the unit 'g' (default 9.80665)")
+    p.add_argument("--t-end", type=positive("--t-end"), default=None,
+                   help="final time [s] (default: until the block rests or overturns after the record)")
+    p.add_argument("--backend", choices=BACKENDS, default=None,
+                   help="solver backend (default: exact for --linearised, else cvode)")
+    p.add_argument("--strict", action="store_true",
+                   help="an error where the contact force leaves its limits (N <= 0 or |F| > mu N), not a warning")
+    record_arguments(p)
+    p.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure (bd.plot)")
+    p.add_argument("--json", action="store_true", help="print the results as JSON (SI units)")
+    p.set_defaults(command=run_rocking)
+    return p
+
+
+def run_rocking(args) -> int:
+    """Run the block that ``args`` describe; print what it did; the exit status."""
+    if args.units is not None:
+        checked(lambda: unit_factor(args.units), "--units")
+    record = read(args.record, args)
+    factor = 1.0
+    if args.pga is not None:
+        factor = checked(lambda: pga_factor(record.peak_acceleration, args.pga, args.g, name="--pga",
+                                            check_peak=not args.accept_peak), str(args.record))
+        record = record.scaled(factor)
+    block = checked(lambda: RockingBlock(b=args.b, h=args.h, mu=args.mu, restitution=args.restitution,
+                                         linearised=args.linearised, strict=args.strict, g=args.g), "")
+    backend = args.backend or ("exact" if block.linearised and not block.slides else "cvode")
+    start = time.perf_counter()
+    solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=backend), str(args.record))
+    wall = time.perf_counter() - start
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ContactWarning)
+        contact = checked(solution.check_contact, str(args.record))
+    if args.plot is not None:
+        from .._plot import plot
+
+        save_figure(plot(solution, title=f"{record.name}: b = {block.b:g} m, h = {block.h:g} m, mu = {block.mu:g}"),
+                    args.plot)
+    if args.json:
+        print(json.dumps(_json(record, factor, block, solution, contact, wall), indent=2))
+        return 0
+    print(f"record: {describe_record(record)}")
+    if factor != 1.0:
+        print(f"scaled by {factor:.6g} [-] to a peak of {record.peak_acceleration / block.g:.6g} g")
+    print(f"block: b = {block.b:g} m, h = {block.h:g} m, alpha = {block.alpha:.6f} rad, p = {block.frequency:.6f} "
+          f"rad/s, r = {block.r:.6f}, mu = {block.mu:g} ({'slides' if block.slides else 'rocks'}: mu "
+          f"{'<' if block.slides else '>='} {'alpha' if block.linearised else 'b/h'} = "
+          f"{block.rocking_threshold:.6g}){'; linearised' if block.linearised else ''}")
+    print(f"backend {solution.backend}; t_end = {solution.t_end:.4f} s")
+    if block.slides:
+        print(f"slides: u(t_end) = {solution.displacement:+.6f} m, {len(solution.events)} events")
+    else:
+        print(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; "
+              f"impacts located: {len(solution.impacts)}")
+        if solution.overturned:
+            print(f"overturned at t = {solution.overturn_time:.6f} s (|theta| passed alpha at "
+                  f"t = {solution.time_beyond_alpha:.6f} s)")
+        elif math.isfinite(solution.rest_time):
+            print(f"at rest from t = {solution.rest_time:.6f} s (the last tail of impacts summed: "
+                  f"{solution.zeno_tail:.3e} s)")
+    for warning in caught:
+        print(f"warning: {warning.message}")
+    print(f"time: {wall:.3f} s (wall clock of the simulation, including compilation on a first call)")
+    if args.plot is not None:
+        print(f"figure: {args.plot}")
+    return 0
+
+
+def _finite_or_none(x):
+    return x if math.isfinite(x) else None
+
+
+def _json(record, factor, block, solution, contact, wall):
+    return {
+        **record_fields(record), "scale": factor, "b_m": block.b, "h_m": block.h, "mu": block.mu,
+        "alpha_rad": block.alpha, "p_rad_s": block.frequency, "restitution": block.r, "linearised": block.linearised,
+        "regime": "slide" if block.slides else "rock", "backend": solution.backend, "t_end_s": clean(solution.t_end),
+        "displacement": solution.displacement, "max_theta_over_alpha": solution.max_theta_over_alpha,
+        "overturned": solution.overturned, "overturn_time_s": _finite_or_none(solution.overturn_time),
+        "time_beyond_alpha_s": _finite_or_none(solution.time_beyond_alpha),
+        "rest_time_s": _finite_or_none(solution.rest_time),
+        "impacts": [{"t_s": e.t, "theta_rate_before_rad_s": e.rate, "theta_rate_after_rad_s": e.rate_after}
+                    for e in solution.impacts],
+        "contact_limits": [{"t_s": t, "kind": kind, "F_m_s2": force, "N_m_s2": normal}
+                           for t, kind, _, _, force, normal in contact],
+        "wall_time_s": wall,
+    }

@@ -1,0 +1,13 @@
+"""The free-standing rectangular block: rest, slide, rock with impacts and the Zeno rest,
+overturning (Housner 1963); its model, modes and solution; overturning spectra (Zhang &
+Makris 2001), the rest/slide/rock map and overturning fragility."""
+
+from ._model import RockingBlock, housner_restitution
+from ._modes import RockingMode
+from ._solution import ContactWarning, RockingEvent, RockingSolution
+from ._spectra import (OverturningFragility, OverturningSpectrum, motion_regime, overturning_amplitude,
+                       overturning_fragility, overturning_spectrum, overturns, pulse)
+
+__all__ = ["ContactWarning", "OverturningFragility", "OverturningSpectrum", "RockingBlock", "RockingEvent",
+           "RockingMode", "RockingSolution", "housner_restitution", "motion_regime", "overturning_amplitude",
+           "overturning_fragility", "overturning_spectrum", "overturns", "pulse"]

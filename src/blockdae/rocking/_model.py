@@ -1,0 +1,549 @@
+"""The free-standing rectangular block on a shaking base: rest, slide, rock with impacts,
+the Zeno rest, overturning (Housner 1963; the sliding modes are the 1-D sliding block's).
+
+A uniform block of width 2b and height 2h [m] stands on a rigid base; R = sqrt(b² + h²)
+[m], the slenderness alpha = atan(b/h) [rad] and the frequency parameter
+p = sqrt(3 g / (4 R)) [rad/s]. The base accelerates by a_x(t) (horizontal) and a_z(t)
+(vertical, upward) [m/s²]; g_e = g + a_z is the effective gravity. Rocking about the
+corner on side s (+1: x = +b, theta > 0), with phi = s alpha - theta:
+
+    theta'' = -p² [ (g_e/g) sin phi + (a_x/g) cos phi ]            [rad/s²],
+
+exact (the linearised block: sin phi -> phi, cos phi -> 1). From rest it rocks about +b
+when a_x < -g_e tan(alpha) (about -b when a_x > g_e tan(alpha)) and slides when |a_x| >
+mu g_e: for mu < tan(alpha) the block only slides (the 1-D sliding block's rules with g_e
+for g), otherwise it only rocks (the linearised block: alpha for tan(alpha)). When theta returns to 0 the other corner strikes the
+base: theta' -> r theta' (Housner's r = 1 - 3/2 sin² alpha unless given) and the pivot
+switches. The impacts accumulate before rest: when the next arc would be shorter than
+``zeno_arc`` [s], the rest of the geometric series is summed (mode SETTLE, in which
+theta' is the envelope of the impact velocities, linear in time to zero at the
+accumulation point, where the block rests). |theta| = pi/2 is OVERTURNED.
+
+State y = (u [m], u' [m/s]) for a block that slides, (theta [rad], theta' [rad/s]) for
+one that rocks (which of the two is fixed by mu against b/h).
+"""
+
+import copy
+import dataclasses
+import math
+
+import numpy as np
+
+from ..core import LazyEngine, set_real_fields
+from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, scale_factor_units
+from ..excitation import AbstractExcitation, BaseMotion, Pieces
+from ..sliding import relative_acceleration, rest_mode, slip_constant, stop_mode
+from ..units import STANDARD_GRAVITY
+from ._modes import RockingMode, event_kind, rock_mode, side
+from ._solution import RockingEvent, RockingSolution
+
+_Q, _RATE = range(2)
+_OUT, _IN, _BEYOND, _SETTLE, _OVERTURNED = 2, 3, 4, 5, 6
+#: a rotation rate below RATE_FLOOR p alpha [rad/s] is no contradiction of its mode
+RATE_FLOOR = 1e-10
+
+
+def housner_restitution(alpha: float) -> float:
+    """Housner's (1963) restitution of a rectangular block of slenderness ``alpha``
+    [rad]: the ratio of angular velocities through an impact, 1 - 3/2 sin² alpha [-]."""
+    return 1.0 - 1.5 * math.sin(alpha) ** 2
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class RockingBlock(DifferentiableModel):
+    """A free-standing rectangular block that rests, slides, rocks or overturns.
+
+    Args:
+        b: half-width [m], > 0.
+        h: half-height [m], > 0.
+        mu: static friction coefficient at the base [-], >= 0.
+        mu_kinetic: kinetic friction coefficient while sliding [-], in [0, mu];
+            defaults to ``mu``.
+        restitution: r, theta' after / before an impact [-], in [0, 1]; None: Housner's
+            value 1 - 3/2 sin² alpha.
+        p: frequency parameter [rad/s]; None: a uniform block's sqrt(3 g / (4 R)).
+        theta0: initial tilt [rad], |theta0| < pi/2, released at rest (0: at rest on
+            the base).
+        linearised: the linearised block (sin phi -> phi, cos phi -> 1: slender,
+            small rotations).
+        zeno_arc: the arc duration [s] below which the remaining impacts are summed.
+        strict: stop with an error where the contact force leaves its limits (N <= 0: the
+            pivot would lift, |F| > mu N: it would slip), located as a guard; otherwise
+            Housner's model goes on and ``solution.check_contact()`` reports them.
+        g: gravitational acceleration [m/s²].
+
+    The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x
+    and z components [m/s²].
+    """
+
+    b: float
+    h: float
+    mu: float
+    mu_kinetic: float | None = None
+    restitution: float | None = None
+    p: float | None = None
+    theta0: float = 0.0
+    linearised: bool = False
+    zeno_arc: float = 1e-5
+    strict: bool = False
+    g: float = STANDARD_GRAVITY
+
+    modes = RockingMode
+    component_names = ("x", "z")
+    default_backend = "cvode"
+    #: the linearised rocking block's closed form, compiled (``backend="exact"``)
+    _exact = {"exact": LazyEngine("blockdae.rocking._engine", "LinearisedEngine")}
+
+    def __post_init__(self):
+        set_real_fields(self, ("b", "h", "mu", "theta0", "zeno_arc", "g"))
+        for name in ("b", "h", "g", "zeno_arc"):
+            if getattr(self, name) <= 0:
+                raise ValueError(f"{name}={getattr(self, name)!r} must be > 0")
+        if self.mu < 0:
+            raise ValueError(f"mu={self.mu!r} must be >= 0")
+        for name in ("mu_kinetic", "restitution", "p"):
+            if getattr(self, name) is not None:
+                set_real_fields(self, (name,))
+        if self.mu_kinetic is not None and not 0 <= self.mu_kinetic <= self.mu:
+            raise ValueError(f"mu_kinetic={self.mu_kinetic!r} must be in [0, mu={self.mu}]")
+        if self.restitution is not None and not 0 <= self.restitution <= 1:
+            raise ValueError(f"restitution={self.restitution!r} must be in [0, 1]")
+        if self.p is not None and self.p <= 0:
+            raise ValueError(f"p={self.p!r} must be > 0 [rad/s]")
+        if not abs(self.theta0) < math.pi / 2:
+            raise ValueError(f"theta0={self.theta0!r} must be in (-pi/2, pi/2) [rad]")
+        if self.theta0 != 0 and self.slides:
+            raise ValueError(f"theta0={self.theta0!r}: a block with mu={self.mu} below its rocking threshold "
+                             f"{self.rocking_threshold:.6g} slides and never rocks")
+
+    # ---- what the block is ----------------------------------------------------------
+    @property
+    def alpha(self):
+        """Slenderness atan(b/h) [rad]."""
+        return math.atan2(self.b, self.h)
+
+    @property
+    def R(self):
+        """Distance from a base corner to the centre of mass [m]."""
+        return math.hypot(self.b, self.h)
+
+    @property
+    def frequency(self):
+        """p [rad/s]: the one given, else sqrt(3 g / (4 R)) (a uniform block)."""
+        return self.p if self.p is not None else math.sqrt(0.75 * self.g / self.R)
+
+    @property
+    def r(self):
+        """Restitution [-]: the one given, else Housner's 1 - 3/2 sin² alpha."""
+        return self.restitution if self.restitution is not None else housner_restitution(self.alpha)
+
+    @property
+    def friction_kinetic(self):
+        """Kinetic friction coefficient [-] (mu unless given)."""
+        return self.mu if self.mu_kinetic is None else self.mu_kinetic
+
+    @property
+    def rocking_threshold(self):
+        """|a_x| / g_e [-] that lifts a corner from rest: b/h = tan(alpha), or alpha for the
+        linearised block."""
+        return self.alpha if self.linearised else self.b / self.h
+
+    def _threshold(self, xp):
+        """:attr:`rocking_threshold` from the (possibly traced) parameters."""
+        return xp.arctan2(self.b, self.h) if self.linearised else self.b / self.h
+
+    @property
+    def slides(self) -> bool:
+        """Whether the block slides (mu below the rocking threshold, b/h) rather than rocks:
+        it never does both."""
+        return self.mu < self.rocking_threshold
+
+    @property
+    def engines(self):
+        """backend name -> engine: "exact" (the compiled closed form) for the linearised
+        block that rocks; the generic driver otherwise."""
+        return self._exact if self.linearised and not self.slides else {}
+
+    @property
+    def state_names(self):
+        return ("u", "u_rate") if self.slides else ("theta", "theta_rate")
+
+    @property
+    def initial_mode(self):
+        return RockingMode.RELEASE if self.theta0 != 0 else RockingMode.REST
+
+    def replace(self, **changes) -> "RockingBlock":
+        """A copy with some parameters changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    # ---- the motion -----------------------------------------------------------------
+    def check_motion(self, motion) -> None:
+        """An excitation (a_x) or a :class:`~blockdae.BaseMotion` with x and z components."""
+        if isinstance(motion, BaseMotion):
+            if motion.y is not None:
+                raise ValueError("a rocking block moves in the x-z plane: its BaseMotion takes no y component")
+            return
+        if not isinstance(motion, AbstractExcitation):
+            raise TypeError(f"motion must be an excitation (Harmonic, Record, ...) or a BaseMotion, "
+                            f"got {type(motion).__name__}")
+        super().check_motion(motion)
+
+    def excitation_pieces(self, excitation, t_end):
+        """(a_x, a_z) pieces on one partition of [0, t_end] [s] (a_x's own, a_z = 0, for
+        a horizontal excitation alone)."""
+        if not isinstance(excitation, BaseMotion):
+            ax = excitation.pieces(t_end)
+            return ax, Pieces.linear(ax.t0, ax.h, 0.0, 0.0)
+        ax, _, az = excitation.aligned_pieces(t_end)
+        return ax, az
+
+    # ---- the physics (xp: numpy, jax.numpy or SCALAR) ---------------------------------
+    def _geometry(self, xp):
+        """(alpha [rad], R [m], p² [1/s²], r [-]) from the (possibly traced) parameters."""
+        alpha = xp.arctan2(self.b, self.h)
+        radius = xp.hypot(self.b, self.h)
+        p2 = self.p * self.p if self.p is not None else 0.75 * self.g / radius
+        r = self.restitution if self.restitution is not None else 1.0 - 1.5 * xp.sin(alpha) ** 2
+        return alpha, radius, p2, r
+
+    def _base(self, t, excitation):
+        """(a_x [m/s²], g_e = g + a_z [m/s²], a_x' [m/s³], a_z' [m/s³]) at ``t``."""
+        return (excitation.component(0, t), self.g + excitation.component(1, t),
+                excitation.component_rate(0, t), excitation.component_rate(1, t))
+
+    def angular_acceleration(self, s, theta, t, excitation, xp=np):
+        """theta'' [rad/s²] rocking about the corner on side ``s`` at ``theta`` [rad]."""
+        alpha, _, p2, _ = self._geometry(xp)
+        ax, ge, _, _ = self._base(t, excitation)
+        phi = s * alpha - theta
+        if self.linearised:
+            return -p2 * ((ge / self.g) * phi + ax / self.g)
+        return -p2 * ((ge / self.g) * xp.sin(phi) + (ax / self.g) * xp.cos(phi))
+
+    def angular_jerk(self, s, theta, rate, t, excitation):
+        """theta''' [rad/s³] rocking about side ``s`` at (theta, theta') (for the guards' curvature)."""
+        alpha, _, p2, _ = self._geometry(SCALAR)
+        ax, ge, ax_rate, az_rate = self._base(t, excitation)
+        phi = s * alpha - theta
+        if self.linearised:
+            return -p2 * ((az_rate / self.g) * phi - (ge / self.g) * rate + ax_rate / self.g)
+        return -p2 * ((az_rate / self.g) * math.sin(phi) - (ge / self.g) * math.cos(phi) * rate
+                      + (ax_rate / self.g) * math.cos(phi) + (ax / self.g) * math.sin(phi) * rate)
+
+    def contact_force(self, s, theta, rate, t, excitation, xp=np):
+        """(F, N) [m/s²]: horizontal and vertical force per unit mass at the pivot on side
+        ``s``, from the centre of mass's absolute acceleration at (theta, theta')."""
+        alpha, radius, _, _ = self._geometry(xp)
+        ax, ge, _, _ = self._base(t, excitation)
+        phi = s * alpha - theta
+        accel = self.angular_acceleration(s, theta, t, excitation, xp)
+        return (ax + radius * xp.cos(phi) * accel + radius * xp.sin(phi) * rate ** 2,
+                ge + radius * xp.sin(phi) * accel - radius * xp.cos(phi) * rate ** 2)
+
+    def contact_margins(self, s, theta, rate, t, excitation, xp=np):
+        """(N, mu N - |F|) [m/s²] about side ``s``: where either falls through zero the
+        pivot would lift or slip (see :meth:`contact_force`)."""
+        force, normal = self.contact_force(s, theta, rate, t, excitation, xp)
+        return normal, self.mu * normal - xp.abs(force)
+
+    def deceleration(self, s, t, excitation, xp=SCALAR):
+        """-s theta'' at theta = 0 on side ``s`` [rad/s²]: how fast an arc from the base
+        about that corner turns back (<= 0: the demand holds it out)."""
+        return -s * self.angular_acceleration(s, 0.0, t, excitation, xp)
+
+    def _limit(self, ge, xp):
+        """g_e times the smaller of mu and the rocking threshold [m/s²]: where rest ends."""
+        return xp.minimum(self.mu, self._threshold(xp)) * ge
+
+    def _settle_rate(self, s, t, excitation, xp=SCALAR):
+        """d theta'/dt [rad/s²] of the Zeno envelope on side ``s``: with the excitation
+        frozen the arcs last 2 |w| / d_s and 2 r |w| / d_-s in turn, so the rest comes
+        after |w| K, K = 2 (1/d_s + r/d_-s) / (1 - r²), and the envelope falls by 1/K."""
+        _, _, _, r = self._geometry(xp)
+        k = 2.0 * (1.0 / self.deceleration(s, t, excitation, xp) + r / self.deceleration(-s, t, excitation, xp)) / (
+            1 - r * r)
+        return -s / k
+
+    # ---- the automaton ----------------------------------------------------------------
+    def flow(self, mode, t, y, excitation, xp=np):
+        """(q', q'') in ``mode``: (u', u'') sliding, (theta', theta'') rocking, zero at rest."""
+        kind, s = abs(int(mode)), side(mode)
+        zero = 0.0 * y[_Q]
+        if kind == 1:
+            ax, ge, _, _ = self._base(t, excitation)
+            return xp.stack([y[_RATE], relative_acceleration(mode, ax, 0.0, self.friction_kinetic, ge, xp)])
+        if kind in (_OUT, _IN, _BEYOND):
+            return xp.stack([y[_RATE], self.angular_acceleration(s, y[_Q], t, excitation, xp)])
+        if kind == _SETTLE:
+            return xp.stack([zero, zero + self._settle_rate(s, t, excitation, xp)])
+        return xp.stack([zero, zero])
+
+    def guards(self, mode, t, y, excitation, xp=np):
+        """Guards of ``mode``, each left as it falls through zero; the last one at rest and
+        rocking, g_e [m/s²], is a flight of the whole block (an error). REST: (limit -
+        a_x, limit + a_x) with limit = min(mu, b/h) g_e; SLIDE: (s u'); OUT: (s theta' ->
+        apex, alpha - s theta); IN: (s theta -> impact, -s theta' -> outward again);
+        BEYOND: (s theta', pi/2 - s theta -> overturned); SETTLE: (s theta' -> rest, the
+        two onsets)."""
+        kind, s = abs(int(mode)), side(mode)
+        ax, ge, _, _ = self._base(t, excitation)
+        one = 0.0 * y[_Q] + 1.0
+        if mode == RockingMode.REST:
+            limit = self._limit(ge, xp)
+            return xp.stack([limit - ax, limit + ax, ge])
+        if kind == 1:
+            return xp.stack([mode * y[_RATE]])
+        if kind in (_OUT, _IN, _BEYOND):
+            if kind == _IN:
+                own = [s * y[_Q], -s * y[_RATE]]
+            else:
+                edge = xp.arctan2(self.b, self.h) if kind == _OUT else 0.5 * xp.pi
+                own = [s * y[_RATE], edge - s * y[_Q]]
+            contact = list(self.contact_margins(s, y[_Q], y[_RATE], t, excitation, xp)) if self.strict else []
+            return xp.stack([*own, *contact, ge])
+        if kind == _SETTLE:
+            limit = self._threshold(xp) * ge
+            return xp.stack([s * y[_RATE], limit - ax, limit + ax, ge])
+        if mode == RockingMode.RELEASE:
+            return xp.stack([-one])
+        return xp.stack([one])
+
+    def mode_at_rest(self, t, excitation, xp=np, y=None):
+        """REST, or the slide or rock the demand starts (its rate decides at a threshold)."""
+        ax, ge, ax_rate, _ = self._base(t, excitation)
+        direction = int(rest_mode(ax, ax_rate, min(self.mu, self.rocking_threshold), ge, True, True, SCALAR))
+        return self._start(direction)
+
+    def _start(self, direction):
+        """The mode a block at rest takes toward ``direction`` (+1, -1; 0: rest)."""
+        if direction == 0:
+            return RockingMode.REST
+        return RockingMode(direction) if self.slides else rock_mode(_OUT, direction)
+
+    def _is_flight_guard(self, mode, guard_index, t, y, excitation):
+        """Whether guard ``guard_index`` of ``mode`` is g_e (the last one, at rest and
+        rocking; a slide keeps the sliding block's guards alone)."""
+        kind = abs(int(mode))
+        return (kind not in (1, _OVERTURNED) and mode != RockingMode.RELEASE
+                and guard_index == len(self.guards(mode, t, y, excitation, SCALAR)) - 1)
+
+    def _is_contact_guard(self, mode, guard_index):
+        """Whether guard ``guard_index`` of ``mode`` is a contact limit (rocking, strict)."""
+        return self.strict and abs(int(mode)) in (_OUT, _IN, _BEYOND) and guard_index in (2, 3)
+
+    def _contact_error(self, s, t, y, excitation, lifts):
+        force, normal = self.contact_force(s, y[_Q], y[_RATE], t, excitation, SCALAR)
+        what = "N <= 0: the pivot would lift" if lifts else "|F| >= mu N: the pivot would slip"
+        return ValueError(f"at t = {t:.9f} s the contact force leaves its limits ({what}; theta = {y[_Q]:+.6g} rad, "
+                          f"theta' = {y[_RATE]:+.6g} rad/s, F = {force:+.6g} m/s², N = {normal:+.6g} m/s², "
+                          f"mu = {self.mu}); strict=True stops here")
+
+    def _flight(self, t, excitation):
+        ax, ge, _, _ = self._base(t, excitation)
+        return ValueError(f"at t = {t:.12g} s the base falls faster than g (g + a_z = {ge:.6g} m/s²): a flight "
+                          "of the whole block is outside this model")
+
+    def _after_apex(self, s, theta, t, excitation):
+        """The rocking mode at rest in rotation (theta' = 0) at ``theta`` on side ``s``."""
+        if s * self.angular_acceleration(s, theta, t, excitation, SCALAR) <= 0:
+            return rock_mode(_IN, s)
+        return rock_mode(_OUT if s * theta < self.alpha else _BEYOND, s)
+
+    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
+        """The mode after guard ``guard_index`` of ``mode``: see :meth:`guards`; an impact
+        enters the other side's OUT, or SETTLE where the next arc is shorter than
+        ``zeno_arc`` [s] and both corners restore."""
+        kind, s = abs(int(mode)), side(mode)
+        if self._is_flight_guard(mode, guard_index, t, y, excitation):
+            raise self._flight(t, excitation)
+        if mode == RockingMode.REST:
+            return self._start(-1 if guard_index == 0 else 1)
+        if self._is_contact_guard(mode, guard_index):
+            raise self._contact_error(s, t, y, excitation, guard_index == 2)
+        if kind == 1:
+            ax, ge, ax_rate, _ = self._base(t, excitation)
+            slip_rate = self.flow(mode, t, y, excitation, SCALAR)[_RATE]
+            return RockingMode(int(stop_mode(int(mode), slip_rate, ax_rate, t, self.mu, self.friction_kinetic, ge,
+                                             True, True, SCALAR, time_tol)))
+        if mode == RockingMode.RELEASE:
+            return self._after_apex(1 if self.theta0 > 0 else -1, self.theta0, t, excitation)
+        if kind == _OUT:
+            if guard_index == 1:
+                return rock_mode(_BEYOND, s)
+            return self.mode_at_rest(t, excitation) if y[_Q] == 0 else rock_mode(_IN, s)
+        if kind == _BEYOND:
+            return rock_mode(_IN, s) if guard_index == 0 else rock_mode(_OVERTURNED, s)
+        if kind == _IN:
+            if guard_index == 1:
+                return rock_mode(_OUT if s * y[_Q] < self.alpha else _BEYOND, s)
+            w = self.r * y[_RATE]
+            if w == 0:
+                return self.mode_at_rest(t, excitation)
+            ahead, behind = self.deceleration(-s, t, excitation), self.deceleration(s, t, excitation)
+            if ahead > 0 and behind > 0 and 2 * abs(w) / ahead < self.zeno_arc:
+                return rock_mode(_SETTLE, -s)
+            return rock_mode(_OUT, -s)
+        if kind == _SETTLE:
+            return RockingMode.REST if guard_index == 0 else rock_mode(_OUT, -1 if guard_index == 1 else 1)
+        return mode
+
+    def state_at_guard(self, mode, guard_index, y, xp=np):
+        """The state exactly on the guard: theta' = 0 at an apex or a stop, theta = 0 at
+        an impact, alpha or pi/2 at those guards; (theta0, 0) on release."""
+        kind, s = abs(int(mode)), side(mode)
+        q, rate = y[_Q], y[_RATE]
+        if mode == RockingMode.REST or mode == RockingMode.RELEASE and guard_index != 0:
+            return y
+        if mode == RockingMode.RELEASE:
+            return xp.stack([0.0 * q + self.theta0, 0.0 * rate])
+        if kind == 1:
+            return xp.stack([q, 0.0 * rate]) if guard_index == 0 else y
+        if kind in (_OUT, _BEYOND):
+            if guard_index == 0:
+                return xp.stack([q, 0.0 * rate])
+            if guard_index == 1:
+                edge = math.pi / 2 if kind == _BEYOND else xp.arctan2(self.b, self.h)
+                return xp.stack([0.0 * q + s * edge, rate])
+            return y
+        if kind == _IN:
+            if guard_index == 0:
+                return xp.stack([0.0 * q, rate])
+            return xp.stack([q, 0.0 * rate]) if guard_index == 1 else y
+        if kind == _SETTLE and guard_index < 3:
+            return xp.stack([0.0 * q, 0.0 * rate])
+        return y
+
+    def state_on_entry(self, before, after, t, y, excitation, xp=np):
+        """An impact multiplies theta' by r; an overturned block lies still at theta = s pi/2."""
+        if abs(int(before)) == _IN and side(after) == -side(before):
+            return xp.stack([y[_Q], self._geometry(xp)[3] * y[_RATE]])
+        if abs(int(after)) == _OVERTURNED:
+            return xp.stack([0.0 * y[_Q] + side(after) * 0.5 * math.pi, 0.0 * y[_RATE]])
+        return y
+
+    # ---- what the hybrid driver asks ------------------------------------------------
+    def is_static(self, mode):
+        return mode == RockingMode.REST or abs(int(mode)) == _OVERTURNED
+
+    def at_rest(self, mode, y):
+        return mode == RockingMode.REST or (abs(int(mode)) == 1 and y[_RATE] == 0)
+
+    def rest_state(self, y):
+        return np.array([y[_Q], 0.0])
+
+    def output_step(self):
+        """Largest gap between dense-output knots [s]: 1 / (32 p) rocking (inf sliding:
+        the excitation sets it, as for the sliding block)."""
+        return math.inf if self.slides else 1.0 / (KNOTS_PER_RADIAN * self.frequency)
+
+    def turn_rate(self, mode, t, y, excitation, xp=np):
+        """In a slide, u'' (as the sliding block); rocking, theta'' at the state ``y``
+        (monotone in t on a piece: a_x and a_z are), so that the integrator stops where
+        theta' may turn and no step hides an apex and its return."""
+        kind = abs(int(mode))
+        if kind == 1 or kind in (_OUT, _IN, _BEYOND):
+            return self.flow(mode, t, y, excitation, xp)[_RATE]
+        return None
+
+    def guard_rates(self, mode, guard_index, t, y, excitation):
+        """(rate, curvature) of guard ``guard_index`` of ``mode`` in time [its unit /s, /s²]."""
+        kind, s = abs(int(mode)), side(mode)
+        ax, ge, ax_rate, az_rate = self._base(t, excitation)
+        if mode == RockingMode.RELEASE:
+            return -1.0, 0.0
+        if kind == _OVERTURNED:
+            return 0.0, 0.0
+        if self._is_flight_guard(mode, guard_index, t, y, excitation):
+            return az_rate, 0.0
+        if self._is_contact_guard(mode, guard_index):
+            return self._contact_rate(s, guard_index - 2, t, y, excitation), 0.0
+        if mode == RockingMode.REST or (kind == _SETTLE and guard_index > 0):
+            coefficient = self.rocking_threshold if kind == _SETTLE else min(self.mu, self.rocking_threshold)
+            sign = -1.0 if guard_index in (0, 1) and (mode == RockingMode.REST) == (guard_index == 0) else 1.0
+            return coefficient * az_rate + sign * ax_rate, 0.0
+        if kind == 1:
+            return mode * self.flow(mode, t, y, excitation, SCALAR)[_RATE], -mode * ax_rate
+        if kind == _SETTLE:
+            return s * self._settle_rate(s, t, excitation), 0.0
+        accel = self.angular_acceleration(s, y[_Q], t, excitation, SCALAR)
+        jerk = self.angular_jerk(s, y[_Q], y[_RATE], t, excitation)
+        if kind == _IN:  # s theta (impact), -s theta' (outward again)
+            return (s * y[_RATE], s * accel) if guard_index == 0 else (-s * accel, -s * jerk)
+        # OUT, BEYOND: s theta' (apex), alpha or pi/2 - s theta
+        return (s * accel, s * jerk) if guard_index == 0 else (-s * y[_RATE], -s * accel)
+
+    def _contact_rate(self, s, index, t, y, excitation):
+        """d/dt of contact margin ``index`` [m/s³] along the flow, by central differences
+        over 1e-7 s."""
+        step = 1e-7
+        rate = np.array(self.flow(rock_mode(_OUT, s), t, y, excitation, SCALAR))
+        ahead, behind = np.asarray(y) + step * rate, np.asarray(y) - step * rate
+        value = lambda when, state: self.contact_margins(s, state[_Q], state[_RATE], when, excitation, SCALAR)[index]
+        return (value(t + step, ahead) - value(t - step, behind)) / (2 * step)
+
+    def contradiction(self, mode, y, velocity_error):
+        """A slide or a rotation whose rate points against its mode: beyond the velocity
+        error, and for a rotation beyond 1e-10 p alpha [rad/s] (an apex that grazes zero
+        where a(t) turns at a sample dips below it by the integrator's error)."""
+        kind, s = abs(int(mode)), side(mode)
+        if kind == 1 and mode * y[_RATE] < -velocity_error:
+            return f"u' = {y[_RATE]:+.6g} m/s points against the slide"
+        velocity_error = max(velocity_error, RATE_FLOOR * self.frequency * self.alpha)
+        if kind in (_OUT, _BEYOND) and s * y[_RATE] < -velocity_error:
+            return f"theta' = {y[_RATE]:+.6g} rad/s points toward the base"
+        if kind == _IN and s * y[_RATE] > velocity_error:
+            return f"theta' = {y[_RATE]:+.6g} rad/s points away from the base"
+        return None
+
+    def speed(self, y):
+        return abs(float(y[_RATE]))
+
+    def time_to_rest(self, mode, y):
+        """A bound [s] on the time to rest after the excitation: a slide's stop, or
+        (rocking) the free decay of the impacts, which needs r < 1."""
+        if self.slides:
+            rate = slip_constant(int(mode), 0.0, self.friction_kinetic, self.g)
+            if rate == 0 and y[_RATE] != 0:
+                raise ValueError("a block without kinetic friction slides on forever: give t_end [s]")
+            return 2.0 * abs(y[_RATE] / rate) if rate != 0 else 0.0
+        if self.r >= 1:
+            raise ValueError("a block with restitution 1 rocks on forever: give t_end [s]")
+        return 200.0 * math.pi / (self.frequency * (1.0 - self.r)) + 10.0 / self.frequency
+
+    def event(self, t, mode_before, mode_after, y):
+        kind = event_kind(mode_before, mode_after)
+        rate_after = self.r * float(y[_RATE]) if kind in ("impact", "zeno") else float(y[_RATE])
+        return RockingEvent(float(t), mode_before, mode_after, kind, float(y[_Q]), float(y[_RATE]), rate_after)
+
+    def solution(self, *, t, y, mode, events, backend, dense, stats):
+        return RockingSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
+
+    # ---- parameters, for the JAX twin and derivatives --------------------------------
+    def parameters(self):
+        """b [m], h [m], mu [-]; mu_kinetic [-], restitution [-] and p [rad/s] where given;
+        theta0 [rad], g [m/s²] (and the flags "linearised" and "strict" [-] where set)."""
+        values = {"b": self.b, "h": self.h, "mu": self.mu}
+        if self.mu_kinetic is not None:
+            values["mu_kinetic"] = self.mu_kinetic
+        if self.restitution is not None:
+            values["restitution"] = self.restitution
+        if self.p is not None:
+            values["p"] = self.p
+        for flag in ("linearised", "strict"):
+            if getattr(self, flag):
+                values[flag] = 1.0  # a name of its own: the JAX twin compiles its rules apart
+        return {**values, "theta0": self.theta0, "g": self.g}
+
+    def with_parameters(self, values):
+        model = copy.copy(self)
+        for name, value in {**self.parameters(), **values}.items():
+            if name not in ("linearised", "strict"):
+                object.__setattr__(model, name, value)
+        return model
+
+    def parameter_units(self) -> dict:
+        return {"b": "m", "h": "m", "mu": "-", "mu_kinetic": "-", "restitution": "-", "p": "rad/s",
+                "theta0": "rad", "g": "m/s²", **scale_factor_units(self)}
+
+    def default_wrt(self) -> tuple[str, ...]:
+        return ("b", "h")
