@@ -5,6 +5,7 @@ import functools
 
 import numpy as np
 
+from ..excitation import AbstractExcitation
 from ..units import STANDARD_GRAVITY
 from ._cases import cases, is_many
 from ._ensemble import Ensemble, Finals
@@ -77,14 +78,16 @@ def simulate(model: AbstractHybridModel, motion, t_end: float | None = None,
     if not isinstance(model, AbstractHybridModel):
         raise TypeError(f"model must be a model (SlidingBlock, PlanarBlock, SpringSupportedMass, FlexibleSlidingMass "
                         f"or an AbstractHybridModel), got {type(model).__name__}")
-    one = not is_many(motion) and np.ndim(scale) == 0 and np.ndim(pga) == 0 and polarity != "both" and not final_only
+    as_given = scale is None and pga is None and polarity == "normal" and not final_only  # the hot path: no np.ndim
+    one = (isinstance(motion, AbstractExcitation) or not is_many(motion)) and \
+        (as_given or (np.ndim(scale) == 0 and np.ndim(pga) == 0 and polarity != "both" and not final_only))
     if one:
         model.check_motion(motion)  # before scaling: the model's own words for what it refuses
     solver = make_backend(model.default_backend if backend is None else backend, **options)
     if not solver.runs(model):
         raise ValueError(f"backend={solver.name!r} does not run a {type(model).__name__}; choose one of "
                          f"{list(available(model))}")
-    if one and scale is None and pga is None and polarity == "normal":
+    if one and as_given:
         return solve(model, motion, t_end, solver)
     runs = cases(motion, scale=scale, pga=pga, polarity=polarity, g=float(getattr(model, "g", STANDARD_GRAVITY)),
                  pga_rounding=pga_rounding, check_peak=check_peak)
