@@ -18,7 +18,7 @@ __all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchSol
 # what the other packages of blockdae use
 from ._atomic import atomic_path
 from ._backend import AbstractBackend, cached_per_excitation, check_window
-from ._cases import labelled_motions
+from ._cases import cases, labelled_motions
 from ._checks import set_real_fields
 from ._compile_notice import CompileNotice, notice_numba
 from ._crosscheck import CrossCheck, crosscheck

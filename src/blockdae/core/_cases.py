@@ -60,6 +60,16 @@ class Cases:
         factor = self.factors[i, k] * _SIGN[self.polarities[p]]
         return self.motions[i] if factor == 1.0 else self.motions[i].scaled(float(factor))
 
+    def check(self, check_one) -> None:
+        """``check_one(motion)`` on each motion as given; an error it raises names the motion
+        in its note."""
+        for name, motion in zip(self.names, self.motions):
+            try:
+                check_one(motion)
+            except Exception as err:
+                err.add_note(f"in the motion {name}")
+                raise
+
     def peak_g(self, g: float) -> np.ndarray:
         """Peak |a| of each scaled motion [g] (one g = ``g`` [m/s²]), shape (n_motions,
         n_scales); the largest component's of a multi-component motion."""

@@ -99,13 +99,7 @@ def simulate(model: AbstractHybridModel, motion, t_end: float | None = None,
 def _ensemble(model, runs, t_end, solver, final_only, executor, progress) -> Ensemble:
     """Every case of ``runs``: in one compiled call where only final numbers are kept and
     the model's engine has one, else one run per case (here, or on ``executor``)."""
-    for name, given in zip(runs.names, runs.motions):
-        try:
-            model.check_motion(given)
-            Horizon.resolve(given, _end(given, t_end))
-        except Exception as err:
-            err.add_note(f"in the motion {name}")
-            raise
+    runs.check(lambda motion: (model.check_motion(motion), Horizon.resolve(motion, _end(motion, t_end))))
     run = functools.partial(solve, t_end=t_end, solver=solver)
     if final_only and _finals_in_one_call(model, solver):
         return Ensemble(model, runs, _compiled_finals(model, runs, t_end, solver), run=run)
@@ -166,16 +160,16 @@ def _compiled_finals(model, runs, t_end, solver):
     PGAs scale a copy of each motion."""
     n_motions, n_scales, n_polarities = runs.shape
     signs = [1.0 if polarity == "normal" else -1.0 for polarity in runs.polarities]
-    if runs.by == "scale":
-        motions, factors, per_motion = list(runs.motions), [k * sign for k in runs.targets for sign in signs], 1
+    in_engine = runs.by == "scale"
+    if in_engine:
+        motions, factors = list(runs.motions), [k * sign for k in runs.targets for sign in signs]
     else:
-        motions = [runs.scaled(i, k) for i in range(n_motions) for k in range(n_scales)]
-        factors, per_motion = signs, n_scales
+        motions, factors = [runs.scaled(i, k) for i in range(n_motions) for k in range(n_scales)], signs
     out = solver.solve_final(model, motions, [Horizon.resolve(m, _end(m, t_end)) for m in motions], tuple(factors))
     engine, stride = model.engines[solver.name], len(factors)
 
     def finals(i, k, p):
-        row, column = (i, k * n_polarities + p) if per_motion == 1 else (i * n_scales + k, p)
+        row, column = (i, k * n_polarities + p) if in_engine else (i * n_scales + k, p)
         return Finals(*engine.final_numbers(out[row, column::stride]))
 
     return tuple(tuple(tuple(finals(i, k, p) for p in range(n_polarities)) for k in range(n_scales))

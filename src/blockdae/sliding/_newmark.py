@@ -14,7 +14,7 @@ import warnings
 
 import numpy as np
 
-from ..core import compact_repr, sensitivities, simulate
+from ..core import cases, compact_repr, sensitivities, simulate
 from ..units import STANDARD_GRAVITY
 from ..excitation import AbstractExcitation, RecordSet, UnitsWarning, pga_keyword, with_metadata
 from ..flexible_mass import downslope_with_table
@@ -228,18 +228,22 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
     one = isinstance(motion, AbstractExcitation) and np.ndim(pga) == 0
     if not one and ky_array.ndim > 1:
         raise ValueError(f"ky must be a number or a 1-D sequence of yield accelerations [g], got shape {ky_array.shape}")
-    runs = simulate(SlidingBlock(mu=np.atleast_1d(ky_array), direction="negative", g=g), motion, t_end,
-                    backend, pga=pga, polarity=polarity, final_only=True, pga_rounding=pga_rounding,
-                    check_peak=check_peak, progress=progress, **options)
-    _warn_not_sliding(runs.cases, np.atleast_1d(ky_array), g)
-    downslope = np.moveaxis(0.0 - runs.displacement, 2, 0)  # (polarity, record, pga, ky); no -0.0 where none slid
-    slopes = _slopes(runs, np.atleast_1d(ky_array), g, t_end) if derivative else None
-    if table is not None:
-        downslope = np.array([[[[downslope_with_table(runs.cases.motion(i, k, p), table, g, t_end)]
-                                for k in range(runs.cases.shape[1])] for i in range(runs.cases.shape[0])]
-                              for p in range(runs.cases.shape[2])])
-    columns = dict(zip(runs.cases.polarities, downslope))
-    derivatives = dict(zip(runs.cases.polarities, slopes)) if derivative else {}
+    block = SlidingBlock(mu=np.atleast_1d(ky_array), direction="negative", g=g)
+    settings = dict(pga=pga, polarity=polarity, pga_rounding=pga_rounding, check_peak=check_peak)
+    if table is None:
+        runs = simulate(block, motion, t_end, backend, final_only=True, progress=progress, **settings, **options)
+        given = runs.cases
+        downslope = np.moveaxis(0.0 - runs.displacement, 2, 0)  # (polarity, record, pga, ky); no -0.0 where none slid
+    else:
+        given = cases(motion, g=g, **settings)
+        given.check(block.check_motion)
+        downslope = np.array([[[[downslope_with_table(given.motion(i, k, p), table, g, t_end)]
+                                for k in range(given.shape[1])] for i in range(given.shape[0])]
+                              for p in range(given.shape[2])])
+    _warn_not_sliding(given, np.atleast_1d(ky_array), g)
+    slopes = _slopes(given, np.atleast_1d(ky_array), g, t_end) if derivative else None
+    columns = dict(zip(given.polarities, downslope))
+    derivatives = dict(zip(given.polarities, slopes)) if derivative else {}
     if one:
         squeeze = (lambda d: d[0, 0]) if ky_array.ndim else (lambda d: float(d[0, 0, 0]))
         pick = lambda name, values: None if name not in values else squeeze(values[name])
@@ -247,8 +251,8 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
                              inverse=pick("inverse", columns), g=float(g), normal_dky=pick("normal", derivatives),
                              inverse_dky=pick("inverse", derivatives))
     metadata = motion.metadata if isinstance(motion, RecordSet) else None
-    return NewmarkSweep(records=runs.cases.names, peak=np.array([m.peak_acceleration / g for m in runs.cases.motions]),
-                        pga=None if pga is None else runs.cases.targets, ky=np.atleast_1d(ky_array), g=float(g),
+    return NewmarkSweep(records=given.names, peak=np.array([m.peak_acceleration / g for m in given.motions]),
+                        pga=None if pga is None else given.targets, ky=np.atleast_1d(ky_array), g=float(g),
                         metadata=metadata, normal=columns.get("normal"), inverse=columns.get("inverse"),
                         normal_dky=derivatives.get("normal"), inverse_dky=derivatives.get("inverse"))
 
@@ -271,12 +275,13 @@ def _yield_accelerations(ky):
                         "of numbers, or a bd.KyTable of ky against the sliding displacement") from None
 
 
-def _slopes(runs, ky, g, t_end) -> np.ndarray:
-    """dD/dky [m/g] of every case of ``runs``, (polarity, record, pga, ky): exact, through the
-    closed-form engine (mu = ky moves the kinetic coefficient too: mu_kinetic is None)."""
+def _slopes(given, ky, g, t_end) -> np.ndarray:
+    """dD/dky [m/g] of every case of ``given`` (motions x factors x polarities), (polarity,
+    record, pga, ky): exact, through the closed-form engine (mu = ky moves the kinetic
+    coefficient too: mu_kinetic is None)."""
     block = SlidingBlock(mu=ky, direction="negative", g=g)
-    n_motions, n_scales, n_polarities = runs.cases.shape
-    return np.array([[[-np.asarray(sensitivities(block, runs.cases.motion(i, k, p), t_end=t_end, wrt=("mu",))["mu"])
+    n_motions, n_scales, n_polarities = given.shape
+    return np.array([[[-np.asarray(sensitivities(block, given.motion(i, k, p), t_end=t_end, wrt=("mu",))["mu"])
                        for k in range(n_scales)] for i in range(n_motions)] for p in range(n_polarities)])
 
 
