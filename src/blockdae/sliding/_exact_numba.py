@@ -174,9 +174,7 @@ def _thresholds(exc, params, flags):
 
 def _logged(knots, n_knots, t, before, after, u):
     """``knots`` with the event (t [s], mode before -> after, u [m]) in row ``n_knots``,
-    grown when full; a log of capacity 0 records nothing."""
-    if knots.shape[1] == 0:
-        return knots
+    grown when full."""
     if n_knots == knots.shape[1]:
         grown = np.empty((knots.shape[0], 2 * n_knots))
         grown[:, :n_knots] = knots
@@ -239,7 +237,8 @@ def _run(exc, window, params, flags, capacity):
         max_abs_u = max(max_abs_u, abs(u))
         if mode != before:  # a stop that grazes on is no event
             n_events += 1
-            knots = _logged(knots, n_events, t_event, before, mode, u)
+            if capacity > 0:
+                knots = _logged(knots, n_events, t_event, before, mode, u)
             run = run + 1 if t_event == last_t else 1
             max_run, last_t = max(max_run, run), t_event
     max_abs_u = max(max_abs_u, abs(u))
@@ -253,7 +252,8 @@ def _run(exc, window, params, flags, capacity):
         if rests:
             if after != mode:
                 n_events += 1
-                knots = _logged(knots, n_events, t_final, mode, after, u_rest)
+                if capacity > 0:
+                    knots = _logged(knots, n_events, t_final, mode, after, u_rest)
                 run = run + 1 if t_final == last_t else 1
                 max_run = max(max_run, run)
             u, v, mode = u_rest, 0.0, after
@@ -279,13 +279,15 @@ def _slice(x, a, b):
     return x[a:b]
 
 
-def _run_item(exc, offsets, window, params, flags, item, out):
-    """Item ``item`` of a batch (see :func:`kernels`) into ``out``."""
-    n_exc = offsets.shape[0]
-    i, j = item % n_exc, item // n_exc  # neighbours differ in excitation: even shares
+def _excitation(exc, offsets, i):
+    """Excitation i of a batch's concatenated ``exc`` (see :func:`kernels`)."""
     a, b, c, d = offsets[i]
-    one = (exc[0][a:b], exc[1][a:b], exc[2][a:b], exc[3][a:b], _slice(exc[4], a, b), _slice(exc[5], a, b),
-           _slice(exc[6], a, b), exc[7][a:b], exc[8][a:b], exc[9][c:d], exc[10][c:d])
+    return (exc[0][a:b], exc[1][a:b], exc[2][a:b], exc[3][a:b], _slice(exc[4], a, b), _slice(exc[5], a, b),
+            _slice(exc[6], a, b), exc[7][a:b], exc[8][a:b], exc[9][c:d], exc[10][c:d])
+
+
+def _run_set(one, window, params, flags, i, j, out):
+    """Excitation i (``one``) under parameter set j into ``out[i, j]``."""
     p = params[j]
     out[i, j], _ = _run(one, window, (p[0], p[1], p[2], p[3], p[4]), (flags[0], flags[1], flags[2][i]), 0)
 
@@ -315,15 +317,19 @@ def kernels():
     def run_batch(exc, offsets, window, params, flags):
         fingerprint  # noqa: B018
         out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
+        n_exc = offsets.shape[0]
         for item in numba.prange(out.shape[0] * out.shape[1]):
-            _run_item(exc, offsets, window, params, flags, item, out)
+            i, j = item % n_exc, item // n_exc  # neighbours differ in excitation: even shares
+            _run_set(_excitation(exc, offsets, i), window, params, flags, i, j, out)
         return out
 
     def run_batch_serial(exc, offsets, window, params, flags):
         fingerprint  # noqa: B018 -- a function of its own: numba's cache key omits ``parallel``
         out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
-        for item in range(out.shape[0] * out.shape[1]):
-            _run_item(exc, offsets, window, params, flags, item, out)
+        for i in range(out.shape[0]):
+            one = _excitation(exc, offsets, i)
+            for j in range(out.shape[1]):
+                _run_set(one, window, params, flags, i, j, out)
         return out
 
     return (numba.njit(cache=True, **_OPTIONS)(run_one),
@@ -341,4 +347,10 @@ def _register():
     for module in (*_SHARED[:-1], sys.modules[__name__]):
         for _, fn in inspect.getmembers(module, inspect.isfunction):
             if fn.__module__ == module.__name__:
-                register_jitable(**_OPTIONS)(fn)
+                register_jitable(inline="always" if fn in _INLINED else "never", **_OPTIONS)(fn)
+
+
+#: functions inlined where they are called (numba IR): a call that takes the excitation's
+#: arrays counts a reference to each on entry and releases it on return, two atomic
+#: operations per array (~40 per onset search); inlined, the search costs none
+_INLINED = (_next_leaving_piece,)
