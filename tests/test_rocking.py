@@ -236,3 +236,21 @@ def test_strict_stops_where_the_contact_force_leaves_its_limits():
         bd.simulate(block.replace(strict=True), kobe, t_end=6.0)
     t_stop = float(str(error.value).split("at t = ")[1].split(" s")[0])
     assert abs(t_stop - first[0]) < 1e-6
+
+
+def test_a_base_falling_faster_than_g_while_sliding_is_an_error():
+    """A block that slides (mu < b/h) when the base starts to fall faster than g: every
+    generic backend stops with an error naming the time where g + a_z reaches 0 (a_z
+    ramps from 0 to -1.2 g over [0.49, 0.50] s: the closed form 0.49 + 0.01 / 1.2 s)."""
+    t = np.arange(301) * 0.01
+    x = bd.Record(0.6 * G * np.sin(np.pi * t), 0.01, name="half sine 0.6 g", units="m/s2")
+    falling = bd.Record(np.concatenate([np.zeros(50), np.full(251, -1.2 * G)]), 0.01, name="free fall",
+                        units="m/s2", check_peak=False)
+    block = RockingBlock(b=0.5, h=0.6, mu=0.3)
+    before = bd.simulate(block, bd.BaseMotion(x), t_end=0.49)
+    assert before.mode[-1] == RockingMode.SLIDE_NEG  # sliding when the fall begins
+    for backend in ("cvode", "ida"):
+        with pytest.raises(ValueError, match=r"at t = 0\.49833333333\d* s the base falls faster than g") as error:
+            bd.simulate(block, bd.BaseMotion(x, z=falling), t_end=3.0, backend=backend)
+        value = float(str(error.value).split("g + a_z = ")[1].split(" m/s²")[0])
+        assert abs(value) < 1e-9

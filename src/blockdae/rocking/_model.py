@@ -279,9 +279,9 @@ class RockingBlock(DifferentiableModel):
         return xp.stack([zero, zero])
 
     def guards(self, mode, t, y, excitation, xp=np):
-        """Guards of ``mode``, each left as it falls through zero; the last one at rest and
-        rocking, g_e [m/s²], is a flight of the whole block (an error). REST: (limit -
-        a_x, limit + a_x) with limit = min(mu, b/h) g_e; SLIDE: (s u'); OUT: (s theta' ->
+        """Guards of ``mode``, each left as it falls through zero; the last one at rest,
+        sliding and rocking, g_e [m/s²], is a flight of the whole block (an error). REST:
+        (limit - a_x, limit + a_x) with limit = min(mu, b/h) g_e; SLIDE: (s u'); OUT: (s theta' ->
         apex, alpha - s theta); IN: (s theta -> impact, -s theta' -> outward again);
         BEYOND: (s theta', pi/2 - s theta -> overturned); SETTLE: (s theta' -> rest, the
         two onsets)."""
@@ -292,7 +292,7 @@ class RockingBlock(DifferentiableModel):
             limit = self._limit(ge, xp)
             return xp.stack([limit - ax, limit + ax, ge])
         if kind == 1:
-            return xp.stack([mode * y[_RATE]])
+            return xp.stack([mode * y[_RATE], ge])
         if kind in (_OUT, _IN, _BEYOND):
             if kind == _IN:
                 own = [s * y[_Q], -s * y[_RATE]]
@@ -321,10 +321,10 @@ class RockingBlock(DifferentiableModel):
         return RockingMode(direction) if self.slides else rock_mode(_OUT, direction)
 
     def _is_flight_guard(self, mode, guard_index, t, y, excitation):
-        """Whether guard ``guard_index`` of ``mode`` is g_e (the last one, at rest and
-        rocking; a slide keeps the sliding block's guards alone)."""
+        """Whether guard ``guard_index`` of ``mode`` is g_e (the last one, at rest, sliding
+        and rocking)."""
         kind = abs(int(mode))
-        return (kind not in (1, _OVERTURNED) and mode != RockingMode.RELEASE
+        return (kind != _OVERTURNED and mode != RockingMode.RELEASE
                 and guard_index == len(self.guards(mode, t, y, excitation, SCALAR)) - 1)
 
     def _is_contact_guard(self, mode, guard_index):
