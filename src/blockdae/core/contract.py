@@ -273,7 +273,8 @@ class DifferentiableModel(AbstractHybridModel):
     (one component's scale factor [-], at 1) and "A" (every component scaled so that the
     largest peak is A g [g]), unless :meth:`sensitivities` is the model's own. By default
     the derivatives are those of the displacement at t_end along the trajectory the JAX
-    twin locates (the variational equation and the saltation jump at every event).
+    twin locates (the variational equation and the saltation jump at every event), and
+    with ``of`` those of the scalar quantities it declares (:meth:`scalar_quantities`).
     """
 
     #: gravity [m/s²]: "A" is in units of it (standard gravity unless the model has a g of
@@ -320,6 +321,23 @@ class DifferentiableModel(AbstractHybridModel):
         core's, along the JAX twin's trajectory
         (:func:`blockdae.core.derivatives.trajectory_displacement_sensitivities`)."""
         return NotImplemented
+
+    def scalar_quantities(self) -> dict:
+        """name -> unit of the model's scalar quantities besides its displacement (a peak
+        read at located events: the largest rotation of a rocking block) that
+        :func:`blockdae.sensitivities` differentiates with ``of=name`` along the JAX
+        twin's trajectory, by :meth:`scalar_quantity_jacobian`; none by default."""
+        return {}
+
+    def scalar_quantity_jacobian(self, name, solution, final, events) -> np.ndarray:
+        """d quantity ``name`` / dp [its unit per unit of p], shape (n_p,), by the names of
+        :func:`parameter_names` (the parameters, then each component's scale factor), from
+        the trajectory the JAX twin located: ``solution`` (its run, with ``block`` and
+        ``motion``), ``final`` dy(t_end)/dp (n_y, n_p) and ``events``, one per event of
+        the solution with ``t``, ``dt_dp`` (n_p,), ``dy_dp_before`` and ``dy_dp_after``
+        (n_y, n_p): the located state's total derivatives before and after the event's
+        maps. Required where :meth:`scalar_quantities` names any."""
+        raise NotImplementedError(f"{type(self).__name__} does not differentiate {name!r}")
 
     def finite_differences(self, motion, t_end, wrt, backend, step, options) -> dict:
         """The model's own finite differences of what :meth:`sensitivities` gives (same
