@@ -226,6 +226,13 @@ class AbstractHybridModel(abc.ABC):
         default; any :class:`~blockdae.core.AbstractSolution`)."""
         return DriverSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
 
+    def check_solution(self, solution) -> None:
+        """Called by :func:`blockdae.simulate` with every solution of this model, on every
+        backend, for one motion or many (its ``block`` and ``motion`` set; a batch's
+        :class:`~blockdae.core.BatchSolution`): warn, or raise, where the run left what
+        the model assumes (a free-standing block's contact force leaving its limits) and
+        only the whole solution shows it. Nothing by default."""
+
     # ---- for IDA ---------------------------------------------------------------------
     def dae_form(self, piece):
         """The model as a DAE for IDA on the driver's excitation ``piece``: by default

@@ -519,6 +519,12 @@ class RockingBlock(DifferentiableModel):
     def solution(self, *, t, y, mode, events, backend, dense, stats):
         return RockingSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
 
+    def check_solution(self, solution):
+        """A :class:`ContactWarning` (an error with ``strict``) naming the time and the
+        forces where the contact force left its limits while the block rocked
+        (:meth:`RockingSolution.check_contact`)."""
+        solution.check_contact()
+
     # ---- parameters, for the JAX twin and derivatives --------------------------------
     def parameters(self):
         """b [m], h [m], mu [-]; mu_kinetic [-], restitution [-] and p [rad/s] where given;
