@@ -263,8 +263,9 @@ def test_simulate_warns_where_the_contact_force_leaves_its_limits_on_every_backe
     first slip limit, on every backend, for one motion and for many; strict=True stops
     there with an error naming the time. The linearised block (mu = 0.15, b/h = 0.2) under
     Kobe TAK-090's first 6 s at 0.7 times needs more friction than mu N while it rocks: the
-    backends locate that time within 1e-6 s of CVODE at rtol 1e-12 (the dense output's
-    error; measured 2e-9 s). A block that only rocks within its limits runs silently."""
+    warnings and the errors name that time to their 9 decimals as CVODE at rtol 1e-12
+    locates it (the located times measured within 2e-14 s of it). A block that only rocks
+    within its limits runs silently."""
     import warnings
 
     kobe = load_sample_record("Kobe_1995_TAK-090")
@@ -275,14 +276,14 @@ def test_simulate_warns_where_the_contact_force_leaves_its_limits_on_every_backe
     assert reference and reference[0][1] == "slip_limit"
     t_first = reference[0][0]
     for backend in ("cvode", "ida", "jax", "exact"):
-        with pytest.warns(bd.rocking.ContactWarning, match="under Kobe TAK-090, 0-6 s, x 0.7 the contact force") as caught:
+        with pytest.warns(bd.rocking.ContactWarning, match="under Kobe TAK-090, 0-6 s, x 0.7 the contact") as caught:
             bd.simulate(block, record, t_end=6.0, backend=backend)
-        message = str(caught[0].message)
-        assert abs(float(message.split("at t = ")[1].split(" s")[0]) - t_first) < 1e-6, backend
+        message = next(str(w.message) for w in caught if w.category is bd.rocking.ContactWarning)
+        assert abs(float(message.split("at t = ")[1].split(" s")[0]) - t_first) <= 5e-10, backend
         assert "F = " in message and "N = " in message and "|F| >= mu N" in message
         with pytest.raises(ValueError, match="at t = ") as error:
             bd.simulate(block.replace(strict=True), record, t_end=6.0, backend=backend)
-        assert abs(float(str(error.value).split("at t = ")[1].split(" s")[0]) - t_first) < 1e-6, backend
+        assert abs(float(str(error.value).split("at t = ")[1].split(" s")[0]) - t_first) <= 5e-10, backend
     with pytest.warns(bd.rocking.ContactWarning):
         ensemble = bd.simulate(block, [record, QUIET], t_end=6.0, backend="exact")
     assert len(ensemble) == 2

@@ -123,8 +123,9 @@ def linearised_apex(b, h, amplitude, omega):
     t0 = mpmath.asin(g * alpha / amplitude) / omega
     c = -p**2 * amplitude / (g * (p**2 + omega**2))
     c1, c2 = -(alpha + c * mpmath.sin(omega * t0)), -c * omega * mpmath.cos(omega * t0) / p
-    theta = lambda t: alpha + c * mpmath.sin(omega * t) + c1 * mpmath.cosh(p * (t - t0)) + c2 * mpmath.sinh(p * (t - t0))
-    rate = lambda t: c * omega * mpmath.cos(omega * t) + p * (c1 * mpmath.sinh(p * (t - t0)) + c2 * mpmath.cosh(p * (t - t0)))
+    arc = lambda t: (mpmath.cosh(p * (t - t0)), mpmath.sinh(p * (t - t0)))
+    theta = lambda t: alpha + c * mpmath.sin(omega * t) + c1 * arc(t)[0] + c2 * arc(t)[1]
+    rate = lambda t: c * omega * mpmath.cos(omega * t) + p * (c1 * arc(t)[1] + c2 * arc(t)[0])
     period = 2 * mpmath.pi / omega
     grid = [t0 + (period - t0) * k / 1000 for k in range(1, 1001)]
     k = next(i for i in range(len(grid) - 1) if rate(grid[i]) > 0 >= rate(grid[i + 1]))

@@ -42,7 +42,8 @@ class MotionAt:
     def _locate(pieces, t):
         """(t inside the pieces, t - the start of its piece [s], that piece's coefficients)."""
         k = np.clip(np.searchsorted(pieces.t0, t, side="right") - 1, 0, len(pieces.h) - 1)
-        coefficients = tuple(None if c is None else c[k] for c in (pieces.p0, pieces.p1, pieces.s, pieces.w, pieces.phi))
+        columns = (pieces.p0, pieces.p1, pieces.s, pieces.w, pieces.phi)
+        coefficients = tuple(None if c is None else c[k] for c in columns)
         return t < pieces.t_end, t - pieces.t0[k], coefficients
 
     def component(self, index, t):

@@ -70,7 +70,8 @@ class RockingBlock(DifferentiableModel):
         zeno_arc: the arc duration [s] below which the remaining impacts are summed.
         strict: stop with an error where the contact force leaves its limits (N <= 0: the
             pivot would lift, |F| > mu N: it would slip), located as a guard; otherwise
-            Housner's model goes on and ``solution.check_contact()`` reports them.
+            Housner's model goes on and :func:`blockdae.simulate` warns of them (a
+            ``ContactWarning``; ``solution.contact_events`` lists them).
         g: gravitational acceleration [m/s²].
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x
