@@ -167,6 +167,20 @@ def test_overturned_block():
         assert abs(central_difference(block, pulse, None, name, 1e-4) - value) < 1e-7 * abs(value), name
 
 
+def test_released_from_a_tilt():
+    """Released from theta0 = alpha / 2 with no shaking, the block never rotates further:
+    max |theta| / alpha = theta0 / alpha, so d/dtheta0 = 1 / alpha and d/db = -theta0 h /
+    (R² alpha²) (closed form, to 1e-12)."""
+    block = RockingBlock(b=0.2, h=1.0, mu=0.6)
+    block = block.replace(theta0=block.alpha / 2)
+    quiet = bd.Record(np.zeros(101), 0.01, name="no shaking", units="m/s2")
+    found = twin(block, quiet, 1.0, ("b", "theta0"))
+    r2, alpha = block.b ** 2 + block.h ** 2, block.alpha
+    assert abs(found["theta0"] - 1 / alpha) < 1e-12 / alpha
+    closed = -block.theta0 * block.h / (r2 * alpha ** 2)
+    assert abs(found["b"] - closed) < 1e-12 * abs(closed)
+
+
 def test_a_block_that_slides_or_is_asked_for_an_unknown_quantity():
     """A block that slides never rotates: its largest rotation is 0 whatever b, h or A;
     a quantity the block does not declare is refused, naming the choice."""

@@ -307,7 +307,7 @@ class RockingBlock(DifferentiableModel):
             limit = self._threshold(xp) * ge
             return xp.stack([s * y[_RATE], limit - ax, limit + ax, ge])
         if mode == RockingMode.RELEASE:
-            return xp.stack([-one])
+            return xp.stack([-one - t])  # left at once; its rate -1 (a fixed time: dt/dp = 0)
         return xp.stack([one])
 
     def mode_at_rest(self, t, excitation, xp=np, y=None):
