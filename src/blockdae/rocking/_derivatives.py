@@ -16,8 +16,6 @@ import numpy as np
 
 from ..core.contract import parameter_names
 
-#: the quantity :func:`blockdae.sensitivities` differentiates with ``of`` -> its unit
-QUANTITIES = {"max_theta_over_alpha": "-"}
 #: the events at which |theta| may be largest: theta' = 0 there, or theta = pi/2
 EXTREMES = ("release", "apex", "overturn")
 

@@ -34,7 +34,6 @@ from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, scale
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import relative_acceleration, rest_mode, slip_constant, stop_mode
 from ..units import STANDARD_GRAVITY
-from ._derivatives import QUANTITIES, max_theta_jacobian
 from ._modes import RockingMode, event_kind, rock_mode, side
 from ._solution import RockingEvent, RockingSolution
 
@@ -558,7 +557,10 @@ class RockingBlock(DifferentiableModel):
 
     def scalar_quantities(self) -> dict:
         """"max_theta_over_alpha": max |theta| / alpha [-] (``bd.sensitivities(..., of=...)``)."""
-        return dict(QUANTITIES)
+        return {"max_theta_over_alpha": "-"}
 
     def scalar_quantity_jacobian(self, name, solution, final, events):
+        """d(max |theta| / alpha)/dp (:func:`._derivatives.max_theta_jacobian`)."""
+        from ._derivatives import max_theta_jacobian
+
         return max_theta_jacobian(self, solution, final, events)
