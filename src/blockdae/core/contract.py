@@ -229,9 +229,10 @@ class AbstractHybridModel(abc.ABC):
     def check_solution(self, solution) -> None:
         """Called by :func:`blockdae.simulate` with every solution of this model, on every
         backend, for one motion or many (its ``block`` and ``motion`` set; a batch's
-        :class:`~blockdae.core.BatchSolution`): warn, or raise, where the run left what
-        the model assumes (a free-standing block's contact force leaving its limits) and
-        only the whole solution shows it. Nothing by default."""
+        :class:`~blockdae.core.BatchSolution`; not the final numbers that ``final_only``
+        takes from one compiled call): warn, or raise, where the run left what the model
+        assumes (a free-standing block's contact force leaving its limits) and only the
+        whole solution shows it. Nothing by default."""
 
     # ---- for IDA ---------------------------------------------------------------------
     def dae_form(self, piece):

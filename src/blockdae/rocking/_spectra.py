@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..core import Horizon, make_backend
+from ..core import Horizon, available, make_backend
 from ..excitation import Record
 from ._modes import side
 
@@ -55,6 +55,9 @@ def overturns(block, motion, backend=None, **options) -> bool:
     stops at them), as the literature's spectra assume."""
     block.check_motion(motion)
     solver = make_backend(block.default_backend if backend is None else backend, **options)
+    if not solver.runs(block):
+        raise ValueError(f"backend={solver.name!r} does not run this RockingBlock; choose one of "
+                         f"{list(available(block))}")
     solution = solver.solve(block, motion, Horizon.resolve(motion, motion.duration))
     if solution.overturned:
         return True
