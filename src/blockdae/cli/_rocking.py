@@ -61,11 +61,14 @@ def run_rocking(args) -> int:
                                          linearised=args.linearised, strict=args.strict, g=args.g), "")
     backend = args.backend or ("exact" if block.linearised and not block.slides else "cvode")
     start = time.perf_counter()
-    solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=backend), str(args.record))
-    wall = time.perf_counter() - start
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught:  # simulate warns of the contact limits: printed below
         warnings.simplefilter("always", ContactWarning)
-        contact = checked(solution.check_contact, str(args.record))
+        solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=backend), str(args.record))
+    wall = time.perf_counter() - start
+    for other in (w for w in caught if not issubclass(w.category, ContactWarning)):
+        warnings.showwarning(other.message, other.category, other.filename, other.lineno)
+    caught = [w for w in caught if issubclass(w.category, ContactWarning)]
+    contact = solution.contact_events
     if args.plot is not None:
         from .._plot import plot
 

@@ -12,7 +12,7 @@ mass's flights) overrides the hook in its own package, from the building blocks 
 import numpy as np
 
 from .contract import DifferentiableModel, parameter_names
-from ._simulate import simulate
+from ._simulate import of_run, simulate
 from ._registry import AbstractBackend, Horizon, backend_name, make_backend
 from ._sensitivity_result import Sensitivities, per
 from ..excitation import BaseMotion
@@ -47,10 +47,12 @@ def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: 
         backend: "exact" (closed forms, differentiated through the JAX kernel of
             "exact-jax") or "jax" (the diffrax twin); None: "exact" for a
             SlidingBlock, "jax" (the only one) for other models.
-        of: SpringSupportedMass only: the quantities differentiated, any of
+        of: what is differentiated instead of the displacement: a name or names of the
+            model's ``scalar_quantities()`` (a RockingBlock: "max_theta_over_alpha",
+            max |theta| / alpha [-]); for a SpringSupportedMass any of
             "liftoff_velocity" (u' at the first liftoff [m/s]), "height" (the largest
             u - u0 of a flight [m], at a top) and "flight_time" (the sum of landing -
-            liftoff [s]; a flight not landed by t_end counts to t_end); default all three.
+            liftoff [s]; a flight not landed by t_end counts to t_end), default all three.
         **options: settings of the backend.
 
     Returns:
@@ -67,7 +69,8 @@ def sensitivities(block, motion, t_end: float | None = None, wrt=None, backend: 
     wrt = _names(block, wrt)
     own = block.sensitivities(motion, t_end, wrt, backend, of, options)
     if own is NotImplemented:
-        return trajectory_displacement_sensitivities(block, motion, t_end, wrt, backend, of, options)
+        along = trajectory_displacement_sensitivities if of is None else trajectory_quantity_sensitivities
+        return along(block, motion, t_end, wrt, backend, of, options)
     return own if isinstance(own, Sensitivities) else Sensitivities.make(block, own, backend=backend)
 
 
@@ -124,6 +127,38 @@ def trajectory_displacement_sensitivities(model, motion, t_end, wrt, backend, of
     horizon = Horizon.resolve(motion, t_end)
     jacobian = make_backend(backend, **options).displacement_jacobian(model, motion, horizon)
     return Sensitivities.make(model, by_parameter(model, jacobian.T, wrt, peak), backend=backend)
+
+
+def trajectory_quantity_sensitivities(model, motion, t_end, wrt, backend, of, options):
+    """The core's derivatives of the scalar quantities ``of`` (a name or names of the
+    model's :meth:`~blockdae.core.contract.DifferentiableModel.scalar_quantities`) along
+    the JAX twin's trajectory, by the model's ``scalar_quantity_jacobian``: a
+    :class:`~blockdae.Sensitivities` of those quantities in their units (a batch: one
+    located trajectory per parameter set, stacked)."""
+    units = model.scalar_quantities()
+    of = (of,) if isinstance(of, str) else tuple(of)
+    if not units:
+        raise ValueError(f"of={of!r} does not apply to a {type(model).__name__}: it has the derivatives of its "
+                         "displacement")
+    unknown = [name for name in of if name not in units]
+    if unknown or not of:
+        raise ValueError(f"of={of!r}: choose among {tuple(units)}")
+    backend = "jax" if backend is None else backend
+    if backend_name(backend) != "jax":
+        raise ValueError(f"backend={backend!r} has no derivatives for a {type(model).__name__}; use 'jax'")
+    if model.batch_shape:  # one located trajectory per parameter set
+        sets = [trajectory_quantity_sensitivities(model.item(i), motion, t_end, wrt, backend, of, options)
+                for i in range(model.batch_shape[0])]
+        return Sensitivities(sets[0].quantities, sets[0].quantity_units, sets[0].parameters,
+                             np.stack([one.array for one in sets]), sets[0].units, model, sets[0].backend)
+    wrt = checked_wrt(model, wrt)
+    peak = largest_peak(motion) if "A" in wrt else None
+    solution, final, events = make_backend(backend, **options).trajectory_sensitivities(
+        model, motion, Horizon.resolve(motion, t_end))
+    solution = of_run(solution, model, motion)
+    derivatives = {name: by_parameter(model, model.scalar_quantity_jacobian(name, solution, final, events), wrt, peak)
+                   for name in of}
+    return Sensitivities.make(model, derivatives, quantity_units=[units[name] for name in of], backend=backend)
 
 
 def by_parameter(model, columns, wrt, peak):

@@ -143,11 +143,11 @@ class Sensitivities(Mapping):
 
 def per(numerator: str, denominator: str) -> str:
     """The unit ``numerator`` per ``denominator`` ("-" or "": none): "m/g", "m/(m/s²)",
-    "(m/s)/Hz"."""
+    "(m/s)/Hz", "1/m" (a dimensionless quantity per m)."""
     if denominator in ("-", ""):
         return numerator
     wrap = lambda unit: f"({unit})" if "/" in unit else unit
-    return f"{wrap(numerator)}/{wrap(denominator)}"
+    return f"{wrap('1' if numerator in ('-', '') else numerator)}/{wrap(denominator)}"
 
 
 def displacement_names(model) -> tuple[str, ...]:

@@ -111,10 +111,13 @@ def _ensemble(model, runs, t_end, solver, final_only, executor, progress) -> Ens
 
 def solve(model, motion, t_end, solver):
     """The solution of ``model`` (one parameter set or a batch) under ``motion`` (checked by
-    the model already) to ``t_end`` [s] (None: until rest) on the backend object ``solver``."""
+    the model already) to ``t_end`` [s] (None: until rest) on the backend object ``solver``,
+    checked by the model (its ``check_solution``)."""
     horizon = Horizon.resolve(motion, _end(motion, t_end))
     result = solver.solve_batch(model, motion, horizon) if model.batch_shape else solver.solve(model, motion, horizon)
-    return _of_run(result, model, motion)
+    solution = of_run(result, model, motion)
+    model.check_solution(solution)
+    return solution
 
 
 def _end(motion, t_end):
@@ -176,7 +179,7 @@ def _compiled_finals(model, runs, t_end, solver):
                  for i in range(n_motions))
 
 
-def _of_run(result, block, motion):
+def of_run(result, block, motion):
     """``result`` (a solution: a frozen dataclass that checks nothing on construction) with
     its ``block`` and ``motion`` set: what ``dataclasses.replace`` makes, a shallow copy,
     without running ``__init__`` again."""

@@ -226,6 +226,14 @@ class AbstractHybridModel(abc.ABC):
         default; any :class:`~blockdae.core.AbstractSolution`)."""
         return DriverSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
 
+    def check_solution(self, solution) -> None:
+        """Called by :func:`blockdae.simulate` with every solution of this model, on every
+        backend, for one motion or many (its ``block`` and ``motion`` set; a batch's
+        :class:`~blockdae.core.BatchSolution`; not the final numbers that ``final_only``
+        takes from one compiled call): warn, or raise, where the run left what the model
+        assumes (a free-standing block's contact force leaving its limits) and only the
+        whole solution shows it. Nothing by default."""
+
     # ---- for IDA ---------------------------------------------------------------------
     def dae_form(self, piece):
         """The model as a DAE for IDA on the driver's excitation ``piece``: by default
@@ -273,7 +281,8 @@ class DifferentiableModel(AbstractHybridModel):
     (one component's scale factor [-], at 1) and "A" (every component scaled so that the
     largest peak is A g [g]), unless :meth:`sensitivities` is the model's own. By default
     the derivatives are those of the displacement at t_end along the trajectory the JAX
-    twin locates (the variational equation and the saltation jump at every event).
+    twin locates (the variational equation and the saltation jump at every event), and
+    with ``of`` those of the scalar quantities it declares (:meth:`scalar_quantities`).
     """
 
     #: gravity [m/s²]: "A" is in units of it (standard gravity unless the model has a g of
@@ -320,6 +329,23 @@ class DifferentiableModel(AbstractHybridModel):
         core's, along the JAX twin's trajectory
         (:func:`blockdae.core.derivatives.trajectory_displacement_sensitivities`)."""
         return NotImplemented
+
+    def scalar_quantities(self) -> dict:
+        """name -> unit of the model's scalar quantities besides its displacement (a peak
+        read at located events: the largest rotation of a rocking block) that
+        :func:`blockdae.sensitivities` differentiates with ``of=name`` along the JAX
+        twin's trajectory, by :meth:`scalar_quantity_jacobian`; none by default."""
+        return {}
+
+    def scalar_quantity_jacobian(self, name, solution, final, events) -> np.ndarray:
+        """d quantity ``name`` / dp [its unit per unit of p], shape (n_p,), by the names of
+        :func:`parameter_names` (the parameters, then each component's scale factor), from
+        the trajectory the JAX twin located: ``solution`` (its run, with ``block`` and
+        ``motion``), ``final`` dy(t_end)/dp (n_y, n_p) and ``events``, one per event of
+        the solution with ``t``, ``dt_dp`` (n_p,), ``dy_dp_before`` and ``dy_dp_after``
+        (n_y, n_p): the located state's total derivatives before and after the event's
+        maps. Required where :meth:`scalar_quantities` names any."""
+        raise NotImplementedError(f"{type(self).__name__} does not differentiate {name!r}")
 
     def finite_differences(self, motion, t_end, wrt, backend, step, options) -> dict:
         """The model's own finite differences of what :meth:`sensitivities` gives (same

@@ -7,7 +7,8 @@ first call that needs it, not on import."""
 from ._jax_config import jax_context
 from .contract import parameter_names
 from ._sensitivities import (by_parameter, checked_wrt, derivative_unit, largest_peak, parameter_differences,
-                             step_difference, trajectory_displacement_sensitivities)
+                             step_difference, trajectory_displacement_sensitivities,
+                             trajectory_quantity_sensitivities)
 from ._sensitivity_result import Sensitivities
 from ._simulate import simulate
 
@@ -22,4 +23,4 @@ def trajectory_sensitivities(model, motion, horizon, backend):
 
 __all__ = ["Sensitivities", "by_parameter", "checked_wrt", "derivative_unit", "jax_context", "largest_peak",
            "parameter_differences", "parameter_names", "simulate", "step_difference",
-           "trajectory_displacement_sensitivities", "trajectory_sensitivities"]
+           "trajectory_displacement_sensitivities", "trajectory_quantity_sensitivities", "trajectory_sensitivities"]

@@ -24,6 +24,6 @@ from ._formats import read_channels
 from .pieces import accel, accel_int1, accel_int2, accel_rate, evaluate, monotone_rate, piece_direction, rebase
 from ._readers import RECORD_SUFFIXES, record_files, record_name, unit_factor
 from ._record import check_horizontal
-from ._record_checks import offset_fraction
+from ._record_checks import offset_fraction, outside_blockdae
 from ._record_set import with_metadata
 from ._units import PGA_ROUNDINGS, check_pga, check_pga_rounding, pga_keyword

@@ -40,7 +40,7 @@ def check_step(dt: float, source: str, check_step: bool = True, time_column: boo
     if dt > RESOLVING_STEP_S:
         warnings.warn(f"{source}: sample step dt = {dt:g} s resolves periods down to {4 * dt:g} s only (4 samples "
                       f"a period), not the periods of 0.1 s an accelerogram holds (dt <= {RESOLVING_STEP_S:g} s)",
-                      RecordWarning, stacklevel=_outside_blockdae())
+                      RecordWarning, stacklevel=outside_blockdae())
 
 
 def offset_fraction(samples) -> float:
@@ -58,10 +58,10 @@ def check_offset(samples, source: str):
     if fraction > OFFSET_FRACTION:
         warnings.warn(f"{source}: the samples' mean is {100 * fraction:.3g} % of their peak (above "
                       f"{100 * OFFSET_FRACTION:g} %): an offset that slides a block one way; remove it with "
-                      f"{REMOVE_OFFSET}", RecordWarning, stacklevel=_outside_blockdae())
+                      f"{REMOVE_OFFSET}", RecordWarning, stacklevel=outside_blockdae())
 
 
-def _outside_blockdae() -> int:
+def outside_blockdae() -> int:
     """The ``stacklevel`` of a warning that names the first caller outside blockdae."""
     frame, level = sys._getframe(1), 1
     while frame is not None and frame.f_globals.get("__name__", "").startswith("blockdae."):

@@ -69,7 +69,8 @@ class RockingBlock(DifferentiableModel):
         zeno_arc: the arc duration [s] below which the remaining impacts are summed.
         strict: stop with an error where the contact force leaves its limits (N <= 0: the
             pivot would lift, |F| > mu N: it would slip), located as a guard; otherwise
-            Housner's model goes on and ``solution.check_contact()`` reports them.
+            Housner's model goes on and :func:`blockdae.simulate` warns of them (a
+            ``ContactWarning``; ``solution.contact_events`` lists them).
         g: gravitational acceleration [m/s²].
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x
@@ -279,9 +280,9 @@ class RockingBlock(DifferentiableModel):
         return xp.stack([zero, zero])
 
     def guards(self, mode, t, y, excitation, xp=np):
-        """Guards of ``mode``, each left as it falls through zero; the last one at rest and
-        rocking, g_e [m/s²], is a flight of the whole block (an error). REST: (limit -
-        a_x, limit + a_x) with limit = min(mu, b/h) g_e; SLIDE: (s u'); OUT: (s theta' ->
+        """Guards of ``mode``, each left as it falls through zero; the last one at rest,
+        sliding and rocking, g_e [m/s²], is a flight of the whole block (an error). REST:
+        (limit - a_x, limit + a_x) with limit = min(mu, b/h) g_e; SLIDE: (s u'); OUT: (s theta' ->
         apex, alpha - s theta); IN: (s theta -> impact, -s theta' -> outward again);
         BEYOND: (s theta', pi/2 - s theta -> overturned); SETTLE: (s theta' -> rest, the
         two onsets)."""
@@ -292,7 +293,7 @@ class RockingBlock(DifferentiableModel):
             limit = self._limit(ge, xp)
             return xp.stack([limit - ax, limit + ax, ge])
         if kind == 1:
-            return xp.stack([mode * y[_RATE]])
+            return xp.stack([mode * y[_RATE], ge])
         if kind in (_OUT, _IN, _BEYOND):
             if kind == _IN:
                 own = [s * y[_Q], -s * y[_RATE]]
@@ -305,7 +306,7 @@ class RockingBlock(DifferentiableModel):
             limit = self._threshold(xp) * ge
             return xp.stack([s * y[_RATE], limit - ax, limit + ax, ge])
         if mode == RockingMode.RELEASE:
-            return xp.stack([-one])
+            return xp.stack([-one - t])  # left at once; its rate -1 (a fixed time: dt/dp = 0)
         return xp.stack([one])
 
     def mode_at_rest(self, t, excitation, xp=np, y=None):
@@ -321,10 +322,10 @@ class RockingBlock(DifferentiableModel):
         return RockingMode(direction) if self.slides else rock_mode(_OUT, direction)
 
     def _is_flight_guard(self, mode, guard_index, t, y, excitation):
-        """Whether guard ``guard_index`` of ``mode`` is g_e (the last one, at rest and
-        rocking; a slide keeps the sliding block's guards alone)."""
+        """Whether guard ``guard_index`` of ``mode`` is g_e (the last one, at rest, sliding
+        and rocking)."""
         kind = abs(int(mode))
-        return (kind not in (1, _OVERTURNED) and mode != RockingMode.RELEASE
+        return (kind != _OVERTURNED and mode != RockingMode.RELEASE
                 and guard_index == len(self.guards(mode, t, y, excitation, SCALAR)) - 1)
 
     def _is_contact_guard(self, mode, guard_index):
@@ -518,6 +519,12 @@ class RockingBlock(DifferentiableModel):
     def solution(self, *, t, y, mode, events, backend, dense, stats):
         return RockingSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
 
+    def check_solution(self, solution):
+        """A :class:`ContactWarning` (an error with ``strict``) naming the time and the
+        forces where the contact force left its limits while the block rocked
+        (:meth:`RockingSolution.check_contact`)."""
+        solution.check_contact()
+
     # ---- parameters, for the JAX twin and derivatives --------------------------------
     def parameters(self):
         """b [m], h [m], mu [-]; mu_kinetic [-], restitution [-] and p [rad/s] where given;
@@ -547,3 +554,13 @@ class RockingBlock(DifferentiableModel):
 
     def default_wrt(self) -> tuple[str, ...]:
         return ("b", "h")
+
+    def scalar_quantities(self) -> dict:
+        """"max_theta_over_alpha": max |theta| / alpha [-] (``bd.sensitivities(..., of=...)``)."""
+        return {"max_theta_over_alpha": "-"}
+
+    def scalar_quantity_jacobian(self, name, solution, final, events):
+        """d(max |theta| / alpha)/dp (:func:`._derivatives.max_theta_jacobian`)."""
+        from ._derivatives import max_theta_jacobian
+
+        return max_theta_jacobian(self, solution, final, events)

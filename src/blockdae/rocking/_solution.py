@@ -7,6 +7,7 @@ import warnings
 import numpy as np
 
 from ..core import AbstractEvent, DriverSolution, compact_repr
+from ..excitation import outside_blockdae
 
 
 class ContactWarning(UserWarning):
@@ -126,21 +127,25 @@ class RockingSolution(DriverSolution):
 
     def check_contact(self, strict=None) -> tuple:
         """:attr:`contact_events`, with a :class:`ContactWarning` naming the first of each
-        kind, or a ValueError with ``strict`` (None: the block's own ``strict``)."""
+        kind (its time, theta, theta', F and N) and how many there are, or a ValueError with
+        ``strict`` (None: the block's own ``strict``). :func:`blockdae.simulate` calls it
+        after every run."""
         events = self.contact_events
         strict = self.block.strict if strict is None else strict
+        under = f" under {self.motion.name}" if getattr(self.motion, "name", None) else ""
         for kind in ("lift_limit", "slip_limit"):
-            first = next((row for row in events if row[1] == kind), None)
-            if first is None:
+            rows = [row for row in events if row[1] == kind]
+            if not rows:
                 continue
-            t, _, theta, rate, force, normal = first
+            t, _, theta, rate, force, normal = rows[0]
             what = "N <= 0: the pivot would lift" if kind == "lift_limit" else "|F| >= mu N: the pivot would slip"
-            message = (f"at t = {t:.9f} s the contact force leaves its limits ({what}; theta = {theta:+.6g} rad, "
-                       f"theta' = {rate:+.6g} rad/s, F = {force:+.6g} m/s², N = {normal:+.6g} m/s², mu = "
-                       f"{self.block.mu}); Housner's model keeps its pivot")
+            more = f" (the first of {len(rows)} times; solution.contact_events lists them)" if len(rows) > 1 else ""
+            message = (f"at t = {t:.9f} s{under} the contact force leaves its limits ({what}; theta = {theta:+.6g} "
+                       f"rad, theta' = {rate:+.6g} rad/s, F = {force:+.6g} m/s², N = {normal:+.6g} m/s², mu = "
+                       f"{self.block.mu}){more}; Housner's model keeps its pivot")
             if strict:
                 raise ValueError(message)
-            warnings.warn(message, ContactWarning, stacklevel=2)
+            warnings.warn(message, ContactWarning, stacklevel=outside_blockdae())
         return events
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
@@ -165,6 +170,4 @@ class RockingSolution(DriverSolution):
 
         rows = [(e.kind, e.t, e.q, e.rate, e.rate_after) for e in self.events]
         return pd.DataFrame(rows, columns=["kind", "t_s", "q", "rate", "rate_after"])
-
-
 

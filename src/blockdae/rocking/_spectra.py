@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..core import simulate
+from ..core import Horizon, available, make_backend
 from ..excitation import Record
 from ._modes import side
 
@@ -50,8 +50,15 @@ def overturns_freely(block, mode, theta, rate) -> bool:
 
 def overturns(block, motion, backend=None, **options) -> bool:
     """Whether ``motion`` overturns ``block``: run to the motion's end, then decided by
-    the free block's energy (no impact can follow a rotation past alpha)."""
-    solution = simulate(block, motion, t_end=motion.duration, backend=backend, **options)
+    the free block's energy (no impact can follow a rotation past alpha). Housner's pivot
+    holds: the contact-force limits are not checked (no ContactWarning; ``strict`` still
+    stops at them), as the literature's spectra assume."""
+    block.check_motion(motion)
+    solver = make_backend(block.default_backend if backend is None else backend, **options)
+    if not solver.runs(block):
+        raise ValueError(f"backend={solver.name!r} does not run this RockingBlock; choose one of "
+                         f"{list(available(block))}")
+    solution = solver.solve(block, motion, Horizon.resolve(motion, motion.duration))
     if solution.overturned:
         return True
     return overturns_freely(block, solution.mode[-1], *solution.state[-1])
