@@ -1,13 +1,17 @@
-"""The exact engine of the linearised rocking block (``backend="exact"``): its compiled
-closed form (:mod:`._kernel`) on a piecewise-linear horizontal record, the knots made a
-:class:`RockingSolution` with dense output."""
+"""The rocking block's compiled engines, each run made a :class:`RockingSolution` with dense
+output: the linearised block's closed form (:mod:`._kernel`, ``backend="exact"``) on a
+piecewise-linear horizontal record, and the integrated engine of either equation
+(:mod:`._compiled`, ``backend="compiled"``) on any piecewise motion, horizontal and
+vertical."""
 
 import math
 
 import numpy as np
 
-from ..core import HermiteDense
+from ..core import HermiteDense, notice_numba
+from . import _compiled as compiled
 from ._kernel import KNOT_COLUMNS, kernel
+from ._model import RATE_FLOOR
 from ._modes import RockingMode
 
 #: knot rows first allocated per piece of a(t) (the log grows if a run needs more)
@@ -35,8 +39,8 @@ class LinearisedEngine:
 
     def solve(self, model, excitation, horizon, backend):
         if not model.linearised or model.slides:
-            raise ValueError("backend='exact' runs the linearised rocking block (linearised=True, mu >= b/h); "
-                             "use backend='cvode'")
+            raise ValueError("backend='exact' runs the linearised block that rocks (linearised=True, mu >= b/h); "
+                             "the exact equation runs on backend='compiled'")
         pieces = record_pieces(model, excitation, horizon)
         run = kernel()
         rows = ROWS_PER_PIECE * len(pieces[0]) + 64
@@ -73,3 +77,72 @@ def knots_solution(model, excitation, log, backend_name):
     stats = {"n_events": len(events), "n_knots": len(t)}
     return model.solution(t=t, y=state, mode=mode, events=events, backend=backend_name,
                           dense=HermiteDense(t, state, rate_start, rate_end), stats=stats)
+
+
+#: the engine's name in the compile notice, and its compile time on one core [s]
+_ENGINE, _COMPILE_SECONDS = "the compiled rocking engine", 30
+
+
+class CompiledEngine:
+    """Runs a :class:`RockingBlock` that rocks (mu >= b/h), exact or linearised, on the
+    compiled integrated engine (``backend="compiled"``: its ``rtol``, ``atol``,
+    ``event_resolution``, ``max_events_at_one_instant``)."""
+
+    def solve(self, model, excitation, horizon, backend):
+        if model.slides:
+            raise ValueError(f"backend='compiled' runs a rocking block; with mu={model.mu} below b/h = "
+                             f"{model.b / model.h:.6g} this one slides: use backend='cvode'")
+        ax, az = model.excitation_pieces(excitation, horizon.integration_end(excitation))
+        CF = np.ascontiguousarray(np.stack([np.stack([c.p0, c.p1, c.s, c.w, c.phi], axis=-1) for c in (ax, az)],
+                                           axis=1), dtype=float)
+        T0, H = (np.ascontiguousarray(a, dtype=float) for a in (ax.t0, ax.h))
+        run = compiled.kernel()
+        notice_numba(_ENGINE, _COMPILE_SECONDS, run)
+        outcome, knots, events = run(T0, H, CF, engine_parameters(model), _options(model, backend, horizon))
+        _check(model, excitation, outcome, events, backend.max_events_at_one_instant)
+        t, y, mode = knots[:, 0].copy(), knots[:, 1:3].copy(), knots[:, 3].astype(int)
+        logged = tuple(model.event(float(e[0]), RockingMode(int(e[1])), RockingMode(int(e[2])), e[3:5])
+                       for e in events)
+        stats = {"max_events_at_one_instant": int(outcome[3]), "n_events": len(logged), "n_steps": int(outcome[4]),
+                 "n_rejected_steps": int(outcome[5]), "n_rhs_evals": int(outcome[6])}
+        solution = model.solution(t=t, y=y, mode=mode, events=logged, backend=backend.name,
+                                  dense=HermiteDense(t, y, knots[:, 4:6].copy(), knots[:, 6:8].copy()), stats=stats)
+        if model.strict:  # located on the dense output
+            object.__setattr__(solution, "block", model)
+            object.__setattr__(solution, "motion", excitation)
+            solution.check_contact(strict=True)
+        return solution
+
+
+def engine_parameters(model) -> np.ndarray:
+    """The engine's ``params`` (:data:`._compiled.PARAM_FIELDS`) of ``model``."""
+    return np.array([model.alpha, model.frequency ** 2, model.g, model.r, model.zeno_arc, model.theta0,
+                     float(model.linearised), min(model.mu, model.rocking_threshold), model.rocking_threshold,
+                     model.output_step(), RATE_FLOOR * model.frequency * model.alpha])
+
+
+def _options(model, backend, horizon) -> np.ndarray:
+    """The engine's ``options`` (:data:`._compiled.OPTION_FIELDS`)."""
+    bound = model.time_to_rest(RockingMode.REST, None) if horizon.until_rest and model.r < 1 else math.inf
+    return np.array([backend.rtol, backend.atol, backend.event_resolution, backend.max_events_at_one_instant,
+                     float(horizon.until_rest), bound])
+
+
+def _check(model, excitation, outcome, events, cap):
+    """Raise as the driver does where the engine stopped early."""
+    status, t = int(outcome[2]), float(outcome[0])
+    if status == compiled.FINISHED:
+        return
+    if status == compiled.FLIGHT:
+        raise model._flight(t, excitation)
+    if status == compiled.CHATTER:
+        modes = " -> ".join(RockingMode(int(e[1])).name for e in events[-cap - 1:])
+        raise RuntimeError(f"{cap + 1} events at t = {t:.12g} s ({modes} -> {RockingMode(int(events[-1][2])).name}): "
+                           f"chatter; raise max_events_at_one_instant={cap}")
+    if status == compiled.NEVER_RESTS:
+        model.time_to_rest(RockingMode(int(outcome[1])), None)  # raises the model's own error
+    if status == compiled.NO_REST:
+        raise RuntimeError(f"{RockingMode(int(outcome[1])).name} found no rest by t = {t:.6g} s after the excitation")
+    problem = {compiled.INCONSISTENT: "theta' points against its mode beyond the velocity error (a missed event)",
+               compiled.STEP_TOO_SMALL: "the step fell below rounding"}[status]
+    raise RuntimeError(f"the compiled rocking engine stopped at t = {t:.12g} s: {problem}; please report")
