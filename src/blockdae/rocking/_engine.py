@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from ..core import HermiteDense, notice_numba
+from ..excitation import evaluate
 from . import _compiled as compiled
 from ._kernel import KNOT_COLUMNS, kernel
 from ._model import RATE_FLOOR
@@ -99,7 +100,7 @@ class CompiledEngine:
         run = compiled.kernel()
         notice_numba(_ENGINE, _COMPILE_SECONDS, run)
         outcome, knots, events = run(T0, H, CF, engine_parameters(model), _options(model, backend, horizon))
-        _check(model, excitation, outcome, events, backend.max_events_at_one_instant)
+        _check(model, (ax, az), outcome, events, backend.max_events_at_one_instant)
         t, y, mode = knots[:, 0].copy(), knots[:, 1:3].copy(), knots[:, 3].astype(int)
         logged = tuple(model.event(float(e[0]), RockingMode(int(e[1])), RockingMode(int(e[2])), e[3:5])
                        for e in events)
@@ -128,13 +129,26 @@ def _options(model, backend, horizon) -> np.ndarray:
                      float(horizon.until_rest), bound])
 
 
-def _check(model, excitation, outcome, events, cap):
-    """Raise as the driver does where the engine stopped early."""
+class _Components:
+    """The pieces of (a_x, a_z) as the model's rules read an excitation at one instant."""
+
+    def __init__(self, pieces):
+        self.pieces = pieces
+
+    def component(self, index, t):
+        return float(evaluate(self.pieces[index], t)[0])
+
+    def component_rate(self, index, t):
+        return float(evaluate(self.pieces[index], t)[1])
+
+
+def _check(model, pieces, outcome, events, cap):
+    """Raise as the driver does where the engine stopped early; ``pieces``: (a_x, a_z)."""
     status, t = int(outcome[2]), float(outcome[0])
     if status == compiled.FINISHED:
         return
     if status == compiled.FLIGHT:
-        raise model._flight(t, excitation)
+        raise model._flight(t, _Components(pieces))
     if status == compiled.CHATTER:
         modes = " -> ".join(RockingMode(int(e[1])).name for e in events[-cap - 1:])
         raise RuntimeError(f"{cap + 1} events at t = {t:.12g} s ({modes} -> {RockingMode(int(events[-1][2])).name}): "

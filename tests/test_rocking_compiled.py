@@ -1,0 +1,137 @@
+"""The free-standing block's compiled engine (``backend="compiled"``): the exact equation
+and the linearised one by DOP853 with located events.
+
+References: the exact block's energy integral theta'² / 2 = p² [cos(alpha - theta0) -
+cos(alpha - theta)] integrated by mpmath's tanh-sinh quadrature (40 digits); the
+linearised block's free rocking in closed form (mpmath, tests/test_rocking.py); CVODE at
+rtol 1e-12, atol 1e-14 and the JAX twin at its default rtol 1e-10, whose own errors are
+measured in tests/test_rocking.py and tests/test_conformance.py.
+"""
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+import blockdae as bd
+from blockdae.rocking import RockingBlock
+from conftest import load_sample_record
+from test_rocking import QUIET, free_rocking_times
+
+G = bd.STANDARD_GRAVITY
+mpmath.mp.dps = 40
+
+
+@pytest.fixture(scope="module")
+def kobe():
+    return load_sample_record("Kobe_1995_TAK-090")
+
+
+@pytest.fixture(scope="module")
+def kobe_six(kobe):
+    """Kobe TAK-090, its first 6 s at 0.7 times: a 0.6 m x 1.8 m block rocks with impacts."""
+    return bd.Record(0.7 * kobe.acceleration_samples[:600], kobe.dt, name="Kobe TAK-090, 0-6 s, x 0.7", units="m/s2")
+
+
+def against_cvode(block, motion, **options):
+    """(compiled run, CVODE run at rtol 1e-12, largest event-time difference [s]); the
+    mode changes must be the same."""
+    mine = bd.simulate(block, motion, backend="compiled", **options)
+    reference = bd.simulate(block, motion, backend="cvode", rtol=1e-12, atol=1e-14, **options)
+    assert [(e.mode_before, e.mode_after) for e in mine.events] == [(e.mode_before, e.mode_after)
+                                                                    for e in reference.events]
+    return mine, reference, float(np.max(np.abs(mine.t_events - reference.t_events), initial=0.0))
+
+
+def test_exact_free_rocking_first_impact_quadrature():
+    """Released at theta0 = 0.2 rad: the first impact time is the quadrature of dtheta /
+    theta' (measured 1.1e-16 s) and the rate before it sqrt(2 p² [cos(alpha - theta0) -
+    cos alpha]) (2.2e-16 relative); the release is an event at t = 0."""
+    block = RockingBlock(b=0.3, h=0.9, mu=0.7, theta0=0.2)
+    sol = bd.simulate(block, QUIET, t_end=1.5, backend="compiled")
+    p, alpha, theta0 = (mpmath.mpf(v) for v in (block.frequency, block.alpha, block.theta0))
+    rate = lambda theta: p * mpmath.sqrt(2 * (mpmath.cos(alpha - theta0) - mpmath.cos(alpha - theta)))
+    t1 = float(mpmath.quad(lambda theta: 1 / rate(theta), [0, theta0]))
+    assert sol.events[0].kind == "release" and sol.events[0].t == 0.0
+    assert abs(sol.impact_times[0] - t1) < 1e-14
+    assert sol.impacts[0].rate == pytest.approx(-float(rate(0)), rel=1e-14)
+
+
+def test_linearised_free_rocking_closed_form():
+    """The linearised block released at alpha/2 until rest: its 186 impacts before the Zeno
+    tail within 1e-11 s of the closed form (measured 5.6e-12 s), the rest time within
+    1e-11 s of the series' accumulation point (6.2e-12 s)."""
+    block = RockingBlock(b=0.2, h=1.0, mu=0.5, linearised=True)
+    block = block.replace(theta0=block.alpha / 2)
+    times, rest = free_rocking_times(block, block.theta0)
+    sol = bd.simulate(block, QUIET, backend="compiled")
+    n = len(sol.impact_times)
+    assert n >= 150 and sol.events[-1].kind == "rest"
+    assert np.max(np.abs(sol.impact_times - times[:n])) < 1e-11
+    assert abs(sol.rest_time - rest) < 1e-11
+
+
+def test_agrees_with_cvode_and_jax_under_a_record(kobe_six):
+    """Under Kobe TAK-090 (0-6 s, x 0.7) the exact block rocks with impacts: the same mode
+    changes as CVODE (rtol 1e-12) within 1e-9 s (measured 7.6e-11 s) and as the JAX twin
+    within 1e-9 s; the dense motion within 1e-9 rad."""
+    block = RockingBlock(b=0.3, h=0.9, mu=0.8)
+    mine, reference, dt = against_cvode(block, kobe_six, t_end=6.0)
+    assert len(mine.impacts) >= 4 and not mine.overturned
+    assert dt < 1e-9
+    twin = bd.simulate(block, kobe_six, t_end=6.0, backend="jax")
+    assert [e.kind for e in twin.events] == [e.kind for e in mine.events]
+    assert np.max(np.abs(twin.t_events - mine.t_events)) < 1e-9
+    t = np.linspace(0.0, 6.0, 3001)
+    assert np.max(np.abs(mine(t)[0] - reference(t)[0])) < 1e-9
+
+
+def test_overturns_after_the_record_ends(kobe_six):
+    """Until rest, the same block under the same record passes alpha and overturns after
+    the record's end (6 s), at CVODE's times within 1e-9 s (measured 7.6e-11 s)."""
+    mine, _, dt = against_cvode(RockingBlock(b=0.3, h=0.9, mu=0.8), kobe_six)
+    assert mine.overturned and kobe_six.duration < mine.time_beyond_alpha < mine.overturn_time
+    assert mine.state[-1, 0] == pytest.approx(math.pi / 2, abs=0)
+    assert dt < 1e-9
+
+
+def test_overturns_under_a_pulse():
+    """A one-sine pulse of 1 g overturns a 0.2 m x 1 m block: uplift, alpha, pi/2 at CVODE's
+    times within 1e-10 s (measured 1.1e-12 s)."""
+    mine, _, dt = against_cvode(RockingBlock(b=0.1, h=0.5, mu=0.6), bd.SinePulse(-1.0 * G, 0.6))
+    assert [e.kind for e in mine.events] == ["uplift", "beyond_alpha", "overturn"]
+    assert dt < 1e-10
+
+
+def test_never_rocks_below_the_threshold():
+    """A pulse below g b/h leaves the block at rest: no event, theta = 0 throughout."""
+    block = RockingBlock(b=0.3, h=0.9, mu=0.8)
+    sol = bd.simulate(block, bd.SinePulse(-0.3 * G, 0.6), t_end=2.0, backend="compiled")
+    assert sol.events == () and sol.max_theta_over_alpha == 0.0
+    assert np.all(sol.state == 0.0) and sol.t_end == 2.0
+
+
+def test_vertical_shaking(kobe_six):
+    """With a vertical component (half the horizontal record) the block rocks under g + a_z:
+    CVODE's mode changes within 1e-9 s (measured 1.7e-11 s)."""
+    motion = bd.BaseMotion(kobe_six, None, kobe_six.scaled(0.5))
+    mine, _, dt = against_cvode(RockingBlock(b=0.3, h=0.9, mu=0.8), motion, t_end=6.0)
+    assert len(mine.impacts) >= 4
+    assert dt < 1e-9
+
+
+def test_the_base_falling_faster_than_g_is_an_error():
+    """a_z below -g while the block rests stops the run with the model's message."""
+    motion = bd.BaseMotion(bd.SinePulse(0.1 * G, 0.5), None, bd.SinePulse(-1.2 * G, 0.5))
+    with pytest.raises(ValueError, match="falls faster than g"):
+        bd.simulate(RockingBlock(b=0.3, h=0.9, mu=0.8), motion, t_end=1.0, backend="compiled")
+
+
+def test_backends_by_variant():
+    """The exact equation runs on "compiled" (not on "exact", the linearised block's closed
+    form); a block that slides on neither."""
+    assert "compiled" in bd.backends.available(RockingBlock(b=0.3, h=0.9, mu=0.8))
+    assert "exact" not in bd.backends.available(RockingBlock(b=0.3, h=0.9, mu=0.8))
+    assert {"exact", "compiled"} <= set(bd.backends.available(RockingBlock(b=0.3, h=0.9, mu=0.8, linearised=True)))
+    assert not {"exact", "compiled"} & set(bd.backends.available(RockingBlock(b=0.5, h=0.6, mu=0.3)))
