@@ -73,24 +73,26 @@ EVENT_WIDTH = 5
 _INF = math.inf
 
 
-# ---- the base's motion on a piece: pe = (t0 [s], h [s], P (2, 5) (p0, p1, s, w, phi) of a_x, a_z, directions (2,))
+# ---- the base's motion on a piece: pe = (t0 [s], h [s], (p0, p1, s, w, phi) of a_x, the
+# same of a_z, the directions of a_x and a_z) as 14 floats (no array: the hot loop then
+# counts no references)
 def _component(pe, i, t):
     """a_x (i = 0) or a_z (1) at ``t`` [m/s²]."""
-    P, tau = pe[2], min(t - pe[0], pe[1])
-    if P[i, 2] == 0:
-        return accel(P[i, 0], P[i, 1], None, None, None, tau, xp)
-    return accel(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], tau, xp)
+    k, tau = 2 + 5 * i, min(t - pe[0], pe[1])
+    if pe[k + 2] == 0:
+        return accel(pe[k], pe[k + 1], None, None, None, tau, xp)
+    return accel(pe[k], pe[k + 1], pe[k + 2], pe[k + 3], pe[k + 4], tau, xp)
 
 
 def _component_rate(pe, i, t):
     """Its rate [m/s³], rounding against the piece's direction projected out (as the
     driver's decisions see it)."""
-    P, tau = pe[2], min(t - pe[0], pe[1])
-    if P[i, 2] == 0:
-        raw = accel_rate(P[i, 0], P[i, 1], None, None, None, tau, xp)
+    k, tau = 2 + 5 * i, min(t - pe[0], pe[1])
+    if pe[k + 2] == 0:
+        raw = accel_rate(pe[k], pe[k + 1], None, None, None, tau, xp)
     else:
-        raw = accel_rate(P[i, 0], P[i, 1], P[i, 2], P[i, 3], P[i, 4], tau, xp)
-    return monotone_rate(raw, pe[3][i], xp)
+        raw = accel_rate(pe[k], pe[k + 1], pe[k + 2], pe[k + 3], pe[k + 4], tau, xp)
+    return monotone_rate(raw, pe[12 + i], xp)
 
 
 def _angular_acceleration(s, theta, t, pe, p):
@@ -117,17 +119,21 @@ def _rocks(kind):
     return kind == OUT or kind == IN or kind == BEYOND
 
 
-def _rhs(t, y, args, out):
-    """dy/dt in ``mode`` (args: (mode, pe, p)): (theta', theta'') rocking, (0, the
-    envelope's rate) settling, zero otherwise."""
-    mode, pe, p = args
+def _flow(mode, t, theta, rate, pe, p):
+    """dy/dt in ``mode``: (theta', theta'') rocking, (0, the envelope's rate) settling,
+    zero otherwise."""
     kind, s = abs(mode), _side(mode)
     if _rocks(kind):
-        out[0], out[1] = y[1], _angular_acceleration(s, y[0], t, pe, p)
-    elif kind == SETTLE:
-        out[0], out[1] = 0.0, _settle_rate(s, t, pe, p)
-    else:
-        out[0], out[1] = 0.0, 0.0
+        return rate, _angular_acceleration(s, theta, t, pe, p)
+    if kind == SETTLE:
+        return 0.0, _settle_rate(s, t, pe, p)
+    return 0.0, 0.0
+
+
+def _rhs(t, y, args, out):
+    """:func:`_flow` as the steps' right-hand side (args: (mode, pe, p))."""
+    mode, pe, p = args
+    out[0], out[1] = _flow(mode, t, y[0], y[1], pe, p)
 
 
 def _guards(mode, t, y, pe, p):
@@ -262,11 +268,15 @@ def _rates_at(args, index):
 
 
 def _dense_guard(args, t_mid):
-    """Guard ``index`` on the step's dense output at ``t_mid`` [s] (args: (F, y, t, hh,
-    mode, index, pe, p, work))."""
-    F, y, t, hh, mode, index, pe, p, work = args
-    _dop853.dense_state(F, y, (t_mid - t) / hh, work)
-    return _guards(mode, t_mid, work, pe, p)[index]
+    """Own guard ``index`` of rocking or settling mode ``kind`` (a function of the state
+    alone) on the step's dense output at ``t_mid`` [s] (args: (F, y, t, hh, kind, s,
+    index, alpha))."""
+    F, y, t, hh, kind, s, index, alpha = args
+    x = (t_mid - t) / hh
+    rate = _dop853.dense_value(F, y, x, 1)
+    if kind == SETTLE:
+        return s * rate
+    return rules.rocking_guards(kind, s, _dop853.dense_value(F, y, x, 0), rate, alpha)[index]
 
 
 def _dense_minimum(F, y, t, hh, mode, index, pe, p, work):
@@ -288,35 +298,43 @@ def _dense_minimum(F, y, t, hh, mode, index, pe, p, work):
 _step, _initial_step, _dense_coefficients = _dop853.for_flow(_rhs)
 
 
-def _first_root(t, y, t_new, y_new, hh, mode, pe, p, B, cnt):
+def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt):
     """The first guard root in (t, t_new] of the step just taken from (t, y) (its stages
-    in B's K): (time, index), or (nan, -1)."""
-    K, F, work = B[0], B[1], B[2]
+    in ``K``, the flow at its ends in rows 0 and 12): (time, index), or (nan, -1). The own
+    guards of a rocking or settling mode are functions of the state, located on the dense
+    output; the others (SETTLE's onsets, g_e) of time alone, monotone on a piece."""
+    kind, s = abs(mode), _side(mode)
     start, end = _guards(mode, t, y, pe, p), _guards(mode, t_new, y_new, pe, p)
     dense = False
     best, index = _INF, -1
     for j in range(4):
         if not start[j] > 0 or start[j] == _INF:
             continue
+        of_state = (_rocks(kind) and j < 2) or (kind == SETTLE and j == 0)
         upper = math.nan
         if end[j] <= 0:
             upper = t_new
-        elif _guard_rates(mode, j, t, y, pe, p)[0] < 0 and _guard_rates(mode, j, t_new, y_new, pe, p)[0] > 0:
+        elif of_state and _rocks(kind):  # a dip below zero within the step: the rates at its ends
+            rate_start = rules.rocking_guard_rates(kind, s, j, K[0, 0], K[0, 1], 0.0)[0]
+            rate_end = rules.rocking_guard_rates(kind, s, j, K[_dop853.N_STAGES, 0], K[_dop853.N_STAGES, 1], 0.0)[0]
+            if rate_start < 0 and rate_end > 0:
+                if not dense:
+                    _dense_coefficients((mode, pe, p), t, y, y_new, hh, K, F, work)
+                    cnt[C_RHS] += 3
+                    dense = True
+                x = _dense_minimum(F, y, t, hh, mode, j, pe, p, work)
+                if _dense_guard((F, y, t, hh, kind, s, j, p[_ALPHA]), t + x * hh) <= 0:
+                    upper = t + x * hh
+        if math.isnan(upper):
+            continue
+        if of_state:
             if not dense:
                 _dense_coefficients((mode, pe, p), t, y, y_new, hh, K, F, work)
                 cnt[C_RHS] += 3
                 dense = True
-            x = _dense_minimum(F, y, t, hh, mode, j, pe, p, work)
-            _dop853.dense_state(F, y, x, work)
-            if _guards(mode, t + x * hh, work, pe, p)[j] <= 0:
-                upper = t + x * hh
-        if math.isnan(upper):
-            continue
-        if not dense:
-            _dense_coefficients((mode, pe, p), t, y, y_new, hh, K, F, work)
-            cnt[C_RHS] += 3
-            dense = True
-        root = events.first_nonpositive(_dense_guard, (F, y, t, hh, mode, j, pe, p, work), t, upper)
+            root = events.first_nonpositive(_dense_guard, (F, y, t, hh, kind, s, j, p[_ALPHA]), t, upper)
+        else:
+            root = events.first_nonpositive(_guard_value, ((mode, y, pe, p), j), t, upper)
         if root < best:
             best, index = root, j
     return (best, index) if index >= 0 else (math.nan, -1)
@@ -331,7 +349,8 @@ def _error_scale(y, y_new, rtol, atol, out):
 def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl):
     """Integrate ``mode`` from (t, y) to ``stop`` [s] or to the first guard root before
     it: (time, state, guard index or -1). The step to try is kept in ``fl[F_H]``."""
-    K, work, y_cur, y_new, z, scale = B[0], B[2], B[3], B[4], B[5], B[6]
+    K, F, V = B
+    work, y_cur, y_new, z, scale = V[0], V[1], V[2], V[3], V[4]
     args = (mode, pe, p)
     rtol, atol = opt[0], opt[1]
     h = fl[F_H]
@@ -363,7 +382,7 @@ def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl):
             continue
         cnt[C_STEPS] += 1
         t_new = stop if last else t + hh
-        root, index = _first_root(t, y_cur, t_new, y_new, hh, mode, pe, p, B, cnt)
+        root, index = _first_root(t, y_cur, t_new, y_new, hh, mode, pe, p, K, F, work, cnt)
         if index >= 0:
             _step(args, t, y_cur, root - t, K, z, work)  # the state at the root, on the flow
             cnt[C_RHS] += 12
@@ -390,8 +409,8 @@ def _push(buf, n, width):
 
 
 def _add_knot(kb, cnt, t, y, mode, left, right):
-    """A knot (t, y, mode) with dy/dt ``right`` after it and ``left`` at the end of the
-    interval before it."""
+    """A knot (t, y, mode) with dy/dt ``right`` (2 floats) after it and ``left`` at the
+    end of the interval before it."""
     n = cnt[C_NK]
     kb = _push(kb, n, KNOT_WIDTH)
     kb[n, 0], kb[n, 1], kb[n, 2], kb[n, 3] = t, y[0], y[1], mode
@@ -402,9 +421,9 @@ def _add_knot(kb, cnt, t, y, mode, left, right):
     return kb
 
 
-def _rate(mode, t, y, pe, p, out):
-    _rhs(t, y, (mode, pe, p), out)
-    return out
+def _rate(mode, t, y, pe, p):
+    """dy/dt (2 floats) in ``mode`` at (t, y)."""
+    return _flow(mode, t, y[0], y[1], pe, p)
 
 
 def _log_event(kb, eb, cnt, fl, y, t, after, pe, p, opt, B):
@@ -423,8 +442,7 @@ def _log_event(kb, eb, cnt, fl, y, t, after, pe, p, opt, B):
         return kb, eb
     cnt[C_MODE], cnt[C_RESTARTED] = after, 1
     fl[F_H] = 0.0  # a new mode: a fresh first step
-    B[7][0], B[7][1] = 0.0, 0.0
-    kb = _add_knot(kb, cnt, t, y, after, B[7], _rate(after, t, y, pe, p, B[8]))
+    kb = _add_knot(kb, cnt, t, y, after, (0.0, 0.0), _rate(after, t, y, pe, p))
     return kb, eb
 
 
@@ -435,7 +453,7 @@ def _on_guard(kb, eb, cnt, fl, y, index, pe, p, opt, B):
     if after == -1:
         cnt[C_STATUS] = FLIGHT
         return kb, eb
-    rate = _rate(mode, t, y, pe, p, B[8])
+    rate = _rate(mode, t, y, pe, p)
     kb = _add_knot(kb, cnt, t, y, mode, rate, rate)
     if after != mode:
         kb, eb = _log_event(kb, eb, cnt, fl, y, t, after, pe, p, opt, B)
@@ -444,7 +462,7 @@ def _on_guard(kb, eb, cnt, fl, y, index, pe, p, opt, B):
 
 def _output_step(pe, p):
     """The driver's ``output_step`` [s]: 1 / (32 w) on a sine piece, at most 1 / (32 p)."""
-    w = max(pe[2][0, 3] if pe[2][0, 2] != 0 else 0.0, pe[2][1, 3] if pe[2][1, 2] != 0 else 0.0)
+    w = max(pe[5] if pe[4] != 0 else 0.0, pe[10] if pe[9] != 0 else 0.0)
     return min(1.0 / (32.0 * w) if w > 0 else _INF, p[_STEP])
 
 
@@ -460,8 +478,7 @@ def _advance(kb, eb, cnt, fl, y, end, until_rest, pe, p, opt, B):
             root, index = events.static_root(_guard_values, _guard_value, (mode, y, pe, p), t, math.nan, end)
             if index < 0:
                 fl[F_T], cnt[C_RESTARTED] = end, 1
-                B[7][0], B[7][1] = 0.0, 0.0
-                return _add_knot(kb, cnt, end, y, mode, B[7], B[7]), eb
+                return _add_knot(kb, cnt, end, y, mode, (0.0, 0.0), (0.0, 0.0)), eb
             fl[F_T] = root
             kb, eb = _on_guard(kb, eb, cnt, fl, y, index, pe, p, opt, B)
             turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
@@ -491,7 +508,7 @@ def _advance(kb, eb, cnt, fl, y, end, until_rest, pe, p, opt, B):
             cnt[C_STATUS] = INCONSISTENT
             return kb, eb
         if root < 0:
-            rate = _rate(mode, t_new, y, pe, p, B[8])
+            rate = _rate(mode, t_new, y, pe, p)
             kb = _add_knot(kb, cnt, t_new, y, mode, rate, rate)
         else:
             kb, eb = _on_guard(kb, eb, cnt, fl, y, root, pe, p, opt, B)
@@ -499,27 +516,29 @@ def _advance(kb, eb, cnt, fl, y, end, until_rest, pe, p, opt, B):
     return kb, eb
 
 
-def _piece(T0, H, CF, k, P, D):
-    """(t0, h, P, directions) of piece k, written into ``P`` (2, 5) and ``D`` (2,)."""
-    for i in range(2):
-        for j in range(5):
-            P[i, j] = CF[k, i, j]
-    pe = (T0[k], H[k], P, D)
-    for i in range(2):
-        D[i] = np.sign(_component(pe, i, T0[k] + H[k]) - _component(pe, i, T0[k]))
-    return pe
+def _piece(t0, h, c, directions):
+    """The piece's floats from t0, h [s], its coefficients ``c`` (2, 5) and the directions."""
+    return (t0, h, c[0, 0], c[0, 1], c[0, 2], c[0, 3], c[0, 4], c[1, 0], c[1, 1], c[1, 2], c[1, 3], c[1, 4],
+            directions[0], directions[1])
+
+
+def _piece_at(T0, H, CF, k):
+    """Piece k of the motion, with the directions in which a_x and a_z move on it."""
+    flat = _piece(T0[k], H[k], CF[k], (0.0, 0.0))
+    return _piece(T0[k], H[k], CF[k], (np.sign(_component(flat, 0, T0[k] + H[k]) - _component(flat, 0, T0[k])),
+                                       np.sign(_component(flat, 1, T0[k] + H[k]) - _component(flat, 1, T0[k]))))
 
 
 def _buffers():
-    """Work arrays: K (16, 2), F (7, 2), then (2,) each: a stage's state, the step's start,
-    its end, the state at a root, the error scale, a zero rate, a rate."""
-    return (np.empty((_dop853.N_STAGES_EXTENDED, 2)), np.empty((7, 2)), np.empty(2), np.empty(2), np.empty(2),
-            np.empty(2), np.empty(2), np.zeros(2), np.empty(2))
+    """Work arrays (few, since every array an engine function takes counts references on
+    each call): K (16, 2) of the steps' stages, F (7, 2) of a dense output, and rows (2,)
+    of V: a stage's state, the step's start, its end, the state at a root, the error scale."""
+    return np.empty((_dop853.N_STAGES_EXTENDED, 2)), np.empty((7, 2)), np.empty((5, 2))
 
 
-def _run(T0, H, CF, p, opt):
+def _run(T0, H, CF, params, options):
     """One run over the pieces (t0 (n,), h (n,) [s], CF (n, 2, 5): (p0, p1, s, w, phi) of
-    a_x and a_z), ``p`` (``PARAM_FIELDS``), ``opt`` (``OPTION_FIELDS``). Returns
+    a_x and a_z), ``params`` (``PARAM_FIELDS``), ``options`` (``OPTION_FIELDS``). Returns
     (outcome (7,), knots (k, 8), events (e, 5))."""
     n = T0.shape[0]
     cnt = np.zeros(10, dtype=np.int64)
@@ -529,20 +548,22 @@ def _run(T0, H, CF, p, opt):
     kb = np.empty((256, KNOT_WIDTH))
     eb = np.empty((64, EVENT_WIDTH))
     B = _buffers()
-    P, D = np.empty((2, 5)), np.empty(2)
+    p = (params[0], params[1], params[2], params[3], params[4], params[5], params[6], params[7], params[8],
+         params[9], params[10])
+    opt = (options[0], options[1], options[2], options[3], options[4], options[5])
     cnt[C_MODE], cnt[C_RESTARTED] = (RELEASE if p[_THETA0] != 0 else REST), 1
-    kb = _add_knot(kb, cnt, 0.0, y, cnt[C_MODE], B[7], B[7])
+    kb = _add_knot(kb, cnt, 0.0, y, cnt[C_MODE], (0.0, 0.0), (0.0, 0.0))
     until_rest = opt[4] != 0
     t_end = T0[n - 1] + H[n - 1]
     for k in range(n + 1 if until_rest else n):
         if k < n:
-            pe = _piece(T0, H, CF, k, P, D)
+            pe = _piece_at(T0, H, CF, k)
             end = T0[k + 1] if k + 1 < n else t_end
         else:  # after the excitation: a = 0
-            pe = (t_end, _INF, np.zeros((2, 5)), np.zeros(2))
+            pe = _piece(t_end, _INF, np.zeros((2, 5)), (0.0, 0.0))
             end = t_end
-        _rate(cnt[C_MODE], fl[F_T], y, pe, p, B[8])  # enter_piece: dy/dt after the last knot on this piece
-        kb[cnt[C_NK] - 1, 4], kb[cnt[C_NK] - 1, 5] = B[8][0], B[8][1]
+        rate = _rate(cnt[C_MODE], fl[F_T], y, pe, p)  # enter_piece: dy/dt after the last knot on this piece
+        kb[cnt[C_NK] - 1, 4], kb[cnt[C_NK] - 1, 5] = rate[0], rate[1]
         cnt[C_RESTARTED] = 1
         if cnt[C_MODE] == REST:
             rest = _mode_at_rest(pe[0], pe, p)
