@@ -137,7 +137,8 @@ def _rhs(t, y, args, out):
 
 
 def _guards(mode, t, y, pe, p):
-    """The guards of ``mode`` (four; +inf where a mode has fewer), each left as it falls
+    """The guards of ``mode`` at the state ``y`` (theta, theta') (here and below a tuple of
+    floats where a function only reads it) (four; +inf where a mode has fewer), each left as it falls
     through zero; the fourth, g_e [m/s²], a flight of the whole block (an error). REST:
     (limit g_e - a_x, limit g_e + a_x); rocking: :func:`._rules.rocking_guards`; SETTLE:
     (s theta', the two onsets); RELEASE: -1 (at once)."""
@@ -259,7 +260,7 @@ def _turn_value(args, t):
 
 def _next_turn(mode, t, y, end, pe, p):
     """Where the turn rate changes sign in (t, end), else nan (the driver's ``turning_point``)."""
-    return events.turning_point(_turn_value, (mode, y, pe, p), t, end)
+    return events.turning_point(_turn_value, (mode, (y[0], y[1]), pe, p), t, end)
 
 
 def _rates_at(args, index):
@@ -288,7 +289,7 @@ def _dense_minimum(F, y, t, hh, mode, index, pe, p, work):
         if mid == lo or mid == hi:
             break
         _dop853.dense_state(F, y, mid, work)
-        if _guard_rates(mode, index, t + mid * hh, work, pe, p)[0] < 0:
+        if _guard_rates(mode, index, t + mid * hh, (work[0], work[1]), pe, p)[0] < 0:
             lo = mid
         else:
             hi = mid
@@ -304,7 +305,7 @@ def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt):
     guards of a rocking or settling mode are functions of the state, located on the dense
     output; the others (SETTLE's onsets, g_e) of time alone, monotone on a piece."""
     kind, s = abs(mode), _side(mode)
-    start, end = _guards(mode, t, y, pe, p), _guards(mode, t_new, y_new, pe, p)
+    start, end = _guards(mode, t, (y[0], y[1]), pe, p), _guards(mode, t_new, (y_new[0], y_new[1]), pe, p)
     dense = False
     best, index = _INF, -1
     for j in range(4):
@@ -334,7 +335,7 @@ def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt):
                 dense = True
             root = events.first_nonpositive(_dense_guard, (F, y, t, hh, kind, s, j, p[_ALPHA]), t, upper)
         else:
-            root = events.first_nonpositive(_guard_value, ((mode, y, pe, p), j), t, upper)
+            root = events.first_nonpositive(_guard_value, ((mode, (y[0], y[1]), pe, p), j), t, upper)
         if root < best:
             best, index = root, j
     return (best, index) if index >= 0 else (math.nan, -1)
@@ -441,7 +442,7 @@ def _log_event(kb, eb, cnt, fl, y, t, after, pe, p, opt, B):
         cnt[C_STATUS] = CHATTER
         return kb, eb
     cnt[C_MODE], cnt[C_RESTARTED] = after, 1
-    fl[F_H] = 0.0  # a new mode: a fresh first step
+    fl[F_H] = 0.0 if after == REST or abs(after) == OVERTURNED else fl[F_H]  # the last step tried, else fresh
     kb = _add_knot(kb, cnt, t, y, after, (0.0, 0.0), _rate(after, t, y, pe, p))
     return kb, eb
 
@@ -449,7 +450,7 @@ def _log_event(kb, eb, cnt, fl, y, t, after, pe, p, opt, B):
 def _on_guard(kb, eb, cnt, fl, y, index, pe, p, opt, B):
     mode, t = cnt[C_MODE], fl[F_T]
     _state_at_guard(mode, index, y, p)
-    after = _mode_after_guard(mode, index, t, y, pe, p)
+    after = _mode_after_guard(mode, index, t, (y[0], y[1]), pe, p)
     if after == -1:
         cnt[C_STATUS] = FLIGHT
         return kb, eb
@@ -475,7 +476,8 @@ def _advance(kb, eb, cnt, fl, y, end, until_rest, pe, p, opt, B):
         if cnt[C_STATUS] != FINISHED or (until_rest and static):
             return kb, eb
         if static:
-            root, index = events.static_root(_guard_values, _guard_value, (mode, y, pe, p), t, math.nan, end)
+            root, index = events.static_root(_guard_values, _guard_value, (mode, (y[0], y[1]), pe, p), t, math.nan,
+                                             end)
             if index < 0:
                 fl[F_T], cnt[C_RESTARTED] = end, 1
                 return _add_knot(kb, cnt, end, y, mode, (0.0, 0.0), (0.0, 0.0)), eb
@@ -484,7 +486,8 @@ def _advance(kb, eb, cnt, fl, y, end, until_rest, pe, p, opt, B):
             turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
             continue
         if cnt[C_RESTARTED]:
-            index = events.left_at_once(_guards(mode, t, y, pe, p), _rates_at, (mode, t, y, pe, p), opt[2])
+            q = (y[0], y[1])
+            index = events.left_at_once(_guards(mode, t, q, pe, p), _rates_at, (mode, t, q, pe, p), opt[2])
             if index >= 0:
                 kb, eb = _on_guard(kb, eb, cnt, fl, y, index, pe, p, opt, B)
                 turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
@@ -504,7 +507,7 @@ def _advance(kb, eb, cnt, fl, y, end, until_rest, pe, p, opt, B):
         fl[F_T] = t_new
         y[0], y[1] = z[0], z[1]
         fl[F_VMAX] = max(fl[F_VMAX], abs(y[1]))
-        if _contradicts(mode, y, p, opt, fl[F_VMAX]):
+        if _contradicts(mode, (y[0], y[1]), p, opt, fl[F_VMAX]):
             cnt[C_STATUS] = INCONSISTENT
             return kb, eb
         if root < 0:
@@ -514,6 +517,16 @@ def _advance(kb, eb, cnt, fl, y, end, until_rest, pe, p, opt, B):
             kb, eb = _on_guard(kb, eb, cnt, fl, y, root, pe, p, opt, B)
             turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p)
     return kb, eb
+
+
+def _quiet_rest(pe, p, t, end):
+    """Whether REST certainly lasts from ``t`` to ``end`` [s]: a(t) is linear on the piece,
+    so are its guards, and each is positive at both ends (no root between)."""
+    if pe[4] != 0 or pe[9] != 0:
+        return False
+    g0, g1, _, g3 = _guards(REST, t, (0.0, 0.0), pe, p)
+    e0, e1, _, e3 = _guards(REST, end, (0.0, 0.0), pe, p)
+    return g0 > 0 and g1 > 0 and g3 > 0 and e0 > 0 and e1 > 0 and e3 > 0
 
 
 def _piece(t0, h, c, directions):
@@ -578,6 +591,10 @@ def _run(T0, H, CF, params, options):
                 cnt[C_STATUS] = NEVER_RESTS
                 break
             end = fl[F_T] + opt[5]
+        if cnt[C_MODE] == REST and k < n and _quiet_rest(pe, p, fl[F_T], end):  # _advance's, short
+            fl[F_T], cnt[C_RESTARTED] = end, 1
+            kb = _add_knot(kb, cnt, end, y, REST, (0.0, 0.0), (0.0, 0.0))
+            continue
         kb, eb = _advance(kb, eb, cnt, fl, y, end, k == n, pe, p, opt, B)
         if cnt[C_STATUS] != FINISHED:
             break
@@ -605,6 +622,9 @@ def kernel():
 
 
 _OPTIONS = dict(error_model="numpy")
+#: inlined where called (numba's IR): the steps' right-hand side, whose array arguments'
+#: reference counts then cancel
+_INLINE = ("_rhs",)
 _RULES = (rules, sys.modules[__name__])
 #: modules whose functions the engine compiles besides its own
 _SHARED = (_pieces, _dop853, xp, events, sys.modules[rest_mode.__module__], *_RULES)
@@ -618,4 +638,4 @@ def _register():
     for module in (_pieces, *_RULES):
         for _, fn in inspect.getmembers(module, inspect.isfunction):
             if fn.__module__ == module.__name__ and fn.__name__ not in ("kernel", "_register"):
-                register_jitable(**_OPTIONS)(fn)
+                register_jitable(**_OPTIONS, **({"inline": "always"} if fn.__name__ in _INLINE else {}))(fn)

@@ -80,6 +80,8 @@ def knots_solution(model, excitation, log, backend_name):
                           dense=HermiteDense(t, state, rate_start, rate_end), stats=stats)
 
 
+#: mode value -> RockingMode (a dict: faster than the enum's call, per event)
+_MODES = {float(mode): mode for mode in RockingMode}
 #: the engine's name in the compile notice, and its compile time on one core [s]
 _ENGINE, _COMPILE_SECONDS = "the compiled rocking engine", 30
 
@@ -102,8 +104,8 @@ class CompiledEngine:
         outcome, knots, events = run(T0, H, CF, engine_parameters(model), _options(model, backend, horizon))
         _check(model, (ax, az), outcome, events, backend.max_events_at_one_instant)
         t, y, mode = knots[:, 0].copy(), knots[:, 1:3].copy(), knots[:, 3].astype(int)
-        logged = tuple(model.event(float(e[0]), RockingMode(int(e[1])), RockingMode(int(e[2])), e[3:5])
-                       for e in events)
+        logged = tuple(model.event(t, _MODES[before], _MODES[after], state)
+                       for t, before, after, *state in events.tolist())
         stats = {"max_events_at_one_instant": int(outcome[3]), "n_events": len(logged), "n_steps": int(outcome[4]),
                  "n_rejected_steps": int(outcome[5]), "n_rhs_evals": int(outcome[6])}
         solution = model.solution(t=t, y=y, mode=mode, events=logged, backend=backend.name,
