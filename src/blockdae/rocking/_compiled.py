@@ -569,6 +569,11 @@ def _run(T0, H, CF, params, options):
     until_rest = opt[4] != 0
     t_end = T0[n - 1] + H[n - 1]
     for k in range(n + 1 if until_rest else n):
+        if abs(cnt[C_MODE]) == OVERTURNED:  # it lies still to the end: one knot there
+            if fl[F_T] < t_end:
+                fl[F_T] = t_end
+                kb = _add_knot(kb, cnt, t_end, y, cnt[C_MODE], (0.0, 0.0), (0.0, 0.0))
+            break
         if k < n:
             pe = _piece_at(T0, H, CF, k)
             end = T0[k + 1] if k + 1 < n else t_end

@@ -75,6 +75,11 @@ class RockingBlock(DifferentiableModel):
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x
     and z components [m/s²].
+
+    Backends: "cvode" (the default), "ida" and "jax" run every block; a block that rocks
+    (mu >= b/h) also runs on "compiled" (the exact or the linearised equation, a compiled
+    DOP853 with located events, any motion) and, linearised, on "exact" (its closed form,
+    compiled, for horizontal piecewise-linear records).
     """
 
     b: float
