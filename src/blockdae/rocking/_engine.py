@@ -92,20 +92,10 @@ class CompiledEngine:
     ``event_resolution``, ``max_events_at_one_instant``)."""
 
     def solve(self, model, excitation, horizon, backend):
-        if model.slides:
-            raise ValueError(f"backend='compiled' runs a rocking block; with mu={model.mu} below b/h = "
-                             f"{model.b / model.h:.6g} this one slides: use backend='cvode'")
-        ax, az = model.excitation_pieces(excitation, horizon.integration_end(excitation))
-        CF = np.ascontiguousarray(np.stack([np.stack([c.p0, c.p1, c.s, c.w, c.phi], axis=-1) for c in (ax, az)],
-                                           axis=1), dtype=float)
-        T0, H = (np.ascontiguousarray(a, dtype=float) for a in (ax.t0, ax.h))
-        run = compiled.kernel()
-        notice_numba(_ENGINE, _COMPILE_SECONDS, run)
-        outcome, knots, events = run(T0, H, CF, engine_parameters(model), _options(model, backend, horizon))
-        _check(model, (ax, az), outcome, events, backend.max_events_at_one_instant)
+        outcome, knots, events = self._run(model, excitation, horizon, backend)
         t, y, mode = knots[:, 0].copy(), knots[:, 1:3].copy(), knots[:, 3].astype(int)
-        logged = tuple(model.event(t, _MODES[before], _MODES[after], state)
-                       for t, before, after, *state in events.tolist())
+        logged = tuple(model.event(when, _MODES[before], _MODES[after], state)
+                       for when, before, after, *state in events.tolist())
         stats = {"max_events_at_one_instant": int(outcome[3]), "n_events": len(logged), "n_steps": int(outcome[4]),
                  "n_rejected_steps": int(outcome[5]), "n_rhs_evals": int(outcome[6])}
         solution = model.solution(t=t, y=y, mode=mode, events=logged, backend=backend.name,
@@ -115,6 +105,47 @@ class CompiledEngine:
             object.__setattr__(solution, "motion", excitation)
             solution.check_contact(strict=True)
         return solution
+
+    @staticmethod
+    def final_numbers(rows):
+        """(theta(t_end) (n, 1) [rad], max |theta| (n,) [rad], events (n,), t_end (n,) [s])
+        of n rows of :meth:`solve_final`'s outcomes."""
+        return rows[:, 0:1], rows[:, 1], rows[:, 2].astype(int), rows[:, 3]
+
+    def solve_final(self, model, excitations, horizons, scale, backend) -> np.ndarray:
+        """Final numbers of every excitation at every factor of ``scale`` on a(t), one run
+        of the kernel each: (len(excitations), len(scale), 4) rows of theta(t_end) [rad],
+        max |theta| over the knots [rad], events, t_end [s] (:meth:`final_numbers`)."""
+        out = np.empty((len(excitations), len(scale), 4))
+        for i, (excitation, horizon) in enumerate(zip(excitations, horizons)):
+            for k, factor in enumerate(scale):
+                if model.strict:  # the contact check reads the solution and its motion
+                    solution = self.solve(model, excitation.scaled(factor), horizon, backend)
+                    theta, t, n_events = solution.state[:, 0], solution.t, len(solution.events)
+                else:
+                    _, knots, events = self._run(model, excitation, horizon, backend, factor)
+                    theta, t, n_events = knots[:, 1], knots[:, 0], len(events)
+                out[i, k] = theta[-1], np.max(np.abs(theta)), n_events, t[-1]
+        return out
+
+    @staticmethod
+    def _run(model, excitation, horizon, backend, factor=1.0):
+        """The kernel's (outcome, knots, events) of ``model`` under ``excitation`` times
+        ``factor``, checked."""
+        if model.slides:
+            raise ValueError(f"backend='compiled' runs a rocking block; with mu={model.mu} below b/h = "
+                             f"{model.b / model.h:.6g} this one slides: use backend='cvode'")
+        ax, az = model.excitation_pieces(excitation, horizon.integration_end(excitation))
+        CF = np.ascontiguousarray(np.stack([np.stack([c.p0, c.p1, c.s, c.w, c.phi], axis=-1) for c in (ax, az)],
+                                           axis=1), dtype=float)
+        if factor != 1.0:
+            CF[:, :, :3] *= factor  # p0, p1 and the sine's amplitude
+        T0, H = (np.ascontiguousarray(a, dtype=float) for a in (ax.t0, ax.h))
+        run = compiled.kernel()
+        notice_numba(_ENGINE, _COMPILE_SECONDS, run)
+        outcome, knots, events = run(T0, H, CF, engine_parameters(model), _options(model, backend, horizon))
+        _check(model, (ax, az), outcome, events, backend.max_events_at_one_instant, factor)
+        return outcome, knots, events
 
 
 def engine_parameters(model) -> np.ndarray:
@@ -134,23 +165,24 @@ def _options(model, backend, horizon) -> np.ndarray:
 class _Components:
     """The pieces of (a_x, a_z) as the model's rules read an excitation at one instant."""
 
-    def __init__(self, pieces):
-        self.pieces = pieces
+    def __init__(self, pieces, factor):
+        self.pieces, self.factor = pieces, factor
 
     def component(self, index, t):
-        return float(evaluate(self.pieces[index], t)[0])
+        return self.factor * float(evaluate(self.pieces[index], t)[0])
 
     def component_rate(self, index, t):
-        return float(evaluate(self.pieces[index], t)[1])
+        return self.factor * float(evaluate(self.pieces[index], t)[1])
 
 
-def _check(model, pieces, outcome, events, cap):
-    """Raise as the driver does where the engine stopped early; ``pieces``: (a_x, a_z)."""
+def _check(model, pieces, outcome, events, cap, factor=1.0):
+    """Raise as the driver does where the engine stopped early; ``pieces``: (a_x, a_z),
+    run at ``factor`` times."""
     status, t = int(outcome[2]), float(outcome[0])
     if status == compiled.FINISHED:
         return
     if status == compiled.FLIGHT:
-        raise model._flight(t, _Components(pieces))
+        raise model._flight(t, _Components(pieces, factor))
     if status == compiled.CHATTER:
         modes = " -> ".join(RockingMode(int(e[1])).name for e in events[-cap - 1:])
         raise RuntimeError(f"{cap + 1} events at t = {t:.12g} s ({modes} -> {RockingMode(int(events[-1][2])).name}): "
