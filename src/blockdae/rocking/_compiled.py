@@ -6,13 +6,16 @@ Per mode:
 
 * REST: the state is constant; the guards (onset at |a_x| = limit g_e, g_e > 0) depend on
   time alone and are located by bisection to adjacent floats
-  (:func:`blockdae.core.events.static_root`), as the driver does;
+  (:func:`blockdae.core.events.static_root`), as the driver does; a linear piece with
+  every guard positive at both ends has none (:func:`_quiet_rest`);
 * rocking (OUT, IN, BEYOND) and the Zeno tail (SETTLE): DOP853
-  (:mod:`blockdae.solvers.dop853`) at the backend's tolerances. A guard root is bracketed
-  by a step (> 0 -> <= 0, or a dip below zero between a falling and a rising end, found
-  at the minimum of the step's dense output) and located by bisection on the dense output
-  to adjacent floats; the state there is a step of the same method from the step's
-  start.
+  (:mod:`blockdae.solvers.dop853`) at the backend's tolerances, a new rocking mode's
+  first step the last one tried. A root of a guard of the state (the mode's own) is
+  bracketed by a step (> 0 -> <= 0, or a dip below zero between a falling and a rising
+  end, found at the minimum of the step's dense output) and located by bisection on the
+  dense output to adjacent floats; one of time alone (SETTLE's onsets, g_e) by bisection
+  in time; the state there is a step of the same method from the step's start;
+* OVERTURNED: terminal; one knot at the end.
 
 The model's rules (the flow, the guards and their rates, the mode after a guard: onset,
 apex, impact with r, the Zeno tail, alpha, pi/2) are :mod:`._rules`, which

@@ -83,7 +83,7 @@ def knots_solution(model, excitation, log, backend_name):
 #: mode value -> RockingMode (a dict: faster than the enum's call, per event)
 _MODES = {float(mode): mode for mode in RockingMode}
 #: the engine's name in the compile notice, and its compile time on one core [s]
-_ENGINE, _COMPILE_SECONDS = "the compiled rocking engine", 30
+_ENGINE, _COMPILE_SECONDS = "the compiled rocking engine", 20
 
 
 class CompiledEngine:

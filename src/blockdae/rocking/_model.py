@@ -262,7 +262,8 @@ class RockingBlock(DifferentiableModel):
     def _settle_rate(self, s, t, excitation, xp=SCALAR):
         """d theta'/dt [rad/s²] of the Zeno envelope on side ``s`` (:func:`._rules.settle_rate`)."""
         _, _, _, r = self._geometry(xp)
-        return rules.settle_rate(s, self.deceleration(s, t, excitation, xp), self.deceleration(-s, t, excitation, xp), r)
+        ahead, behind = self.deceleration(s, t, excitation, xp), self.deceleration(-s, t, excitation, xp)
+        return rules.settle_rate(s, ahead, behind, r)
 
     # ---- the automaton ----------------------------------------------------------------
     def flow(self, mode, t, y, excitation, xp=np):
