@@ -92,7 +92,7 @@ class CompiledEngine:
     ``event_resolution``, ``max_events_at_one_instant``)."""
 
     def solve(self, model, excitation, horizon, backend):
-        outcome, knots, events = self._run(model, excitation, horizon, backend)
+        outcome, knots, events, pieces = self._run(model, excitation, horizon, backend)
         t, y, mode = knots[:, 0].copy(), knots[:, 1:3].copy(), knots[:, 3].astype(int)
         logged = tuple(model.event(when, _MODES[before], _MODES[after], state)
                        for when, before, after, *state in events.tolist())
@@ -100,10 +100,13 @@ class CompiledEngine:
                  "n_rejected_steps": int(outcome[5]), "n_rhs_evals": int(outcome[6])}
         solution = model.solution(t=t, y=y, mode=mode, events=logged, backend=backend.name,
                                   dense=HermiteDense(t, y, knots[:, 4:6].copy(), knots[:, 6:8].copy()), stats=stats)
-        if model.strict:  # located on the dense output
+        if model.strict:  # the first contact limit on the dense output stops the run, as the driver's guard
             object.__setattr__(solution, "block", model)
             object.__setattr__(solution, "motion", excitation)
-            solution.check_contact(strict=True)
+            if solution.contact_events:
+                t, kind, theta, rate, _, _ = min(solution.contact_events)
+                raise model._contact_error(1 if theta > 0 else -1, t, (theta, rate), _Components(pieces, 1.0),
+                                           kind == "lift_limit")
         return solution
 
     @staticmethod
@@ -123,7 +126,7 @@ class CompiledEngine:
                     solution = self.solve(model, excitation.scaled(factor), horizon, backend)
                     theta, t, n_events = solution.state[:, 0], solution.t, len(solution.events)
                 else:
-                    _, knots, events = self._run(model, excitation, horizon, backend, factor)
+                    _, knots, events, _ = self._run(model, excitation, horizon, backend, factor)
                     theta, t, n_events = knots[:, 1], knots[:, 0], len(events)
                 out[i, k] = theta[-1], np.max(np.abs(theta)), n_events, t[-1]
         return out
@@ -131,7 +134,7 @@ class CompiledEngine:
     @staticmethod
     def _run(model, excitation, horizon, backend, factor=1.0):
         """The kernel's (outcome, knots, events) of ``model`` under ``excitation`` times
-        ``factor``, checked."""
+        ``factor``, checked, and the pieces (a_x, a_z) it ran on."""
         if model.slides:
             raise ValueError(f"backend='compiled' runs a rocking block; with mu={model.mu} below b/h = "
                              f"{model.b / model.h:.6g} this one slides: use backend='cvode'")
@@ -145,7 +148,7 @@ class CompiledEngine:
         notice_numba(_ENGINE, _COMPILE_SECONDS, run)
         outcome, knots, events = run(T0, H, CF, engine_parameters(model), _options(model, backend, horizon))
         _check(model, (ax, az), outcome, events, backend.max_events_at_one_instant, factor)
-        return outcome, knots, events
+        return outcome, knots, events, (ax, az)
 
 
 def engine_parameters(model) -> np.ndarray:
