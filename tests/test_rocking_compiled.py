@@ -183,3 +183,22 @@ def test_strict_stops_where_cvode_stops(kobe):
             bd.simulate(block, kobe, t_end=6.0, backend=backend)
         stops.append(float(str(error.value).split("at t = ")[1].split(" s")[0]))
     assert abs(stops[1] - stops[0]) < 1e-6
+
+
+def test_onset_at_a_sample_and_at_the_record_end():
+    """a_x reaching -g b/h exactly at a sample: the block lifts there if a_x goes on past it
+    (the rate decides, as CVODE's driver does), not if the record ends there; until rest,
+    the free rocking after the record (122 events to the Zeno rest) has CVODE's mode
+    changes, the first six within 1e-9 s and all within 1e-7 s (measured 2.9e-8 s: CVODE's
+    drift; the compiled engine at rtol 1e-14 gives the same times)."""
+    block = RockingBlock(b=0.3, h=0.9, mu=0.8)
+    edge = -block.rocking_threshold * G
+    ends_there = bd.Record(np.array([0.0, 0.0, edge]), 0.1, units="m/s2")
+    assert bd.simulate(block, ends_there, backend="compiled").events == ()
+    goes_on = bd.Record(np.array([0.0, 0.0, edge, 1.5 * edge, 0.0]), 0.1, units="m/s2")
+    mine, _, dt = against_cvode(block, goes_on)
+    assert mine.events[0].kind == "uplift" and mine.events[0].t == 0.2
+    assert mine.events[-1].kind == "rest" and len(mine.events) > 100
+    assert dt < 1e-7
+    reference = bd.simulate(block, goes_on, backend="cvode", rtol=1e-12, atol=1e-14)
+    assert np.max(np.abs(mine.t_events[:6] - reference.t_events[:6])) < 1e-9
