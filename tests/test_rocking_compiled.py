@@ -155,17 +155,18 @@ def test_differences_from_cvode_are_cvodes():
     assert np.max(np.abs(cvode_finer - finer)) < 0.5 * np.max(np.abs(cvode - finer))
 
 
-def test_final_numbers_are_the_single_runs(kobe_six):
+@pytest.mark.parametrize("backend, linearised", [("compiled", False), ("exact", True)])
+def test_final_numbers_are_the_single_runs(kobe_six, backend, linearised):
     """bd.simulate(..., final_only=True) over records and scales (factors on a(t) in the
-    engine) gives each single run's theta(t_end) and max |theta| (on a scaled copy: to
-    the rounding of the product, amplified by the rocking: measured 2.2e-14 relative) and
-    its number of events."""
-    block = RockingBlock(b=0.3, h=0.9, mu=0.8)
+    compiled engine) gives each single run's theta(t_end) and max |theta| (on a scaled
+    copy: to the rounding of the product, amplified by the rocking: measured 2.2e-14
+    relative) and its number of events; the linearised block's closed form too."""
+    block = RockingBlock(b=0.3, h=0.9, mu=0.8, linearised=linearised)
     motions = [kobe_six, kobe_six.scaled(-0.8)]
-    finals = bd.simulate(block, motions, scale=[0.9, 1.0], t_end=6.0, backend="compiled", final_only=True)
+    finals = bd.simulate(block, motions, scale=[0.9, 1.0], t_end=6.0, backend=backend, final_only=True)
     for i, motion in enumerate(motions):
         for k, factor in enumerate((0.9, 1.0)):
-            one = bd.simulate(block, motion.scaled(factor), t_end=6.0, backend="compiled")
+            one = bd.simulate(block, motion.scaled(factor), t_end=6.0, backend=backend)
             assert finals.displacement[i, k, 0] == pytest.approx(one.displacement, rel=1e-9, abs=1e-15)
             assert finals.max_abs_displacement[i, k, 0] == pytest.approx(one.max_abs_displacement, rel=1e-9)
             assert finals.n_events[i, k, 0] == len(one.events)

@@ -34,9 +34,32 @@ def record_pieces(model, excitation, horizon):
     return tuple(np.ascontiguousarray(a, dtype=float) for a in (t0, h, p0, p1))
 
 
+def final_numbers(rows):
+    """(theta(t_end) (n, 1) [rad], max |theta| (n,) [rad], events (n,), t_end (n,) [s]) of n
+    rows of an engine's ``solve_final``."""
+    return rows[:, 0:1], rows[:, 1], rows[:, 2].astype(int), rows[:, 3]
+
+
+def _final_row(theta, t, n_events):
+    """A row of ``solve_final``: theta(t_end), max |theta| over the knots, events, t_end."""
+    return theta[-1], np.max(np.abs(theta)), n_events, t[-1]
+
+
 class LinearisedEngine:
     """Runs a linearised, rocking :class:`RockingBlock` in closed form (the engine of
     ``backend="exact"``)."""
+
+    final_numbers = staticmethod(final_numbers)
+
+    def solve_final(self, model, excitations, horizons, scale, backend) -> np.ndarray:
+        """Final numbers (:func:`final_numbers`) of every excitation at every factor of
+        ``scale`` on a(t), a run of each scaled copy: (len(excitations), len(scale), 4)."""
+        out = np.empty((len(excitations), len(scale), 4))
+        for i, (excitation, horizon) in enumerate(zip(excitations, horizons)):
+            for k, factor in enumerate(scale):
+                solution = self.solve(model, excitation.scaled(factor), horizon, backend)
+                out[i, k] = _final_row(solution.state[:, 0], solution.t, len(solution.events))
+        return out
 
     def solve(self, model, excitation, horizon, backend):
         if not model.linearised or model.slides:
@@ -109,16 +132,11 @@ class CompiledEngine:
                                            kind == "lift_limit")
         return solution
 
-    @staticmethod
-    def final_numbers(rows):
-        """(theta(t_end) (n, 1) [rad], max |theta| (n,) [rad], events (n,), t_end (n,) [s])
-        of n rows of :meth:`solve_final`'s outcomes."""
-        return rows[:, 0:1], rows[:, 1], rows[:, 2].astype(int), rows[:, 3]
+    final_numbers = staticmethod(final_numbers)
 
     def solve_final(self, model, excitations, horizons, scale, backend) -> np.ndarray:
-        """Final numbers of every excitation at every factor of ``scale`` on a(t), one run
-        of the kernel each: (len(excitations), len(scale), 4) rows of theta(t_end) [rad],
-        max |theta| over the knots [rad], events, t_end [s] (:meth:`final_numbers`)."""
+        """Final numbers (:func:`final_numbers`) of every excitation at every factor of
+        ``scale`` on a(t) (in the kernel), one run each: (len(excitations), len(scale), 4)."""
         out = np.empty((len(excitations), len(scale), 4))
         for i, (excitation, horizon) in enumerate(zip(excitations, horizons)):
             for k, factor in enumerate(scale):
@@ -128,7 +146,7 @@ class CompiledEngine:
                 else:
                     _, knots, events, _ = self._run(model, excitation, horizon, backend, factor)
                     theta, t, n_events = knots[:, 1], knots[:, 0], len(events)
-                out[i, k] = theta[-1], np.max(np.abs(theta)), n_events, t[-1]
+                out[i, k] = _final_row(theta, t, n_events)
         return out
 
     @staticmethod
