@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import blockdae as bd
-from blockdae.rocking import RockingBlock
+from blockdae.rocking import RockingBlock, RockingMode
 from conftest import load_sample_record, sample_record_paths
 from test_rocking import QUIET, free_rocking_times
 
@@ -203,3 +203,48 @@ def test_onset_at_a_sample_and_at_the_record_end():
     assert dt < 1e-7
     reference = bd.simulate(block, goes_on, backend="cvode", rtol=1e-12, atol=1e-14)
     assert np.max(np.abs(mine.t_events[:6] - reference.t_events[:6])) < 1e-9
+
+
+def test_the_engines_rules_are_the_models():
+    """The compiled engine's flow, guards, guard rates and modes after a guard (its
+    functions run as plain Python) are the model's on the driver's piece of a motion
+    (a sine on a line in x, a line in z), in every rocking, settling and static mode, at
+    states on both sides of the base."""
+    from blockdae.core._driver import PieceExcitation
+    from blockdae.core.contract import SCALAR
+    from blockdae.rocking import _compiled, _engine
+
+    block = RockingBlock(b=0.3, h=0.9, mu=0.8, theta0=0.1)
+    p = tuple(_engine.engine_parameters(block))
+    coefficients = np.array([[-0.2 * G, 0.5 * G, 0.3 * G, 7.0, 0.4], [0.05 * G, -0.2 * G, 0.0, 0.0, 0.0]])
+    t0, h = 1.0, 0.08
+    driver = PieceExcitation(2)
+    driver.set(t0, coefficients, h)
+    piece = _compiled._piece_at(np.array([t0]), np.array([h]), coefficients[None], 0)
+    modes = [m for m in RockingMode if abs(int(m)) != 1]
+    checked = 0
+    for mode in modes:
+        for state in ((0.05, 0.3), (-0.12, -0.4), (0.0, 0.2), (0.3, 0.0)):
+            for t in (t0, t0 + 0.03, t0 + h):
+                y = np.array(state)
+                value = int(mode)
+                np.testing.assert_array_equal(_compiled._flow(value, t, *state, piece, p),
+                                              block.flow(mode, t, y, driver, SCALAR))
+                mine = _compiled._guards(value, t, state, piece, p)
+                theirs = list(block.guards(mode, t, y, driver, SCALAR))
+                indices = {0: 0} if len(theirs) == 1 else {0: 0, 1: 1, 3: len(theirs) - 1}
+                if len(theirs) == 4:
+                    indices[2] = 2
+                for k, j in indices.items():
+                    assert mine[k] == theirs[j] or (abs(int(mode)) == 6 and mine[k] == math.inf), (mode, k)
+                    if value == RockingMode.RELEASE or abs(value) == 6:
+                        continue
+                    assert _compiled._guard_rates(value, k, t, state, piece, p) == block.guard_rates(
+                        mode, j, t, y, driver), (mode, k)
+                    if k == 3:
+                        continue
+                    on_guard = np.array(block.state_at_guard(mode, j, y, SCALAR), dtype=float)
+                    assert _compiled._mode_after_guard(value, k, t, tuple(on_guard), piece, p) == int(
+                        block.mode_after_guard(mode, j, t, on_guard, driver, SCALAR)), (mode, k)
+                    checked += 1
+    assert checked > 100

@@ -140,9 +140,9 @@ def _rhs(t, y, args, out):
 
 
 def _guards(mode, t, y, pe, p):
-    """The guards of ``mode`` at the state ``y`` (theta, theta') (here and below a tuple of
-    floats where a function only reads it) (four; +inf where a mode has fewer), each left as it falls
-    through zero; the fourth, g_e [m/s²], a flight of the whole block (an error). REST:
+    """The four guards of ``mode`` (+inf where a mode has fewer) at the state ``y`` = (theta,
+    theta') (here and below two floats where a function only reads the state), each left
+    as it falls through zero; the fourth, g_e [m/s²], a flight of the whole block (an error). REST:
     (limit g_e - a_x, limit g_e + a_x); rocking: :func:`._rules.rocking_guards`; SETTLE:
     (s theta', the two onsets); RELEASE: -1 (at once)."""
     kind, s = abs(mode), _side(mode)
@@ -169,9 +169,9 @@ def _guard_rates(mode, index, t, y, pe, p):
     ax_rate, az_rate = _component_rate(pe, 0, t), _component_rate(pe, 1, t)
     if index == _FLIGHT_GUARD:
         return az_rate, 0.0
-    if mode == REST or (kind == SETTLE and index > 0):
+    if mode == REST or (kind == SETTLE and index > 0):  # limit g_e - a_x (REST 0, SETTLE 1), limit g_e + a_x
         coefficient = p[_THRESHOLD] if kind == SETTLE else p[_LIMIT]
-        sign = -1.0 if (mode == REST) == (index == 0) else 1.0
+        sign = -1.0 if index == (1 if kind == SETTLE else 0) else 1.0
         return coefficient * az_rate + sign * ax_rate, 0.0
     if kind == SETTLE:
         return s * _settle_rate(s, t, pe, p), 0.0

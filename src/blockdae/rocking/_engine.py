@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from ..core import HermiteDense, notice_numba
+from ..core.contract import SCALAR
 from ..excitation import evaluate
 from . import _compiled as compiled
 from ._kernel import KNOT_COLUMNS, kernel
@@ -170,8 +171,10 @@ class CompiledEngine:
 
 
 def engine_parameters(model) -> np.ndarray:
-    """The engine's ``params`` (:data:`._compiled.PARAM_FIELDS`) of ``model``."""
-    return np.array([model.alpha, model.frequency ** 2, model.g, model.r, model.zeno_arc, model.theta0,
+    """The engine's ``params`` (:data:`._compiled.PARAM_FIELDS`) of ``model`` (alpha, p²
+    and r as its rules compute them)."""
+    alpha, _, p2, r = model._geometry(SCALAR)
+    return np.array([alpha, p2, model.g, r, model.zeno_arc, model.theta0,
                      float(model.linearised), min(model.mu, model.rocking_threshold), model.rocking_threshold,
                      model.output_step(), RATE_FLOOR * model.frequency * model.alpha])
 
