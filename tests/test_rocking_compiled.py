@@ -206,8 +206,9 @@ def test_onset_at_a_sample_and_at_the_record_end():
 
 
 def test_the_engines_rules_are_the_models():
-    """The compiled engine's flow, guards, guard rates and modes after a guard (its
-    functions run as plain Python) are the model's on the driver's piece of a motion
+    """The compiled engine's flow, guards, guard rates, states on a guard, modes after it
+    and states on entry (its functions run as plain Python) are the model's on the
+    driver's piece of a motion
     (a sine on a line in x, a line in z), in every rocking, settling and static mode, at
     states on both sides of the base."""
     from blockdae.core._driver import PieceExcitation
@@ -244,7 +245,14 @@ def test_the_engines_rules_are_the_models():
                     if k == 3:
                         continue
                     on_guard = np.array(block.state_at_guard(mode, j, y, SCALAR), dtype=float)
-                    assert _compiled._mode_after_guard(value, k, t, tuple(on_guard), piece, p) == int(
-                        block.mode_after_guard(mode, j, t, on_guard, driver, SCALAR)), (mode, k)
+                    mine_on_guard = y.copy()
+                    _compiled._state_at_guard(value, k, mine_on_guard, p)
+                    np.testing.assert_array_equal(mine_on_guard, on_guard)
+                    after = block.mode_after_guard(mode, j, t, on_guard, driver, SCALAR)
+                    assert _compiled._mode_after_guard(value, k, t, tuple(on_guard), piece, p) == int(after), (mode, k)
+                    entered = on_guard.copy()
+                    _compiled._state_on_entry(value, int(after), entered, p)
+                    np.testing.assert_array_equal(entered, block.state_on_entry(mode, after, t, on_guard, driver,
+                                                                                SCALAR))
                     checked += 1
     assert checked > 100
