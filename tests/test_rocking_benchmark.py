@@ -13,6 +13,9 @@ def test_rocking_benchmark_quick(monkeypatch, capsys):
     spec.loader.exec_module(module)
     assert module.main(["--quick", "--repeat", "1"]) == 0
     out = capsys.readouterr().out
-    assert "bar 100x: smoke run, not a measurement" in out and "NOT met" not in out
-    table = out.split("\n\n")[1].splitlines()
-    assert len(table) == 3 and "speed-up [-]" in table[0]  # header + the 2 shortest records
+    assert out.count("bar 100x: smoke run, not a measurement") == 2 and "NOT met" not in out
+    parts = out.split("\n\n")
+    assert parts[0].startswith("linearised block, backend 'exact'")
+    assert parts[3].startswith("exact equation, backend 'compiled'")
+    for table in (parts[1].splitlines(), parts[4].splitlines()):
+        assert len(table) == 3 and "speed-up [-]" in table[0]  # header + the 2 shortest records

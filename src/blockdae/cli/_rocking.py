@@ -14,8 +14,8 @@ from ..excitation import pga_factor, unit_factor
 from ..rocking import ContactWarning, RockingBlock
 from ..units import STANDARD_GRAVITY
 
-#: the backends that run a RockingBlock ("exact": the linearised block)
-BACKENDS = ("cvode", "ida", "jax", "exact")
+#: the backends that run a RockingBlock ("compiled": one that rocks; "exact": the linearised one)
+BACKENDS = ("cvode", "ida", "jax", "compiled", "exact")
 
 
 def add_rocking_parser(subparsers):
@@ -37,7 +37,8 @@ def add_rocking_parser(subparsers):
     p.add_argument("--t-end", type=positive("--t-end"), default=None,
                    help="final time [s] (default: until the block rests or overturns after the record)")
     p.add_argument("--backend", choices=BACKENDS, default=None,
-                   help="solver backend (default: exact for --linearised, else cvode)")
+                   help="solver backend (default for a block that rocks: exact with --linearised, else "
+                        "compiled; cvode for one that slides)")
     p.add_argument("--strict", action="store_true",
                    help="an error where the contact force leaves its limits (N <= 0 or |F| > mu N), not a warning")
     record_arguments(p)
@@ -59,7 +60,7 @@ def run_rocking(args) -> int:
         record = record.scaled(factor)
     block = checked(lambda: RockingBlock(b=args.b, h=args.h, mu=args.mu, restitution=args.restitution,
                                          linearised=args.linearised, strict=args.strict, g=args.g), "")
-    backend = args.backend or ("exact" if block.linearised and not block.slides else "cvode")
+    backend = args.backend or ("cvode" if block.slides else "exact" if block.linearised else "compiled")
     start = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:  # simulate warns of the contact limits: printed below
         warnings.simplefilter("always", ContactWarning)

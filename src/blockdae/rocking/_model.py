@@ -34,6 +34,7 @@ from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, scale
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import relative_acceleration, rest_mode, slip_constant, stop_mode
 from ..units import STANDARD_GRAVITY
+from . import _rules as rules
 from ._modes import RockingMode, event_kind, rock_mode, side
 from ._solution import RockingEvent, RockingSolution
 
@@ -75,6 +76,11 @@ class RockingBlock(DifferentiableModel):
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x
     and z components [m/s²].
+
+    Backends: "cvode" (the default), "ida" and "jax" run every block; a block that rocks
+    (mu >= b/h) also runs on "compiled" (the exact or the linearised equation, a compiled
+    DOP853 with located events, any motion) and, linearised, on "exact" (its closed form,
+    compiled, for horizontal piecewise-linear records).
     """
 
     b: float
@@ -92,8 +98,10 @@ class RockingBlock(DifferentiableModel):
     modes = RockingMode
     component_names = ("x", "z")
     default_backend = "cvode"
-    #: the linearised rocking block's closed form, compiled (``backend="exact"``)
-    _exact = {"exact": LazyEngine("blockdae.rocking._engine", "LinearisedEngine")}
+    #: the compiled engines: the integrated one of either equation (``backend="compiled"``),
+    #: the linearised block's closed form (``backend="exact"``)
+    _compiled = {"compiled": LazyEngine("blockdae.rocking._engine", "CompiledEngine")}
+    _exact = {**_compiled, "exact": LazyEngine("blockdae.rocking._engine", "LinearisedEngine")}
 
     def __post_init__(self):
         set_real_fields(self, ("b", "h", "mu", "theta0", "zeno_arc", "g"))
@@ -161,9 +169,12 @@ class RockingBlock(DifferentiableModel):
 
     @property
     def engines(self):
-        """backend name -> engine: "exact" (the compiled closed form) for the linearised
-        block that rocks; the generic driver otherwise."""
-        return self._exact if self.linearised and not self.slides else {}
+        """backend name -> engine, for a block that rocks: "compiled" (the integrated
+        engine, either equation) and, for the linearised block, "exact" (its closed form);
+        the generic driver otherwise."""
+        if self.slides:
+            return {}
+        return self._exact if self.linearised else self._compiled
 
     @property
     def state_names(self):
@@ -216,20 +227,13 @@ class RockingBlock(DifferentiableModel):
         """theta'' [rad/s²] rocking about the corner on side ``s`` at ``theta`` [rad]."""
         alpha, _, p2, _ = self._geometry(xp)
         ax, ge, _, _ = self._base(t, excitation)
-        phi = s * alpha - theta
-        if self.linearised:
-            return -p2 * ((ge / self.g) * phi + ax / self.g)
-        return -p2 * ((ge / self.g) * xp.sin(phi) + (ax / self.g) * xp.cos(phi))
+        return rules.angular_acceleration(s, theta, ax, ge, alpha, p2, self.g, self.linearised, xp)
 
     def angular_jerk(self, s, theta, rate, t, excitation):
         """theta''' [rad/s³] rocking about side ``s`` at (theta, theta') (for the guards' curvature)."""
         alpha, _, p2, _ = self._geometry(SCALAR)
         ax, ge, ax_rate, az_rate = self._base(t, excitation)
-        phi = s * alpha - theta
-        if self.linearised:
-            return -p2 * ((az_rate / self.g) * phi - (ge / self.g) * rate + ax_rate / self.g)
-        return -p2 * ((az_rate / self.g) * math.sin(phi) - (ge / self.g) * math.cos(phi) * rate
-                      + (ax_rate / self.g) * math.cos(phi) + (ax / self.g) * math.sin(phi) * rate)
+        return rules.angular_jerk(s, theta, rate, ax, ge, ax_rate, az_rate, alpha, p2, self.g, self.linearised)
 
     def contact_force(self, s, theta, rate, t, excitation, xp=np):
         """(F, N) [m/s²]: horizontal and vertical force per unit mass at the pivot on side
@@ -257,13 +261,10 @@ class RockingBlock(DifferentiableModel):
         return xp.minimum(self.mu, self._threshold(xp)) * ge
 
     def _settle_rate(self, s, t, excitation, xp=SCALAR):
-        """d theta'/dt [rad/s²] of the Zeno envelope on side ``s``: with the excitation
-        frozen the arcs last 2 |w| / d_s and 2 r |w| / d_-s in turn, so the rest comes
-        after |w| K, K = 2 (1/d_s + r/d_-s) / (1 - r²), and the envelope falls by 1/K."""
+        """d theta'/dt [rad/s²] of the Zeno envelope on side ``s`` (:func:`._rules.settle_rate`)."""
         _, _, _, r = self._geometry(xp)
-        k = 2.0 * (1.0 / self.deceleration(s, t, excitation, xp) + r / self.deceleration(-s, t, excitation, xp)) / (
-            1 - r * r)
-        return -s / k
+        ahead, behind = self.deceleration(s, t, excitation, xp), self.deceleration(-s, t, excitation, xp)
+        return rules.settle_rate(s, ahead, behind, r)
 
     # ---- the automaton ----------------------------------------------------------------
     def flow(self, mode, t, y, excitation, xp=np):
@@ -295,11 +296,7 @@ class RockingBlock(DifferentiableModel):
         if kind == 1:
             return xp.stack([mode * y[_RATE], ge])
         if kind in (_OUT, _IN, _BEYOND):
-            if kind == _IN:
-                own = [s * y[_Q], -s * y[_RATE]]
-            else:
-                edge = xp.arctan2(self.b, self.h) if kind == _OUT else 0.5 * xp.pi
-                own = [s * y[_RATE], edge - s * y[_Q]]
+            own = list(rules.rocking_guards(kind, s, y[_Q], y[_RATE], xp.arctan2(self.b, self.h)))
             contact = list(self.contact_margins(s, y[_Q], y[_RATE], t, excitation, xp)) if self.strict else []
             return xp.stack([*own, *contact, ge])
         if kind == _SETTLE:
@@ -346,9 +343,8 @@ class RockingBlock(DifferentiableModel):
 
     def _after_apex(self, s, theta, t, excitation):
         """The rocking mode at rest in rotation (theta' = 0) at ``theta`` on side ``s``."""
-        if s * self.angular_acceleration(s, theta, t, excitation, SCALAR) <= 0:
-            return rock_mode(_IN, s)
-        return rock_mode(_OUT if s * theta < self.alpha else _BEYOND, s)
+        return RockingMode(rules.mode_after_apex(s, theta, self.angular_acceleration(s, theta, t, excitation, SCALAR),
+                                                 self.alpha))
 
     def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
         """The mode after guard ``guard_index`` of ``mode``: see :meth:`guards`; an impact
@@ -368,24 +364,13 @@ class RockingBlock(DifferentiableModel):
                                              True, True, SCALAR, time_tol)))
         if mode == RockingMode.RELEASE:
             return self._after_apex(1 if self.theta0 > 0 else -1, self.theta0, t, excitation)
-        if kind == _OUT:
-            if guard_index == 1:
-                return rock_mode(_BEYOND, s)
-            return self.mode_at_rest(t, excitation) if y[_Q] == 0 else rock_mode(_IN, s)
-        if kind == _BEYOND:
-            return rock_mode(_IN, s) if guard_index == 0 else rock_mode(_OVERTURNED, s)
-        if kind == _IN:
-            if guard_index == 1:
-                return rock_mode(_OUT if s * y[_Q] < self.alpha else _BEYOND, s)
-            w = self.r * y[_RATE]
-            if w == 0:
-                return self.mode_at_rest(t, excitation)
-            ahead, behind = self.deceleration(-s, t, excitation), self.deceleration(s, t, excitation)
-            if ahead > 0 and behind > 0 and 2 * abs(w) / ahead < self.zeno_arc:
-                return rock_mode(_SETTLE, -s)
-            return rock_mode(_OUT, -s)
-        if kind == _SETTLE:
-            return RockingMode.REST if guard_index == 0 else rock_mode(_OUT, -1 if guard_index == 1 else 1)
+        if kind in (_OUT, _IN, _BEYOND, _SETTLE):
+            impact = kind == _IN and guard_index == 0
+            ahead, behind = (self.deceleration(-s, t, excitation), self.deceleration(s, t, excitation)) if impact \
+                else (0.0, 0.0)
+            after = rules.mode_after_rocking_guard(kind, s, guard_index, y[_Q], self.r * y[_RATE], ahead, behind,
+                                                   self.alpha, self.zeno_arc)
+            return self.mode_at_rest(t, excitation) if after == rules.DEMAND_DECIDES else RockingMode(after)
         return mode
 
     def state_at_guard(self, mode, guard_index, y, xp=np):
@@ -468,10 +453,7 @@ class RockingBlock(DifferentiableModel):
             return s * self._settle_rate(s, t, excitation), 0.0
         accel = self.angular_acceleration(s, y[_Q], t, excitation, SCALAR)
         jerk = self.angular_jerk(s, y[_Q], y[_RATE], t, excitation)
-        if kind == _IN:  # s theta (impact), -s theta' (outward again)
-            return (s * y[_RATE], s * accel) if guard_index == 0 else (-s * accel, -s * jerk)
-        # OUT, BEYOND: s theta' (apex), alpha or pi/2 - s theta
-        return (s * accel, s * jerk) if guard_index == 0 else (-s * y[_RATE], -s * accel)
+        return rules.rocking_guard_rates(kind, s, guard_index, y[_RATE], accel, jerk)
 
     def _contact_rate(self, s, index, t, y, excitation):
         """d/dt of contact margin ``index`` [m/s³] along the flow, by central differences

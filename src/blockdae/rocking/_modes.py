@@ -6,6 +6,7 @@ values (0, +1, -1), whose rules they run.
 """
 
 import enum
+import functools
 
 
 class RockingMode(enum.IntEnum):
@@ -44,6 +45,7 @@ def rock_mode(kind: int, s: int) -> RockingMode:
     return RockingMode(kind * s)
 
 
+@functools.cache
 def event_kind(before, after) -> str:
     """The kind of the mode change ``before`` -> ``after``: "release", "uplift", "slide",
     "stick", "apex", "return", "beyond_alpha", "impact", "zeno", "rest", "overturn"."""
