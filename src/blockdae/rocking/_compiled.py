@@ -144,10 +144,10 @@ def _guards(mode, t, y, pe, p):
     theta') (here and below two floats where a function only reads the state), each left
     as it falls through zero; the fourth, g_e [m/s²], a flight of the whole block (an error). REST:
     (limit g_e - a_x, limit g_e + a_x); rocking: :func:`._rules.rocking_guards`; SETTLE:
-    (s theta', the two onsets); RELEASE: -1 (at once)."""
+    (s theta', the two onsets); RELEASE: -1 - t (at once, at a time that no parameter moves)."""
     kind, s = abs(mode), _side(mode)
     if mode == RELEASE:
-        return -1.0, _INF, _INF, _INF
+        return -1.0 - t, _INF, _INF, _INF
     if kind == OVERTURNED:
         return _INF, _INF, _INF, _INF
     ax, ge = _component(pe, 0, t), p[_G] + _component(pe, 1, t)
