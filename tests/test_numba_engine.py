@@ -20,6 +20,7 @@ from conftest import assert_same_events, load_sample_record, sample_record_paths
 import blockdae as bd
 from blockdae.sliding import Mode
 from blockdae.sliding import _exact_kernel, _exact_numba
+from blockdae.core import run_items
 from blockdae.sliding._exact import prepare
 
 
@@ -140,8 +141,8 @@ def test_never_resting_block_raises():
 
 
 def test_batch_equals_one_by_one(kobe):
-    """A batch runs the very loop of a single run, in parallel or on the calling thread
-    (small batches): identical numbers."""
+    """A batch runs the very loop of a single run, shared among threads or on the calling
+    thread (small batches): identical numbers."""
     mu = np.linspace(0.05, 0.3, 16)
     block = bd.SlidingBlock(mu=mu, mu_kinetic=0.9 * mu, bias=0.01, g=G)
     batch = bd.simulate(block, kobe)
@@ -153,9 +154,13 @@ def test_batch_equals_one_by_one(kobe):
     exc = prepare(kobe.pieces(kobe.duration), 64)
     offsets = np.array([[0, len(exc[0]), 0, len(exc[9])]])
     params = np.stack([block.mu, block.mu_kinetic, np.full(16, 0.01), np.full(16, G), np.ones(16)], axis=1)
-    _, parallel, serial = _exact_numba.kernels()
+    run = _exact_numba.kernels()[1]
     flags = (True, True, np.array([True]))
-    np.testing.assert_array_equal(parallel(exc, offsets, 64, params, flags), serial(exc, offsets, 64, params, flags))
+    shared, alone = np.empty((1, 16, 9)), np.empty((1, 16, 9))
+    items = np.arange(16, dtype=np.int64)
+    run_items(lambda part: run(exc, offsets, 64, params, flags, part, shared), items, 1.0, 0.0)  # among threads
+    run_items(lambda part: run(exc, offsets, 64, params, flags, part, alone), items, 1.0, 2.0)  # on this thread
+    np.testing.assert_array_equal(shared, alone)
     jax_batch = bd.simulate(block, kobe, backend="exact-jax")
     np.testing.assert_allclose(batch.displacement, jax_batch.displacement, rtol=1e-12, atol=1e-15)
     np.testing.assert_array_equal(batch.n_events, jax_batch.n_events)

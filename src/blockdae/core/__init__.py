@@ -33,3 +33,4 @@ from ._repr import compact_repr
 from ._sensitivities import sensitivities
 from ._simulate import simulate
 from ._solution import BatchSolution
+from ._threads import run_items

@@ -4,27 +4,22 @@
 
 ``solve`` returns the model's own solution (events, knots, the driver's cubic Hermite
 dense output); ``solve_final`` runs parameter sets x motions x factors on a(t) in one
-compiled call, in parallel over cores, and returns final numbers only.
+compiled call, shared among threads, and returns final numbers only.
 """
 
-import concurrent.futures
-
-import numba
 import numpy as np
 
-from ..core import BatchSolution, HermiteDense, notice_numba
+from ..core import BatchSolution, HermiteDense, notice_numba, run_items
 from . import _compiled as engine
 
-#: analyses x pieces above which a batch runs in parallel (see ``_exact._PARALLEL_WORK``)
+#: analyses x pieces above which a batch is shared among threads
 _PARALLEL_WORK = 1e5
 #: the engine's name in the compile notice, and its compile time on one core [s]
 _ENGINE, _COMPILE_SECONDS = "the compiled planar engine", 35
-#: parts of a batch per thread (threads take the next part when done: balance)
-_PARTS_PER_THREAD = 8
 
 
 class PlanarEngine:
-    """The compiled planar engine (numba; batches parallel over cores), with the backend's
+    """The compiled planar engine (numba; batches shared among threads), with the backend's
     settings (``rtol``, ``atol``, ``max_events_at_one_instant``, ``event_resolution``)."""
 
     def solve(self, block, excitation, horizon, backend):
@@ -91,20 +86,13 @@ def _options(backend, until_rest) -> np.ndarray:
 
 
 def _run_parallel(T0, H, CF, offsets, params, options, until_rest, out):
-    """The engine's kernel over every item of ``out``, on numba's number of
-    threads (the kernel releases the GIL) where the work is large enough."""
+    """The engine's kernel over every item of ``out``, shared among threads (the kernel
+    releases the GIL) where the work is large enough."""
     run = engine.kernel()
     notice_numba(_ENGINE, _COMPILE_SECONDS, run)
     items = np.arange(out.shape[0] * out.shape[1], dtype=np.int64)
-    threads = numba.get_num_threads() if len(params) * len(T0) >= _PARALLEL_WORK else 1
-    if threads == 1:
-        run(T0, H, CF, offsets, params, options, until_rest, items, out, False)
-        return
-    # strided parts: neighbouring items (one motion at nearby factors) cost alike; copied
-    # contiguous, so that the kernel runs with the serial call's types (one compile)
-    parts = [items[k::threads * _PARTS_PER_THREAD].copy() for k in range(threads * _PARTS_PER_THREAD)]
-    with concurrent.futures.ThreadPoolExecutor(threads) as pool:
-        list(pool.map(lambda part: run(T0, H, CF, offsets, params, options, until_rest, part, out, False), parts))
+    run_items(lambda part: run(T0, H, CF, offsets, params, options, until_rest, part, out, False), items,
+              len(params) * len(T0), _PARALLEL_WORK, parts_per_thread=8)
 
 
 def engine_input(block, excitation, horizon):

@@ -3,20 +3,20 @@ precision; what the "exact" backend runs a :class:`~blockdae.SlidingBlock` on.""
 
 import numpy as np
 
-from ..core import BatchSolution, cached_per_excitation, notice_numba
+from ..core import BatchSolution, cached_per_excitation, notice_numba, run_items
 from ..excitation import Pieces, accel
 from . import _exact_numba as engine
 from ._results import check, exact_solution
 
 
-#: pieces x parameter sets above which a batch runs in parallel (~30 ms on one core); below,
-#: waking the worker threads may cost more than they save (~8 ms a call on some VMs)
-_PARALLEL_WORK = 3e7
+#: pieces x parameter sets above which a batch is shared among threads (~0.2 ms on one
+#: core; handing parts to the pool costs ~20 us)
+_THREADED_WORK = 2e5
 
 
 class ExactEngine:
-    """The 1-D block's closed forms compiled with numba (float64; batches parallel over
-    cores), with the backend's settings (``window``: pieces of a(t) per block of the onset
+    """The 1-D block's closed forms compiled with numba (float64; batches shared among
+    threads), with the backend's settings (``window``: pieces of a(t) per block of the onset
     search's bounds)."""
 
     def solve(self, block, excitation, horizon, backend):
@@ -43,7 +43,7 @@ class ExactEngine:
     def solve_final(self, block, excitations, horizons, scale, backend) -> np.ndarray:
         """Final numbers only, for every excitation under every parameter set of
         ``block`` (a batch of m, or one) at every factor of ``scale`` on a(t) (s of
-        them), in parallel over cores.
+        them), shared among threads.
 
         Returns:
             (len(excitations), m * s, 9), the engine's outcomes (``OUTCOME_FIELDS``);
@@ -52,11 +52,14 @@ class ExactEngine:
         inputs = [_engine_input(e, h.integration_end(e), backend.window)[1] for e, h in zip(excitations, horizons)]
         exc, offsets = _concatenated(inputs)
         params = block.engine_parameters(scale)
-        _, parallel, serial = engine.kernels()
-        run_batch = parallel if len(params) * len(exc[0]) >= _PARALLEL_WORK else serial
-        notice_numba("the exact engine", 15, run_batch)
-        until_rest = np.array([h.until_rest for h in horizons])
-        out = run_batch(exc, offsets, backend.window, params, (block.allow_negative, block.allow_positive, until_rest))
+        run = engine.kernels()[1]
+        notice_numba("the exact engine", 15, run)
+        flags = (block.allow_negative, block.allow_positive, np.array([h.until_rest for h in horizons]))
+        out = np.empty((len(inputs), len(params), len(engine.OUTCOME_FIELDS)))
+        # item j * n_exc + i is excitation i under parameter set j: each excitation's in a row
+        items = np.arange(out.size // out.shape[2], dtype=np.int64).reshape(len(params), len(inputs)).T.ravel()
+        run_items(lambda part: run(exc, offsets, backend.window, params, flags, part, out), items,
+                  len(params) * len(exc[0]), _THREADED_WORK)
         if not out[:, :, 6:8].all():  # rests, finished
             for i, j in zip(*np.nonzero((out[:, :, 6] == 0) | (out[:, :, 7] == 0))):
                 where = f" (excitation {i}, parameter set {j})" if len(inputs) > 1 else f" (parameter set {j})"

@@ -294,18 +294,18 @@ def _run_set(one, window, params, flags, i, j, out):
 
 @functools.cache
 def kernels():
-    """(run_one, run_batch, run_batch_serial), compiled on their first call (or loaded
-    from numba's cache).
+    """(run_one, run_items), compiled on their first call (or loaded from numba's cache).
 
     ``run_one(exc, window, params, flags, capacity)``: :func:`_run`, one parameter set
     with its knot log (``capacity``: rows to start with, > 0).
 
-    ``run_batch(exc, offsets, window, params, flags)``: every excitation i (pieces
-    ``offsets[i, 0]:offsets[i, 1]``, blocks ``offsets[i, 2]:offsets[i, 3]`` of ``exc``)
-    under every parameter set j (rows of ``params``, (m, 5)), in parallel over cores,
-    final numbers only: outcomes (n_exc, m, 9). ``flags``: (slip- allowed, slip+
-    allowed, until rest per excitation (n_exc,) bool). ``run_batch_serial``: the same
-    on the calling thread, for batches too small to repay waking the worker threads.
+    ``run_items(exc, offsets, window, params, flags, items, out)``: final numbers only,
+    into ``out`` (n_exc, m, 9) (``OUTCOME_FIELDS``), of the batch's items ``items``
+    (int64): item k is excitation i = k % n_exc (pieces ``offsets[i, 0]:offsets[i, 1]``,
+    blocks ``offsets[i, 2]:offsets[i, 3]`` of ``exc``) under parameter set j = k // n_exc
+    (rows of ``params``, (m, 5)). ``flags``: (slip- allowed, slip+ allowed, until rest
+    per excitation (n_exc,) bool). It releases the GIL: threads run parts of one batch
+    (:func:`blockdae.core.run_items`).
     """
     _register()
     fingerprint = hashlib.sha256(b"".join(pathlib.Path(m.__file__).read_bytes() for m in _SHARED)).hexdigest()
@@ -314,27 +314,18 @@ def kernels():
         fingerprint  # noqa: B018 -- numba keys its disk cache by the closure's contents
         return _run(exc, window, params, flags, capacity)
 
-    def run_batch(exc, offsets, window, params, flags):
+    def run_items(exc, offsets, window, params, flags, items, out):
         fingerprint  # noqa: B018
-        out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
-        n_exc = offsets.shape[0]
-        for item in numba.prange(out.shape[0] * out.shape[1]):
-            i, j = item % n_exc, item // n_exc  # neighbours differ in excitation: even shares
-            _run_set(_excitation(exc, offsets, i), window, params, flags, i, j, out)
-        return out
-
-    def run_batch_serial(exc, offsets, window, params, flags):
-        fingerprint  # noqa: B018 -- a function of its own: numba's cache key omits ``parallel``
-        out = np.empty((offsets.shape[0], params.shape[0], len(OUTCOME_FIELDS)))
-        for i in range(out.shape[0]):
-            one = _excitation(exc, offsets, i)
-            for j in range(out.shape[1]):
-                _run_set(one, window, params, flags, i, j, out)
-        return out
+        n_exc, current = offsets.shape[0], 0
+        one = _excitation(exc, offsets, 0)
+        for item in items:
+            i, j = item % n_exc, item // n_exc
+            if i != current:  # items of one excitation in a row slice it once
+                one, current = _excitation(exc, offsets, i), i
+            _run_set(one, window, params, flags, i, j, out)
 
     return (numba.njit(cache=True, **_OPTIONS)(run_one),
-            numba.njit(cache=True, parallel=True, **_OPTIONS)(run_batch),
-            numba.njit(cache=True, **_OPTIONS)(run_batch_serial))
+            numba.njit(cache=True, nogil=True, **_OPTIONS)(run_items))
 
 
 #: modules whose functions the engine compiles besides its own
