@@ -105,14 +105,11 @@ def stop_delta_linear(cf, rem, v, c, mode, xp):
     r = departure_rate(cf, v, c, mode, xp)
     q = -0.5 * cf[1]
     at_rest = v == 0
-    departure = -r / xp.where(q != 0, q, 1.0)
-    found_departure = (q != 0) & (departure > 0)
     disc = r * r - 4.0 * q * v
     den = r - mode * xp.sqrt(xp.maximum(disc, 0.0))
-    moving = -2.0 * v / xp.where(den != 0, den, 1.0)
-    found_moving = (disc >= 0) & (den != 0) & (moving > 0)
-    d = xp.where(at_rest, departure, moving)
-    found = xp.where(at_rest, found_departure, found_moving) & (d <= rem)
+    # at rest the departure -r / q, else the return -2 v / den: one division
+    d = xp.where(at_rest, -r, -2.0 * v) / xp.where(at_rest, xp.where(q != 0, q, 1.0), xp.where(den != 0, den, 1.0))
+    found = xp.where(at_rest, q != 0, (disc >= 0) & (den != 0)) & (d > 0) & (d <= rem)
     return xp.where(found, d, rem), found
 
 

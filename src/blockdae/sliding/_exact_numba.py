@@ -91,12 +91,23 @@ def _stop_delta(cf, rem, v, c, mode):
 
 def _far_from_rest(cf, rem, v, c, mode):
     """Whether v = v0 + r d + q d² (r = c - p0, q = -p1/2) cannot return to 0 on a linear
-    piece of length ``rem``: |v0| > 2 (|r| rem + |q| rem²). A screen that saves the
-    square root and divisions of :func:`stop_delta_linear` on most sliding pieces, never
-    changing its answer: its root is -2 v0 / (r -+ sqrt(r² - 4 q v0)), beyond ``rem``
+    piece of length ``rem``: a screen that saves the square root and division of
+    :func:`stop_delta_linear` on most sliding pieces, never changing its answer. Either
+    v moves away from rest all along (mode v0 >= 0, mode r > 0, mode q >= 0): then the
+    discriminant r² - 4 q v0 <= r² rounds to at most r² (sqrt of a rounded square is the
+    number itself while r² is normal), so mode (r - mode sqrt) >= 0 and the root
+    -2 v0 / (r - mode sqrt) is not positive (at rest, -r / q is not either); or |v0| >
+    2 (|r| rem + |q| rem²): the root -2 v0 / (r -+ sqrt(r² - 4 q v0)) lies beyond ``rem``
     whenever |v0| > rem (|r| + sqrt(|q v0|)), which the factor 2 ensures with room for
     rounding (as x² - a x >= (x² - a²) / 2 with x² = |v0|, a² = |q| rem²)."""
-    return mode * v > 2.0 * (abs(c - cf[0]) * rem + 0.5 * abs(cf[1]) * rem * rem)
+    r, q = c - cf[0], -0.5 * cf[1]
+    if (mode * v >= 0) & (mode * r > 0) & (mode * q >= 0) & (abs(r) > _NORMAL_SQUARE_ROOT):
+        return True
+    return mode * v > 2.0 * (abs(r) * rem + abs(q) * rem * rem)
+
+
+#: rates [m/s²] above this square to a normal float
+_NORMAL_SQUARE_ROOT = 1e-150
 
 
 def _is_sine(p0, p1, s, w, phi):
