@@ -8,6 +8,7 @@ import functools
 import numba
 import numpy as np
 
+
 def run_items(run, items: np.ndarray, work: float, threshold: float, parts_per_thread: int = 1) -> None:
     """``run(part)`` over the batch's ``items`` (int64, in the order the engine prefers):
     all at once on the calling thread where ``work`` (the engine's measure of the batch's
