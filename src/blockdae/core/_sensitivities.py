@@ -112,11 +112,8 @@ def trajectory_displacement_sensitivities(model, motion, t_end, wrt, backend, of
     / dp along the JAX twin's trajectory per name, a :class:`~blockdae.Sensitivities` of the
     displacement states (a batch: one located trajectory per parameter set, stacked)."""
     if of is not None:
-        raise ValueError(f"of={of!r} does not apply to a {type(model).__name__}: it has the derivatives of its "
-                         "displacement")
-    backend = "jax" if backend is None else backend
-    if backend_name(backend) != "jax":
-        raise ValueError(f"backend={backend!r} has no derivatives for a {type(model).__name__}; use 'jax'")
+        raise _no_quantities(model, of)
+    backend = _twin_backend(model, backend)
     if model.batch_shape:  # one located trajectory per parameter set
         sets = [trajectory_displacement_sensitivities(model.item(i), motion, t_end, wrt, backend, of, options)
                 for i in range(model.batch_shape[0])]
@@ -138,14 +135,11 @@ def trajectory_quantity_sensitivities(model, motion, t_end, wrt, backend, of, op
     units = model.scalar_quantities()
     of = (of,) if isinstance(of, str) else tuple(of)
     if not units:
-        raise ValueError(f"of={of!r} does not apply to a {type(model).__name__}: it has the derivatives of its "
-                         "displacement")
+        raise _no_quantities(model, of)
     unknown = [name for name in of if name not in units]
     if unknown or not of:
         raise ValueError(f"of={of!r}: choose among {tuple(units)}")
-    backend = "jax" if backend is None else backend
-    if backend_name(backend) != "jax":
-        raise ValueError(f"backend={backend!r} has no derivatives for a {type(model).__name__}; use 'jax'")
+    backend = _twin_backend(model, backend)
     if model.batch_shape:  # one located trajectory per parameter set
         sets = [trajectory_quantity_sensitivities(model.item(i), motion, t_end, wrt, backend, of, options)
                 for i in range(model.batch_shape[0])]
@@ -159,6 +153,21 @@ def trajectory_quantity_sensitivities(model, motion, t_end, wrt, backend, of, op
     derivatives = {name: by_parameter(model, model.scalar_quantity_jacobian(name, solution, final, events), wrt, peak)
                    for name in of}
     return Sensitivities.make(model, derivatives, quantity_units=[units[name] for name in of], backend=backend)
+
+
+def _twin_backend(model, backend):
+    """The backend of the core's derivatives along a trajectory: the JAX twin ("jax",
+    also for None); ValueError for any other."""
+    backend = "jax" if backend is None else backend
+    if backend_name(backend) != "jax":
+        raise ValueError(f"backend={backend!r} has no derivatives for a {type(model).__name__}; use 'jax'")
+    return backend
+
+
+def _no_quantities(model, of) -> ValueError:
+    """The error for ``of`` given to a model that declares no scalar quantities."""
+    return ValueError(f"of={of!r} does not apply to a {type(model).__name__}: it has the derivatives of its "
+                      "displacement")
 
 
 def by_parameter(model, columns, wrt, peak):
