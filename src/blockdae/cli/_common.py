@@ -13,7 +13,7 @@ import numpy as np
 
 from ..core import atomic_path
 from ..units import STANDARD_GRAVITY
-from ..excitation import SETS as FEMA_SETS, RecordSet, RecordWarning, read_record, record_files
+from ..excitation import SETS as FEMA_SETS, RecordSet, RecordWarning, UnitsWarning, read_record, record_files
 from ..flexible_mass import KyTable
 from ..motions import METHODS as BASELINES, baseline_corrected
 
@@ -154,10 +154,12 @@ def read_options(args) -> dict:
 
 @contextlib.contextmanager
 def reader_warnings(args):
-    """The readers' warnings (a coarse step, an offset) as ``blockdae: warning: ...`` lines on
-    stderr, each time; the offset's left out where --baseline corrects it."""
+    """The readers' and the plausibility rules' warnings (a coarse step, an offset, a value
+    in the wrong units) as ``blockdae: warning: ...`` lines on stderr, each time; the
+    offset's left out where --baseline corrects it."""
     with warnings.catch_warnings():
         warnings.simplefilter("always", RecordWarning)
+        warnings.simplefilter("always", UnitsWarning)
         if args.baseline != "none":
             warnings.filterwarnings("ignore", ".*the samples' mean", RecordWarning)
         warnings.showwarning = warning_line

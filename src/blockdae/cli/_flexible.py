@@ -6,8 +6,9 @@ import json
 import pathlib
 
 from ._common import (UsageError, checked, describe_record, in_units_out, ky_table, ky_table_row, number, positive,
-                      read, record_arguments, record_fields, save_figure, units_out_argument)
+                      read, reader_warnings, record_arguments, record_fields, save_figure, units_out_argument)
 from ..core import simulate
+from ..excitation import check_column
 from ..units import STANDARD_GRAVITY
 from ..flexible_mass import (INTEGRATIONS, METHODS, POLARITIES, FlexibleSlidingMass, ShearColumn, flexible,
                              with_zero_sample)
@@ -70,10 +71,11 @@ def run_flexible(args) -> int:
     record = read(args.record, args)
     table = ky_table(args)
     ky = args.ky if table is None else table
-    result = checked(lambda: flexible(record, ky, args.height, args.vs, args.vr, args.damping, args.method,
-                                      args.reference_strain is not None, args.reference_strain, args.pga,
-                                      args.polarity, args.integration, args.g, args.t_end,
-                                      check_peak=not args.accept_peak), str(args.record))
+    with reader_warnings(args):  # the plausibility rules' warnings (ky, H, vs, damping) as lines
+        result = checked(lambda: flexible(record, ky, args.height, args.vs, args.vr, args.damping, args.method,
+                                          args.reference_strain is not None, args.reference_strain, args.pga,
+                                          args.polarity, args.integration, args.g, args.t_end,
+                                          check_peak=not args.accept_peak), str(args.record))
     rows = result.rows
     if args.plot is not None:
         from .._plot import plot
@@ -132,5 +134,7 @@ def flexible_study_block(args):
     table = ky_table(args)
     ky = args.ky if table is None else table
     damping = 0.05 if args.soil_damping is None else args.soil_damping
+    with reader_warnings(args):
+        checked(lambda: check_column(args.height, args.vs, args.vr, damping), "--soil-damping")
     column = checked(lambda: ShearColumn(args.height, args.vs, args.vr, damping), "--soil-damping")
     return FlexibleSlidingMass(column, ky=0.0, method=args.method or "coupled", g=args.g), ky

@@ -11,7 +11,8 @@ from ._record import Record
 from ._record_set import RecordSet, read_records
 from ._resample import resample
 from ._record_checks import MAX_STEP_S, OFFSET_FRACTION, RESOLVING_STEP_S, RecordWarning
-from ._units import MAX_PGA_G, PLAUSIBLE_PEAK_G, UnitsWarning, check_peak_acceleration, pga_factor
+from ._plausibility import MAX_PGA_G, PLAUSIBLE_PEAK_G, UnitsWarning, check_peak_acceleration
+from ._scaling import pga_factor
 
 __all__ = ["AbstractExcitation", "BaseMotion", "Harmonic", "MAX_PGA_G", "MAX_STEP_S", "OFFSET_FRACTION",
            "PLAUSIBLE_PEAK_G", "Pieces", "RESOLVING_STEP_S", "Record", "RecordSet", "RecordWarning", "RectangularPulse",
@@ -26,4 +27,6 @@ from ._readers import RECORD_SUFFIXES, record_files, record_name, unit_factor
 from ._record import check_horizontal
 from ._record_checks import offset_fraction, outside_blockdae
 from ._record_set import with_metadata
-from ._units import PGA_ROUNDINGS, check_pga, check_pga_rounding, pga_keyword
+from ._plausibility import (MAX_KY_G, check_column, check_finite_result, check_pga, ky_not_reached,
+                            warn_not_sliding)
+from ._scaling import PGA_ROUNDINGS, check_pga_rounding, pga_keyword

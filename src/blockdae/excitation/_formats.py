@@ -4,7 +4,8 @@ each read by its module into :class:`~._header.Channel` s, made Records here wit
 from . import _cosmos, _esm, _knet, _record_checks, _seismo
 from ._readers import _resolve_units, _sample_step, decode, file_bytes, record_name
 from ._record import Record
-from ._units import check_peak_acceleration, unit_factor
+from ._plausibility import check_peak_acceleration
+from ._units import unit_factor
 
 #: (name, test of a file's text, reader) of the text formats, tried in this order
 _TEXT_FORMATS = (("COSMOS", _cosmos.is_cosmos, _cosmos.read_cosmos),

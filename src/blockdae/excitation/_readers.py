@@ -14,7 +14,8 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY  # noqa: F401 (imported from here by blockdae.excitation)
 from . import _record_checks
-from ._units import _SYMBOLS, canonical_units, check_peak_acceleration, unit_factor, units_named, unstated_units_error
+from ._plausibility import check_peak_acceleration, unstated_units_error
+from ._units import _SYMBOLS, canonical_units, unit_factor, units_named
 
 # an AT2 header's "IN UNITS OF ..." text, squeezed by _squeeze_units
 _HEADER_UNITS = {"G": "g", "M/S2": "m/s2", "CM/S2": "cm/s2", "GAL": "cm/s2", "GALS": "cm/s2"}

@@ -9,7 +9,8 @@ import numpy as np
 from ..units import STANDARD_GRAVITY
 from ._base import AbstractExcitation, check_finite, check_positive
 from .pieces import Pieces
-from ._units import check_peak_acceleration, unit_factor
+from ._plausibility import check_peak_acceleration
+from ._units import unit_factor
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -26,9 +27,11 @@ class Record(AbstractExcitation):
         units: units of ``acceleration``: "m/s2", "g", "cm/s2" or "gal"; None (default):
             m/s², as every number blockdae takes from Python.
         g: the value of one "g" [m/s²], for ``units="g"``.
-        check_peak: raise ValueError if a nonzero peak is implausible in ``units``
-            (outside :data:`PLAUSIBLE_PEAK_G`, 1e-4 g to 4 g: an array in g or cm/s² given
-            as m/s², ...), naming the likely units; False accepts any peak.
+        check_peak: the peak rule (:func:`check_peak_acceleration`): ValueError if a nonzero
+            peak is implausible in ``units`` (outside :data:`PLAUSIBLE_PEAK_G`, 1e-4 g to 4 g:
+            an array in g or cm/s² given as m/s², ...), naming the likely units; a
+            :class:`UnitsWarning` if it is above 2 g, or if ``units`` is None and the peak is
+            at most 2 (an array in g read as m/s²: state ``units``); False accepts any peak.
         metadata: what a reader found in the file's header (format, units as read,
             station, component, event, ...), kept read-only; empty by default.
 
@@ -60,7 +63,7 @@ class Record(AbstractExcitation):
         object.__setattr__(self, "metadata", types.MappingProxyType(dict(metadata or {})))
         if check_peak and np.any(samples):  # a record of zeros: no units to get wrong
             check_peak_acceleration(samples, "m/s2" if units is None else units, g,
-                                    f"Record {self.name!r}" if self.name else "Record")
+                                    f"Record {self.name!r}" if self.name else "Record", stated=units is not None)
         if units is not None:
             samples = samples * unit_factor(units, g)
         samples.setflags(write=False)

@@ -18,7 +18,8 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ..solvers import linear_pieces
-from ..excitation import Record, RecordSet, check_horizontal, with_metadata, pga_factor, pga_keyword
+from ..excitation import (Record, RecordSet, check_column, check_finite_result, check_horizontal, pga_factor,
+                          pga_keyword, warn_not_sliding, with_metadata)
 from . import _engine, _fused, _table_kernel
 from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear, equivalent_linear_steps
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, flat_table_model, slip_underdamped
@@ -167,9 +168,26 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     rows_of, _ = INTEGRATIONS[integration]
     if analyses and analyses[0].model.table is not None:  # plan gives every model the table or none
         rows_of = table_rows
-    return FlexibleResult(rows=rows_of(analyses), method=method, integration=integration,
+    rows = rows_of(analyses)
+    _check_rows(rows, analyses)
+    return FlexibleResult(rows=rows, method=method, integration=integration,
                           pga_g=tuple(a.record.peak_acceleration / a.model.g for a in analyses),
                           metadata=motion.metadata if isinstance(motion, RecordSet) else None)
+
+
+def _check_rows(rows, analyses):
+    """The plausibility rules on the rows of :func:`flexible`: every result finite (else a
+    ValueError naming it), and the ky rule (:func:`~blockdae.excitation.warn_not_sliding`)
+    against kmax, the peak of the sliding mass's average acceleration that drives its slide
+    (over time; at the samples for integration "slammer")."""
+    for row, analysis in zip(rows, analyses):
+        names = ("kmax_g", *(_RUN_OF[polarity][1] for polarity in analysis.polarities))
+        check_finite_result([row[name] for name in names],
+                            lambda index: f"bd.flexible: {names[index[0]]} of {row['record']!r} ({analysis.model})")
+    several = len({(row["height_m"], row["vs_m_s"]) for row in rows}) > 1
+    cases = [(f"{row['record']}" + (f" (H {row['height_m']:g} m, vs {row['vs_m_s']:g} m/s)" if several else ""),
+              row["kmax_g"] if math.isnan(row["kmax_sup_g"]) else row["kmax_sup_g"], row["ky_g"]) for row in rows]
+    warn_not_sliding(cases, len(rows), peak_name="kmax", body="mass", kind="analyses")
 
 
 def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
@@ -200,6 +218,7 @@ def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, referen
     if t_end is not None and not (isinstance(t_end, numbers.Real) and not isinstance(t_end, bool) and
                                   math.isfinite(t_end) and t_end > 0):
         raise ValueError(f"t_end={t_end!r} must be a positive finite time [s] (or None: each record's last sample)")
+    check_column(height, vs, vr, damping)
     given = {"ky": ky, "height": height, "vs": vs, "vr": vr, "damping": damping}
     if vr is None:
         given["vr"] = np.nan  # not given: each column takes its vs

@@ -10,13 +10,13 @@ the downslope displacement is D = -u(t_end). :func:`newmark` runs one record
 """
 
 import dataclasses
-import warnings
 
 import numpy as np
 
 from ..core import cases, compact_repr, sensitivities, simulate
 from ..units import STANDARD_GRAVITY
-from ..excitation import AbstractExcitation, RecordSet, UnitsWarning, pga_keyword, with_metadata
+from ..excitation import (AbstractExcitation, RecordSet, check_finite_result, pga_keyword, warn_not_sliding,
+                          with_metadata)
 from ..flexible_mass import downslope_with_table
 from ._model import SlidingBlock
 
@@ -240,6 +240,7 @@ def newmark(motion, ky, polarity: str = "both", g: float = STANDARD_GRAVITY, t_e
         downslope = np.array([[[[downslope_with_table(given.motion(i, k, p), table, g, t_end)]
                                 for k in range(given.shape[1])] for i in range(given.shape[0])]
                               for p in range(given.shape[2])])
+    _check_finite(downslope, given, np.atleast_1d(ky_array), g)
     _warn_not_sliding(given, np.atleast_1d(ky_array), g)
     slopes = _slopes(given, np.atleast_1d(ky_array), g, t_end) if derivative else None
     columns = dict(zip(given.polarities, downslope))
@@ -286,45 +287,21 @@ def _slopes(given, ky, g, t_end) -> np.ndarray:
 
 
 def _warn_not_sliding(cases, ky, g):
-    """A UnitsWarning naming the (record, PGA) cases where some ky [g] is at or above the
-    motion's peak (no sliding: D = 0); a ValueError where such a ky is also above
-    :data:`MAX_KY_G` (it reads as m/s²)."""
-    still = []
-    for name, peaks in zip(cases.names, cases.peak_g(g)):
-        for peak in peaks:
-            if shown := _not_sliding(ky, peak, where=f"{name}: " if len(cases.names) > 1 else ""):
-                still.append((name, peak, shown))
-    if len(still) == 1 and len(cases.names) * cases.factors.shape[1] == 1:
-        _, peak, shown = still[0]
-        warnings.warn(f"ky={shown} g >= PGA = {peak:.4g} g: the block does not slide, D = 0 m", UnitsWarning,
-                      stacklevel=3)
-    elif still:
-        cases_shown = [f"{name} (PGA {peak:.4g} g): ky={shown} g" for name, peak, shown in still]
-        more = f"; and {len(still) - _CASES_SHOWN} more" if len(still) > _CASES_SHOWN else ""
-        warnings.warn(f"ky >= PGA in {len(still)} of {cases.factors.size} (record, PGA) cases: the block does not "
-                      f"slide there, D = 0 m: {'; '.join(cases_shown[:_CASES_SHOWN])}{more}", UnitsWarning,
-                      stacklevel=3)
+    """The ky rule (:func:`blockdae.excitation.warn_not_sliding`) on every (record, PGA)
+    case of ``cases``: a UnitsWarning where some ky [g] is at or above the motion's peak
+    (D = 0), a ValueError where such a ky is also above 1 g (it reads as m/s²)."""
+    peaks = [(name, peak, ky) for name, case_peaks in zip(cases.names, cases.peak_g(g)) for peak in case_peaks]
+    warn_not_sliding(peaks, len(cases.names) * cases.factors.shape[1])
 
 
-#: a yield acceleration [g] above this that no motion exceeds is refused: likely m/s²
-MAX_KY_G = 1.0
-
-
-def _not_sliding(ky, pga, where=""):
-    """The ky [g] at or above the motion's peak ``pga`` [g] (no sliding, D = 0), as text
-    ("0.4, 0.5"), or "" if none; refuses one also above :data:`MAX_KY_G` (it reads as m/s²),
-    the message starting with ``where`` (e.g. the record's name)."""
-    still = np.atleast_1d(ky)[np.atleast_1d(ky) >= pga]
-    high = still[still > MAX_KY_G]
-    if high.size:
-        k = float(high[0])
-        raise ValueError(f"{where}ky={k:g} g is above {MAX_KY_G:g} g and the motion's peak ({pga:.4g} g): it looks "
-                         f"like m/s² ({k:g} m/s² = {k / STANDARD_GRAVITY:.4g} g); give ky in g")
-    return ", ".join(f"{k:g}" for k in still)
-
-
-#: cases named in the warning of a sweep where some ky >= PGA
-_CASES_SHOWN = 5
+def _check_finite(downslope, given, ky, g):
+    """ValueError naming the case whose D [m] in ``downslope`` (polarity, record, pga, ky)
+    is not finite (an overflow)."""
+    def describe(index):
+        p, i, k, j = index
+        return (f"bd.newmark: D of {given.names[i]!r} ({given.polarities[p]} polarity, PGA "
+                f"{given.peak_g(g)[i, k]:.4g} g, ky={ky[j]:g} g) [m]")
+    check_finite_result(downslope, describe)
 
 
 def _combine(op, normal, inverse):
