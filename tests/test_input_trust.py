@@ -174,7 +174,7 @@ def test_knet_mean_removed_by_default_and_said_so():
         raw = bd.read_record(KNET, remove_mean=False)
     assert record.metadata["mean_removed"] is True and raw.metadata["mean_removed"] is False
     assert record.metadata["mean_m_s2"] == pytest.approx(raw.acceleration_samples.mean(), rel=1e-12)
-    centred = bd.Record(raw.acceleration_samples - raw.acceleration_samples.mean(), raw.dt)
+    centred = bd.Record(raw.acceleration_samples - raw.acceleration_samples.mean(), raw.dt, units="m/s2")
     np.testing.assert_allclose(record.acceleration_samples, centred.acceleration_samples, rtol=0, atol=1e-15)
     d = bd.newmark(record, [0.05, 0.1], pga=0.3)
     np.testing.assert_allclose(d.inverse, bd.newmark(centred, [0.05, 0.1], pga=0.3).inverse, rtol=1e-12)
@@ -261,3 +261,198 @@ def test_cli_refuses_a_target_pga_in_m_s2(capsys):
         assert "--accept-peak" in err
     status, out, err = run_cli(capsys, "newmark", KOBE, "--ky", "0.5", "--pga", "2.94", "--accept-peak")
     assert status == 0 and "scaled to a peak of 2.94 g" in out
+
+
+# --- the plausibility rules: ky, the column, peaks, results --------------------------------
+
+def test_flexible_refuses_a_ky_in_m_s2_and_warns_about_a_ky_not_reached_as_newmark_does(kobe_g, capsys):
+    """ky=9.81 (one g typed in m/s²) is refused and ky=0.98 (above kmax, D = 0) warned about, as
+    bd.newmark does against the PGA; the flexible mass's sliding is driven by kmax, the peak of its
+    average acceleration (0.8427 g for Kobe TAK-090 under H = 20 m, vs = 300 m/s)."""
+    _, record = kobe_g
+    with pytest.raises(ValueError, match=re.escape("ky=9.81 g is above 1 g and kmax (0.8427 g): it looks like m/s² "
+                                                   "(9.81 m/s² = 1 g); give ky in g")):
+        bd.flexible(record, ky=9.81, height=20.0, vs=300.0)
+    with pytest.raises(ValueError, match=r"ky=9.81 g is above 1 g and the motion's peak \(0.6155 g\)"):
+        bd.newmark(record, 9.81)
+    with pytest.warns(bd.UnitsWarning, match=re.escape("ky=0.98 g >= kmax = 0.8427 g: the mass does not slide, "
+                                                       "D = 0 m")):
+        result = bd.flexible(record, ky=0.98, height=20.0, vs=300.0)
+    assert result.rows[0]["normal_m"] == 0 and result.rows[0]["inverse_m"] == 0
+    with pytest.warns(bd.UnitsWarning, match=r"ky >= kmax in 1 of 2 analyses: the mass does not slide there, D = 0 m: "
+                                             r"Kobe_1995_TAK-090 \(kmax 0.8427 g\): ky=0.98 g"):
+        bd.flexible(record, ky=[0.1, 0.98], height=20.0, vs=300.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", bd.UnitsWarning)
+        assert bd.flexible(record, ky=0.8, height=20.0, vs=300.0).rows[0]["normal_m"] > 0  # below kmax: slides
+    status, out, err = run_cli(capsys, "flexible", KOBE, "--ky", "9.81", "--height", "20", "--vs", "300")
+    assert status == 2 and out == "" and "ky=9.81 g is above 1 g and kmax (0.8427 g): it looks like m/s²" in err
+    status, out, err = run_cli(capsys, "flexible", KOBE, "--ky", "0.98", "--height", "20", "--vs", "300")
+    assert status == 0 and "blockdae: warning: ky=0.98 g >= kmax = 0.8427 g: the mass does not slide, D = 0 m" in err
+
+
+@pytest.mark.parametrize("given, message", [
+    (dict(vs=0.3), "vs=0.3 m/s is implausible for a soil's or rock's shear-wave velocity (plausible: 30 m/s to "
+                   "5000 m/s); in other units? 0.3 km/s = 300 m/s; give vs in m/s"),
+    (dict(vr=0.6), "vr=0.6 m/s is implausible for a soil's or rock's shear-wave velocity (plausible: 30 m/s to "
+                   "5000 m/s); in other units? 0.6 km/s = 600 m/s"),
+    (dict(height=20000.0), "height=20000 m is implausible for a sliding mass's height (plausible: 0.5 m to 500 m); "
+                           "in other units? 20000 cm = 200 m or 20000 mm = 20 m; give height in m"),
+    (dict(height=0.02), "height=0.02 m is implausible for a sliding mass's height (plausible: 0.5 m to 500 m); in "
+                        "other units? 0.02 km = 20 m"),
+    (dict(damping=0.5), "damping=0.5 is a damping ratio of 50 %, above the 30 % a soil reaches: if it is a "
+                        "percentage, give damping=0.005"),
+])
+def test_flexible_warns_about_a_column_in_other_units(kobe_g, given, message):
+    """Vs typed in km/s gave D = 0.0005 m and a column period of 267 s without a word; each column value
+    outside the range of slopes is warned about, naming the unit that brings it in."""
+    _, record = kobe_g
+    parameters = dict(ky=0.1, height=20.0, vs=300.0) | given
+    with pytest.warns(bd.UnitsWarning, match=re.escape(message)):
+        bd.flexible(record, **parameters)
+
+
+def test_flexible_refuses_a_damping_in_percent_and_is_silent_on_plausible_columns(kobe_g, capsys):
+    _, record = kobe_g
+    with pytest.raises(ValueError, match=re.escape("damping=5 is a damping ratio of 500 %: give the ratio, not a "
+                                                   "percentage (5 % is damping=0.05)")):
+        bd.flexible(record, ky=0.1, height=20.0, vs=300.0, damping=5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", bd.UnitsWarning)
+        bd.flexible(record, ky=0.1, height=[1.0, 20.0, 300.0], vs=[50.0, 300.0, 3000.0], vr=1000.0, damping=0.2)
+    status, out, err = run_cli(capsys, "flexible", KOBE, "--ky", "0.1", "--height", "20", "--vs", "0.3")
+    assert status == 0 and "blockdae: warning: vs=0.3 m/s is implausible" in err and "0.3 km/s = 300 m/s" in err
+
+
+def test_an_array_without_units_whose_peak_reads_as_g_is_warned_about(kobe_g):
+    """Kobe in g (peak 0.6155) given without units ran as a record of 0.063 g; it is warned about, naming
+    units='g'; stating the units (either) silences it; a peak above 2 m/s² cannot be g read as m/s²."""
+    table, reference = kobe_g
+    with pytest.warns(bd.UnitsWarning, match=re.escape(
+            "Record: no units given, the samples are read as m/s²: a peak of 0.6155 m/s² = 0.06276 g; if they are in "
+            "g (a peak of 0.6155 g), pass units='g'; pass units='m/s2' to state m/s²")):
+        bd.Record(table[:, 1], 0.01)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", bd.UnitsWarning)
+        in_g = bd.Record(table[:, 1], 0.01, units="g")
+        bd.Record(table[:, 1], 0.01, units="m/s2")
+        bd.Record(table[:, 1] * G, 0.01)  # 6.04 m/s²: no g reading
+        bd.Record(table[:, 1], 0.01, check_peak=False)
+    np.testing.assert_allclose(in_g.acceleration_samples, reference.acceleration_samples, rtol=1e-12)
+
+
+def test_a_peak_above_2_g_with_stated_units_is_warned_about(tmp_path, kobe_g, capsys):
+    """A weak record (Kobe scaled to 0.0308 g) in cm/s² read as m/s² is a 3.08 g record (D = metres for none):
+    above 2 g, warned about naming cm/s², from an array, a file and the command line."""
+    table, _ = kobe_g
+    weak_cm_s2 = table[:, 1] * 0.05 * G * 100
+    message = "peak acceleration 30.18 m/s² = 3.077 g is above 2 g, rarer than a unit mix-up: it looks like cm/s² " \
+              "read as m/s² (30.18 cm/s² = 0.03077 g)"
+    with pytest.warns(bd.UnitsWarning, match=re.escape(f"Record: {message}: pass units='cm/s2'")):
+        bd.Record(weak_cm_s2, 0.01, units="m/s2")
+    path = write_table(tmp_path / "weak.csv", table[:, 0], weak_cm_s2, "time (s), acc (m/s2)")
+    with pytest.warns(bd.UnitsWarning, match=re.escape(f"{path}: {message}: correct the file (the header's line 1: "
+                                                       "'time (s), acc (m/s2)' sets the units)")):
+        bd.read_record(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", bd.UnitsWarning)
+        bd.read_record(path, check_peak=False)
+        assert bd.Record(weak_cm_s2, 0.01, units="cm/s2").peak_acceleration == pytest.approx(0.3018, rel=1e-3)
+    status, out, err = run_cli(capsys, "newmark", path, "--ky", "0.1")
+    assert status == 0 and f"blockdae: warning: {path}: {message}" in err
+
+
+def test_a_result_that_overflows_is_an_error():
+    """Samples of 1e300 m/s² (accepted with check_peak=False) overflowed to D = inf, returned silently."""
+    t = np.arange(0.0, 10.0, 0.01)
+    record = bd.Record(3.0 * np.sin(2 * np.pi * t) * 1e300, 0.01, "huge", check_peak=False)
+    with pytest.raises(ValueError, match=r"^bd.newmark: D of 'huge' \(normal polarity, PGA 3.059e\+299 g, ky=0.1 g\) "
+                                         r"\[m\] is inf \(not a finite number: the computation overflowed\)"):
+        bd.newmark(record, 0.1, check_peak=False)
+    with pytest.raises(ValueError, match=r"bd.newmark: D of 'huge' .* is inf"):
+        bd.newmark([record], [0.1, 0.2], check_peak=False)
+
+
+# --- readers: a cut value, a malformed first row, time units, a changed file --------------
+
+def _at2(values):
+    """The text of a PEER AT2 file of ``values`` [g] at dt = 0.01 s, five to a line as PEER writes them."""
+    lines = ["".join(f"{v:15.7E}" for v in values[i:i + 5]) for i in range(0, len(values), 5)]
+    return ("PEER NGA STRONG MOTION DATABASE RECORD\nTEST 1/1/2000, STATION, 090\n"
+            f"ACCELERATION TIME SERIES IN UNITS OF G\nNPTS= {len(values):6d}, DT=   .0100 SEC\n" + "\n".join(lines) + "\n")
+
+
+def test_an_at2_cut_inside_its_last_value_is_refused(tmp_path, kobe_g, capsys):
+    """Kobe as an AT2 cut one character short ('...E-0' for '...E-01'): the count still matches and the last
+    value still parses (as a value 10 times too large); refused naming the file and line."""
+    table, reference = kobe_g
+    values = table[:, 1].copy()
+    values[-1] = -0.35901855  # written -3.5901855E-01
+    intact = tmp_path / "intact.AT2"
+    intact.write_text(_at2(values))
+    np.testing.assert_allclose(bd.read_record(intact).acceleration_g, values, rtol=1e-7)
+    cut = tmp_path / "cut.AT2"
+    cut.write_text(intact.read_text().rstrip()[:-1])
+    assert cut.read_text().endswith("-3.5901855E-0")
+    line = len(cut.read_text().split("\n"))
+    message = (f"{cut}, line {line}: the last value, '-3.5901855E-0', is written shorter than the values before it "
+               f"('{values[-2]:.7E}'): the file is cut short; get it again")
+    with pytest.raises(ValueError, match=re.escape(message)):
+        bd.read_record(cut)
+    status, out, err = run_cli(capsys, "newmark", cut, "--ky", "0.1")
+    assert status == 2 and out == "" and message in err
+
+
+@pytest.mark.parametrize("header", ["", "time (s), acc (g)\n"])
+def test_a_malformed_first_data_row_is_not_taken_for_a_header(tmp_path, capsys, header):
+    """'0.00,--1' was read as a header (one sample lost, the start time shifted); a header line names
+    its columns in words, so this one is a data line that is not a number: refused naming the line."""
+    path = tmp_path / "bad.csv"
+    path.write_text(header + "0.00,--1\n0.01,0.2\n0.02,-0.1\n0.03,0.05\n")
+    line = 2 if header else 1
+    message = (f"{path}, line {line}: not a number, '--1', in '0.00,--1': a data line, not a header (a header line "
+               "names the columns in words; start a comment line with '#')")
+    with pytest.raises(ValueError, match=re.escape(message)):
+        bd.read_record(path, units=None if header else "g")
+    status, _, err = run_cli(capsys, "newmark", path, "--ky", "0.1", "--units", "g")
+    assert status == 2 and message in err
+    path.write_text(header + "Kobe 1995 TAK-090\n0.00,0.1\n0.01,0.2\n0.02,-0.1\n")  # a title: 3 fields, words
+    record = bd.read_record(path, units=None if header else "g")
+    assert record.acceleration_samples.size == 3 and record.start_time == 0
+
+
+def test_a_time_column_in_ms_is_read_as_the_header_says(tmp_path, kobe_g, capsys):
+    """'time (ms), acc (g)' was read in seconds (dt = 10 s, refused as milliseconds even though the header
+    said so); its times are read in ms: the record of the file in seconds. An unknown time unit is refused."""
+    table, reference = kobe_g
+    path = write_table(tmp_path / "ms.csv", table[:, 0] * 1000, table[:, 1], "time (ms), acc (g)")
+    record = bd.read_record(path)
+    assert record.dt == 0.01 and record.start_time == pytest.approx(table[0, 0], abs=1e-12)
+    np.testing.assert_allclose(record.acceleration_samples, reference.acceleration_samples, rtol=1e-12)
+    status, out, _ = run_cli(capsys, "newmark", path, "--ky", "0.1", "--json")
+    assert status == 0
+    assert json.loads(out)["results"][0]["normal_m"] == pytest.approx(bd.newmark(reference, 0.1).normal, rel=1e-12)
+    for header, scale in (("t_ms, a (g)", 1000), ("Time in seconds, acc (g)", 1), ("t [s], a [g]", 1)):
+        path = write_table(tmp_path / "t.csv", table[:, 0] * scale, table[:, 1], header)
+        assert bd.read_record(path).dt == 0.01
+    path = write_table(tmp_path / "min.csv", table[:, 0] / 60, table[:, 1], "time (min), acc (g)")
+    with pytest.raises(ValueError, match=re.escape(f"{path}, line 1: 'time (min), acc (g)': the header names the "
+                                                   "time in 'min', not a unit read here (s or ms): convert the time "
+                                                   "column to seconds")):
+        bd.read_record(path)
+
+
+def test_a_record_set_never_returns_a_record_its_table_does_not_describe(tmp_path, kobe_g):
+    """A file changed after the set was listed: its table kept the old PGA while the record read later had
+    the new data; the record is now refused, naming the file, until the set is read again."""
+    table, _ = kobe_g
+    write_table(tmp_path / "a.csv", table[:, 0], table[:, 1], "time (s), acc (g)")
+    changed = write_table(tmp_path / "b.csv", table[:, 0], table[:, 1], "time (s), acc (g)")
+    records = bd.read_records(tmp_path)
+    assert records.table["pga_g"].tolist() == pytest.approx([0.6155] * 2, abs=1e-4)
+    write_table(changed, table[:, 0], 0.5 * table[:, 1], "time (s), acc (g)")
+    assert records["a"].peak_acceleration == pytest.approx(0.6155 * G, abs=1e-3)  # unchanged: read
+    with pytest.raises(ValueError, match=re.escape(f"{changed}: the file changed after the record set was read")):
+        records["b"]
+    again = bd.read_records(tmp_path)
+    assert again.table["pga_g"].tolist()[1] == pytest.approx(again["b"].peak_acceleration / G, rel=1e-12)

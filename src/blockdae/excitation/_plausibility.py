@@ -152,17 +152,18 @@ def ky_not_reached(ky, peak_g, where="", peak_name="the motion's peak"):
 _CASES_SHOWN = 5
 
 
-def warn_not_sliding(cases, total, peak_name="PGA", body="block", kind="(record, PGA) cases"):
+def warn_not_sliding(cases, total, peak_name="PGA", body="block", kind="(record, PGA) cases",
+                     peak_words="the motion's peak"):
     """Refuse a ky [g] above :data:`MAX_KY_G` that its case's peak does not reach, and warn
     (a :class:`UnitsWarning`) about every case whose ky [g] its peak does not reach (D = 0).
 
     ``cases``: (name, peak [g], the ky [g] of the case) of each case, e.g. (record, PGA) of a
     rigid block or (record, kmax) of a sliding mass; ``total``: the number of cases run;
-    ``peak_name``: the peak's name in the message; ``body``: what does not slide; ``kind``:
-    what the cases are, in the message."""
+    ``peak_name``: the peak's name in the warning, ``peak_words`` in the error; ``body``: what
+    does not slide; ``kind``: what the cases are, in the warning."""
     still = []
     for name, peak, ky in cases:
-        if shown := ky_not_reached(ky, peak, f"{name}: " if total > 1 else "", peak_name):
+        if shown := ky_not_reached(ky, peak, f"{name}: " if total > 1 else "", peak_words):
             still.append((name, peak, shown))
     if len(still) == 1 and total == 1:
         _, peak, shown = still[0]

@@ -15,7 +15,7 @@ import numpy as np
 from ..units import STANDARD_GRAVITY  # noqa: F401 (imported from here by blockdae.excitation)
 from . import _record_checks
 from ._plausibility import check_peak_acceleration, unstated_units_error
-from ._units import _SYMBOLS, canonical_units, unit_factor, units_named
+from ._units import _SYMBOLS, canonical_units, time_units_named, unit_factor, units_named
 
 # an AT2 header's "IN UNITS OF ..." text, squeezed by _squeeze_units
 _HEADER_UNITS = {"G": "g", "M/S2": "m/s2", "CM/S2": "cm/s2", "GAL": "cm/s2", "GALS": "cm/s2"}
@@ -117,6 +117,9 @@ def read_table(path, units, dt, g, check_peak, columns, text=None, *, check_step
         step_source = f"{path}, line {layout.at2[0] + 1}: DT"
     else:
         samples, file_dt, start_time = _read_columns(text, layout, path, columns)
+        if file_dt is not None:  # a time column: in the units its header names (s by default)
+            to_seconds = _table_time_factor(lines[:layout.start], path)
+            file_dt, start_time = float(f"{file_dt * to_seconds:.12g}"), start_time * to_seconds
         header_units, statement = _table_units(lines[:layout.start], path)
         rows = _data_line_numbers(lines, layout.start)[:2]
         step_source = (f"{path}, lines {rows[0]}-{rows[-1]}: the time column" if file_dt is not None
@@ -185,20 +188,43 @@ def _scan(text, path):
     """The :class:`_Layout` of the file at ``path`` (its ``text``), read up to the AT2
     header line or the first data line."""
     at2 = record_suffix(path) == ".at2"
+    names = []  # (index, text) of the lines before the first data line that are no numbers
     for i, line in enumerate(io.StringIO(text)):
         header = _at2_header(line, i, path) if i < _HEADER_LINES else None
         if header is not None:
             return _Layout(header)
         text = line.split("#", 1)[0].strip()
-        if not text or _numbers(text, False) is None:
-            continue  # blank, or a header line of column names
+        if not text:
+            continue
+        if _numbers(text, False) is None:
+            names.append((i, text))  # a header line of column names, or a malformed data line
+            continue
         if at2:
             break
         delimiter = ";" if ";" in text else "," if "," in text else None
-        return _Layout(None, i, delimiter, _decimal_comma(text, i, path))
+        decimal_comma = _decimal_comma(text, i, path)
+        _check_header_lines(names, len(_numbers(text, decimal_comma)), decimal_comma, path)
+        return _Layout(None, i, delimiter, decimal_comma)
     if at2:
         raise ValueError(f"{path}: no 'NPTS=..., DT=...' line in the first {_HEADER_LINES} lines (AT2 header)")
     raise ValueError(f"{path}: no data rows")
+
+
+#: a field that starts as a number does ("1.5", "-0.2", "--1", ".5e-3x"): no column name
+_NUMERIC_LOOKING = re.compile(r"[+-]*\.?\d")
+
+
+def _check_header_lines(lines, columns, decimal_comma, path):
+    """ValueError naming the first of ``lines`` (index, text), the lines above a table's
+    first data line that are not all numbers, which is a malformed data line rather than a
+    header: a field that starts as a number does, and as many fields as the ``columns``
+    of the data lines (a header line names its columns in words)."""
+    for i, text in lines:
+        fields = [f for f in re.split(r"[;\s]+" if decimal_comma else r"[,;\s]+", text) if f]
+        if len(fields) == columns and any(_NUMERIC_LOOKING.match(f) for f in fields):
+            bad = next((f for f in fields if _numbers(f, decimal_comma) is None), text)
+            raise ValueError(f"{path}, line {i + 1}: not a number, {bad!r}, in {text!r}: a data line, not a header "
+                             "(a header line names the columns in words; start a comment line with '#')")
 
 
 def _sample_step(dt, file_dt, path):
@@ -287,12 +313,42 @@ def _read_at2(lines, header, path):
         _raise_first_bad_value(body, index + 2, path)
     if samples.size != npts:
         raise ValueError(f"{path}: header (line {index + 1}) says NPTS={npts}, found {samples.size} values")
+    _check_last_value(body, index + 2, path)
     bad = np.flatnonzero(~np.isfinite(samples))
     if bad.size:
         counts = np.cumsum([len(line.split()) for line in body])
         line_no = index + 2 + int(np.searchsorted(counts, bad[0], side="right"))
         raise ValueError(f"{path}, line {line_no}: value {samples[bad[0]]} is not finite")
     return samples, dt, 0.0
+
+
+#: how a value is written: its decimals, and its exponent's digits
+_WRITTEN = re.compile(r"[+-]?\d*(?:\.(\d*))?(?:[eEdD][+-]?(\d*))?$")
+#: values before the last that show how an AT2 file writes its values
+_VALUES_COMPARED = 8
+
+
+def _check_last_value(body, first_line, path):
+    """ValueError naming the line if an AT2 file's last value is written shorter (fewer
+    decimals or exponent digits) than the values before it, which are all written alike:
+    a file cut inside its last value ('-3.5901855E-0' where the others read '-1.2345678E-02')."""
+    lines = [(n, line.split()) for n, line in enumerate(body, start=first_line) if line.strip()]
+    fields = [field for _, line in lines[-3:] for field in line]
+    if len(fields) < 2:
+        return
+    before = fields[-1 - _VALUES_COMPARED:-1]
+    forms = {_form(field) for field in before}
+    last = _form(fields[-1])
+    if len(forms) == 1 and (shown := forms.pop()) != last and all(a < b for a, b in zip(last, shown) if a != b):
+        raise ValueError(f"{path}, line {lines[-1][0]}: the last value, {fields[-1]!r}, is written shorter than "
+                         f"the values before it ({before[-1]!r}): the file is cut short; get it again")
+
+
+def _form(field):
+    """(decimals, exponent digits) of a number as written; (-1, -1) for no decimal point or exponent."""
+    match = _WRITTEN.match(field)
+    decimals, exponent = match.groups() if match else (None, None)
+    return (-1 if decimals is None else len(decimals)), (-1 if exponent is None else len(exponent))
 
 
 def _raise_first_bad_value(body, first_line, path):
@@ -325,6 +381,23 @@ def _table_units(header_lines, path):
         raise ValueError(f"{path}: the header names different units, {', '.join(_SYMBOLS[u] for u in found)} "
                          f"({'; '.join(found.values())}); one file holds one unit")
     return next(iter(found.items()), (None, None))
+
+
+def _table_time_factor(header_lines, path):
+    """The factor to seconds of the time column's unit that a table's header lines name
+    (:func:`~._units.time_units_named`: "time (ms)" gives 0.001), 1 where they name none;
+    a ValueError naming the line for an unknown unit or two different ones."""
+    found = {}
+    for n, line in enumerate(header_lines, start=1):
+        try:
+            named = time_units_named(line)
+        except ValueError as err:
+            raise ValueError(f"{path}, line {n}: {line.strip()!r}: {err}") from None
+        if named is not None:
+            found.setdefault(named[1], f"line {n}: {line.strip()!r}")
+    if len(found) > 1:
+        raise ValueError(f"{path}: the header names different units of time ({'; '.join(found.values())})")
+    return next(iter(found), 1.0)
 
 
 def _read_columns(text, layout, path, columns):

@@ -2,6 +2,7 @@
 read on first access and kept; :func:`read_records` makes one of files, :mod:`._fema` of the
 FEMA P695 sets."""
 
+import hashlib
 import math
 import os
 import pathlib
@@ -141,15 +142,29 @@ class _Loaded:
 
 
 class _File:
-    """A source that reads channel ``index`` of a file on first call and keeps the record."""
+    """A source that reads channel ``index`` of a file on first call and keeps the record;
+    a ValueError if the file no longer holds what the set's table was computed from (its
+    SHA-256 ``digest`` when it was listed)."""
 
-    def __init__(self, path, index, options):
-        self.path, self.index, self.options, self.record = path, index, options, None
+    def __init__(self, path, index, options, digest):
+        self.path, self.index, self.options, self.digest, self.record = path, index, options, digest, None
 
     def __call__(self):
         if self.record is None:
+            if file_digest(self.path) != self.digest:
+                raise ValueError(f"{self.path}: the file changed after the record set was read: its row of the "
+                                 "set's table (pga_g, dt_s, samples, ...) describes the file as it was; read the "
+                                 "set again (bd.read_records) to use the file as it is")
             self.record = read_file_records(self.path, **self.options)[self.index]
         return self.record
+
+
+def file_digest(path) -> str:
+    """The SHA-256 of the bytes of the file at ``path`` (hex); "" if it cannot be read."""
+    try:
+        return hashlib.sha256(pathlib.Path(path).read_bytes()).hexdigest()
+    except OSError:
+        return ""
 
 
 def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=True, check_step=True,
@@ -162,7 +177,9 @@ def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=
     Each file is read once, as :func:`read_record` reads it (the options are its own), to
     check it and fill the table (format, component, station, event, magnitude, epicentral
     distance and Vs30 as its header states them; dt, samples and peak from the data); no
-    samples are kept: a record is read again on first access and kept. A file of several
+    samples are kept: a record is read again on first access and kept, and refused (a
+    ValueError naming the file) if the file changed in between (its SHA-256 differs), so that
+    the table always describes the records the set returns. A file of several
     channels (COSMOS, miniSEED) gives one row per channel. A file that cannot be read does not
     stop the set: it is listed in :attr:`RecordSet.failed` (path, error), and one
     :class:`UserWarning` names the failures. Names are the files' less their suffixes
@@ -175,13 +192,14 @@ def read_records(source, *, units=None, dt=None, g=STANDARD_GRAVITY, check_peak=
     rows, sources, failed = [], [], []
     for path in paths:
         try:
+            digest = file_digest(path)
             records = read_file_records(path, **options)
             file_rows = [row_of(r, path, g) for r in records]
         except (ValueError, OSError) as err:
             failed.append((str(path), str(err)))
             continue
         rows += file_rows
-        sources += [_File(path, k, options) for k in range(len(records))]
+        sources += [_File(path, k, options, digest) for k in range(len(records))]
     _rename_repeated(rows, sources)
     if failed:
         shown = "; ".join(f"{error}" if path in error else f"{path}: {error}" for path, error in failed[:_FAILED_SHOWN])

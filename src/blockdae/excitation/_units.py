@@ -47,3 +47,28 @@ def units_named(text: str) -> tuple[list, list]:
         text = pattern.sub(lambda match: " " * len(match.group()), text)  # "cm/s2" not read again as "m/s2"
     others = [ratio for ratio in _BRACKETED_RATIO.findall(text) if ratio.strip()]
     return sorted(found, key=found.get), others
+
+
+#: the time units a table's header may name, and their factors to seconds
+TIME_UNITS = {"s": 1.0, "sec": 1.0, "secs": 1.0, "second": 1.0, "seconds": 1.0,
+              "ms": 1e-3, "msec": 1e-3, "millisecond": 1e-3, "milliseconds": 1e-3}
+# a time column's name and its units: "time (ms)", "t [s]" (any bracketed word: refused if unknown);
+# "time_ms", "time in seconds" (known units only)
+_BRACKETED_TIME = re.compile(r"\b(?:time|t)\s*[(\[]\s*([a-zµ]+)\s*[)\]]", re.I)
+_WORDED_TIME = re.compile(r"\b(?:time|t)(?:_|\s+in\s+)([a-z]+)\b", re.I)
+
+
+def time_units_named(text: str) -> tuple[str, float] | None:
+    """(the time unit, its factor to seconds) that ``text``, a header line, names for its
+    time column ("time (ms)", "t [s]", "time_ms", "Time in seconds"); None if it names none.
+    A ValueError where a bracketed unit of time is none of :data:`TIME_UNITS` ("time (min)")."""
+    found = _BRACKETED_TIME.search(text)
+    if found is None:
+        found = _WORDED_TIME.search(text)
+        if found is None or found.group(1).lower() not in TIME_UNITS:
+            return None
+    unit = found.group(1)
+    if unit.lower() not in TIME_UNITS:
+        raise ValueError(f"the header names the time in {unit!r}, not a unit read here (s or ms): "
+                         "convert the time column to seconds")
+    return unit, TIME_UNITS[unit.lower()]

@@ -187,7 +187,7 @@ def _check_rows(rows, analyses):
     several = len({(row["height_m"], row["vs_m_s"]) for row in rows}) > 1
     cases = [(f"{row['record']}" + (f" (H {row['height_m']:g} m, vs {row['vs_m_s']:g} m/s)" if several else ""),
               row["kmax_g"] if math.isnan(row["kmax_sup_g"]) else row["kmax_sup_g"], row["ky_g"]) for row in rows]
-    warn_not_sliding(cases, len(rows), peak_name="kmax", body="mass", kind="analyses")
+    warn_not_sliding(cases, len(rows), peak_name="kmax", body="mass", kind="analyses", peak_words="kmax")
 
 
 def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
