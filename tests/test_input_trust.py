@@ -329,7 +329,7 @@ def test_an_array_without_units_whose_peak_reads_as_g_is_warned_about(kobe_g):
     units='g'; stating the units (either) silences it; a peak above 2 m/s² cannot be g read as m/s²."""
     table, reference = kobe_g
     with pytest.warns(bd.UnitsWarning, match=re.escape(
-            "Record: no units given, the samples are read as m/s²: a peak of 0.6155 m/s² = 0.06276 g; if they are in "
+            "Record: no units given, the samples are read as m/s²: a peak of 0.6155 m/s² = 0.06277 g; if they are in "
             "g (a peak of 0.6155 g), pass units='g'; pass units='m/s2' to state m/s²")):
         bd.Record(table[:, 1], 0.01)
     with warnings.catch_warnings():
@@ -342,12 +342,12 @@ def test_an_array_without_units_whose_peak_reads_as_g_is_warned_about(kobe_g):
 
 
 def test_a_peak_above_2_g_with_stated_units_is_warned_about(tmp_path, kobe_g, capsys):
-    """A weak record (Kobe scaled to 0.0308 g) in cm/s² read as m/s² is a 3.08 g record (D = metres for none):
+    """A weak record (Kobe scaled to 0.03078 g) in cm/s² read as m/s² is a 3.078 g record (D = metres for none):
     above 2 g, warned about naming cm/s², from an array, a file and the command line."""
     table, _ = kobe_g
     weak_cm_s2 = table[:, 1] * 0.05 * G * 100
-    message = "peak acceleration 30.18 m/s² = 3.077 g is above 2 g, rarer than a unit mix-up: it looks like cm/s² " \
-              "read as m/s² (30.18 cm/s² = 0.03077 g)"
+    message = "peak acceleration 30.18 m/s² = 3.078 g is above 2 g, rarer than a unit mix-up: it looks like cm/s² " \
+              "read as m/s² (30.18 cm/s² = 0.03078 g)"
     with pytest.warns(bd.UnitsWarning, match=re.escape(f"Record: {message}: pass units='cm/s2'")):
         bd.Record(weak_cm_s2, 0.01, units="m/s2")
     path = write_table(tmp_path / "weak.csv", table[:, 0], weak_cm_s2, "time (s), acc (m/s2)")
@@ -416,7 +416,7 @@ def test_a_malformed_first_data_row_is_not_taken_for_a_header(tmp_path, capsys, 
         bd.read_record(path, units=None if header else "g")
     status, _, err = run_cli(capsys, "newmark", path, "--ky", "0.1", "--units", "g")
     assert status == 2 and message in err
-    path.write_text(header + "Kobe 1995 TAK-090\n0.00,0.1\n0.01,0.2\n0.02,-0.1\n")  # a title: 3 fields, words
+    path.write_text(header + "Kobe 1995 TAK-090\n0.00,0.1\n0.01,-0.2\n0.02,0.1\n")  # a title: 3 fields, words
     record = bd.read_record(path, units=None if header else "g")
     assert record.acceleration_samples.size == 3 and record.start_time == 0
 
