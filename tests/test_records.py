@@ -162,12 +162,14 @@ def test_record_units_convert_to_m_s2():
 
 
 def test_arrays_are_m_s2_unless_units_say_otherwise():
-    """Numbers from Python are SI: an array without units is m/s², silently where its peak is
-    plausible (1e-4 g to 4 g); a weak record in cm/s² given without units (49 m/s² = 5 g) is
-    refused naming cm/s², and read with units="cm/s2"."""
+    """Numbers from Python are SI: an array without units is m/s², with a warning where its peak
+    (at most 2) reads as g too, silently where units= states them; a weak record in cm/s² given
+    without units (49 m/s² = 5 g) is refused naming cm/s², and read with units="cm/s2"."""
+    with pytest.warns(bd.UnitsWarning, match=r"Record 'r': no units given, .* pass units='g'"):
+        np.testing.assert_array_equal(bd.Record(IN_G, 0.01, "r").acceleration_samples, IN_G)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        np.testing.assert_array_equal(bd.Record(IN_G, 0.01, "r").acceleration_samples, IN_G)
+        np.testing.assert_array_equal(bd.Record(IN_G, 0.01, "r", units="m/s2").acceleration_samples, IN_G)
         bd.Record(IN_G, 0.01, units="g")
         bd.Record(np.zeros(3), 0.01)  # no peak, no units to get wrong
     weak_in_cm_s2 = IN_G / 6 * G0 * 100  # a 0.05 g record in cm/s²

@@ -11,11 +11,13 @@ from ._record import Record
 from ._record_set import RecordSet, read_records
 from ._resample import resample
 from ._record_checks import MAX_STEP_S, OFFSET_FRACTION, RESOLVING_STEP_S, RecordWarning
-from ._plausibility import MAX_PGA_G, PLAUSIBLE_PEAK_G, UnitsWarning, check_peak_acceleration
+from ._plausibility import (AMBIGUOUS_PEAK, MAX_KY_G, MAX_PGA_G, MAX_PLAUSIBLE_DAMPING, PLAUSIBLE_HEIGHT_M,
+                            PLAUSIBLE_PEAK_G, PLAUSIBLE_VS_M_S, UnitsWarning, check_peak_acceleration)
 from ._scaling import pga_factor
 
-__all__ = ["AbstractExcitation", "BaseMotion", "Harmonic", "MAX_PGA_G", "MAX_STEP_S", "OFFSET_FRACTION",
-           "PLAUSIBLE_PEAK_G", "Pieces", "RESOLVING_STEP_S", "Record", "RecordSet", "RecordWarning", "RectangularPulse",
+__all__ = ["AMBIGUOUS_PEAK", "AbstractExcitation", "BaseMotion", "Harmonic", "MAX_KY_G", "MAX_PGA_G",
+           "MAX_PLAUSIBLE_DAMPING", "MAX_STEP_S", "OFFSET_FRACTION", "PLAUSIBLE_HEIGHT_M", "PLAUSIBLE_PEAK_G",
+           "PLAUSIBLE_VS_M_S", "Pieces", "RESOLVING_STEP_S", "Record", "RecordSet", "RecordWarning", "RectangularPulse",
            "STANDARD_GRAVITY", "SinePulse", "TriangularPulse", "UnitsWarning", "check_peak_acceleration", "pga_factor",
            "read_motion", "read_record", "read_records", "resample"]
 
@@ -27,6 +29,5 @@ from ._readers import RECORD_SUFFIXES, record_files, record_name, unit_factor
 from ._record import check_horizontal
 from ._record_checks import offset_fraction, outside_blockdae
 from ._record_set import with_metadata
-from ._plausibility import (MAX_KY_G, check_column, check_finite_result, check_pga, ky_not_reached,
-                            warn_not_sliding)
+from ._plausibility import check_column, check_finite_result, check_pga, warn_not_sliding
 from ._scaling import PGA_ROUNDINGS, check_pga_rounding, pga_keyword

@@ -329,9 +329,12 @@ _VALUES_COMPARED = 8
 
 
 def _check_last_value(body, first_line, path):
-    """ValueError naming the line if an AT2 file's last value is written shorter (fewer
-    decimals or exponent digits) than the values before it, which are all written alike:
-    a file cut inside its last value ('-3.5901855E-0' where the others read '-1.2345678E-02')."""
+    """ValueError naming the line if an AT2 file ends inside a line (no line end after its
+    last value) whose last value is written shorter (fewer decimals or exponent digits) than
+    the values before it, which are all written alike: a file cut inside its last value
+    ('-3.5901855E-0' where the others read '-1.2345678E-02')."""
+    if not body or not body[-1].strip():
+        return  # the last line is complete
     lines = [(n, line.split()) for n, line in enumerate(body, start=first_line) if line.strip()]
     fields = [field for _, line in lines[-3:] for field in line]
     if len(fields) < 2:
