@@ -130,13 +130,17 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
             pySLAMMER's pair ``(disp_values [m], ky_values [g])`` of two sequences. A ky
             in m/s² below the motion's peak cannot be told from one in g (0.49, 0.05 g in
             m/s², gives millimetres where 0.05 g gives decimetres): check that it is in g.
-        height: height H of the sliding mass [m], > 0.
-        vs: its shear-wave velocity [m/s], > 0.
+            A ky at or above kmax (no slide, D = 0) is warned about (a UnitsWarning), one
+            also above 1 g refused (9.81 is 1 g in m/s²).
+        height: height H of the sliding mass [m], > 0; outside 0.5 m to 500 m warned about.
+        vs: its shear-wave velocity [m/s], > 0; outside 30 m/s to 5000 m/s warned about
+            (0.3 is km/s), as is ``vr``.
         vr: shear-wave velocity below the slip surface [m/s]; None: vs.
         damping: the soil's damping ratio [-]; the impedance damping from vr/vs
             (min(0.55016 (vr/vs)^-0.9904, 0.20)) is added as SLAMMER does, the total must
             stay in (0, 1) (to leave it out, give damping minus it, or use
-            :class:`FlexibleSlidingMass` with ``ShearColumn(..., impedance=False)``).
+            :class:`FlexibleSlidingMass` with ``ShearColumn(..., impedance=False)``); 1 or
+            more is refused as a percentage, above 0.3 warned about.
         method: "coupled" or "decoupled".
         equivalent_linear: run SLAMMER's equivalent-linear iteration on the exact
             no-sliding peak |u| (needs ``reference_strain``).
