@@ -121,9 +121,11 @@ class Flexible:
 
     def _run(self, record, pga, values):
         options = {name: values[name] for name in ("ky", "height", "vs", "vr", "damping") if name in values}
-        return flexible(record, method=self.method, equivalent_linear=self.equivalent_linear,
-                        reference_strain=self.reference_strain, pga=pga, polarity=_engine_polarity(self.polarity),
-                        g=self.g, **options)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UnitsWarning)  # a sample at or above kmax slides nowhere: D = 0
+            return flexible(record, method=self.method, equivalent_linear=self.equivalent_linear,
+                            reference_strain=self.reference_strain, pga=pga, polarity=_engine_polarity(self.polarity),
+                            g=self.g, **options)
 
     def displacements(self, record, pga, values, derivative=False):
         """D [m] of ``record`` scaled to ``pga`` [g] for each parameter set of ``values``
