@@ -107,10 +107,14 @@ def test_the_analyses_are_the_librarys():
 
 
 def test_a_ky_above_the_peak_is_noted():
+    """The library's rule, against kmax (what drives the mass's slide): ky = 0.6 g above the
+    PGA 0.5 g but below kmax slides, with no note; ky = 0.7 g above kmax does not, noted."""
     kobe = load_sample_record("Kobe_1995_TAK-090")
     (row,), notes = analyse("kobe", kobe, Settings("decoupled", (0.7,), 20.0, 300.0, 0.05, pga=0.5))
     assert row["max_m"] == 0.0
-    assert notes == ["kobe: ky = 0.7 g is at or above the PGA 0.5 g: no sliding, D = 0 m"]
+    assert notes == ["ky=0.7 g >= kmax = 0.6845 g: the mass does not slide, D = 0 m"]
+    (row,), notes = analyse("kobe", kobe, Settings("decoupled", (0.6,), 20.0, 300.0, 0.05, pga=0.5))
+    assert row["max_m"] > 0 and notes == []
 
 
 def test_a_cancelled_run_stops_between_records(monkeypatch):

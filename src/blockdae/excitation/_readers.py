@@ -348,7 +348,8 @@ def _check_last_value(body, first_line, path):
 
 
 def _form(field):
-    """(decimals, exponent digits) of a number as written; (-1, -1) for no decimal point or exponent."""
+    """(decimals, exponent digits) of a number as written, each -1 where it has no decimal
+    point or no exponent."""
     match = _WRITTEN.match(field)
     decimals, exponent = match.groups() if match else (None, None)
     return (-1 if decimals is None else len(decimals)), (-1 if exponent is None else len(exponent))
