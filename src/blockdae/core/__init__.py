@@ -25,6 +25,7 @@ from ._crosscheck import CrossCheck, crosscheck
 from ._driver import AbstractIntegrator, HermiteDense, drive
 from ._engines import LazyEngine
 from .events import falls, first_nonpositive, one_sign, sign_change, too_short
+from ._file_hashes import FILES, record_file, recorded, write_manifest
 from ._figures import BASE, BLOCK, EVENTS, curve, time_grid
 from ._jax_config import jax_context, set_compilation_cache
 from ._progress import progress_bar
