@@ -181,6 +181,21 @@ class RockingBlock(DifferentiableModel):
         return ("u", "u_rate") if self.slides else ("theta", "theta_rate")
 
     @property
+    def displacement_unit(self):
+        """"rad" for a block that rocks (its displacement is theta), "m" for one that slides (u)."""
+        return "m" if self.slides else "rad"
+
+    def final_quantities(self, displacement, max_abs_displacement) -> dict:
+        """overturned (|theta| at the end is pi/2, where an overturned block lies) and
+        max_theta_over_alpha (max |theta| / alpha [-]) of n runs; False and 0 for a block
+        that slides."""
+        largest = np.asarray(max_abs_displacement, dtype=float)
+        if self.slides:
+            return {"overturned": np.zeros(largest.shape, dtype=bool), "max_theta_over_alpha": np.zeros(largest.shape)}
+        return {"overturned": np.abs(np.asarray(displacement, dtype=float)[:, 0]) == 0.5 * math.pi,
+                "max_theta_over_alpha": largest / self.alpha}
+
+    @property
     def initial_mode(self):
         return RockingMode.RELEASE if self.theta0 != 0 else RockingMode.REST
 
