@@ -77,10 +77,11 @@ class RockingBlock(DifferentiableModel):
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x
     and z components [m/s²].
 
-    Backends: "cvode" (the default), "ida" and "jax" run every block; a block that rocks
-    (mu >= b/h) also runs on "compiled" (the exact or the linearised equation, a compiled
-    DOP853 with located events, any motion) and, linearised, on "exact" (its closed form,
-    compiled, for horizontal piecewise-linear records).
+    Backends: "cvode", "ida" and "jax" run every block; a block that rocks (mu >= b/h)
+    also runs on "compiled" (the exact or the linearised equation, a compiled DOP853 with
+    located events, any motion; its default) and, linearised, on "exact" (its closed form,
+    compiled, for horizontal piecewise-linear records). A block that slides runs on
+    "cvode" by default.
     """
 
     b: float
@@ -97,7 +98,6 @@ class RockingBlock(DifferentiableModel):
 
     modes = RockingMode
     component_names = ("x", "z")
-    default_backend = "cvode"
     #: the compiled engines: the integrated one of either equation (``backend="compiled"``),
     #: the linearised block's closed form (``backend="exact"``)
     _compiled = {"compiled": LazyEngine("blockdae.rocking._engine", "CompiledEngine")}
@@ -179,6 +179,11 @@ class RockingBlock(DifferentiableModel):
     @property
     def state_names(self):
         return ("u", "u_rate") if self.slides else ("theta", "theta_rate")
+
+    @property
+    def default_backend(self):
+        """"compiled" for a block that rocks (the compiled engine), "cvode" for one that slides."""
+        return "cvode" if self.slides else "compiled"
 
     @property
     def displacement_unit(self):
