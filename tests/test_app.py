@@ -253,7 +253,7 @@ def test_the_d_ky_plot_has_log_axes_and_states_the_points_it_leaves_out():
     rows += [{"record": "B", "pga_g": 0.3, "ky_g": ky, "max_m": d} for ky, d in ((0.02, 0.12), (0.1, 0.0))]
     ax = displacement_figure(rows).axes[0]
     assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
-    assert "2 points with D = 0 or ky = 0 not shown" in ax.get_title()
+    assert "2 points at D = 0 or ky = 0 not shown on the log axes" in ax.get_title()
     first, second = ax.get_lines()
     assert first.get_xdata().tolist() == [0.02, 0.1, 0.2] and first.get_ydata().tolist() == [0.31, 0.042, 0.0031]
     assert second.get_xdata().tolist() == [0.02] and second.get_ydata().tolist() == [0.12]

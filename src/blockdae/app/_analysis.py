@@ -240,6 +240,7 @@ def displacement_figure(rows):
     their number stated in the title); with one ky, a bar per (record, PGA). A matplotlib
     Figure."""
     from matplotlib.figure import Figure
+    from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
 
     cases = {}
     for row in rows:
@@ -263,8 +264,13 @@ def displacement_figure(rows):
         ax.plot(ky[shown], d[shown], marker="o", ms=3.5, lw=1.2, label=label)
     ax.set(xscale="log" if log_ky else "linear", yscale="log" if log_d else "linear",
            xlabel="yield acceleration ky [g]", ylabel="downslope displacement D [m]\n(larger polarity)",
-           title="D against ky" + (f"\n({left_out} points with D = 0 or ky = 0 not shown on the log axes; the "
-                                   "table lists them)" if left_out else ""))
+           title="D against ky" + (f"\n({left_out} points at D = 0 or ky = 0 not shown on the log axes)"
+                                   if left_out else ""))
+    for axis, log in ((ax.xaxis, log_ky), (ax.yaxis, log_d)):
+        if log:  # plain numbers at 1, 2 and 5 times the powers of ten (0.05, 0.1, 0.2)
+            axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+            axis.set_major_formatter(FormatStrFormatter("%g"))
+            axis.set_minor_formatter(NullFormatter())
     ax.grid(True, alpha=0.3)
     if len(cases) <= _LEGEND_ENTRIES:
         fig.legend(loc="outside right upper", fontsize="x-small")
