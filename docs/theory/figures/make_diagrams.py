@@ -6,6 +6,7 @@ import math
 import pathlib
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 matplotlib.rcParams.update({"svg.hashsalt": "blockdae", "font.size": 10})
@@ -72,8 +73,6 @@ def flexible_mass():
     fig, ax = plt.subplots(figsize=(6.4, 3.8))
     ax.add_patch(Rectangle((-0.6, -0.45), 5.0, 0.45, fc="0.85", ec="0.3", hatch="///"))
     ax.add_patch(Rectangle((0.6, 0.0), 1.2, 2.6, fc="#e8f0e0", ec="k", lw=1.4))
-    import numpy as np
-
     z = np.linspace(0, 1, 40)
     shape = np.sin(np.pi * z / 2)  # the first mode of a shear column fixed at its base
     ax.plot(1.2 + 0.5 * shape, 2.6 * z, color=MOTION, lw=1.6)
