@@ -1,7 +1,10 @@
 """Sphinx configuration of blockdae's documentation. The build is offline: no inventories,
-fonts or scripts are fetched; MathJax comes from the sphinx-mathjax-offline package and the
-notebooks are rendered from their stored outputs."""
+fonts or scripts are fetched; MathJax comes from the sphinx-mathjax-offline package, the
+notebooks are rendered from their stored outputs, and the getting-started tutorial (a MyST
+notebook: ``execution_mode: force`` in its front matter) is run by the build, so that its
+printed output and figures are those of this code."""
 
+import os
 import pathlib
 import sys
 
@@ -29,7 +32,11 @@ source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-n
 
 myst_enable_extensions = ["dollarmath", "amsmath", "deflist", "colon_fence"]
 myst_heading_anchors = 3
-nb_execution_mode = "off"           # notebooks are stored executed; never run at build time
+nb_execution_mode = "off"           # notebooks are stored executed; a page that runs says so itself
+nb_execution_raise_on_error = True  # a tutorial cell that fails fails the build
+# the kernel that runs the tutorial inherits this environment: its figures drawn inline
+# (a build under MPLBACKEND=Agg would show none)
+os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"

@@ -1423,7 +1423,8 @@ assert abs(free.impact_times[0] - np.arccosh(2.0) / linear.frequency) < 1e-12
 fig = bd.plot(free, title="free rocking from alpha / 2 (linearised)")"""),
     ("md", """## Under a record
 
-Kobe TAK-090 scaled to 0.4 g: the exact equation on CVODE; the impacts are marked. Where
+Kobe TAK-090 scaled to 0.4 g: the exact equation on the compiled engine (the default for a
+block that rocks); the impacts are marked. Where
 the contact force leaves its limits (the pivot would lift or slip) the model keeps its
 pivot and says so."""),
     ("code", """import importlib.resources

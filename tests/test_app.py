@@ -244,3 +244,26 @@ def test_a_cancelled_design_stops_at_its_next_batch():
     job.cancelled.set()
     assert job.finished.wait(60)
     assert job.result is None and job.error is None and 0 < job.analyses < 4096
+
+
+def test_the_d_ky_plot_has_log_axes_and_states_the_points_it_leaves_out():
+    """D against ky had linear axes: each is log where its values span a decade (as the
+    library's Newmark figure), points with D = 0 (no sliding) are then left out and counted
+    in the title, the others drawn as given; values within a decade keep a linear axis."""
+    from blockdae.app._analysis import displacement_figure
+
+    rows = [{"record": "A", "pga_g": 0.3, "ky_g": ky, "max_m": d}
+            for ky, d in ((0.02, 0.31), (0.1, 0.042), (0.2, 0.0031), (0.4, 0.0))]
+    rows += [{"record": "B", "pga_g": 0.3, "ky_g": ky, "max_m": d} for ky, d in ((0.02, 0.12), (0.1, 0.0))]
+    ax = displacement_figure(rows).axes[0]
+    assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
+    assert "2 points at D = 0 or ky = 0 not shown on the log axes" in ax.get_title()
+    first, second = ax.get_lines()
+    assert first.get_xdata().tolist() == [0.02, 0.1, 0.2] and first.get_ydata().tolist() == [0.31, 0.042, 0.0031]
+    assert second.get_xdata().tolist() == [0.02] and second.get_ydata().tolist() == [0.12]
+    whole = displacement_figure(rows[:3]).axes[0]
+    assert whole.get_title() == "D against ky" and whole.get_yscale() == "log"
+    narrow = displacement_figure([{"record": "A", "pga_g": 0.3, "ky_g": ky, "max_m": d}
+                                  for ky, d in ((0.1, 0.05), (0.15, 0.02), (0.2, 0.0))]).axes[0]
+    assert narrow.get_xscale() == "linear" and narrow.get_yscale() == "linear"
+    assert narrow.get_lines()[0].get_ydata().tolist() == [0.05, 0.02, 0.0]

@@ -225,6 +225,45 @@ def test_a_task_file_of_other_records_is_refused(records, tmp_path, one_record_p
         bd.study(records[:2], **GRID, checkpoint=folder)
 
 
+def _change_one_digit(path, column):
+    """Change the last digit of the first row's ``column`` in the CSV table at ``path``
+    (its footer and row count intact, as an edit by hand would leave them)."""
+    lines = path.read_text().splitlines(keepends=True)
+    at = lines[0].rstrip("\n").split(",").index(column)
+    fields = lines[1].rstrip("\n").split(",")
+    fields[at] = fields[at][:-1] + ("1" if fields[at][-1] != "1" else "2")
+    lines[1] = ",".join(fields) + "\n"
+    path.write_text("".join(lines))
+    return float(fields[at])
+
+
+def test_a_task_file_changed_after_it_was_saved_is_refused(records, tmp_path, one_record_per_task):
+    """A task's table with one digit changed (footer intact) was read back as the study's
+    result; its SHA-256 in the manifest now refuses it, naming the file."""
+    folder = tmp_path / "ck"
+    first = bd.study(records[:2], **GRID, checkpoint=folder)
+    manifest = json.loads((folder / "manifest.json").read_text())
+    assert sorted(manifest["files"]) == ["task-000000.csv", "task-000001.csv"]
+    changed = _change_one_digit(folder / "task-000000.csv", "max_abs_displacement_m")
+    assert changed != first["max_abs_displacement_m"].iloc[0]
+    with pytest.raises(ValueError, match=rf"^{folder / 'task-000000.csv'}: its SHA-256 differs from the one the "
+                                         "checkpoint's manifest recorded"):
+        bd.study(records[:2], **GRID, checkpoint=folder)
+
+
+def test_a_task_file_without_its_hash_is_run_again(records, tmp_path, monkeypatch, one_record_per_task):
+    """A table saved but killed before its hash reached the manifest is run again."""
+    folder = tmp_path / "ck"
+    first = bd.study(records[:2], **GRID, checkpoint=folder)
+    manifest = json.loads((folder / "manifest.json").read_text())
+    del manifest["files"]["task-000001.csv"]
+    (folder / "manifest.json").write_text(json.dumps(manifest))
+    ran = _counting_tasks(monkeypatch)
+    pd.testing.assert_frame_equal(bd.study(records[:2], **GRID, checkpoint=folder), first, check_exact=True)
+    assert ran == [[SHORT[1]]]
+    assert "task-000001.csv" in json.loads((folder / "manifest.json").read_text())["files"]
+
+
 SCRIPT = """
 import sys, time
 import blockdae as bd

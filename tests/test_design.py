@@ -211,6 +211,29 @@ def test_a_checkpoint_resumes_to_the_same_result(tmp_path, monkeypatch):
                       sampling="lhs", seed=5, checkpoint=tmp_path / "c")
 
 
+def test_a_checkpoint_block_changed_after_it_was_saved_is_refused(tmp_path):
+    """A block's table with one digit of D changed (footer intact) was read back as the
+    result; its SHA-256 in the manifest now refuses it, naming the file."""
+    import json
+
+    parameters = {"ky": dz.LogNormal(mean=0.12, cov=0.4)}
+    run = lambda: dz.exceedance(RECORDS, dz.Rigid(), parameters, pga=0.4, threshold=0.03, runs=8, runs_per_block=4,
+                                seed=4, checkpoint=tmp_path / "c")
+    first = run()
+    block = tmp_path / "c" / "block-000000.csv"
+    assert sorted(json.loads((tmp_path / "c" / "manifest.json").read_text())["files"]) == [
+        "block-000000.csv", "block-000001.csv"]
+    lines = block.read_text().splitlines(keepends=True)
+    at = lines[0].rstrip("\n").split(",").index("D_m")
+    row = next(i for i in range(1, len(lines)) if float(lines[i].split(",")[at]) > 0)
+    fields = lines[row].rstrip("\n").split(",")
+    fields[at] = fields[at][:-1] + ("1" if fields[at][-1] != "1" else "2")
+    block.write_text("".join(lines[:row] + [",".join(fields) + "\n"] + lines[row + 1:]))
+    assert float(fields[at]) not in first.table["D_m"].to_numpy()
+    with pytest.raises(ValueError, match=rf"^{block}: its SHA-256 differs"):
+        run()
+
+
 def test_an_executor_gives_the_local_result():
     """Each record's block submitted to a concurrent.futures executor (a Dask Client has the
     same submit/result): the table of the local run, bit for bit."""

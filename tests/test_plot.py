@@ -134,3 +134,15 @@ def test_planar_figure_draws_the_solutions_path_components_and_speed(elms_planar
         assert np.max(drawn_speed) > 0.1  # it slides
     finally:
         plt.close(fig)
+
+
+def test_newmark_figure_draws_each_line_along_increasing_ky():
+    """ky given out of order ([0.15, 0.05, 0.1]) was drawn as a zigzag in the given order;
+    each line runs along increasing ky, with the D of each ky."""
+    record = bd.Record(0.4 * bd.STANDARD_GRAVITY * np.sin(2 * np.pi * np.arange(300) * 0.01), 0.01, name="sine",
+                       units="m/s2")
+    result = bd.newmark(record, ky=[0.15, 0.05, 0.1])
+    line = result.figure().axes[0].get_lines()[0]
+    assert line.get_xdata().tolist() == [0.05, 0.1, 0.15]
+    d = dict(zip([0.15, 0.05, 0.1], result.normal))
+    assert line.get_ydata().tolist() == [d[0.05], d[0.1], d[0.15]]

@@ -135,3 +135,32 @@ def test_the_command_line_prints_a_compile_notice_as_one_line_before_the_run(tmp
                             "upgrade; about 15 s, then loaded from numba's disk cache). Silence: "
                             "warnings.filterwarnings('ignore', category=blockdae.CompileNotice)\n")
     assert "  ky [g]   normal [m]  inverse [m]" in captured.out
+
+
+def test_flexible_and_overturning_fragility_show_a_bar_and_the_same_numbers(monkeypatch):
+    """bd.flexible over many records and overturning_fragility had no bar: both show one on
+    a terminal's stderr (or with progress=True), and give the numbers they give without it
+    (flexible then runs the records in parts)."""
+    import numpy as np
+
+    from blockdae.rocking import RockingBlock, overturning_fragility
+
+    t = np.arange(600) * 0.01
+    records = [bd.Record(0.3 * bd.STANDARD_GRAVITY * np.sin(2 * math.pi * f * t) * np.exp(-0.3 * t), 0.01,
+                         name=f"decaying {f:g} Hz", units="m/s2") for f in (0.8, 1.0, 1.5, 2.0, 3.0)]
+    quiet = bd.flexible(records, ky=0.05, height=20.0, vs=300.0, progress=False).to_dataframe()
+    block = RockingBlock(b=0.1, h=0.5, mu=0.6)
+    fragile = overturning_fragility(block, records, [0.2, 0.8], progress=False)
+    terminal = _Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    shown = bd.flexible(records, ky=0.05, height=20.0, vs=300.0).to_dataframe()
+    assert "flexible" in terminal.getvalue() and "5/5" in terminal.getvalue()
+    assert shown.equals(quiet) and (quiet["max_m"] > 0).any()
+    again = overturning_fragility(block, records, [0.2, 0.8])
+    assert "overturning fragility" in terminal.getvalue()
+    np.testing.assert_array_equal(again.overturned, fragile.overturned)
+    plain = io.StringIO()
+    monkeypatch.setattr(sys, "stderr", plain)
+    bd.flexible(records, ky=0.05, height=20.0, vs=300.0)
+    overturning_fragility(block, records, [0.2])
+    assert plain.getvalue() == ""

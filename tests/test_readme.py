@@ -16,14 +16,16 @@ ROOT = pathlib.Path(__file__).parents[1]
 README = ROOT / "README.md"
 DOCS = sorted(path for path in (ROOT / "docs").rglob("*.md") if "_build" not in path.parts)
 PAGES = [README, *DOCS]
-BLOCK = re.compile(r"```(python|bash)\n(.*?)```", re.DOTALL)
-FENCE_LANGUAGES = {"python", "bash", "text"}
+#: a page the docs build executes (a MyST notebook) fences its Python as code cells
+CODE_CELL = "{code-cell} ipython3"
+BLOCK = re.compile(r"```(python|bash|\{code-cell\} ipython3)\n(.*?)```", re.DOTALL)
+FENCE_LANGUAGES = {"python", "bash", "text", CODE_CELL}
 
 
 def _blocks(language, pages=PAGES):
-    """(page, code) of every ```language block of ``pages``, in order."""
+    """(page, code) of every ```language block of ``pages`` (code cells as python), in order."""
     return [(page, code) for page in pages for lang, code in BLOCK.findall(page.read_text())
-            if lang == language]
+            if (("python" if lang == CODE_CELL else lang) == language)]
 
 
 def _name(page):

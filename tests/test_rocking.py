@@ -292,3 +292,44 @@ def test_simulate_warns_where_the_contact_force_leaves_its_limits_on_every_backe
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         bd.simulate(block.replace(mu=0.8), record, t_end=6.0, backend="exact")
+
+
+@pytest.mark.parametrize("backend, final_only", [("cvode", False), ("compiled", False), ("compiled", True)])
+def test_ensemble_table_states_radians_and_overturning(backend, final_only):
+    """The ensemble table of a rocking block held radians in ``theta_end_m`` and
+    ``max_abs_displacement_m``: its columns are named in radians, with ``overturned`` and
+    ``max_theta_over_alpha``, each equal to the row's own solution (run again); a block
+    that slides keeps metres, never overturns."""
+    block = RockingBlock(b=0.1, h=0.5, mu=0.6)
+    motions = {"strong": bd.SinePulse(-1.0 * G, 0.6), "weak": bd.SinePulse(-0.3 * G, 0.6)}
+    with pytest.warns(bd.rocking.ContactWarning):
+        ensemble = bd.simulate(block, motions, scale=[0.5, 0.75, 1.0], backend=backend, final_only=final_only)
+        table = ensemble.to_dataframe()
+        solutions = [ensemble[i] for i in range(len(ensemble))]
+    assert {"theta_end_rad", "max_abs_displacement_rad", "overturned", "max_theta_over_alpha"} <= set(table)
+    assert not any(c.endswith("_m") for c in table)
+    assert table["overturned"].tolist() == [s.overturned for s in solutions]
+    assert table["max_theta_over_alpha"].tolist() == [s.max_theta_over_alpha for s in solutions]
+    np.testing.assert_array_equal(table["max_theta_over_alpha"], table["max_abs_displacement_rad"] / block.alpha)
+    assert table["overturned"].any() and not table["overturned"].all()
+    assert ((table["max_theta_over_alpha"] > 0) & ~table["overturned"]).any()  # a row that rocks and stays up
+    sliding = bd.simulate(RockingBlock(b=0.3, h=0.5, mu=0.2), motions, backend="cvode").to_dataframe()
+    assert {"u_end_m", "max_abs_displacement_m"} <= set(sliding) and not sliding["overturned"].any()
+    assert (sliding["max_theta_over_alpha"] == 0).all() and (sliding["max_abs_displacement_m"] > 0).all()
+
+
+def test_a_block_that_rocks_runs_on_the_compiled_engine_by_default():
+    """bd.simulate ran every rocking block on CVODE by default (about 60 times slower than
+    the compiled engine, which the command line already used): a block that rocks now runs
+    compiled, with the compiled backend's very events; one that slides on CVODE."""
+    kobe = load_sample_record("Kobe_1995_TAK-090")
+    record = kobe.scaled(0.4 * G / kobe.peak_acceleration)
+    block = RockingBlock(b=0.2, h=0.8, mu=0.6)
+    assert block.default_backend == "compiled"
+    default, compiled = bd.simulate(block, record), bd.simulate(block, record, backend="compiled")
+    assert default.backend == "compiled" and len(default.impacts) >= 2
+    np.testing.assert_array_equal(default.impact_times, compiled.impact_times)
+    np.testing.assert_array_equal(default.state, compiled.state)
+    sliding = RockingBlock(b=0.5, h=0.6, mu=0.3)
+    assert sliding.default_backend == "cvode"
+    assert bd.simulate(sliding, record, t_end=5.0).backend == "cvode"

@@ -49,6 +49,8 @@ def test_rest_slide_rock_map():
     model starts the same way under a pulse just above its threshold."""
     regime = rocking.motion_regime([0.1, 0.1, 0.5, 0.5], 0.25, [0.09, 0.11, 0.24, 0.26])
     assert regime.tolist() == ["rest", "slide", "rest", "rock"]
+    named = rocking.motion_regime(mu=[0.1, 0.5, 0.5], b_over_h=0.25, demand=[0.3, 0.2, 0.3])  # as the docs call it
+    assert named.tolist() == ["slide", "rest", "rock"]
     for mu, expected in ((0.1, "slide"), (0.5, "uplift")):
         block = bd.RockingBlock(b=0.25, h=1.0, mu=mu)
         sol = bd.simulate(block, bd.SinePulse(1.05 * min(mu, 0.25) * G, 0.5), t_end=0.5, backend="cvode")

@@ -230,9 +230,13 @@ def history_figure(record, settings: Settings, row: dict, polarity: str):
 
 
 def displacement_figure(rows):
-    """D (the larger polarity) [m] against ky [g], one line per (record, PGA); with one ky,
-    a bar per (record, PGA). A matplotlib Figure."""
+    """D (the larger polarity) [m] against ky [g], one line per (record, PGA), each axis
+    logarithmic where its values span a decade or more (as :meth:`bd.NewmarkSweep.figure`
+    draws them; D = 0 and ky = 0 have no place on a log axis: such points are left out and
+    their number stated in the title); with one ky, a bar per (record, PGA). A matplotlib
+    Figure."""
     from matplotlib.figure import Figure
+    from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
 
     cases = {}
     for row in rows:
@@ -247,15 +251,33 @@ def displacement_figure(rows):
         ax.tick_params(axis="y", labelsize="small")
         ax.grid(True, axis="x", alpha=0.3)
         return fig
+    log_ky, log_d = (_spans_a_decade([point[i] for points in cases.values() for point in points]) for i in (0, 1))
+    left_out = 0
     for label, points in zip(labels, cases.values()):
         ky, d = np.array(sorted(points)).T
-        ax.plot(ky, d, marker="o", ms=3.5, lw=1.2, label=label)
-    ax.set(xlabel="yield acceleration ky [g]", ylabel="downslope displacement D [m]\n(larger polarity)",
-           title="D against ky")
+        shown = ((ky > 0) | ~log_ky) & ((d > 0) | ~log_d)
+        left_out += int(np.count_nonzero(~shown))
+        ax.plot(ky[shown], d[shown], marker="o", ms=3.5, lw=1.2, label=label)
+    ax.set(xscale="log" if log_ky else "linear", yscale="log" if log_d else "linear",
+           xlabel="yield acceleration ky [g]", ylabel="downslope displacement D [m]\n(larger polarity)",
+           title="D against ky" + (f"\n({left_out} points at D = 0 or ky = 0 not shown on the log axes)"
+                                   if left_out else ""))
+    for axis, log in ((ax.xaxis, log_ky), (ax.yaxis, log_d)):
+        if log:  # plain numbers at 1, 2 and 5 times the powers of ten (0.05, 0.1, 0.2)
+            axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+            axis.set_major_formatter(FormatStrFormatter("%g"))
+            axis.set_minor_formatter(NullFormatter())
     ax.grid(True, alpha=0.3)
     if len(cases) <= _LEGEND_ENTRIES:
         fig.legend(loc="outside right upper", fontsize="x-small")
     return fig
+
+
+def _spans_a_decade(values) -> bool:
+    """Whether the positive ``values`` span a factor of 10 or more (a log axis then reads best)."""
+    positive = np.asarray(values, dtype=float)
+    positive = positive[positive > 0]
+    return positive.size > 0 and positive.max() >= 10 * positive.min()
 
 
 #: the most curves of D against ky that get a legend (beyond, the table names them)

@@ -25,9 +25,10 @@ from ._crosscheck import CrossCheck, crosscheck
 from ._driver import AbstractIntegrator, HermiteDense, drive
 from ._engines import LazyEngine
 from .events import falls, first_nonpositive, one_sign, sign_change, too_short
+from ._file_hashes import FILES, record_file, recorded, write_manifest
 from ._figures import BASE, BLOCK, EVENTS, curve, time_grid
 from ._jax_config import jax_context, set_compilation_cache
-from ._progress import progress_bar
+from ._progress import progress_bar, show_progress
 from ._registry import BUILT_IN, Horizon, available, backend_class, backend_name, make_backend, register_backend
 from ._repr import compact_repr
 from ._sensitivities import sensitivities

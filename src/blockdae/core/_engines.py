@@ -5,8 +5,9 @@ backend's settings. The contract of an engine:
 - optionally ``solve_batch(model, excitation, horizon, backend) -> BatchSolution`` (a
   batch of parameter sets) and ``solve_final(model, excitations, horizons, scale, backend)
   -> array`` (final numbers of many motions at many factors on a(t), in one call), with
-  ``final_numbers(rows) -> (displacement (n, d) [m], max |displacement| (n,) [m], events
-  (n,), t_end (n,) [s])`` reading n rows of that array.
+  ``final_numbers(rows) -> (displacement (n, d), max |displacement| (n,), events (n,),
+  t_end (n,) [s])`` reading n rows of that array (displacements in the model's
+  ``displacement_unit``).
 
 ``backend`` is the backend object: the engine reads the settings it documents from it (its
 ``name``, ``window``, ``rtol``, ...)."""

@@ -16,9 +16,10 @@ class Finals:
     (n of them, 1 for a model of one set).
 
     Attributes:
-        displacement: the displacement states at the end [m], shape (n, d) (d: the
-            model's ``displacement_states``).
-        max_abs_displacement: max |displacement| over the run [m], shape (n,).
+        displacement: the displacement states at the end, shape (n, d) (d: the model's
+            ``displacement_states``), in the model's ``displacement_unit`` ([m]; [rad] for a
+            rotation), as is max_abs_displacement.
+        max_abs_displacement: max |displacement| over the run, shape (n,).
         n_events: located events, shape (n,).
         t_end: final time [s], shape (n,).
     """
@@ -63,8 +64,11 @@ class Ensemble:
     def __repr__(self):
         largest = np.nanmax(self.max_abs_displacement) if len(self) else float("nan")
         n_motions, n_scales, n_polarities = self.cases.shape
+        states = self.model.displacement_states
+        name = self.model.state_names[states[0]] if len(states) == 1 else "u"
         return compact_repr(self, f"{n_motions} motions x {n_scales} {self.cases.by} x {n_polarities} polarities x "
-                                  f"{self._n_sets} parameter sets, largest max |u| {largest:.4g} m; .to_dataframe()")
+                                  f"{self._n_sets} parameter sets, largest max |{name}| {largest:.4g} "
+                                  f"{self.model.displacement_unit}; .to_dataframe()")
 
     model: object
     cases: Cases
@@ -93,14 +97,15 @@ class Ensemble:
 
     @property
     def displacement(self) -> np.ndarray:
-        """The displacement at the end [m], :attr:`shape` (+ (d,) for a model of d
-        displacement states, e.g. (u_x, u_y)); signed, in the model's own convention."""
+        """The displacement at the end, :attr:`shape` (+ (d,) for a model of d
+        displacement states, e.g. (u_x, u_y)); signed, in the model's own convention and
+        its ``displacement_unit`` ([m]; [rad] for a rotation)."""
         values = self._stack("displacement")
         return self._shaped(values[..., 0] if values.shape[-1] == 1 else values)
 
     @property
     def max_abs_displacement(self) -> np.ndarray:
-        """max |displacement| over each run [m], :attr:`shape`."""
+        """max |displacement| over each run, :attr:`shape`, in the model's ``displacement_unit``."""
         return self._shaped(self._stack("max_abs_displacement"))
 
     @property
@@ -134,8 +139,10 @@ class Ensemble:
         factor on a(t) [-], polarity aside), pga_g (the scaled motion's peak [g]),
         polarity ("normal", or "inverse": a(t) times -1), the parameter set's columns
         (``set`` and the model's batch parameters, for a batch), then the displacement
-        states at the end (``<state>_end_m``, signed [m]), max_abs_displacement_m [m],
-        n_events and t_end_s [s]."""
+        states at the end (``<state>_end_<unit>``, signed, in the model's
+        ``displacement_unit``: ``u_end_m``, ``theta_end_rad``), ``max_abs_displacement_<unit>``,
+        n_events, t_end_s [s], then the model's own columns (its ``final_quantities``: a
+        rocking block's ``overturned`` and ``max_theta_over_alpha``)."""
         import pandas as pd
 
         from ..excitation import with_metadata
@@ -149,10 +156,12 @@ class Ensemble:
             columns |= {name: np.broadcast_to(value, self.model.batch_shape).reshape(-1)[j]
                         for name, value in self.model.batch_parameters().items()}
         u = self._stack("displacement").reshape(len(self), -1)
-        names = [self.model.state_names[s] for s in self.model.displacement_states]
-        columns |= {f"{name}_end_m": u[:, s] for s, name in enumerate(names)}
-        columns |= {"max_abs_displacement_m": self._stack("max_abs_displacement").reshape(-1),
+        largest = self._stack("max_abs_displacement").reshape(-1)
+        names, unit = [self.model.state_names[s] for s in self.model.displacement_states], self.model.displacement_unit
+        columns |= {f"{name}_end_{unit}": u[:, s] for s, name in enumerate(names)}
+        columns |= {f"max_abs_displacement_{unit}": largest,
                     "n_events": self._stack("n_events").reshape(-1), "t_end_s": self._stack("t_end").reshape(-1)}
+        columns |= self.model.final_quantities(u, largest)
         table = pd.DataFrame(columns)
         return with_metadata(table, self.cases.metadata) if metadata else table
 

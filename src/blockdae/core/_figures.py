@@ -76,7 +76,7 @@ ENSEMBLE_LEGEND = 12
 
 
 def ensemble_figure(ensemble, *, title=None):
-    """max |displacement| [m] against the scaled motion's peak [g]: a line per (motion,
+    """max |displacement| [its unit] against the scaled motion's peak [g]: a line per (motion,
     polarity, parameter set) across the factors, a marker per case."""
     import matplotlib.pyplot as plt
 
@@ -94,7 +94,8 @@ def ensemble_figure(ensemble, *, title=None):
                 ax.plot(peak[i], largest[i, :, p, j], marker="o" if polarity == "normal" else "s", ms=4,
                         ls="-" if polarity == "normal" else "--", color=f"C{i % 10}",
                         label=label if labelled else None)
-    ax.set(xlabel="peak ground acceleration of the scaled motion [g]", ylabel="max |displacement| [m]", title=title)
+    ax.set(xlabel="peak ground acceleration of the scaled motion [g]",
+           ylabel=f"max |displacement| [{ensemble.model.displacement_unit}]", title=title)
     if labelled:
         ax.legend(loc="best", fontsize="small")
     return fig

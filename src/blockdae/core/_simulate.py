@@ -68,12 +68,12 @@ def simulate(model: AbstractHybridModel, motion, t_end: float | None = None,
             units); none beside a backend object.
 
     Returns:
-        One motion at one scale in one polarity: the model's solution (:class:`Solution`
-        for a SlidingBlock, :class:`PlanarSolution`, :class:`UpthrowSolution`,
-        :class:`FlexibleSolution`, a :class:`DriverSolution` for a user's model), or a
-        :class:`BatchSolution` for a batch of parameter sets; each keeps ``block`` and
-        ``motion``. Many motions, scales or polarities (or ``final_only``): an
-        :class:`Ensemble`, one row per case in ``.to_dataframe()``.
+        The model's solution where one motion runs at one scale in one polarity
+        (:class:`Solution` for a SlidingBlock, :class:`PlanarSolution`,
+        :class:`UpthrowSolution`, :class:`FlexibleSolution`, a :class:`DriverSolution` for
+        a user's model), or a :class:`BatchSolution` for a batch of parameter sets; each
+        keeps ``block`` and ``motion``. An :class:`Ensemble` where many motions, scales or
+        polarities run (or ``final_only``), one row per case in ``.to_dataframe()``.
     """
     if not isinstance(model, AbstractHybridModel):
         raise TypeError(f"model must be a model (SlidingBlock, PlanarBlock, SpringSupportedMass, FlexibleSlidingMass "

@@ -80,6 +80,8 @@ class AbstractHybridModel(abc.ABC):
     horizontal_motion: bool = True
     #: indices of the states that make up the displacement the solution reports
     displacement_states: tuple[int, ...] = (0,)
+    #: the unit of those states ("rad" for a rotation), in the names of an ensemble's columns
+    displacement_unit: str = "m"
 
     # ---- which backend runs it ---------------------------------------------------
     #: the backend :func:`blockdae.simulate` uses when none is named
@@ -105,6 +107,13 @@ class AbstractHybridModel(abc.ABC):
             raise TypeError(f"motion must be an excitation (Harmonic, Record, ...), got {type(motion).__name__}")
         if self.horizontal_motion:
             check_horizontal(motion)
+
+    def final_quantities(self, displacement, max_abs_displacement) -> dict:
+        """Column name -> values of the model's own columns in an ensemble's table (e.g.
+        whether a rocking block overturned), from the final numbers of n runs: the
+        displacement states at the end, shape (n, d), and max |displacement|, shape (n,),
+        in :attr:`displacement_unit`; none by default."""
+        return {}
 
     # ---- the automaton -------------------------------------------------------
     @abc.abstractmethod

@@ -5,9 +5,12 @@ runs only the blocks still missing, so its result is bit-identical to an uninter
 run's. A rerun of another study is refused (ValueError naming the folder and what differs).
 
 A folder holds ``manifest.json`` (what the study is: the model, the parameters, the
-target PGAs, the sampling, the seed, the correlation, the blocks, and each record's name,
-sample step [s], sample count and SHA-256 of its samples) and ``block-000003.csv`` per
-finished block."""
+target PGAs, the sampling, the seed, the correlation, the blocks, each record's name,
+sample step [s], sample count and SHA-256 of its samples, and the SHA-256 of each block's
+table once it is saved) and ``block-000003.csv`` per finished block. A block's table
+changed after it was saved (its SHA-256 is not the manifest's) is refused (ValueError
+naming the file); one whose hash the manifest lacks (the run was killed between the two
+writes) is run again."""
 
 import hashlib
 import json
@@ -15,6 +18,7 @@ import pathlib
 
 import numpy as np
 
+from ..core import FILES, record_file, recorded, write_manifest
 from ..studies import load_study, save_study
 
 MANIFEST = "manifest.json"
@@ -45,34 +49,36 @@ class Checkpoint:
 
     def __init__(self, folder, study):
         self.folder = pathlib.Path(folder)
-        path = self.folder / MANIFEST
+        self._path = path = self.folder / MANIFEST
+        self._manifest = study
         if path.is_file():
             try:
                 saved = json.loads(path.read_text())
             except ValueError as err:
                 raise ValueError(f"{path}: not a design checkpoint's manifest ({err})") from None
-            differences = [key for key in sorted(set(saved) | set(study)) if saved.get(key) != study.get(key)]
+            differences = [key for key in sorted((set(saved) | set(study)) - {FILES})
+                           if saved.get(key) != study.get(key)]
             if differences:
                 raise ValueError(f"checkpoint {self.folder} holds another study: its "
                                  f"{', '.join(differences)} differ. Rerun with the same arguments to resume it, or "
                                  "give a new or an empty folder")
+            self._manifest = saved
         else:
             if self.folder.exists() and (not self.folder.is_dir() or any(self.folder.iterdir())):
                 raise ValueError(f"checkpoint {self.folder}: not a new or an empty folder, and no {MANIFEST} in it")
             self.folder.mkdir(parents=True, exist_ok=True)
-            temporary = path.with_suffix(".tmp")
-            temporary.write_text(json.dumps(study, indent=1) + "\n")
-            temporary.replace(path)
+            write_manifest(path, study)
 
     def path(self, index) -> pathlib.Path:
         """The table of block ``index``."""
         return self.folder / f"block-{index:06d}.csv"
 
     def load(self, index):
-        """The saved table of block ``index``, or None."""
+        """The saved table of block ``index``, or None (none saved, or its SHA-256 not in the
+        manifest); ValueError naming a file changed since it was saved."""
         path = self.path(index)
-        return load_study(path) if path.is_file() else None
+        return load_study(path) if path.is_file() and recorded(self._manifest, path) else None
 
     def save(self, index, table):
-        """Save block ``index``'s table, atomically."""
-        save_study(table, self.path(index))
+        """Save block ``index``'s table, atomically, then its SHA-256 in the manifest."""
+        record_file(self._path, self._manifest, save_study(table, self.path(index)))

@@ -22,13 +22,16 @@ def bray_travasarou_2007(ky_g, ts_s, sa_g, magnitude):
     + 1.50 Ts + 0.278 (M - 7), a1 = -1.10 (-0.22 and Ts = 0 for Ts < 0.05 s), σ_ln = 0.66;
     P(D < 1 cm) = 1 - Φ(-1.76 - 3.22 ln ky - 0.484 Ts ln ky + 3.52 ln Sa).
 
+    The arguments broadcast together.
+
     Args:
-        ky_g: yield coefficient [g]; ts_s: initial fundamental period Ts >= 0 of the
-        sliding mass [s]; sa_g: 5 %-damped spectral acceleration at 1.5 Ts [g] (PGA for
-        a rigid mass); magnitude: moment magnitude M [-]. All broadcast.
+        ky_g: yield coefficient [g].
+        ts_s: initial fundamental period Ts >= 0 of the sliding mass [s].
+        sa_g: 5 %-damped spectral acceleration at 1.5 Ts [g] (PGA for a rigid mass).
+        magnitude: moment magnitude M [-].
 
     Returns:
-        :class:`EmpiricalDisplacement` (p_negligible: P(D < 1 cm)).
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is P(D < 1 cm)).
     """
     ky, sa = positive("ky_g", ky_g, "g"), positive("sa_g", sa_g, "g")
     ts, m = finite("ts_s", ts_s, "s", minimum=0.0), finite("magnitude", magnitude, "-")

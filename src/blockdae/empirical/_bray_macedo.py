@@ -28,15 +28,19 @@ def bray_macedo_2019(ky_g, ts_s, sa_g, magnitude):
     for Ts <= 0.7 s, 1 - Φ(-3.42 - 4.93 ln ky - 0.30 (ln ky)² - 0.35 Ts ln ky - 0.62 Ts
     + 2.86 ln Sa) above.
 
+    The arguments broadcast together. No range warning: the paper's range is not
+    transcribed here.
+
     Args:
-        ky_g: yield coefficient [g]; ts_s: initial fundamental period Ts >= 0 of the
-        sliding mass [s] (0: a rigid block, with the Ts < 0.1 s coefficients, as
-        OpenSRA has it after the authors' spreadsheet); sa_g: 5 %-damped spectral acceleration
-        (RotD50) at 1.3 Ts [g] (PGA for Ts = 0); magnitude: moment magnitude M [-].
-        All broadcast. No range warning: the paper's range is not transcribed here.
+        ky_g: yield coefficient [g].
+        ts_s: initial fundamental period Ts >= 0 of the sliding mass [s]; 0 is a rigid
+            block, with the Ts < 0.1 s coefficients, as OpenSRA has it after the authors'
+            spreadsheet.
+        sa_g: 5 %-damped spectral acceleration (RotD50) at 1.3 Ts [g] (PGA for Ts = 0).
+        magnitude: moment magnitude M [-].
 
     Returns:
-        :class:`EmpiricalDisplacement` (p_negligible: P(D < 0.5 cm)).
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is P(D < 0.5 cm)).
     """
     ky, sa = positive("ky_g", ky_g, "g"), positive("sa_g", sa_g, "g")
     ts, m = finite("ts_s", ts_s, "s", minimum=0.0), finite("magnitude", magnitude, "-")

@@ -16,8 +16,14 @@ MAGNITUDES = (5.3, 7.6)
 def jibson_2007(ky_g, pga_g):
     """Jibson (2007) eq. 6: log D = 0.215 + log[(1 - ky/PGA)^2.341 (ky/PGA)^-1.438], σ_log = 0.510.
 
-    Args: ky_g: yield acceleration [g]; pga_g: peak ground acceleration [g] (broadcast).
-    Returns: :class:`EmpiricalDisplacement` (median [m], σ_ln, p_negligible: 1 where ky >= PGA).
+    The arguments broadcast together.
+
+    Args:
+        ky_g: yield acceleration [g].
+        pga_g: peak ground acceleration [g].
+
+    Returns:
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is 1 where ky >= PGA).
     """
     ky, pga = positive("ky_g", ky_g, "g"), positive("pga_g", pga_g, "g")
     _, median, p0 = ratio_model(ky, pga,
@@ -29,7 +35,15 @@ def jibson_2007_m(ky_g, pga_g, magnitude):
     """Jibson (2007) eq. 7: log D = -2.710 + log[(1 - ky/PGA)^2.335 (ky/PGA)^-1.478] + 0.424 M,
     σ_log = 0.454; M outside 5.3-7.6: :class:`ValidityWarning`.
 
-    Args: ky_g [g]; pga_g [g]; magnitude: moment magnitude M [-] (broadcast).
+    The arguments broadcast together.
+
+    Args:
+        ky_g: yield acceleration [g].
+        pga_g: peak ground acceleration [g].
+        magnitude: moment magnitude M [-].
+
+    Returns:
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is 1 where ky >= PGA).
     """
     ky, pga = positive("ky_g", ky_g, "g"), positive("pga_g", pga_g, "g")
     m = finite("magnitude", magnitude, "-")
@@ -42,8 +56,14 @@ def jibson_2007_m(ky_g, pga_g, magnitude):
 def jibson_2007_arias(ky_g, arias_m_s):
     """Jibson (2007) eq. 9: log D = 2.401 log Ia - 3.481 log ky - 3.230, σ_log = 0.656.
 
-    Args: ky_g: yield acceleration [g]; arias_m_s: Arias intensity Ia [m/s] (broadcast).
-    Returns: :class:`EmpiricalDisplacement` (p_negligible 0: the model has no PGA).
+    The arguments broadcast together.
+
+    Args:
+        ky_g: yield acceleration [g].
+        arias_m_s: Arias intensity Ia [m/s].
+
+    Returns:
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is 0, as the model has no PGA).
     """
     ky, ia = positive("ky_g", ky_g, "g"), positive("arias_m_s", arias_m_s, "m/s")
     ln_d = LN10 * (2.401 * np.log10(ia) - 3.481 * np.log10(ky) - 3.230)
@@ -53,8 +73,15 @@ def jibson_2007_arias(ky_g, arias_m_s):
 def jibson_2007_arias_pga(ky_g, pga_g, arias_m_s):
     """Jibson (2007) eq. 10: log D = 0.561 log Ia - 3.833 log(ky/PGA) - 1.474, σ_log = 0.616.
 
-    Args: ky_g [g]; pga_g [g]; arias_m_s: Arias intensity Ia [m/s] (broadcast).
-    Returns: :class:`EmpiricalDisplacement` (p_negligible: 1 where ky >= PGA).
+    The arguments broadcast together.
+
+    Args:
+        ky_g: yield acceleration [g].
+        pga_g: peak ground acceleration [g].
+        arias_m_s: Arias intensity Ia [m/s].
+
+    Returns:
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is 1 where ky >= PGA).
     """
     ky, pga = positive("ky_g", ky_g, "g"), positive("pga_g", pga_g, "g")
     ia = positive("arias_m_s", arias_m_s, "m/s")

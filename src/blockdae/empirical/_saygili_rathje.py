@@ -32,8 +32,14 @@ def saygili_rathje_2008_pga(ky_g, pga_g):
     """Saygili & Rathje (2008), the scalar PGA model: a = (5.52, -4.43, -20.39, 42.61,
     -28.74), a6 = 0.72; σ_ln = 1.13.
 
-    Args: ky_g: yield acceleration [g]; pga_g: peak ground acceleration [g] (broadcast).
-    Returns: :class:`EmpiricalDisplacement` (p_negligible: 1 where ky >= PGA).
+    The arguments broadcast together.
+
+    Args:
+        ky_g: yield acceleration [g].
+        pga_g: peak ground acceleration [g].
+
+    Returns:
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is 1 where ky >= PGA).
     """
     ky, pga = _checked("saygili_rathje_2008_pga", ky_g, pga_g)
     a = (5.52, -4.43, -20.39, 42.61, -28.74)
@@ -45,7 +51,15 @@ def saygili_rathje_2008_pga_pgv(ky_g, pga_g, pgv_cm_s):
     """Saygili & Rathje (2008), the PGA-PGV vector model: a = (-1.56, -4.58, -20.84, 44.75,
     -30.50), a6 = -0.64, + 1.55 ln PGV; σ_ln = 0.41 + 0.52 r.
 
-    Args: ky_g [g]; pga_g [g]; pgv_cm_s: peak ground velocity [cm/s] (broadcast).
+    The arguments broadcast together.
+
+    Args:
+        ky_g: yield acceleration [g].
+        pga_g: peak ground acceleration [g].
+        pgv_cm_s: peak ground velocity [cm/s].
+
+    Returns:
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is 1 where ky >= PGA).
     """
     ky, pga = _checked("saygili_rathje_2008_pga_pgv", ky_g, pga_g)
     pgv = positive("pgv_cm_s", pgv_cm_s, "cm/s")
@@ -58,7 +72,15 @@ def saygili_rathje_2008_pga_arias(ky_g, pga_g, arias_m_s):
     """Saygili & Rathje (2008), the PGA-Ia vector model: a = (2.39, -5.24, -18.78, 42.01,
     -29.15), a6 = -1.56, + 1.38 ln Ia; σ_ln = 0.46 + 0.56 r.
 
-    Args: ky_g [g]; pga_g [g]; arias_m_s: Arias intensity Ia [m/s] (broadcast).
+    The arguments broadcast together.
+
+    Args:
+        ky_g: yield acceleration [g].
+        pga_g: peak ground acceleration [g].
+        arias_m_s: Arias intensity Ia [m/s].
+
+    Returns:
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is 1 where ky >= PGA).
     """
     ky, pga = _checked("saygili_rathje_2008_pga_arias", ky_g, pga_g)
     ia = positive("arias_m_s", arias_m_s, "m/s")
@@ -71,7 +93,15 @@ def rathje_saygili_2009_pga_m(ky_g, pga_g, magnitude):
     """Rathje & Saygili (2009) eq. 8, the PGA-M model: a = (4.89, -4.85, -19.64, 42.49,
     -29.06), a6 = 0.72, + 0.89 (M - 6); eq. 9: σ_ln = 0.73 + 0.789 r - 0.539 r².
 
-    Args: ky_g [g]; pga_g [g]; magnitude: moment magnitude M [-] (broadcast).
+    The arguments broadcast together.
+
+    Args:
+        ky_g: yield acceleration [g].
+        pga_g: peak ground acceleration [g].
+        magnitude: moment magnitude M [-].
+
+    Returns:
+        An :class:`EmpiricalDisplacement` (median [m], σ_ln; p_negligible is 1 where ky >= PGA).
     """
     ky, pga = _checked("rathje_saygili_2009_pga_m", ky_g, pga_g)
     m = finite("magnitude", magnitude, "-")

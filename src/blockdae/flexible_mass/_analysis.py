@@ -28,7 +28,7 @@ from ._ky_table import KyTable
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
 from ._table_engine import response_compiled, slide_compiled, system_arrays
-from ..core import compact_repr, labelled_motions
+from ..core import compact_repr, labelled_motions, progress_bar, show_progress
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns
@@ -116,7 +116,7 @@ class FlexibleResult:
 
 def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", equivalent_linear=False,
              reference_strain=None, pga=None, polarity="both", integration="exact", g=STANDARD_GRAVITY,
-             t_end=None, *, check_peak=True, target_pga=None) -> FlexibleResult:
+             t_end=None, *, check_peak=True, target_pga=None, progress=None) -> FlexibleResult:
     """Flexible sliding-mass analyses (Bray & Rathje 1998 decoupled; Rathje & Bray 1999
     coupled), downslope displacement positive, as SLAMMER runs them but exact in time.
 
@@ -159,6 +159,8 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
             only end "slammer" has).
         check_peak: False accepts a ``pga`` above 2 g.
         target_pga: the deprecated name of ``pga`` (a DeprecationWarning); not both.
+        progress: over many motions, a tqdm bar on stderr (the motions then run a few at
+            a time, each part in one compiled call); None: only when stderr is a terminal.
 
     ky, height, vs, vr and damping broadcast together to the parameter sets (use
     ``np.meshgrid`` for a grid); every motion runs every set.
@@ -172,7 +174,7 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     rows_of, _ = INTEGRATIONS[integration]
     if analyses and analyses[0].model.table is not None:  # plan gives every model the table or none
         rows_of = table_rows
-    rows = rows_of(analyses)
+    rows = _rows_in_parts(rows_of, analyses, progress)
     _check_rows(rows, analyses)
     return FlexibleResult(rows=rows, method=method, integration=integration,
                           pga_g=tuple(a.record.peak_acceleration / a.model.g for a in analyses),
@@ -192,6 +194,27 @@ def _check_rows(rows, analyses):
     cases = [(f"{row['record']}" + (f" (H {row['height_m']:g} m, vs {row['vs_m_s']:g} m/s)" if several else ""),
               row["kmax_g"] if math.isnan(row["kmax_sup_g"]) else row["kmax_sup_g"], row["ky_g"]) for row in rows]
     warn_not_sliding(cases, len(rows), peak_name="kmax", body="mass", kind="analyses", peak_words="kmax")
+
+
+def _rows_in_parts(rows_of, analyses, progress) -> list[dict]:
+    """``rows_of(analyses)``: in one call, or, where a progress bar over the motions is
+    shown, in :data:`PROGRESS_PARTS` parts of a few motions each, in order (the rows of an
+    analysis do not depend on the others run with it)."""
+    starts = [q for q, a in enumerate(analyses) if q == 0 or a.record is not analyses[q - 1].record]
+    if len(starts) < 2 or not show_progress(progress):
+        return rows_of(analyses)
+    size = -(-len(starts) // PROGRESS_PARTS)  # motions per part
+    bounds = starts[::size] + [len(analyses)]
+    rows = []
+    with progress_bar(len(starts), "flexible", "record", progress) as bar:
+        for k, (first, end) in enumerate(zip(bounds, bounds[1:])):
+            rows += rows_of(analyses[first:end])
+            bar.update(min(size, len(starts) - k * size))
+    return rows
+
+
+#: the parts :func:`flexible` runs many motions in where it shows its progress
+PROGRESS_PARTS = 20
 
 
 def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,

@@ -77,10 +77,11 @@ class RockingBlock(DifferentiableModel):
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x
     and z components [m/s²].
 
-    Backends: "cvode" (the default), "ida" and "jax" run every block; a block that rocks
-    (mu >= b/h) also runs on "compiled" (the exact or the linearised equation, a compiled
-    DOP853 with located events, any motion) and, linearised, on "exact" (its closed form,
-    compiled, for horizontal piecewise-linear records).
+    Backends: "cvode", "ida" and "jax" run every block; a block that rocks (mu >= b/h)
+    also runs on "compiled" (the exact or the linearised equation, a compiled DOP853 with
+    located events, any motion; its default) and, linearised, on "exact" (its closed form,
+    compiled, for horizontal piecewise-linear records). A block that slides runs on
+    "cvode" by default.
     """
 
     b: float
@@ -97,7 +98,6 @@ class RockingBlock(DifferentiableModel):
 
     modes = RockingMode
     component_names = ("x", "z")
-    default_backend = "cvode"
     #: the compiled engines: the integrated one of either equation (``backend="compiled"``),
     #: the linearised block's closed form (``backend="exact"``)
     _compiled = {"compiled": LazyEngine("blockdae.rocking._engine", "CompiledEngine")}
@@ -179,6 +179,26 @@ class RockingBlock(DifferentiableModel):
     @property
     def state_names(self):
         return ("u", "u_rate") if self.slides else ("theta", "theta_rate")
+
+    @property
+    def default_backend(self):
+        """"compiled" for a block that rocks (the compiled engine), "cvode" for one that slides."""
+        return "cvode" if self.slides else "compiled"
+
+    @property
+    def displacement_unit(self):
+        """"rad" for a block that rocks (its displacement is theta), "m" for one that slides (u)."""
+        return "m" if self.slides else "rad"
+
+    def final_quantities(self, displacement, max_abs_displacement) -> dict:
+        """overturned (|theta| at the end is pi/2, where an overturned block lies) and
+        max_theta_over_alpha (max |theta| / alpha [-]) of n runs; False and 0 for a block
+        that slides."""
+        largest = np.asarray(max_abs_displacement, dtype=float)
+        if self.slides:
+            return {"overturned": np.zeros(largest.shape, dtype=bool), "max_theta_over_alpha": np.zeros(largest.shape)}
+        return {"overturned": np.abs(np.asarray(displacement, dtype=float)[:, 0]) == 0.5 * math.pi,
+                "max_theta_over_alpha": largest / self.alpha}
 
     @property
     def initial_mode(self):

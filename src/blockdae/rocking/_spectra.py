@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..core import Horizon, available, make_backend
+from ..core import Horizon, available, make_backend, progress_bar
 from ..excitation import Record
 from ._modes import side
 
@@ -133,14 +133,14 @@ def overturning_spectrum(block, frequency_ratios, shape="sine", **search) -> Ove
     return OverturningSpectrum(ratios, amplitudes, shape, block)
 
 
-def motion_regime(mu, aspect, demand):
+def motion_regime(mu, b_over_h, demand):
     """What a block at rest does first under a horizontal demand |a_x| / g_e = ``demand``
-    [-], by friction ``mu`` [-] and aspect ratio b/h = ``aspect`` [-] (arrays broadcast):
+    [-], by friction ``mu`` [-] and aspect ratio ``b_over_h`` = b/h [-] (arrays broadcast):
     "rest" below min(mu, b/h), else "slide" where mu < b/h and "rock" where not (the exact
     block's rules; the linearised block's threshold is atan(b/h))."""
-    mu, aspect, demand = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (mu, aspect, demand)))
-    moving = np.where(mu < aspect, "slide", "rock")
-    return np.where(demand <= np.minimum(mu, aspect), "rest", moving)
+    mu, b_over_h, demand = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (mu, b_over_h, demand)))
+    moving = np.where(mu < b_over_h, "slide", "rock")
+    return np.where(demand <= np.minimum(mu, b_over_h), "rest", moving)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -178,16 +178,19 @@ class OverturningFragility:
         return fig
 
 
-def overturning_fragility(block, records, pga, backend=None, **options) -> OverturningFragility:
+def overturning_fragility(block, records, pga, backend=None, *, progress=None, **options) -> OverturningFragility:
     """Which of ``records`` overturn ``block`` when each is scaled to a peak of each
-    ``pga`` [g]; the fraction at each peak."""
+    ``pga`` [g]; the fraction at each peak. ``progress``: a tqdm bar over the records on
+    stderr; None: only when stderr is a terminal."""
     pga = np.atleast_1d(np.asarray(pga, dtype=float))
     if np.any(pga <= 0):
         raise ValueError(f"pga must be > 0 [g], got {pga.tolist()}")
     records = list(records)
     tipped = np.zeros((len(records), pga.size), dtype=bool)
-    for i, record in enumerate(records):
-        for j, target in enumerate(pga):
-            motion = record.scaled(target * block.g / record.peak_acceleration)
-            tipped[i, j] = overturns(block, motion, backend, **options)
+    with progress_bar(len(records), "overturning fragility", "record", progress) as bar:
+        for i, record in enumerate(records):
+            for j, target in enumerate(pga):
+                motion = record.scaled(target * block.g / record.peak_acceleration)
+                tipped[i, j] = overturns(block, motion, backend, **options)
+            bar.update()
     return OverturningFragility(pga, tipped.mean(axis=0), tipped, tuple(r.name for r in records))

@@ -82,9 +82,10 @@ def newmark_figure(ky, curves, *, key="record", pga=None, polarity=None, title=N
     many = len(curves) > _LEGEND_ENTRIES
     colours = plt.get_cmap("viridis")(np.linspace(0, 1, len(curves))) if many else \
         [f"C{i}" for i in range(len(curves))] if len(curves) <= 10 else plt.get_cmap("tab20").colors
+    order = np.argsort(ky, kind="stable")  # each line drawn along increasing ky, whatever order ky came in
     for colour, (label, d) in zip(colours, curves):
         for j, row in enumerate(np.atleast_2d(d)):
-            ax.plot(ky, row, color=colour, ls=_STYLES[j % len(_STYLES)], marker=_MARKERS[j % len(_MARKERS)], ms=3.5,
+            ax.plot(np.asarray(ky)[order], np.asarray(row)[order], color=colour, ls=_STYLES[j % len(_STYLES)], marker=_MARKERS[j % len(_MARKERS)], ms=3.5,
                     lw=1.2, label=label if j == 0 else None)
     values = np.concatenate([np.ravel(d) for _, d in curves])
     positive = values[values > 0]

@@ -2,11 +2,15 @@
 
 A checkpoint folder holds ``manifest.json``, what the study is (the grid and settings,
 the records' names, sample steps [s], sample counts and SHA-256 of their samples, the
-records per task, the blockdae version), and one table per finished task,
-``task-000012.csv`` (written by :func:`save_study`: atomically, floats to the last bit,
-a row-count footer). A rerun with the same study loads the finished tasks and runs the
-others, so its table is bit-identical to an uninterrupted run's; a rerun of another
-study is refused (:class:`ValueError` naming the folder and what differs).
+records per task, the blockdae version, and the SHA-256 of each task's table once it is
+saved), and one table per finished task, ``task-000012.csv`` (written by
+:func:`save_study`: atomically, floats to the last bit, a row-count footer). A rerun with
+the same study loads the finished tasks and runs the others, so its table is
+bit-identical to an uninterrupted run's; a rerun of another study is refused
+(:class:`ValueError` naming the folder and what differs), and so is a task's table that
+was changed after it was saved (its SHA-256 is not the manifest's: ValueError naming the
+file). A table whose hash the manifest lacks (the run was killed between the two
+writes) is run again.
 """
 
 import dataclasses
@@ -18,7 +22,7 @@ import reprlib
 
 import numpy as np
 
-from ..core import atomic_path
+from ..core import FILES, record_file, recorded, write_manifest
 from ._io import load_study, save_study
 
 MANIFEST = "manifest.json"
@@ -31,8 +35,9 @@ FORMAT = 1
 class Checkpoint:
     """A checkpoint folder of one study; :meth:`open` creates or checks it."""
 
-    def __init__(self, folder: pathlib.Path, tasks, rows_per_record):
+    def __init__(self, folder: pathlib.Path, manifest, tasks, rows_per_record):
         self.folder = folder
+        self._manifest = manifest
         self._tasks = tasks
         self._rows_per_record = rows_per_record
 
@@ -45,27 +50,35 @@ class Checkpoint:
         manifest = _manifest(records, grid, tasks)
         path = folder / MANIFEST
         if path.is_file():
-            _check_same_study(folder, _read_manifest(path), manifest)
+            saved = _read_manifest(path)
+            _check_same_study(folder, saved, manifest)
+            manifest = saved
         else:
             _check_new_folder(folder)
             folder.mkdir(parents=True, exist_ok=True)
-            with atomic_path(path) as temporary:
-                temporary.write_text(json.dumps(manifest, indent=1) + "\n")
-        return cls(folder, tasks, grid.rows_per_record)
+            write_manifest(path, manifest)
+        return cls(folder, manifest, tasks, grid.rows_per_record)
 
     def path(self, index) -> pathlib.Path:
         """The table of task ``index``."""
         return self.folder / f"task-{index:06d}.csv"
 
     def finished(self) -> dict:
-        """Task index -> columns (as :func:`run_task` returns them) of every saved task."""
-        return {i: self._load(i) for i in range(len(self._tasks)) if self.path(i).is_file()}
+        """Task index -> columns (as :func:`run_task` returns them) of every saved task
+        whose SHA-256 the manifest holds (ValueError naming a file that was changed since)."""
+        parts = {}
+        for i in range(len(self._tasks)):
+            if self.path(i).is_file():
+                part = self._load(i)  # its records checked first: the more telling error
+                if recorded(self._manifest, self.path(i)):
+                    parts[i] = part
+        return parts
 
     def save(self, index, part):
-        """Save the columns ``part`` of task ``index``, atomically."""
+        """Save the columns ``part`` of task ``index``, atomically, then its SHA-256 in the manifest."""
         import pandas as pd
 
-        save_study(pd.DataFrame(part), self.path(index))
+        record_file(self.folder / MANIFEST, self._manifest, save_study(pd.DataFrame(part), self.path(index)))
 
     def _load(self, index):
         """The columns of task ``index`` as :func:`run_task` returned them (checked: its records, its rows)."""
@@ -157,7 +170,7 @@ def _check_new_folder(folder):
 
 def _check_same_study(folder, saved, now):
     """Raise ValueError naming ``folder`` and what differs if the ``saved`` manifest is not ``now``'s."""
-    keys = list(saved) + [key for key in now if key not in saved]
+    keys = [key for key in saved if key != FILES] + [key for key in now if key not in saved]
     differences = [_difference(key, saved.get(key), now.get(key)) for key in keys if saved.get(key) != now.get(key)]
     if differences:
         raise ValueError(f"checkpoint {folder} holds another study: {'; '.join(differences)}. Rerun with the "
