@@ -67,7 +67,7 @@ def design_section():
         html.Div(id="design-inverse-result")])
 
 
-def design_callbacks(app: Dash, session):
+def design_callbacks(app: Dash, sessions):
     @app.callback(Output("design-flexible-box", "style"), Output("design-strain-box", "style"),
                   Input("design-method", "value"))
     def visible(method):
@@ -79,8 +79,10 @@ def design_callbacks(app: Dash, session):
                   Output("design-figure", "src"), Output("design-inverse-result", "children"),
                   Input("design-run", "n_clicks"), Input("design-inverse-run", "n_clicks"),
                   Input("design-cancel", "n_clicks"), Input("design-poll", "n_intervals"),
-                  *(State(id_, "value") for id_, _ in FORM), prevent_initial_call=True)
+                  *(State(id_, "value") for id_, _ in FORM), State("session", "data"), prevent_initial_call=True)
     def run(_run, _inverse, _cancel, _poll, *values):
+        *values, key = values
+        session = sessions[key]
         trigger = ctx.triggered_id
         unchanged = (no_update, no_update, no_update)
         if trigger in ("design-run", "design-inverse-run"):
@@ -105,8 +107,9 @@ def design_callbacks(app: Dash, session):
         return True, _done(job), job.error or "", "\n".join(job.notes), True, *_views(job)
 
     @app.callback(Output("design-download", "data"), Output("design-messages", "children", allow_duplicate=True),
-                  Input("design-download-button", "n_clicks"), prevent_initial_call=True)
-    def download(_):
+                  Input("design-download-button", "n_clicks"), State("session", "data"), prevent_initial_call=True)
+    def download(_, key):
+        session = sessions[key]
         if session.design is None:
             return no_update, "nothing to download yet: run the design first"
         return dcc.send_string(session.design.table.to_csv(index=False), "blockdae-design-samples.csv"), ""
