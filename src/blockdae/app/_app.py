@@ -16,7 +16,7 @@ from ._analysis import (Settings, case_solution, displacement_figure, history_fi
 from ._design_page import design_callbacks, design_section
 from ._page import HIDDEN, MESSAGES, SHOWN, layout
 from ._records import record_figure
-from ._session import BATCH_LIMIT_BYTES, FILE_LIMIT_BYTES, SESSION_EXPIRY_S, SessionEnded, Sessions
+from ._session import BATCH_LIMIT_BYTES, FILE_LIMIT_BYTES, SessionEnded, Sessions
 from ._views import case_options, csv_text, data_url, drawn, records_view, results_view
 
 #: how long a click on Run waits for the analysis before showing progress instead [s]
@@ -27,15 +27,13 @@ _FORM = ("method", "ky-mode", "ky", "factor-of-safety", "thrust-angle", "ky-tabl
 
 #: how often an open page tells the app it is still there [ms]
 _HEARTBEAT_MS = 60_000
-#: what the page says once its session has ended
-_ENDED = ("This page's session has ended (the app was restarted, or the page was not heard from for "
-          f"{SESSION_EXPIRY_S / 60:g} minutes): reload the page to start again.")
 
 
 def create_app(sessions: Sessions) -> Dash:
     """The app, each page load a session of ``sessions``; it prepares the solvers on a thread
     (their first run after an install compiles them) while the page loads."""
-    app = Dash(__name__, title="blockdae", serve_locally=True, update_title=None, on_error=_session_ended)
+    app = Dash(__name__, title="blockdae", serve_locally=True, update_title=None,
+               on_error=lambda err: _session_ended(err, sessions.expiry_s))
     app.validation_layout = _page(None)
     app.layout = lambda: _page(sessions.new())
     # a batch's files in base64 (4/3 of their bytes) and the request around them
@@ -73,12 +71,15 @@ def _page(key):
                      layout(design_section())])
 
 
-def _session_ended(err):
-    """A callback's error: where the page's session has ended, the page says so and stops
-    polling (its outputs unchanged); anything else is raised on."""
+def _session_ended(err, expiry_s):
+    """A callback's error: where the page's session has ended (``expiry_s`` [s] unheard, or
+    the app restarted), the page says so and stops polling (its outputs unchanged);
+    anything else is raised on."""
     if not isinstance(err, SessionEnded):
         raise err
-    set_props("session-ended", {"children": _ENDED})
+    set_props("session-ended", {"children": "This page's session has ended (the app was restarted, or the page was "
+                                            f"not heard from for {expiry_s / 60:.3g} minutes): reload the page to "
+                                            "start again."})
     for interval in ("poll", "design-poll", "engine-poll", "session-heartbeat"):
         set_props(interval, {"disabled": True})
 
