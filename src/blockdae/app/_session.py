@@ -251,9 +251,6 @@ class Sessions:
         session.seen = time.monotonic()
         return session
 
-    def __len__(self):
-        return len(self._sessions)
-
     def sweep(self):
         """Close the sessions not heard from for ``expiry_s``."""
         now = time.monotonic()
