@@ -328,7 +328,7 @@ def test_a_session_unheard_ends_its_runs_cancelled_and_its_files_removed(tmp_pat
         job = session.start(Settings("rigid", (0.1,)))  # its first record waits for the release
         assert session.folder.is_dir() and not job.cancelled.is_set()
         time.sleep(0.3)
-        sessions[heard]  # heard from
+        sessions.heard_from(heard)
         time.sleep(0.3)
         sessions.sweep()
         release.set()
@@ -402,12 +402,13 @@ def test_the_token_or_its_cookie_is_needed(served):
 
 
 def test_odd_file_names_are_refused_and_the_rest_of_the_batch_loads(served):
-    """Names that cannot be a file's ('', '.', '..', 300 characters, a line break) get a
-    message each; the other files of the batch load (a folder's file by its own name)."""
+    """Names that cannot be a file's ('', '.', '..', 300 characters, a line break, half a
+    UTF-16 pair) get a message each, as does an empty file (the browser sends it as 'data:');
+    the other files of the batch load (a folder's file by its own name)."""
     page = Page(served.url)
     kobe = data_url(RECORDS[KOBE])
     long = "x" * 296 + ".csv"
-    message = page.upload({"": kobe, ".": kobe, "..": kobe, "records/..": kobe, long: kobe, "two\nlines.csv": kobe,
+    message = page.upload({"": kobe, ".": kobe, "..": kobe, "records/..": kobe, long: kobe, "two\nlines.csv": kobe, "half\ud800.csv": kobe, "empty.csv": "data:",
                            f"station records/{KOBE}.csv": kobe, f"{CAPE}.csv": data_url(RECORDS[CAPE])})
     assert message.splitlines() == [
         "a file named '' is not loaded: that is no file name",
@@ -416,7 +417,9 @@ def test_odd_file_names_are_refused_and_the_rest_of_the_batch_loads(served):
         "a file named '..' is not loaded: that is no file name",
         "a file named 'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx'... (300 characters) is not loaded: a file name is "
         "at most 255 bytes",
-        "a file named 'two\\nlines.csv' is not loaded: its name holds control characters"]
+        "a file named 'two\\nlines.csv' is not loaded: its name holds U+000A, which no file name may hold",
+        "a file named 'half\\ud800.csv' is not loaded: its name holds U+D800, which no file name may hold",
+        "empty.csv: no data rows"]
     assert sorted(served.sessions[page.key].files) == [f"{CAPE}.csv", f"{KOBE}.csv"]
 
 

@@ -46,7 +46,7 @@ def create_app(sessions: Sessions) -> Dash:
 
     @app.callback(Input("session-heartbeat", "n_intervals"), State("session", "data"), prevent_initial_call=True)
     def heartbeat(_, key):
-        sessions[key]  # marks the session as heard from
+        sessions.heard_from(key)
 
     @app.callback(Output("engine-status", "children"), Output("engine-poll", "disabled"),
                   Input("engine-poll", "n_intervals"))

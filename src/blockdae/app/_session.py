@@ -13,6 +13,7 @@ import secrets
 import shutil
 import threading
 import time
+import unicodedata
 
 from ._analysis import Settings, analyse
 from ._design import DesignJob, DesignSettings, InverseSettings
@@ -87,19 +88,19 @@ def file_label(filename) -> str:
     shown = repr(name) if len(name) <= 60 else f"{name[:40]!r}... ({len(name)} characters)"
     if name in ("", ".", ".."):
         raise ValueError(f"a file named {shown} is not loaded: that is no file name")
-    if any(ord(c) < 32 or ord(c) == 127 for c in name):
-        raise ValueError(f"a file named {shown} is not loaded: its name holds control characters")
+    odd = next((c for c in name if unicodedata.category(c) in ("Cc", "Cs")), None)  # control, lone surrogate
+    if odd is not None:
+        raise ValueError(f"a file named {shown} is not loaded: its name holds U+{ord(odd):04X}, which no file name "
+                         "may hold")
     if len(name.encode()) > _NAME_BYTES:
         raise ValueError(f"a file named {shown} is not loaded: a file name is at most {_NAME_BYTES} bytes")
     return name
 
 
 def _decoded(label, contents) -> bytes:
-    """The bytes of a data URL (base64); ValueError naming ``label`` where it is not one
-    or holds more than :data:`FILE_LIMIT_BYTES`."""
-    _, comma, data = str(contents or "").partition(",")
-    if not comma:
-        raise ValueError(f"{label}: nothing was received of this file: give it again")
+    """The bytes of a data URL (base64; an empty file's holds none); ValueError naming
+    ``label`` where it is not base64 or holds more than :data:`FILE_LIMIT_BYTES`."""
+    _, _, data = str(contents or "").partition(",")
     size = len(data) * 3 // 4 - data[-2:].count("=")
     if size > FILE_LIMIT_BYTES:
         raise ValueError(f"{label}: {size / 1e6:.1f} MB is above the app's limit of {FILE_LIMIT_BYTES / 1e6:g} MB "
@@ -244,6 +245,11 @@ class Sessions:
 
     def __getitem__(self, key) -> Session:
         """The session ``key``, marked as heard from; :class:`SessionEnded` where none is held."""
+        return self.heard_from(key)
+
+    def heard_from(self, key) -> Session:
+        """Mark the session ``key`` as heard from (its page is open); returns it, or raises
+        :class:`SessionEnded` where none is held."""
         with self._lock:
             session = self._sessions.get(key) if isinstance(key, str) else None
         if session is None:
