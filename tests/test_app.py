@@ -343,24 +343,24 @@ def test_a_session_unheard_ends_its_runs_cancelled_and_its_files_removed(tmp_pat
 
 
 def test_a_page_whose_session_ended_says_so():
-    """The app's own check ends a page unheard for 0.5 s: its folder goes, its next click
+    """The app's own check ends a page unheard for 3 s: its file goes, its next click
     answers that the session has ended (and stops the page's polling); a new page works."""
-    local = LocalApp(session_expiry_s=0.5).start()
+    local = LocalApp(session_expiry_s=3.0).start()
     try:
         page = Page(local.url)
-        assert page.upload({f"{KOBE}.csv": data_url(RECORDS[KOBE])}) == ""
-        folder = local.sessions[page.key].folder
+        assert page.upload({f"{KOBE}.csv": data_url(RECORDS[KOBE])}) == ""  # kept: loaded without a message
         deadline = time.monotonic() + 30
-        while folder.exists():
+        while list(local.sessions.folder.rglob("*.csv")):
             assert time.monotonic() < deadline
             time.sleep(0.05)
         answer = page.call("download-csv-button.n_clicks", {"download-csv-button.n_clicks": 1})
         assert answer["response"] == {}
         assert answer["sideUpdate"]["session-ended"]["children"] == (
-            "This page's session has ended (the app was restarted, or the page was not heard from for 0.00833 "
+            "This page's session has ended (the app was restarted, or the page was not heard from for 0.05 "
             "minutes): reload the page to start again.")
         assert all(answer["sideUpdate"][interval] == {"disabled": True} for interval in ("poll", "design-poll"))
-        assert Page(local.url).upload({f"{KOBE}.csv": data_url(RECORDS[KOBE])}) == ""
+        other = Page(local.url)
+        assert other.upload({f"{KOBE}.csv": data_url(RECORDS[KOBE])}) == ""
     finally:
         local.stop()
 
