@@ -132,12 +132,17 @@ def _done(job: DesignJob):
 
 
 def _views(job: DesignJob):
-    """(the exceedance's view, its figure, the inverse's view) for a finished ``job``."""
+    """(the exceedance's view, its figure, the inverse's view) for a finished ``job``, made
+    once: the page polls every 250 ms and applies only the answer to its latest poll, so
+    an answer that drew the figure each time (longer than that on a busy computer) would
+    never be shown."""
     if job.result is None:
         return no_update, no_update, no_update
     if job.kind == "inverse":
         return no_update, no_update, inverse_view(job.result, job.inverse)
-    return exceedance_view(job.result, job.settings), data_url(drawn(job.result.figure)), no_update
+    if "figure" not in vars(job):
+        job.figure = data_url(drawn(job.result.figure))
+    return exceedance_view(job.result, job.settings), job.figure, no_update
 
 
 def _stopping(result, settings):
