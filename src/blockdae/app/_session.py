@@ -161,8 +161,11 @@ class Session:
         return loaded
 
     def give(self, label: str, units: str | None = None, dt: float | None = None) -> LoadedFile:
-        """The file ``label`` read again with the units or step the user gave it."""
-        old = self.files[label]
+        """The file ``label`` read again with the units or step the user gave it; ValueError
+        naming it where it is not (or no longer) loaded."""
+        old = self.files.get(label)
+        if old is None:
+            raise ValueError(f"{label}: this file is not loaded (removed meanwhile?): give it again")
         loaded = load(label, old.path, units or old.units, dt or old.dt)
         with self._lock:
             self.files[label] = loaded
