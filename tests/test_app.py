@@ -391,7 +391,8 @@ def test_the_token_or_its_cookie_is_needed(served):
                                                            **origin})
             assert status == 200, (host, origin)
     name, token = page.cookie.split("=", 1)
-    for headers, path in (({}, "/"), ({"Cookie": f"{name}=x{token[1:]}"}, "/"), ({}, "/?token=abc"),
+    wrong = ("y" if token[0] == "x" else "x") + token[1:]  # one character changed
+    for headers, path in (({}, "/"), ({"Cookie": f"{name}={wrong}"}, "/"), ({}, f"/?token={wrong}"),
                           ({}, "/_dash-layout"), ({"Cookie": f"blockdae-app-1={token}"}, "/")):
         status, _, body = request(page.port, "GET", path, headers)
         assert (status, body) == (403, b"blockdae app: this address needs the app's token: open the whole address "
