@@ -409,8 +409,9 @@ def test_odd_file_names_are_refused_and_the_rest_of_the_batch_loads(served):
     page = Page(served.url)
     kobe = data_url(RECORDS[KOBE])
     long = "x" * 296 + ".csv"
-    message = page.upload({"": kobe, ".": kobe, "..": kobe, "records/..": kobe, long: kobe, "two\nlines.csv": kobe, "half\ud800.csv": kobe, "empty.csv": "data:",
-                           f"station records/{KOBE}.csv": kobe, f"{CAPE}.csv": data_url(RECORDS[CAPE])})
+    message = page.upload({"": kobe, ".": kobe, "..": kobe, "records/..": kobe, long: kobe, "two\nlines.csv": kobe,
+                           "half\ud800.csv": kobe, "empty.csv": "data:", f"station records/{KOBE}.csv": kobe,
+                           f"{CAPE}.csv": data_url(RECORDS[CAPE])})
     assert message.splitlines() == [
         "a file named '' is not loaded: that is no file name",
         "a file named '.' is not loaded: that is no file name",

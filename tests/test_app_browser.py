@@ -4,9 +4,10 @@ run, its table read and its CSV downloaded and compared with ``bd.flexible`` on 
 inputs (the reference: the library's own call, run here), a bad file and a bad field
 answered by a message that names them while the loaded records and results stay; the time
 from a click on Run to a single-record table, measured; a design run in the page, its
-P(D > threshold) and mean ky compared with ``blockdae.design`` on the same inputs and seed; two tabs of one
-app, each with its own records and results; files above the size limits named in the page while the rest
-loads. A screenshot of each step is saved; its folder is printed (``pytest -s``) and is ``$BLOCKDAE_APP_SCREENSHOTS`` where set.
+P(D > threshold) and mean ky compared with ``blockdae.design`` on the same inputs and seed; two tabs of
+one app, each with its own records and results; files above the size limits named in the page while the
+rest loads. A screenshot of each step is saved; its folder is printed (``pytest -s``) and is
+``$BLOCKDAE_APP_SCREENSHOTS`` where set.
 
 Skipped, saying why, without the app extra (``pip install 'blockdae[app]'``), Selenium,
 or Chromium and its driver (``apt-get install chromium chromium-driver``)."""
