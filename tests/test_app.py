@@ -3,13 +3,21 @@ value), the records' rules (a file that does not state its units asks for them, 
 peak in each unit; a bad file is named with its line), the analyses against the library's
 own calls (the reference: bd.newmark and bd.flexible on the same inputs), the design
 page's form and studies against blockdae.design called directly, a cancelled run,
-and ``blockdae app`` serving the page on 127.0.0.1. Skipped without the app extra."""
+and ``blockdae app`` serving the page on 127.0.0.1; through HTTP as a browser's pages
+call it: two pages of one app each with its own records and results, a session ended and
+its files removed, forged Host and Origin headers and a missing token refused, odd file
+names and a file above the size limit refused by name while the rest of the batch loads,
+the temporary folder removed on SIGTERM as on Ctrl+C. Skipped without the app extra."""
 
+import io
+import os
 import re
+import signal
 import socket
 import subprocess
 import sys
 import threading
+import time
 import urllib.request
 
 import numpy as np
@@ -18,14 +26,16 @@ import pytest
 
 import blockdae as bd
 from blockdae import design
-from conftest import load_sample_record
+from app_pages import Page, data_url, request
+from conftest import load_sample_record, sample_record_paths
 
 pytest.importorskip("dash", reason="the app extra is not installed: pip install 'blockdae[app]'")
 
 from blockdae.app._analysis import FieldError, Settings, analyse, case_solution, parse_settings  # noqa: E402
 from blockdae.app._records import load, unit_choices  # noqa: E402
 from blockdae.app._design import DesignJob, parse_design, parse_inverse  # noqa: E402
-from blockdae.app._session import Job  # noqa: E402
+from blockdae.app._session import FILE_LIMIT_BYTES, Job, SessionEnded, Sessions  # noqa: E402
+from blockdae.app import LocalApp  # noqa: E402
 
 FORM = {"method": "coupled", "ky_mode": "direct", "ky": "0.1", "height": "20", "vs": "300", "damping": "0.05",
         "reference_strain": "0.0005", "pga": "", "polarity": "both"}
@@ -135,19 +145,21 @@ def test_a_cancelled_run_stops_between_records(monkeypatch):
 
 
 def test_the_command_serves_the_page_on_this_computer():
-    """``blockdae app --no-browser`` prints its address on 127.0.0.1 and serves the page and
-    Dash's scripts from the installed wheel."""
+    """``blockdae app --no-browser`` prints its address on 127.0.0.1 with its token and serves
+    the page (its cookie kept) and Dash's scripts from the installed wheel."""
     process = subprocess.Popen([sys.executable, "-m", "blockdae.cli", "app", "--no-browser"], stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
     try:
         line = process.stdout.readline()
-        url = re.fullmatch(r"blockdae app: (http://127\.0\.0\.1:\d+/) \(Ctrl\+C stops it\)\n", line)
+        url = re.fullmatch(r"blockdae app: ((http://127\.0\.0\.1:\d+/)\?token=[\w-]{40,}) \(Ctrl\+C stops it\)\n",
+                           line)
         assert url, (line, process.stderr.read() if process.poll() is not None else "")
-        page = urllib.request.urlopen(url[1], timeout=30).read().decode()
+        browser = urllib.request.build_opener(urllib.request.HTTPCookieProcessor())
+        page = browser.open(url[1], timeout=30).read().decode()
         assert "<title>blockdae</title>" in page
         scripts = re.findall(r'<script src="([^"]+)"', page)
         assert scripts and all(src.startswith("/") for src in scripts), scripts
-        assert urllib.request.urlopen(url[1] + scripts[-1].lstrip("/"), timeout=30).status == 200
+        assert browser.open(url[2] + scripts[-1].lstrip("/"), timeout=30).status == 200
     finally:
         process.terminate()
         process.wait(30)
@@ -267,3 +279,207 @@ def test_the_d_ky_plot_has_log_axes_and_states_the_points_it_leaves_out():
                                   for ky, d in ((0.1, 0.05), (0.15, 0.02), (0.2, 0.0))]).axes[0]
     assert narrow.get_xscale() == "linear" and narrow.get_yscale() == "linear"
     assert narrow.get_lines()[0].get_ydata().tolist() == [0.05, 0.02, 0.0]
+
+
+@pytest.fixture(scope="module")
+def served():
+    """The app served on a thread (127.0.0.1, a free port)."""
+    local = LocalApp().start()
+    yield local
+    local.stop()
+
+
+#: pySLAMMER's records (CSV, their header says g) by stem
+RECORDS = {path.stem: path for path in sample_record_paths()}
+KOBE, CAPE = "Kobe_1995_TAK-090", "Cape_Mendocino_1992_PET-090"
+#: the analysis form of the page for a rigid block, both polarities, as recorded
+RIGID = {"method.value": "rigid", "ky-mode.value": "direct", "ky.value": "0.1", "pga.value": "",
+         "polarity.value": "both"}
+
+
+def _table(csv_text):
+    return pd.read_csv(io.StringIO(csv_text))
+
+
+def _newmark(stem, ky):
+    """bd.newmark's table of one of pySLAMMER's records (the reference: the library's own call)."""
+    record = bd.read_record(RECORDS[stem])
+    return bd.newmark({record.name: record}, ky).to_dataframe()
+
+
+def _files(local, page):
+    """The names of the files the app keeps for ``page`` (in its session's folder)."""
+    return sorted(path.name for path in local.sessions[page.key].folder.rglob("*") if path.is_file())
+
+
+def test_two_pages_keep_their_own_records_and_results(served):
+    """Two pages (tabs) of one app, their clicks interleaved: each page's CSV holds its own
+    record at its own ky (those of bd.newmark on the same inputs); a file removed in one page
+    leaves the other's next run as it was; each page's files are kept apart."""
+    a, b = Page(served.url), Page(served.url)
+    assert a.key != b.key
+    assert a.upload({f"{KOBE}.csv": data_url(RECORDS[KOBE])}) == ""
+    assert b.upload({f"{CAPE}.csv": data_url(RECORDS[CAPE])}) == ""
+    assert (_files(served, a), _files(served, b)) == ([f"{KOBE}.csv"], [f"{CAPE}.csv"])
+    assert a.run({**RIGID, "ky.value": "0.1"})["progress"]["children"].startswith("done: 1 record")
+    assert b.run({**RIGID, "ky.value": "0.2"})["progress"]["children"].startswith("done: 1 record")
+    pd.testing.assert_frame_equal(_table(a.csv()), _newmark(KOBE, 0.1), check_exact=True)
+    pd.testing.assert_frame_equal(_table(b.csv()), _newmark(CAPE, 0.2), check_exact=True)
+
+    b.remove(f"{CAPE}.csv")
+    assert _files(served, b) == [] and _files(served, a) == [f"{KOBE}.csv"]
+    assert a.run({**RIGID, "ky.value": "0.15"})["progress"]["children"].startswith("done: 1 record")
+    pd.testing.assert_frame_equal(_table(a.csv()), _newmark(KOBE, 0.15), check_exact=True)
+    refused = b.call("run.n_clicks", {**RIGID, "run.n_clicks": 1})["response"]["analysis-messages"]["children"]
+    assert refused.startswith("no record is loaded")
+    pd.testing.assert_frame_equal(_table(b.csv()), _newmark(CAPE, 0.2), check_exact=True)  # its results stay
+
+
+def test_a_session_unheard_ends_its_runs_cancelled_and_its_files_removed(tmp_path, monkeypatch):
+    """A session not heard from for the expiry is closed: its running analysis cancelled, its
+    folder removed, its key refused; another, heard from, stays."""
+    release = threading.Event()
+
+    def analyse_slowly(name, record, settings):
+        release.wait(10)
+        return [{"record": name}], []
+
+    monkeypatch.setattr("blockdae.app._session.analyse", analyse_slowly)
+    sessions = Sessions(tmp_path, expiry_s=0.5)
+    try:
+        quiet, heard = sessions.new(), sessions.new()
+        session = sessions[quiet]
+        for stem in (KOBE, CAPE):
+            session.add_upload(f"{stem}.csv", data_url(RECORDS[stem]))
+        sessions[heard].add_upload(f"{CAPE}.csv", data_url(RECORDS[CAPE]))
+        job = session.start(Settings("rigid", (0.1,)))  # its first record waits for the release
+        assert session.folder.is_dir() and not job.cancelled.is_set()
+        time.sleep(0.3)
+        sessions.heard_from(heard)
+        time.sleep(0.3)
+        sessions.sweep()
+        release.set()
+        assert job.finished.wait(10) and (job.done, job.total) == (1, 2)  # cancelled after its first record
+        assert not session.folder.exists()
+        with pytest.raises(SessionEnded):
+            sessions[quiet]
+        assert [p.name for p in sessions[heard].folder.rglob("*.csv")] == [f"{CAPE}.csv"]
+    finally:
+        sessions.close()
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_page_whose_session_ended_says_so():
+    """The app's own check ends a page unheard for 3 s: its file goes, its next click
+    answers that the session has ended (and stops the page's polling); a new page works."""
+    local = LocalApp(session_expiry_s=3.0).start()
+    try:
+        page = Page(local.url)
+        assert page.upload({f"{KOBE}.csv": data_url(RECORDS[KOBE])}) == ""  # kept: loaded without a message
+        deadline = time.monotonic() + 30
+        while list(local.sessions.folder.rglob("*.csv")):
+            assert time.monotonic() < deadline
+            time.sleep(0.05)
+        answer = page.call("download-csv-button.n_clicks", {"download-csv-button.n_clicks": 1})
+        assert answer["response"] == {}
+        assert answer["sideUpdate"]["session-ended"]["children"] == (
+            "This page's session has ended (the app was restarted, or the page was not heard from for 0.05 "
+            "minutes): reload the page to start again.")
+        assert all(answer["sideUpdate"][interval] == {"disabled": True} for interval in ("poll", "design-poll"))
+        other = Page(local.url)
+        assert other.upload({f"{KOBE}.csv": data_url(RECORDS[KOBE])}) == ""
+    finally:
+        local.stop()
+
+
+@pytest.mark.parametrize("forged", [{"Host": "evil.example:{port}"}, {"Host": "evil.example"},
+                                    {"Host": "127.0.0.1:1"}, {"Host": ""}, {"Origin": "http://evil.example"},
+                                    {"Origin": "http://evil.example:{port}"}, {"Origin": "null"},
+                                    {"Origin": "http://127.0.0.1:1"}])
+def test_a_forged_host_or_origin_is_refused(served, forged):
+    """A page of another site that renamed itself to this address (DNS rebinding) sends its
+    own name as Host, or its Origin: 403 for the page and for a callback, with the cookie."""
+    page = Page(served.url)
+    headers = {"Cookie": page.cookie, **{k: v.format(port=page.port) for k, v in forged.items()}}
+    status, _, body = request(page.port, "GET", "/", headers)
+    assert status == 403 and body.startswith(b"blockdae app: "), body
+    status, _, body = request(page.port, "POST", "/_dash-update-component",
+                              {**headers, "Content-Type": "application/json"}, "{}")
+    assert status == 403, body
+
+
+def test_the_token_or_its_cookie_is_needed(served):
+    """This computer's names with the app's port pass with the cookie; without it, or with a
+    wrong token or cookie, 403 naming what is needed; the token answers with the cookie."""
+    page = Page(served.url)
+    for host in ("127.0.0.1", "localhost", "LOCALHOST", "[::1]"):
+        for origin in ({}, {"Origin": f"http://{host}:{page.port}"}):
+            status, _, _ = request(page.port, "GET", "/", {"Host": f"{host}:{page.port}", "Cookie": page.cookie,
+                                                           **origin})
+            assert status == 200, (host, origin)
+    name, token = page.cookie.split("=", 1)
+    wrong = ("y" if token[0] == "x" else "x") + token[1:]  # one character changed
+    for headers, path in (({}, "/"), ({"Cookie": f"{name}={wrong}"}, "/"), ({}, f"/?token={wrong}"),
+                          ({}, "/_dash-layout"), ({"Cookie": f"blockdae-app-1={token}"}, "/")):
+        status, _, body = request(page.port, "GET", path, headers)
+        assert (status, body) == (403, b"blockdae app: this address needs the app's token: open the whole address "
+                                       b"'blockdae app' printed (http://...?token=...)\n"), (headers, path)
+    status, headers, _ = request(page.port, "GET", f"/_dash-layout?token={token}")
+    assert status == 303 and headers["Location"] == "/_dash-layout"
+    assert headers["Set-Cookie"] == f"{name}={token}; HttpOnly; Path=/; SameSite=Strict"
+
+
+def test_odd_file_names_are_refused_and_the_rest_of_the_batch_loads(served):
+    """Names that cannot be a file's ('', '.', '..', 300 characters, a line break, half a
+    UTF-16 pair) get a message each, as does an empty file (the browser sends it as 'data:');
+    the other files of the batch load (a folder's file by its own name)."""
+    page = Page(served.url)
+    kobe = data_url(RECORDS[KOBE])
+    long = "x" * 296 + ".csv"
+    message = page.upload({"": kobe, ".": kobe, "..": kobe, "records/..": kobe, long: kobe, "two\nlines.csv": kobe,
+                           "half\ud800.csv": kobe, "empty.csv": "data:", f"station records/{KOBE}.csv": kobe,
+                           f"{CAPE}.csv": data_url(RECORDS[CAPE])})
+    assert message.splitlines() == [
+        "a file named '' is not loaded: that is no file name",
+        "a file named '.' is not loaded: that is no file name",
+        "a file named '..' is not loaded: that is no file name",
+        "a file named '..' is not loaded: that is no file name",
+        "a file named 'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx'... (300 characters) is not loaded: a file name is "
+        "at most 255 bytes",
+        "a file named 'two\\nlines.csv' is not loaded: its name holds U+000A, which no file name may hold",
+        "a file named 'half\\ud800.csv' is not loaded: its name holds U+D800, which no file name may hold",
+        "empty.csv: no data rows"]
+    assert sorted(served.sessions[page.key].files) == [f"{CAPE}.csv", f"{KOBE}.csv"]
+
+
+def test_a_file_above_the_size_limit_is_refused_by_name(served):
+    """A file one byte above the limit: a message naming it, its size and the limit (as the
+    docs state it); the other file of the batch loads."""
+    page = Page(served.url)
+    big = "data:text/csv;base64," + __import__("base64").b64encode(b"0" * (FILE_LIMIT_BYTES + 1)).decode()
+    message = page.upload({"big.csv": big, f"{KOBE}.csv": data_url(RECORDS[KOBE])})
+    assert message == "big.csv: 20.0 MB is above the app's limit of 20 MB per file: not loaded"
+    assert list(served.sessions[page.key].files) == [f"{KOBE}.csv"]
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+@pytest.mark.parametrize("stop", [signal.SIGTERM, signal.SIGINT, signal.SIGHUP])
+def test_a_stopped_app_removes_its_temporary_folder(tmp_path, stop):
+    """``blockdae app`` stopped by SIGTERM (a service manager, ``kill``) or SIGHUP (its
+    terminal closed) removes its temporary folder with the files uploaded, as Ctrl+C does."""
+    process = subprocess.Popen([sys.executable, "-m", "blockdae.cli", "app", "--no-browser"],
+                               env={**os.environ, "TMPDIR": str(tmp_path)}, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    try:
+        line = process.stdout.readline()
+        url = re.search(r"http://\S+", line)
+        assert url, (line, process.stderr.read() if process.poll() is not None else "")
+        assert Page(url[0]).upload({f"{KOBE}.csv": data_url(RECORDS[KOBE])}) == ""
+        (folder,) = tmp_path.glob("blockdae-app-*")
+        assert [path.name for path in folder.rglob("*.csv")] == [f"{KOBE}.csv"]
+        process.send_signal(stop)
+        assert process.wait(60) == 0, process.stderr.read()
+    finally:
+        process.kill()
+        process.wait(30)
+    assert list(tmp_path.glob("blockdae-app-*")) == []

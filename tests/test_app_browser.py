@@ -4,8 +4,10 @@ run, its table read and its CSV downloaded and compared with ``bd.flexible`` on 
 inputs (the reference: the library's own call, run here), a bad file and a bad field
 answered by a message that names them while the loaded records and results stay; the time
 from a click on Run to a single-record table, measured; a design run in the page, its
-P(D > threshold) and mean ky compared with ``blockdae.design`` on the same inputs and seed. A screenshot of each step is
-saved; its folder is printed (``pytest -s``) and is ``$BLOCKDAE_APP_SCREENSHOTS`` where set.
+P(D > threshold) and mean ky compared with ``blockdae.design`` on the same inputs and seed; two tabs of
+one app, each with its own records and results; files above the size limits named in the page while the
+rest loads. A screenshot of each step is saved; its folder is printed (``pytest -s``) and is
+``$BLOCKDAE_APP_SCREENSHOTS`` where set.
 
 Skipped, saying why, without the app extra (``pip install 'blockdae[app]'``), Selenium,
 or Chromium and its driver (``apt-get install chromium chromium-driver``)."""
@@ -206,8 +208,8 @@ def test_two_records_coupled_table_and_csv_match_the_library(browser, files, dow
     assert expected["normal_m"].min() > 0.01  # both records slide: the comparison means something
 
     resources = browser.execute_script("return performance.getEntriesByType('resource').map(e => e.name)")
-    assert resources and all(name.startswith(app.url) or name.startswith("data:") for name in resources), \
-        [name for name in resources if not name.startswith(app.url)]
+    assert resources and all(name.startswith(app.address) or name.startswith("data:") for name in resources), \
+        [name for name in resources if not name.startswith(app.address)]
 
 
 def test_a_single_record_analysis_appears_within_a_second(browser, screenshots):
@@ -374,3 +376,102 @@ def test_a_design_in_the_page_is_the_librarys(browser, files, downloads, screens
         _shoot(browser, screenshots, "8-design")
     finally:
         local.stop()
+
+
+def _open(driver, url):
+    """``url`` opened, once the page has rendered its upload fields."""
+    driver.get(url)
+    _wait(driver, 60).until(lambda d: d.find_elements(By.CSS_SELECTOR, "#upload-files input[type=file]"))
+
+
+def _download_csv(driver, downloads, button="download-csv-button", name="blockdae-results.csv"):
+    """The CSV the button downloads (the folder's earlier copy removed first)."""
+    csv = downloads / name
+    csv.unlink(missing_ok=True)
+    driver.find_element(By.ID, button).click()
+    _wait(driver, 30).until(lambda d: csv.exists() and csv.stat().st_size > 0)
+    return pd.read_csv(csv)
+
+
+def _run_rigid(driver, ky):
+    browser_ky = f"{ky:.4f}"
+    driver.find_element(By.CSS_SELECTOR, "#method input[value=rigid]").click()
+    _type(driver, "ky", str(ky))
+    driver.find_element(By.ID, "run").click()
+    _wait(driver, 120).until(lambda d: d.find_elements(By.ID, "results-table") and all(
+        row[2] == browser_ky for row in _table(d, "results-table")[1]))
+
+
+def test_two_tabs_keep_their_own_records_and_results(browser, files, downloads, screenshots):
+    """Two tabs of a fresh app, their clicks interleaved: each tab's CSV holds its own record
+    at its own ky (bd.newmark's on the same inputs: the library's own call, the reference);
+    a file removed in one tab leaves the other's records and its next run as they were."""
+    local = LocalApp().start()
+    first = browser.current_window_handle
+    try:
+        browser.get(local.url)
+        tab_a = browser.current_window_handle
+        _wait(browser, WARM_UP_S).until(lambda d: "Solvers ready" in d.find_element(By.ID, "engine-status").text)
+        browser.switch_to.new_window("tab")
+        tab_b = browser.current_window_handle
+        _open(browser, local.url)
+        cape = {p.stem: p for p in sample_record_paths()}["Cape_Mendocino_1992_PET-090"]
+        _upload(browser, cape)
+        _rows_of(browser, "records-table", 1)
+        browser.switch_to.window(tab_a)
+        _upload(browser, files["stated"])
+        _rows_of(browser, "records-table", 1)
+        _run_rigid(browser, 0.1)
+        browser.switch_to.window(tab_b)
+        _run_rigid(browser, 0.2)
+        browser.switch_to.window(tab_a)
+        kobe = bd.read_record(files["stated"])
+        pd.testing.assert_frame_equal(_download_csv(browser, downloads),
+                                      bd.newmark({kobe.name: kobe}, 0.1).to_dataframe(), check_exact=True)
+        browser.switch_to.window(tab_b)
+        record = bd.read_record(cape)
+        pd.testing.assert_frame_equal(_download_csv(browser, downloads),
+                                      bd.newmark({record.name: record}, 0.2).to_dataframe(), check_exact=True)
+        browser.find_element(By.ID, "records-table").find_element(By.TAG_NAME, "button").click()  # remove
+        _wait(browser, 30).until(lambda d: not d.find_elements(By.ID, "records-table"))
+        _shoot(browser, screenshots, "9-tab-b-removed-its-file")
+        browser.switch_to.window(tab_a)
+        assert [row[0] for row in _table(browser, "records-table")[1]] == [files["stated"].name]
+        _run_rigid(browser, 0.15)
+        pd.testing.assert_frame_equal(_download_csv(browser, downloads),
+                                      bd.newmark({kobe.name: kobe}, 0.15).to_dataframe(), check_exact=True)
+        _shoot(browser, screenshots, "10-tab-a-still-has-its-record")
+    finally:
+        for handle in browser.window_handles:
+            if handle != first:
+                browser.switch_to.window(handle)
+                browser.close()
+        browser.switch_to.window(first)
+        local.stop()
+
+
+def test_files_above_the_size_limits_are_named_and_the_rest_loads(browser, app, tmp_path, screenshots, monkeypatch):
+    """A file one byte above the limit per file is not sent: the page names it, its size and
+    the limit, and loads the other file given with it; with the limit of a batch lowered
+    (the page reloaded, a new session), the file past it is named and the first loads."""
+    from blockdae.app import _app
+    from blockdae.app._session import FILE_LIMIT_BYTES
+
+    big = tmp_path / "big.csv"
+    big.write_bytes(b"0" * (FILE_LIMIT_BYTES + 1))
+    cape = {p.stem: p for p in sample_record_paths()}["Cape_Mendocino_1992_PET-090"]
+    _open(browser, app.url)  # a new page: a session of its own, no records
+    _upload(browser, big, cape)
+    message = _wait(browser, 60).until(lambda d: d.find_element(By.ID, "record-messages").text or None)
+    assert message == "big.csv: 20.0 MB is above the app's limit of 20 MB per file: not loaded"
+    assert [row[0] for row in _rows_of(browser, "records-table", 1)[1]] == [cape.name]
+    _shoot(browser, screenshots, "11-file-above-the-limit")
+
+    monkeypatch.setattr(_app, "BATCH_LIMIT_BYTES", cape.stat().st_size + 1000)
+    _open(browser, app.url)
+    kobe = {p.stem: p for p in sample_record_paths()}["Kobe_1995_TAK-090"]
+    _upload(browser, cape, kobe)
+    message = _wait(browser, 60).until(lambda d: d.find_element(By.ID, "record-messages").text or None)
+    assert message == (f"{kobe.name}: not loaded: the files given at once are at most "
+                       f"{(cape.stat().st_size + 1000) / 1e6:g} MB together; give it again in another batch")
+    assert [row[0] for row in _rows_of(browser, "records-table", 1)[1]] == [cape.name]

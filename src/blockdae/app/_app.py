@@ -1,21 +1,22 @@
-"""The Dash app: the page and what each click does. Files and the running analysis live in a
-:class:`Session`; every message names the file or field and the value, and nothing loaded
-or computed is dropped on an error."""
+"""The Dash app: the page and what each click does. Files and the running analysis live in
+the :class:`Session` of the page (each page load opens one: its key is in the page, and
+every callback reads it); every message names the file or field and the value, and nothing
+loaded or computed is dropped on an error."""
 
 import math
 import threading
 import time
 
 import numpy as np
-from dash import ALL, Dash, Input, Output, State, ctx, dcc, no_update
+from dash import ALL, Dash, Input, Output, State, ctx, dcc, html, no_update, set_props
 
 from ..excitation import Record
 from ._analysis import (Settings, case_solution, displacement_figure, history_figure, library_table,
                         parse_settings)
 from ._design_page import design_callbacks, design_section
-from ._page import HIDDEN, SHOWN, layout
+from ._page import HIDDEN, MESSAGES, SHOWN, layout
 from ._records import record_figure
-from ._session import Session
+from ._session import BATCH_LIMIT_BYTES, FILE_LIMIT_BYTES, SessionEnded, Sessions
 from ._views import case_options, csv_text, data_url, drawn, records_view, results_view
 
 #: how long a click on Run waits for the analysis before showing progress instead [s]
@@ -24,19 +25,28 @@ _FORM = ("method", "ky-mode", "ky", "factor-of-safety", "thrust-angle", "ky-tabl
          "reference-strain", "pga", "polarity")
 
 
-def create_app(folder) -> Dash:
-    """The app, its uploaded files kept under ``folder``; it prepares the solvers on a thread
+#: how often an open page tells the app it is still there [ms]
+_HEARTBEAT_MS = 60_000
+
+
+def create_app(sessions: Sessions) -> Dash:
+    """The app, each page load a session of ``sessions``; it prepares the solvers on a thread
     (their first run after an install compiles them) while the page loads."""
-    session = Session(folder)
-    app = Dash(__name__, title="blockdae", serve_locally=True, update_title=None)
-    app.layout = layout(design_section())
-    app.server.config["MAX_CONTENT_LENGTH"] = None
+    app = Dash(__name__, title="blockdae", serve_locally=True, update_title=None,
+               on_error=lambda err: _session_ended(err, sessions.expiry_s))
+    app.validation_layout = _page(None)
+    app.layout = lambda: _page(sessions.new())
+    # a batch's files in base64 (4/3 of their bytes) and the request around them
+    app.server.config["MAX_CONTENT_LENGTH"] = BATCH_LIMIT_BYTES * 4 // 3 + 1_000_000
     warm = _WarmUp()
-    thumbnails = {}  # file label -> the PNG data URL of its record
-    _record_callbacks(app, session, thumbnails)
-    _analysis_callbacks(app, session)
-    _result_callbacks(app, session)
-    design_callbacks(app, session)
+    _record_callbacks(app, sessions)
+    _analysis_callbacks(app, sessions)
+    _result_callbacks(app, sessions)
+    design_callbacks(app, sessions)
+
+    @app.callback(Input("session-heartbeat", "n_intervals"), State("session", "data"), prevent_initial_call=True)
+    def heartbeat(_, key):
+        sessions.heard_from(key)
 
     @app.callback(Output("engine-status", "children"), Output("engine-poll", "disabled"),
                   Input("engine-poll", "n_intervals"))
@@ -49,6 +59,29 @@ def create_app(folder) -> Dash:
         return f"Solvers ready ({warm.seconds:.1f} s to prepare).", True
 
     return app
+
+
+def _page(key):
+    """The page's components, holding the key of its session (None: the validation layout)."""
+    return html.Div([dcc.Store(id="session", data=key),
+                     dcc.Store(id="upload-batch"),
+                     dcc.Store(id="upload-limits", data={"file": FILE_LIMIT_BYTES, "batch": BATCH_LIMIT_BYTES}),
+                     dcc.Interval(id="session-heartbeat", interval=_HEARTBEAT_MS),
+                     html.Div(id="session-ended", role="alert", style=MESSAGES),
+                     layout(design_section())])
+
+
+def _session_ended(err, expiry_s):
+    """A callback's error: where the page's session has ended (``expiry_s`` [s] unheard, or
+    the app restarted), the page says so and stops polling (its outputs unchanged);
+    anything else is raised on."""
+    if not isinstance(err, SessionEnded):
+        raise err
+    set_props("session-ended", {"children": "This page's session has ended (the app was restarted, or the page was "
+                                            f"not heard from for {expiry_s / 60:.3g} minutes): reload the page to "
+                                            "start again."})
+    for interval in ("poll", "design-poll", "engine-poll", "session-heartbeat"):
+        set_props(interval, {"disabled": True})
 
 
 class _WarmUp:
@@ -75,47 +108,87 @@ class _WarmUp:
         self.seconds = time.perf_counter() - start
 
 
-def _record_callbacks(app, session, thumbnails):
+def _record_callbacks(app, sessions):
+    app.clientside_callback(_BATCH, Output("upload-batch", "data"), Output("upload-files", "contents"),
+                            Output("upload-folder", "contents"), Input("upload-files", "contents"),
+                            Input("upload-folder", "contents"), State("upload-files", "filename"),
+                            State("upload-folder", "filename"), State("upload-limits", "data"),
+                            prevent_initial_call=True)
+
+    @app.callback(Output("records-view", "children", allow_duplicate=True),
+                  Output("record-messages", "children", allow_duplicate=True), Output("upload-batch", "data"),
+                  Input("upload-batch", "data"), State("session", "data"), prevent_initial_call=True)
+    def upload(batch, key):
+        session = sessions[key]
+        if not batch:
+            return no_update, no_update, no_update
+        messages = list(batch.get("refused") or [])
+        for name, content in zip(batch.get("names") or [], batch.get("contents") or []):
+            try:
+                loaded = session.add_upload(name, content)
+            except ValueError as err:  # the name, the size, the file: named; the rest of the batch goes on
+                messages.append(str(err))
+                continue
+            if loaded.record is not None:
+                session.thumbnails[loaded.label] = data_url(drawn(record_figure, loaded.record))
+        return records_view(session, session.thumbnails), "\n".join(messages), None  # the files sent once
+
     @app.callback(Output("records-view", "children"), Output("record-messages", "children"),
-                  Input("upload-files", "contents"), Input("upload-folder", "contents"),
                   Input({"type": "units", "file": ALL}, "value"),
                   Input({"type": "step-apply", "file": ALL}, "n_clicks"),
                   Input({"type": "remove", "file": ALL}, "n_clicks"),
-                  State("upload-files", "filename"), State("upload-folder", "filename"),
-                  State({"type": "step", "file": ALL}, "value"), prevent_initial_call=True)
-    def records(files, folder, _units, _step_clicks, _removes, file_names, folder_names, typed_steps):
+                  State({"type": "step", "file": ALL}, "value"), State("session", "data"), prevent_initial_call=True)
+    def records(_units, _step_clicks, _removes, typed_steps, key):
+        session = sessions[key]
         trigger = ctx.triggered_id
-        messages = []
-        if trigger in ("upload-files", "upload-folder"):
-            contents, names = (files, file_names) if trigger == "upload-files" else (folder, folder_names)
-            for name, content in zip(names or [], contents or []):
-                try:
-                    loaded = session.add_upload(name, content)
-                except ValueError as err:
-                    messages.append(str(err))
-                    continue
-                if loaded.record is not None:
-                    thumbnails[loaded.label] = data_url(drawn(record_figure, loaded.record))
-        elif isinstance(trigger, dict) and ctx.triggered[0]["value"]:
-            label = trigger["file"]
-            try:
-                if trigger["type"] == "units":
-                    loaded = session.give(label, units=ctx.triggered[0]["value"])
-                elif trigger["type"] == "step-apply":
-                    typed = next((value for spec, value in zip(ctx.states_list[2], typed_steps)
-                                  if spec["id"]["file"] == label), "")
-                    loaded = session.give(label, dt=_step(label, typed))
-                else:
-                    session.remove(label)
-                    thumbnails.pop(label, None)
-                    loaded = None
-                if loaded is not None and loaded.record is not None:
-                    thumbnails[label] = data_url(drawn(record_figure, loaded.record))
-            except ValueError as err:
-                messages.append(str(err))
-        else:
+        if not (isinstance(trigger, dict) and ctx.triggered[0]["value"]):
             return no_update, no_update
-        return records_view(session, thumbnails), "\n".join(messages)
+        label, messages = trigger["file"], []
+        try:
+            if trigger["type"] == "units":
+                loaded = session.give(label, units=ctx.triggered[0]["value"])
+            elif trigger["type"] == "step-apply":
+                typed = next((value for spec, value in zip(ctx.states_list[0], typed_steps)
+                              if spec["id"]["file"] == label), "")
+                loaded = session.give(label, dt=_step(label, typed))
+            else:
+                session.remove(label)
+                loaded = None
+            if loaded is not None and loaded.record is not None:
+                session.thumbnails[label] = data_url(drawn(record_figure, loaded.record))
+        except ValueError as err:
+            messages.append(str(err))
+        return records_view(session, session.thumbnails), "\n".join(messages)
+
+
+#: in the browser, the files just picked or dropped: those above the size limits are not
+#: sent (a message names each), the others go to the server once (the uploads then hold none)
+_BATCH = """
+function (files, folder, fileNames, folderNames, limits) {
+    const fromFolder = dash_clientside.callback_context.triggered.some(t => t.prop_id.startsWith("upload-folder"));
+    const contents = (fromFolder ? folder : files) || [], names = (fromFolder ? folderNames : fileNames) || [];
+    if (!contents.length) { return [dash_clientside.no_update, null, null]; }
+    const megabytes = bytes => (bytes / 1e6).toFixed(1) + " MB";
+    const batch = {names: [], contents: [], refused: []};
+    let total = 0;
+    contents.forEach((content, i) => {
+        const data = content.slice(content.indexOf(",") + 1);
+        const size = Math.floor(data.length * 3 / 4) - (data.endsWith("==") ? 2 : data.endsWith("=") ? 1 : 0);
+        if (size > limits.file) {
+            batch.refused.push(`${names[i]}: ${megabytes(size)} is above the app's limit of ` +
+                               `${limits.file / 1e6} MB per file: not loaded`);
+        } else if (total + size > limits.batch) {
+            batch.refused.push(`${names[i]}: not loaded: the files given at once are at most ` +
+                               `${limits.batch / 1e6} MB together; give it again in another batch`);
+        } else {
+            total += size;
+            batch.names.push(names[i]);
+            batch.contents.push(content);
+        }
+    });
+    return [batch, null, null];
+}
+"""
 
 
 def _step(label, typed):
@@ -129,7 +202,7 @@ def _step(label, typed):
     return dt
 
 
-def _analysis_callbacks(app, session):
+def _analysis_callbacks(app, sessions):
     @app.callback(Output("ky-direct", "style"), Output("ky-safety", "style"), Output("ky-table-box", "style"),
                   Output("flexible-box", "style"), Output("strain-box", "style"),
                   Input("ky-mode", "value"), Input("method", "value"))
@@ -144,8 +217,10 @@ def _analysis_callbacks(app, session):
                   Output("results-stamp", "data"), Output("dky-figure", "src"),
                   Output("history-figure", "src", allow_duplicate=True),
                   Input("run", "n_clicks"), Input("cancel", "n_clicks"), Input("poll", "n_intervals"),
-                  *(State(name, "value") for name in _FORM), prevent_initial_call=True)
+                  *(State(name, "value") for name in _FORM), State("session", "data"), prevent_initial_call=True)
     def run(_run, _cancel, _poll, *values):
+        *values, key = values
+        session = sessions[key]
         trigger = ctx.triggered_id
         if trigger == "run":
             form = dict(zip((name.replace("-", "_") for name in _FORM), values))
@@ -188,19 +263,20 @@ def _finished(session, job):
             best, True, time.time(), "", "")  # the figures of the new results follow
 
 
-def _result_callbacks(app, session):
+def _result_callbacks(app, sessions):
     @app.callback(Output("dky-figure", "src", allow_duplicate=True), Input("results-stamp", "data"),
-                  prevent_initial_call=True)
-    def displacements(_):
+                  State("session", "data"), prevent_initial_call=True)
+    def displacements(_, key):
+        session = sessions[key]
         if session.results is None:
             return no_update
         return data_url(drawn(displacement_figure, session.results.rows))
 
     @app.callback(Output("history-figure", "src"), Output("history-messages", "children"),
                   Input("case", "value"), Input("history-polarity", "value"), Input("results-stamp", "data"),
-                  prevent_initial_call=True)
-    def history(case, polarity, _):
-        results = session.results
+                  State("session", "data"), prevent_initial_call=True)
+    def history(case, polarity, _, key):
+        results = sessions[key].results
         if results is None or case is None or case >= len(results.rows):
             return no_update, ""
         row = results.rows[case]
@@ -215,9 +291,9 @@ def _result_callbacks(app, session):
     @app.callback(Output("download", "data"), Output("history-messages", "children", allow_duplicate=True),
                   Input("download-csv-button", "n_clicks"), Input("download-dky-button", "n_clicks"),
                   Input("download-history-button", "n_clicks"), State("case", "value"),
-                  State("history-polarity", "value"), prevent_initial_call=True)
-    def download(_csv, _dky, _history, case, polarity):
-        results = session.results
+                  State("history-polarity", "value"), State("session", "data"), prevent_initial_call=True)
+    def download(_csv, _dky, _history, case, polarity, key):
+        results = sessions[key].results
         if results is None:
             return no_update, "nothing to download yet: run an analysis first"
         trigger = ctx.triggered_id

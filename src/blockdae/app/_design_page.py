@@ -67,7 +67,7 @@ def design_section():
         html.Div(id="design-inverse-result")])
 
 
-def design_callbacks(app: Dash, session):
+def design_callbacks(app: Dash, sessions):
     @app.callback(Output("design-flexible-box", "style"), Output("design-strain-box", "style"),
                   Input("design-method", "value"))
     def visible(method):
@@ -79,8 +79,10 @@ def design_callbacks(app: Dash, session):
                   Output("design-figure", "src"), Output("design-inverse-result", "children"),
                   Input("design-run", "n_clicks"), Input("design-inverse-run", "n_clicks"),
                   Input("design-cancel", "n_clicks"), Input("design-poll", "n_intervals"),
-                  *(State(id_, "value") for id_, _ in FORM), prevent_initial_call=True)
+                  *(State(id_, "value") for id_, _ in FORM), State("session", "data"), prevent_initial_call=True)
     def run(_run, _inverse, _cancel, _poll, *values):
+        *values, key = values
+        session = sessions[key]
         trigger = ctx.triggered_id
         unchanged = (no_update, no_update, no_update)
         if trigger in ("design-run", "design-inverse-run"):
@@ -105,8 +107,9 @@ def design_callbacks(app: Dash, session):
         return True, _done(job), job.error or "", "\n".join(job.notes), True, *_views(job)
 
     @app.callback(Output("design-download", "data"), Output("design-messages", "children", allow_duplicate=True),
-                  Input("design-download-button", "n_clicks"), prevent_initial_call=True)
-    def download(_):
+                  Input("design-download-button", "n_clicks"), State("session", "data"), prevent_initial_call=True)
+    def download(_, key):
+        session = sessions[key]
         if session.design is None:
             return no_update, "nothing to download yet: run the design first"
         return dcc.send_string(session.design.table.to_csv(index=False), "blockdae-design-samples.csv"), ""
@@ -129,12 +132,17 @@ def _done(job: DesignJob):
 
 
 def _views(job: DesignJob):
-    """(the exceedance's view, its figure, the inverse's view) for a finished ``job``."""
+    """(the exceedance's view, its figure, the inverse's view) for a finished ``job``, made
+    once: the page polls every 250 ms and applies only the answer to its latest poll, so
+    an answer that drew the figure each time (longer than that on a busy computer) would
+    never be shown."""
     if job.result is None:
         return no_update, no_update, no_update
     if job.kind == "inverse":
         return no_update, no_update, inverse_view(job.result, job.inverse)
-    return exceedance_view(job.result, job.settings), data_url(drawn(job.result.figure)), no_update
+    if "figure" not in vars(job):
+        job.figure = data_url(drawn(job.result.figure))
+    return exceedance_view(job.result, job.settings), job.figure, no_update
 
 
 def _stopping(result, settings):
