@@ -203,7 +203,26 @@ def test_the_map_on_a_dask_localcluster_is_identical(tables):
     kwargs = dict(thickness_m=2.0, thresholds_m=(0.05,), per_record=True, tables=tables)
     expected = rg.displacement_map(dem, _strength(dem), None, 0.5, **kwargs)
     chunked = dem.chunk({"x": 20, "y": 20})
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as cluster, \
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, dashboard_address=None) as cluster, \
             distributed.Client(cluster):
         got = rg.displacement_map(chunked, _strength(chunked), None, 0.5, **kwargs).compute()
     xr.testing.assert_identical(got, expected)
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".zarr", ".tif"])
+def test_a_map_written_and_read_back_keeps_its_values_units_and_crs(tables, tmp_path, suffix):
+    dem = _terrain(24)
+    ds = rg.displacement_map(dem.chunk({"x": 12, "y": 12}), _strength(dem), None, 0.5, thickness_m=2.0,
+                             thresholds_m=(0.01, 0.05), tables=tables)
+    names = ["median_displacement_m", "exceedance", "category"]
+    paths = rg.write_map(ds, tmp_path / f"map{suffix}", names)
+    expected = ds[names].compute()
+    if suffix == ".tif":
+        assert [p.name for p in paths] == [f"map_{n}.tif" for n in names]
+        back = rg.read_raster(paths[0])
+        np.testing.assert_array_equal(back.values, expected["median_displacement_m"].values)
+        assert back.rio.crs.to_epsg() == 32611
+        return
+    back = xr.open_dataset(paths[0], engine="zarr" if suffix == ".zarr" else "h5netcdf", decode_coords="all")
+    np.testing.assert_array_equal(back["exceedance"].values, expected["exceedance"].values)
+    assert back["median_displacement_m"].attrs["units"] == "m" and back.rio.crs.to_epsg() == 32611

@@ -11,6 +11,7 @@ unstable (no yield acceleration: it slides without shaking), a flat cell (α = 0
 slide downslope, a cell with no elevation or strength is nodata.
 """
 
+import numba
 import numpy as np
 
 from ..units import STANDARD_GRAVITY
@@ -40,29 +41,63 @@ def infinite_slope(slope_deg, cohesion_kpa, friction_deg, unit_weight_kn_m3, thi
         (fs, ky, category): FS [-] (+inf on a flat cell, NaN on nodata); ky [g] (NaN
         where the cell is not :data:`STABLE`); category: int8 codes of :data:`CATEGORIES`.
     """
-    alpha, c, phi, gamma, t, m = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (
-        slope_deg, cohesion_kpa, friction_deg, unit_weight_kn_m3, thickness_m, saturated_fraction)))
-    _check("slope_deg", alpha, (alpha >= 0) & (alpha < 90), "must lie in [0, 90) degrees")
-    _check("cohesion_kpa", c, c >= 0, "must be >= 0 kPa")
-    _check("friction_deg", phi, (phi > 0) & (phi < 90), "must lie in (0, 90) degrees")
-    _check("unit_weight_kn_m3", gamma, gamma > 0, "must be > 0 kN/m³")
-    _check("thickness_m", t, t > 0, "must be > 0 m")
-    _check("saturated_fraction", m, (m >= 0) & (m <= 1), "must lie in [0, 1]")
-    nodata = np.isnan(alpha) | np.isnan(c) | np.isnan(phi) | np.isnan(gamma) | np.isnan(t) | np.isnan(m)
-    flat = ~nodata & (alpha == 0)
-    sloping = ~nodata & ~flat
-    a = np.radians(np.where(sloping, alpha, 45.0))
-    tan_phi, tan_a = np.tan(np.radians(phi)), np.tan(a)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        fs = c / (gamma * t * np.sin(a)) + tan_phi / tan_a \
-            - m * float(water_unit_weight_kn_m3) * tan_phi / (gamma * tan_a)
-    fs = np.where(sloping, fs, np.where(flat, np.inf, np.nan))
-    category = np.full(alpha.shape, NODATA, dtype=np.int8)
-    category[sloping & (fs >= 1)] = STABLE
-    category[sloping & (fs < 1)] = UNSTABLE
-    category[flat] = FLAT
-    ky = np.where(category == STABLE, (fs - 1.0) * np.sin(a), np.nan)
+    given = [np.asarray(v, dtype=float) for v in (slope_deg, cohesion_kpa, friction_deg, unit_weight_kn_m3,
+                                                   thickness_m, saturated_fraction)]
+    shape = np.broadcast_shapes(*(v.shape for v in given))
+    alpha, c, phi, gamma, t, m = (np.broadcast_to(v, shape) for v in given)
+    fs, ky = np.empty(alpha.shape), np.empty(alpha.shape)
+    category = np.empty(alpha.shape, dtype=np.int8)
+    rows = lambda v: v.reshape(-1, v.shape[-1] if v.ndim else 1)  # a view of a broadcast 2-D input: no copy
+    bad = _cells(*(rows(v) for v in (alpha, c, phi, gamma, t, m)), float(water_unit_weight_kn_m3),
+                 rows(fs), rows(ky), rows(category))
+    if bad >= 0:
+        name, values, ok, message = _RANGES[bad](alpha, c, phi, gamma, t, m)
+        _check(name, values, ok, message)
     return fs, ky, category
+
+
+#: the check of each input (its index in _cells' flag): (name, values, in range, message)
+_RANGES = (lambda a, c, p, g, t, m: ("slope_deg", a, (a >= 0) & (a < 90), "must lie in [0, 90) degrees"),
+           lambda a, c, p, g, t, m: ("cohesion_kpa", c, c >= 0, "must be >= 0 kPa"),
+           lambda a, c, p, g, t, m: ("friction_deg", p, (p > 0) & (p < 90), "must lie in (0, 90) degrees"),
+           lambda a, c, p, g, t, m: ("unit_weight_kn_m3", g, g > 0, "must be > 0 kN/m³"),
+           lambda a, c, p, g, t, m: ("thickness_m", t, t > 0, "must be > 0 m"),
+           lambda a, c, p, g, t, m: ("saturated_fraction", m, (m >= 0) & (m <= 1), "must lie in [0, 1]"))
+
+
+@numba.njit(cache=True, nogil=True)
+def _cells(alpha, c, phi, gamma, t, m, gamma_w, fs, ky, category):
+    """FS, ky and category of every cell (2-D arrays, written in place); returns the index
+    in :data:`_RANGES` of the first input out of range (the caller raises), or -1."""
+    for i in np.ndindex(alpha.shape):
+        a, ci, p, gi, ti, mi = alpha[i], c[i], phi[i], gamma[i], t[i], m[i]
+        if a != a or ci != ci or p != p or gi != gi or ti != ti or mi != mi:
+            fs[i], ky[i], category[i] = np.nan, np.nan, NODATA
+            continue
+        if not (0.0 <= a < 90.0):
+            return 0
+        if not ci >= 0.0:
+            return 1
+        if not (0.0 < p < 90.0):
+            return 2
+        if not gi > 0.0:
+            return 3
+        if not ti > 0.0:
+            return 4
+        if not (0.0 <= mi <= 1.0):
+            return 5
+        if a == 0.0:
+            fs[i], ky[i], category[i] = np.inf, np.nan, FLAT
+            continue
+        ar = np.radians(a)
+        sin_a, tan_a, tan_p = np.sin(ar), np.tan(ar), np.tan(np.radians(p))
+        f = ci / (gi * ti * sin_a) + tan_p / tan_a - mi * gamma_w * tan_p / (gi * tan_a)
+        fs[i] = f
+        if f >= 1.0:
+            ky[i], category[i] = (f - 1.0) * sin_a, STABLE
+        else:
+            ky[i], category[i] = np.nan, UNSTABLE
+    return -1
 
 
 def count_categories(category) -> dict:

@@ -6,7 +6,7 @@ import warnings
 
 import numpy as np
 
-from ._infinite_slope import CATEGORIES, STABLE, infinite_slope
+from ._infinite_slope import CATEGORIES, FLAT, infinite_slope
 from ._tables import DisplacementTables
 from ._terrain import _crs, _with_crs, slope_and_azimuth
 
@@ -114,12 +114,11 @@ def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturate
         tables = DisplacementTables.build(records, polarity, rtol=rtol, atol_m=atol_m / MAX_PGA_G)
     names = _quantities(tables, thresholds, per_record, regressions)
     order = ("cohesion_kpa", "friction_deg", "unit_weight_kn_m3", "thickness_m", "saturated_fraction", "pga_g")
-    stacked = xr.apply_ufunc(
-        _cells, grid, *(fields[k] for k in order), output_core_dims=[["quantity"]], dask="parallelized",
+    outputs = xr.apply_ufunc(
+        _cells, grid, *(fields[k] for k in order), output_core_dims=[[]] * len(names), dask="parallelized",
         kwargs=dict(tables=tables, thresholds=thresholds, method=method, per_record=per_record,
-                    regressions=regressions, n_out=len(names)),
-        output_dtypes=[float], dask_gufunc_kwargs={"output_sizes": {"quantity": len(names)}})
-    return _dataset(stacked, names, slopes, fields["pga_g"], tables, thresholds, method, per_record, regressions)
+                    regressions=regressions), output_dtypes=[float] * len(names))
+    return _dataset(outputs, names, slopes, fields["pga_g"], tables, thresholds, method, per_record, regressions)
 
 
 def _field(strength, name):
@@ -190,30 +189,23 @@ def _quantities(tables, thresholds, per_record, regressions):
 
 
 def _cells(slope, cohesion, friction, unit_weight, thickness, saturated, pga, *, tables, thresholds, method,
-           per_record, regressions, n_out):
-    """Every quantity of :func:`_quantities` at each cell of one block: shape (*block, n_out)."""
-    _check_pga_values(pga)
+           per_record, regressions):
+    """Every quantity of :func:`_quantities` at each cell of one block: a tuple of arrays shaped as the block."""
+    _check_pga_values(np.asarray(pga))
     fs, ky, category = infinite_slope(slope, cohesion, friction, unit_weight, thickness, saturated)
     shape = category.shape
-    pga = np.broadcast_to(pga, shape)
-    out = np.empty(shape + (n_out,))
-    out[..., 0], out[..., 1], out[..., 2] = fs, ky, category
-    stable = category == STABLE
-    ky_cells = np.where(stable, ky, np.nan).ravel()
-    median, exceed = tables.statistics(ky_cells, pga.ravel(), thresholds, method)
-    flat = (category == 3).ravel()
+    pga = np.broadcast_to(pga, shape).ravel()
+    flat = (category == FLAT).ravel()
+    median, exceed = tables.statistics(ky.ravel(), pga, thresholds, method)  # ky is NaN unless stable
     median[flat], exceed[:, flat] = 0.0, 0.0
-    out[..., 3] = median.reshape(shape)
-    k = 4 + thresholds.size
-    out[..., 4:k] = np.moveaxis(exceed.reshape((thresholds.size,) + shape), 0, -1)
+    out = [fs, ky, category.astype(float), median.reshape(shape), *(p.reshape(shape) for p in exceed)]
     if per_record:
-        d = tables.displacement(ky_cells, pga.ravel(), method)
+        d = tables.displacement(ky.ravel(), pga, method)
         d[:, flat] = 0.0
-        out[..., k:k + d.shape[0]] = np.moveaxis(d.reshape((d.shape[0],) + shape), 0, -1)
-        k += d.shape[0]
+        out += [member.reshape(shape) for member in d]
     if regressions:
-        out[..., k:] = _regressions(ky_cells, pga.ravel(), flat).reshape(shape + (2,))
-    return out
+        out += [r.reshape(shape) for r in _regressions(ky.ravel(), pga, flat).T]
+    return tuple(out)
 
 
 def _regressions(ky, pga, flat):
@@ -231,10 +223,10 @@ def _regressions(ky, pga, flat):
     return out
 
 
-def _dataset(stacked, names, slopes, pga, tables, thresholds, method, per_record, regressions):
+def _dataset(outputs, names, slopes, pga, tables, thresholds, method, per_record, regressions):
     import xarray as xr
 
-    take = lambda k: stacked.isel(quantity=k, drop=True)
+    take = lambda k: outputs[k]
     index = {name: k for k, name in enumerate(names)}
     data = {"slope_deg": slopes["slope_deg"]}
     if "dip_azimuth_deg" in slopes:

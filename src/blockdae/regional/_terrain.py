@@ -3,6 +3,7 @@ slope [deg] and dip azimuth [deg clockwise from north] from a DEM by Horn's meth
 1981, the 3 x 3 weighted differences of GDAL's ``gdaldem slope``/``aspect``) in a projected
 CRS with metre cells."""
 
+import numba
 import numpy as np
 
 
@@ -81,17 +82,25 @@ def _horn(z, dx, dy, which):
     cells of ``z`` (rows along y, columns along x, spacings dx, dy [m], signed), NaN on
     the border; shaped as z."""
     out = np.full(z.shape, np.nan)
-    a, b, c = z[:-2, :-2], z[:-2, 1:-1], z[:-2, 2:]
-    d, f = z[1:-1, :-2], z[1:-1, 2:]
-    g, h, i = z[2:, :-2], z[2:, 1:-1], z[2:, 2:]
-    dz_dx = ((c + 2 * f + i) - (a + 2 * d + g)) / (8 * dx)
-    dz_dy = ((g + 2 * h + i) - (a + 2 * b + c)) / (8 * dy)
-    if which == 0:
-        out[1:-1, 1:-1] = np.degrees(np.arctan(np.hypot(dz_dx, dz_dy)))
-    else:
-        azimuth = np.degrees(np.arctan2(-dz_dx, -dz_dy)) % 360.0
-        out[1:-1, 1:-1] = np.where((dz_dx == 0) & (dz_dy == 0), np.nan, azimuth)
+    _horn_cells(np.ascontiguousarray(z, dtype=float), float(dx), float(dy), which, out)
     return out
+
+
+@numba.njit(cache=True, nogil=True)
+def _horn_cells(z, dx, dy, which, out):
+    for r in range(1, z.shape[0] - 1):
+        for k in range(1, z.shape[1] - 1):
+            a, b, c = z[r - 1, k - 1], z[r - 1, k], z[r - 1, k + 1]
+            d, f = z[r, k - 1], z[r, k + 1]
+            g, h, i = z[r + 1, k - 1], z[r + 1, k], z[r + 1, k + 1]
+            dz_dx = ((c + 2 * f + i) - (a + 2 * d + g)) / (8 * dx)
+            dz_dy = ((g + 2 * h + i) - (a + 2 * b + c)) / (8 * dy)
+            if which == 0:
+                out[r, k] = np.degrees(np.arctan(np.hypot(dz_dx, dz_dy)))
+            elif dz_dx == 0 and dz_dy == 0:
+                out[r, k] = np.nan
+            else:
+                out[r, k] = np.degrees(np.arctan2(-dz_dx, -dz_dy)) % 360.0
 
 
 def _crs(array):
@@ -103,5 +112,6 @@ def _crs(array):
 
 
 def _with_crs(dataset, like):
+    """``dataset`` (built by the caller, so written in place: no copy of its data) with ``like``'s CRS."""
     crs = _crs(like)
-    return dataset if crs is None else dataset.rio.write_crs(crs)
+    return dataset if crs is None else dataset.rio.write_crs(crs, inplace=True)
