@@ -226,3 +226,25 @@ def test_a_map_written_and_read_back_keeps_its_values_units_and_crs(tables, tmp_
     back = xr.open_dataset(paths[0], engine="zarr" if suffix == ".zarr" else "h5netcdf", decode_coords="all")
     np.testing.assert_array_equal(back["exceedance"].values, expected["exceedance"].values)
     assert back["median_displacement_m"].attrs["units"] == "m" and back.rio.crs.to_epsg() == 32611
+
+
+def test_blockdae_map_writes_the_map_and_prints_every_category(tmp_path, capsys):
+    from blockdae.cli import main
+
+    dem = _terrain(30)
+    dem.fillna(0.0).rio.to_raster(tmp_path / "dem.tif")
+    (tmp_path / "zones.csv").write_text("zone,cohesion_kpa,friction_deg,unit_weight_kn_m3\n1,4,30,18.5\n")
+    t = np.arange(0, 4, 0.01)
+    (tmp_path / "pulse.csv").write_text("time (s),acc (g)\n" + "\n".join(
+        f"{ti:.2f},{0.3 * np.sin(2 * np.pi * ti) * np.exp(-ti):.6f}" for ti in t))
+    code = main(["map", str(tmp_path / "dem.tif"), str(tmp_path / "pulse.csv"), "--zone-table",
+                 str(tmp_path / "zones.csv"), "--thickness", "2", "--pga", "0.3", "--thresholds", "0.01",
+                 "--out", str(tmp_path / "map.nc"), "--chunks", "16"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert "cells: 116 nodata" in out and "statically unstable" in out and "flat" in out
+    back = xr.open_dataset(tmp_path / "map.nc", engine="h5netcdf", decode_coords="all")
+    assert back["median_displacement_m"].attrs["units"] == "m" and int((back["category"] == 0).sum()) == 116
+    assert main(["map", str(tmp_path / "dem.tif"), str(tmp_path / "pulse.csv"), "--zone-table",
+                 str(tmp_path / "zones.csv"), "--thickness", "2", "--pga", "3.9", "--out", str(tmp_path / "x.nc")]) == 2
+    assert "pga_g=3.9" in capsys.readouterr().err

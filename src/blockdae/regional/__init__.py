@@ -7,11 +7,12 @@ exceedance probabilities and the regressions beside it; xarray Datasets, Dask ch
 chunk. Needs the ``regional`` extra (xarray, rioxarray, dask)."""
 
 from ._infinite_slope import CATEGORIES, WATER_UNIT_WEIGHT, count_categories, infinite_slope
+from ._figures import map_figure
 from ._io import write_map
 from ._map import MAX_PGA_G, displacement_map, strength_from_zones, summarize
 from ._tables import DisplacementTables
 from ._terrain import read_raster, slope_and_azimuth
 
 __all__ = ["CATEGORIES", "DisplacementTables", "MAX_PGA_G", "WATER_UNIT_WEIGHT", "count_categories",
-           "displacement_map", "infinite_slope", "read_raster", "slope_and_azimuth", "strength_from_zones",
+           "displacement_map", "infinite_slope", "map_figure", "read_raster", "slope_and_azimuth", "strength_from_zones",
            "summarize", "write_map"]

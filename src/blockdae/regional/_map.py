@@ -241,7 +241,8 @@ def _dataset(outputs, names, slopes, pga, tables, thresholds, method, per_record
         units="g", long_name="peak ground acceleration")
     members = [f"{name} ({pol})" for name, pol in tables.members]
     data["median_displacement_m"] = take(3).assign_attrs(
-        units="m", long_name=f"median Newmark displacement over {len(members)} record(s) x polarities")
+        units="m", long_name=f"median Newmark displacement over {len({r for r, _ in tables.members})} record(s) "
+                             f"x {len({p for _, p in tables.members})} polarities")
     exceed = [take(index[("exceedance", d)]) for d in thresholds]
     data["exceedance"] = xr.concat(exceed, dim="threshold_m").assign_coords(threshold_m=("threshold_m", thresholds, {
         "units": "m"})).assign_attrs(units="1", long_name="P(D > threshold) over the suite")
