@@ -248,3 +248,45 @@ def test_blockdae_map_writes_the_map_and_prints_every_category(tmp_path, capsys)
     assert main(["map", str(tmp_path / "dem.tif"), str(tmp_path / "pulse.csv"), "--zone-table",
                  str(tmp_path / "zones.csv"), "--thickness", "2", "--pga", "3.9", "--out", str(tmp_path / "x.nc")]) == 2
     assert "pga_g=3.9" in capsys.readouterr().err
+
+
+def _shakemap(path, units, scale):
+    """A ShakeMap grid.xml of 5 x 4 points with PGA = scale * (lon + 2 lat) in ``units``."""
+    lon, lat = np.linspace(-117.2, -116.8, 5), np.linspace(37.2, 36.9, 4)  # rows from the north, as ShakeMap writes
+    rows = "\n".join(f"{x:.4f} {y:.4f} {scale * (x + 2 * y):.6f} 12.5" for y in lat for x in lon)
+    path.write_text(f'''<?xml version="1.0" encoding="US-ASCII" standalone="yes"?>
+<shakemap_grid xmlns="http://earthquake.usgs.gov/eqcenter/shakemap" event_id="test" shakemap_id="test">
+<grid_specification lon_min="-117.2" lat_min="36.9" lon_max="-116.8" lat_max="37.2" nominal_lon_spacing="0.1"
+ nominal_lat_spacing="0.1" nlon="5" nlat="4" />
+<grid_field index="1" name="LON" units="dd" />
+<grid_field index="2" name="LAT" units="dd" />
+<grid_field index="3" name="PGA" units="{units}" />
+<grid_field index="4" name="PGV" units="cms" />
+<grid_data>
+{rows}
+</grid_data>
+</shakemap_grid>''')
+    return path
+
+
+@pytest.mark.parametrize("units, scale, to_g", [("pctg", 1.0, 0.01), ("g", 0.01, 1.0),
+                                                ("cms2", 9.80665, 0.01 / 9.80665)])
+def test_a_shakemap_is_read_in_its_own_units_and_interpolated_onto_the_terrain(tmp_path, units, scale, to_g):
+    path = _shakemap(tmp_path / "grid.xml", units, scale)
+    grid = rg.read_shakemap(path)
+    assert grid.attrs["units"] == "g" and grid.attrs["units_in_file"] == units
+    np.testing.assert_allclose(grid.sel(lon=-117.0, lat=37.0, method="nearest"), scale * to_g * (-117.0 + 74.0),
+                               rtol=1e-6)
+    assert rg.read_shakemap(path, "PGV").attrs["units"] == "cm/s"
+    x, y = np.array([500_000.0, 505_000.0]), np.array([4_100_000.0, 4_095_000.0])  # UTM 11N near 117 W, 37 N
+    terrain = xr.DataArray(np.zeros((2, 2)), dims=("y", "x"), coords={"x": x, "y": y}).rio.write_crs(CRS)
+    pga = rg.shakemap_on_terrain(path, terrain)
+    from pyproj import Transformer
+    lon, lat = Transformer.from_crs(CRS, "EPSG:4326", always_xy=True).transform(*np.meshgrid(x, y))
+    np.testing.assert_allclose(pga, scale * to_g * (lon + 2 * lat), rtol=1e-6)  # bilinear is exact on a plane
+    assert pga.attrs["units"] == "g"
+
+
+def test_a_shakemap_in_unknown_units_is_refused_naming_them(tmp_path):
+    with pytest.raises(ValueError, match=r"PGA is in 'furlongs'"):
+        rg.read_shakemap(_shakemap(tmp_path / "grid.xml", "furlongs", 1.0))

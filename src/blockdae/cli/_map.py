@@ -26,7 +26,8 @@ def add_map_parser(sub):
     p.add_argument("--saturated", default="0", metavar="M",
                    help="saturated fraction m of t [-]: a number or a raster (default 0)")
     p.add_argument("--pga", required=True, metavar="PGA_G",
-                   help="peak ground acceleration [g]: a number or a raster on the DEM's grid, in g")
+                   help="peak ground acceleration [g]: a number, a raster on the DEM's grid in g, or a ShakeMap "
+                        "grid.xml (its PGA, in the units it states, interpolated onto the DEM's grid)")
     p.add_argument("--thresholds", type=positive("--thresholds"), nargs="+", default=[0.05], metavar="D_M",
                    help="displacements d [m] of the maps P(D > d) (default 0.05)")
     p.add_argument("--method", choices=("table", "exact"), default="table",
@@ -66,7 +67,7 @@ def _map(args) -> int:
     else:
         zones = checked(lambda: regional.read_raster(args.zones, chunks=chunks), str(args.zones))
         strength = checked(lambda: regional.strength_from_zones(zones, table), str(args.zone_table))
-    fields = {name: _number_or_raster(regional, getattr(args, name), f"--{name}", chunks)
+    fields = {name: _number_or_raster(regional, getattr(args, name), f"--{name}", chunks, dem)
               for name in ("thickness", "saturated", "pga")}
     if isinstance(fields["pga"], float) and not 0 <= fields["pga"] <= regional.MAX_PGA_G:
         raise UsageError(f"--pga: pga_g={fields['pga']!r} must lie in [0, {regional.MAX_PGA_G:g}] g (a value above "
@@ -104,11 +105,14 @@ def _map(args) -> int:
     return 0
 
 
-def _number_or_raster(regional, text, name, chunks):
+def _number_or_raster(regional, text, name, chunks, dem):
+    """A number, a raster file, or (for --pga) a ShakeMap grid.xml interpolated onto the DEM's grid."""
     try:
         return float(text)
     except ValueError:
         path = pathlib.Path(text)
         if not path.is_file():
             raise UsageError(f"{name} {text}: neither a number nor a raster file") from None
+        if name == "--pga" and path.suffix.lower() == ".xml":
+            return checked(lambda: regional.shakemap_on_terrain(path, dem), f"{name} {path}")
         return checked(lambda: regional.read_raster(path, chunks=chunks), f"{name} {path}")

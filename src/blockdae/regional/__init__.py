@@ -10,9 +10,10 @@ from ._infinite_slope import CATEGORIES, WATER_UNIT_WEIGHT, count_categories, in
 from ._figures import map_figure
 from ._io import write_map
 from ._map import MAX_PGA_G, displacement_map, strength_from_zones, summarize
+from ._shakemap import read_shakemap, shakemap_on_terrain
 from ._tables import DisplacementTables
 from ._terrain import read_raster, slope_and_azimuth
 
 __all__ = ["CATEGORIES", "DisplacementTables", "MAX_PGA_G", "WATER_UNIT_WEIGHT", "count_categories",
-           "displacement_map", "infinite_slope", "map_figure", "read_raster", "slope_and_azimuth", "strength_from_zones",
-           "summarize", "write_map"]
+           "displacement_map", "infinite_slope", "map_figure", "read_raster", "read_shakemap", "shakemap_on_terrain",
+           "slope_and_azimuth", "strength_from_zones", "summarize", "write_map"]

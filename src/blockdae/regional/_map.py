@@ -143,7 +143,8 @@ def _on_grid(name, value, grid, resample):
     crs, grid_crs = _crs(value), _crs(grid)
     same_crs = crs is None or grid_crs is None or crs == grid_crs
     if same and same_crs:
-        return value.assign_coords({d: grid[d] for d in grid.dims})
+        value = value.assign_coords({d: grid[d] for d in grid.dims})
+        return value.chunk(dict(zip(grid.dims, grid.chunks))) if grid.chunks and not value.chunks else value
     if resample:
         return value.rio.reproject_match(grid, resampling=_bilinear())
     raise ValueError(f"{name} is on another grid than the terrain ({_describe(value)} against {_describe(grid)}); "
