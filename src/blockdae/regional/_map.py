@@ -6,7 +6,7 @@ import warnings
 
 import numpy as np
 
-from ._infinite_slope import CATEGORIES, FLAT, infinite_slope
+from ._infinite_slope import CATEGORIES, FLAT, NODATA, STABLE, infinite_slope
 from ._tables import DisplacementTables
 from ._terrain import _crs, _with_crs, slope_and_azimuth
 
@@ -93,7 +93,7 @@ def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturate
         ``flag_values``/``flag_meanings``), pga_g, median_displacement_m, exceedance
         (threshold_m, y, x) [-], displacement_m (member, y, x) where asked, and the
         regression medians; units in each variable's attrs. D and P are NaN on nodata
-        and statically unstable cells; 0 on flat ones. Dask-backed where the inputs are
+        (a cell without PGA is nodata too) and statically unstable cells; 0 on flat ones. Dask-backed where the inputs are
         (nothing computed until written or ``.compute()``).
     """
     import xarray as xr
@@ -195,17 +195,20 @@ def _cells(slope, cohesion, friction, unit_weight, thickness, saturated, pga, *,
     _check_pga_values(np.asarray(pga))
     fs, ky, category = infinite_slope(slope, cohesion, friction, unit_weight, thickness, saturated)
     shape = category.shape
-    pga = np.broadcast_to(pga, shape).ravel()
+    pga = np.broadcast_to(pga, shape)
+    category[np.isnan(pga)] = NODATA  # no ground motion there: no displacement
+    pga = pga.ravel()
     flat = (category == FLAT).ravel()
-    median, exceed = tables.statistics(ky.ravel(), pga, thresholds, method)  # ky is NaN unless stable
+    ky_stable = np.where(category == STABLE, ky, np.nan).ravel()
+    median, exceed = tables.statistics(ky_stable, pga, thresholds, method)
     median[flat], exceed[:, flat] = 0.0, 0.0
     out = [fs, ky, category.astype(float), median.reshape(shape), *(p.reshape(shape) for p in exceed)]
     if per_record:
-        d = tables.displacement(ky.ravel(), pga, method)
+        d = tables.displacement(ky_stable, pga, method)
         d[:, flat] = 0.0
         out += [member.reshape(shape) for member in d]
     if regressions:
-        out += [r.reshape(shape) for r in _regressions(ky.ravel(), pga, flat).T]
+        out += [r.reshape(shape) for r in _regressions(ky_stable, pga, flat).T]
     return tuple(out)
 
 

@@ -102,8 +102,18 @@ class DisplacementTables:
                    rtol=float(rtol), atol_m=float(atol_m), motions=tuple(motions), g=float(g),
                    buckets=_buckets(knots, r_min, tops, 4 * n))
 
+    def select(self, record: str, polarity: str) -> "DisplacementTables":
+        """The table of one member (a record's name and "normal" or "inverse") alone."""
+        if (record, polarity) not in self.members:
+            raise ValueError(f"no member ({record!r}, {polarity!r}); members: {list(self.members)}")
+        k = self.members.index((record, polarity))
+        one = slice(k, k + 1)
+        return dataclasses.replace(self, members=self.members[one], knots=self.knots[one], values=self.values[one],
+                                   slopes=self.slopes[one], counts=self.counts[one], r_top=self.r_top[one],
+                                   motions=self.motions[one], buckets=self.buckets[one])
+
     def displacement(self, ky_g, pga_g, method: str = "table") -> np.ndarray:
-        """D [m] of every member at each cell: shape (n_members, *shape of ky/pga broadcast);
+        """D [m] of every member at each cell: shape ``(n_members, *cells)`` (cells: ky and pga broadcast);
         ``ky_g`` [g] > 0 and ``pga_g`` [g] >= 0 (NaN stays NaN); ``method`` "table" or "exact"."""
         ky, pga = np.broadcast_arrays(np.asarray(ky_g, float), np.asarray(pga_g, float))
         flat_ky, flat_pga = ky.ravel(), pga.ravel()
@@ -119,7 +129,7 @@ class DisplacementTables:
 
     def statistics(self, ky_g, pga_g, thresholds_m=(), method: str = "table"):
         """(median D [m], P(D > d) for each threshold d [m]) over the members at each cell,
-        without storing D per member: shapes (*cells) and (n_thresholds, *cells); NaN where
+        without storing D per member: shapes ``cells`` and ``(n_thresholds, *cells)``; NaN where
         ky or pga is NaN."""
         ky, pga = np.broadcast_arrays(np.asarray(ky_g, float), np.asarray(pga_g, float))
         flat_ky, flat_pga = ky.ravel(), pga.ravel()
