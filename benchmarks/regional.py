@@ -103,7 +103,8 @@ def _terrain(n, chunk):
             return 80 * np.sin(X / 900) * np.cos(Y / 700) + 30 * np.sin(X / 130 + Y / 170) + 0.2 * X
         if kind == "zones":
             return np.where(np.sin(X / 2500) * np.cos(Y / 3100) > 0, 1.0, 2.0)
-        return 0.25 + 0.2 * np.exp(-((X - 0.4 * n * CELL_M) ** 2 + (Y - 0.6 * n * CELL_M) ** 2) / (0.3 * n * CELL_M) ** 2)
+        side = n * CELL_M
+        return 0.25 + 0.2 * np.exp(-((X - 0.4 * side) ** 2 + (Y - 0.6 * side) ** 2) / (0.3 * side) ** 2)
 
     arrays = []
     for kind in ("dem", "zones", "pga"):
@@ -161,11 +162,11 @@ def _rectangular_pulse():
     closed = (amplitude - ky) * g * duration**2 / 2 + ((amplitude - ky) * g * duration) ** 2 / (2 * ky * g)
     dt = 1e-4
     samples = np.r_[np.full(round(duration / dt) + 1, amplitude * g), np.zeros(round(3 / dt))]
-    ramp = dt  # the record falls to 0 over its last step: D of that ramp added exactly below
     record = bd.Record(samples, dt, name="pulse")
     ours = bd.newmark(record, ky, polarity="normal").normal
-    line = f"rectangular pulse 0.5 g for 0.3 s, ky 0.1 g: closed form {closed:.4f} m (sharp end), blockdae {ours:.4f} m " \
-           f"(samples every {1e3 * dt:g} ms: the pulse ends over a {1e3 * ramp:g} ms ramp)"
+    line = f"rectangular pulse 0.5 g for 0.3 s, ky 0.1 g: closed form {closed:.4f} m (sharp end), " \
+           f"blockdae {ours:.4f} m " \
+           f"(samples every {1e3 * dt:g} ms: the pulse ends over a {1e3 * dt:g} ms ramp)"
     try:
         from pynewmarkdisp.newmark import direct_newmark
         theirs = direct_newmark(record.sample_times, samples, ky * g / 9.81, 9.81)["perm_disp"]

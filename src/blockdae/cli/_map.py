@@ -42,7 +42,8 @@ def add_map_parser(sub):
                    help="the map: .nc (NetCDF), .zarr (Zarr) or .tif (GeoTIFF, a file per variable)")
     p.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG",
                    help="save median D and Jibson (2007)'s over the hillshade")
-    p.add_argument("--g", type=positive("--g"), default=9.80665, help="the unit 'g' [m/s²] of the files (default 9.80665)")
+    p.add_argument("--g", type=positive("--g"), default=9.80665,
+                   help="the unit 'g' [m/s²] of the files (default 9.80665)")
     record_arguments(p)
     recursive_argument(p)
     set_argument(p)

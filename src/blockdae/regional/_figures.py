@@ -33,7 +33,8 @@ def map_figure(dataset, dem, variables=("median_displacement_m", "jibson_2007_me
         ax.imshow(shade, cmap="gray", extent=extent, origin="upper", vmin=0, vmax=1)
         if name == "exceedance":
             d = float(dataset["threshold_m"][0])
-            norm, label, masked = Normalize(0, 1), f"P(D > {d:g} m) over the suite [-]", np.ma.masked_less_equal(values, 0)
+            norm, label = Normalize(0, 1), f"P(D > {d:g} m) over the suite [-]"
+            masked = np.ma.masked_less_equal(values, 0)
         else:
             norm, label = LogNorm(d_min_m, max(top, 10 * d_min_m)), _LABELS.get(name, f"{name} [m]")
             masked = np.ma.masked_less(np.ma.masked_invalid(values), d_min_m)

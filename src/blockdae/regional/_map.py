@@ -93,8 +93,8 @@ def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturate
         ``flag_values``/``flag_meanings``), pga_g, median_displacement_m, exceedance
         (threshold_m, y, x) [-], displacement_m (member, y, x) where asked, and the
         regression medians; units in each variable's attrs. D and P are NaN on nodata
-        (a cell without PGA is nodata too) and statically unstable cells; 0 on flat ones. Dask-backed where the inputs are
-        (nothing computed until written or ``.compute()``).
+        (a cell without PGA is nodata too) and statically unstable cells; 0 on flat ones.
+        Dask-backed where the inputs are (nothing computed until written or ``.compute()``).
     """
     import xarray as xr
 

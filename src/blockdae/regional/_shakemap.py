@@ -23,7 +23,8 @@ def read_shakemap(path, field: str = "PGA"):
     root = ElementTree.parse(path).getroot()
     spec = _child(root, "grid_specification", path)
     nlon, nlat = int(spec.get("nlon")), int(spec.get("nlat"))
-    fields = {f.get("name").upper(): (int(f.get("index")) - 1, f.get("units", "")) for f in _children(root, "grid_field")}
+    fields = {f.get("name").upper(): (int(f.get("index")) - 1, f.get("units", ""))
+              for f in _children(root, "grid_field")}
     name = field.upper()
     if name not in fields:
         raise ValueError(f"{path}: no field {field!r} in the grid (fields {sorted(fields)})")

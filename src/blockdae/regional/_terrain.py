@@ -60,7 +60,8 @@ def cell_size(dem) -> tuple[float, float]:
     crs = _crs(dem)
     if crs is not None and not crs.is_projected:
         raise ValueError(f"the DEM's CRS {crs.to_string()} is geographic (cells in degrees): slope needs metre "
-                         "cells; reproject it to a projected CRS first, e.g. dem.rio.reproject(dem.rio.estimate_utm_crs())")
+                         "cells; reproject it to a projected CRS first, e.g. "
+                         "dem.rio.reproject(dem.rio.estimate_utm_crs())")
     if crs is not None:
         unit = crs.linear_units
         if unit not in ("metre", "meter"):
@@ -72,7 +73,8 @@ def cell_size(dem) -> tuple[float, float]:
     for axis in ("x", "y"):
         steps = np.diff(np.asarray(dem[axis], dtype=float))
         if not np.allclose(steps, steps[0], rtol=1e-9, atol=0):
-            raise ValueError(f"the DEM's {axis} coordinates are not evenly spaced ({steps.min():g} to {steps.max():g} m)")
+            raise ValueError(f"the DEM's {axis} coordinates are not evenly spaced "
+                             f"({steps.min():g} to {steps.max():g} m)")
         spacing.append(float(steps[0]))
     return tuple(spacing)
 
