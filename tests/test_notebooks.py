@@ -166,3 +166,12 @@ def test_design_notebook_runs(monkeypatch, jax_cache_dir):
     assert 1.5 < ratio < 3.0
     low, high = (float(x) for x in re.search(r"fresh study .*interval ([\d.]+)-([\d.]+)\)", text).groups())
     assert low <= 0.10 <= high
+
+
+@pytest.mark.slow  # builds 20 tables of the FEMA far-field records: minutes on 2 cores
+def test_regional_notebook_runs(monkeypatch, jax_cache_dir):
+    """The map's table within its bound at 500 random cells (asserted inside), every category
+    counted, and both regressions compared cell by cell."""
+    text = _text(_execute("13_regional.ipynb", monkeypatch, jax_cache_dir))
+    assert "of the bound" in text and "statically_unstable" in text
+    assert text.count("regression / time histories, median") == 2

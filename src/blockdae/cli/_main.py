@@ -30,6 +30,7 @@ from ._design import add_design_parser
 from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
 from ._info import add_info_parser
+from ._map import add_map_parser
 from ._upthrow import add_upthrow_parser
 from ._rocking import add_rocking_parser
 from ..sliding import SlidingBlock, newmark, seed_examples
@@ -187,6 +188,7 @@ def _parser():
     add_study_parser(sub)
     add_hazard_parsers(sub)
     add_design_parser(sub)
+    add_map_parser(sub)
     add_info_parser(sub)
     add_app_parser(sub)
     return parser
