@@ -11,6 +11,7 @@ from ._cases import cases, is_many
 from ._ensemble import Ensemble, Finals
 from ._progress import progress_bar
 from ._registry import AbstractBackend, Horizon, available, make_backend
+from ._solution import of_run
 from .contract import AbstractHybridModel
 
 
@@ -177,14 +178,3 @@ def _compiled_finals(model, runs, t_end, solver):
 
     return tuple(tuple(tuple(finals(i, k, p) for p in range(n_polarities)) for k in range(n_scales))
                  for i in range(n_motions))
-
-
-def of_run(result, block, motion):
-    """``result`` (a solution: a frozen dataclass that checks nothing on construction) with
-    its ``block`` and ``motion`` set: what ``dataclasses.replace`` makes, a shallow copy,
-    without running ``__init__`` again."""
-    copy = object.__new__(type(result))
-    copy.__dict__.update(result.__dict__)
-    object.__setattr__(copy, "block", block)
-    object.__setattr__(copy, "motion", motion)
-    return copy

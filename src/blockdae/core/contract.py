@@ -69,10 +69,18 @@ class AbstractHybridModel(abc.ABC):
 
     #: names of the continuous states, in order
     state_names: tuple[str, ...]
+    #: the unit of each state, in order ("m", "m/s", "rad", ...), which tables
+    #: (``history()``, ``to_dataframe()``) put in their column names and figures on their
+    #: axes; None: not declared (the names alone)
+    state_units: tuple[str, ...] | None = None
     #: the mode enumeration (an IntEnum)
     modes: type[enum.IntEnum]
     #: the mode at t = 0 (the model starts at rest relative to its base)
     initial_mode: enum.IntEnum
+    #: modes that last an instant: entered with a guard already below zero on purpose,
+    #: left at once (a block released from a tilt); the driver's check that a mode is
+    #: entered with its guards at or above zero skips them
+    instant_modes: tuple = ()
     #: names of the excitation's components, in the order of ``excitation_pieces``
     component_names: tuple[str, ...] = ("x",)
     #: whether the motion shakes the model along its base (a record whose header says it is
@@ -96,6 +104,15 @@ class AbstractHybridModel(abc.ABC):
     def batch_shape(self) -> tuple[int, ...]:
         """() : one parameter set (a :class:`BatchedModel` may hold several)."""
         return ()
+
+    def initial_state(self):
+        """The state at t = 0 in :attr:`initial_mode`, shape (n,) [the units of
+        :attr:`state_names`]: at rest relative to the base (zeros) by default. A model that
+        starts elsewhere (a static offset, a block already sliding) returns its own,
+        checked by the model where it is built (the driver checks that every guard of
+        :attr:`initial_mode` is at or above zero there, as on entering any mode). The
+        derivatives along the trajectory take it as independent of the parameters."""
+        return np.zeros(len(self.state_names))
 
     def check_motion(self, motion) -> None:
         """Raise TypeError unless ``motion`` is a base motion this model runs under (an
@@ -443,6 +460,16 @@ class StudyModel(AbstractHybridModel, StudyBatch):
     g: float
     #: what the study sweeps: (its keyword, the table's column, its unit)
     study_parameter: tuple[str, str, str]
+    #: the polarities the study runs each motion in, a column of its table ("normal": the
+    #: motion as given, "inverse": times -1); () (default): no polarity column (the
+    #: motion as given, or the model's own columns cover both polarities)
+    study_polarities: tuple[str, ...] = ()
+
+    def study_parameter_for(self, given: dict) -> tuple[str, str, str]:
+        """What the study sweeps given what the user gave (keyword -> values, None where
+        not given): :attr:`study_parameter` by default; a model that takes another
+        keyword for the same values (the rigid block's ky for its mu) returns it."""
+        return self.study_parameter
 
     def study_batch(self, values) -> StudyBatch:
         """This model at every value of the swept parameter (what :meth:`study_sweep`

@@ -17,7 +17,10 @@ def column_name(parameter, model):
     """The table column of ``parameter`` of ``model``, its unit in the name (ky_g, vs_m_s,
     damping_ratio), or the model's own name for it (the plane's mu, bias_x: coefficients)."""
     own = getattr(model, "COLUMNS", {})
-    return own[parameter] if parameter in own else f"{parameter}_{_SUFFIX[model.PARAMETERS[parameter]]}"
+    if parameter in own:
+        return own[parameter]
+    unit = model.PARAMETERS[parameter]
+    return f"{parameter}_{_SUFFIX.get(unit) or unit.replace('/', '_').replace('²', '2')}"
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

@@ -96,6 +96,7 @@ class RockingBlock(DifferentiableModel):
     g: float = STANDARD_GRAVITY
 
     modes = RockingMode
+    instant_modes = (RockingMode.RELEASE,)  # the release from theta0, left at once
     component_names = ("x", "z")
     default_backend = "cvode"
     #: the compiled engines: the integrated one of either equation (``backend="compiled"``),
@@ -179,6 +180,10 @@ class RockingBlock(DifferentiableModel):
     @property
     def state_names(self):
         return ("u", "u_rate") if self.slides else ("theta", "theta_rate")
+
+    @property
+    def state_units(self):
+        return ("m", "m/s") if self.slides else ("rad", "rad/s")
 
     @property
     def initial_mode(self):
