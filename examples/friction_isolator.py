@@ -98,10 +98,12 @@ class FrictionIsolator(DifferentiableModel):
             return xp.stack([self.mu * self.g - demand, self.mu * self.g + demand])
         return xp.stack([side * y[1]])
 
-    def _mode_for(self, demand):
-        if demand > self.mu * self.g:
+    def _mode_for(self, demand, margin=0.0):
+        """The mode the demand [m/s²] asks for: a slide where it exceeds the friction mu g,
+        or comes within ``margin`` [m/s²] of it."""
+        if demand > self.mu * self.g - margin:
             return IsolatorMode.SLIDE_POS
-        if demand < -self.mu * self.g:
+        if demand < -self.mu * self.g + margin:
             return IsolatorMode.SLIDE_NEG
         return IsolatorMode.STICK
 
@@ -110,10 +112,12 @@ class FrictionIsolator(DifferentiableModel):
 
     def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
         """From STICK the slide of the guard reached; at a stop STICK, or the other slide
-        where the demand already exceeds the friction the other way."""
+        where the demand exceeds the friction the other way, or reaches it within
+        ``time_tol`` [s] of ``t`` (u' = 0 there: the demand changes at the rate -a'(t))."""
         if mode == IsolatorMode.STICK:
             return IsolatorMode.SLIDE_POS if guard_index == 0 else IsolatorMode.SLIDE_NEG
-        after = self._mode_for(self.demand(t, y, excitation))
+        margin = abs(excitation.acceleration_rate(t)) * time_tol
+        after = self._mode_for(self.demand(t, y, excitation), margin)
         return IsolatorMode.STICK if after == mode else after
 
     # ---- what the driver asks ----------------------------------------------------------

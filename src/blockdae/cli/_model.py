@@ -10,8 +10,7 @@ import time
 
 from ._common import UsageError, checked, clean, describe_record, record_fields, save_figure, write_csv
 from ._planar import read_motion_argument, x_record
-from ..core import AbstractHybridModel, simulate
-from ..core._solution import state_columns
+from ..core import AbstractHybridModel, simulate, state_columns
 
 
 def parameter(text):

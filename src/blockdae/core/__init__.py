@@ -33,4 +33,5 @@ from ._repr import compact_repr
 from ._sensitivities import sensitivities
 from ._simulate import simulate
 from ._solution import BatchSolution, SolveItem
+from ._states import state_columns, state_labels, unit_suffix
 from ._threads import run_items

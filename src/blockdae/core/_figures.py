@@ -4,7 +4,7 @@ time grid; matplotlib is imported by the figures themselves, on demand."""
 import numpy as np
 
 from ..units import STANDARD_GRAVITY
-from ._solution import state_labels
+from ._states import state_labels
 
 BASE = dict(color="0.3", lw=1.2, label="base")
 BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")

@@ -6,12 +6,8 @@ import dataclasses
 
 import numpy as np
 
-from ..core import compact_repr
+from ..core import compact_repr, unit_suffix
 from ._statistics import relative_standard_error, wilson
-
-#: a unit -> its suffix in a column name
-_SUFFIX = {"g": "g", "m": "m", "m/s": "m_s", "-": "ratio"}
-
 
 def column_name(parameter, model):
     """The table column of ``parameter`` of ``model``, its unit in the name (ky_g, vs_m_s,
@@ -19,8 +15,7 @@ def column_name(parameter, model):
     own = getattr(model, "COLUMNS", {})
     if parameter in own:
         return own[parameter]
-    unit = model.PARAMETERS[parameter]
-    return f"{parameter}_{_SUFFIX.get(unit) or unit.replace('/', '_').replace('²', '2')}"
+    return f"{parameter}_{unit_suffix(model.PARAMETERS[parameter])}"
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
