@@ -66,7 +66,7 @@ def test_a_mode_entered_below_its_guard_is_an_error_not_a_snap(backend):
 
 
 def test_a_mode_the_enumeration_lacks_names_the_hook():
-    with pytest.raises(ModelContractError, match=r"UnknownMode\.mode_after_guard gave the mode 7, which StopMode lacks"):
+    with pytest.raises(ModelContractError, match=r"UnknownMode\.mode_after_guard gave the mode 7, which StopMode"):
         bd.simulate(_make(UnknownMode), example.record(), t_end=6.0)
 
 

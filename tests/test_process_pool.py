@@ -40,7 +40,8 @@ def test_solutions_pickle_and_keep_their_dense_output(model):
     copy = pickle.loads(pickle.dumps(solution))
     np.testing.assert_array_equal(copy.displacement, solution.displacement)
     if not model.batch_shape:
-        np.testing.assert_array_equal(np.asarray(copy(np.array([0.5, 1.5]))), np.asarray(solution(np.array([0.5, 1.5]))))
+        times = np.array([0.5, 1.5])
+        np.testing.assert_array_equal(np.asarray(copy(times)), np.asarray(solution(times)))
     else:  # a batch's full solution of one set runs again in the copy
         np.testing.assert_array_equal(copy[1].displacement, solution[1].displacement)
 

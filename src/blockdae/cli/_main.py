@@ -100,8 +100,8 @@ def _parser():
                                 metavar="{run,newmark,flexible,spectrum,two-point,upthrow,rocking,examples,batch,study,design,"
                                         "fragility,hazard,info,app}")
 
-    run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
-                                     "plane under two or three components (u_x, u_y)")
+    run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), a block on a "
+                                     "plane under two or three components (u_x, u_y), or any model (--model)")
     run.add_argument("record", type=pathlib.Path,
                      help="accelerogram (CSV t,a / one column / .AT2), the x component; or a table of "
                           "time [s], a_x, a_y[, a_z] (a block on a plane)")

@@ -213,7 +213,8 @@ class _Run:
         self.flow_excitation = PieceExcitation(n_components, project_rates=False)  # the integrator's
         self.cap = max_events_at_one_instant
         self.n_states = len(model.state_names)
-        self.mode, self.y = self.to_mode(model.initial_mode, "initial_mode"), np.array(model.initial_state(), dtype=float)
+        self.mode = self.to_mode(model.initial_mode, "initial_mode")
+        self.y = np.array(model.initial_state(), dtype=float)
         if self.y.shape != (self.n_states,):
             raise ModelContractError(f"{type(model).__name__}.initial_state gave shape {self.y.shape}; it must give "
                                      f"one value per state, shape ({self.n_states},)")
@@ -283,8 +284,9 @@ class _Run:
                 allowed = self.velocity_error() + ROUNDING + abs(slope) * within + 0.5 * abs(curvature) * within**2
                 if -value > allowed:
                     raise ModelContractError(
-                        f"{name}: mode {mode.name} entered at t = {self.t:.12g} s with guard {index} = {float(value):.6g} "
-                        f"below zero (by more than {allowed:.3g}, what the located event's uncertainty allows): a guard "
+                        f"{name}: mode {mode.name} entered at t = {self.t:.12g} s with guard {index} = "
+                        f"{float(value):.6g} below zero (by more than {allowed:.3g}, what the located event's "
+                        "uncertainty allows): a guard "
                         "is positive in its mode and the mode is left where it crosses zero downwards; check its sign "
                         f"in {name}.guards, or the mode that {name}.mode_after_guard/mode_at_rest/initial_mode chose; "
                         f"state {dict(zip(model.state_names, map(float, self.y)))}")

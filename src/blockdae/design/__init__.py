@@ -11,6 +11,7 @@ from ._models import DesignModel, Flexible, Planar, Rigid, Simulated
 from ._result import Exceedance
 from ._study import exceedance
 
-__all__ = ["DesignModel", "Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Planar", "Rigid", "Simulated", "Truncated",
+__all__ = ["DesignModel", "Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Planar", "Rigid",
+           "Simulated", "Truncated",
            "Uniform", "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile",
            "mean_ky_for_probability"]
