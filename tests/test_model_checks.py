@@ -48,7 +48,7 @@ def _make(cls):
     return cls(**PARAMETERS)
 
 
-@pytest.mark.parametrize("backend", ["cvode", "ida"])
+@pytest.mark.parametrize("backend", ["cvode", "ida", "jax"])
 def test_flow_of_the_wrong_shape_names_the_hook_mode_and_shapes(backend):
     with pytest.raises(ModelContractError, match=r"WrongFlowShape\.flow in mode FREE gave shape \(3,\).*\(2,\)"):
         bd.simulate(_make(WrongFlowShape), example.record(), t_end=6.0, backend=backend)
@@ -59,7 +59,7 @@ def test_guards_of_the_wrong_shape_name_the_hook_mode_and_shape():
         bd.simulate(_make(ScalarGuards), example.record(), t_end=6.0)
 
 
-@pytest.mark.parametrize("backend", ["cvode", "ida"])
+@pytest.mark.parametrize("backend", ["cvode", "ida", "jax"])
 def test_a_mode_entered_below_its_guard_is_an_error_not_a_snap(backend):
     with pytest.raises(ModelContractError, match=r"mode FREE entered at t = 0 s with guard 0 = -0\.005 below zero"):
         bd.simulate(_make(WrongGuardSign), example.record(), t_end=6.0, backend=backend)
