@@ -342,18 +342,9 @@ class Simulated(DesignModel):
             raise TypeError(f"{type(self.model).__name__} needs replace(**changes) to take sampled parameters")
         object.__setattr__(self, "required", tuple(self.required or (self.design,)))
         object.__setattr__(self, "kind", self.kind or type(self.model).__name__)
-
-    @property
-    def PARAMETERS(self):  # noqa: N802 (the contract's name)
-        return dict(self.parameters)
-
-    @property
-    def REQUIRED(self):  # noqa: N802
-        return self.required
-
-    @property
-    def DESIGN(self):  # noqa: N802
-        return self.design
+        for name, value in (("PARAMETERS", dict(self.parameters)), ("REQUIRED", self.required),
+                            ("DESIGN", self.design)):  # the contract's names
+            object.__setattr__(self, name, value)
 
     def displacements(self, record, pga, values, derivative=False):
         """D [m], shape (n,), of ``record`` scaled to ``pga`` [g] for each parameter set of
