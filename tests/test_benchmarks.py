@@ -125,3 +125,10 @@ def test_design_quick(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "pySLAMMER Coupled, one analysis a call" in out and "P_B / P_A = " in out
     assert out.count("bar ") == 2 and out.count("smoke run, not a measurement") == 2
+
+
+def test_flexible_overhead_quick(monkeypatch, capsys):
+    assert _load("flexible_overhead", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "compiled engine alone" in out and "pySLAMMER Coupled" in out
+    assert "smoke run, not a measurement" in out and "NOT met" not in out
