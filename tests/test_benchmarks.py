@@ -136,3 +136,10 @@ def test_regional_quick_writes_the_map_and_compares_with_pynewmarkdisp(monkeypat
     assert out.count("bar ") == 3 and out.count("smoke run, not a measurement") == 3
     assert "closed form 0.8826 m" in out
     assert (tmp_path / "map.zarr").is_dir()
+
+
+def test_flexible_overhead_quick(monkeypatch, capsys):
+    assert _load("flexible_overhead", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "compiled engine alone" in out and "pySLAMMER Coupled" in out
+    assert "smoke run, not a measurement" in out and "NOT met" not in out

@@ -31,6 +31,7 @@ from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
 from ._info import add_info_parser
 from ._map import add_map_parser
+from ._model import parameter, run_model
 from ._upthrow import add_upthrow_parser
 from ._rocking import add_rocking_parser
 from ..sliding import SlidingBlock, newmark, seed_examples
@@ -100,8 +101,8 @@ def _parser():
                                 metavar="{run,newmark,flexible,spectrum,two-point,upthrow,rocking,examples,batch,study,design,"
                                         "fragility,hazard,info,app}")
 
-    run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), or a block on a "
-                                     "plane under two or three components (u_x, u_y)")
+    run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), a block on a "
+                                     "plane under two or three components (u_x, u_y), or any model (--model)")
     run.add_argument("record", type=pathlib.Path,
                      help="accelerogram (CSV t,a / one column / .AT2), the x component; or a table of "
                           "time [s], a_x, a_y[, a_z] (a block on a plane)")
@@ -110,6 +111,11 @@ def _parser():
     run.add_argument("--z", type=pathlib.Path, default=None, metavar="FILE",
                      help="vertical component, upward positive (a block on a plane)")
     _block_arguments(run, nargs=None, planar=True)
+    run.add_argument("--model", default=None, metavar="MODULE:CLASS",
+                     help="run any model of the contract instead of the block: package.module:Class (or "
+                          "path/to/file.py:Class), built from --param; its default backend unless --backend")
+    run.add_argument("--param", type=checked_parameter, action="append", default=None, metavar="NAME=VALUE",
+                     help="a keyword of --model's class (a number, or text), repeated for each")
     run.add_argument("--bias-y", type=finite("--bias-y"), default=0.0,
                      help="on a plane: constant force / weight in +y [-] (--bias is the one in +x)")
     record_arguments(run)
@@ -196,8 +202,9 @@ def _parser():
 
 def _block_arguments(parser, nargs, planar=False):
     grid = " (several: a grid over every combination)" if nargs else ""
-    parser.add_argument("--mu", type=finite("--mu"), required=True, nargs=nargs,
-                        help="static friction coefficient [-]" + grid)
+    parser.add_argument("--mu", type=finite("--mu"), required=not planar, nargs=nargs,
+                        help="static friction coefficient [-]" + grid + (" (required without --model)"
+                                                                          if planar else ""))
     parser.add_argument("--mu-kinetic", type=finite("--mu-kinetic"), default=None, nargs=nargs,
                         help="kinetic friction f [-] (default mu)" + grid)
     parser.add_argument("--bias", type=finite("--bias"), default=[0.0] if nargs else 0.0, nargs=nargs,
@@ -218,6 +225,14 @@ def _block_arguments(parser, nargs, planar=False):
 
 def _run(args):
     _check_units_and_backend(args)
+    if args.model is not None:
+        if args.mu is not None:
+            raise UsageError("argument --mu: the built-in block's; with --model give --param mu=VALUE")
+        return run_model(args, _print_events)
+    if args.param is not None:
+        raise UsageError("argument --param: takes --model MODULE:CLASS")
+    if args.mu is None:
+        raise UsageError("the following arguments are required: --mu (or --model MODULE:CLASS)")
     motion = read_motion_argument(args)
     if is_planar(motion) or args.y is not None or args.z is not None:
         return run_planar(args, motion, _print_events)
@@ -453,6 +468,14 @@ def _compilation_cache(args):
 
 #: the command-line flag of each SlidingBlock field, for errors that name the argument
 _FLAGS = {"mu_kinetic": "--mu-kinetic", "mu": "--mu", "bias": "--bias", "g": "--g"}
+
+
+def checked_parameter(text):
+    """--param NAME=VALUE as (name, value); argparse names the flag on a bad one."""
+    try:
+        return parameter(text)
+    except ValueError as err:
+        raise argparse.ArgumentTypeError(str(err)) from None
 
 
 def _check_units_and_backend(args):

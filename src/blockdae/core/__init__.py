@@ -3,7 +3,7 @@ capabilities a model declares), the generic solution and event (:class:`DriverSo
 :class:`HybridEvent`), the hybrid driver, ``simulate``, cross-checks and derivatives
 (:mod:`.derivatives`). It names no concrete model: a model declares what the core needs."""
 
-from ._driver import InconsistentStateError, SolverError
+from ._driver import InconsistentStateError, ModelContractError, SolverError
 from .contract import (SCALAR, AbstractHybridModel, BatchedModel, DifferentiableModel, EngineModel, ExplicitForm,
                        LinearModesModel, StudyBatch, StudyModel)
 from ._solution import AbstractEvent, AbstractSolution, DriverSolution, HybridEvent
@@ -12,14 +12,14 @@ from ._ensemble import Ensemble
 
 __all__ = ["AbstractEvent", "AbstractHybridModel", "AbstractSolution", "BatchSolution", "BatchedModel", "CrossCheck",
            "DifferentiableModel", "DriverSolution", "EngineModel", "Ensemble", "ExplicitForm", "HybridEvent",
-           "InconsistentStateError", "LinearModesModel", "SCALAR", "Sensitivities", "SolverError", "StudyBatch",
-           "StudyModel"]
+           "InconsistentStateError", "LinearModesModel", "ModelContractError", "SCALAR", "Sensitivities",
+           "SolverError", "StudyBatch", "StudyModel"]
 
 # what the other packages of blockdae use
 from ._atomic import atomic_path
 from ._backend import AbstractBackend, cached_per_excitation, check_window
 from ._cases import cases, labelled_motions
-from ._checks import set_real_fields
+from ._checks import set_batch_fields, set_real_fields
 from ._compile_notice import CompileNotice, notice_numba
 from ._crosscheck import CrossCheck, crosscheck
 from ._driver import AbstractIntegrator, HermiteDense, drive
@@ -33,5 +33,6 @@ from ._registry import BUILT_IN, Horizon, available, backend_class, backend_name
 from ._repr import compact_repr
 from ._sensitivities import sensitivities
 from ._simulate import simulate
-from ._solution import BatchSolution
+from ._solution import BatchSolution, SolveItem
+from ._states import state_columns, state_labels, unit_suffix
 from ._threads import run_items

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ._solution import BatchSolution
+from ._solution import BatchSolution, of_run
 from ..excitation import AbstractExcitation
 from .contract import AbstractHybridModel
 
@@ -92,12 +92,13 @@ class AbstractBackend(abc.ABC):
     def solve_batch(self, block, excitation: AbstractExcitation, horizon: Horizon) -> BatchSolution:
         """A batch of parameter sets (``block.batch_shape == (n,)``)."""
         n = block.batch_shape[0]
-        sols = [self.solve(block.item(i), excitation, horizon) for i in range(n)]
+        items = [block.item(i) for i in range(n)]
+        sols = [of_run(self.solve(item, excitation, horizon), item, excitation) for item in items]
         return BatchSolution(
             displacement=np.array([s.displacement for s in sols]),
             max_abs_displacement=np.array([s.max_abs_displacement for s in sols]),
             n_events=np.array([len(s.events) for s in sols]),
             t_end=np.array([s.t_end for s in sols]),
             backend=self.name,
-            solve_one=lambda i: sols[i],
+            solve_one=sols.__getitem__,
         )

@@ -94,6 +94,12 @@ class SolverError(RuntimeError):
     """An integrator failed (negative flag); the message names time, mode and flag."""
 
 
+class ModelContractError(ValueError):
+    """A model's hook broke the contract in a run (a flow or guards of the wrong shape, a
+    mode the enumeration lacks, a mode entered with a guard already below zero); the
+    message names the hook, the mode and the values."""
+
+
 class InconsistentStateError(RuntimeError):
     """The integrated state contradicts its mode (a slide moving against its direction):
     a missed event; the message names the time, the mode and the values."""
@@ -205,11 +211,18 @@ class _Run:
         self.velocity_tolerance, self.v_max = velocity_tolerance, 0.0
         self.piece_excitation = PieceExcitation(n_components)  # the driver's decisions
         self.flow_excitation = PieceExcitation(n_components, project_rates=False)  # the integrator's
-        self.integrator = integrator_factory(model, self.flow_excitation)
         self.cap = max_events_at_one_instant
         self.n_states = len(model.state_names)
-        self.mode, self.y = model.initial_mode, np.zeros(self.n_states)
+        self.mode = self.to_mode(model.initial_mode, "initial_mode")
+        self.y = np.array(model.initial_state(), dtype=float)
+        if self.y.shape != (self.n_states,):
+            raise ModelContractError(f"{type(model).__name__}.initial_state gave shape {self.y.shape}; it must give "
+                                     f"one value per state, shape ({self.n_states},)")
         self.t = 0.0
+        self.checked_modes, self.entry_pending, self.entry_tolerance = set(), True, 0.0
+        for mode in model.modes:  # before the integrator sizes its buffers from them
+            self.check_shapes(mode, self.y, self.piece_excitation, at_start=True)
+        self.integrator = integrator_factory(model, self.flow_excitation)
         self.events, self.run_length, self.max_run = [], 0, 0
         self.restarted = True
         self.knots = _Knots()
@@ -220,8 +233,64 @@ class _Run:
         """dy/dt in ``mode`` from the model's flow, as an array."""
         return np.array(self.model.flow(mode, t, y, self.piece_excitation, SCALAR), dtype=float)
 
-    def to_mode(self, value):
-        return self.model.modes(int(value))
+    def to_mode(self, value, hook):
+        """``value`` as a member of the model's mode enumeration; :class:`ModelContractError`
+        naming ``hook`` (what gave it) where the enumeration lacks it."""
+        try:
+            return self.model.modes(int(value))
+        except (ValueError, TypeError):
+            raise ModelContractError(
+                f"{type(self.model).__name__}.{hook} gave the mode {value!r}, which {self.model.modes.__name__} "
+                f"lacks (its modes: {', '.join(f'{m.name}={int(m)}' for m in self.model.modes)})") from None
+
+    def check_shapes(self, mode, y, excitation, at_start=False):
+        """``flow`` and ``guards`` of ``mode`` in state ``y`` of the right shape, checked once
+        per mode and run (:class:`ModelContractError`); ``at_start``: a check of every mode
+        before the run, from the initial state at rest, skipped for a mode whose hooks
+        raise there (checked again where the mode is entered)."""
+        if mode in self.checked_modes:
+            return
+        model, name = self.model, type(self.model).__name__
+        try:
+            flow = np.shape(model.flow(mode, self.t, y, excitation, SCALAR))
+            guards = np.shape(model.guards(mode, self.t, y, excitation, SCALAR))
+        except Exception:
+            if at_start:
+                return
+            raise
+        if flow != (self.n_states,):
+            raise ModelContractError(
+                f"{name}.flow in mode {mode.name} gave shape {flow}; it must give one rate per state, "
+                f"shape ({self.n_states},) (state_names {tuple(model.state_names)})")
+        if len(guards) != 1:
+            raise ModelContractError(
+                f"{name}.guards in mode {mode.name} gave shape {guards}; it must give a 1-D sequence, shape "
+                "(n_guards,) (xp.stack([...]) of one value per guard)")
+        self.checked_modes.add(mode)
+
+    def check_entry(self):
+        """The current mode, just entered at ``t``: its ``flow`` and ``guards`` of the
+        right shape (checked once per mode and run), and no guard below zero beyond what the
+        located event's uncertainty allows (a guard written with the wrong sign: the
+        mode would have been left before it was entered). Raises :class:`ModelContractError`."""
+        model, mode, name = self.model, self.mode, type(self.model).__name__
+        self.check_shapes(mode, self.y, self.piece_excitation)
+        values = () if mode in model.instant_modes else model.guards(mode, self.t, self.y, self.piece_excitation,
+                                                                      SCALAR)
+        for index, value in enumerate(values):
+            if value < 0:
+                slope, curvature = model.guard_rates(mode, index, self.t, self.y, self.piece_excitation)
+                within = max(self.stop_uncertainty(index), self.entry_tolerance)
+                allowed = self.velocity_error() + ROUNDING + abs(slope) * within + 0.5 * abs(curvature) * within**2
+                if -value > allowed:
+                    raise ModelContractError(
+                        f"{name}: mode {mode.name} entered at t = {self.t:.12g} s with guard {index} = "
+                        f"{float(value):.6g} below zero (by more than {allowed:.3g}, what the located event's "
+                        "uncertainty allows): a guard "
+                        "is positive in its mode and the mode is left where it crosses zero downwards; check its sign "
+                        f"in {name}.guards, or the mode that {name}.mode_after_guard/mode_at_rest/initial_mode chose; "
+                        f"state {dict(zip(model.state_names, map(float, self.y)))}")
+        self.entry_pending = False
 
     def current_piece(self):
         """The current piece of the excitation: (t0 [s], coefficients)."""
@@ -249,9 +318,9 @@ class _Run:
         self.knots.set_right_rate(self.rate(self.mode, self.t, self.y))
         self.restarted = True
         if self.model.at_rest(self.mode, self.y):
-            rest = self.to_mode(self.model.mode_at_rest(t0, self.piece_excitation, SCALAR, y=self.y))
+            rest = self.to_mode(self.model.mode_at_rest(t0, self.piece_excitation, SCALAR, y=self.y), "mode_at_rest")
             if rest != self.mode:
-                self.y = self.model.rest_state(self.y)
+                self.y, self.entry_tolerance = self.model.rest_state(self.y), 0.0
                 self.log_event(float(t0), rest)
 
     def piece(self, t0, end, h, coefficients):
@@ -262,6 +331,8 @@ class _Run:
     def advance_to(self, end, until_rest=False):
         turn = self.turning_point(end)
         while self.t < end and not (until_rest and self.model.is_static(self.mode)):
+            if self.entry_pending:
+                self.check_entry()
             if self.model.is_static(self.mode):
                 root = self.static_root(end)
                 if root is None:
@@ -354,8 +425,10 @@ class _Run:
         model, before = self.model, self.mode
         self.record("guard", before, index, self.t, self.y, self.current_piece())
         self.y = model.state_at_guard(before, index, self.y)
+        time_tol = self.stop_uncertainty(index)
         after = self.to_mode(model.mode_after_guard(before, index, self.t, self.y, self.piece_excitation,
-                                                    SCALAR, self.stop_uncertainty(index)))
+                                                    SCALAR, time_tol), "mode_after_guard")
+        self.entry_tolerance = time_tol
         rate = self.rate(before, self.t, self.y)
         self.knots.add(self.t, self.y, before, rate, rate)
         if after != before or model.guard_restarts(before, index):
@@ -397,7 +470,7 @@ class _Run:
             raise RuntimeError(
                 f"{self.run_length} events at t = {t:.12g} s ({modes} -> {after.name}): chatter; "
                 f"raise max_events_at_one_instant={self.cap}")
-        self.mode, self.restarted = after, True
+        self.mode, self.restarted, self.entry_pending = after, True, True
         self.knots.add(t, self.y, after, np.zeros(self.n_states), self.rate(after, t, self.y))
 
     def tail_to_rest(self, t_end):

@@ -4,6 +4,7 @@ time grid; matplotlib is imported by the figures themselves, on demand."""
 import numpy as np
 
 from ..units import STANDARD_GRAVITY
+from ._states import state_labels
 
 BASE = dict(color="0.3", lw=1.2, label="base")
 BLOCK = dict(color="C3", lw=1.2, ls="--", label="block")
@@ -34,7 +35,7 @@ def state_figure(solution, *, n_points, title=None):
 
     t = time_grid(solution, n_points)
     state, _ = solution.dense_state(t)
-    names = solution.block.state_names if solution.block is not None else [f"y{i}" for i in range(state.shape[-1])]
+    names = state_labels(solution.block, state.shape[-1])
     t_ev = solution.t_events
     fig, axes = plt.subplots(len(names), 1, sharex=True, figsize=(7, 2.2 * len(names)), squeeze=False,
                              constrained_layout=True)

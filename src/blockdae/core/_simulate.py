@@ -11,6 +11,7 @@ from ._cases import cases, is_many
 from ._ensemble import Ensemble, Finals
 from ._progress import progress_bar
 from ._registry import AbstractBackend, Horizon, available, make_backend
+from ._solution import of_run
 from .contract import AbstractHybridModel
 
 
@@ -25,7 +26,9 @@ def simulate(model: AbstractHybridModel, motion, t_end: float | None = None,
             :class:`SpringSupportedMass` (``motion`` is then its vertical ground
             acceleration), :class:`FlexibleSlidingMass` or a user's
             :class:`AbstractHybridModel`; a batch of parameter sets where the model takes
-            arrays (its parameters 1-D arrays).
+            arrays (a :class:`~blockdae.core.contract.BatchedModel` with 1-D array
+            parameters: the 1-D block's mu, the plane's, the spring's frequency and
+            damping, the flexible mass's ky).
         motion: the base excitation [m/s²] (a :class:`Record`, :class:`Harmonic`, ...; for
             a PlanarBlock also a :class:`BaseMotion` of x, y, z components); or many: a
             sequence of them, a mapping name -> excitation, a :class:`RecordSet` (its
@@ -177,14 +180,3 @@ def _compiled_finals(model, runs, t_end, solver):
 
     return tuple(tuple(tuple(finals(i, k, p) for p in range(n_polarities)) for k in range(n_scales))
                  for i in range(n_motions))
-
-
-def of_run(result, block, motion):
-    """``result`` (a solution: a frozen dataclass that checks nothing on construction) with
-    its ``block`` and ``motion`` set: what ``dataclasses.replace`` makes, a shallow copy,
-    without running ``__init__`` again."""
-    copy = object.__new__(type(result))
-    copy.__dict__.update(result.__dict__)
-    object.__setattr__(copy, "block", block)
-    object.__setattr__(copy, "motion", motion)
-    return copy

@@ -8,6 +8,7 @@ from typing import Callable
 import numpy as np
 from ..excitation import AbstractExcitation
 from ._repr import compact_repr
+from ._states import state_columns, state_labels
 
 
 @dataclasses.dataclass(frozen=True)
@@ -145,7 +146,7 @@ class DriverSolution(AbstractSolution):
         """``events`` (default: all of them) as an aligned text table: time [s], modes
         and the state (in the model's units)."""
         events = self.events if events is None else events
-        names = self.block.state_names if self.block is not None else ()
+        names = state_labels(self.block, len(events[0].state) if events else 0) if self.block is not None else ()
         lines = [f"{'t [s]':>12}  {'before':>10}  {'after':<10}  " + "  ".join(f"{n:>13}" for n in names)]
         lines += [f"{e.t:12.6f}  {e.mode_before.name:>10}  {e.mode_after.name:<10}  "
                   + "  ".join(f"{v:13.6e}" for v in e.state) for e in events]
@@ -160,12 +161,56 @@ class DriverSolution(AbstractSolution):
 
     def to_dataframe(self):
         """The events as a pandas DataFrame: t_s [s], mode_before, mode_after and one
-        column per state (the model's ``state_names``)."""
+        column per state (:func:`state_columns`: the model's ``state_names``, each with
+        its unit where the model declares ``state_units``)."""
         import pandas as pd
 
-        names = list(self.block.state_names) if self.block is not None else []
+        names = state_columns(self.block) if self.block is not None else []
         rows = [(e.t, e.mode_before.name, e.mode_after.name, *e.state) for e in self.events]
         return pd.DataFrame(rows, columns=["t_s", "mode_before", "mode_after", *names])
+
+    def history(self, t=None):
+        """The run at times ``t`` [s] (default: the record's samples, or 2001 even steps for
+        another motion, and every event), as a pandas DataFrame: t_s, the base acceleration
+        where the motion is known (base_acceleration_m_s2; of a :class:`~blockdae.BaseMotion`
+        base_acceleration_x_m_s2, _y_, _z_), one column per state (:func:`state_columns`)
+        and mode (the mode's name)."""
+        import pandas as pd
+
+        if t is None:
+            grid = getattr(self.motion, "times", None)
+            grid = np.linspace(0.0, self.t_end, 2001) if grid is None else grid[grid <= self.t_end]
+            t = np.union1d(np.append(grid, self.t_end), self.t_events)
+        t = np.asarray(t, dtype=float)
+        state, mode = self.dense_state(t)
+        columns = {"t_s": t}
+        if self.motion is not None:
+            base = np.asarray(self.motion.acceleration(t), dtype=float)
+            if base.ndim == t.ndim:
+                columns["base_acceleration_m_s2"] = base
+            else:  # a motion of components (x, y, z)
+                columns |= {f"base_acceleration_{axis}_m_s2": a for axis, a in zip("xyz", base)}
+        names = state_columns(self.block) if self.block is not None else [f"y{i}" for i in range(state.shape[-1])]
+        columns |= {name: state[..., i] for i, name in enumerate(names)}
+        modes = getattr(self.block, "modes", None)
+        columns["mode"] = [modes(int(m)).name if modes is not None else int(m) for m in mode]
+        return pd.DataFrame(columns)
+
+
+@dataclasses.dataclass(frozen=True)
+class SolveItem:
+    """A batch's ``solve_one``: parameter set ``i`` of ``block`` run again by ``engine``
+    (an object with ``solve(block, excitation, horizon, backend)``), picklable where they
+    are (a process pool's workers, Dask)."""
+
+    engine: object
+    block: object
+    excitation: AbstractExcitation
+    horizon: object
+    backend: object
+
+    def __call__(self, index: int) -> AbstractSolution:
+        return self.engine.solve(self.block.item(index), self.excitation, self.horizon, self.backend)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -239,3 +284,14 @@ class BatchSolution:
                     "n_events": np.asarray(self.n_events, dtype=int),
                     "t_end_s": np.asarray(self.t_end, dtype=float)}
         return pd.DataFrame(columns, index=pd.RangeIndex(len(self)))
+
+
+def of_run(result, block, motion):
+    """``result`` (a solution: a frozen dataclass that checks nothing on construction) with
+    its ``block`` and ``motion`` set: what ``dataclasses.replace`` makes, a shallow copy,
+    without running ``__init__`` again."""
+    copy = object.__new__(type(result))
+    copy.__dict__.update(result.__dict__)
+    object.__setattr__(copy, "block", block)
+    object.__setattr__(copy, "motion", motion)
+    return copy

@@ -69,10 +69,18 @@ class AbstractHybridModel(abc.ABC):
 
     #: names of the continuous states, in order
     state_names: tuple[str, ...]
+    #: the unit of each state, in order ("m", "m/s", "rad", ...), which tables
+    #: (``history()``, ``to_dataframe()``) put in their column names and figures on their
+    #: axes; None: not declared (the names alone)
+    state_units: tuple[str, ...] | None = None
     #: the mode enumeration (an IntEnum)
     modes: type[enum.IntEnum]
     #: the mode at t = 0 (the model starts at rest relative to its base)
     initial_mode: enum.IntEnum
+    #: modes that last an instant: entered with a guard already below zero on purpose,
+    #: left at once (a block released from a tilt); the driver's check that a mode is
+    #: entered with its guards at or above zero skips them
+    instant_modes: tuple = ()
     #: names of the excitation's components, in the order of ``excitation_pieces``
     component_names: tuple[str, ...] = ("x",)
     #: whether the motion shakes the model along its base (a record whose header says it is
@@ -98,6 +106,15 @@ class AbstractHybridModel(abc.ABC):
     def batch_shape(self) -> tuple[int, ...]:
         """() : one parameter set (a :class:`BatchedModel` may hold several)."""
         return ()
+
+    def initial_state(self):
+        """The state at t = 0 in :attr:`initial_mode`, shape (n,) [the units of
+        :attr:`state_names`]: at rest relative to the base (zeros) by default. A model that
+        starts elsewhere (a static offset, a block already sliding) returns its own,
+        checked by the model where it is built (the driver checks that every guard of
+        :attr:`initial_mode` is at or above zero there, as on entering any mode). The
+        derivatives along the trajectory take it as independent of the parameters."""
+        return np.zeros(len(self.state_names))
 
     def check_motion(self, motion) -> None:
         """Raise TypeError unless ``motion`` is a base motion this model runs under (an
@@ -145,23 +162,28 @@ class AbstractHybridModel(abc.ABC):
         partition of [0, t_end] [s] (one component by default)."""
         return (excitation.pieces(t_end),)
 
-    @abc.abstractmethod
+    # The hooks below have defaults that follow from the automaton alone; a model
+    # overrides them where it knows more (exact values, a static mode: speed).
     def is_static(self, mode) -> bool:
-        """Whether the state is constant in ``mode`` (no integration needed)."""
+        """Whether the state is constant in ``mode`` (no integration needed); False by
+        default (every mode is integrated: a zero flow stays put)."""
+        return False
 
-    @abc.abstractmethod
     def at_rest(self, mode, y) -> bool:
         """Whether the block is at rest relative to its base (it re-takes
-        ``mode_at_rest`` when a new piece of the excitation begins)."""
+        ``mode_at_rest`` when a new piece of the excitation begins); False by default (the
+        mode changes at guards only)."""
+        return False
 
-    @abc.abstractmethod
     def rest_state(self, y):
-        """``y`` with the relative velocities set to zero."""
+        """``y`` with the relative velocities set to zero (by default the states that are
+        not :attr:`displacement_states`, as in (u, u'))."""
+        return np.array([v if i in self.displacement_states else 0.0 for i, v in enumerate(y)], dtype=float)
 
-    @abc.abstractmethod
     def state_at_guard(self, mode, guard_index, y, xp=np):
         """The state where guard ``guard_index`` of ``mode`` is zero (e.g. v = 0 at a
-        stop, exactly), from the located ``y``."""
+        stop, exactly), from the located ``y`` (``y`` itself by default)."""
+        return y
 
     def state_on_entry(self, before, after, t, y, excitation, xp):
         """The state on entering ``after`` from ``before`` at ``t`` (unchanged by default)."""
@@ -190,22 +212,28 @@ class AbstractHybridModel(abc.ABC):
         """Whether reaching the guard is an event even if the mode stays (False)."""
         return False
 
-    @abc.abstractmethod
     def turn_rate(self, mode, t, y, excitation, xp):
         """A quantity, monotone on a piece of the excitation, whose sign change marks
         where a guard of ``mode`` may turn: the driver stops the integrator there, so
         that each guard is monotone between stops and no step hides two of its roots.
-        None: the guards of ``mode`` cannot turn within a piece (or the integrators'
-        steps resolve them); a guard that starts at zero is still judged by its rate and
-        curvature (:meth:`guard_rates`)."""
+        None (the default): the guards of ``mode`` cannot turn within a piece (or the
+        integrators' steps resolve them); a guard that starts at zero is still judged by
+        its rate and curvature (:meth:`guard_rates`)."""
+        return None
 
-    @abc.abstractmethod
     def guard_rates(self, mode, guard_index, t, y, excitation):
         """(rate, curvature) of the guard in time near ``t`` [unit/s, unit/s²], with
         their signs (a guard at zero that falls, by its rate or, at a zero rate, by its
         curvature, is left at once); a model that knows only a bound on the curvature
         gives it as a non-negative number (the uncertainty of a located root needs
-        only its size)."""
+        only its size).
+
+        By default from ``guards`` and ``flow`` by backward differences along the flow
+        (right-hand limits on the piece: its closed form extends before ``t``), with the
+        step :data:`RATE_STEP` [s]: rate to O(h²), curvature to O(h) and rounding of
+        about 1e-16 |g| / h²; a model that knows them exactly gives them (a graze whose
+        curvature is of rounding size is decided by its sign)."""
+        return difference_rates(self, mode, guard_index, t, y, excitation)
 
     def contradiction(self, mode, y, velocity_error) -> str | None:
         """Why the state ``y`` cannot be in ``mode`` (a slide moving against its
@@ -214,14 +242,16 @@ class AbstractHybridModel(abc.ABC):
         The driver raises :class:`~blockdae.InconsistentStateError` on it."""
         return None
 
-    @abc.abstractmethod
     def speed(self, y) -> float:
-        """Size of the relative velocity [m/s] (sets the velocity error scale)."""
+        """Size of the relative velocity [m/s] (sets the velocity error scale): by default
+        the largest |y_i| of the states that are not :attr:`displacement_states`."""
+        return max((abs(float(v)) for i, v in enumerate(y) if i not in self.displacement_states), default=0.0)
 
-    @abc.abstractmethod
     def time_to_rest(self, mode, y) -> float:
         """After the excitation ends: a time [s] within which the block comes to rest
-        from ``y`` in ``mode``; raises ValueError if it never does."""
+        from ``y`` in ``mode``; raises ValueError if it never does (the default: the
+        model gives no bound, so a run needs ``t_end``)."""
+        raise ValueError(f"{type(self).__name__} gives no time to come to rest after the motion: give t_end [s]")
 
     def event(self, t, mode_before, mode_after, y):
         """The event record of a mode change at ``t`` [s] in state ``y`` (a
@@ -249,6 +279,26 @@ class AbstractHybridModel(abc.ABC):
         the explicit ODE y' = flow (:class:`ExplicitForm`); a model with algebraic
         variables (a friction force) returns its own form of the same interface."""
         return ExplicitForm(self, piece)
+
+
+#: the step [s] of the default :meth:`AbstractHybridModel.guard_rates`' differences
+RATE_STEP = 1e-5
+
+
+def difference_rates(model, mode, guard_index, t, y, excitation, h=RATE_STEP):
+    """(rate [unit/s], curvature [unit/s²]) of guard ``guard_index`` of ``mode`` at ``t``
+    [s] in state ``y``, from backward differences of ``model.guards`` along ``model.flow``
+    (the state at t - k h from its Taylor series to second order)."""
+    guard = lambda s, x: float(model.guards(mode, s, x, excitation, SCALAR)[guard_index])
+    y = np.asarray(y, dtype=float)
+    rate = np.array(model.flow(mode, t, y, excitation, SCALAR), dtype=float)
+    back = y - h * rate
+    rate_back = np.array(model.flow(mode, t - h, back, excitation, SCALAR), dtype=float)
+    accel = (rate - rate_back) / h
+    g0 = guard(t, y)
+    g1 = guard(t - h, y - h * rate + 0.5 * h**2 * accel)
+    g2 = guard(t - 2 * h, y - 2 * h * rate + 2 * h**2 * accel)
+    return (3 * g0 - 4 * g1 + g2) / (2 * h), (g0 - 2 * g1 + g2) / h**2
 
 
 class BatchedModel(AbstractHybridModel):
@@ -452,6 +502,16 @@ class StudyModel(AbstractHybridModel, StudyBatch):
     g: float
     #: what the study sweeps: (its keyword, the table's column, its unit)
     study_parameter: tuple[str, str, str]
+    #: the polarities the study runs each motion in, a column of its table ("normal": the
+    #: motion as given, "inverse": times -1); () (default): no polarity column (the
+    #: motion as given, or the model's own columns cover both polarities)
+    study_polarities: tuple[str, ...] = ()
+
+    def study_parameter_for(self, given: dict) -> tuple[str, str, str]:
+        """What the study sweeps given what the user gave (keyword -> values, None where
+        not given): :attr:`study_parameter` by default; a model that takes another
+        keyword for the same values (the rigid block's ky for its mu) returns it."""
+        return self.study_parameter
 
     def study_batch(self, values) -> StudyBatch:
         """This model at every value of the swept parameter (what :meth:`study_sweep`

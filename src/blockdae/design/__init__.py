@@ -7,10 +7,11 @@ friction coefficient, on a plane) a design needs."""
 from ._figures import exceedance_figure
 from ._distributions import LogNormal, Normal, Truncated, Uniform
 from ._inverse import MeanKyDesign, ky_for_displacement, ky_for_percentile, mean_ky_for_probability
-from ._models import Flexible, Planar, Rigid
+from ._models import DesignModel, Flexible, Planar, Rigid, Simulated
 from ._result import Exceedance
 from ._study import exceedance
 
-__all__ = ["Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Planar", "Rigid", "Truncated",
+__all__ = ["DesignModel", "Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Planar", "Rigid",
+           "Simulated", "Truncated",
            "Uniform", "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile",
            "mean_ky_for_probability"]

@@ -96,7 +96,8 @@ def ky_for_displacement(record, model, parameters, allowable, *, pga=None):
     Args:
         record: a Record (ground acceleration along the slope [m/s²]); for
             :class:`Planar` also a BaseMotion of Records (``pga`` None).
-        model: :class:`Rigid`, :class:`Flexible` or :class:`Planar`.
+        model: :class:`Rigid`, :class:`Flexible`, :class:`Planar`, :class:`Simulated` (any model) or
+            a :class:`DesignModel` of your own.
         parameters: the model's other parameters (name -> number): flexible height [m],
             vs [m/s], vr [m/s], damping [-]; the plane's mu_kinetic, bias_x, bias_y [-];
             nothing for the rigid block.
@@ -108,7 +109,7 @@ def ky_for_displacement(record, model, parameters, allowable, *, pga=None):
             on a plane, at mu = |bias| + 1e-4).
     """
     (_, record, pga), = record_set(record, pga, model)
-    ky = critical_ky(model, record, pga, dict(parameters), allowable, newton=model.kind == "rigid")[0]
+    ky = critical_ky(model, record, pga, dict(parameters), allowable, newton=model.has_derivative)[0]
     if ky == 0:
         raise ValueError(f"D stays below allowable={allowable!r} m even at {_floor_words(model, parameters)}: "
                          f"no {model.DESIGN} is needed")

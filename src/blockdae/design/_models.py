@@ -1,8 +1,10 @@
-"""The analyses a design study runs: the rigid block (:func:`blockdae.newmark`), the
-flexible sliding mass (:func:`blockdae.flexible`) and the block on a plane
-(:class:`blockdae.PlanarBlock` through :func:`blockdae.simulate`), each taking a batch of
-parameter sets on one record scaled to a target PGA in one call."""
+"""The analyses a design study runs, each a :class:`DesignModel`: the rigid block
+(:func:`blockdae.newmark`), the flexible sliding mass (:func:`blockdae.flexible`), the
+block on a plane (:class:`blockdae.PlanarBlock` through :func:`blockdae.simulate`), each
+taking a batch of parameter sets on one record scaled to a target PGA in one call, and any
+model of the contract (:class:`Simulated`)."""
 
+import abc
 import dataclasses
 import warnings
 
@@ -10,6 +12,7 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ..core import simulate
+from ..core.contract import AbstractHybridModel, BatchedModel
 from ..excitation import BaseMotion, Record, UnitsWarning, pga_factor
 from ..flexible_mass import flexible
 from ..planar import PlanarBlock
@@ -40,8 +43,48 @@ def _engine_polarity(polarity):
     return "both" if polarity == "larger" else polarity
 
 
+class DesignModel(abc.ABC):
+    """What :func:`exceedance`, the inverses (:func:`ky_for_displacement`,
+    :func:`ky_for_percentile`, :func:`mean_ky_for_probability`) and the app's design page
+    ask of a model: its parameters with their units, the one the inverses solve for, and
+    a batched forward map from parameter sets to the displacement of interest D [m].
+
+    Class attributes: ``PARAMETERS`` (name -> unit, e.g. {"ky": "g", "height": "m"}),
+    ``REQUIRED`` (the names a study must give), ``DESIGN`` (the parameter the inverses
+    solve for: D must not rise as it rises, and be 0 from :meth:`sliding_limit` on),
+    ``kind`` (the model's name in messages); optional ``MOTIONS`` (what a record may be:
+    a :class:`blockdae.Record` by default), ``COLUMNS`` (name -> the table column, where
+    not the name with its unit) and ``has_derivative`` (whether :meth:`displacements`
+    gives dD/d``DESIGN``: the inverses then take Newton steps for one record).
+    """
+
+    PARAMETERS: dict
+    REQUIRED: tuple
+    DESIGN: str
+    kind: str
+    MOTIONS = (Record,)
+    COLUMNS: dict = {}
+    has_derivative = False
+
+    @abc.abstractmethod
+    def displacements(self, record, pga, values, derivative=False):
+        """D [m] of ``record`` scaled to ``pga`` [g] (None: as given) for each parameter set
+        of ``values`` (name -> an array of shape (n,) or a number), shape (n,); with
+        ``derivative`` also dD/d``DESIGN`` [m per its unit], shape (n,) (only where
+        ``has_derivative``)."""
+
+    @abc.abstractmethod
+    def sliding_limit(self, record, pga, values):
+        """The value of ``DESIGN`` at and above which D = 0, per parameter set of
+        ``values``, shape (n,): the inverses' upper bracket."""
+
+    def floor(self, values):
+        """The smallest value of ``DESIGN`` the inverses try, per parameter set."""
+        return np.full(np.shape(values[self.DESIGN]), PARAMETER_FLOOR)
+
+
 @dataclasses.dataclass(frozen=True)
-class Rigid:
+class Rigid(DesignModel):
     """Newmark's rigid block: D [m] downslope of a block of yield acceleration ky [g].
 
     Attributes:
@@ -59,6 +102,7 @@ class Rigid:
     #: the parameter the design inverses solve for
     DESIGN = "ky"
     kind = "rigid"
+    has_derivative = True
 
     def __post_init__(self):
         _check_polarity(self.polarity)
@@ -91,7 +135,7 @@ class Rigid:
 
 
 @dataclasses.dataclass(frozen=True)
-class Flexible:
+class Flexible(DesignModel):
     """The flexible sliding mass of :func:`blockdae.flexible` (its parameters ky [g],
     height [m], vs [m/s], vr [m/s] and damping [-] batched).
 
@@ -148,7 +192,7 @@ class Flexible:
 
 
 @dataclasses.dataclass(frozen=True)
-class Planar:
+class Planar(DesignModel):
     """The block on a plane (:class:`blockdae.PlanarBlock`) shaken by one horizontal
     component along x (a Record, scaled to its target PGA) or by a
     :class:`blockdae.BaseMotion` of Records (x, y and the vertical z, at its own
@@ -250,4 +294,104 @@ class Planar:
         return np.maximum(bias + PARAMETER_FLOOR, kinetic)
 
 
-MODELS = (Rigid, Flexible, Planar)
+
+@dataclasses.dataclass(frozen=True)
+class Simulated(DesignModel):
+    """Any model of the contract as a design model: D [m] is the size (Euclidean norm) of
+    its displacement at the end of a :func:`blockdae.simulate` run (or its largest size
+    over the run: ``measure="peak"``), the parameter sets
+    given to the model's ``replace`` (a :class:`~blockdae.core.contract.BatchedModel`
+    takes them all at once, as 1-D arrays; another model runs once per set).
+
+    Attributes:
+        model: the model at its nominal parameters (those not sampled keep their values).
+        parameters: name -> unit of the parameters a study may give (names ``replace`` takes).
+        design: the parameter the inverses solve for (D must not rise as it rises).
+        polarity: "normal" (the record as given), "inverse" (times -1) or "larger".
+        measure: "final" (|displacement| at the end) or "peak" (its largest over the run).
+        t_end: final time [s]; None: until the model has come to rest after the record.
+        backend: the backend (None: the model's default).
+        sliding_limit_value: the value of ``design`` at and above which D = 0 (a number in
+            its unit); None: found by doubling from the floor until D = 0 (at most 60 times).
+        floor_value: the smallest value of ``design`` the inverses try (default 1e-4).
+        required: the names a study must give (default: ``design``).
+        kind: the model's name in messages (default: its class name).
+    """
+
+    model: AbstractHybridModel
+    parameters: dict
+    design: str
+    polarity: str = "normal"
+    measure: str = "final"
+    t_end: float | None = None
+    backend: str | None = None
+    sliding_limit_value: float | None = None
+    floor_value: float = PARAMETER_FLOOR
+    required: tuple | None = None
+    kind: str | None = None
+
+    def __post_init__(self):
+        _check_polarity(self.polarity)
+        if self.measure not in ("final", "peak"):
+            raise ValueError(f"measure={self.measure!r} is unknown; choose 'final' or 'peak'")
+        if not isinstance(self.model, AbstractHybridModel):
+            raise TypeError(f"model must be a model of the contract (an AbstractHybridModel), got "
+                            f"{type(self.model).__name__}")
+        if not isinstance(self.parameters, dict) or self.design not in self.parameters:
+            raise ValueError(f"parameters must be a dict name -> unit holding design={self.design!r}, got "
+                             f"{self.parameters!r}")
+        if not hasattr(self.model, "replace"):
+            raise TypeError(f"{type(self.model).__name__} needs replace(**changes) to take sampled parameters")
+        object.__setattr__(self, "required", tuple(self.required or (self.design,)))
+        object.__setattr__(self, "kind", self.kind or type(self.model).__name__)
+        for name, value in (("PARAMETERS", dict(self.parameters)), ("REQUIRED", self.required),
+                            ("DESIGN", self.design)):  # the contract's names
+            object.__setattr__(self, name, value)
+
+    def displacements(self, record, pga, values, derivative=False):
+        """D [m], shape (n,), of ``record`` scaled to ``pga`` [g] for each parameter set of
+        ``values``; no derivative (``derivative`` must be False)."""
+        if derivative:
+            raise ValueError(f"{self.kind} has no dD/d{self.design} here; root finding brackets instead")
+        n = max(np.size(v) for v in values.values())
+        sets = {name: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for name, v in values.items()}
+        run = dict(t_end=self.t_end, backend=self.backend, pga=None if pga is None else [pga],
+                   polarity=_engine_polarity(self.polarity), final_only=True)
+        if isinstance(self.model, BatchedModel):
+            sizes = self._sizes(simulate(self.model.replace(**{k: v.copy() for k, v in sets.items()}), [record],
+                                         **run))
+        else:
+            sizes = np.stack([self._sizes(simulate(self.model.replace(**{k: float(v[i]) for k, v in sets.items()}),
+                                                   [record], **run))[:, 0] for i in range(n)], axis=-1)
+        return _read(self.polarity, sizes[0], sizes[-1])
+
+    def sliding_limit(self, record, pga, values):
+        """The given ``sliding_limit_value``, else per set the floor doubled until D = 0."""
+        n = max(np.size(v) for v in values.values())
+        if self.sliding_limit_value is not None:
+            return np.full(n, float(self.sliding_limit_value))
+        sets = {name: np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy() for name, v in values.items()}
+        limit = np.maximum(np.asarray(self.floor(sets), dtype=float), PARAMETER_FLOOR)
+        moving = np.ones(n, dtype=bool)
+        for _ in range(60):
+            where = np.flatnonzero(moving)
+            d = self.displacements(record, pga, {k: v[where] for k, v in sets.items()} | {self.design: limit[where]})
+            moving[where] = d > 0
+            if not moving.any():
+                return limit
+            limit = np.where(moving, 2 * limit, limit)
+        raise ValueError(f"{self.kind}: D stays above 0 up to {self.design} = {float(np.max(limit)):.6g} "
+                         f"[{self.parameters[self.design]}]; give sliding_limit_value")
+
+    def floor(self, values):
+        return np.full(np.shape(values[self.design]), float(self.floor_value))
+
+    def _sizes(self, ensemble):
+        """D [m] of an ensemble of one motion at one scale, shape (polarities, sets)."""
+        n_polarities, n_sets = ensemble.shape[2], max(1, int(np.prod(ensemble.model.batch_shape)))
+        if self.measure == "peak":
+            return np.asarray(ensemble.max_abs_displacement, dtype=float)[0, 0].reshape(n_polarities, n_sets)
+        u = np.asarray(ensemble.displacement, dtype=float)[0, 0]  # (polarities[, sets][, d])
+        return np.linalg.norm(u.reshape(n_polarities, n_sets, -1), axis=-1)
+
+

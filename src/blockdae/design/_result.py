@@ -6,18 +6,16 @@ import dataclasses
 
 import numpy as np
 
-from ..core import compact_repr
+from ..core import compact_repr, unit_suffix
 from ._statistics import relative_standard_error, wilson
-
-#: a unit -> its suffix in a column name
-_SUFFIX = {"g": "g", "m": "m", "m/s": "m_s", "-": "ratio"}
-
 
 def column_name(parameter, model):
     """The table column of ``parameter`` of ``model``, its unit in the name (ky_g, vs_m_s,
     damping_ratio), or the model's own name for it (the plane's mu, bias_x: coefficients)."""
     own = getattr(model, "COLUMNS", {})
-    return own[parameter] if parameter in own else f"{parameter}_{_SUFFIX[model.PARAMETERS[parameter]]}"
+    if parameter in own:
+        return own[parameter]
+    return f"{parameter}_{unit_suffix(model.PARAMETERS[parameter])}"
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

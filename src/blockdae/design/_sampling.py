@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 from ._distributions import DISTRIBUTIONS, _normal_cdf, _normal_ppf
-from ._models import MODELS
+from ._models import DesignModel
 
 #: the samplers: "mc" (Monte Carlo), "lhs" (Latin hypercube, each block of runs its own
 #: design), "sobol" (scrambled Sobol, one sequence per record continued run after run)
@@ -17,8 +17,9 @@ SAMPLINGS = ("mc", "lhs", "sobol")
 def split_parameters(parameters, model):
     """(fixed: name -> float, uncertain: name -> distribution) of ``parameters`` (name
     -> a number or a distribution), checked against ``model``'s parameters."""
-    if not isinstance(model, MODELS):
-        raise ValueError(f"model={model!r} must be design.Rigid(...), design.Flexible(...) or design.Planar(...)")
+    if not isinstance(model, DesignModel):
+        raise ValueError(f"model={model!r} must be a design model: design.Rigid(...), design.Flexible(...), "
+                         "design.Planar(...), design.Simulated(any model, ...) or a design.DesignModel of your own")
     if not isinstance(parameters, dict):
         raise ValueError(f"parameters must be a dict name -> number or distribution, got {parameters!r}")
     fixed, uncertain = {}, {}

@@ -43,7 +43,8 @@ def exceedance(records, model, parameters, *, pga=None, threshold, sampling="sob
     Args:
         records: a Record, a sequence or a dict name -> Record (ground acceleration along
             the slope [m/s²]); for :class:`Planar` also BaseMotions of Records (pga None).
-        model: :class:`Rigid`, :class:`Flexible` or :class:`Planar`.
+        model: :class:`Rigid`, :class:`Flexible`, :class:`Planar`, :class:`Simulated` (any model) or
+            a :class:`DesignModel` of your own.
         parameters: name -> a number or a distribution (:class:`LogNormal`,
             :class:`Normal`, :class:`Uniform`, :class:`Truncated`) for the model's
             parameters (rigid: ky [g]; flexible: ky [g], height [m], vs [m/s], vr [m/s],

@@ -1,6 +1,7 @@
 """Recorded accelerograms: samples joined by straight lines."""
 
 import dataclasses
+import functools
 import types
 import typing
 
@@ -69,6 +70,16 @@ class Record(AbstractExcitation):
         samples.setflags(write=False)
         object.__setattr__(self, "acceleration_samples", samples)
 
+    def __getstate__(self):
+        """What pickle keeps (a process pool's workers, Dask): the metadata as a plain dict."""
+        return {**self.__dict__, "metadata": dict(self.metadata)}
+
+    def __setstate__(self, state):
+        state = {**state, "metadata": types.MappingProxyType(dict(state["metadata"]))}
+        samples = np.array(state["acceleration_samples"], dtype=float)
+        samples.setflags(write=False)
+        self.__dict__.update(state, acceleration_samples=samples)
+
     @property
     def duration(self) -> float:
         return self.dt * (self.acceleration_samples.size - 1)
@@ -94,8 +105,9 @@ class Record(AbstractExcitation):
         """The samples in units of standard gravity (9.80665 m/s²) [g], shape (n,)."""
         return self.acceleration_samples / STANDARD_GRAVITY
 
-    @property
+    @functools.cached_property
     def peak_acceleration(self) -> float:
+        """max |a| over the samples [m/s²] (computed once: the samples are read-only)."""
         return float(np.max(np.abs(self.acceleration_samples)))
 
     def as_horizontal(self) -> "Record":

@@ -52,7 +52,7 @@ def solve_exact(model, excitation, horizon, name):
     if not slip_underdamped(settings[1], settings[3]):
         return solve_damped_slip(model, excitation, horizon, name)
     pieces, arrays = record_pieces(excitation, horizon, "the exact flexible engine")
-    run, dense = _engine.kernels()
+    run = _engine.kernels()[0]
     capacity = _ROWS_PER_PIECE * len(pieces.t0) + 8
     while True:
         log = np.empty((capacity, len(_engine.KNOT_FIELDS)))
@@ -66,12 +66,24 @@ def solve_exact(model, excitation, horizon, name):
     mode, before = log[:, 5].astype(int), log[:, 6].astype(int)
     events = tuple(model.event(float(t[i]), model.modes(before[i]), model.modes(mode[i]), state[i])
                    for i in np.flatnonzero(log[:, 7]))
-
-    def dense_output(times):
-        times = np.asarray(times, dtype=float)
-        values = dense(t, state, mode.astype(float), arrays[0], arrays[2], arrays[3], 1.0, *settings, times.ravel())
-        return tuple(values[:, k].reshape(times.shape) for k in range(4))
-
     stats = {"max_events_at_one_instant": int(outcome[_engine.OUTCOME_FIELDS.index("max_events_at_one_instant")]),
              "n_events": len(events), "n_knots": len(t)}
-    return model.solution(t=t, y=state, mode=mode, events=events, backend=name, dense=dense_output, stats=stats)
+    return model.solution(t=t, y=state, mode=mode, events=events, backend=name,
+                          dense=_Dense(t, state, mode.astype(float), arrays[0], arrays[2], arrays[3], settings),
+                          stats=stats)
+
+
+class _Dense:
+    """The exact engine's dense output from its knots (t [s], state (n, 4), mode) and the
+    record's pieces: ``__call__(times)`` -> the 4 states at ``times``, each of their shape;
+    picklable (the compiled kernel is looked up on use)."""
+
+    def __init__(self, t, state, mode, t0, a0, slope, settings):
+        self.t, self.state, self.mode = t, state, mode
+        self.t0, self.a0, self.slope, self.settings = t0, a0, slope, settings
+
+    def __call__(self, times):
+        times = np.asarray(times, dtype=float)
+        values = _engine.kernels()[1](self.t, self.state, self.mode, self.t0, self.a0, self.slope, 1.0,
+                                      *self.settings, times.ravel())
+        return tuple(values[:, k].reshape(times.shape) for k in range(4))

@@ -23,8 +23,8 @@ import math
 
 import numpy as np
 
-from ..core import set_real_fields
-from ..core.contract import KNOTS_PER_RADIAN, DifferentiableModel, StudyModel, scale_factor_units
+from ..core import set_batch_fields, set_real_fields
+from ..core.contract import KNOTS_PER_RADIAN, BatchedModel, DifferentiableModel, StudyModel, scale_factor_units
 from ..units import STANDARD_GRAVITY
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn
 from ._exact import ExactEngine
@@ -42,7 +42,7 @@ _BEYOND = 1e30
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class FlexibleSlidingMass(DifferentiableModel, StudyModel):
+class FlexibleSlidingMass(DifferentiableModel, StudyModel, BatchedModel):
     """A flexible sliding mass: a shear column on a slip surface of yield acceleration ky.
 
     Args:
@@ -58,6 +58,10 @@ class FlexibleSlidingMass(DifferentiableModel, StudyModel):
             (the stick response drives a rigid block).
         g: the value of one g [m/s²].
 
+    ``ky`` may be a 1-D array of yield accelerations [g]: a batch of parameter sets, which
+    :func:`blockdae.simulate` runs into a :class:`~blockdae.core.BatchSolution`
+    (``item(i)``: set i as a model of its own).
+
     The excitation's component 0 is the ground acceleration along the slope [m/s²].
     State y = (u [m], u' [m/s], s [m], w [m/s]); the displacement is s, downslope positive.
     """
@@ -68,6 +72,7 @@ class FlexibleSlidingMass(DifferentiableModel, StudyModel):
     g: float = STANDARD_GRAVITY
 
     state_names = ("u", "u_rate", "s", "w")
+    state_units = ("m", "m/s", "m", "m/s")
     modes = FlexibleMode
     initial_mode = FlexibleMode.STICK
     displacement_states = (_S,)
@@ -79,6 +84,8 @@ class FlexibleSlidingMass(DifferentiableModel, StudyModel):
     hea_share_at_rest = SLIP_MASS_FRACTION
 
     def __post_init__(self):
+        if _is_batch(self.ky):
+            return _check_batch(self)
         if not isinstance(self.column, ShearColumn):
             raise TypeError(f"column must be a ShearColumn(height, vs, ...), got {type(self.column).__name__}")
         if isinstance(self.ky, KyTable) and self.ky.constant:
@@ -89,6 +96,7 @@ class FlexibleSlidingMass(DifferentiableModel, StudyModel):
             set_real_fields(self, ("g",))
             object.__setattr__(self, "table", self.ky.segments())
             object.__setattr__(self, "state_names", FlexibleSlidingMass.state_names + ("breakpoints_passed",))
+            object.__setattr__(self, "state_units", FlexibleSlidingMass.state_units + ("-",))
             object.__setattr__(self, "engines", {"exact": TableEngine()})
         else:
             set_real_fields(self, ("ky", "g"))
@@ -102,6 +110,21 @@ class FlexibleSlidingMass(DifferentiableModel, StudyModel):
         object.__setattr__(self, "omega", self.column.omega)
         object.__setattr__(self, "damping", self.column.total_damping)
         object.__setattr__(self, "slip_mass_fraction", SLIP_MASS_FRACTION)
+
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """() for one parameter set, (n,) for a batch of n yield accelerations."""
+        return np.shape(self.ky) if isinstance(self.ky, np.ndarray) else ()
+
+    def item(self, index: int) -> "FlexibleSlidingMass":
+        """Parameter set ``index`` of a batch (its ky), as a model of one set."""
+        return dataclasses.replace(self, ky=float(self.ky[index]))
+
+    parameter_labels = {"ky": "yield acceleration ky [g]"}
+
+    def batch_parameters(self) -> dict:
+        """ky [g], of shape ``batch_shape``."""
+        return {"ky": np.broadcast_to(np.asarray(self.ky, dtype=float), self.batch_shape)}
 
     @property
     def coupled(self) -> bool:
@@ -276,7 +299,7 @@ class FlexibleSlidingMass(DifferentiableModel, StudyModel):
 
     def with_parameters(self, values):
         model = object.__new__(FlexibleSlidingMass)
-        for name in ("column", "method", "table", "state_names", "ky"):
+        for name in ("column", "method", "table", "state_names", "state_units", "ky"):
             object.__setattr__(model, name, getattr(self, name))
         if self.table is not None:
             object.__setattr__(model, "engines", self.engines)
@@ -300,3 +323,21 @@ class FlexibleSlidingMass(DifferentiableModel, StudyModel):
     #: mass's ``study_batch`` and ``study_sweep``, which run ``bd.flexible``'s rows, are in
     #: :mod:`._study`, attached by the package)
     study_parameter = ("ky", "ky_g", "g")
+
+
+def _is_batch(ky) -> bool:
+    """Whether ``ky`` is a batch of yield accelerations (a sequence, not a KyTable)."""
+    return not isinstance(ky, KyTable) and np.ndim(ky) > 0
+
+
+def _check_batch(model) -> None:
+    """A batch of yield accelerations: ``model.ky`` set to a read-only 1-D array [g], each
+    value (and the other settings) checked as one set's (ValueError naming the set)."""
+    set_batch_fields(model, ("ky",))
+    for i, ky in enumerate(model.ky):
+        try:
+            one = FlexibleSlidingMass(model.column, float(ky), model.method, model.g)
+        except ValueError as error:
+            raise ValueError(f"ky[{i}]: {error}") from None
+    for name in ("g", "table", "omega", "damping", "slip_mass_fraction"):
+        object.__setattr__(model, name, getattr(one, name))

@@ -9,7 +9,7 @@ compiled call, shared among threads, and returns final numbers only.
 
 import numpy as np
 
-from ..core import BatchSolution, HermiteDense, notice_numba, run_items
+from ..core import BatchSolution, SolveItem, HermiteDense, notice_numba, run_items
 from . import _compiled as engine
 
 #: analyses x pieces above which a batch is shared among threads
@@ -41,8 +41,7 @@ class PlanarEngine:
         u, largest, n_events, t_end = self.final_numbers(self.solve_final(block, [excitation], [horizon], (1.0,),
                                                                           backend)[0])
         return BatchSolution(displacement=u, max_abs_displacement=largest, n_events=n_events, t_end=t_end,
-                             backend=backend.name, solve_one=lambda i: self.solve(block.item(i), excitation, horizon,
-                                                                                  backend))
+                             backend=backend.name, solve_one=SolveItem(self, block, excitation, horizon, backend))
 
     @staticmethod
     def final_numbers(rows):

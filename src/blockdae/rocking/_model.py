@@ -97,6 +97,7 @@ class RockingBlock(DifferentiableModel):
     g: float = STANDARD_GRAVITY
 
     modes = RockingMode
+    instant_modes = (RockingMode.RELEASE,)  # the release from theta0, left at once
     component_names = ("x", "z")
     #: the compiled engines: the integrated one of either equation (``backend="compiled"``),
     #: the linearised block's closed form (``backend="exact"``)
@@ -199,6 +200,10 @@ class RockingBlock(DifferentiableModel):
             return {"overturned": np.zeros(largest.shape, dtype=bool), "max_theta_over_alpha": np.zeros(largest.shape)}
         return {"overturned": np.abs(np.asarray(displacement, dtype=float)[:, 0]) == 0.5 * math.pi,
                 "max_theta_over_alpha": largest / self.alpha}
+
+    @property
+    def state_units(self):
+        return ("m", "m/s") if self.slides else ("rad", "rad/s")
 
     @property
     def initial_mode(self):

@@ -3,7 +3,7 @@ precision; what the "exact" backend runs a :class:`~blockdae.SlidingBlock` on.""
 
 import numpy as np
 
-from ..core import BatchSolution, cached_per_excitation, notice_numba, run_items
+from ..core import BatchSolution, SolveItem, cached_per_excitation, notice_numba, run_items
 from ..excitation import Pieces, accel
 from . import _exact_numba as engine
 from ._results import check, exact_solution
@@ -31,8 +31,7 @@ class ExactEngine:
         u, largest, n_events, t_end = self.final_numbers(self.solve_final(block, [excitation], [horizon], (1.0,),
                                                                           backend)[0])
         return BatchSolution(displacement=u[:, 0], max_abs_displacement=largest, n_events=n_events, t_end=t_end,
-                             backend=backend.name, solve_one=lambda i: self.solve(block.item(i), excitation, horizon,
-                                                                                  backend))
+                             backend=backend.name, solve_one=SolveItem(self, block, excitation, horizon, backend))
 
     @staticmethod
     def final_numbers(rows):

@@ -8,7 +8,7 @@ cross-checked in the tests.
 import jax
 import numpy as np
 
-from ..core import BatchSolution, cached_per_excitation, jax_context
+from ..core import BatchSolution, SolveItem, cached_per_excitation, jax_context
 from ..excitation import Pieces
 from . import _exact_kernel as kernel
 from ._results import check, exact_solution, max_run
@@ -43,7 +43,7 @@ class ExactJaxEngine:
         return BatchSolution(
             displacement=u, max_abs_displacement=max_abs_u, n_events=n_events.astype(int), t_end=t_final,
             backend=backend.name,
-            solve_one=lambda i: self.solve(block.item(i), excitation, horizon, backend))
+            solve_one=SolveItem(self, block, excitation, horizon, backend))
 
 
 def _run(fn, params, device, n_pieces, horizon, block, pieces, capacity, window):

@@ -277,6 +277,15 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
 
     #: what :func:`bd.study` sweeps: its keyword, the table's column, the unit
     study_parameter = ("mu", "mu", "-")
+    #: a given block is studied under the motions as given
+    study_polarities = ("normal",)
+
+    def study_parameter_for(self, given) -> tuple[str, str, str]:
+        """ky [g] (column ky_g) where ``ky`` alone is given to a block without bias (Newmark's
+        rigid block: it slides where a(t) > ky g, mu = ky); else mu [-]."""
+        if given.get("ky") is not None and given.get("mu") is None and np.all(np.asarray(self.bias) == 0):
+            return "ky", "ky_g", "g"
+        return self.study_parameter
 
     def study_batch(self, mu) -> "SlidingBlock":
         """This block at every friction coefficient ``mu`` [-] (1-D), for :func:`bd.study`

@@ -72,6 +72,10 @@ class EventLog(collections.abc.Sequence):
     def __setattr__(self, name, value):
         raise AttributeError("an EventLog is immutable")
 
+    def __reduce__(self):
+        """Pickled as its five arrays (process pools, Dask); the events are built again on use."""
+        return EventLog.of_read_only, (self.t, self.mode_before, self.mode_after, self.u, self.v)
+
     def _built(self) -> tuple:
         if self._events is None:
             modes = {int(m): m for m in Mode}

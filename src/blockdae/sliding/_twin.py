@@ -5,7 +5,7 @@ events by root finding, dense output in closed form from the located events."""
 import jax
 import numpy as np
 
-from ..core import BatchSolution, jax_context
+from ..core import BatchSolution, SolveItem, jax_context
 from . import _jax_kernel as kernel
 from ._exact_jax import _device
 from ._results import DenseOutput, max_run
@@ -38,7 +38,7 @@ class TwinEngine:
         return BatchSolution(
             displacement=np.asarray(final.u), max_abs_displacement=np.asarray(final.max_abs_u),
             n_events=np.asarray(final.n_events), t_end=np.asarray(t_final), backend=backend.name,
-            solve_one=lambda i: self.solve(block.item(i), excitation, horizon, backend))
+            solve_one=SolveItem(self, block, excitation, horizon, backend))
 
 
 def _config(block, pieces, backend):

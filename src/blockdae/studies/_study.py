@@ -324,12 +324,11 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
             raise ValueError(f'where must hold "ground" or bd.structures.Floor objects, got {place!r}')
     if len(set(where)) < len(where):
         raise ValueError(f"where repeats a location: {where!r}")
-    polarities = ()
     if block is None:
         block = SlidingBlock(mu=1.0, direction=direction or "negative", g=g)  # checks direction and g
-        polarities = ("normal", "inverse") if direction is None else ("normal",)
-    elif isinstance(block, SlidingBlock):
-        polarities = ("normal",)
+        polarities = ("normal", "inverse") if direction is None else block.study_polarities
+    else:
+        polarities = getattr(block, "study_polarities", ())  # a block that is no StudyModel: refused next
     parameter, column, values, sweep = _swept(block, swept)
     batch = block.study_batch(sweep)  # checks the values against the model's other parameters (|bias| < mu, ...)
     if any(isinstance(r, BaseMotion) for r in records) and where != ("ground",):
@@ -367,10 +366,7 @@ def _swept(block, swept):
         raise TypeError(f"block must be a model that declares study_parameter and study_batch "
                         f"(a bd.core.contract.StudyModel: bd.SlidingBlock, bd.PlanarBlock, bd.FlexibleSlidingMass), "
                         f"got {type(block).__name__}")
-    parameter, column, unit = block.study_parameter
-    if isinstance(block, SlidingBlock) and swept.get("ky") is not None and swept.get("mu") is None \
-            and np.all(np.asarray(block.bias) == 0):
-        parameter, column, unit = "ky", "ky_g", "g"  # Newmark's rigid block: it slides where a(t) > ky g, mu = ky
+    parameter, column, unit = block.study_parameter_for(swept)
     model = type(block).__name__
     for other, given in swept.items():
         if other != parameter and given is not None:

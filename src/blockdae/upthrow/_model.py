@@ -37,8 +37,9 @@ import numpy as np
 
 from ..units import STANDARD_GRAVITY
 from ._solution import UpthrowEvent, UpthrowSolution
-from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, LinearModesModel, scale_factor_units
-from ..core import set_real_fields
+from ..core.contract import (KNOTS_PER_RADIAN, SCALAR, BatchedModel, DifferentiableModel, LinearModesModel,
+                             scale_factor_units)
+from ..core import set_batch_fields, set_real_fields
 from ._modes import EVENT_KINDS, UpthrowMode
 from ._support import SpringSupport
 
@@ -46,13 +47,17 @@ _U, _V = range(2)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class SpringSupportedMass(LinearModesModel, DifferentiableModel):
+class SpringSupportedMass(LinearModesModel, DifferentiableModel, BatchedModel):
     """A mass resting on a unilateral spring-dashpot support under vertical ground motion.
 
     Args:
         frequency: natural frequency f of the mass on its support [Hz], > 0.
         damping: damping ratio zeta of the support [-], in [0, 1).
         g: gravitational acceleration [m/s²], > 0.
+
+    ``frequency`` and ``damping`` may be 1-D arrays of one size (or one of them a
+    number): a batch of parameter sets, which :func:`blockdae.simulate` runs into a
+    :class:`~blockdae.core.BatchSolution` (``item(i)``: set i as a model of its own).
 
     The excitation's component 0 is the vertical ground acceleration y''(t) [m/s²,
     upward positive]. State y = (u [m], u' [m/s]).
@@ -63,6 +68,7 @@ class SpringSupportedMass(LinearModesModel, DifferentiableModel):
     g: float = STANDARD_GRAVITY
 
     state_names = ("u", "u_rate")
+    state_units = ("m", "m/s")
     modes = UpthrowMode
     initial_mode = UpthrowMode.CONTACT
     horizontal_motion = False  # shaken vertically: a vertical component is its motion
@@ -71,8 +77,17 @@ class SpringSupportedMass(LinearModesModel, DifferentiableModel):
     differentiates_displacement = False  # the derivatives of its flights
 
     def __post_init__(self):
-        set_real_fields(self, ("frequency", "damping", "g"))
-        SpringSupport(self.frequency, self.damping)  # validates frequency and damping
+        shape = set_batch_fields(self, ("frequency", "damping"))
+        set_real_fields(self, ("g",))
+        object.__setattr__(self, "_batch_shape", shape)
+        if not shape:
+            SpringSupport(self.frequency, self.damping)  # validates frequency and damping
+        else:
+            for i, (frequency, damping) in enumerate(zip(*self._batch_arrays())):
+                try:
+                    SpringSupport(float(frequency), float(damping))
+                except ValueError as error:
+                    raise ValueError(f"parameter set {i}: {error}") from None
         if self.g <= 0:
             raise ValueError(f"g={self.g!r} must be > 0 [m/s²]")
 
@@ -88,8 +103,24 @@ class SpringSupportedMass(LinearModesModel, DifferentiableModel):
 
     @property
     def batch_shape(self) -> tuple[int, ...]:
-        """() : one parameter set."""
-        return ()
+        """() for one parameter set, (n,) for a batch of n."""
+        return getattr(self, "_batch_shape", ())  # a model of traced parameters has none
+
+    def _batch_arrays(self):
+        """(frequency, damping), each of shape ``batch_shape``."""
+        return tuple(np.broadcast_to(np.asarray(p, dtype=float), self.batch_shape) for p in (self.frequency,
+                                                                                           self.damping))
+
+    def item(self, index: int) -> "SpringSupportedMass":
+        """Parameter set ``index`` of a batch, as a model of one set."""
+        frequency, damping = (float(p[index]) for p in self._batch_arrays())
+        return dataclasses.replace(self, frequency=frequency, damping=damping)
+
+    parameter_labels = {"frequency": "support frequency f [Hz]", "damping": "support damping ratio zeta [-]"}
+
+    def batch_parameters(self) -> dict:
+        """frequency [Hz] and damping [-], each of shape ``batch_shape``."""
+        return dict(zip(("frequency", "damping"), self._batch_arrays()))
 
     @property
     def support(self) -> SpringSupport:

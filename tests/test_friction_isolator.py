@@ -1,0 +1,99 @@
+"""A model written outside the package (``examples/friction_isolator.py``) runs every tool
+with no edit to the package: the generic backends against a closed form, a process pool,
+``design.exceedance`` and an inverse on its own parameters through ``design.Simulated``."""
+
+import concurrent.futures
+import importlib.util
+import math
+import multiprocessing
+import pathlib
+import sys
+
+import numpy as np
+import pytest
+
+import blockdae as bd
+from blockdae import design
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="module")
+def example():
+    sys.path.insert(0, str(ROOT / "examples"))  # importable by name: a process pool's workers pickle by reference
+    try:
+        spec = importlib.util.spec_from_file_location("friction_isolator", ROOT / "examples" / "friction_isolator.py")
+        module = importlib.util.module_from_spec(spec)
+        sys.modules["friction_isolator"] = module
+        spec.loader.exec_module(module)
+        yield module
+    finally:
+        sys.path.remove(str(ROOT / "examples"))
+        sys.modules.pop("friction_isolator", None)
+
+
+def test_one_slide_from_rest_against_its_closed_form(example):
+    """A constant base acceleration -A (mu g < A < 3 mu g) from rest: u'' = A - (g/R) u -
+    mu g, so u(t) = c (1 - cos(w t)) with c = (A - mu g) / w², w = sqrt(g/R), sliding until
+    u' = 0 at t = pi / w, where u = 2c and the demand A - 2 (A - mu g) lies within mu g: it
+    sticks for good (closed form)."""
+    isolator = example.FrictionIsolator(mu=0.05, radius=1.5)
+    w, a = math.sqrt(isolator.g / isolator.radius), 0.12 * bd.STANDARD_GRAVITY
+    motion = bd.Record(np.full(401, -a), 0.01, check_peak=False)
+    for backend in ("cvode", "ida"):
+        solution = bd.simulate(isolator, motion, t_end=3.0, backend=backend, rtol=1e-10)
+        c = (a - isolator.mu * isolator.g) / w**2
+        assert [e.mode_after.name for e in solution.events] == ["SLIDE_POS", "STICK"]
+        assert abs(solution.events[1].t - math.pi / w) < 1e-8
+        assert abs(solution.displacement - 2 * c) < 1e-8 * 2 * c  # measured: 1.4e-9 relative on CVODE
+
+
+def test_ensemble_on_a_process_pool(example):
+    isolator, motion = example.FrictionIsolator(), example.record(duration=2.0)
+    here = bd.simulate(isolator, [motion], scale=[0.5, 1.0], t_end=2.0)
+    with concurrent.futures.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
+        there = bd.simulate(isolator, [motion], scale=[0.5, 1.0], t_end=2.0, executor=pool)
+    assert there.to_dataframe().equals(here.to_dataframe())
+
+
+def test_design_exceedance_and_the_inverse_on_its_own_parameters(example):
+    motion, model = example.record(duration=2.0), example.design_model()
+    study = design.exceedance(motion, model, {"mu": design.LogNormal(0.08, 0.2), "radius": 2.0}, threshold=0.1,
+                              runs=4, runs_per_block=4)
+    assert len(study.table) == 4 and "mu" not in study.table and "mu_ratio" in study.table and "radius_m" in study.table
+    row = study.table.iloc[1]
+    alone = bd.simulate(example.FrictionIsolator(mu=row["mu_ratio"], radius=2.0), motion)
+    assert row["D_m"] == pytest.approx(alone.max_abs_displacement, rel=1e-12)
+    mu = design.ky_for_displacement(motion, model, {"radius": 2.0}, allowable=0.1)
+    peak = bd.simulate(example.FrictionIsolator(mu=mu, radius=2.0), motion).max_abs_displacement
+    assert peak == pytest.approx(0.1, rel=1e-8)  # the inverse's D tolerance is 1e-10 relative
+
+
+def test_design_contract_refuses_what_it_cannot_run(example):
+    with pytest.raises(ValueError, match="holding design='ky'"):
+        design.Simulated(example.FrictionIsolator(), parameters={"mu": "-"}, design="ky")
+    with pytest.raises(ValueError, match="must be a design model"):
+        design.exceedance(example.record(), example.FrictionIsolator(), {"mu": 0.1}, threshold=0.1, runs=4)
+
+
+def test_a_start_already_sliding_against_its_closed_form(example):
+    """From u = 0 sliding at v0 > 0 with no excitation: u'' = -w² u - mu g, so u(t) =
+    c (cos wt - 1) + (v0 / w) sin wt with c = mu g / w²; it stops where u' = 0, at
+    wt = atan(v0 / (c w)), and sticks there (|w² u| <= mu g) (closed form)."""
+    isolator = example.FrictionIsolator(mu=0.05, radius=2.0, v0=0.1)
+    assert isolator.initial_mode == example.IsolatorMode.SLIDE_POS
+    w = math.sqrt(isolator.g / isolator.radius)
+    c = isolator.mu * isolator.g / w**2
+    stop = math.atan(isolator.v0 / (c * w)) / w
+    quiet = bd.Record(np.zeros(301), 0.01, check_peak=False)
+    for backend in ("cvode", "ida"):
+        solution = bd.simulate(isolator, quiet, t_end=3.0, backend=backend, rtol=1e-10)
+        assert [e.mode_after.name for e in solution.events] == ["STICK"]
+        assert abs(solution.events[0].t - stop) < 1e-8
+        u_stop = c * (math.cos(w * stop) - 1) + isolator.v0 / w * math.sin(w * stop)
+        assert abs(solution.displacement - u_stop) < 1e-8 * abs(u_stop)
+
+
+def test_a_starting_state_the_model_refuses(example):
+    with pytest.raises(ValueError, match=r"u0=0.5 m: at rest there the surface pulls harder"):
+        example.FrictionIsolator(mu=0.05, radius=2.0, u0=0.5)
