@@ -88,8 +88,6 @@ class AbstractHybridModel(abc.ABC):
     horizontal_motion: bool = True
     #: indices of the states that make up the displacement the solution reports
     displacement_states: tuple[int, ...] = (0,)
-    #: the unit of those states ("rad" for a rotation), in the names of an ensemble's columns
-    displacement_unit: str = "m"
 
     # ---- which backend runs it ---------------------------------------------------
     #: the backend :func:`blockdae.simulate` uses when none is named
@@ -101,6 +99,12 @@ class AbstractHybridModel(abc.ABC):
     #: (:class:`LinearModesModel`); a backend not named here runs the model on the generic
     #: driver ("cvode", "ida", "jax") or not at all ("exact", "exact-jax", "compiled")
     engines: dict = {}
+
+    @property
+    def displacement_unit(self) -> str:
+        """The unit of the displacement states ("rad" for a rotation), in the names of an
+        ensemble's columns: theirs in :attr:`state_units`, "m" where those are not declared."""
+        return self.state_units[self.displacement_states[0]] if self.state_units else "m"
 
     @property
     def batch_shape(self) -> tuple[int, ...]:

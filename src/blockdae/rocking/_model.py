@@ -186,11 +186,6 @@ class RockingBlock(DifferentiableModel):
         """"compiled" for a block that rocks (the compiled engine), "cvode" for one that slides."""
         return "cvode" if self.slides else "compiled"
 
-    @property
-    def displacement_unit(self):
-        """"rad" for a block that rocks (its displacement is theta), "m" for one that slides (u)."""
-        return "m" if self.slides else "rad"
-
     def final_quantities(self, displacement, max_abs_displacement) -> dict:
         """overturned (|theta| at the end is pi/2, where an overturned block lies) and
         max_theta_over_alpha (max |theta| / alpha [-]) of n runs; False and 0 for a block
@@ -203,6 +198,7 @@ class RockingBlock(DifferentiableModel):
 
     @property
     def state_units(self):
+        """[m, m/s] for a block that slides (u), [rad, rad/s] for one that rocks (theta)."""
         return ("m", "m/s") if self.slides else ("rad", "rad/s")
 
     @property
