@@ -12,6 +12,8 @@ from . import _exact_numba as engine
 from ._results import check, exact_solution
 
 
+#: the first compile of one of the engine's two entry points [s] (one core; benchmarks/cold_start.py)
+_COMPILE_SECONDS = 8
 #: pieces x parameter sets above which a batch is shared among threads (~0.2 ms on one
 #: core; waking a worker thread costs ~45 us on a 2-core VM)
 _THREADED_WORK = 2e5
@@ -28,7 +30,7 @@ class ExactEngine:
             run_one = engine.run_one_uncompiled
         else:
             run_one = engine.kernels()[0]
-            notice_numba("the exact engine", 15, run_one)
+            notice_numba("the exact engine", _COMPILE_SECONDS, run_one)
         outcome, knots = run_one(exc, backend.window, block.engine_parameter_set(), _flags(block, horizon), 64)
         check(block, outcome[6], outcome[7])
         return exact_solution(block, pieces, knots, int(outcome[8]), backend.name)
@@ -59,7 +61,7 @@ class ExactEngine:
         exc, offsets = _concatenated(inputs)
         params = block.engine_parameters(scale)
         run = engine.kernels()[1]
-        notice_numba("the exact engine", 15, run)
+        notice_numba("the exact engine", _COMPILE_SECONDS, run)
         flags = (block.allow_negative, block.allow_positive, np.array([h.until_rest for h in horizons]))
         out = np.empty((len(inputs), len(params), len(engine.OUTCOME_FIELDS)))
         # item j * n_exc + i is excitation i under parameter set j: each excitation's in a row
