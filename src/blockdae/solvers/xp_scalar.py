@@ -1,14 +1,13 @@
 """The array namespace ``xp`` of the shared closed forms, for scalars inside numba.
 
 :mod:`._closed_form`, :mod:`blockdae.sliding` and :mod:`blockdae.excitation.pieces`
-call ``xp.where``, ``xp.sin``, ...; the numba engine passes this module as ``xp``. Every
-name is a plain Python function as well, so that an engine's source also runs uncompiled.
+call ``xp.where``, ``xp.sin``, ...; the numba engine passes this module as ``xp``.
 """
 
 import math
 
+import numba
 import numpy as np
-from numba.extending import register_jitable
 
 abs = np.abs
 cos = math.cos
@@ -19,7 +18,7 @@ sin = math.sin
 sqrt = math.sqrt
 
 
-@register_jitable(inline="always")
+@numba.njit(inline="always")
 def where(condition, x, y):
     """``x`` if ``condition`` else ``y`` (scalars)."""
     return x if condition else y
