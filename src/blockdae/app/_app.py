@@ -41,7 +41,7 @@ def create_app(folder) -> Dash:
                   Input("engine-poll", "n_intervals"))
     def engine_status(_):
         if warm.seconds is None:
-            return ("Preparing the solvers (on a first start after an install they are compiled: about 35 s of "
+            return ("Preparing the solvers (on a first start after an install they are compiled: about 30 s of "
                     "one core, the default coupled analysis's in the first 20 s; an analysis started now waits "
                     "only for the solvers it needs)."), False
         if warm.error:

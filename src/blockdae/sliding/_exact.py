@@ -14,6 +14,7 @@ from ._results import check, exact_solution
 
 #: the first compile of one of the engine's two entry points [s] (one core; benchmarks/cold_start.py)
 _COMPILE_SECONDS = 8
+
 #: pieces x parameter sets above which a batch is shared among threads (~0.2 ms on one
 #: core; waking a worker thread costs ~45 us on a 2-core VM)
 _THREADED_WORK = 2e5

@@ -188,7 +188,7 @@ def _logged(knots, n_knots, t, before, after, u):
     grown when full."""
     if n_knots == knots.shape[1]:
         grown = np.empty((knots.shape[0], 2 * n_knots))
-        for row in range(knots.shape[0]):
+        for row in range(knots.shape[0]):  # loops: a slice assignment costs seconds of compiling
             for column in range(n_knots):
                 grown[row, column] = knots[row, column]
         knots = grown
@@ -303,7 +303,7 @@ def _run_set(one, window, params, flags, i, j, out):
     """Excitation i (``one``) under parameter set j into ``out[i, j]``."""
     p = params[j]
     outcome, _ = _run(one, window, (p[0], p[1], p[2], p[3], p[4]), (flags[0], flags[1], flags[2][i]), 0)
-    for k in range(outcome.shape[0]):
+    for k in range(outcome.shape[0]):  # as in _logged, a loop where a slice assignment would do
         out[i, j, k] = outcome[k]
 
 
