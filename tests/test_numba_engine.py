@@ -67,6 +67,24 @@ def test_seed_examples(example):
     assert_engines_agree(example.block, example.motion, example.t_end, min_events=2)
 
 
+@pytest.mark.parametrize("example", bd.sliding.seed_examples(), ids=lambda e: e.name)
+def test_seed_examples_uncompiled(example):
+    """``blockdae examples`` runs the engine's source uncompiled (no compile wait): the same
+    events (<= 1e-15 s: only libm's and LLVM's sine may differ, by an ulp), modes, knots
+    and displacements (1e-15 relative) as the compiled engine, on the same kind of
+    solution."""
+    compiled = bd.simulate(example.block, example.motion, t_end=example.t_end)
+    uncompiled = bd.sliding.example_solution(example)
+    assert type(uncompiled) is type(compiled) and uncompiled.backend == compiled.backend == "exact"
+    assert len(compiled.events) >= 2
+    assert_same_events(uncompiled, compiled, 1e-15)
+    tol = 1e-15 * compiled.max_abs_displacement
+    np.testing.assert_allclose([e.u for e in uncompiled.events], [e.u for e in compiled.events], rtol=0, atol=tol)
+    assert abs(uncompiled.displacement - compiled.displacement) <= tol
+    assert uncompiled.t_end == compiled.t_end
+    np.testing.assert_array_equal(uncompiled.mode, compiled.mode)
+
+
 @pytest.mark.parametrize("stem", QUICK_STEMS)
 def test_records_quick(stem):
     record = load_sample_record(stem)

@@ -34,7 +34,7 @@ from ._map import add_map_parser
 from ._model import parameter, run_model
 from ._upthrow import add_upthrow_parser
 from ._rocking import add_rocking_parser
-from ..sliding import SlidingBlock, newmark, seed_examples
+from ..sliding import SlidingBlock, example_solution, newmark, seed_examples
 from ..core import CompileNotice, progress_bar, set_compilation_cache, simulate
 from ..units import STANDARD_GRAVITY, length_units
 from ._motions import add_spectrum_parser, add_two_point_parser
@@ -394,7 +394,7 @@ def _examples(args):
     print("Sawicki & Chybicki 2005, Examples 1-6: exact event times [s] and displacements [m] (g = 9.81 m/s², "
           "as in the paper)")
     for example in seed_examples():
-        solution = simulate(example.block, example.motion, t_end=example.t_end)
+        solution = example_solution(example)
         print(f"\n{example.name}: {example.description}; "
               + (f"t_end = {example.t_end:g} s" if example.t_end else "until rest"))
         print(f"  {'#':>2}  {'t exact [s]':>12}  {'t paper [s]':>11}  {'from':>8} -> {'to':<8}  {'u [m]':>10}")

@@ -17,8 +17,9 @@ _noticed: set[str] = set()  # engines announced, or looked at and found compiled
 
 class CompileNotice(UserWarning):
     """Said once per process per engine, before blockdae compiles that engine's kernels
-    (JAX: a few seconds on each new process; numba: up to tens of seconds after an
-    install or upgrade, then loaded from its disk cache in under a second). Silence it
+    (JAX: up to about 15 s after an install, about 5 s in a later process; numba: 7 to
+    14 s per engine after an install or upgrade, then loaded from its disk cache in under
+    a second; CPU times measured by ``benchmarks/cold_start.py``). Silence it
     with ``warnings.filterwarnings("ignore", category=blockdae.CompileNotice)``."""
 
 

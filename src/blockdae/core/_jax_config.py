@@ -49,7 +49,8 @@ def jax_context():
     """float64 for the calls inside; sets the compilation cache on first use."""
     import jax
 
-    notice("JAX", "its JAX kernels (the first JAX call in this process; a few seconds)")
+    notice("JAX", "its JAX kernels (the first JAX call in this process: up to about 15 s after an install, "
+                  "about 5 s once JAX's disk cache holds them)")
     if not _state["applied"]:
         if _state["folder"] is not _DEFAULT:
             _apply(_state["folder"])

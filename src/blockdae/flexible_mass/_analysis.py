@@ -28,7 +28,7 @@ from ._ky_table import KyTable
 from ._model import METHODS, FlexibleSlidingMass
 from ._slammer import slammer_flexible
 from ._table_engine import response_compiled, slide_compiled, system_arrays
-from ..core import compact_repr, labelled_motions, progress_bar, show_progress
+from ..core import compact_repr, labelled_motions, notice_numba, progress_bar, show_progress
 
 POLARITIES = ("both", "normal", "inverse")
 #: the result table's columns
@@ -487,7 +487,9 @@ def _run_analyses(inputs, tasks):
         offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
         work = sum(lengths[task[0]] for task in tasks)
     out = np.empty((len(tasks), 3, _fused.WIDTH))
-    (parallel if 2 * work >= PARALLEL_WORK else serial)(*arrays, offsets, np.array(tasks, dtype=float), out)
+    kernel = parallel if 2 * work >= PARALLEL_WORK else serial
+    notice_numba("the flexible sliding mass's engine", _fused.COMPILE_SECONDS, kernel)
+    kernel(*arrays, offsets, np.array(tasks, dtype=float), out)
     return out
 
 

@@ -356,6 +356,10 @@ def _dense(knot_t, knots, knot_mode, t0, p0, p1, scale, omega, xi, kyg, coupled,
     return out
 
 
+#: the first compile of ``run`` [s] (one core; benchmarks/cold_start.py)
+COMPILE_SECONDS = 7
+
+
 @functools.cache
 def kernels():
     """(run, dense) compiled with numba (on first use, then from the disk cache)."""

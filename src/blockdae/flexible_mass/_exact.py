@@ -3,7 +3,7 @@ on a record's linear pieces, the solution with dense output in closed form."""
 
 import numpy as np
 
-from ..core import SolverError
+from ..core import SolverError, notice_numba
 from . import _engine
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, UNDERDAMPED_LIMIT, slip_underdamped, solve_damped_slip
 from ._table_engine import record_pieces
@@ -53,6 +53,7 @@ def solve_exact(model, excitation, horizon, name):
         return solve_damped_slip(model, excitation, horizon, name)
     pieces, arrays = record_pieces(excitation, horizon, "the exact flexible engine")
     run = _engine.kernels()[0]
+    notice_numba("the flexible sliding mass's history engine", _engine.COMPILE_SECONDS, run)
     capacity = _ROWS_PER_PIECE * len(pieces.t0) + 8
     while True:
         log = np.empty((capacity, len(_engine.KNOT_FIELDS)))

@@ -376,6 +376,10 @@ def _analyses_serial(t0, h, p0, p1, offsets, tasks, out):
         _task(t0, h, p0, p1, offsets, tasks, j, out)
 
 
+#: the first compile of either kernel [s] (one core; the serial one, benchmarks/cold_start.py)
+COMPILE_SECONDS = 14
+
+
 @functools.cache
 def kernels():
     """(analyses parallel over cores, analyses serial) compiled with numba (on first use,

@@ -1,13 +1,19 @@
 """The 1-D block's exact engine (numba): closed forms on every piece, events to machine
 precision; what the "exact" backend runs a :class:`~blockdae.SlidingBlock` on."""
 
+import dataclasses
+
 import numpy as np
 
 from ..core import BatchSolution, SolveItem, cached_per_excitation, notice_numba, run_items
 from ..excitation import Pieces, accel
+from ..solvers import Exact
 from . import _exact_numba as engine
 from ._results import check, exact_solution
 
+
+#: the first compile of one of the engine's two entry points [s] (one core; benchmarks/cold_start.py)
+_COMPILE_SECONDS = 8
 
 #: pieces x parameter sets above which a batch is shared among threads (~0.2 ms on one
 #: core; waking a worker thread costs ~45 us on a 2-core VM)
@@ -21,8 +27,11 @@ class ExactEngine:
 
     def solve(self, block, excitation, horizon, backend):
         pieces, exc = _engine_input(excitation, horizon.integration_end(excitation), backend.window)
-        run_one = engine.kernels()[0]
-        notice_numba("the exact engine", 15, run_one)
+        if isinstance(backend, Uncompiled):
+            run_one = engine.run_one_uncompiled
+        else:
+            run_one = engine.kernels()[0]
+            notice_numba("the exact engine", _COMPILE_SECONDS, run_one)
         outcome, knots = run_one(exc, backend.window, block.engine_parameter_set(), _flags(block, horizon), 64)
         check(block, outcome[6], outcome[7])
         return exact_solution(block, pieces, knots, int(outcome[8]), backend.name)
@@ -52,7 +61,7 @@ class ExactEngine:
         exc, offsets = _concatenated(inputs)
         params = block.engine_parameters(scale)
         run = engine.kernels()[1]
-        notice_numba("the exact engine", 15, run)
+        notice_numba("the exact engine", _COMPILE_SECONDS, run)
         flags = (block.allow_negative, block.allow_positive, np.array([h.until_rest for h in horizons]))
         out = np.empty((len(inputs), len(params), len(engine.OUTCOME_FIELDS)))
         # item j * n_exc + i is excitation i under parameter set j: each excitation's in a row
@@ -65,6 +74,13 @@ class ExactEngine:
                 j_set = j // len(scale)
                 check(block.item(j_set) if block.batch_shape else block, out[i, j, 6], out[i, j, 7], where)
         return out
+
+
+@dataclasses.dataclass(frozen=True)
+class Uncompiled(Exact):
+    """The "exact" backend whose 1-D block engine runs one parameter set by the Python
+    interpreter (:func:`._exact_numba.run_one_uncompiled`): the same numbers, no compile
+    wait, for a motion of a few pieces."""
 
 
 def _flags(block, horizon):

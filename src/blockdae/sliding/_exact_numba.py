@@ -188,7 +188,9 @@ def _logged(knots, n_knots, t, before, after, u):
     grown when full."""
     if n_knots == knots.shape[1]:
         grown = np.empty((knots.shape[0], 2 * n_knots))
-        grown[:, :n_knots] = knots
+        for row in range(knots.shape[0]):  # loops: a slice assignment costs seconds of compiling
+            for column in range(n_knots):
+                grown[row, column] = knots[row, column]
         knots = grown
     knots[0, n_knots] = t
     knots[1, n_knots] = u
@@ -300,7 +302,18 @@ def _excitation(exc, offsets, i):
 def _run_set(one, window, params, flags, i, j, out):
     """Excitation i (``one``) under parameter set j into ``out[i, j]``."""
     p = params[j]
-    out[i, j], _ = _run(one, window, (p[0], p[1], p[2], p[3], p[4]), (flags[0], flags[1], flags[2][i]), 0)
+    outcome, _ = _run(one, window, (p[0], p[1], p[2], p[3], p[4]), (flags[0], flags[1], flags[2][i]), 0)
+    for k in range(outcome.shape[0]):  # as in _logged, a loop where a slice assignment would do
+        out[i, j, k] = outcome[k]
+
+
+def run_one_uncompiled(exc, window, params, flags, capacity):
+    """``run_one`` of :func:`kernels` run by the Python interpreter: the same source and
+    float64 arithmetic (numpy's scalars, with IEEE division as compiled), no compile wait
+    (numba's takes seconds on a first run) but some hundred times slower per piece: for a
+    motion of a few pieces (the worked examples)."""
+    with np.errstate(all="ignore"):
+        return _run(exc, window, tuple(np.float64(p) for p in params), flags, capacity)
 
 
 @functools.cache

@@ -40,6 +40,18 @@ class SeedExample:
     note: str = ""
 
 
+def example_solution(example: SeedExample):
+    """The :class:`~blockdae.sliding.Solution` of ``example`` on the exact engine, as
+    ``bd.simulate(example.block, example.motion, t_end=example.t_end)`` gives it, with the
+    engine's source run by the Python interpreter: the same numbers in milliseconds (each
+    example has at most five pieces), where compiling the engine takes seconds on its first
+    run after an install."""
+    from ..core import simulate
+    from ._exact import Uncompiled
+
+    return simulate(example.block, example.motion, t_end=example.t_end, backend=Uncompiled())
+
+
 def rectangular_pulse_displacement(amplitude, duration, mu, g=SEED_G):
     """Relative displacement after a rectangular pulse, Sawicki & Chybicki 2005 Eq. 14 [m].
 

@@ -10,6 +10,7 @@ from ._linear_solution import simulate_linear_final
 __all__ = ["simulate_linear_final"]
 
 # what the other packages of blockdae use
+from ._exact import Exact
 from ._linear import (CHATTER, EVENT_RESOLUTION, FINISHED, LOG_FULL, MAX_EVENTS_AT_ONE_INSTANT, MAX_INTERVALS,
                       STACK_DEPTH, UNSETTLED, combine_forms, evaluate_form, evaluate_form_at, form_bound,
                       form_derivative, form_rounding, piece_form)
