@@ -432,3 +432,14 @@ def test_blockdae_map_projects_two_components_on_each_cells_dip_azimuth(tmp_path
     assert main(base + ["--components", "0", "45"]) == 2 and "not orthogonal" in capsys.readouterr().err
     assert main(base + ["--components", "0", "90", "--method", "table"]) == 2
     assert "leave --method out" in capsys.readouterr().err
+
+
+def test_a_pair_map_chunked_on_dask_is_identical_to_the_in_memory_one():
+    first, second = _components(500)
+    dem = _terrain(14)
+    pair = rg.RecordPair(first, second, (30, 300))
+    kwargs = dict(thickness_m=2.0, per_record=True, regressions=False)
+    expected = rg.displacement_map(dem, _strength(dem), pair, 0.5, **kwargs)
+    got = rg.displacement_map(dem.chunk({"x": 6, "y": 6}), _strength(dem), pair, 0.5, **kwargs).compute()
+    xr.testing.assert_identical(got, expected)
+    assert np.nanmax(expected["displacement_m"].values) > 0.01
