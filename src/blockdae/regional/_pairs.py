@@ -77,12 +77,23 @@ class RecordPair:
     def projected(self, dip_azimuth_deg: float, g: float = STANDARD_GRAVITY):
         """The pair scaled so its larger component's peak is 1 g, projected on the dip
         azimuth [deg from north]: a :class:`blockdae.Record` [m/s²]."""
+        (c1, c2), = self._cosines([dip_azimuth_deg])
+        return self._projected(self._unit(g), c1, c2, f"{dip_azimuth_deg:g}")
+
+    def _unit(self, g):
+        """Both components scaled so that the larger one's peak is 1 g [m/s²]: (a1, a2)."""
+        factor = float(g / self.peak_acceleration)
+        return self.first.acceleration_m_s2 * factor, self.second.acceleration_m_s2 * factor
+
+    def _cosines(self, dip_azimuths_deg):
+        """cos(θ1 − β), cos(θ2 − β) at each dip azimuth β [deg]: shape (n, 2)."""
+        beta = np.asarray(dip_azimuths_deg, float)[:, None]
+        return _cos_deg(np.asarray(self.azimuths_deg)[None, :] - beta)
+
+    def _projected(self, unit, c1, c2, label):
         from ..excitation import Record
 
-        factor = g / self.peak_acceleration
-        a1, a2 = self.first.scaled(factor).acceleration_m_s2, self.second.scaled(factor).acceleration_m_s2
-        c1, c2 = _cos_deg(self.azimuths_deg[0] - dip_azimuth_deg), _cos_deg(self.azimuths_deg[1] - dip_azimuth_deg)
-        return Record(c1 * a1 + c2 * a2, self.dt, f"{self.name} at {dip_azimuth_deg:g} deg", check_peak=False)
+        return Record(c1 * unit[0] + c2 * unit[1], self.dt, f"{self.name} at {label} deg", check_peak=False)
 
 
 def _azimuths(azimuths_deg):
@@ -131,10 +142,14 @@ class ProjectedPairs:
         out[:, valid] = 0.0
         slides = np.flatnonzero(valid & (pga > 0))
         azimuths, group = np.unique(azimuth[slides], return_inverse=True)
+        order = np.argsort(group, kind="stable")
+        bounds = np.searchsorted(group[order], np.arange(azimuths.size + 1))
+        units = [pair._unit(self.g) for pair in self.pairs]
+        cosines = [pair._cosines(azimuths) for pair in self.pairs]
         for k, beta in enumerate(azimuths):
-            at = slides[group == k]
+            at = slides[order[bounds[k]:bounds[k + 1]]]
             for j, pair in enumerate(self.pairs):
-                motion = pair.projected(beta, self.g)
+                motion = pair._projected(units[j], *cosines[j][k], f"{beta:g}")
                 cells = at[ky[at] < pga[at] * motion.peak_acceleration / self.g]  # elsewhere D = 0
                 if cells.size == 0:
                     continue
