@@ -76,7 +76,8 @@ def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturate
             horizontal components of records, projected on each cell's dip azimuth: a
             :class:`RecordPair` or a sequence of them (each pair scaled so that its larger
             component's peak is the cell's PGA; the terrain needs ``dip_azimuth_deg``).
-        pga_g: peak ground acceleration [g]: a number or a DataArray on the terrain's grid.
+        pga_g: peak ground acceleration [g]: a number or a DataArray on the terrain's grid
+            (for record pairs, the peak of the larger horizontal component).
         thickness_m: failure-surface thickness t [m]; saturated_fraction: m [-]
             (numbers or DataArrays on the grid).
         thresholds_m: displacements d [m] of the exceedance maps P(D > d).
