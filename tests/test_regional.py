@@ -321,3 +321,125 @@ def test_table_within_the_bound_at_10_thousand_cells_of_a_million_cell_terrain_w
     assert table.shape == (20, 10_000) and np.count_nonzero(exact > 0.01) > 10_000
     bound = np.maximum(1e-6 * exact, 1e-6)
     assert np.all(np.abs(table - exact) <= bound), np.max(np.abs(table - exact) / bound)
+
+
+def _components(n=1200, dt=0.01):
+    """Two synthetic horizontal components [m/s²]: the first the stronger (peak ≈ 3.4 m/s²)."""
+    t = dt * np.arange(n)
+    a1 = 3.0 * np.sin(2 * np.pi * 1.3 * t) * np.exp(-t / 4) + 0.4 * np.sin(2 * np.pi * 3.1 * t)
+    a2 = 1.8 * np.sin(2 * np.pi * 0.8 * t + 1.0) * np.exp(-t / 3)
+    return bd.Record(a1, dt, "H1", units="m/s2"), bd.Record(a2, dt, "H2", units="m/s2")
+
+
+def _dipping(azimuths, slope_deg=25.0):
+    """A terrain Dataset of given dip azimuths [deg] (one per column) on 3 rows, slope 25°."""
+    azimuths = np.asarray(azimuths, float)
+    x, y = 400000 + 10.0 * np.arange(azimuths.size), 3700000 - 10.0 * np.arange(3)
+    field = lambda v: xr.DataArray(np.broadcast_to(v, (3, azimuths.size)).copy(), dims=("y", "x"),
+                                   coords={"x": x, "y": y}, attrs={"units": "deg"})
+    return xr.Dataset({"slope_deg": field(slope_deg), "dip_azimuth_deg": field(azimuths)}).rio.write_crs(CRS)
+
+
+_STRENGTH_ONE = {"cohesion_kpa": 5.0, "friction_deg": 30.0, "unit_weight_kn_m3": 19.0}
+
+
+@pytest.mark.parametrize("method", ["exact", "table"])
+def test_a_pair_on_cells_dipping_along_its_larger_component_reproduces_the_single_record_map_exactly(method):
+    """θ1 = 90°, θ2 = 180°: a cell of dip azimuth 90° is shaken by the first component alone
+    (cos 90° = 0 exactly), scaled to the cell's PGA, in both polarities."""
+    first, second = _components()
+    terrain = _dipping([90.0] * 4)
+    pga = xr.DataArray(np.linspace(0.1, 0.6, 12).reshape(3, 4), dims=("y", "x"), coords=terrain.coords)
+    kwargs = dict(thickness_m=np.array(1.0) + xr.zeros_like(pga) + np.array([0.5, 1, 2, 4]), per_record=True,
+                  thresholds_m=(0.01, 0.05))
+    pair = rg.displacement_map(terrain, _STRENGTH_ONE, rg.RecordPair(first, second, (90, 180)), pga, **kwargs)
+    single = rg.displacement_map(terrain, _STRENGTH_ONE, first, pga, method=method, **kwargs)
+    d, e = pair["displacement_m"].values, single["displacement_m"].values
+    assert np.all(pair["category"] == 1) and np.count_nonzero(d > 0.01) > 6
+    if method == "exact":
+        np.testing.assert_array_equal(d, e)
+        np.testing.assert_array_equal(pair["median_displacement_m"], single["median_displacement_m"])
+        np.testing.assert_array_equal(pair["exceedance"], single["exceedance"])
+    else:  # the single record's table: within its bound
+        assert np.all(np.abs(d - e) <= np.maximum(1e-6 * d, 1e-6 * pga.values / rg.MAX_PGA_G))
+    assert pair.attrs["method"] == "exact" and "larger component" in pair.attrs["ground_motion"]
+
+
+def test_a_pair_projected_on_any_azimuth_matches_newmark_on_the_projected_record_scaled_to_the_pga():
+    """Independent path: the projected record built here from cos and sin, scaled by bd.newmark's
+    own ``pga`` (to the projected peak implied by the larger component's peak = the cell's PGA);
+    a cell of azimuth β + 180° slides as the inverse of β; the weaker component's azimuth gives
+    the weaker component alone at PGA x peak2/peak1."""
+    first, second = _components()
+    a1, a2 = first.acceleration_m_s2, second.acceleration_m_s2
+    peak = max(np.abs(a1).max(), np.abs(a2).max())
+    betas = np.array([0.0, 17.0, 135.0, 180.0, 197.0, 315.0, 253.3])
+    ky, p = np.full(betas.size, 0.08), np.full(betas.size, 0.5)
+    runs = rg._pairs.ProjectedPairs(rg.RecordPair(first, second, (0, 90))).exact(ky, p, betas)
+    for k, beta in enumerate(betas):
+        b = math.radians(beta)
+        projected = bd.Record(a1 * math.cos(b) + a2 * math.sin(b), first.dt, check_peak=False)
+        target = 0.5 * np.abs(projected.acceleration_m_s2).max() / peak
+        run = bd.newmark(projected, 0.08, pga=target)
+        assert runs[0, k] == pytest.approx(run.normal, rel=1e-9, abs=1e-12)
+        assert runs[1, k] == pytest.approx(run.inverse, rel=1e-9, abs=1e-12)
+    np.testing.assert_allclose(runs[:, 4], runs[::-1, 1], rtol=1e-9)  # 197° = 17° + 180°: polarities swap
+    assert runs[0, 1] > 0.01 and runs[0, 1] != runs[1, 1]
+    weak = rg._pairs.ProjectedPairs(rg.RecordPair(first, second, (0, 90))).exact([0.05], [0.5], [90.0])
+    run = bd.newmark(second, 0.05, pga=0.5 * np.abs(a2).max() / peak)
+    np.testing.assert_allclose(weak[:, 0], [run.normal, run.inverse], rtol=1e-9)
+
+
+@pytest.mark.parametrize("azimuths, message", [
+    (None, r"azimuths_deg is required.*never assumed"), ((90,), r"two azimuths.*got 1"),
+    ((0, float("nan")), r"azimuth nan must lie in \[0, 360\]"), ((0, 450), r"azimuth 450.0 must lie"),
+    ((0, 45), r"not orthogonal"), ("NS", r"must be two azimuths")])
+def test_a_pair_with_wrong_or_missing_azimuths_is_refused(azimuths, message):
+    first, second = _components()
+    with pytest.raises(ValueError, match=message):
+        rg.RecordPair(first, second, azimuths)
+
+
+def test_a_pair_of_mismatched_components_or_without_dip_azimuths_or_on_a_table_is_refused():
+    first, second = _components()
+    with pytest.raises(ValueError, match=r"differ in step, length or start time"):
+        rg.RecordPair(first, bd.Record(second.acceleration_m_s2[:-1], 0.01, units="m/s2"), (0, 90))
+    pair = rg.RecordPair(first, second, (0, 90))
+    flat = _dipping([90.0, 90.0]).drop_vars("dip_azimuth_deg")
+    with pytest.raises(ValueError, match=r"dip azimuth.*dip_azimuth_deg"):
+        rg.displacement_map(flat, _STRENGTH_ONE, pair, 0.3, thickness_m=1.0)
+    with pytest.raises(ValueError, match=r"record pairs run on the exact engine"):
+        rg.displacement_map(_dipping([90.0]), _STRENGTH_ONE, pair, 0.3, thickness_m=1.0, method="table")
+
+
+def test_blockdae_map_projects_two_components_on_each_cells_dip_azimuth(tmp_path, capsys):
+    from blockdae.cli import main
+
+    dem = _terrain(12)
+    dem.fillna(0.0).rio.to_raster(tmp_path / "dem.tif")
+    (tmp_path / "zones.csv").write_text("zone,cohesion_kpa,friction_deg,unit_weight_kn_m3\n1,4,30,18.5\n")
+    for record in _components(600):
+        (tmp_path / f"{record.name}.csv").write_text("time (s),acc (m/s2)\n" + "\n".join(
+            f"{t:.2f},{a:.10g}" for t, a in zip(record.times, record.acceleration_m_s2)))
+    files = [str(tmp_path / "H1.csv"), str(tmp_path / "H2.csv")]
+    base = ["map", str(tmp_path / "dem.tif"), *files, "--zone-table", str(tmp_path / "zones.csv"), "--thickness",
+            "2", "--pga", "0.4", "--out", str(tmp_path / "map.nc")]
+    assert main(base + ["--components", "0", "90"]) == 0
+    out = capsys.readouterr().out
+    assert "azimuths 0 and 90 deg from north" in out and "exact engine per cell" in out
+    back = xr.open_dataset(tmp_path / "map.nc", engine="h5netcdf", decode_coords="all")
+    assert back.attrs["method"] == "exact" and np.nanmax(back["median_displacement_m"].values) > 0.001
+    assert main(base + ["--components", "0", "45"]) == 2 and "not orthogonal" in capsys.readouterr().err
+    assert main(base + ["--components", "0", "90", "--method", "table"]) == 2
+    assert "leave --method out" in capsys.readouterr().err
+
+
+def test_a_pair_map_chunked_on_dask_is_identical_to_the_in_memory_one():
+    first, second = _components(500)
+    dem = _terrain(14)
+    pair = rg.RecordPair(first, second, (30, 300))
+    kwargs = dict(thickness_m=2.0, per_record=True, regressions=False)
+    expected = rg.displacement_map(dem, _strength(dem), pair, 0.5, **kwargs)
+    got = rg.displacement_map(dem.chunk({"x": 6, "y": 6}), _strength(dem), pair, 0.5, **kwargs).compute()
+    xr.testing.assert_identical(got, expected)
+    assert np.nanmax(expected["displacement_m"].values) > 0.01

@@ -30,8 +30,13 @@ def add_map_parser(sub):
                         "grid.xml (its PGA, in the units it states, interpolated onto the DEM's grid)")
     p.add_argument("--thresholds", type=positive("--thresholds"), nargs="+", default=[0.05], metavar="D_M",
                    help="displacements d [m] of the maps P(D > d) (default 0.05)")
-    p.add_argument("--method", choices=("table", "exact"), default="table",
-                   help="table (default: each record's D(ky/PGA) tabulated within max(1e-6 D, 1e-6 m)) or exact")
+    p.add_argument("--method", choices=("table", "exact"), default=None,
+                   help="table (default: each record's D(ky/PGA) tabulated within max(1e-6 D, 1e-6 m)) or exact "
+                        "(the only method with --components)")
+    p.add_argument("--components", type=float, nargs=2, default=None, metavar=("AZ1", "AZ2"),
+                   help="the two RECORD files are one record's orthogonal horizontal components, of azimuths AZ1 "
+                        "and AZ2 [deg clockwise from north]: projected on each cell's dip azimuth, the pair scaled "
+                        "so that its larger component's peak is the cell's PGA, exact engine per cell")
     p.add_argument("--polarity", choices=("both", "normal", "inverse"), default="both",
                    help="both (default: each record as given and inverted), normal or inverse")
     p.add_argument("--first", type=int, default=None, metavar="N", help="only the first N records of the suite")
@@ -80,15 +85,14 @@ def _map(args) -> int:
         paths = [p for arg in args.records for p in (folder_files(arg, args) if arg.is_dir() else [arg])]
         records = [read(path, args) for path in paths]
     records = records[:args.first] if args.first else records
-    start = time.perf_counter()
-    tables = checked(lambda: regional.DisplacementTables.build(records, args.polarity, g=args.g,
-                                                               atol_m=1e-6 / regional.MAX_PGA_G), "records")
-    built = time.perf_counter() - start
-    print(f"{len(records)} records, {args.polarity} polarities: {len(tables.members)} tables of D(ky/PGA), "
-          f"{int(tables.counts.sum())} knots, in {built:.1f} s")
+    if args.components is not None:
+        motion, tables = _pair(regional, records, args), None
+    else:
+        motion, tables = None, _tables(regional, records, args)
     ds = checked(lambda: regional.displacement_map(
-        dem, strength, None, fields["pga"], thickness_m=fields["thickness"], saturated_fraction=fields["saturated"],
-        thresholds_m=args.thresholds, method=args.method, per_record=args.per_record, tables=tables), "")
+        dem, strength, motion, fields["pga"], thickness_m=fields["thickness"], saturated_fraction=fields["saturated"],
+        thresholds_m=args.thresholds, method=args.method, polarity=args.polarity, per_record=args.per_record,
+        tables=tables), "")
     start = time.perf_counter()
     paths = checked(lambda: regional.write_map(ds, args.out, progress=chunks is not None), str(args.out))
     print(f"map of {dem.sizes['y']} x {dem.sizes['x']} cells computed and written in "
@@ -104,6 +108,29 @@ def _map(args) -> int:
         save_figure(regional.map_figure(ds, dem), args.plot)
         print(f"figure: {args.plot}")
     return 0
+
+
+def _tables(regional, records, args):
+    """Each record's table of D(ky/PGA), built and reported."""
+    start = time.perf_counter()
+    tables = checked(lambda: regional.DisplacementTables.build(records, args.polarity, g=args.g,
+                                                               atol_m=1e-6 / regional.MAX_PGA_G), "records")
+    print(f"{len(records)} records, {args.polarity} polarities: {len(tables.members)} tables of D(ky/PGA), "
+          f"{int(tables.counts.sum())} knots, in {time.perf_counter() - start:.1f} s")
+    return tables
+
+
+def _pair(regional, records, args):
+    """The two RECORD files as one record's horizontal components (--components)."""
+    if len(records) != 2:
+        raise UsageError(f"--components: give exactly the two horizontal components of one record as RECORD files, "
+                         f"got {len(records)} record(s)")
+    if args.method == "table":
+        raise UsageError("--components runs on the exact engine (each cell's projected record is its own): "
+                         "leave --method out or give --method exact")
+    pair = checked(lambda: regional.RecordPair(*records, azimuths_deg=args.components), "--components")
+    print(f"{pair!r}: projected on each cell's dip azimuth, exact engine per cell")
+    return pair
 
 
 def _number_or_raster(regional, text, name, chunks, dem):

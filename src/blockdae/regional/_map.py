@@ -7,7 +7,8 @@ import warnings
 import numpy as np
 
 from ._infinite_slope import CATEGORIES, FLAT, NODATA, STABLE, infinite_slope
-from ._tables import DisplacementTables
+from ._pairs import ProjectedPairs, RecordPair
+from ._tables import DisplacementTables, statistics_of
 from ._terrain import _crs, _with_crs, slope_and_azimuth
 
 #: the largest PGA accepted [g]: above it the values are likely in m/s² or %g
@@ -59,7 +60,7 @@ def strength_from_zones(zones, table):
 
 
 def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturated_fraction=0.0,
-                     thresholds_m=(0.05,), method: str = "table", polarity: str = "both", per_record: bool = False,
+                     thresholds_m=(0.05,), method: str | None = None, polarity: str = "both", per_record: bool = False,
                      regressions: bool = True, tables: DisplacementTables | None = None, resample: bool = False,
                      rtol: float = 1e-6, atol_m: float = 1e-6):
     """Newmark displacement of every cell of a terrain over a record suite.
@@ -71,14 +72,19 @@ def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturate
             ``unit_weight_kn_m3`` [kN/m³], each a number or a DataArray on the terrain's
             grid (see :func:`strength_from_zones`).
         records: the suite (a Record, a sequence or mapping of them, a RecordSet), each
-            scaled to every cell's PGA; unused where ``tables`` is given.
-        pga_g: peak ground acceleration [g]: a number or a DataArray on the terrain's grid.
+            scaled to every cell's PGA; unused where ``tables`` is given. Or the two
+            horizontal components of records, projected on each cell's dip azimuth: a
+            :class:`RecordPair` or a sequence of them (each pair scaled so that its larger
+            component's peak is the cell's PGA; the terrain needs ``dip_azimuth_deg``).
+        pga_g: peak ground acceleration [g]: a number or a DataArray on the terrain's grid
+            (for record pairs, the peak of the larger horizontal component).
         thickness_m: failure-surface thickness t [m]; saturated_fraction: m [-]
             (numbers or DataArrays on the grid).
         thresholds_m: displacements d [m] of the exceedance maps P(D > d).
-        method: "table" (default: each record's tabulated D(ky/PGA), within the bound
-            max(rtol · D, atol_m), see :class:`DisplacementTables`) or "exact" (the
-            exact engine for every cell).
+        method: "table" (the default for records: each record's tabulated D(ky/PGA),
+            within the bound max(rtol · D, atol_m), see :class:`DisplacementTables`) or
+            "exact" (the exact engine for every cell; the only method, and the default, for
+            record pairs: each cell's projected record is its own).
         polarity: "both" (each record as given and inverted, pooled in the statistics),
             "normal" or "inverse".
         per_record: also D of every (record, polarity) [m] (a ``member`` dimension).
@@ -98,8 +104,14 @@ def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturate
     """
     import xarray as xr
 
+    pairs = isinstance(records, RecordPair) or (isinstance(records, (list, tuple)) and len(records) > 0
+                                                 and all(isinstance(r, RecordPair) for r in records))
+    method = ("exact" if pairs else "table") if method is None else method
     if method not in ("table", "exact"):
         raise ValueError(f"method must be 'table' or 'exact', got {method!r}")
+    if pairs and (method != "exact" or tables is not None):
+        raise ValueError("record pairs run on the exact engine (method='exact', no tables): each cell's motion "
+                         "projected on its dip azimuth is a record of its own")
     thresholds = np.asarray(thresholds_m, dtype=float).reshape(-1)
     if np.any(~np.isfinite(thresholds) | (thresholds <= 0)):
         raise ValueError(f"thresholds_m={thresholds.tolist()} must be positive displacements [m]")
@@ -110,12 +122,18 @@ def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturate
                   saturated_fraction=_on_grid("saturated_fraction", saturated_fraction, grid, resample),
                   pga_g=_on_grid("pga_g", pga_g, grid, resample))
     _check_pga(fields["pga_g"])
-    if tables is None:
+    if pairs and "dip_azimuth_deg" not in slopes:
+        raise ValueError("record pairs are projected on each cell's dip azimuth: give a DEM, or a terrain Dataset "
+                         "with dip_azimuth_deg [deg clockwise from north]")
+    azimuth = slopes["dip_azimuth_deg"] if pairs else np.nan
+    if pairs:
+        tables = ProjectedPairs(records, polarity)
+    elif tables is None:
         tables = DisplacementTables.build(records, polarity, rtol=rtol, atol_m=atol_m / MAX_PGA_G)
     names = _quantities(tables, thresholds, per_record, regressions)
     order = ("cohesion_kpa", "friction_deg", "unit_weight_kn_m3", "thickness_m", "saturated_fraction", "pga_g")
     outputs = xr.apply_ufunc(
-        _cells, grid, *(fields[k] for k in order), output_core_dims=[[]] * len(names), dask="parallelized",
+        _cells, grid, *(fields[k] for k in order), azimuth, output_core_dims=[[]] * len(names), dask="parallelized",
         kwargs=dict(tables=tables, thresholds=thresholds, method=method, per_record=per_record,
                     regressions=regressions), output_dtypes=[float] * len(names))
     return _dataset(outputs, names, slopes, fields["pga_g"], tables, thresholds, method, per_record, regressions)
@@ -189,9 +207,10 @@ def _quantities(tables, thresholds, per_record, regressions):
     return names
 
 
-def _cells(slope, cohesion, friction, unit_weight, thickness, saturated, pga, *, tables, thresholds, method,
+def _cells(slope, cohesion, friction, unit_weight, thickness, saturated, pga, azimuth, *, tables, thresholds, method,
            per_record, regressions):
-    """Every quantity of :func:`_quantities` at each cell of one block: a tuple of arrays shaped as the block."""
+    """Every quantity of :func:`_quantities` at each cell of one block: a tuple of arrays shaped as the block
+    (``azimuth``: the dip azimuth [deg], used by record pairs)."""
     _check_pga_values(np.asarray(pga))
     fs, ky, category = infinite_slope(slope, cohesion, friction, unit_weight, thickness, saturated)
     shape = category.shape
@@ -200,11 +219,15 @@ def _cells(slope, cohesion, friction, unit_weight, thickness, saturated, pga, *,
     pga = pga.ravel()
     flat = (category == FLAT).ravel()
     ky_stable = np.where(category == STABLE, ky, np.nan).ravel()
-    median, exceed = tables.statistics(ky_stable, pga, thresholds, method)
+    if isinstance(tables, ProjectedPairs):
+        d = tables.exact(ky_stable, pga, np.broadcast_to(azimuth, shape).ravel())
+        median, exceed = statistics_of(d, thresholds)
+    else:
+        median, exceed = tables.statistics(ky_stable, pga, thresholds, method)
+        d = tables.displacement(ky_stable, pga, method) if per_record else None
     median[flat], exceed[:, flat] = 0.0, 0.0
     out = [fs, ky, category.astype(float), median.reshape(shape), *(p.reshape(shape) for p in exceed)]
     if per_record:
-        d = tables.displacement(ky_stable, pga, method)
         d[:, flat] = 0.0
         out += [member.reshape(shape) for member in d]
     if regressions:
@@ -261,6 +284,9 @@ def _dataset(outputs, names, slopes, pga, tables, thresholds, method, per_record
              "table_bound": (f"|D_table - D_exact| <= max({tables.rtol:g} D, {tables.atol_m:g} m x PGA/1 g) at the "
                              "check points of every table interval" if method == "table" else "exact engine per cell"),
              "slope_method": "Horn (1981)", "stability": "infinite slope, Jibson et al. (2000)"}
+    if isinstance(tables, ProjectedPairs):
+        attrs["ground_motion"] = ("two horizontal components projected on each cell's dip azimuth, each pair scaled "
+                                  "so that its larger component's peak |a| is the cell's PGA")
     dataset = xr.Dataset(data, attrs=attrs)
     return _with_crs(dataset, slopes["slope_deg"])
 

@@ -140,10 +140,7 @@ class DisplacementTables:
             _statistics(self.knots, self.values, self.slopes, self.buckets, self.r_top, self.r_min, flat_ky, flat_pga,
                         *self._exact_below_r_min(flat_ky, flat_pga), thresholds, median, exceed)
         else:
-            d = self.displacement(flat_ky, flat_pga, method)
-            median[:] = np.median(d, axis=0)
-            exceed[:] = (d[None, :, :] > thresholds[:, None, None]).mean(axis=1)
-            exceed[:, np.isnan(median)] = np.nan
+            median[:], exceed[:] = statistics_of(self.displacement(flat_ky, flat_pga, method), thresholds)
         return median.reshape(ky.shape), exceed.reshape((thresholds.size,) + ky.shape)
 
     def _exact_below_r_min(self, ky, pga):
@@ -173,6 +170,15 @@ class DisplacementTables:
                 unit = Record(samples, dt, check_peak=False)
                 out[m, slides] = pga[slides] * _run(newmark, unit, r, pol, self.g)
         return out
+
+
+def statistics_of(d, thresholds):
+    """(median [m], P(D > d) for each threshold [-]) over the members of ``d`` (n_members, n):
+    shapes (n,) and (n_thresholds, n); NaN where D is NaN."""
+    median = np.median(d, axis=0)
+    exceed = (d[None, :, :] > np.asarray(thresholds)[:, None, None]).mean(axis=1)
+    exceed[:, np.isnan(median)] = np.nan
+    return median, exceed
 
 
 def _named_records(records):
