@@ -164,11 +164,10 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         _check(mu < 0, "mu", mu, "must be >= 0")
         _check(f < 0, "mu_kinetic", f, "must be >= 0")
         _check(f > mu, "mu_kinetic", f,
-               f"must not exceed mu={_first(mu, f > mu)} (kinetic above static friction chatters)")
+               lambda bad: f"must not exceed mu={_first(mu, bad)} (kinetic above static friction chatters)")
         frictionless = (mu == 0) & (bias == 0)
         _check((np.abs(bias) >= mu) & ~frictionless, "bias", bias,
-               f"must satisfy |bias| < mu={_first(mu, (np.abs(bias) >= mu) & ~frictionless)} "
-               "(else the block slides with the base at rest)")
+               lambda bad: f"must satisfy |bias| < mu={_first(mu, bad)} (else the block slides with the base at rest)")
 
     @classmethod
     def on_incline(cls, slope_angle, friction_angle, kinetic_friction_angle=None,
@@ -405,8 +404,10 @@ def _first(values, mask):
 
 
 def _check(bad, name, values, message):
+    """ValueError where any of ``bad`` holds, naming the first bad value; ``message`` a text,
+    or a function of ``bad`` giving it (built only on failure: models are built per call)."""
     if np.any(bad):
-        raise ValueError(f"{name}={_first(values, bad)!r} {message}")
+        raise ValueError(f"{name}={_first(values, bad)!r} {message(bad) if callable(message) else message}")
 
 
 class SlidingDAEForm:
