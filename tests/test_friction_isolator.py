@@ -97,3 +97,20 @@ def test_a_start_already_sliding_against_its_closed_form(example):
 def test_a_starting_state_the_model_refuses(example):
     with pytest.raises(ValueError, match=r"u0=0.5 m: at rest there the surface pulls harder"):
         example.FrictionIsolator(mu=0.05, radius=2.0, u0=0.5)
+
+
+def test_ensemble_and_design_study_on_a_dask_cluster(example):
+    """The user's model on a Dask LocalCluster (one in-process worker of two threads): the
+    ensemble of two scales and the design study give the local tables exactly."""
+    distributed = pytest.importorskip("distributed")
+    isolator, motion = example.FrictionIsolator(), example.record(duration=2.0)
+    parameters = {"mu": design.LogNormal(0.08, 0.2), "radius": 2.0}
+    run = lambda **kw: design.exceedance(motion, example.design_model(), parameters, threshold=0.1, runs=4,
+                                         runs_per_block=2, **kw)
+    here_ensemble, here_design = bd.simulate(isolator, [motion], scale=[0.5, 1.0], t_end=2.0), run()
+    with distributed.LocalCluster(n_workers=1, processes=False, threads_per_worker=2, dashboard_address=None) \
+            as cluster, distributed.Client(cluster) as client:
+        there_ensemble = bd.simulate(isolator, [motion], scale=[0.5, 1.0], t_end=2.0, executor=client)
+        there_design = run(executor=client)
+    assert there_ensemble.to_dataframe().equals(here_ensemble.to_dataframe())
+    assert there_design.table.equals(here_design.table)
