@@ -97,3 +97,65 @@ def test_a_start_already_sliding_against_its_closed_form(example):
 def test_a_starting_state_the_model_refuses(example):
     with pytest.raises(ValueError, match=r"u0=0.5 m: at rest there the surface pulls harder"):
         example.FrictionIsolator(mu=0.05, radius=2.0, u0=0.5)
+
+
+def test_ensemble_and_design_study_on_a_dask_cluster(example):
+    """The user's model on a Dask LocalCluster (one in-process worker of two threads): the
+    ensemble of two scales and the design study give the local tables exactly."""
+    distributed = pytest.importorskip("distributed")
+    isolator, motion = example.FrictionIsolator(), example.record(duration=2.0)
+    parameters = {"mu": design.LogNormal(0.08, 0.2), "radius": 2.0}
+    run = lambda **kw: design.exceedance(motion, example.design_model(), parameters, threshold=0.1, runs=4,
+                                         runs_per_block=2, **kw)
+    here_ensemble, here_design = bd.simulate(isolator, [motion], scale=[0.5, 1.0], t_end=2.0), run()
+    with distributed.LocalCluster(n_workers=1, processes=False, threads_per_worker=2, dashboard_address=None) \
+            as cluster, distributed.Client(cluster) as client:
+        there_ensemble = bd.simulate(isolator, [motion], scale=[0.5, 1.0], t_end=2.0, executor=client)
+        there_design = run(executor=client)
+    assert there_ensemble.to_dataframe().equals(here_ensemble.to_dataframe())
+    assert there_design.table.equals(here_design.table)
+
+
+def _pulse():
+    """One half-sine pulse of 0.3 g over 0.4 s, then 0.6 s at rest, sampled at 0.02 s."""
+    t = np.arange(0.0, 1.0, 0.02)
+    return bd.Record(np.where(t < 0.4, 0.3 * bd.STANDARD_GRAVITY * np.sin(np.pi * t / 0.4), 0.0), 0.02, units="m/s2")
+
+
+def _newton_model(example, **options):
+    """A nearly flat surface (R = 1 km) read at t = 1 s: the final D falls as mu rises
+    (a slide that lasts longer the less the friction), as the inverses need."""
+    return design.Simulated(example.FrictionIsolator(radius=1000.0), parameters={"mu": "-", "radius": "m"},
+                            design="mu", t_end=1.0, **options)
+
+
+@pytest.mark.parametrize("polarity, pga", [("normal", None), ("inverse", 0.25), ("larger", 0.25)])
+def test_the_design_derivative_against_central_differences(example, polarity, pga):
+    """dD/dmu of design.Simulated (the isolator's JAX twin through bd.sensitivities) against
+    central differences of D with a relative step of 1e-4 (their own error, measured with
+    steps 1e-3 and 1e-4: 1.1e-6 and 1.1e-8 relative, falling as the step squared)."""
+    model, motion = _newton_model(example, polarity=polarity), _pulse()
+    assert model.has_derivative and not example.design_model().has_derivative  # the peak has no derivative here
+    d, slope = model.displacements(motion, pga, {"mu": 0.1, "radius": 1000.0}, derivative=True)
+    step = 1e-4 * 0.1
+    up, down = (model.displacements(motion, pga, {"mu": 0.1 + s, "radius": 1000.0}) for s in (step, -step))
+    assert d[0] > 0.05 and slope[0] < 0
+    assert slope[0] == pytest.approx((up[0] - down[0]) / (2 * step), rel=1e-7)
+
+
+def test_the_inverse_takes_newton_steps_on_that_derivative(example, monkeypatch):
+    """ky_for_displacement on the isolator's mu steps by Newton (has_derivative): the root
+    bracketing finds (Illinois), in fewer forward runs (each count with the sliding
+    limit's doubling from mu = 1e-4)."""
+    from blockdae.design import _inverse, _models
+
+    runs, simulate = [], _models.simulate
+    monkeypatch.setattr(_models, "simulate", lambda *a, **k: runs.append(1) or simulate(*a, **k))
+    model, motion = _newton_model(example), _pulse()
+    newton = design.ky_for_displacement(motion, model, {"radius": 1000.0}, allowable=0.03)
+    by_newton, runs[:] = len(runs), []
+    bracketed = _inverse.critical_ky(model, motion, None, {"radius": 1000.0}, 0.03, newton=False)[0]
+    assert newton == pytest.approx(bracketed, rel=1e-9)  # D to 1e-10 relative at each root
+    assert by_newton < len(runs)  # measured: 19 against 23
+    final = bd.simulate(example.FrictionIsolator(mu=newton, radius=1000.0), motion, t_end=1.0).displacement
+    assert abs(final) == pytest.approx(0.03, rel=1e-9)

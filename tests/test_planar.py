@@ -305,3 +305,29 @@ def test_event_table_fills_the_direction_only_where_the_block_moves():
         if moving:
             assert float(cell) == pytest.approx(math.degrees(math.atan2(event.v_y, event.v_x)), abs=5e-4)
     assert cells[0] == "" and cells[-1] == "" and any(cells)  # onset and stop blank, the flight's filled
+
+
+def test_history_and_figure_carry_the_declared_state_units():
+    """history()'s columns and the figure's axes take the block's ``state_units``: m and
+    m/s, or g s² and g s for a dimensionless block (g = 1)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    t = np.arange(0.0, 1.0, 0.01)
+    motion = bd.BaseMotion(bd.Record(0.3 * G * np.sin(2 * np.pi * t), 0.01, units="m/s2"),
+                           bd.Record(0.2 * G * np.cos(2 * np.pi * t), 0.01, units="m/s2"))
+    for g, length, speed in ((G, "m", "m_s"), (1.0, "gs2", "gs")):
+        block = bd.PlanarBlock(mu=0.1, g=g)
+        scaled = motion if g == G else bd.BaseMotion(*(bd.Record(r.acceleration_samples / G, r.dt, check_peak=False)
+                                                     for r in (motion.x, motion.y)))
+        solution = bd.simulate(block, scaled, backend=CVODE)
+        history = solution.history()
+        assert list(history.columns[-8:]) == [f"u_x_{length}", f"u_y_{length}", f"s_{speed}", "c_x_ratio",
+                                              "c_y_ratio", f"w_{length}", f"w_rate_{speed}", "mode"]
+        assert history[f"u_x_{length}"].iloc[-1] == solution.displacement[0]
+        figure = bd.plot(solution)
+        label = {G: "m", 1.0: "g s²"}[g]
+        assert figure.axes[0].get_xlabel() == f"u_x [{label}]"
+        plt.close(figure)

@@ -11,8 +11,8 @@ import warnings
 import numpy as np
 
 from ..units import STANDARD_GRAVITY
-from ..core import simulate
-from ..core.contract import AbstractHybridModel, BatchedModel
+from ..core import sensitivities, simulate
+from ..core.contract import AbstractHybridModel, BatchedModel, DifferentiableModel
 from ..excitation import BaseMotion, Record, UnitsWarning, pga_factor
 from ..flexible_mass import flexible
 from ..planar import PlanarBlock
@@ -301,7 +301,11 @@ class Simulated(DesignModel):
     its displacement at the end of a :func:`blockdae.simulate` run (or its largest size
     over the run: ``measure="peak"``), the parameter sets
     given to the model's ``replace`` (a :class:`~blockdae.core.contract.BatchedModel`
-    takes them all at once, as 1-D arrays; another model runs once per set).
+    takes them all at once, as 1-D arrays; another model runs once per set). Where the
+    model is a :class:`~blockdae.core.contract.DifferentiableModel` with ``design`` among
+    its ``parameters()`` and D is the final displacement, dD/d``design`` comes from
+    :func:`blockdae.sensitivities` (its JAX twin): ``has_derivative`` is then True and the
+    inverses take Newton steps for one record.
 
     Attributes:
         model: the model at its nominal parameters (those not sampled keep their values).
@@ -342,6 +346,8 @@ class Simulated(DesignModel):
                              f"{self.parameters!r}")
         if not hasattr(self.model, "replace"):
             raise TypeError(f"{type(self.model).__name__} needs replace(**changes) to take sampled parameters")
+        object.__setattr__(self, "has_derivative", self.measure == "final"
+                           and isinstance(self.model, DifferentiableModel) and self.design in self.model.parameters())
         object.__setattr__(self, "required", tuple(self.required or (self.design,)))
         object.__setattr__(self, "kind", self.kind or type(self.model).__name__)
         for name, value in (("PARAMETERS", dict(self.parameters)), ("REQUIRED", self.required),
@@ -350,20 +356,39 @@ class Simulated(DesignModel):
 
     def displacements(self, record, pga, values, derivative=False):
         """D [m], shape (n,), of ``record`` scaled to ``pga`` [g] for each parameter set of
-        ``values``; no derivative (``derivative`` must be False)."""
-        if derivative:
-            raise ValueError(f"{self.kind} has no dD/d{self.design} here; root finding brackets instead")
+        ``values``; with ``derivative`` (only where ``has_derivative``) also dD/d``design``
+        [m per its unit], shape (n,)."""
+        if derivative and not self.has_derivative:
+            raise ValueError(f"{self.kind} has no dD/d{self.design} here (a DifferentiableModel with "
+                             f"{self.design!r} among its parameters() and measure='final' has); root finding brackets "
+                             f"instead")
         n = max(np.size(v) for v in values.values())
         sets = {name: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for name, v in values.items()}
         run = dict(t_end=self.t_end, backend=self.backend, pga=None if pga is None else [pga],
                    polarity=_engine_polarity(self.polarity), final_only=True)
         if isinstance(self.model, BatchedModel):
-            sizes = self._sizes(simulate(self.model.replace(**{k: v.copy() for k, v in sets.items()}), [record],
-                                         **run))
+            ends = self._ends(simulate(self.model.replace(**{k: v.copy() for k, v in sets.items()}), [record], **run))
         else:
-            sizes = np.stack([self._sizes(simulate(self.model.replace(**{k: float(v[i]) for k, v in sets.items()}),
-                                                   [record], **run))[:, 0] for i in range(n)], axis=-1)
-        return _read(self.polarity, sizes[0], sizes[-1])
+            ends = np.concatenate([self._ends(simulate(self.model.replace(**{k: float(v[i]) for k, v in sets.items()}),
+                                                       [record], **run)) for i in range(n)], axis=1)
+        sizes = np.linalg.norm(ends, axis=-1)
+        d = _read(self.polarity, sizes[0], sizes[-1])
+        if not derivative:
+            return d
+        inverse = np.full(n, self.polarity == "inverse") | ((self.polarity == "larger") & (sizes[-1] > sizes[0]))
+        factor = 1.0 if pga is None else pga_factor(record.peak_acceleration, pga, getattr(self.model, "g",
+                                                                                          STANDARD_GRAVITY))
+        return d, np.array([self._slope(record.scaled(-factor if inverse[i] else factor),
+                                        {k: float(v[i]) for k, v in sets.items()}, ends[-1 if inverse[i] else 0, i])
+                            for i in range(n)])
+
+    def _slope(self, motion, values, u):
+        """dD/d``design`` of one parameter set on ``motion`` where its final displacement
+        is ``u``: d|u|/dp = u . du/dp / |u| (0 where u = 0: nothing moved)."""
+        model = self.model.replace(**values)
+        du = np.atleast_1d(sensitivities(model, motion, self.t_end, wrt=(self.design,))[self.design])
+        size = np.linalg.norm(u)
+        return float(u @ du / size) if size > 0 else 0.0
 
     def sliding_limit(self, record, pga, values):
         """The given ``sliding_limit_value``, else per set the floor doubled until D = 0."""
@@ -386,12 +411,11 @@ class Simulated(DesignModel):
     def floor(self, values):
         return np.full(np.shape(values[self.design]), float(self.floor_value))
 
-    def _sizes(self, ensemble):
-        """D [m] of an ensemble of one motion at one scale, shape (polarities, sets)."""
+    def _ends(self, ensemble):
+        """Of an ensemble of one motion at one scale, shape (polarities, sets, d): the
+        displacement [m] at the end (``measure="final"``), or its largest size (d = 1)."""
         n_polarities, n_sets = ensemble.shape[2], max(1, int(np.prod(ensemble.model.batch_shape)))
         if self.measure == "peak":
-            return np.asarray(ensemble.max_abs_displacement, dtype=float)[0, 0].reshape(n_polarities, n_sets)
+            return np.asarray(ensemble.max_abs_displacement, dtype=float)[0, 0].reshape(n_polarities, n_sets, 1)
         u = np.asarray(ensemble.displacement, dtype=float)[0, 0]  # (polarities[, sets][, d])
-        return np.linalg.norm(u.reshape(n_polarities, n_sets, -1), axis=-1)
-
-
+        return u.reshape(n_polarities, n_sets, -1)

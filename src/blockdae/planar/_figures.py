@@ -5,15 +5,16 @@ import math
 import numpy as np
 
 from ..core import EVENTS, curve, time_grid
-from ..units import STANDARD_GRAVITY, length_units
 
 
 def planar_figure(solution, *, n_points, title=None):
     """Path (u_x, u_y) [m] in the plane; u_x, u_y [m] and |v| [m/s] against time; events
-    marked. A block with g = 1 (dimensionless) has lengths in g s² and speeds in g s."""
+    marked, in the block's ``state_units`` (a block with g = 1, dimensionless: lengths in
+    g s² and speeds in g s)."""
     import matplotlib.pyplot as plt
 
-    length, speed_unit = length_units(solution.block.g if solution.block is not None else STANDARD_GRAVITY)
+    length, speed_unit = (solution.block.state_units[0], solution.block.state_units[2]) if solution.block is not None \
+        else ("m", "m/s")  # the block's state_units: of u_x and of the speed s
     t = time_grid(solution, n_points)
     u_x, u_y, v_x, v_y, _ = solution(t)
     events = solution.events

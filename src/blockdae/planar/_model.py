@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from ..units import STANDARD_GRAVITY
+from ..units import STANDARD_GRAVITY, length_units
 from ..excitation import AbstractExcitation, BaseMotion, check_horizontal
 from ._solution import PlanarEvent, PlanarSolution
 from ..core.contract import (KNOTS_PER_RADIAN, SCALAR, BatchedModel, DifferentiableModel, EngineModel, StudyModel,
@@ -122,6 +122,13 @@ class PlanarBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         if self.bounce_threshold <= 0:
             raise ValueError(f"bounce_threshold={self.bounce_threshold!r} must be > 0 [m/s]")
         parse_support(self.support)
+
+    @property
+    def state_units(self):
+        """The units of ``state_names``: u_x, u_y, w in m, s and w' in m/s, the direction
+        c in - (in flight c is v [m/s]); g s² and g s for a block with g = 1."""
+        length, velocity = length_units(self.g)
+        return (length, length, velocity, "-", "-", length, velocity)
 
     @property
     def friction_kinetic(self) -> float:

@@ -203,6 +203,10 @@ class RockingBlock(DifferentiableModel):
 
     @property
     def initial_mode(self):
+        """REST, or RELEASE from a tilt theta0: an instant mode at the state at rest that
+        ``state_at_guard`` takes to (theta0, 0) rather than an ``initial_state``, since the
+        mode after the release depends on a(0) and theta0 is a parameter whose derivative
+        flows through that map (the initial state is taken as independent of the parameters)."""
         return RockingMode.RELEASE if self.theta0 != 0 else RockingMode.REST
 
     def replace(self, **changes) -> "RockingBlock":
