@@ -22,7 +22,7 @@ def _load(name, monkeypatch):
 
 
 def test_jax_twin_meets_its_bars(monkeypatch, capsys):
-    """18 records x 2 blocks: u within 1.5e-13 relative, events within 3.6e-14 s of exact."""
+    """18 records x 2 blocks: u within 1.2e-13 relative, events within 3.6e-14 s of exact."""
     assert _load("jax_twin", monkeypatch).main() == 0
     assert "NOT met" not in capsys.readouterr().out
 

@@ -486,7 +486,8 @@ def test_sensitivities_match_central_differences(method):
     """d s(t_end) / d (ky, H, vs, damping, A) through the located events (the JAX twin's
     variational equation and saltation jumps) against central differences of the exact
     engine at a relative step of 1e-5 (reference), 4 s of Northridge PAC-175 (4 events);
-    vr = 800 m/s so that the impedance damping (0.17, below its cap) moves with vs."""
+    vr = 800 m/s so that the impedance damping (0.17, below its cap) moves with vs.
+    Measured: at most 4.0e-9 relative (decoupled, d / d height); the bar a decade above."""
     from blockdae.flexible_mass import displacement_sensitivities
 
     record = _record("Northridge_1994_PAC-175", duration=4.0)
@@ -504,10 +505,10 @@ def test_sensitivities_match_central_differences(method):
     for name in ("ky", "height", "vs", "damping"):
         step = 1e-5 * base[name]
         central = (displacement(**{name: base[name] + step}) - displacement(**{name: base[name] - step})) / (2 * step)
-        assert d[name] == pytest.approx(central, rel=1e-6), name
+        assert d[name] == pytest.approx(central, rel=4e-8), name
     peak_g = record.peak_acceleration / G
     central = (displacement(1 + 1e-5) - displacement(1 - 1e-5)) / (2e-5 * peak_g)
-    assert d["A"] == pytest.approx(central, rel=1e-6)
+    assert d["A"] == pytest.approx(central, rel=4e-8)
 
 
 def test_benchmark_quick_run(monkeypatch, capsys):

@@ -60,7 +60,7 @@ def test_example1_event_times_from_the_closed_form():
 
 
 # the bars a decade above the measured agreement (event times [s], u relative [-]); on
-# all 18 sample records benchmarks/jax_twin.py measures 3.6e-15 s and 1.5e-14 and asserts
+# all 18 sample records benchmarks/jax_twin.py measures 3.6e-15 s and 1.2e-14 and asserts
 # a decade above (run by tests/test_benchmarks_slow.py)
 @pytest.mark.parametrize("stem, block, bars", [
     ("Kobe_1995_TAK-090", bd.SlidingBlock(0.3, 0.22, bias=0.05), (8.9e-15, 2.2e-15)),  # 8.88e-16 s, 2.22e-16

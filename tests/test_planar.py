@@ -174,12 +174,13 @@ def flight_closed_form(depth, duration, g):
 
 
 def test_flight_under_a_falling_base_lands_where_the_closed_form_says():
+    """CVODE against the closed form: measured 7.6e-11 s, the bar a decade above."""
     depth, duration = 1.5 * G, 0.3
     sol = bd.simulate(bd.PlanarBlock(mu=0.3, g=G), bd.BaseMotion(bd.RectangularPulse(0.0, duration), None,
                                                                    bd.SinePulse(-depth, duration)), backend=CVODE)
     t1, t2 = flight_closed_form(depth, duration, G)
     assert [(e.mode_before.name, e.mode_after.name) for e in sol.events] == [("STICK", "FLIGHT"), ("FLIGHT", "STICK")]
-    np.testing.assert_allclose(sol.t_events, [t1, t2], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(sol.t_events, [t1, t2], rtol=0, atol=7.6e-10)
     assert sol.events[1].v_z < 0  # the impact velocity
     assert np.all(sol.gap >= -1e-12)
 
