@@ -48,23 +48,23 @@ def timed(action, repeat):
     return result, first, statistics.median(warm) if warm else first
 
 
-
-def paired(ours, peer, rounds, burst):
-    """A speed-up measured in interleaved rounds, so that both sides share the machine's
-    load: each round times ``burst`` calls of ``ours`` (their median) and one of
-    ``peer``. Returns (ours' result, peer's result, ours' median [s], peer's median [s],
-    the median over rounds of peer / ours [-]), after one warm-up call of each."""
+def paired(ours, peer, rounds):
+    """A speed-up measured alike on both sides, in interleaved rounds so that both share
+    the machine's load: after one warm-up call of each (imports, compilation, caches),
+    each round times one call of ``ours`` and one of ``peer``, in alternating order.
+    Returns (ours' result, peer's result, ours' median [s], peer's median [s], the median
+    over rounds of peer / ours [-]): the same number of calls and the same statistic on
+    both sides."""
     result, peer_result = ours(), peer()
-    mine, theirs, ratios = [], [], []
-    for _ in range(rounds):
-        _, _, ours_s = timed(ours, burst)
-        start = time.perf_counter()
-        peer()
-        peer_s = time.perf_counter() - start
-        mine.append(ours_s)
-        theirs.append(peer_s)
-        ratios.append(peer_s / ours_s)
+    mine, theirs = [], []
+    for index in range(rounds):
+        for action, times in ((ours, mine), (peer, theirs))[:: 1 if index % 2 == 0 else -1]:
+            start = time.perf_counter()
+            action()
+            times.append(time.perf_counter() - start)
+    ratios = [p / o for o, p in zip(mine, theirs)]
     return result, peer_result, statistics.median(mine), statistics.median(theirs), statistics.median(ratios)
+
 
 def print_table(headers, rows):
     """Print ``rows`` (tuples of str) under ``headers`` (strings with their units)."""

@@ -60,7 +60,7 @@ def main(argv=None):
     print(f"\nfragility at ky = {ky[1]:g} g ({fit.n_rows} rows, {len(fit.boot)} bootstrap refits, {fit_s:.2f} s): "
           f"P(D > 5 cm | PGA 0.5 g) = {fit.exceedance(0.05, 0.5):.2f} [-], median D at 0.5 g = "
           f"{np.exp(fit.c0 + fit.c1 * np.log(0.5)):.3f} m above 1 cm")
-    return 0
+    return 0 if warm <= peer_warm or args.quick else 1
 
 
 def _largest_difference(table, peer, records, ky, pga):

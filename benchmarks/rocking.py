@@ -8,7 +8,9 @@ DOP853 at rtol 1e-12 with located events). Per record: the events and impacts,
 overturned or not, max |theta|/alpha, the largest event-time difference from CVODE at
 rtol 1e-12 [s] (inf where the event lists differ), and the warm wall times of the engine
 and of CVODE at its default rtol 1e-10 [s] (median of --repeat). The bar: each compiled
-record path at least 100 times faster than CVODE over the 18 records (their total times).
+record path at least 100 times faster than CVODE over the 18 records (their total times);
+the script exits with 1 where it is not met. Two event lists count as the same when their
+kinds are and every event time is within 1e-8 s.
 The event-time differences are CVODE's: even at rtol 1e-12 it drifts by about 1e-11 s per
 impact (against the closed form of free rocking, where both compiled paths stay within
 1e-11 s: tests/test_rocking.py, tests/test_rocking_compiled.py), and the rocking motion,
@@ -29,6 +31,8 @@ from _common import G, print_table, sample_records, timed, verdict
 BLOCK = bd.RockingBlock(b=0.2, h=0.8, mu=0.6)
 PEAK = 0.4 * G  # [m/s²]
 SPEED_BAR = 100.0  # [-]
+#: two event lists are the same when their kinds are and every time is within this [s]
+SAME_EVENTS_DT = 1e-8
 
 
 def event_difference(solution, reference):
@@ -62,9 +66,11 @@ def compare(block, backend, records, args):
     speedup = total_cvode / total_engine
     print(f"\ntotal: {backend} {total_engine:.3f} s, CVODE (rtol 1e-10) {total_cvode:.2f} s: {speedup:.0f} times "
           f"faster; bar {SPEED_BAR:g}x: " + verdict(speedup >= SPEED_BAR, args.quick))
-    same = [float(row[6]) for row in rows if row[6] != "inf"]
-    print(f"event lists identical to CVODE's (rtol 1e-12) on {len(same)} of {len(rows)} records; their median "
-          f"largest event-time difference {np.median(same):.1e} s; worst {worst[0]:.1e} s ({worst[1]})\n")
+    kinds = [float(row[6]) for row in rows if row[6] != "inf"]
+    same = [dt for dt in kinds if dt <= SAME_EVENTS_DT]
+    print(f"event kinds in CVODE's (rtol 1e-12) order on {len(kinds)} of {len(rows)} records, and every event time "
+          f"within {SAME_EVENTS_DT:g} s as well on {len(same)}; largest event-time difference where the kinds agree: "
+          f"median {np.median(kinds):.1e} s, worst {max(kinds):.1e} s; worst of all {worst[0]:.1e} s ({worst[1]})\n")
     return speedup >= SPEED_BAR
 
 
@@ -77,9 +83,8 @@ def main(argv=None):
     # most records rock the block past its contact limits: the times include locating them
     # (every backend alike), the warnings are not printed
     warnings.simplefilter("ignore", bd.rocking.ContactWarning)
-    compare(BLOCK.replace(linearised=True), "exact", records, args)
-    compare(BLOCK, "compiled", records, args)
-    return 0
+    met = [compare(BLOCK.replace(linearised=True), "exact", records, args), compare(BLOCK, "compiled", records, args)]
+    return 0 if all(met) or args.quick else 1
 
 
 if __name__ == "__main__":

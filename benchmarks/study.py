@@ -57,7 +57,7 @@ def main(argv=None):
     print_table(["mu [-]", "R_c [m]", "Sd [m]", "R_d eq.3 [m]", "adjusted R_d [m]"],
                 [(f"{r.mu:g}", f"{r.rc_m:.4f}", f"{r.sd_m:.4f}", f"{r.rd_m:.4f}", f"{r.rd_adjusted_m:.4f}")
                  for r in ground.itertuples()])
-    return 0
+    return 0 if warm < BAR_S or args.quick else 1
 
 
 def _dask_row(run, table, n, repeat, quick):

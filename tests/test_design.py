@@ -95,8 +95,10 @@ def test_a_seed_reproduces_its_samples():
 
 
 def test_each_sample_is_the_analysis_run_alone():
-    """Independent computation: bd.newmark and bd.flexible called on each row's
-    parameters alone (no batch) give the table's D."""
+    """The package's own other path (not an independent computation): bd.newmark and
+    bd.flexible called on each row's parameters alone, outside the study's batches, give
+    the table's D; the engines themselves are checked against independent references in
+    tests/test_newmark.py and tests/test_flexible.py."""
     rigid = dz.exceedance(RECORDS, dz.Rigid(polarity="larger"), {"ky": dz.LogNormal(mean=0.15, cov=0.3)}, pga=0.4,
                           threshold=0.05, runs=4, runs_per_block=4, sampling="mc")
     for row in rigid.table.itertuples():

@@ -69,15 +69,16 @@ def test_continuous_across_the_switch_of_engines():
 
 
 def test_cvode_agrees_with_exact_on_an_overdamped_slip():
-    """CVODE on the generic driver (rtol 1e-10): the same onsets and stops within 1e-9 s and
-    s(t_end) within 1e-8 relative of exact."""
+    """CVODE on the generic driver (rtol 1e-10): the same onsets and stops within 1.5e-10 s
+    and s(t_end) within 3e-9 relative of exact (measured, CVODE and IDA: 1.5e-11 s, 3e-10;
+    the bars a decade above)."""
     record = _record("Northridge_1994_PAC-175", duration=6.0)
     model = _mass(0.6)
     exact = bd.simulate(model, record, t_end=6.0)
     sol = bd.simulate(model, record, t_end=6.0, backend="cvode", rtol=1e-10)
     assert len(exact.events) >= 6
-    assert_same_events(sol, exact, 1e-9)
-    assert sol.displacement == pytest.approx(exact.displacement, rel=1e-8)
+    assert_same_events(sol, exact, 1.5e-10)
+    assert sol.displacement == pytest.approx(exact.displacement, rel=3e-9)
 
 
 @pytest.mark.parametrize("damping, message", [(0.8, r"damping=0\.8 gives a total damping ratio of 1\.0"),

@@ -15,8 +15,10 @@ from blockdae.flexible_mass._slammer import slammer_flexible, slammer_scale
 
 #: half of SLAMMER 1.1's results table, shipped with the tests
 TABLE = pathlib.Path(__file__).resolve().parent / "data" / "slammer_1.1_results_part.json.gz"
-#: the table's printed digits: displacements [cm], kmax [g], vs [m/s], damping ratio
-TOLERANCES = {"displacement_cm": 2e-5, "kmax": 1e-5, "vs_mps": 1e-4, "damping": 1e-5}
+#: bars on the differences from the table: displacements [cm], kmax [g], vs [m/s], damping
+#: ratio. The table prints 5 decimals, so its rounding alone is up to 5e-6; measured over
+#: all 2,520 analyses: 5.0e-6 cm, 5e-6, 5e-6 m/s, 5e-6 (the bars within a decade of these)
+TOLERANCES = {"displacement_cm": 2e-5, "kmax": 1e-5, "vs_mps": 5e-5, "damping": 1e-5}
 #: coupled rows whose slip stops in its first step, leaving SLAMMER's s below 0 (it prints |s|)
 BACKED_UP = ("analysis_0874_coupled", "analysis_1094_coupled")
 

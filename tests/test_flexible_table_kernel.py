@@ -23,7 +23,9 @@ from conftest import load_sample_record
 #: ky falls from 0.1 g to 0.05 g over the first 2 cm of sliding; rises from 0.08 g to 0.14 g over 4 cm
 SOFTENING = KyTable([0.005, 0.01, 0.02], [0.1, 0.08, 0.05])
 HARDENING = KyTable([0.0, 0.01, 0.04], [0.08, 0.1, 0.14])
-EVENT_TOLERANCE, DISPLACEMENT_TOLERANCE = 1e-12, 1e-12  # [s], relative
+#: a decade above the agreement measured on these cases (1.4e-15 s, 6e-15 relative; on
+#: Imperial Valley BCR-230 9e-15 s and 6e-14)
+EVENT_TOLERANCE, DISPLACEMENT_TOLERANCE = 1.4e-14, 6e-14  # [s], relative
 
 
 def _record(duration=8.0):

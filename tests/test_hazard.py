@@ -39,8 +39,10 @@ def test_fit_recovers_the_parameters_of_a_large_sample():
 
 def test_bias_and_bootstrap_coverage_over_repeated_draws():
     """40 synthetic studies of 30 records × 8 scales, 100 bootstrap refits each: the mean
-    estimate of each parameter lies within 3 standard errors (+0.02) of the truth, and
-    the 90 % band of P(D > 5 cm | 0.4 g) covers the true value in >= 75 % of the draws."""
+    estimate of each parameter lies within 3 standard errors of the truth (measured: at
+    most 2.0, for b1), and the 90 % band of P(D > 5 cm | 0.4 g) covers the true value in
+    >= 75 % of the draws (measured 87.5 %; with 40 draws the coverage's own standard error
+    is 4.7 %, so the bar is 3 of them below 90 %)."""
     rng = np.random.default_rng(7)
     estimates, covered, widths = [], [], []
     truth = true_exceedance(D_CHECK, IM_CHECK)
@@ -55,7 +57,7 @@ def test_bias_and_bootstrap_coverage_over_repeated_draws():
     error = estimates.std(axis=0, ddof=1) / np.sqrt(len(estimates))
     print(f"bias (b0, b1, c0, c1, sigma) = {np.round(bias, 3)}; standard errors {np.round(error, 3)}; "
           f"coverage of the 90 % band {np.mean(covered):.2f}, mean width {np.mean(widths):.3f}")
-    assert np.all(np.abs(bias) <= 3 * error + 0.02)
+    assert np.all(np.abs(bias) <= 3 * error)
     assert np.mean(covered) >= 0.75
 
 
@@ -82,7 +84,7 @@ def test_hazard_integral_matches_the_closed_form():
     """A lognormal fragility P(D > d | x) = Φ((ln x - ln θ)/β) on λ(x) = k0 x^-k:
     ∫ Φ(·) k k0 x^(-k-1) dx = E[k0 X^-k] over ln X ~ N(ln θ, β²) = k0 θ^-k exp(k² β² / 2)
     (integrating by parts: the boundary terms vanish). With ln D | x ~ N(c0 + c1 ln x, σ),
-    ln θ = (ln d - c0)/c1 and β = σ/c1."""
+    ln θ = (ln d - c0)/c1 and β = σ/c1. Measured 2.2e-16 relative; the bar ten ulps."""
     c0, c1, sigma, k0, k = -1.5, 1.4, 0.5, 1e-4, 2.7
     frag = Fragility("pga_g", 1e-9, np.inf, 0.0, c0, c1, sigma, 30, 240, np.empty((0, 5)))
     x = np.logspace(-4, 2, 121)
@@ -90,7 +92,7 @@ def test_hazard_integral_matches_the_closed_form():
     d = np.array([0.005, 0.02, 0.1, 0.5])
     theta, beta = np.exp((np.log(d) - c0) / c1), sigma / c1
     exact = k0 * theta**-k * np.exp(0.5 * k**2 * beta**2)
-    np.testing.assert_allclose(displacement_hazard(curve, frag, d), exact, rtol=1e-6)
+    np.testing.assert_allclose(displacement_hazard(curve, frag, d), exact, rtol=2.2e-15)
 
 
 def test_empirical_fragility_and_deaggregation():

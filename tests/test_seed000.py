@@ -33,7 +33,7 @@ def test_example1_event_times_exact_and_paper():
     expected = [t_onset, t_stop, t_onset + 0.5, t_stop + 0.5]  # half-period symmetry
     assert [e.mode_after for e in sol.events] == [Mode.SLIP_NEG, Mode.STICK,
                                                     Mode.SLIP_POS, Mode.STICK]
-    np.testing.assert_allclose(sol.t_events, expected, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(sol.t_events, expected, rtol=0, atol=1.1e-15)  # measured 1.1e-16 s
     np.testing.assert_allclose(sol.t_events, [0.113, 0.535, 0.614, 1.035], atol=6e-4)  # paper
     # the paper's text says t* = 0.1125 s; the exact onset is 0.11346 s
     assert abs(sol.events[0].t - 0.11346) < 5e-6 and abs(sol.events[0].t - 0.1125) > 9e-4
@@ -58,7 +58,7 @@ def test_example2_kinetic_friction_no_common_motion():
     times = np.array([e.t for e in late])
     periods = np.diff(times[::2])
     assert abs(periods[-1] - 1.0) < 1e-4 and abs(periods[-1] - 1.0) < abs(periods[0] - 1.0)
-    assert sol.events[0].t == pytest.approx(np.arcsin(MUG / 9) / W, abs=1e-13)  # static onset
+    assert sol.events[0].t == pytest.approx(np.arcsin(MUG / 9) / W, abs=1.1e-15)  # static onset; measured 2.8e-17 s
 
 
 @pytest.mark.parametrize("f", [0.6, 0.4])
@@ -71,7 +71,7 @@ def test_example3_bias_ratchets_in_positive_x(f):
     u_cycle = sol(np.arange(6.0))[0]
     assert np.all(np.diff(u_cycle) > 0.2)
     # onset of slip+ at a - 0.3 g = -mu g
-    assert sol.events[0].t == pytest.approx(0.5 + np.arcsin(0.3 * G / 7) / W, abs=1e-13)
+    assert sol.events[0].t == pytest.approx(0.5 + np.arcsin(0.3 * G / 7) / W, abs=1.1e-15)  # measured 1.1e-16 s
     if f == 0.4:
         faster = bd.simulate(block.replace(mu_kinetic=0.6), bd.Harmonic(7.0, 1.0), t_end=5.0)
         assert sol.displacement > 2 * faster.displacement
@@ -81,7 +81,7 @@ def test_example4_rectangular_pulse_eq14():
     """Eq. 14 with the corrected sign: u = A t0²/2 (1 - A/(mu g)) = -0.5952 m."""
     sol = bd.simulate(bd.SlidingBlock(mu=MU, g=G), bd.RectangularPulse(9.0, 0.5))
     expected = 9 * 0.5**2 / 2 * (1 - 9 / MUG)
-    assert sol.displacement == pytest.approx(expected, rel=1e-13)
+    assert sol.displacement == pytest.approx(expected, rel=2.2e-15)  # measured 0, the bar ten ulps
     assert round(sol.displacement, 4) == -0.5952
     assert sol.events[0].t == 0.0 and sol.events[0].mode_after == Mode.SLIP_NEG
     # stop: v(t0) = (mu g - A) t0 decays at mu g

@@ -73,7 +73,8 @@ def test_spring_parameters_round_trip():
 @pytest.mark.parametrize("backend", ["cvode", "ida", pytest.param("jax", marks=pytest.mark.slow)])
 def test_no_horizontal_motion_is_the_spring_supported_mass(damping, motion, backend):
     """Reference: SpringSupportedMass on the exact backend (closed forms). The planar
-    block flies and lands at its liftoffs and landings and never slides."""
+    block flies and lands at its liftoffs and landings and never slides. Measured: CVODE
+    and IDA within 6.3e-10 s, JAX 3e-14 s (its bar a decade above)."""
     mass = bd.SpringSupportedMass(8.0, damping)
     ref = bd.simulate(mass, motion, t_end=0.5)
     ref_times = [e.t for e in ref.events if e.kind in ("liftoff", "landing")]
@@ -82,7 +83,7 @@ def test_no_horizontal_motion_is_the_spring_supported_mass(damping, motion, back
     sol = bd.simulate(block, base, t_end=0.5, backend=backend, rtol=RTOL)
     assert len(ref_times) >= 3
     assert all({e.mode_before, e.mode_after} == {PlanarMode.STICK, PlanarMode.FLIGHT} for e in sol.events)
-    np.testing.assert_allclose(sol.t_events, ref_times, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(sol.t_events, ref_times, rtol=0, atol=3e-13 if backend == "jax" else 1e-9)
     assert np.all(sol.u_x == 0) and np.all(sol.u_y == 0)
     heights = ref(ref.t)[0]
     np.testing.assert_allclose(sol(ref.t)[4], heights, rtol=0, atol=1e-7 * np.max(np.abs(heights)))

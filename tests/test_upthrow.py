@@ -46,7 +46,8 @@ def test_seed_table_of_static_deflections(frequency, inches):
 # ---- exact against closed forms ------------------------------------------------------
 def test_constant_downward_ground_acceleration():
     """y'' = -0.75 g from rest: u = (0.75 g / w²)(1 - cos w t) reaches u0 at
-    cos w t = -1/3; the flight is a parabola under -g - y'' = -0.25 g."""
+    cos w t = -1/3; the flight is a parabola under -g - y'' = -0.25 g (closed form in
+    float64; measured 5.6e-17 s, the bar a decade above)."""
     block = bd.SpringSupportedMass(8.0)
     w, p = block.omega, -0.75 * G
     sol = bd.simulate(block, bd.RectangularPulse(p, 1.0), t_end=0.3)
@@ -54,7 +55,7 @@ def test_constant_downward_ground_acceleration():
     v_lift = -p / w * math.sin(w * t_lift)
     top, land = t_lift + v_lift / (0.25 * G), t_lift + 2 * v_lift / (0.25 * G)
     assert [e.kind for e in sol.events[:3]] == ["liftoff", "top", "landing"]
-    np.testing.assert_allclose([e.t for e in sol.events[:3]], [t_lift, top, land], rtol=0, atol=1e-12)
+    np.testing.assert_allclose([e.t for e in sol.events[:3]], [t_lift, top, land], rtol=0, atol=5.6e-16)
     assert sol.events[0].u_rate == pytest.approx(v_lift, rel=1e-12)
     assert sol.events[1].height == pytest.approx(v_lift**2 / (2 * 0.25 * G), rel=1e-11)
 
@@ -62,7 +63,9 @@ def test_constant_downward_ground_acceleration():
 def test_free_vibration_after_a_pulse_matches_eqs_8_12_13_exactly():
     """A pulse that ends before liftoff leaves a free vibration of amplitude R; eq. 12
     (energy) is then exact, and after the pulse the ground has no acceleration, so
-    eqs. 8 and 13 are exact too. The liftoff time is where R cos(w tau - psi) = u0."""
+    eqs. 8 and 13 are exact too. The liftoff time is where R cos(w tau - psi) = u0.
+    Measured: the liftoff time 0 s off, the rest at most 2.4e-15 relative (the bars ten
+    ulps of the time, a decade above the rest)."""
     block = bd.SpringSupportedMass(5.0)
     w, u0, duration = block.omega, block.static_deflection, 1.5 / block.omega
     pulse = bd.RectangularPulse(-0.9 * G, duration)
@@ -71,18 +74,18 @@ def test_free_vibration_after_a_pulse_matches_eqs_8_12_13_exactly():
     u_d, v_d = 0.9 * u0 * (1 - math.cos(w * duration)), 0.9 * u0 * w * math.sin(w * duration)
     amplitude, psi = math.hypot(u_d, v_d / w), math.atan2(v_d / w, u_d)
     t_lift = duration + (psi - math.acos(u0 / amplitude)) / w
-    assert estimate.response_acceleration == pytest.approx(amplitude / u0, rel=1e-12)
+    assert estimate.response_acceleration == pytest.approx(amplitude / u0, rel=2.4e-14)
     flight = sol.flights[0]
-    assert flight.liftoff == pytest.approx(t_lift, abs=1e-12)
-    assert flight.liftoff_velocity == pytest.approx(estimate.liftoff_velocity, rel=1e-12)
-    assert flight.height == pytest.approx(estimate.height, rel=1e-12)
-    assert flight.duration == pytest.approx(estimate.flight_duration, rel=1e-12)
+    assert flight.liftoff == pytest.approx(t_lift, abs=1.4e-15)
+    assert flight.liftoff_velocity == pytest.approx(estimate.liftoff_velocity, rel=2.4e-14)
+    assert flight.height == pytest.approx(estimate.height, rel=2.4e-14)
+    assert flight.duration == pytest.approx(estimate.flight_duration, rel=2.4e-14)
 
 
 # ---- exact against the closed forms in 50 digits (upthrow_closed_form) ---------------
-#: the bar [s] on event times against the 50-digit closed forms: the engine is within
-#: 1.1e-16 s on every case below (measured on numpy 2.4, scipy 1.17)
-EXACT_BAR = 1e-14
+#: the bar [s] on event times against the 50-digit closed forms, a decade above the engine's
+#: measured 1.1e-16 s on every case below (numpy 2.4, scipy 1.17)
+EXACT_BAR = 1.1e-15
 
 
 def assert_matches_closed_form(sol, block, pieces, t_end, n_events, bar=EXACT_BAR):
@@ -216,11 +219,11 @@ def test_crosscheck_runs_every_backend_of_the_model():
 
 def test_jax_backend_agrees_with_exact_on_a_sine_train():
     """The diffrax twin runs the model's own xp-generic rules (measured: 2.0e-14 s,
-    3.2e-13 of the speeds)."""
+    3.2e-13 of the speeds; the bars a decade above)."""
     block = bd.SpringSupportedMass(10.0, 0.05)
     train = bd.Harmonic(0.5 * G, 0.13, cycles=3)
     exact = bd.simulate(block, train, t_end=train.duration)
-    assert_agree(bd.simulate(block, train, t_end=train.duration, backend="jax"), exact)
+    assert_agree(bd.simulate(block, train, t_end=train.duration, backend="jax"), exact, 2e-13, 3.2e-12)
 
 
 @pytest.fixture(scope="module")
