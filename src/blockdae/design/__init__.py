@@ -6,12 +6,13 @@ friction coefficient, on a plane) a design needs."""
 
 from ._figures import exceedance_figure
 from ._distributions import LogNormal, Normal, Truncated, Uniform
+from ._back_analysis import BackAnalysis, ConvergenceWarning, Observation, back_analysis, log_posterior
 from ._inverse import MeanKyDesign, ky_for_displacement, ky_for_percentile, mean_ky_for_probability
 from ._models import DesignModel, Flexible, Planar, Rigid, Simulated
 from ._result import Exceedance
 from ._study import exceedance
 
-__all__ = ["DesignModel", "Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Planar", "Rigid",
+__all__ = ["BackAnalysis", "ConvergenceWarning", "DesignModel", "Exceedance", "Flexible", "LogNormal", "MeanKyDesign", "Normal", "Observation", "Planar", "Rigid",
            "Simulated", "Truncated",
-           "Uniform", "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile",
+           "Uniform", "back_analysis", "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile", "log_posterior",
            "mean_ky_for_probability"]
