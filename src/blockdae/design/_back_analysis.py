@@ -30,8 +30,9 @@ ESS_PER_CHAIN = 100
 
 
 class ConvergenceWarning(UserWarning):
-    """NUTS chains that did not mix: R-hat above 1.01 or a bulk effective sample size
-    below 100 per chain."""
+    """NUTS chains that did not mix (R-hat above 1.01, a bulk effective sample size below
+    100 per chain, or divergent transitions), or a Laplace approximation that reaches
+    beyond the prior's support."""
 
 
 def _positive(field, value):
@@ -248,6 +249,8 @@ class BackAnalysis:
         diagnostics: R-hat and bulk/tail effective sample sizes of ky (NUTS only; empty
             for the Laplace approximation), a table.
         method: "nuts" or "laplace".
+        observations: the :class:`Observation` s analysed.
+        model: the :class:`Rigid` block they were analysed with.
     """
 
     samples: pd.DataFrame
@@ -405,9 +408,12 @@ def _nuts(log_likelihood, prior, starts, draws, warmup, seed):
     """NumPyro's NUTS, one chain from each of ``starts`` [g] (draws of the Laplace
     approximation), vectorised (one engine call per step for all chains); its R-hat and
     effective sample sizes from ArviZ."""
-    import arviz
     import jax
     import numpyro
+
+    with warnings.catch_warnings():  # ArviZ's notice of its coming refactor, at import
+        warnings.simplefilter("ignore", FutureWarning)
+        import arviz
     from numpyro.distributions.transforms import biject_to
     from numpyro.infer import MCMC, NUTS
 
