@@ -77,6 +77,23 @@ def test_censored_observations_bound_ky(record):
     assert (model.displacements(record, None, {"ky": np.array([above.map_ky_g])})[0] > d * 0.9)
 
 
+@pytest.mark.parametrize("prior", [design.Truncated(design.LogNormal(median=0.1, sigma_ln=0.5), low=0.02, high=0.3),
+                                   design.Truncated(design.Normal(0.1, 0.05), low=0.0), design.Uniform(0.02, 0.3)])
+def test_every_prior_gives_its_own_log_density(prior):
+    """The prior's density in the log posterior (no observation weighs: D < 100 m certain)
+    against the design distribution's cdf differenced over ±1e-6 g."""
+    import jax
+
+    t = np.arange(0, 8, 0.01)
+    record = bd.Record(0.3 * 9.80665 * np.sin(2 * np.pi * t) * np.exp(-0.3 * t), 0.01, "decaying sine")
+    silent = design.Observation(record, sigma_ln=0.01, less_than_m=100.0)
+    log_p = design.log_posterior(silent, design.Rigid(), {"ky": prior})
+    with jax.enable_x64(True):
+        for ky in (0.05, 0.12, 0.25):
+            density = (prior.cdf(ky + 1e-6) - prior.cdf(ky - 1e-6)) / 2e-6
+            assert math.exp(float(log_p(ky))) == pytest.approx(density, rel=1e-6)
+
+
 def test_an_observation_beyond_the_prior_is_an_error(record):
     too_far = design.Observation(record, sigma_ln=0.1, displacement_m=50.0)
     with pytest.raises(ValueError, match="displacement_m=50.0 m lies beyond what the prior reaches"):
@@ -97,8 +114,9 @@ def test_nuts_agrees_with_quadrature_and_laplace_within_monte_carlo_error(record
     quadrature on 4001 ky from 0.05 to 0.25 g (the exact forward model at each; the
     posterior mass outside is below 1e-12, the trapezoid error far below the Monte Carlo
     one). NUTS (4 chains) matches its mean, 5 % and 95 % quantiles within 4 Monte Carlo
-    standard errors (sd / sqrt(ESS); for a quantile sqrt(q (1 - q) / ESS) / density);
-    the Laplace approximation (near-normal in ln ky here) its mean within the same."""
+    standard errors (sd / sqrt(ESS); for a quantile sqrt(q (1 - q) / ESS) / density).
+    The Laplace approximation (normal in ln ky at the maximum) is an approximation: its
+    mean lies within 0.25 posterior sd of the quadrature's (measured 0.18 sd here)."""
     from scipy import integrate, stats
 
     d = observed(record, KY_TRUE)
@@ -124,7 +142,7 @@ def test_nuts_agrees_with_quadrature_and_laplace_within_monte_carlo_error(record
         exact = np.interp(q, cdf, grid)
         error = math.sqrt(q * (1 - q) / ess) / np.interp(exact, grid, density)
         assert abs(np.quantile(ky, q) - exact) < 4 * error, q
-    assert abs(laplace.samples.ky_g.mean() - mean) < 4 * sd / math.sqrt(len(laplace.samples)) + 0.01 * sd
+    assert abs(laplace.samples.ky_g.mean() - mean) < 0.25 * sd
     assert nuts.diagnostics.r_hat.iloc[0] < 1.05
 
 

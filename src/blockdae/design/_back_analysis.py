@@ -112,9 +112,16 @@ def _numpyro_prior(prior):
     if isinstance(prior, Uniform):
         return dist.Uniform(prior.low, prior.high)
     low, high = _support(prior)
-    parent = _numpyro_prior(prior.distribution)
-    return dist.TruncatedDistribution(parent, low=None if low == -math.inf else low,
-                                      high=None if high == math.inf else high)
+    parent = prior.distribution
+    if isinstance(parent, Uniform):
+        return dist.Uniform(low, high)
+    if isinstance(parent, LogNormal):  # exp of a truncated normal of ln X
+        log_bounds = {"low": math.log(low) if low > 0 else None, "high": math.log(high) if high < math.inf else None}
+        return dist.TransformedDistribution(
+            dist.TruncatedNormal(math.log(parent.median), parent.sigma_ln, **log_bounds),
+            dist.transforms.ExpTransform())
+    return dist.TruncatedNormal(parent.mean, parent.std, low=None if low == -math.inf else low,
+                                high=None if high == math.inf else high)
 
 
 def _check_priors(model, priors):
@@ -200,7 +207,8 @@ def _log_likelihood(obs, d):
 def log_posterior(observations, model, priors):
     """ln p(ky | observations) up to a constant, as a JAX function of ky [g] (a scalar):
     the prior's log density plus each observation's log likelihood; its gradient
-    (``jax.grad``) is exact, through the engine's dD/dky."""
+    (``jax.grad``) is exact, through the engine's dD/dky. Evaluate it with JAX in float64
+    (inside ``jax.enable_x64(True)``)."""
     observations, prior = _checked(observations, model, priors)
     return _log_posterior(observations, model, prior)
 
