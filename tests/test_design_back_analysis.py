@@ -61,8 +61,10 @@ def test_laplace_posterior_concentrates_at_the_true_ky(record):
     assert list(result.samples.columns) == ["chain", "draw", "ky_g"]
     table = result.predictive()
     assert (table.q05_D_m < table.observed_m).all() and (table.observed_m < table.q95_D_m).all()
+    assert repr(result).startswith("BackAnalysis(method='laplace', 1600 draws, 5 observations, ky median 0.1")
     future = result.predict(record, pga_g=0.5)
     assert (future.D_m > observed(record, KY_TRUE, 0.4)).all()  # a stronger motion moves it more
+    assert (result.predict(record, pga_g=0.05).D_m == 0).all()  # a peak below every ky: no sliding
 
 
 def test_censored_observations_bound_ky(record):

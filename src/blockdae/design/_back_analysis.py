@@ -269,6 +269,11 @@ class BackAnalysis:
     observations: list
     model: Rigid
 
+    def __repr__(self):
+        s = self.summary().iloc[0]
+        return (f"BackAnalysis(method={self.method!r}, {len(self.samples)} draws, {len(self.observations)} "
+                f"observations, ky median {s.median_g:.4g} g, 90 % interval {s.q05_g:.4g}-{s.q95_g:.4g} g)")
+
     def summary(self) -> pd.DataFrame:
         """ky's mean, standard deviation, median and 90 % interval [g], one row."""
         ky = self.samples["ky_g"].to_numpy()
@@ -285,7 +290,12 @@ class BackAnalysis:
         if pga_g is not None:
             _positive("pga_g", pga_g)
         table = self.samples.copy()
-        table["D_m"] = self.model.displacements(record, pga_g, {"ky": table["ky_g"].to_numpy()})
+        ky = table["ky_g"].to_numpy()
+        slides = ky < self.model.sliding_limit(record, pga_g, {"ky": ky})  # D = 0 from the scaled peak on
+        d = np.zeros(ky.shape)
+        if slides.any():
+            d[slides] = self.model.displacements(record, pga_g, {"ky": ky[slides]})
+        table["D_m"] = d
         return table
 
     def predictive(self) -> pd.DataFrame:
