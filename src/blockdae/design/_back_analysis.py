@@ -257,7 +257,7 @@ class BackAnalysis:
         diagnostics: R-hat and bulk/tail effective sample sizes of ky (NUTS only; empty
             for the Laplace approximation), a table.
         method: "nuts" or "laplace".
-        observations: the :class:`Observation` s analysed.
+        observations: the observations analysed (:class:`Observation`).
         model: the :class:`Rigid` block they were analysed with.
     """
 
