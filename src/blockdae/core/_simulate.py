@@ -119,7 +119,8 @@ def solve(model, motion, t_end, solver):
     horizon = Horizon.resolve(motion, _end(motion, t_end))
     result = solver.solve_batch(model, motion, horizon) if model.batch_shape else solver.solve(model, motion, horizon)
     solution = of_run(result, model, motion)
-    check_finite_finals(model, Finals.of(solution), _label(motion))
+    if not np.all(np.isfinite(solution.displacement)):  # the end alone (an overflow stays): a few µs
+        check_finite_finals(model, Finals.of(solution), _label(motion))
     model.check_solution(solution)
     return solution
 
