@@ -1,13 +1,13 @@
 """The sliding mass as a uniform shear column: its first mode, its damping and the
 equivalent-linear iteration, as SLAMMER 1.1 defines them (Rathje & Bray 2000; docs/flexible-mass.md, "The model")."""
 
+import contextvars
 import dataclasses
 import math
-import warnings
 from typing import Callable, Optional
 
 from ..core import set_real_fields
-from ..excitation import UnitsWarning, check_column
+from ..excitation import check_column
 
 #: L/M: the first mode's participation factor, phi(z) = sin(pi z / 2H)
 MODE_PARTICIPATION = 4.0 / math.pi
@@ -63,7 +63,8 @@ class ShearColumn:
         for name, unit in (("height", "m"), ("vs", "m/s"), ("vr", "m/s")):
             if getattr(self, name) <= 0:
                 raise ValueError(f"{name} must be > 0 {unit}, got {getattr(self, name)!r}")
-        check_column(self.height, self.vs, None if given_vr is None else self.vr, self.damping)
+        if not _PRECHECKED.get():
+            check_column(self.height, self.vs, None if given_vr is None else self.vr, self.damping)
         total = self.total_damping
         if not 0 < total < 1:
             raise ValueError(f"damping={self.damping!r} gives a total damping ratio of {total!r} "
@@ -90,13 +91,19 @@ class ShearColumn:
         return 4.0 * self.height / self.vs
 
 
+#: set while :func:`prechecked_column` builds a column (per thread: a context variable)
+_PRECHECKED = contextvars.ContextVar("prechecked_column", default=False)
+
+
 def prechecked_column(*args, **kwargs) -> ShearColumn:
-    """``ShearColumn(*args, **kwargs)`` without the plausibility warnings, for a column whose
-    values were checked already (a batch's, checked as arrays once) or computed from such a
-    column (the converged equivalent-linear one)."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", UnitsWarning)
+    """``ShearColumn(*args, **kwargs)`` without the plausibility rules (check_column), for a
+    column whose values were checked already (a batch's, checked as arrays once) or computed
+    from such a column (the converged equivalent-linear one); its own checks still apply."""
+    token = _PRECHECKED.set(True)
+    try:
         return ShearColumn(*args, **kwargs)
+    finally:
+        _PRECHECKED.reset(token)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -326,6 +326,8 @@ class FlexibleSlidingMass(DifferentiableModel, StudyModel, BatchedModel):
         and its ky [g] is above :data:`~blockdae.excitation.MAX_KY_G` (likely m/s²), naming
         the peak of the mass's average acceleration HEA at the knots [g]."""
         ky = np.atleast_1d(np.asarray(self.batch_parameters()["ky"] if self.batch_shape else self.ky_at(0.0)))
+        if not np.any(ky > MAX_KY_G):  # the common case: nothing to look at
+            return
         still = np.atleast_1d(solution.max_abs_displacement) == 0
         for j in np.flatnonzero(still & (ky > MAX_KY_G)):  # rare: an error follows
             run = solution[int(j)] if self.batch_shape else solution
