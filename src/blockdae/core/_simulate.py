@@ -2,6 +2,7 @@
 parameter sets) into one :class:`Ensemble`."""
 
 import functools
+import math
 
 import numpy as np
 
@@ -119,7 +120,7 @@ def solve(model, motion, t_end, solver):
     horizon = Horizon.resolve(motion, _end(motion, t_end))
     result = solver.solve_batch(model, motion, horizon) if model.batch_shape else solver.solve(model, motion, horizon)
     solution = of_run(result, model, motion)
-    if not np.all(np.isfinite(solution.displacement)):  # the end alone (an overflow stays): a few µs
+    if not _finite(solution.displacement):  # the end alone (an overflow stays there)
         check_finite_finals(model, Finals.of(solution), _label(motion))
     model.check_solution(solution)
     return solution
@@ -140,6 +141,11 @@ def check_finite_finals(model, finals, motion):
         return f"bd.simulate: {what} of {one} under {motion}"
 
     check_finite_result(values, describe)
+
+
+def _finite(values) -> bool:
+    """Whether ``values`` (a float, or an array) are all finite: a float's in 0.1 µs."""
+    return math.isfinite(values) if isinstance(values, float) else bool(np.isfinite(values).all())
 
 
 def _label(motion) -> str:
