@@ -324,6 +324,53 @@ def test_flexible_refuses_a_damping_in_percent_and_is_silent_on_plausible_column
     assert status == 0 and "blockdae: warning: vs=0.3 m/s is implausible" in err and "0.3 km/s = 300 m/s" in err
 
 
+def test_a_column_built_anywhere_gets_the_column_rules_once(kobe_g, capsys, tmp_path):
+    """bd.simulate and bd.study on FlexibleSlidingMass(ShearColumn(20, 0.3), ...) ran a column of
+    267 s without a word: the column's rules apply where it is built (once per column: bd.flexible
+    does not warn twice, nor per parameter set), and a damping in percent is refused there."""
+    _, record = kobe_g
+    message = "vs=0.3 m/s is implausible for a soil's or rock's shear-wave velocity (plausible: 30 m/s to 5000 m/s); " \
+              "in other units? 0.3 km/s = 300 m/s; give vs in m/s"
+    with pytest.warns(bd.UnitsWarning, match=re.escape(message)):
+        bd.ShearColumn(20.0, 0.3)
+    with pytest.warns(bd.UnitsWarning, match=re.escape("height=20000 m is implausible")):
+        bd.FlexibleSlidingMass(bd.ShearColumn(20000.0, 300.0), ky=np.array([0.1, 0.2]))
+    with pytest.raises(ValueError, match=re.escape("damping=5 is a damping ratio of 500 %: give the ratio")):
+        bd.ShearColumn(20.0, 300.0, damping=5.0)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        bd.flexible(record, ky=0.1, height=20.0, vs=[0.3, 0.4, 300.0])
+    assert [str(w.message) for w in caught if "implausible" in str(w.message)] == [message]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", bd.UnitsWarning)
+        bd.ShearColumn(20.0, 300.0, 600.0, 0.05)  # plausible: silent
+        bd.ShearColumn(20.0, 300.0, damping=-0.05)  # SLAMMER's offset of the impedance damping: the model's to check
+    folder = tmp_path / "records"
+    folder.mkdir()
+    (folder / KOBE.name).write_bytes(KOBE.read_bytes())
+    status, _, err = run_cli(capsys, "study", folder, "--pga", "0.3", "--ky", "0.1", "--height", "20", "--vs", "0.3",
+                             "--out", tmp_path / "study.csv")
+    assert status == 0 and err.count("blockdae: warning: vs=0.3 m/s is implausible") == 1, err
+
+
+def test_simulate_and_study_refuse_a_ky_of_the_flexible_mass_in_m_s2(kobe_g):
+    """bd.flexible refuses ky=9.81 (one g typed in m/s², above 1 g and kmax); bd.simulate and bd.study
+    on the same mass returned D = 0. The peak named is kmax, as bd.flexible finds it (0.8427 g)."""
+    _, record = kobe_g
+    column = bd.ShearColumn(20.0, 300.0)
+    with pytest.raises(ValueError, match=r"^ky=9.81 g is above 1 g and the peak of the mass's average acceleration HEA "
+                                         r"\(0.84\d* g\): it looks like m/s² \(9.81 m/s² = 1 g\); give ky in g"):
+        bd.simulate(bd.FlexibleSlidingMass(column, ky=9.81), record, t_end="motion")
+    with pytest.raises(ValueError, match=r"^parameter set 1 of 2: ky=9.81 g is above 1 g"):
+        bd.simulate(bd.FlexibleSlidingMass(column, ky=np.array([0.1, 9.81])), record, t_end="motion")
+    with pytest.raises(ValueError, match=re.escape("Kobe_1995_TAK-090: ky=9.81 g is above 1 g and kmax (0.8427 g)")):
+        bd.study([record], ky=[0.1, 9.81], scale=1.0, block=bd.FlexibleSlidingMass(column, ky=0.1))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", bd.UnitsWarning)
+        batch = bd.simulate(bd.FlexibleSlidingMass(column, ky=np.array([0.1, 0.98])), record, t_end="motion")
+    assert batch.displacement[0] > 0 and batch.displacement[1] == 0  # 0.98 g < 1 g: not refused
+
+
 def test_an_array_without_units_whose_peak_reads_as_g_is_warned_about(kobe_g):
     """Kobe in g (peak 0.6155) given without units ran as a record of 0.063 g; it is warned about, naming
     units='g'; stating the units (either) silences it; a peak above 2 m/s² cannot be g read as m/s²."""
@@ -366,11 +413,35 @@ def test_a_result_that_overflows_is_an_error():
     """Samples of 1e300 m/s² (accepted with check_peak=False) overflowed to D = inf, returned silently."""
     t = np.arange(0.0, 10.0, 0.01)
     record = bd.Record(3.0 * np.sin(2 * np.pi * t) * 1e300, 0.01, "huge", check_peak=False)
-    with pytest.raises(ValueError, match=r"^bd.newmark: D of 'huge' \(normal polarity, PGA 3.059e\+299 g, ky=0.1 g\) "
-                                         r"\[m\] is inf \(not a finite number: the computation overflowed\)"):
-        bd.newmark(record, 0.1, check_peak=False)
-    with pytest.raises(ValueError, match=r"bd.newmark: D of 'huge' .* is inf"):
+    with pytest.raises(ValueError, match=r"^bd.simulate: u at the end \[m\] of SlidingBlock\(mu=0.1, .*\) under 'huge' "
+                                         r"at scale 1, normal polarity is -inf \(not a finite number: the computation "
+                                         r"overflowed\)"):
+        bd.newmark(record, 0.1, check_peak=False)  # the block of bd.newmark slides the other way: u = -D
+    with pytest.raises(ValueError, match=r"bd.simulate: u at the end .* under 'huge' .* is -inf"):
         bd.newmark([record], [0.1, 0.2], check_peak=False)
+
+
+def test_simulate_never_returns_a_result_that_overflows():
+    """The same record through bd.simulate returned u = -inf silently: on every path (one run, a
+    batch of parameter sets, an ensemble of full solutions, final numbers from one compiled call)
+    it is an error naming the quantity, the motion and the model."""
+    t = np.arange(0.0, 10.0, 0.01)
+    huge = bd.Record(3.0 * np.sin(2 * np.pi * t) * 1e300, 0.01, "huge", check_peak=False)
+    block = bd.SlidingBlock(mu=0.1)
+    named = r"bd.simulate: u at the end \[m\] of SlidingBlock\(mu=0.1, .*\) under 'huge' is -inf \(not a finite number"
+    with pytest.raises(ValueError, match=named):
+        bd.simulate(block, huge)
+    with pytest.raises(ValueError, match=r"bd.simulate: u at the end \[m\] of SlidingBlock\(mu=0.2, .*\) under "
+                                         r"'huge' is -inf"):
+        bd.simulate(bd.SlidingBlock(mu=np.array([0.2, 0.3])), huge)
+    with pytest.raises(ValueError, match=named) as caught:
+        bd.simulate(block, [huge], scale=[1.0, 2.0])
+    assert "in the case huge at scale 1, normal polarity" in caught.value.__notes__
+    with pytest.raises(ValueError, match=r"of SlidingBlock\(mu=0.1, .*\) under 'huge' at scale 1, normal polarity "
+                                         r"is -inf"):
+        bd.simulate(block, [huge], scale=[1.0, 2.0], final_only=True)
+    ordinary = bd.Record(3.0 * np.sin(2 * np.pi * t), 0.01, "ordinary", units="m/s2")
+    assert np.isfinite(bd.simulate(block, ordinary).displacement)
 
 
 # --- readers: a cut value, a malformed first row, time units, a changed file --------------

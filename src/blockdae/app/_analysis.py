@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from ..core import simulate
-from ..flexible_mass import FlexibleSlidingMass, KyTable, ShearColumn, flexible, with_zero_sample
+from ..flexible_mass import FlexibleSlidingMass, KyTable, flexible, prechecked_column, with_zero_sample
 from ..sliding import SlidingBlock, newmark, newmark_history_figure, yield_acceleration
 from ..units import STANDARD_GRAVITY
 from ._caught import caught_warnings
@@ -206,10 +206,10 @@ def case_solution(record, settings: Settings, row: dict, polarity: str):
         return simulate(block, motion), motion
     method = "coupled" if settings.method == "equivalent-linear" else settings.method
     if settings.method == "equivalent-linear":  # the converged column, its damping total
-        column = ShearColumn(settings.height, row["vs_final_m_s"], settings.vs, row["damping_final"],
-                             impedance=False)
-    else:
-        column = ShearColumn(settings.height, settings.vs, None, settings.damping)
+        column = prechecked_column(settings.height, row["vs_final_m_s"], settings.vs, row["damping_final"],
+                                   impedance=False)
+    else:  # checked by the run of bd.flexible that gave the row
+        column = prechecked_column(settings.height, settings.vs, None, settings.damping)
     model = FlexibleSlidingMass(column, ky, method, STANDARD_GRAVITY)
     return simulate(model, with_zero_sample(motion), t_end=motion.duration + motion.dt), motion
 

@@ -8,10 +8,9 @@ import pathlib
 from ._common import (UsageError, checked, describe_record, in_units_out, ky_table, ky_table_row, number, positive,
                       read, reader_warnings, record_arguments, record_fields, save_figure, units_out_argument)
 from ..core import simulate
-from ..excitation import check_column
 from ..units import STANDARD_GRAVITY
 from ..flexible_mass import (INTEGRATIONS, METHODS, POLARITIES, FlexibleSlidingMass, ShearColumn, flexible,
-                             with_zero_sample)
+                             prechecked_column, with_zero_sample)
 
 def _columns(unit):
     """(field, heading, format) of the printed table, displacements in ``unit`` (--units-out)."""
@@ -81,9 +80,9 @@ def run_flexible(args) -> int:
         from .._plot import plot
 
         motion = record if args.pga is None else record.scaled(args.pga * args.g / record.peak_acceleration)
-        column = ShearColumn(args.height, rows[0]["vs_final_m_s"], args.vr or args.vs,
-                             args.damping if args.reference_strain is None else rows[0]["damping_final"],
-                             impedance=args.reference_strain is None)
+        column = prechecked_column(args.height, rows[0]["vs_final_m_s"], args.vr or args.vs,
+                                   args.damping if args.reference_strain is None else rows[0]["damping_final"],
+                                   impedance=args.reference_strain is None)
         model = FlexibleSlidingMass(column, ky if args.ky is None else ky[0], args.method, args.g)
         end = (record.duration if args.t_end is None else args.t_end) + record.dt
         solution = checked(lambda: simulate(model, with_zero_sample(motion), t_end=end), str(args.record))
@@ -135,6 +134,5 @@ def flexible_study_block(args):
     ky = args.ky if table is None else table
     damping = 0.05 if args.soil_damping is None else args.soil_damping
     with reader_warnings(args):
-        checked(lambda: check_column(args.height, args.vs, args.vr, damping), "--soil-damping")
-    column = checked(lambda: ShearColumn(args.height, args.vs, args.vr, damping), "--soil-damping")
+        column = checked(lambda: ShearColumn(args.height, args.vs, args.vr, damping), "--soil-damping")
     return FlexibleSlidingMass(column, ky=0.0, method=args.method or "coupled", g=args.g), ky

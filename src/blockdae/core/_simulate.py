@@ -2,10 +2,11 @@
 parameter sets) into one :class:`Ensemble`."""
 
 import functools
+import math
 
 import numpy as np
 
-from ..excitation import AbstractExcitation
+from ..excitation import AbstractExcitation, check_finite_result
 from ..units import STANDARD_GRAVITY
 from ._cases import cases, is_many
 from ._ensemble import Ensemble, Finals
@@ -119,8 +120,38 @@ def solve(model, motion, t_end, solver):
     horizon = Horizon.resolve(motion, _end(motion, t_end))
     result = solver.solve_batch(model, motion, horizon) if model.batch_shape else solver.solve(model, motion, horizon)
     solution = of_run(result, model, motion)
+    if not _finite(solution.displacement):  # the end alone (an overflow stays there)
+        check_finite_finals(model, Finals.of(solution), _label(motion))
     model.check_solution(solution)
     return solution
+
+
+def check_finite_finals(model, finals, motion):
+    """ValueError if a final number of ``finals`` (a :class:`Finals` of ``model``) is not
+    finite, naming the quantity, the parameter set, ``model`` and ``motion`` (its label):
+    a run that overflowed (a motion scaled far out of range, say) is never returned."""
+    values = np.column_stack([finals.displacement, finals.max_abs_displacement])
+    names = [model.state_names[s] for s in model.displacement_states]
+    unit = model.displacement_unit
+
+    def describe(index):
+        j, column = index
+        what = f"{names[column]} at the end [{unit}]" if column < len(names) else f"max |displacement| [{unit}]"
+        one = model.item(j) if model.batch_shape else model
+        return f"bd.simulate: {what} of {one} under {motion}"
+
+    check_finite_result(values, describe)
+
+
+def _finite(values) -> bool:
+    """Whether ``values`` (a float, or an array) are all finite: a float's in 0.1 µs."""
+    return math.isfinite(values) if isinstance(values, float) else bool(np.isfinite(values).all())
+
+
+def _label(motion) -> str:
+    """How an error names ``motion``: its name where it has one, else its type."""
+    name = getattr(motion, "name", "")
+    return repr(name) if name else f"a {type(motion).__name__}"
 
 
 def _end(motion, t_end):
@@ -176,7 +207,11 @@ def _compiled_finals(model, runs, t_end, solver):
 
     def finals(i, k, p):
         row, column = (i, k * n_polarities + p) if in_engine else (i * n_scales + k, p)
-        return Finals(*engine.final_numbers(out[row, column::stride]))
+        numbers = Finals(*engine.final_numbers(out[row, column::stride]))
+        if not (np.isfinite(numbers.displacement).all() and np.isfinite(numbers.max_abs_displacement).all()):
+            check_finite_finals(model, numbers, f"{runs.names[i]!r} at {runs.by} {runs.targets[k]:g}, "
+                                                f"{runs.polarities[p]} polarity")
+        return numbers
 
     return tuple(tuple(tuple(finals(i, k, p) for p in range(n_polarities)) for k in range(n_scales))
                  for i in range(n_motions))

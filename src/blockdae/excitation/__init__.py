@@ -29,5 +29,5 @@ from ._readers import RECORD_SUFFIXES, record_files, record_name, unit_factor
 from ._record import check_horizontal
 from ._record_checks import offset_fraction, outside_blockdae
 from ._record_set import with_metadata
-from ._plausibility import check_column, check_finite_result, check_pga, warn_not_sliding
+from ._plausibility import check_column, check_finite_result, check_pga, ky_not_reached, warn_not_sliding
 from ._scaling import PGA_ROUNDINGS, check_pga_rounding, pga_keyword

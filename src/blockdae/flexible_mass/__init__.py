@@ -26,5 +26,6 @@ __all__ = ["Analysis", "EquivalentLinear", "Episode", "FlexibleEvent", "Flexible
 
 # what the other packages of blockdae use
 from ._analysis import INTEGRATIONS, POLARITIES, as_ky_table, with_zero_sample
+from ._column import prechecked_column
 from ._model import METHODS
 from ._rigid_ky_table import downslope_with_table

@@ -21,7 +21,7 @@ from ..solvers import linear_pieces
 from ..excitation import (Record, RecordSet, check_column, check_finite_result, check_horizontal, pga_factor,
                           pga_keyword, warn_not_sliding, with_metadata)
 from . import _engine, _fused, _table_kernel
-from ._column import ShearColumn, equivalent_linear as iterate_equivalent_linear, equivalent_linear_steps
+from ._column import equivalent_linear as iterate_equivalent_linear, equivalent_linear_steps, prechecked_column
 from ._damped_slip import COMPILED_RESPONSE_LIMIT, flat_table_model, slip_underdamped
 from ._exact import check, engine_settings
 from ._ky_table import KyTable
@@ -186,14 +186,26 @@ def _check_rows(rows, analyses):
     ValueError naming it), and the ky rule (:func:`~blockdae.excitation.warn_not_sliding`)
     against kmax, the peak of the sliding mass's average acceleration that drives its slide
     (over time; at the samples for integration "slammer")."""
+    check_finite_rows(rows, analyses, "bd.flexible")
+    several = len({(row["height_m"], row["vs_m_s"]) for row in rows}) > 1
+    cases = [(f"{row['record']}" + (f" (H {row['height_m']:g} m, vs {row['vs_m_s']:g} m/s)" if several else ""),
+              driving_peak(row), row["ky_g"]) for row in rows]
+    warn_not_sliding(cases, len(rows), peak_name="kmax", body="mass", kind="analyses", peak_words="kmax")
+
+
+def check_finite_rows(rows, analyses, caller):
+    """ValueError naming the column, the record, the model and ``caller`` (the function run)
+    where a row's kmax or displacement is not finite."""
     for row, analysis in zip(rows, analyses):
         names = ("kmax_g", *(_RUN_OF[polarity][1] for polarity in analysis.polarities))
         check_finite_result([row[name] for name in names],
-                            lambda index: f"bd.flexible: {names[index[0]]} of {row['record']!r} ({analysis.model})")
-    several = len({(row["height_m"], row["vs_m_s"]) for row in rows}) > 1
-    cases = [(f"{row['record']}" + (f" (H {row['height_m']:g} m, vs {row['vs_m_s']:g} m/s)" if several else ""),
-              row["kmax_g"] if math.isnan(row["kmax_sup_g"]) else row["kmax_sup_g"], row["ky_g"]) for row in rows]
-    warn_not_sliding(cases, len(rows), peak_name="kmax", body="mass", kind="analyses", peak_words="kmax")
+                            lambda index: f"{caller}: {names[index[0]]} of {row['record']!r} ({analysis.model})")
+
+
+def driving_peak(row) -> float:
+    """kmax [g] of a row: the peak of the mass's average acceleration that drives its slide,
+    over time (kmax_sup_g) where it was found, else at the samples (kmax_g)."""
+    return row["kmax_g"] if math.isnan(row["kmax_sup_g"]) else row["kmax_sup_g"]
 
 
 def _rows_in_parts(rows_of, analyses, progress) -> list[dict]:
@@ -276,13 +288,13 @@ def _model(ky, height, vs, vr, damping, method, g) -> FlexibleSlidingMass:
     try:
         return _cached_model(ky, height, vs, vr, damping, method, g, type(g))
     except TypeError:  # an unhashable g: validation names it
-        return FlexibleSlidingMass(ShearColumn(height, vs, vr, damping), ky=ky, method=method, g=g)
+        return FlexibleSlidingMass(prechecked_column(height, vs, vr, damping), ky=ky, method=method, g=g)
 
 
 @functools.lru_cache(maxsize=4096)
 def _cached_model(ky, height, vs, vr, damping, method, g, g_type):
     """:func:`_model`, keyed also by the type of ``g`` (True == 1.0 must not find 1.0's)."""
-    return FlexibleSlidingMass(ShearColumn(height, vs, vr, damping), ky=ky, method=method, g=g)
+    return FlexibleSlidingMass(prechecked_column(height, vs, vr, damping), ky=ky, method=method, g=g)
 
 
 @functools.lru_cache(maxsize=4096)

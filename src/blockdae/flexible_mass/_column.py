@@ -1,11 +1,13 @@
 """The sliding mass as a uniform shear column: its first mode, its damping and the
 equivalent-linear iteration, as SLAMMER 1.1 defines them (Rathje & Bray 2000; docs/flexible-mass.md, "The model")."""
 
+import contextvars
 import dataclasses
 import math
 from typing import Callable, Optional
 
 from ..core import set_real_fields
+from ..excitation import check_column
 
 #: L/M: the first mode's participation factor, phi(z) = sin(pi z / 2H)
 MODE_PARTICIPATION = 4.0 / math.pi
@@ -41,6 +43,10 @@ class ShearColumn:
             it as SLAMMER does (``impedance=False`` leaves it out). May be negative
             (SLAMMER's way to offset the impedance damping) while the total stays in (0, 1).
         impedance: add the impedance damping.
+
+    A height, vs or vr out of the range of slopes, or a damping ratio above 0.3, is warned
+    about (a :class:`~blockdae.excitation.UnitsWarning` naming the likely unit); a damping
+    ratio of 1 or more (a percentage) is refused.
     """
 
     height: float
@@ -50,12 +56,15 @@ class ShearColumn:
     impedance: bool = True
 
     def __post_init__(self):
+        given_vr = self.vr
         if self.vr is None:
             object.__setattr__(self, "vr", self.vs)
         set_real_fields(self, ("height", "vs", "vr", "damping"))
         for name, unit in (("height", "m"), ("vs", "m/s"), ("vr", "m/s")):
             if getattr(self, name) <= 0:
                 raise ValueError(f"{name} must be > 0 {unit}, got {getattr(self, name)!r}")
+        if not _PRECHECKED.get():
+            check_column(self.height, self.vs, None if given_vr is None else self.vr, self.damping)
         total = self.total_damping
         if not 0 < total < 1:
             raise ValueError(f"damping={self.damping!r} gives a total damping ratio of {total!r} "
@@ -80,6 +89,21 @@ class ShearColumn:
     def period(self) -> float:
         """First-mode period 4 H / vs [s]."""
         return 4.0 * self.height / self.vs
+
+
+#: set while :func:`prechecked_column` builds a column (per thread: a context variable)
+_PRECHECKED = contextvars.ContextVar("prechecked_column", default=False)
+
+
+def prechecked_column(*args, **kwargs) -> ShearColumn:
+    """``ShearColumn(*args, **kwargs)`` without the plausibility rules (check_column), for a
+    column whose values were checked already (a batch's, checked as arrays once) or computed
+    from such a column (the converged equivalent-linear one); its own checks still apply."""
+    token = _PRECHECKED.set(True)
+    try:
+        return ShearColumn(*args, **kwargs)
+    finally:
+        _PRECHECKED.reset(token)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -25,6 +25,7 @@ import numpy as np
 
 from ..core import set_batch_fields, set_real_fields
 from ..core.contract import KNOTS_PER_RADIAN, BatchedModel, DifferentiableModel, StudyModel, scale_factor_units
+from ..excitation import MAX_KY_G, ky_not_reached
 from ..units import STANDARD_GRAVITY
 from ._column import MASS_PARTICIPATION, MODE_PARTICIPATION, SLIP_MASS_FRACTION, ShearColumn
 from ._exact import ExactEngine
@@ -317,6 +318,22 @@ class FlexibleSlidingMass(DifferentiableModel, StudyModel, BatchedModel):
 
     def solution(self, *, t, y, mode, events, backend, dense, stats):
         return FlexibleSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
+
+    def check_solution(self, solution):
+        """The ky rule of ``bd.flexible`` on a run of :func:`blockdae.simulate` (a
+        :class:`FlexibleSolution`, or a batch's :class:`~blockdae.core.BatchSolution`): a
+        ValueError (:func:`~blockdae.excitation.ky_not_reached`) where the mass did not slide
+        and its ky [g] is above :data:`~blockdae.excitation.MAX_KY_G` (likely m/s²), naming
+        the peak of the mass's average acceleration HEA at the knots [g]."""
+        ky = np.atleast_1d(np.asarray(self.batch_parameters()["ky"] if self.batch_shape else self.ky_at(0.0)))
+        if not np.any(ky > MAX_KY_G):  # the common case: nothing to look at
+            return
+        still = np.atleast_1d(solution.max_abs_displacement) == 0
+        for j in np.flatnonzero(still & (ky > MAX_KY_G)):  # rare: an error follows
+            run = solution[int(j)] if self.batch_shape else solution
+            peak = float(np.max(run.hea(run.t))) / self.g
+            where = f"parameter set {j} of {self.batch_shape[0]}: " if self.batch_shape else ""
+            ky_not_reached(ky[j], peak, where, "the peak of the mass's average acceleration HEA")
 
     # ---- bd.study ------------------------------------------------------------------
     #: what :func:`bd.study` sweeps: its keyword, the table's column, the unit (the

@@ -15,8 +15,8 @@ import dataclasses
 import numpy as np
 
 from ..core.contract import StudyBatch
-from ..excitation import Record
-from ._analysis import Analysis, exact_rows, table_rows
+from ..excitation import Record, ky_not_reached
+from ._analysis import Analysis, check_finite_rows, driving_peak, exact_rows, table_rows
 from ._ky_table import KyTable
 from ._model import FlexibleSlidingMass
 
@@ -55,8 +55,9 @@ class FlexibleStudyBatch(StudyBatch):
         """What :func:`bd.study` tabulates of the masses on ``motions`` (records along the
         slope [m/s²]) at the factors ``scale`` on a(t) [-]: one row per motion x ky x
         factor, the columns :data:`STUDY_COLUMNS` of ``bd.flexible`` (both polarities)
-        from its exact engine (``rtol`` is not used: nothing is integrated). ``t_end``:
-        the end on each record's axis [s]; None: its last sample."""
+        from its exact engine (``rtol`` is not used: nothing is integrated), each finite
+        (else a ValueError); a ky above 1 g that kmax does not reach is refused (likely
+        m/s²). ``t_end``: the end on each record's axis [s]; None: its last sample."""
         self.check_motions(motions, t_end)  # bd.study checked its records; here also floor motions
         analyses = []
         for motion in motions:
@@ -65,6 +66,9 @@ class FlexibleStudyBatch(StudyBatch):
             analyses += [Analysis(record, motion.name, mass, POLARITIES, end, None)
                          for mass in self.masses for record in scaled]
         rows = _rows(analyses)
+        check_finite_rows(rows, analyses, "bd.study")
+        for row, analysis in zip(rows, analyses):  # a sweep reaches ky >= kmax (D = 0): only the refusal
+            ky_not_reached(analysis.model.ky_at(0.0), driving_peak(row), f"{row['record']}: ", "kmax")
         return {name: np.array([row[name] for row in rows]) for name in STUDY_COLUMNS}
 
 
