@@ -73,13 +73,13 @@ def run_model(args, print_events):
         print(json.dumps(_json(args, record, model, parameters, solution, wall), indent=2, default=float))
         return 0
     if args.quiet:
-        print(_displacement_text(solution))
+        print(_displacement_text(solution, model.displacement_unit))
         return 0
     print(f"record: {describe_record(record) if hasattr(record, 'dt') else args.record}")
     print(f"model: {args.model} ({_describe(model, parameters)}); backend {solution.backend}")
     print(f"final time t_end = {solution.t_end:.4f} s" + (" (at rest after the record)" if args.t_end is None else ""))
-    print(f"displacement at t_end = {_displacement_text(solution)}")
-    print(f"max |displacement| = {solution.max_abs_displacement:.6f} m")
+    print(f"displacement at t_end = {_displacement_text(solution, model.displacement_unit)}")
+    print(f"max |displacement| = {solution.max_abs_displacement:.6f} {model.displacement_unit}")
     print(f"events: {len(solution.events)}")
     print_events(solution, args.events)
     print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
@@ -103,9 +103,10 @@ def _describe(model, parameters):
                      else f"{k} = {v}" for k, v in parameters.items()) or "its defaults"
 
 
-def _displacement_text(solution):
+def _displacement_text(solution, unit):
+    """The displacement at t_end in ``unit`` (the model's ``displacement_unit``)."""
     u = solution.displacement
-    return f"{u:+.6f} m" if isinstance(u, float) else "(" + ", ".join(f"{x:+.6f}" for x in u) + ") m"
+    return f"{u:+.6f} {unit}" if isinstance(u, float) else "(" + ", ".join(f"{x:+.6f}" for x in u) + f") {unit}"
 
 
 def _json(args, record, model, parameters, solution, wall):
