@@ -345,7 +345,8 @@ def test_a_session_unheard_ends_its_runs_cancelled_and_its_files_removed(tmp_pat
         return [{"record": name}], []
 
     monkeypatch.setattr("blockdae.app._session.analyse", analyse_slowly)
-    sessions = Sessions(tmp_path, expiry_s=0.5)
+    expiry_s = 600.0  # the sweeping thread then waits a minute: the test sweeps itself
+    sessions = Sessions(tmp_path, expiry_s=expiry_s)
     try:
         quiet, heard = sessions.new(), sessions.new()
         session = sessions[quiet]
@@ -354,9 +355,11 @@ def test_a_session_unheard_ends_its_runs_cancelled_and_its_files_removed(tmp_pat
         sessions[heard].add_upload(f"{CAPE}.csv", data_url(RECORDS[CAPE]))
         job = session.start(Settings("rigid", (0.1,)))  # its first record waits for the release
         assert session.folder.is_dir() and not job.cancelled.is_set()
-        time.sleep(0.3)
-        sessions.heard_from(heard)
-        time.sleep(0.3)
+        sessions.sweep()  # both heard from within the expiry: both stay
+        assert session.folder.is_dir() and not job.cancelled.is_set()
+        for key in (quiet, heard):  # both last heard from longer ago than the expiry ...
+            sessions[key].seen -= 2 * expiry_s
+        sessions.heard_from(heard)  # ... and one heard from again now (no sleeping: load-proof)
         sessions.sweep()
         release.set()
         assert job.finished.wait(10) and (job.done, job.total) == (1, 2)  # cancelled after its first record
