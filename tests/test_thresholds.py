@@ -194,13 +194,30 @@ class _WrongKick(bd.SlidingBlock):
         return np.array([y[0], -float(after) * 1.0]) if after != Mode.STICK else y
 
 
+class _WrongKickUnchecked(_WrongKick):
+    """The same, its slides declared instant modes: the driver's check on entering a mode
+    skips them, so the state runs on in its contradiction."""
+
+    instant_modes = (Mode.SLIP_POS, Mode.SLIP_NEG)
+
+
+@pytest.mark.parametrize("backend", ["cvode", "ida"])
+def test_a_mode_entered_with_a_guard_below_zero_is_an_error(backend):
+    """The driver's check on entering a mode: slip- entered at v = +1 m/s has its guard
+    (-v) at -1 m/s, named with the mode, the time and the state, before any step."""
+    with pytest.raises(bd.core.ModelContractError,
+                       match=r"mode SLIP_NEG entered at t = 0 s with guard 0 = -1 below zero.*'v': 1.0"):
+        bd.simulate(_WrongKick(mu=0.2, g=G), bd.RectangularPulse(0.25 * G, 1.0), backend=backend)
+
+
 @pytest.mark.parametrize("backend", ["cvode", "ida"])
 def test_a_state_that_contradicts_its_mode_is_an_error(backend):
-    """The driver's consistency guard: a forced inconsistent state raises, naming the
-    time, the mode and the values, and never returns a result. Under a = 0.25 g for 1 s
-    slip- has dv/dt = -0.05 g, so v = +1 m/s is still positive when the pulse ends."""
+    """The driver's consistency guard, where the entry check is skipped: a forced
+    inconsistent state raises, naming the time, the mode and the values, and never returns
+    a result. Under a = 0.25 g for 1 s slip- has dv/dt = -0.05 g, so v = +1 m/s is still
+    positive when the pulse ends."""
     with pytest.raises(bd.InconsistentStateError, match=r"at t = 1 s .*SLIP_NEG: v = \+0.509.* m/s points against"):
-        bd.simulate(_WrongKick(mu=0.2, g=G), bd.RectangularPulse(0.25 * G, 1.0), backend=backend)
+        bd.simulate(_WrongKickUnchecked(mu=0.2, g=G), bd.RectangularPulse(0.25 * G, 1.0), backend=backend)
 
 
 class _Terminal(io.StringIO):
