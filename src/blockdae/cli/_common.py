@@ -250,3 +250,14 @@ def record_fields(record) -> dict:
     """A record's name, samples, dt [s], start time [s] and peak [m/s²], for JSON and CSV rows."""
     return {"record": record.name, "n_samples": int(record.acceleration_samples.size), "dt_s": clean(record.dt),
             "start_time_s": record.start_time, "peak_acceleration_m_s2": record.peak_acceleration}
+
+
+def print_run_end(solution, args, wall, print_events):
+    """The end of a ``run`` report: the events (``print_events(solution, args.events)``),
+    the wall time [s] and the files written (--plot, --history)."""
+    print(f"events: {len(solution.events)}")
+    print_events(solution, args.events)
+    print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
+    for what, path in (("figure", args.plot), ("history", args.history)):
+        if path is not None:
+            print(f"{what}: {path}")

@@ -23,7 +23,7 @@ from .. import backends
 from ._common import (UsageError, checked, clean, describe_gravity, describe_record, files_or_set, finite, folder_files,
                       in_units_out, ky_table, ky_table_row, positive, read, record_arguments, record_fields,
                       recursive_argument,
-                      report_failures, save_figure, set_argument, units_out_argument, write_csv)
+                      print_run_end, report_failures, save_figure, set_argument, units_out_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._app import add_app_parser
 from ._design import add_design_parser
@@ -266,12 +266,7 @@ def _run(args):
           + (" (block at rest after the record)" if args.t_end is None else ""))
     print(f"permanent displacement u(t_end) = {solution.displacement:+.6f} {length}")
     print(f"max |u| = {solution.max_abs_displacement:.6f} {length}")
-    print(f"events: {len(solution.events)}")
-    _print_events(solution, args.events)
-    print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
-    for what, path in (("figure", args.plot), ("history", args.history)):
-        if path is not None:
-            print(f"{what}: {path}")
+    print_run_end(solution, args, wall, _print_events)
     return 0
 
 

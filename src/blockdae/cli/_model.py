@@ -8,7 +8,8 @@ import json
 import pathlib
 import time
 
-from ._common import UsageError, checked, clean, describe_record, record_fields, save_figure, write_csv
+from ._common import (UsageError, checked, clean, describe_record, print_run_end, record_fields, save_figure,
+                      write_csv)
 from ._planar import read_motion_argument, x_record
 from ..core import AbstractHybridModel, simulate, state_columns
 
@@ -80,12 +81,7 @@ def run_model(args, print_events):
     print(f"final time t_end = {solution.t_end:.4f} s" + (" (at rest after the record)" if args.t_end is None else ""))
     print(f"displacement at t_end = {_displacement_text(solution, model.displacement_unit)}")
     print(f"max |displacement| = {solution.max_abs_displacement:.6f} {model.displacement_unit}")
-    print(f"events: {len(solution.events)}")
-    print_events(solution, args.events)
-    print(f"time: {wall:.3f} s (wall clock, including compilation on a first call)")
-    for what, path in (("figure", args.plot), ("history", args.history)):
-        if path is not None:
-            print(f"{what}: {path}")
+    print_run_end(solution, args, wall, print_events)
     return 0
 
 
