@@ -23,6 +23,10 @@ BATCHES = {
     "planar": bd.PlanarBlock(mu=np.array([0.1, 0.2])),
     "upthrow": bd.SpringSupportedMass(frequency=np.array([5.0, 10.0]), damping=0.05),
     "flexible": bd.FlexibleSlidingMass(bd.ShearColumn(10.0, 200.0), ky=np.array([0.1, 0.2])),
+    # rocks (mu >= b/h): its default backend, "compiled", runs the sets one by one
+    "rocking": bd.RockingBlock(b=np.array([0.25, 0.35]), h=1.0, mu=1.0),
+    # slides (mu < b/h): on its default backend, "cvode"
+    "rocking-slides": bd.RockingBlock(b=0.5, h=1.0, mu=np.array([0.1, 0.2])),
 }
 
 
@@ -43,7 +47,52 @@ def test_a_two_set_batch_under_three_records_and_two_scales(name):
         assert ensemble.n_events.ravel()[row] == len(alone.events)
 
 
-@pytest.mark.parametrize("name", ["upthrow", "flexible"])
+def test_a_rocking_batch_equals_its_single_runs_exactly():
+    """Every row of a rocking batch (the compiled engine, set by set) is its set's own run,
+    bit for bit, with every case's solution and with the final numbers alone."""
+    model, records, scales = BATCHES["rocking"], _records(), (1.0, 2.0)
+    ensemble = bd.simulate(model, records, t_end=3.0, scale=scales)
+    finals = bd.simulate(model, records, t_end=3.0, scale=scales, final_only=True)
+    table = ensemble.to_dataframe()
+    assert list(table["b"]) == [0.25, 0.35] * 6 and "theta_end_rad" in table
+    for row in range(12):
+        i, k, j = row // 4, (row // 2) % 2, row % 2
+        alone = bd.simulate(model.item(j), records[i].scaled(scales[k]), t_end=3.0)
+        assert ensemble.max_abs_displacement.ravel()[row] == alone.max_abs_displacement
+        assert ensemble.displacement.ravel()[row] == alone.displacement
+        assert ensemble.n_events.ravel()[row] == len(alone.events)
+        assert table["max_theta_over_alpha"][row] == alone.max_abs_displacement / model.item(j).alpha
+        one = bd.simulate(model.item(j), records[i], t_end=3.0, scale=[scales[k]], final_only=True)
+        assert finals.max_abs_displacement.ravel()[row] == one.max_abs_displacement.ravel()[0]
+        assert finals.n_events.ravel()[row] == one.n_events.ravel()[0]
+
+
+def test_a_rocking_batch_that_mixes_sliding_and_rocking_sets_is_refused():
+    """One batch's displacements share one unit: u [m] of a block that slides, theta [rad]
+    of one that rocks."""
+    with pytest.raises(ValueError, match=r"mu: parameter sets \[0\] have mu below their rocking threshold b/h "
+                                         r"\(they slide: u \[m\]\) and sets \[1, 2\] at or above it"):
+        bd.RockingBlock(b=np.array([0.2, 0.3, 0.5]), h=1.0, mu=np.array([0.1, 0.7, 0.9]))
+    with pytest.raises(ValueError, match=r"threshold alpha = atan\(b/h\)"):
+        bd.RockingBlock(b=0.2, h=1.0, mu=np.array([0.197, 0.198]), linearised=True)  # alpha = 0.1974
+    with pytest.raises(ValueError, match=r"parameter set 1: b=-0.3 must be > 0"):
+        bd.RockingBlock(b=np.array([0.2, -0.3]), h=1.0, mu=0.7)
+    with pytest.raises(ValueError, match="differ in size"):
+        bd.RockingBlock(b=np.array([0.2, 0.3]), h=np.array([1.0, 1.0, 1.0]), mu=0.7)
+
+
+def test_a_rocking_batch_warns_of_each_sets_contact_as_its_run_does():
+    """The contact check of a batch reads each set's run: the warnings one run gives."""
+    record = _records()[2].scaled(2.0)
+    batch = bd.RockingBlock(b=np.array([0.25, 0.2]), h=1.0, mu=0.7)
+    with pytest.warns(bd.rocking.ContactWarning) as alone:
+        bd.simulate(batch.item(1), record, t_end=3.0)
+    with pytest.warns(bd.rocking.ContactWarning) as caught:
+        bd.simulate(batch, record, t_end=3.0)
+    assert [str(w.message) for w in caught] == [str(w.message) for w in alone]
+
+
+@pytest.mark.parametrize("name", ["upthrow", "flexible", "rocking"])
 def test_batch_items_and_parameters(name):
     model = BATCHES[name]
     assert model.batch_shape == (2,)

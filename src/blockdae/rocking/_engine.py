@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from ..core import HermiteDense, notice_numba
+from ..core import AbstractBackend, HermiteDense, notice_numba
 from ..core.contract import SCALAR
 from ..excitation import evaluate
 from . import _compiled as compiled
@@ -46,21 +46,41 @@ def _final_row(theta, t, n_events):
     return theta[-1], np.max(np.abs(theta)), n_events, t[-1]
 
 
-class LinearisedEngine:
-    """Runs a linearised, rocking :class:`RockingBlock` in closed form (the engine of
-    ``backend="exact"``)."""
+def parameter_sets(model) -> list:
+    """The blocks of one parameter set each that ``model`` holds: itself, or a batch's items."""
+    return [model.item(j) for j in range(model.batch_shape[0])] if model.batch_shape else [model]
+
+
+class _OneSetEngine:
+    """An engine that runs one parameter set a call: a batch runs set by set, through the
+    backend (each set's solution kept, as one run of it gives)."""
+
+    def solve_batch(self, model, excitation, horizon, backend):
+        return AbstractBackend.solve_batch(backend, model, excitation, horizon)
+
+    def solve_final(self, model, excitations, horizons, scale, backend) -> np.ndarray:
+        """Final numbers (:func:`final_numbers`) of every excitation under every parameter
+        set (m of them, 1 for one block) at every factor of ``scale`` on a(t):
+        (len(excitations), m * len(scale), 4), set j at factor k in column j * len(scale) + k."""
+        sets = parameter_sets(model)
+        out = np.empty((len(excitations), len(sets) * len(scale), 4))
+        for i, (excitation, horizon) in enumerate(zip(excitations, horizons)):
+            for j, block in enumerate(sets):
+                for k, factor in enumerate(scale):
+                    out[i, j * len(scale) + k] = self._final_row(block, excitation, horizon, factor, backend)
+        return out
 
     final_numbers = staticmethod(final_numbers)
 
-    def solve_final(self, model, excitations, horizons, scale, backend) -> np.ndarray:
-        """Final numbers (:func:`final_numbers`) of every excitation at every factor of
-        ``scale`` on a(t), a run of each scaled copy: (len(excitations), len(scale), 4)."""
-        out = np.empty((len(excitations), len(scale), 4))
-        for i, (excitation, horizon) in enumerate(zip(excitations, horizons)):
-            for k, factor in enumerate(scale):
-                solution = self.solve(model, excitation.scaled(factor), horizon, backend)
-                out[i, k] = _final_row(solution.state[:, 0], solution.t, len(solution.events))
-        return out
+
+class LinearisedEngine(_OneSetEngine):
+    """Runs a linearised, rocking :class:`RockingBlock` in closed form (the engine of
+    ``backend="exact"``)."""
+
+    def _final_row(self, model, excitation, horizon, factor, backend):
+        """A run of the scaled copy."""
+        solution = self.solve(model, excitation.scaled(factor), horizon, backend)
+        return _final_row(solution.state[:, 0], solution.t, len(solution.events))
 
     def solve(self, model, excitation, horizon, backend):
         if not model.linearised or model.slides:
@@ -110,7 +130,7 @@ _MODES = {float(mode): mode for mode in RockingMode}
 _ENGINE, _COMPILE_SECONDS = "the compiled rocking engine", 20
 
 
-class CompiledEngine:
+class CompiledEngine(_OneSetEngine):
     """Runs a :class:`RockingBlock` that rocks (mu >= b/h), exact or linearised, on the
     compiled integrated engine (``backend="compiled"``: its ``rtol``, ``atol``,
     ``event_resolution``, ``max_events_at_one_instant``)."""
@@ -133,22 +153,13 @@ class CompiledEngine:
                                            kind == "lift_limit")
         return solution
 
-    final_numbers = staticmethod(final_numbers)
-
-    def solve_final(self, model, excitations, horizons, scale, backend) -> np.ndarray:
-        """Final numbers (:func:`final_numbers`) of every excitation at every factor of
-        ``scale`` on a(t) (in the kernel), one run each: (len(excitations), len(scale), 4)."""
-        out = np.empty((len(excitations), len(scale), 4))
-        for i, (excitation, horizon) in enumerate(zip(excitations, horizons)):
-            for k, factor in enumerate(scale):
-                if model.strict:  # the contact check reads the solution and its motion
-                    solution = self.solve(model, excitation.scaled(factor), horizon, backend)
-                    theta, t, n_events = solution.state[:, 0], solution.t, len(solution.events)
-                else:
-                    _, knots, events, _ = self._run(model, excitation, horizon, backend, factor)
-                    theta, t, n_events = knots[:, 1], knots[:, 0], len(events)
-                out[i, k] = _final_row(theta, t, n_events)
-        return out
+    def _final_row(self, model, excitation, horizon, factor, backend):
+        """One run, ``factor`` on a(t) in the kernel."""
+        if model.strict:  # the contact check reads the solution and its motion
+            solution = self.solve(model, excitation.scaled(factor), horizon, backend)
+            return _final_row(solution.state[:, 0], solution.t, len(solution.events))
+        _, knots, events, _ = self._run(model, excitation, horizon, backend, factor)
+        return _final_row(knots[:, 1], knots[:, 0], len(events))
 
     @staticmethod
     def _run(model, excitation, horizon, backend, factor=1.0):

@@ -29,8 +29,8 @@ import math
 
 import numpy as np
 
-from ..core import LazyEngine, set_real_fields
-from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, scale_factor_units
+from ..core import LazyEngine, set_batch_fields, set_real_fields
+from ..core.contract import KNOTS_PER_RADIAN, SCALAR, BatchedModel, DifferentiableModel, scale_factor_units
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import relative_acceleration, rest_mode, slip_constant, stop_mode
 from ..units import STANDARD_GRAVITY
@@ -42,6 +42,8 @@ _Q, _RATE = range(2)
 _OUT, _IN, _BEYOND, _SETTLE, _OVERTURNED = 2, 3, 4, 5, 6
 #: a rotation rate below RATE_FLOOR p alpha [rad/s] is no contradiction of its mode
 RATE_FLOOR = 1e-10
+#: the parameters a batch may give as 1-D arrays, one value per parameter set
+BATCH_FIELDS = ("b", "h", "mu", "mu_kinetic", "restitution", "p", "theta0")
 
 
 def housner_restitution(alpha: float) -> float:
@@ -51,7 +53,7 @@ def housner_restitution(alpha: float) -> float:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class RockingBlock(DifferentiableModel):
+class RockingBlock(DifferentiableModel, BatchedModel):
     """A free-standing rectangular block that rests, slides, rocks or overturns.
 
     Args:
@@ -82,6 +84,12 @@ class RockingBlock(DifferentiableModel):
     located events, any motion; its default) and, linearised, on "exact" (its closed form,
     compiled, for horizontal piecewise-linear records). A block that slides runs on
     "cvode" by default.
+
+    ``b``, ``h``, ``mu``, ``mu_kinetic``, ``restitution``, ``p`` and ``theta0`` may be 1-D
+    arrays of one size (the others numbers): a batch of parameter sets, which
+    :func:`blockdae.simulate` runs set by set on the backend of one set
+    (``item(i)``: set i as a block of its own). Its sets all rock or all slide (one
+    batch's displacements share one unit): a batch that mixes them is refused.
     """
 
     b: float
@@ -105,6 +113,8 @@ class RockingBlock(DifferentiableModel):
     _exact = {**_compiled, "exact": LazyEngine("blockdae.rocking._engine", "LinearisedEngine")}
 
     def __post_init__(self):
+        if any(np.ndim(getattr(self, name)) for name in BATCH_FIELDS):
+            return _check_batch(self)
         set_real_fields(self, ("b", "h", "mu", "theta0", "zeno_arc", "g"))
         for name in ("b", "h", "g", "zeno_arc"):
             if getattr(self, name) <= 0:
@@ -165,7 +175,9 @@ class RockingBlock(DifferentiableModel):
     @property
     def slides(self) -> bool:
         """Whether the block slides (mu below the rocking threshold, b/h) rather than rocks:
-        it never does both."""
+        it never does both (nor do the sets of a batch)."""
+        if self.batch_shape:
+            return self._slides
         return self.mu < self.rocking_threshold
 
     @property
@@ -193,8 +205,10 @@ class RockingBlock(DifferentiableModel):
         largest = np.asarray(max_abs_displacement, dtype=float)
         if self.slides:
             return {"overturned": np.zeros(largest.shape, dtype=bool), "max_theta_over_alpha": np.zeros(largest.shape)}
+        alpha = self.alpha if not self.batch_shape else \
+            np.resize([self.item(j).alpha for j in range(self.batch_shape[0])], largest.shape)  # the set runs fastest
         return {"overturned": np.abs(np.asarray(displacement, dtype=float)[:, 0]) == 0.5 * math.pi,
-                "max_theta_over_alpha": largest / self.alpha}
+                "max_theta_over_alpha": largest / alpha}
 
     @property
     def state_units(self):
@@ -212,6 +226,28 @@ class RockingBlock(DifferentiableModel):
     def replace(self, **changes) -> "RockingBlock":
         """A copy with some parameters changed (validated again)."""
         return dataclasses.replace(self, **changes)
+
+    # ---- a batch of parameter sets ----------------------------------------------------
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """() for one parameter set, (n,) for a batch of n."""
+        return self.__dict__.get("_batch_shape", ())
+
+    def item(self, index: int) -> "RockingBlock":
+        """Parameter set ``index`` of a batch, as a block of its own (the parameters given
+        as numbers as they were given)."""
+        return dataclasses.replace(self, **{name: float(getattr(self, name)[index]) for name in BATCH_FIELDS
+                                             if isinstance(getattr(self, name), np.ndarray)})
+
+    parameter_labels = {"b": "half-width b [m]", "h": "half-height h [m]", "mu": "static friction coefficient mu [-]",
+                        "mu_kinetic": "kinetic friction coefficient [-]", "restitution": "restitution r [-]",
+                        "p": "frequency parameter p [rad/s]", "theta0": "initial tilt theta0 [rad]"}
+
+    def batch_parameters(self) -> dict:
+        """The grid: b, h [m], mu [-], and mu_kinetic, restitution [-], p [rad/s] where
+        given, theta0 [rad], each of shape ``batch_shape``."""
+        return {name: np.broadcast_to(np.asarray(getattr(self, name), dtype=float), self.batch_shape)
+                for name in BATCH_FIELDS if getattr(self, name) is not None}
 
     # ---- the motion -----------------------------------------------------------------
     def check_motion(self, motion) -> None:
@@ -529,7 +565,11 @@ class RockingBlock(DifferentiableModel):
     def check_solution(self, solution):
         """A :class:`ContactWarning` (an error with ``strict``) naming the time and the
         forces where the contact force left its limits while the block rocked
-        (:meth:`RockingSolution.check_contact`)."""
+        (:meth:`RockingSolution.check_contact`); for a batch, of each set's run."""
+        if self.batch_shape:  # a BatchSolution keeps each set's run (its solve_one)
+            for j in range(self.batch_shape[0]):
+                solution.solve_one(j).check_contact()
+            return
         solution.check_contact()
 
     # ---- parameters, for the JAX twin and derivatives --------------------------------
@@ -571,3 +611,26 @@ class RockingBlock(DifferentiableModel):
         from ._derivatives import max_theta_jacobian
 
         return max_theta_jacobian(self, solution, final, events)
+
+
+def _check_batch(model) -> None:
+    """A batch: the array fields of ``model`` set to read-only 1-D arrays of one size [their
+    units], each parameter set checked as a block of its own (ValueError naming the set);
+    a batch whose sets do not all rock or all slide is refused (ValueError naming mu and the
+    sets of each)."""
+    shape = set_batch_fields(model, tuple(name for name in BATCH_FIELDS if getattr(model, name) is not None))
+    set_real_fields(model, ("zeno_arc", "g"))
+    object.__setattr__(model, "_batch_shape", shape)
+    slides = []
+    for j in range(shape[0]):
+        try:
+            slides.append(model.item(j).slides)
+        except ValueError as error:
+            raise ValueError(f"parameter set {j}: {error}") from None
+    if any(slides) and not all(slides):
+        sliding, rocking = ([j for j, s in enumerate(slides) if s == value] for value in (True, False))
+        threshold = "alpha = atan(b/h)" if model.linearised else "b/h"
+        raise ValueError(f"mu: parameter sets {sliding} have mu below their rocking threshold {threshold} (they slide: "
+                         f"u [m]) and sets {rocking} at or above it (they rock: theta [rad]); a batch's displacements "
+                         "share one unit: run the sliding and the rocking sets as two batches")
+    object.__setattr__(model, "_slides", slides[0])
