@@ -13,9 +13,10 @@ STICK has two guards, mu g + a + (g/R) u (a slide to +u starts where it falls th
 and mu g - a - (g/R) u (a slide to -u); each slide one, its velocity (signed so that it
 is positive in the slide): the mass stops where it falls through 0. Nothing in
 ``src/blockdae`` names this model: it runs on every generic backend, in batches of
-records, in process pools, in ``bd.study``-free design studies through
-``blockdae.design.Simulated`` (``design.exceedance`` and the inverses on mu), and from the
-command line (``blockdae run --model friction_isolator:FrictionIsolator``).
+records, in process pools, in ``bd.study`` (over its mu: it declares no study hook), in
+design studies through ``blockdae.design.Simulated`` (``design.exceedance`` and the
+inverses on mu), and from the command line (``blockdae run --model
+friction_isolator:FrictionIsolator``).
 Run: ``python examples/friction_isolator.py``.
 """
 
@@ -208,12 +209,14 @@ def main():
     isolator, motion = FrictionIsolator(mu=0.06, radius=2.0), record()
     check = bd.crosscheck(isolator, motion, backends=("cvode", "ida"), rtol=1e-10)
     print(check)
+    table = bd.study([motion], mu=[0.04, 0.06, 0.08], scale=[0.5, 1.0], block=isolator)
+    print(table[["mu", "scale", "pga_g", "max_abs_displacement_m", "n_events"]].to_string(index=False))
     study = design.exceedance(motion, design_model(), {"mu": design.LogNormal(0.06, 0.2), "radius": 2.0},
                               threshold=0.05, runs=16)
     print(f"P(D > 0.05 m) = {study.probability:.3f} over {len(study.table)} runs")
     mu = design.ky_for_displacement(motion, design_model(), {"radius": 2.0}, allowable=0.05)
     print(f"mu for a peak displacement of 0.05 m: {mu:.5f}")
-    return check, study, mu
+    return check, table, study, mu
 
 
 if __name__ == "__main__":

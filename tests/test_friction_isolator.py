@@ -159,3 +159,31 @@ def test_the_inverse_takes_newton_steps_on_that_derivative(example, monkeypatch)
     assert by_newton < len(runs)  # measured: 19 against 23
     final = bd.simulate(example.FrictionIsolator(mu=newton, radius=1000.0), motion, t_end=1.0).displacement
     assert abs(final) == pytest.approx(0.03, rel=1e-9)
+
+
+def test_a_study_of_the_isolator_equals_its_single_runs(example):
+    """bd.study sweeps the isolator's mu (it declares no study hooks: the keyword given is
+    its parameter, one model per value through its replace, each run by bd.simulate): every
+    row is that model's own run of the scaled record, bit for bit, on the ground and on a
+    floor of a frame."""
+    motion, frame = example.record(duration=2.0), bd.ShearFrame(period=0.3, storeys=2)
+    table = bd.study([motion], mu=[0.05, 0.08], scale=[0.5, 1.0], where=("ground", frame.floor(1)),
+                     block=example.FrictionIsolator(radius=2.0), t_end=2.0)
+    assert len(table) == 2 * 2 * 2 and "polarity" not in table
+    assert list(table.columns[-4:]) == ["u_end_m", "max_abs_displacement_m", "n_events", "t_end_s"]
+    floor = frame.floor_motions(motion)[0]
+    for _, row in table.iterrows():
+        place = motion if row["location"] == "ground" else floor
+        alone = bd.simulate(example.FrictionIsolator(mu=row["mu"], radius=2.0), place.scaled(row["scale"]), t_end=2.0)
+        assert row["max_abs_displacement_m"] == alone.max_abs_displacement
+        assert row["u_end_m"] == alone.displacement
+        assert row["n_events"] == len(alone.events)
+    assert table["mu"].tolist() == [0.05, 0.05, 0.08, 0.08] * 2 and table["scale"].tolist() == [0.5, 1.0] * 4
+
+
+def test_a_study_refuses_what_the_isolator_has_not(example):
+    with pytest.raises(ValueError, match=r"ky=: FrictionIsolator has no parameter 'ky' \(its parameters: \["):
+        bd.study([example.record()], ky=[0.1], scale=1.0, block=example.FrictionIsolator())
+    # each value checked by the model before any run: at mu = 0.01 the surface pulls harder at u0 than friction holds
+    with pytest.raises(ValueError, match=r"u0=0.1 m: at rest there the surface pulls harder"):
+        bd.study([example.record()], mu=[0.06, 0.01], scale=1.0, block=example.FrictionIsolator(u0=0.1, radius=2.0))

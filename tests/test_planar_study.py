@@ -65,7 +65,7 @@ def test_local_equals_dask(motions, table):
 
 @pytest.mark.parametrize("kwargs, match", [
     (dict(block=bd.PlanarBlock(mu=0.3, bias=(-0.2, 0.0))), "bias"),  # |bias| >= mu = 0.15
-    (dict(block=object()), "study_parameter and study_batch"),
+    (dict(block=object()), "block must be a model"),
     (dict(where=[bd.ShearFrame(5, 0.3, 0.05).floor(1)]), "ground only"),
 ])
 def test_bad_input_fails_before_work(motions, kwargs, match, monkeypatch):

@@ -155,15 +155,21 @@ class Ensemble:
             columns["set"] = j
             columns |= {name: np.broadcast_to(value, self.model.batch_shape).reshape(-1)[j]
                         for name, value in self.model.batch_parameters().items()}
+        table = pd.DataFrame(columns | self.final_columns())
+        return with_metadata(table, self.cases.metadata) if metadata else table
+
+    def final_columns(self) -> dict:
+        """The columns of :meth:`to_dataframe` after the case's, name -> one value per row
+        in its order: the displacement states at the end (``<state>_end_<unit>``, in the
+        model's ``displacement_unit``), ``max_abs_displacement_<unit>``, n_events, t_end_s
+        [s], then the model's own (its ``final_quantities``)."""
         u = self._stack("displacement").reshape(len(self), -1)
         largest = self._stack("max_abs_displacement").reshape(-1)
         names, unit = [self.model.state_names[s] for s in self.model.displacement_states], self.model.displacement_unit
-        columns |= {f"{name}_end_{unit}": u[:, s] for s, name in enumerate(names)}
+        columns = {f"{name}_end_{unit}": u[:, s] for s, name in enumerate(names)}
         columns |= {f"max_abs_displacement_{unit}": largest,
                     "n_events": self._stack("n_events").reshape(-1), "t_end_s": self._stack("t_end").reshape(-1)}
-        columns |= self.model.final_quantities(u, largest)
-        table = pd.DataFrame(columns)
-        return with_metadata(table, self.cases.metadata) if metadata else table
+        return columns | self.model.final_quantities(u, largest)
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
         """max |displacement| [m] of every case against the scaled motion's peak [g]: a line

@@ -482,8 +482,8 @@ class EngineModel(AbstractHybridModel):
 
 
 class StudyBatch(abc.ABC):
-    """What :func:`blockdae.study` asks of a :class:`StudyModel`'s ``study_batch``: the
-    columns of its table (a study model may be its own batch)."""
+    """What :func:`blockdae.study` asks of a model's ``study_batch``: the columns of its
+    table (a study model may be its own batch)."""
 
     @abc.abstractmethod
     def study_columns(self, motions, t_end, scale, rtol=None) -> dict:
@@ -499,19 +499,26 @@ class StudyBatch(abc.ABC):
 
 
 class StudyModel(AbstractHybridModel, StudyBatch):
-    """A model :func:`blockdae.study` sweeps over records, intensities and one of its
-    parameters."""
+    """What :func:`blockdae.study` may ask of a model it sweeps over records, intensities
+    and one of its parameters. :func:`blockdae.study` takes every model: each hook here is
+    optional (a model need not subclass this class to declare one), and where a model
+    declares none the study sweeps the keyword it is given (``mu=`` or ``ky=``) as the
+    model's own parameter of that name, one model per value through its ``replace`` (or
+    :func:`dataclasses.replace`), each motion x factor run by :func:`blockdae.simulate`
+    on the model's default backend, with the columns of an ensemble's table."""
 
     #: gravity [m/s²] (the study's pga targets are in g)
     g: float
-    #: what the study sweeps: (its keyword, the table's column, its unit)
-    study_parameter: tuple[str, str, str]
+    #: what the study sweeps: (its keyword, the table's column, its unit); None (default):
+    #: the keyword given to the study, the model's parameter of that name, in the column
+    #: of that name (with its unit from ``parameter_units()`` where the model declares one)
+    study_parameter: tuple[str, str, str] | None = None
     #: the polarities the study runs each motion in, a column of its table ("normal": the
     #: motion as given, "inverse": times -1); () (default): no polarity column (the
     #: motion as given, or the model's own columns cover both polarities)
     study_polarities: tuple[str, ...] = ()
 
-    def study_parameter_for(self, given: dict) -> tuple[str, str, str]:
+    def study_parameter_for(self, given: dict) -> tuple[str, str, str] | None:
         """What the study sweeps given what the user gave (keyword -> values, None where
         not given): :attr:`study_parameter` by default; a model that takes another
         keyword for the same values (the rigid block's ky for its mu) returns it."""
@@ -520,8 +527,10 @@ class StudyModel(AbstractHybridModel, StudyBatch):
     def study_batch(self, values) -> StudyBatch:
         """This model at every value of the swept parameter (what :meth:`study_sweep`
         made of the given values, else a 1-D array in its unit), checked against its
-        other parameters (required: a study model without it cannot be studied)."""
-        raise NotImplementedError(f"{type(self).__name__} does not declare its study batch")
+        other parameters: a batch whose ``study_columns`` run them together (one compiled
+        call). NotImplemented (the default): the study runs one model per value through
+        :func:`blockdae.simulate`."""
+        return NotImplemented
 
     def study_sweep(self, given):
         """(values for the table (n,), what :meth:`study_batch` takes) from what the user

@@ -297,14 +297,17 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         factor, from the exact engine (``rtol`` is not used: nothing is integrated).
         A block sliding one way downslope (direction "negative"): D_m (the downslope
         displacement at the end, -u >= 0 [m]); else u_end_m (the signed u at the end [m]);
-        then max_abs_displacement_m [m], n_events, t_end_s [s]."""
+        then max_abs_displacement_m [m], n_events, n_slips (slip episodes, a block that
+        slides one way: there stick and slip alternate, so n_slips = ceil(n_events / 2)),
+        t_end_s [s]."""
         from ..core import Horizon, make_backend
 
         horizons = [Horizon.resolve(motion, t_end) for motion in motions]
         out = make_backend("exact").solve_final(self, list(motions), horizons, np.asarray(scale, dtype=float))
-        u = out[..., 0].ravel()
+        u, n_events = out[..., 0].ravel(), out[..., 4].ravel().astype(int)
         end = dict(D_m=0.0 - u) if self.direction == "negative" else dict(u_end_m=u)  # 0.0 - u: no -0.0
-        return dict(**end, max_abs_displacement_m=out[..., 3].ravel(), n_events=out[..., 4].ravel().astype(int),
+        slips = {} if self.direction == "both" else dict(n_slips=(n_events + 1) // 2)
+        return dict(**end, max_abs_displacement_m=out[..., 3].ravel(), n_events=n_events, **slips,
                     t_end_s=out[..., 5].ravel())
 
     # ---- hybrid automaton --------------------------------------------------

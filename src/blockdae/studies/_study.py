@@ -26,13 +26,14 @@ import time
 import numpy as np
 
 from ..sliding import AdjustmentFactor, SlidingBlock, newmark_rd_sd
-from ..core.contract import StudyModel
+from ..core.contract import AbstractHybridModel
 from ..core import progress_bar
 from ..units import STANDARD_GRAVITY
 from ..excitation import BaseMotion, Record, RecordSet, check_horizontal, check_pga, with_metadata
 from ..motions import response_spectrum
 from ..structures import Floor
 from ._checkpoint import Checkpoint, motion_name as _name
+from ._hooks import study_batch, study_parameter
 
 #: analyses per task aimed at (Dask: each task costs 0.2-1 ms of overhead; aim at 10³-10⁴)
 TASK_ANALYSES = 2000
@@ -122,12 +123,18 @@ def study(records, mu=None, pga=None, scale=None, where=("ground",), direction=N
         sd_period, damping: period [s] and damping ratio [-] of the oscillator whose
             displacement spectrum gives Sd (see ``sd_m``).
         t_end: final time [s]; None: until the block rests after each motion.
-        g: the value of one g [m/s²] (a ``block`` given brings its own).
-        block: the model to slide, any μ or ky (the study sets it): one that declares
-            ``study_parameter`` ((keyword, table column, unit), e.g. ("mu", "mu", "-"))
-            and ``study_batch(values)``, the model at every value, whose
+        g: the value of one g [m/s²] (a ``block`` given brings its own where it has a g).
+        block: the model to slide, any μ or ky (the study sets it): every model. One that
+            declares ``study_parameter`` ((keyword, table column, unit), e.g. ("mu", "mu",
+            "-")) sweeps that; ``study_batch(values)``, the model at every value, whose
             ``study_columns(motions, t_end, scale, rtol)`` gives its table columns (one
-            row per motion x value x factor). E.g. ``bd.PlanarBlock(mu=0.1, bias=(-0.02,
+            row per motion x value x factor), runs them (both optional: see
+            :class:`bd.core.contract.StudyModel`; by default the keyword given is the
+            model's parameter of that name, each value a model of its own through its
+            ``replace``, each motion x factor run by ``bd.simulate`` on the model's
+            default backend, with an ensemble's columns: ``u_end_m``,
+            ``max_abs_displacement_m``, n_events, t_end_s for a model whose state u is in
+            m). E.g. ``bd.PlanarBlock(mu=0.1, bias=(-0.02,
             0))`` on three-component records (``bd.BaseMotion``, named by their
             components; ``pga`` scales the largest horizontal peak; ground only), or
             ``bd.FlexibleSlidingMass(bd.ShearColumn(height, vs), ky=0.1)`` with ``ky=``
@@ -250,7 +257,8 @@ def run_task(records, grid: _Grid) -> dict:
     unit = grid.g / peak if grid.by == "pga" else np.ones(len(motions))
     engine_motions = [m if sign[p] * k == 1.0 else _normalised(m, sign[p] * k)
                       for m, k in zip(motions, unit) for p in polarities]
-    columns = grid.block.study_batch(grid.sweep).study_columns(engine_motions, grid.t_end, grid.factors, grid.rtol)
+    batch = study_batch(grid.block, grid.parameter, grid.sweep)
+    columns = batch.study_columns(engine_motions, grid.t_end, grid.factors, grid.rtol)
     sd = response_spectrum(leading, grid.sd_period, grid.damping).sd
     pgv = np.array([_peak_velocity(m) for m in leading])
     n_p, n_v, n_f = len(polarities), grid.values.size, grid.factors.size
@@ -330,7 +338,7 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
     else:
         polarities = getattr(block, "study_polarities", ())  # a block that is no StudyModel: refused next
     parameter, column, values, sweep = _swept(block, swept)
-    batch = block.study_batch(sweep)  # checks the values against the model's other parameters (|bias| < mu, ...)
+    batch = study_batch(block, parameter, sweep)  # checks the values against the model's other parameters
     if any(isinstance(r, BaseMotion) for r in records) and where != ("ground",):
         raise ValueError("three-component motions (bd.BaseMotion) are studied on the ground only")
     _values("sd_period", sd_period, "s")
@@ -351,22 +359,20 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
                          f"than the free memory ({free / 2**30:.1f} GiB): split the study or shrink the grid")
     grid = _Grid(parameter=parameter, column=column, values=values, sweep=sweep, factors=factors, by=by, where=where,
                  direction=direction, polarities=polarities, refine=refine, sd_period=float(sd_period),
-                 damping=float(damping), t_end=t_end, g=float(block.g), block=block, rtol=rtol)
+                 damping=float(damping), t_end=t_end, g=float(getattr(block, "g", g)), block=block, rtol=rtol)
     return records, grid
 
 
 def _swept(block, swept):
     """(keyword, table column, values, sweep) of the parameter ``block`` sweeps, from
     ``swept`` (keyword -> the values given to :func:`study`, None where not given),
-    checked: the model is a study model (``study_parameter``, ``study_batch``), and only its
-    keyword is given. ``values`` are numbers for the table; ``sweep`` is what
-    ``study_batch`` takes: the same numbers, or what the model's ``study_sweep(given)``
-    makes of what it takes besides numbers (the flexible mass's ky tables; None: numbers)."""
-    if not isinstance(block, StudyModel):
-        raise TypeError(f"block must be a model that declares study_parameter and study_batch "
-                        f"(a bd.core.contract.StudyModel: bd.SlidingBlock, bd.PlanarBlock, bd.FlexibleSlidingMass), "
-                        f"got {type(block).__name__}")
-    parameter, column, unit = block.study_parameter_for(swept)
+    checked: the model is a model, and only its keyword is given. ``values`` are numbers
+    for the table; ``sweep`` is what the batch takes: the same numbers, or what the model's
+    ``study_sweep(given)`` makes of what it takes besides numbers (the flexible mass's ky
+    tables; None: numbers)."""
+    if not isinstance(block, AbstractHybridModel):
+        raise TypeError(f"block must be a model (a bd.core.contract.AbstractHybridModel), got {type(block).__name__}")
+    parameter, column, unit = study_parameter(block, swept)
     model = type(block).__name__
     for other, given in swept.items():
         if other != parameter and given is not None:
@@ -374,7 +380,7 @@ def _swept(block, swept):
                              f"{parameter}= instead")
     if swept.get(parameter) is None:
         raise ValueError(f"give {parameter}= ({model}'s swept parameter [{unit}], a number or a 1-D sequence)")
-    own = block.study_sweep(swept[parameter])
+    own = getattr(block, "study_sweep", lambda given: None)(swept[parameter])
     if own is not None:
         return parameter, column, *own
     values = _values(parameter, swept[parameter], unit)
@@ -488,8 +494,6 @@ def _table(parts, grid):
         df["pga_g"] = np.tile(grid.factors, len(df) // grid.factors.size)
     for k, v in cols.items():
         df[k] = v
-    if getattr(grid.block, "direction", "both") != "both":  # one-way: stick and slip alternate
-        df.insert(df.columns.get_loc("n_events") + 1, "n_slips", (df["n_events"] + 1) // 2)
     return df
 
 
