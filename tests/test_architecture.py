@@ -12,7 +12,7 @@ import blockdae as bd
 
 PACKAGE = pathlib.Path(bd.__file__).resolve().parent
 CORE = ["core", "solvers", "backends.py"]
-MODELS = ("SlidingBlock", "PlanarBlock", "SpringSupportedMass", "FlexibleSlidingMass")
+MODELS = ("SlidingBlock", "PlanarBlock", "SpringSupportedMass", "FlexibleSlidingMass", "RockingBlock")
 
 
 def _modules():
@@ -96,10 +96,75 @@ def test_the_core_names_no_concrete_model():
 
 
 def test_studies_name_no_model_but_their_default_block():
-    """bd.study sweeps what a model declares (study_parameter, study_batch): it names only
-    the 1-D block, its default."""
+    """bd.study sweeps what a model declares (study_parameter, study_batch) or, by default,
+    the keyword it is given: it names only the 1-D block, its default."""
     for path in sorted((PACKAGE / "studies").rglob("*.py")):
         assert not _names(path) & (set(MODELS) - {"SlidingBlock"}), path.name
+
+
+#: the contract's classes a model subclasses (blockdae.core.contract)
+CONTRACT = {"AbstractHybridModel", "BatchedModel", "DifferentiableModel", "LinearModesModel", "EngineModel",
+            "StudyModel"}
+#: the front ends, which build the models a user names (a command, a page), and the top
+#: level, which exports them
+FRONT_ENDS = ("cli", "app", "__init__.py")
+#: (module, model) named outside the model's package on purpose, each with its reason
+NAMED_ON_PURPOSE = {
+    ("studies/_study.py", "SlidingBlock"): "bd.study's default block",
+    ("design/_models.py", "PlanarBlock"): "design.Planar, the block on a plane's design model",
+    ("planar/_elms.py", "SlidingBlock"): "Elms's set-up: the 1-D block a plane's slide reduces to",
+}
+
+
+def built_in_models() -> dict:
+    """Class name -> its package, of every model defined in the package (a class whose bases
+    name a class of the contract), found in the source."""
+    found = {}
+    for path in PACKAGE.rglob("*.py"):
+        package = path.relative_to(PACKAGE).parts[0]
+        for node in ast.walk(ast.parse(path.read_text())):
+            if package != "core" and isinstance(node, ast.ClassDef) \
+                    and {ast.unparse(base).split(".")[-1] for base in node.bases} & CONTRACT:
+                found[node.name] = package
+    return found
+
+
+def names_outside(module: str, source: str, models: dict) -> set:
+    """The models of ``models`` (class name -> its package) that ``source``, the module at
+    ``module`` (a path relative to the package), names in code (uses, imports or reads as an
+    attribute, ``bd.RockingBlock``; docstrings and messages aside) outside their packages;
+    none in the front ends."""
+    parts = pathlib.PurePosixPath(module).parts
+    if parts[0] in FRONT_ENDS:
+        return set()
+    tree = ast.parse(source)
+    names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
+    names |= {n.attr for n in ast.walk(tree) if isinstance(n, ast.Attribute)}
+    names |= {a.asname or a.name for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) for a in n.names}
+    return {model for model in names & set(models) if parts[0] != models[model]}
+
+
+def test_the_built_in_models_are_found():
+    assert set(MODELS) <= set(built_in_models())
+    assert built_in_models()["RockingBlock"] == "rocking"
+
+
+def test_the_check_finds_a_model_named_outside_its_package():
+    source, models = "import blockdae as bd\nbd.RockingBlock(b=0.2, h=1.0, mu=0.7)\n", {"RockingBlock": "rocking"}
+    assert names_outside("motions/_spectra.py", source, models) == {"RockingBlock"}
+    assert names_outside("rocking/_spectra.py", source, models) == set()
+    assert names_outside("cli/_rocking.py", source, models) == set()
+    assert names_outside("motions/_spectra.py", '"""A bd.RockingBlock in a docstring."""', models) == set()
+
+
+def test_no_module_outside_a_models_package_names_it():
+    """A model declares what the rest needs through the contract: no module outside its
+    package names it (the core, solvers, tools and the other models), but the front ends and
+    the few named on purpose, each with its reason; a reason that no longer holds fails too."""
+    models = built_in_models()
+    found = {(path.relative_to(PACKAGE).as_posix(), model) for path in PACKAGE.rglob("*.py")
+             for model in names_outside(path.relative_to(PACKAGE).as_posix(), path.read_text(), models)}
+    assert found == set(NAMED_ON_PURPOSE)
 
 
 def test_one_event_shape_and_one_solution_base():
