@@ -121,7 +121,7 @@ CASES = {
         model=bd.RockingBlock(b=0.2, h=0.8, mu=0.6),
         motions=(bd.SinePulse(-0.4 * G, 0.5), bd.TriangularPulse(0.5 * G, 0.4), bd.Harmonic(0.3 * G, 0.5, cycles=2)),
         t_end=2.0, record=(KOBE.scaled(0.5), 3.0), reference=CVODE_TIGHT,
-        wrt=("b", "h")),
+        batch=bd.RockingBlock(b=np.array([0.2, 0.25]), h=0.8, mu=0.6), wrt=("b", "h")),
     "OscillatorOnStop": Case(
         model=custom.OscillatorOnStop(omega=2 * np.pi * 2.0, zeta=0.2, omega_c=2 * np.pi * 8.0, gap=0.005),
         motions=(bd.SinePulse(0.5 * G, 0.5), bd.RectangularPulse(1.0, 2.0), bd.Harmonic(0.3 * G, 0.5, cycles=2)),
