@@ -108,3 +108,21 @@ def test_batch_values_are_checked_per_set():
         bd.FlexibleSlidingMass(bd.ShearColumn(10.0, 200.0), ky=np.array([0.1, -0.2]))
     with pytest.raises(ValueError, match="differ in size"):
         bd.SpringSupportedMass(frequency=np.array([5.0, 10.0]), damping=np.array([0.0, 0.1, 0.2]))
+
+
+def test_a_study_sweeps_the_rocking_blocks_mu_by_default():
+    """bd.study takes the rocking block, which declares no study hook: each mu a block of
+    its own, each row its single run (bit for bit) with the block's own columns; values of
+    mu that slide and rock in one study are refused before any run (their displacements
+    differ in unit)."""
+    record, block = _records()[1], bd.RockingBlock(b=0.25, h=1.0, mu=1.0)
+    table = bd.study([record], mu=[0.5, 1.0], scale=[1.0, 2.0], block=block, t_end=3.0)
+    assert list(table.columns[-6:]) == ["theta_end_rad", "max_abs_displacement_rad", "n_events", "t_end_s",
+                                        "overturned", "max_theta_over_alpha"]
+    for _, row in table.iterrows():
+        alone = bd.simulate(block.replace(mu=row["mu"]), record.scaled(row["scale"]), t_end=3.0)
+        assert row["max_abs_displacement_rad"] == alone.max_abs_displacement
+        assert row["n_events"] == len(alone.events)
+    with pytest.raises(ValueError, match=r"mu: the values \[0.1, 0.5\] give RockingBlocks whose displacements differ "
+                                         r"\(u \[m\], theta \[rad\]\)"):
+        bd.study([record], mu=[0.1, 0.2, 0.5], scale=1.0, block=block)

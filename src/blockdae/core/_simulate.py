@@ -25,11 +25,11 @@ def simulate(model: AbstractHybridModel, motion, t_end: float | None = None,
     Args:
         model: any model: a :class:`SlidingBlock`, :class:`PlanarBlock`,
             :class:`SpringSupportedMass` (``motion`` is then its vertical ground
-            acceleration), :class:`FlexibleSlidingMass` or a user's
+            acceleration), :class:`FlexibleSlidingMass`, :class:`RockingBlock` or a user's
             :class:`AbstractHybridModel`; a batch of parameter sets where the model takes
             arrays (a :class:`~blockdae.core.contract.BatchedModel` with 1-D array
             parameters: the 1-D block's mu, the plane's, the spring's frequency and
-            damping, the flexible mass's ky).
+            damping, the flexible mass's ky, the free-standing block's b, h, mu, ...).
         motion: the base excitation [m/s²] (a :class:`Record`, :class:`Harmonic`, ...; for
             a PlanarBlock also a :class:`BaseMotion` of x, y, z components); or many: a
             sequence of them, a mapping name -> excitation, a :class:`RecordSet` (its

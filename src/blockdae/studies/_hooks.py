@@ -58,6 +58,13 @@ class SimulatedBatch(StudyBatch):
     def __post_init__(self):
         replace = getattr(self.model, "replace", None) or (lambda **changes: dataclasses.replace(self.model, **changes))
         object.__setattr__(self, "models", tuple(replace(**{self.parameter: float(v)}) for v in self.values))
+        kinds = {}  # what each model reports as its displacement -> the first value that gives it
+        for model, value in zip(self.models, self.values):
+            kinds.setdefault(_displacement(model), float(value))
+        if len(kinds) > 1:
+            raise ValueError(f"{self.parameter}: the values {list(kinds.values())} give {type(self.model).__name__}s "
+                             f"whose displacements differ ({', '.join(kinds)}); one table's columns share one "
+                             "unit: study them apart")
 
     def check_motions(self, motions, t_end) -> None:
         """Each motion checked by the model (its ``check_motion``)."""
@@ -73,6 +80,11 @@ class SimulatedBatch(StudyBatch):
                 for model in self.models]
         shape = (len(motions), 1, len(scale))
         return {name: np.concatenate([np.reshape(c[name], shape) for c in each], axis=1).ravel() for name in each[0]}
+
+
+def _displacement(model) -> str:
+    """What ``model`` reports as its displacement: its states' names and unit ("u [m]")."""
+    return f"{', '.join(model.state_names[s] for s in model.displacement_states)} [{model.displacement_unit}]"
 
 
 def _parameter_names(block) -> set:
