@@ -126,3 +126,13 @@ def test_a_study_sweeps_the_rocking_blocks_mu_by_default():
     with pytest.raises(ValueError, match=r"mu: the values \[0.1, 0.5\] give RockingBlocks whose displacements differ "
                                          r"\(u \[m\], theta \[rad\]\)"):
         bd.study([record], mu=[0.1, 0.2, 0.5], scale=1.0, block=block)
+
+
+def test_a_rocking_batchs_solution_states_radians():
+    """A batch of one record (a BatchSolution) says its unit: rad for a block that rocks."""
+    batch = bd.simulate(BATCHES["rocking"], _records()[0], t_end=3.0)
+    table = batch.to_dataframe()
+    assert "rad (signed)" in repr(batch) and batch.unit == "rad"
+    assert list(table.columns[-4:]) == ["theta_end_rad", "max_abs_displacement_rad", "n_events", "t_end_s"]
+    assert batch.figure().axes[0].get_ylabel() == "relative displacement (signed) [rad]"
+    assert bd.simulate(BATCHES["rocking-slides"], _records()[0], t_end=3.0).to_dataframe().columns[-4] == "u_end_m"

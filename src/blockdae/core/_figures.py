@@ -49,7 +49,7 @@ def state_figure(solution, *, n_points, title=None):
 
 
 def batch_figure(batch, *, title=None):
-    """u(t_end) and max |u| [m] of each parameter set against the parameter that varies."""
+    """u(t_end) and max |u| [its unit] of each parameter set against the parameter that varies."""
     import matplotlib.pyplot as plt
 
     grid, block = batch.parameters(), batch.block
@@ -66,7 +66,7 @@ def batch_figure(batch, *, title=None):
     fig, ax = plt.subplots(figsize=(6, 4), constrained_layout=True)
     ax.plot(x, batch.displacement, marker="o", ms=4, color="C3", label="u(t_end)")
     ax.plot(x, batch.max_abs_displacement, marker="s", ms=4, mfc="none", ls="--", color="0.3", label="max |u|")
-    ax.set(xlabel=xlabel, ylabel="relative displacement (signed) [m]", title=title)
+    ax.set(xlabel=xlabel, ylabel=f"relative displacement (signed) [{batch.unit}]", title=title)
     ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
     ax.legend(loc="best", fontsize="small")
     return fig

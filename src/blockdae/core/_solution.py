@@ -231,8 +231,8 @@ class BatchSolution:
 
     def __repr__(self):
         u = self.displacement
-        return compact_repr(self, f"{u.size} parameter sets, u(t_end) from {np.min(u):.4g} to {np.max(u):.4g} m "
-                                  "(signed)")
+        return compact_repr(self, f"{u.size} parameter sets, u(t_end) from {np.min(u):.4g} to {np.max(u):.4g} "
+                                  f"{self.unit} (signed)")
 
     displacement: np.ndarray
     max_abs_displacement: np.ndarray
@@ -245,6 +245,12 @@ class BatchSolution:
 
     def __len__(self):
         return self.displacement.shape[0]
+
+    @property
+    def unit(self) -> str:
+        """The unit of the displacement: the block's ``displacement_unit`` ("m"; "rad" for a
+        rotation), "m" where the block is unknown."""
+        return "m" if self.block is None else self.block.displacement_unit
 
     def __getitem__(self, index: int) -> AbstractSolution:
         """The full solution (events, dense output) of one parameter set."""
@@ -260,7 +266,7 @@ class BatchSolution:
         return {} if self.block is None else self.block.batch_parameters()
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
-        """u(t_end) and max |u| [m] against the parameter that varies (the arguments
+        """u(t_end) and max |u| [its unit] against the parameter that varies (the arguments
         besides ``title`` are unused); a matplotlib Figure."""
         from ._figures import batch_figure
 
@@ -269,8 +275,9 @@ class BatchSolution:
     def to_dataframe(self):
         """A pandas DataFrame, one row per parameter set: the grid (mu, mu_kinetic, bias
         [-], g_m_s2 [m/s²], and the direction of a 1-D block; when the block is known),
-        u_end_m (the signed u at the end [m]; displacement_x_m, displacement_y_m for a planar block),
-        max_abs_displacement_m [m], n_events, t_end_s [s]."""
+        u_end_m (the signed u at the end [m]; displacement_x_m, displacement_y_m for a planar block;
+        a rotation's <state>_end_rad, as an ensemble's table names it), max_abs_displacement_m
+        [m] (_rad for a rotation), n_events, t_end_s [s]."""
         import pandas as pd
 
         columns = self.parameters()
@@ -278,9 +285,12 @@ class BatchSolution:
             columns |= {"g_m_s2": float(self.block.g)}
             if hasattr(self.block, "direction"):  # the 1-D block's sliding directions
                 columns |= {"direction": self.block.direction}
-        u = np.asarray(self.displacement, dtype=float)
-        columns |= ({"u_end_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]})
-        columns |= {"max_abs_displacement_m": np.asarray(self.max_abs_displacement, dtype=float),
+        u, unit = np.asarray(self.displacement, dtype=float), self.unit
+        if unit != "m":  # the state's own name, as an ensemble's table names it
+            columns |= {f"{self.block.state_names[self.block.displacement_states[0]]}_end_{unit}": u}
+        else:
+            columns |= {"u_end_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]}
+        columns |= {f"max_abs_displacement_{unit}": np.asarray(self.max_abs_displacement, dtype=float),
                     "n_events": np.asarray(self.n_events, dtype=int),
                     "t_end_s": np.asarray(self.t_end, dtype=float)}
         return pd.DataFrame(columns, index=pd.RangeIndex(len(self)))

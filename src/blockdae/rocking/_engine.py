@@ -56,6 +56,8 @@ class _OneSetEngine:
     backend (each set's solution kept, as one run of it gives)."""
 
     def solve_batch(self, model, excitation, horizon, backend):
+        """A :class:`~blockdae.core.BatchSolution`: the backend's loop over the sets, each
+        set's run by :meth:`solve` kept (its ``solve_one``)."""
         return AbstractBackend.solve_batch(backend, model, excitation, horizon)
 
     def solve_final(self, model, excitations, horizons, scale, backend) -> np.ndarray:

@@ -200,8 +200,8 @@ class RockingBlock(DifferentiableModel, BatchedModel):
 
     def final_quantities(self, displacement, max_abs_displacement) -> dict:
         """overturned (|theta| at the end is pi/2, where an overturned block lies) and
-        max_theta_over_alpha (max |theta| / alpha [-]) of n runs; False and 0 for a block
-        that slides."""
+        max_theta_over_alpha (max |theta| / alpha [-]) of n runs (a batch's: the set runs
+        fastest, each over its own alpha); False and 0 for a block that slides."""
         largest = np.asarray(max_abs_displacement, dtype=float)
         if self.slides:
             return {"overturned": np.zeros(largest.shape, dtype=bool), "max_theta_over_alpha": np.zeros(largest.shape)}

@@ -4,7 +4,8 @@
 A study slides a one-way block (by default in both polarities of each record, as
 ``bd.newmark``) on the ground and on floors of shear frames under every record, at every
 friction coefficient μ (or yield acceleration ky [g]) and every intensity; another model
-sweeps the parameter it declares (``study_parameter``: the flexible mass's ky [g]). The work is
+sweeps the parameter it declares (``study_parameter``: the flexible mass's ky [g]), or the
+keyword it is given, one model per value run by ``bd.simulate`` (:mod:`._hooks`). The work is
 split into tasks of whole records: a task computes the ground and floor motions of its
 records once (one frame response per record and frame), normalises each motion to a
 peak of 1 g (``pga``) and runs every (motion, μ, intensity) in one call of the compiled
@@ -336,7 +337,7 @@ def _checked(records, swept, pga, scale, where, direction, refine, sd_period, da
         block = SlidingBlock(mu=1.0, direction=direction or "negative", g=g)  # checks direction and g
         polarities = ("normal", "inverse") if direction is None else block.study_polarities
     else:
-        polarities = getattr(block, "study_polarities", ())  # a block that is no StudyModel: refused next
+        polarities = getattr(block, "study_polarities", ())  # none declared: the motions as given
     parameter, column, values, sweep = _swept(block, swept)
     batch = study_batch(block, parameter, sweep)  # checks the values against the model's other parameters
     if any(isinstance(r, BaseMotion) for r in records) and where != ("ground",):
