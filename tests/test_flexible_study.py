@@ -140,9 +140,9 @@ def test_t_end_past_a_record_and_summary_are_refused(records, table, monkeypatch
 
 
 def test_benchmark_quick(monkeypatch, capsys):
-    from test_benchmarks import _load
+    from conftest import load_benchmark
 
-    assert _load("flexible_study", monkeypatch).main(["--quick", "--no-dask"]) == 0
+    assert load_benchmark("flexible_study", monkeypatch).main(["--quick", "--no-dask"]) == 0
     out = capsys.readouterr().out
     assert "10 records × 2 ky × 3 PGA = 60 analyses" in out and "bar: the study no slower" in out
     assert "smoke run, not a measurement" in out and "P(D > 5 cm | PGA 0.5 g)" in out

@@ -16,7 +16,7 @@ from blockdae.cli._main import main
 from blockdae.cli import _study as command_module
 from blockdae.studies import _study as study_module
 from conftest import load_sample_record, sample_record_paths
-from test_benchmarks import _load as _load_benchmark
+from conftest import load_benchmark as _load_benchmark
 
 
 #: the deprecated many-motion functions keep their tests for the release they stay

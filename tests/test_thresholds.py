@@ -119,8 +119,8 @@ def biased_touch_closed_form(t_end=5.0):
     return np.array(events, dtype=float), float(u)
 
 
-def test_the_issue_cases_give_the_exact_answer():
-    """Issue 28's cases: a touch of mu g is no slide (exact 0 m, no event); with a bias
+def test_a_touch_of_mu_g_gives_the_exact_answer():
+    """A touch of mu g is no slide (exact 0 m, no event); with a bias
     the touch on one side must not poison the real slides on the other. Reference for
     the biased case: its closed form (``biased_touch_closed_form``: 9 events, u(5 s) =
     0.48204903463452867 m); measured: events within 4.4e-16 s, u within 5.6e-16 m."""
