@@ -235,8 +235,42 @@ def _difference_bound(du, dv, row):
 
 
 @register_jitable
+def _free_powers(m, row, step, n):
+    """The free STICK oscillation over 2^p whole steps [s], p = 0 .. bits of ``n`` - 1:
+    row p holds M^(2^p) (m0, m1, m2, m3; M the step map ``m``'s (u, u') part) and its
+    amplitude's decay over those steps, rounded up (e^(-c step / 2) widened, then
+    squared: each factor keeps its widening above a product's rounding)."""
+    count = 1
+    while (1 << count) <= n:
+        count += 1
+    powers = np.empty((count, 5))
+    powers[0, 0], powers[0, 1], powers[0, 2], powers[0, 3] = m[0], m[1], m[2], m[3]
+    powers[0, 4] = math.exp(-0.5 * row[1] * step) * _WIDEN
+    for p in range(1, count):
+        a, b, c, d = powers[p - 1, 0], powers[p - 1, 1], powers[p - 1, 2], powers[p - 1, 3]
+        powers[p, 0], powers[p, 1] = a * a + b * c, a * b + b * d
+        powers[p, 2], powers[p, 3] = c * a + d * c, c * b + d * d
+        powers[p, 4] = powers[p - 1, 4] * powers[p - 1, 4] * _WIDEN
+    return powers
+
+
+@register_jitable
+def _free_steps(powers, count, du, dv, bound):
+    """(du [m], du' [m/s], the bound of its |HEA| [m/s²]) of a free STICK oscillation
+    ``count`` >= 1 whole steps on, by the powers of its step map (:func:`_free_powers`)."""
+    p = 0
+    while count:
+        if count & 1:
+            du, dv = powers[p, 0] * du + powers[p, 1] * dv, powers[p, 2] * du + powers[p, 3] * dv
+            bound *= powers[p, 4]
+        count >>= 1
+        p += 1
+    return du, dv, bound
+
+
+@register_jitable
 def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step, u, v, hea, amplitude, reach,
-         cached, stack, counts):
+         powers, cached, stack, counts):
     """One sliding run of a(t) times ``sign`` from rest, its state in registers: each
     whole step quick where bounds allow (a coupled run steps its own column; a
     decoupled one's is the response's ``u``, ``v``, ``hea`` (n + 1,), ``amplitude``
@@ -252,7 +286,7 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
     # the free oscillation d = run - sign x response in STICK (from rest: 0), its bound of
     # |HEA| and that bound's factor over a step (rounded up)
     tracking, du, dv, bound = coupled, 0.0, 0.0, 0.0
-    decay = math.exp(-0.5 * stick[1] * step) * _WIDEN
+    decay = powers[0, 4]
     no_log = np.empty((0, 8))
     n = t0.shape[0]
     i = -1
@@ -262,6 +296,13 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
             i = _first_reaching(reach, i, kyg)
             if i == n:
                 break
+        if tracking:  # pass at once the steps where the response's bound stays below ky g less d's bound
+            j = _first_reaching(reach, i, kyg - bound)
+            if j > i:
+                du, dv, bound = _free_steps(powers, j - i, du, dv, bound)
+                i = j
+                if i == n:
+                    break
         a0, rate = sign * p0[i], sign * p1[i]
         if h[i] == step:
             if coupled:  # each mode's map picked statically (a tuple indexed at run time is copied)
@@ -339,12 +380,13 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     response_status = UNSETTLED if hea_sup == -math.inf or u_sup == -math.inf else FINISHED
     _put(out[RESPONSE], (u[n], v[n], 0.0, 0.0, float(STICK), 0.0, 0.0, hea_samples, hea_sup,
                          u_sup if want_u else math.nan, u_samples, float(response_status), 0.0, math.nan))
+    powers = _free_powers(maps[STICK], stick, step, n)
     for r in range(2):
         if runs[r]:
             counts = np.zeros(len(COUNT_FIELDS))
             counts[4] = -math.inf
             mode, run_u, run_v, s, w = _run(t0, h, p0, p1, 1.0 - 2.0 * r, omega, xi, kyg, coupled, damped, maps, table,
-                                            step, u, v, hea, amplitude, reach, cached, stack, counts)
+                                            step, u, v, hea, amplitude, reach, powers, cached, stack, counts)
             _put(out[1 + r], (run_u, run_v, s, w, float(mode), counts[0], counts[1], 0.0, 0.0, 0.0, 0.0, counts[5],
                               counts[3], counts[4]))
 
