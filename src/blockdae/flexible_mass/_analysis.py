@@ -187,9 +187,12 @@ def _check_rows(rows, analyses):
     against kmax, the peak of the sliding mass's average acceleration that drives its slide
     (over time; at the samples for integration "slammer")."""
     check_finite_rows(rows, analyses, "bd.flexible")
+    still = [row for row in rows if row["ky_g"] >= driving_peak(row)]  # the only cases the rule speaks of
+    if not still:
+        return
     several = len({(row["height_m"], row["vs_m_s"]) for row in rows}) > 1
     cases = [(f"{row['record']}" + (f" (H {row['height_m']:g} m, vs {row['vs_m_s']:g} m/s)" if several else ""),
-              driving_peak(row), row["ky_g"]) for row in rows]
+              driving_peak(row), row["ky_g"]) for row in still]
     warn_not_sliding(cases, len(rows), peak_name="kmax", body="mass", kind="analyses", peak_words="kmax")
 
 
@@ -198,6 +201,8 @@ def check_finite_rows(rows, analyses, caller):
     where a row's kmax or displacement is not finite."""
     for row, analysis in zip(rows, analyses):
         names = ("kmax_g", *(_RUN_OF[polarity][1] for polarity in analysis.polarities))
+        if all(math.isfinite(row[name]) for name in names):  # the common case, without an array
+            continue
         check_finite_result([row[name] for name in names],
                             lambda index: f"{caller}: {names[index[0]]} of {row['record']!r} ({analysis.model})")
 
@@ -212,6 +217,8 @@ def _rows_in_parts(rows_of, analyses, progress) -> list[dict]:
     """``rows_of(analyses)``: in one call, or, where a progress bar over the motions is
     shown, in :data:`PROGRESS_PARTS` parts of a few motions each, in order (the rows of an
     analysis do not depend on the others run with it)."""
+    if len(analyses) < 2:
+        return rows_of(analyses)
     starts = [q for q, a in enumerate(analyses) if q == 0 or a.record is not analyses[q - 1].record]
     if len(starts) < 2 or not show_progress(progress):
         return rows_of(analyses)
@@ -231,7 +238,34 @@ PROGRESS_PARTS = 20
 
 def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
          integration, g, t_end, check_peak=True) -> list[Analysis]:
-    """The analyses of a :func:`flexible` call, every input checked before any work."""
+    """The analyses of a :func:`flexible` call, every input checked before any work. Those
+    of one record and plain numbers are kept (a warm loop plans once: the record and the
+    models are immutable); the column's rules, which warn, run on every call."""
+    args = (motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
+            integration, g, t_end, check_peak)
+    types = tuple(map(type, args))
+    if types[0] is not Record or pga is not None or not _PLAIN.issuperset(types[1:]):
+        return _plan(*args)
+    key = (args, types)  # True == 1 == 1.0 must not find each other's analyses
+    found = _PLANS.get(key)
+    if found is None:
+        if len(_PLANS) >= 32:  # each holds its record
+            _PLANS.clear()
+        found = _PLANS[key] = tuple(_plan(*args))
+    else:
+        check_column(height, vs, vr, damping)
+    return list(found)
+
+
+#: the types of the arguments :func:`plan` keeps the analyses of (immutable, hashable)
+_PLAIN = frozenset((float, int, bool, str, type(None)))
+#: :func:`plan`'s store: its arguments and their types -> the analyses
+_PLANS = {}
+
+
+def _plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
+          integration, g, t_end, check_peak):
+    """:func:`plan`, each time."""
     if integration not in INTEGRATIONS:
         raise ValueError(f"integration={integration!r} is unknown; choose one of {tuple(INTEGRATIONS)}")
     if method not in METHODS:
@@ -360,6 +394,8 @@ def as_ky_table(ky):
 def _motions(motion, g):
     """(names, records, a record set's metadata or None) of one record, a sequence or dict
     of them, a :class:`RecordSet` or a path to a record file or a folder (one g = ``g`` [m/s²])."""
+    if type(motion) is Record:  # one record: labelled by its name, as labelled_motions does
+        return (motion.name or "motion 0",), [motion], None
     names, records, metadata = labelled_motions(motion, g)
     for name, record in zip(names, records):
         if not isinstance(record, Record):
@@ -404,35 +440,16 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
         others = [analysis for q, analysis in enumerate(analyses) if q not in near]
         rest = iter(exact_rows(others) if others else ())
         return [_near_critical_row(analysis) if q in near else next(rest) for q, analysis in enumerate(analyses)]
-    inputs, index, input_of = [], {}, []
-    for analysis in analyses:
-        key = (id(analysis.record), analysis.t_end)
-        if key not in index:
-            index[key] = len(inputs)
-            inputs.append(_engine_input(analysis.record, analysis.t_end))
-        input_of.append(index[key])
-    finals = _final_columns(analyses, inputs, input_of)
-    tasks, response_of, vs_finals, first_with, damped = [], [], [], {}, set()
-    for q, analysis in enumerate(analyses):
-        r = input_of[q]
-        (omega, xi, kyg, coupled), vs_final = finals[q]
-        response_of.append(first_with.setdefault((r, omega, xi), q))
-        slides = slip_underdamped(xi, coupled)  # else its slides run on ._damped_slip, after
-        if not slides:
-            damped.add(q)
-        polarities = analysis.polarities
-        tasks.append((r, omega, xi, kyg, coupled and slides, slides and "normal" in polarities,
-                      slides and "inverse" in polarities, False, response_of[q] == q))
-        vs_finals.append(vs_final)
-    out = _run_analyses(inputs, tasks).tolist()
+    prepared = _prepared(analyses)
+    arrays, offsets, tasks, response_of, columns, damped = prepared
+    out = _run_kernel(arrays, offsets, tasks).tolist()
     rows = []
     for q, analysis in enumerate(analyses):
-        model = analysis.model
         response = out[response_of[q]][_fused.RESPONSE]
         if response[_STATUS] != _engine.FINISHED:
-            check(response, f" ({analysis.name}, {model})")
-        row = _row(analysis, response[_HEA_SAMPLES] / model.g, response[_HEA_SUP] / model.g, vs_finals[q],
-                   tasks[q][2])
+            check(response, f" ({analysis.name}, {analysis.model})")
+        model = analysis.model
+        row = _row(analysis, response[_HEA_SAMPLES] / model.g, response[_HEA_SUP] / model.g, *columns[q])
         for polarity in () if q in damped else analysis.polarities:
             run_row, displacement, episodes = _RUN_OF[polarity]
             run = out[q][run_row]
@@ -444,6 +461,49 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     for q in damped:
         _slides_in_closed_form(analyses[q], rows[q])
     return rows
+
+
+def _prepared(analyses):
+    """What the compiled call of ``analyses`` takes, and how its outcomes map to rows:
+    (the engine arrays and offsets of their excitations, the tasks (n, len(TASK_FIELDS)),
+    the analysis whose response each reads, each column's vs [m/s] and total damping [-]
+    after the equivalent-linear iteration, the analyses whose slides run in closed form after). Kept for analyses
+    without that iteration (a warm loop of :func:`plan`'s kept analyses prepares once):
+    it depends only on the analyses, which are immutable."""
+    key = tuple(map(id, analyses))
+    found = _PREPARED.get(key)
+    if found is not None and all(a is b for a, b in zip(found[0], analyses)):
+        return found[1]
+    inputs, index, input_of = [], {}, []
+    for analysis in analyses:
+        key_input = (id(analysis.record), analysis.t_end)
+        if key_input not in index:
+            index[key_input] = len(inputs)
+            inputs.append(_engine_input(analysis.record, analysis.t_end))
+        input_of.append(index[key_input])
+    finals = _final_columns(analyses, inputs, input_of)
+    tasks, response_of, columns, first_with, damped = [], [], [], {}, set()
+    for q, analysis in enumerate(analyses):
+        r = input_of[q]
+        (omega, xi, kyg, coupled), vs_final = finals[q]
+        response_of.append(first_with.setdefault((r, omega, xi), q))
+        slides = slip_underdamped(xi, coupled)  # else its slides run on ._damped_slip, after
+        if not slides:
+            damped.add(q)
+        polarities = analysis.polarities
+        tasks.append((r, omega, xi, kyg, coupled and slides, slides and "normal" in polarities,
+                      slides and "inverse" in polarities, False, response_of[q] == q))
+        columns.append((vs_final, xi))
+    prepared = (*_kernel_input(inputs), np.array(tasks, dtype=float), response_of, columns, damped)
+    if all(analysis.reference_strain is None for analysis in analyses):
+        if len(_PREPARED) >= 32:
+            _PREPARED.clear()
+        _PREPARED[key] = (tuple(analyses), prepared)  # holds the analyses: their ids stay theirs
+    return prepared
+
+
+#: :func:`_prepared`'s store: the analyses' ids -> (the analyses, what they prepared)
+_PREPARED = {}
 
 
 def _row(analysis, kmax_g, kmax_sup_g, vs_final, damping_final) -> dict:
@@ -489,19 +549,32 @@ def _run_analyses(inputs, tasks):
     """The compiled analyses (:func:`._fused._analyses`) of excitations ``inputs`` (engine
     arrays): analysis j runs ``tasks[j]`` (a tuple of TASK_FIELDS) on
     ``inputs[tasks[j][0]]``. Returns (n, 3, width) outcomes."""
-    parallel, serial = _fused.kernels()
+    return _run_kernel(*_kernel_input(inputs), np.array(tasks, dtype=float))
+
+
+def _kernel_input(inputs):
+    """(the arrays, the offsets of each excitation in them) of excitations ``inputs``
+    (engine arrays) as the kernels take them."""
     if len(inputs) == 1:
-        arrays, offsets = inputs[0], _offsets(len(inputs[0][0]))
-        work = len(inputs[0][0]) * len(tasks)
+        return inputs[0], _offsets(len(inputs[0][0]))
+    arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
+    offsets = np.concatenate([[0], np.cumsum([len(x[0]) for x in inputs])]).astype(np.int64)
+    return arrays, offsets
+
+
+def _run_kernel(arrays, offsets, tasks):
+    """The compiled analyses ``tasks`` (n, len(TASK_FIELDS)) on ``arrays`` (each
+    excitation's pieces between its ``offsets``): (n, 3, width) outcomes, in parallel
+    over cores for a large batch (:data:`PARALLEL_WORK`)."""
+    parallel, serial = _fused.kernels()
+    if len(offsets) == 2:
+        work = int(offsets[1]) * len(tasks)
     else:
-        arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
-        lengths = [len(x[0]) for x in inputs]
-        offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
-        work = sum(lengths[task[0]] for task in tasks)
+        work = int(np.diff(offsets)[tasks[:, 0].astype(np.int64)].sum())
     out = np.empty((len(tasks), 3, _fused.WIDTH))
     kernel = parallel if 2 * work >= PARALLEL_WORK else serial
     notice_numba("the flexible sliding mass's engine", _fused.COMPILE_SECONDS, kernel)
-    kernel(*arrays, offsets, np.array(tasks, dtype=float), out)
+    kernel(*arrays, offsets, tasks, out)
     return out
 
 
