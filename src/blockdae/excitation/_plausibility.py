@@ -191,6 +191,11 @@ def check_column(height, vs, vr=None, damping=None):
     :data:`PLAUSIBLE_VS_M_S`; for a soil ``damping`` ratio [-] of 1 or more a ValueError
     (a percentage), above :data:`MAX_PLAUSIBLE_DAMPING` a warning. Values that are not
     positive finite numbers are left to the model's own checks."""
+    if (type(height) in _NUMBERS and type(vs) in _NUMBERS and (vr is None or type(vr) in _NUMBERS) and
+            type(damping) in _NUMBERS and PLAUSIBLE_HEIGHT_M[0] <= height <= PLAUSIBLE_HEIGHT_M[1] and
+            PLAUSIBLE_VS_M_S[0] <= vs <= PLAUSIBLE_VS_M_S[1] and
+            (vr is None or PLAUSIBLE_VS_M_S[0] <= vr <= PLAUSIBLE_VS_M_S[1]) and damping <= MAX_PLAUSIBLE_DAMPING):
+        return  # plain numbers, each plausible: no rule speaks
     _check_range("height", height, PLAUSIBLE_HEIGHT_M, "m", _LENGTHS, "a sliding mass's height")
     for name, value in (("vs", vs), ("vr", vr)):
         _check_range(name, value, PLAUSIBLE_VS_M_S, "m/s", _VELOCITIES, "a soil's or rock's shear-wave velocity")

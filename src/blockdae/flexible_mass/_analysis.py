@@ -63,7 +63,7 @@ class Analysis:
     reference_strain: float | None
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@dataclasses.dataclass(frozen=True, eq=False, init=False)
 class FlexibleResult:
     """Results of :func:`flexible`: one row per (motion, parameter set).
 
@@ -88,6 +88,10 @@ class FlexibleResult:
     integration: str
     pga_g: tuple = ()
     metadata: object = None
+
+    def __init__(self, rows, method, integration, pga_g=(), metadata=None):
+        # the fields at once: a frozen dataclass's own __init__ sets each through object.__setattr__
+        self.__dict__.update(rows=rows, method=method, integration=integration, pga_g=pga_g, metadata=metadata)
 
     def to_dataframe(self):
         """The rows as a pandas DataFrame, units in the column names, in the columns of
@@ -176,9 +180,8 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
         rows_of = table_rows
     rows = _rows_in_parts(rows_of, analyses, progress)
     _check_rows(rows, analyses)
-    return FlexibleResult(rows=rows, method=method, integration=integration,
-                          pga_g=tuple(a.record.peak_acceleration / a.model.g for a in analyses),
-                          metadata=motion.metadata if isinstance(motion, RecordSet) else None)
+    return FlexibleResult(rows, method, integration, tuple([a.record.peak_acceleration / a.model.g for a in analyses]),
+                          motion.metadata if type(motion) is not Record and isinstance(motion, RecordSet) else None)
 
 
 def _check_rows(rows, analyses):
@@ -200,8 +203,12 @@ def check_finite_rows(rows, analyses, caller):
     """ValueError naming the column, the record, the model and ``caller`` (the function run)
     where a row's kmax or displacement is not finite."""
     for row, analysis in zip(rows, analyses):
-        names = ("kmax_g", *(_RUN_OF[polarity][1] for polarity in analysis.polarities))
-        if all(math.isfinite(row[name]) for name in names):  # the common case, without an array
+        names = _FINITE_COLUMNS.get(analysis.polarities) or ("kmax_g", *(_RUN_OF[polarity][1]
+                                                                         for polarity in analysis.polarities))
+        total = 0.0
+        for name in names:
+            total += row[name]
+        if math.isfinite(total):  # each is (a sum overflows only past 1e308: the check below then decides)
             continue
         check_finite_result([row[name] for name in names],
                             lambda index: f"{caller}: {names[index[0]]} of {row['record']!r} ({analysis.model})")
@@ -435,14 +442,14 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     in one compiled call, parallel over cores for a large batch (:mod:`._fused`). A
     total damping too close to 1 for its closed forms runs on matrix exponentials
     (:func:`_near_critical_row`)."""
-    near = {q for q, analysis in enumerate(analyses) if analysis.model.damping >= COMPILED_RESPONSE_LIMIT}
-    if near:
+    prepared = _prepared(analyses)
+    if prepared is None:
+        near = {q for q, analysis in enumerate(analyses) if analysis.model.damping >= COMPILED_RESPONSE_LIMIT}
         others = [analysis for q, analysis in enumerate(analyses) if q not in near]
         rest = iter(exact_rows(others) if others else ())
         return [_near_critical_row(analysis) if q in near else next(rest) for q, analysis in enumerate(analyses)]
-    prepared = _prepared(analyses)
-    arrays, offsets, tasks, response_of, columns, damped = prepared
-    out = _run_kernel(arrays, offsets, tasks).tolist()
+    arrays, offsets, tasks, work, response_of, columns, damped = prepared
+    out = _run_kernel(arrays, offsets, tasks, work).tolist()
     rows = []
     for q, analysis in enumerate(analyses):
         response = out[response_of[q]][_fused.RESPONSE]
@@ -466,14 +473,19 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
 def _prepared(analyses):
     """What the compiled call of ``analyses`` takes, and how its outcomes map to rows:
     (the engine arrays and offsets of their excitations, the tasks (n, len(TASK_FIELDS)),
-    the analysis whose response each reads, each column's vs [m/s] and total damping [-]
-    after the equivalent-linear iteration, the analyses whose slides run in closed form after). Kept for analyses
-    without that iteration (a warm loop of :func:`plan`'s kept analyses prepares once):
-    it depends only on the analyses, which are immutable."""
+    their work (:func:`_kernel_input`), the analysis whose response each reads, each
+    column's vs [m/s] and total damping [-] after the equivalent-linear iteration, the
+    analyses whose slides run in closed form after); None where one's total damping is
+    too close to 1 for the compiled engine. Kept for analyses without that iteration (a
+    warm loop of :func:`plan`'s kept analyses prepares once): it depends only on the
+    analyses, which are immutable."""
+    analyses = tuple(analyses)
     key = tuple(map(id, analyses))
     found = _PREPARED.get(key)
-    if found is not None and all(a is b for a, b in zip(found[0], analyses)):
+    if found is not None and found[0] == analyses:  # the same analyses (their ids are not reused while kept)
         return found[1]
+    if any(analysis.model.damping >= COMPILED_RESPONSE_LIMIT for analysis in analyses):
+        return None
     inputs, index, input_of = [], {}, []
     for analysis in analyses:
         key_input = (id(analysis.record), analysis.t_end)
@@ -494,11 +506,11 @@ def _prepared(analyses):
         tasks.append((r, omega, xi, kyg, coupled and slides, slides and "normal" in polarities,
                       slides and "inverse" in polarities, False, response_of[q] == q))
         columns.append((vs_final, xi))
-    prepared = (*_kernel_input(inputs), np.array(tasks, dtype=float), response_of, columns, damped)
+    prepared = (*_kernel_input(inputs, tasks), response_of, columns, damped)
     if all(analysis.reference_strain is None for analysis in analyses):
         if len(_PREPARED) >= 32:
             _PREPARED.clear()
-        _PREPARED[key] = (tuple(analyses), prepared)  # holds the analyses: their ids stay theirs
+        _PREPARED[key] = (analyses, prepared)  # holds the analyses: their ids stay theirs
     return prepared
 
 
@@ -520,6 +532,9 @@ def _row(analysis, kmax_g, kmax_sup_g, vs_final, damping_final) -> dict:
 #: polarity -> (its row of a compiled outcome, its displacement and episodes columns)
 _RUN_OF = {"normal": (_fused.NORMAL, "normal_m", "episodes_normal"),
            "inverse": (_fused.INVERSE, "inverse_m", "episodes_inverse")}
+#: polarities -> the columns of a row that :func:`check_finite_rows` checks
+_FINITE_COLUMNS = {polarities: ("kmax_g", *(_RUN_OF[polarity][1] for polarity in polarities))
+                   for polarities in (("normal",), ("inverse",), ("normal", "inverse"))}
 
 
 def _near_critical_row(analysis):
@@ -549,28 +564,27 @@ def _run_analyses(inputs, tasks):
     """The compiled analyses (:func:`._fused._analyses`) of excitations ``inputs`` (engine
     arrays): analysis j runs ``tasks[j]`` (a tuple of TASK_FIELDS) on
     ``inputs[tasks[j][0]]``. Returns (n, 3, width) outcomes."""
-    return _run_kernel(*_kernel_input(inputs), np.array(tasks, dtype=float))
+    return _run_kernel(*_kernel_input(inputs, tasks))
 
 
-def _kernel_input(inputs):
-    """(the arrays, the offsets of each excitation in them) of excitations ``inputs``
-    (engine arrays) as the kernels take them."""
+def _kernel_input(inputs, tasks):
+    """(the arrays, the offsets of each excitation in them, the tasks as an array, their
+    work: the pieces they step) of excitations ``inputs`` (engine arrays) and ``tasks``
+    (tuples of TASK_FIELDS) as the kernels take them."""
+    lengths = [len(x[0]) for x in inputs]
+    work = sum(lengths[int(task[0])] for task in tasks)
     if len(inputs) == 1:
-        return inputs[0], _offsets(len(inputs[0][0]))
+        return inputs[0], _offsets(lengths[0]), np.array(tasks, dtype=float), work
     arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
-    offsets = np.concatenate([[0], np.cumsum([len(x[0]) for x in inputs])]).astype(np.int64)
-    return arrays, offsets
+    offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
+    return arrays, offsets, np.array(tasks, dtype=float), work
 
 
-def _run_kernel(arrays, offsets, tasks):
+def _run_kernel(arrays, offsets, tasks, work):
     """The compiled analyses ``tasks`` (n, len(TASK_FIELDS)) on ``arrays`` (each
-    excitation's pieces between its ``offsets``): (n, 3, width) outcomes, in parallel
-    over cores for a large batch (:data:`PARALLEL_WORK`)."""
+    excitation's pieces between its ``offsets``), ``work`` pieces in all: (n, 3, width)
+    outcomes, in parallel over cores for a large batch (:data:`PARALLEL_WORK`)."""
     parallel, serial = _fused.kernels()
-    if len(offsets) == 2:
-        work = int(offsets[1]) * len(tasks)
-    else:
-        work = int(np.diff(offsets)[tasks[:, 0].astype(np.int64)].sum())
     out = np.empty((len(tasks), 3, _fused.WIDTH))
     kernel = parallel if 2 * work >= PARALLEL_WORK else serial
     notice_numba("the flexible sliding mass's engine", _fused.COMPILE_SECONDS, kernel)
