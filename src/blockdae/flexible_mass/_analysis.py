@@ -40,6 +40,7 @@ PARALLEL_WORK = 5e5
 _FIELD = {name: i for i, name in enumerate(_engine.OUTCOME_FIELDS)}
 _STATUS, _S, _EPISODES, _HEA_SAMPLES, _HEA_SUP = (_FIELD[name] for name in ("status", "s", "n_episodes", "hea_samples",
                                                                              "hea_sup"))
+_FINISHED, _RESPONSE = _engine.FINISHED, _fused.RESPONSE
 
 
 @dataclasses.dataclass(frozen=True)
@@ -172,15 +173,16 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     Returns:
         A :class:`FlexibleResult` (``.to_dataframe()``).
     """
-    pga = pga_keyword("bd.flexible", pga, target_pga)
-    analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga,
-                    polarity, integration, g, t_end, check_peak)
-    rows_of, _ = INTEGRATIONS[integration]
+    if target_pga is not None:
+        pga = pga_keyword("bd.flexible", pga, target_pga)
+    analyses, pga_g = _kept_plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain,
+                                 pga, polarity, integration, g, t_end, check_peak)
+    rows_of = INTEGRATIONS[integration][0]
     if analyses and analyses[0].model.table is not None:  # plan gives every model the table or none
         rows_of = table_rows
     rows = _rows_in_parts(rows_of, analyses, progress)
     _check_rows(rows, analyses)
-    return FlexibleResult(rows, method, integration, tuple([a.record.peak_acceleration / a.model.g for a in analyses]),
+    return FlexibleResult(rows, method, integration, pga_g,
                           motion.metadata if type(motion) is not Record and isinstance(motion, RecordSet) else None)
 
 
@@ -245,28 +247,37 @@ PROGRESS_PARTS = 20
 
 def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
          integration, g, t_end, check_peak=True) -> list[Analysis]:
-    """The analyses of a :func:`flexible` call, every input checked before any work. Those
-    of one record and plain numbers are kept (a warm loop plans once: the record and the
-    models are immutable); the column's rules, which warn, run on every call."""
-    args = (motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
-            integration, g, t_end, check_peak)
+    """The analyses of a :func:`flexible` call, every input checked before any work."""
+    return list(_kept_plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga,
+                           polarity, integration, g, t_end, check_peak)[0])
+
+
+def _kept_plan(*args):
+    """(:func:`plan`'s analyses as a tuple, each one's motion's peak [g]). Those of one
+    record and plain numbers are kept (a warm loop plans once: the record and the models
+    are immutable); the column's rules, which warn, run on every call."""
     types = tuple(map(type, args))
-    if types[0] is not Record or pga is not None or not _PLAIN.issuperset(types[1:]):
-        return _plan(*args)
+    if types[0] is not Record or args[9] is not None or not _PLAIN.issuperset(types[1:]):  # args[9]: pga
+        return _with_peaks(_plan(*args))
     key = (args, types)  # True == 1 == 1.0 must not find each other's analyses
     found = _PLANS.get(key)
     if found is None:
         if len(_PLANS) >= 32:  # each holds its record
             _PLANS.clear()
-        found = _PLANS[key] = tuple(_plan(*args))
+        found = _PLANS[key] = _with_peaks(_plan(*args))
     else:
-        check_column(height, vs, vr, damping)
-    return list(found)
+        check_column(*args[2:6])  # height, vs, vr, damping
+    return found
+
+
+def _with_peaks(analyses):
+    """(``analyses`` as a tuple, the peak of each one's motion [g])."""
+    return tuple(analyses), tuple([a.record.peak_acceleration / a.model.g for a in analyses])
 
 
 #: the types of the arguments :func:`plan` keeps the analyses of (immutable, hashable)
 _PLAIN = frozenset((float, int, bool, str, type(None)))
-#: :func:`plan`'s store: its arguments and their types -> the analyses
+#: :func:`_kept_plan`'s store: its arguments and their types -> what it returns
 _PLANS = {}
 
 
@@ -448,19 +459,20 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
         others = [analysis for q, analysis in enumerate(analyses) if q not in near]
         rest = iter(exact_rows(others) if others else ())
         return [_near_critical_row(analysis) if q in near else next(rest) for q, analysis in enumerate(analyses)]
-    arrays, offsets, tasks, work, response_of, columns, damped = prepared
+    arrays, offsets, tasks, work, response_of, templates, damped = prepared
     out = _run_kernel(arrays, offsets, tasks, work).tolist()
     rows = []
     for q, analysis in enumerate(analyses):
-        response = out[response_of[q]][_fused.RESPONSE]
-        if response[_STATUS] != _engine.FINISHED:
+        response = out[response_of[q]][_RESPONSE]
+        if response[_STATUS] != _FINISHED:
             check(response, f" ({analysis.name}, {analysis.model})")
         model = analysis.model
-        row = _row(analysis, response[_HEA_SAMPLES] / model.g, response[_HEA_SUP] / model.g, *columns[q])
+        row = templates[q].copy()
+        row["kmax_g"], row["kmax_sup_g"] = response[_HEA_SAMPLES] / model.g, response[_HEA_SUP] / model.g
         for polarity in () if q in damped else analysis.polarities:
             run_row, displacement, episodes = _RUN_OF[polarity]
             run = out[q][run_row]
-            if run[_STATUS] != _engine.FINISHED:
+            if run[_STATUS] != _FINISHED:
                 check(run, f" ({analysis.name}, {model})")
             row[displacement] = 0.0 + run[_S]
             row[episodes] = int(run[_EPISODES])
@@ -473,17 +485,17 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
 def _prepared(analyses):
     """What the compiled call of ``analyses`` takes, and how its outcomes map to rows:
     (the engine arrays and offsets of their excitations, the tasks (n, len(TASK_FIELDS)),
-    their work (:func:`_kernel_input`), the analysis whose response each reads, each
-    column's vs [m/s] and total damping [-] after the equivalent-linear iteration, the
-    analyses whose slides run in closed form after); None where one's total damping is
+    their work (:func:`_kernel_input`), the analysis whose response each reads, each one's
+    row before its outcome (:func:`_row`: vs [m/s] and total damping [-] after the
+    equivalent-linear iteration), the analyses whose slides run in closed form after); None where one's total damping is
     too close to 1 for the compiled engine. Kept for analyses without that iteration (a
     warm loop of :func:`plan`'s kept analyses prepares once): it depends only on the
     analyses, which are immutable."""
     analyses = tuple(analyses)
     key = tuple(map(id, analyses))
     found = _PREPARED.get(key)
-    if found is not None and found[0] == analyses:  # the same analyses (their ids are not reused while kept)
-        return found[1]
+    if found is not None and (found[0] is analyses or found[0] == analyses):
+        return found[1]  # the same analyses (their ids are not reused while they are kept)
     if any(analysis.model.damping >= COMPILED_RESPONSE_LIMIT for analysis in analyses):
         return None
     inputs, index, input_of = [], {}, []
@@ -494,7 +506,7 @@ def _prepared(analyses):
             inputs.append(_engine_input(analysis.record, analysis.t_end))
         input_of.append(index[key_input])
     finals = _final_columns(analyses, inputs, input_of)
-    tasks, response_of, columns, first_with, damped = [], [], [], {}, set()
+    tasks, response_of, templates, first_with, damped = [], [], [], {}, set()
     for q, analysis in enumerate(analyses):
         r = input_of[q]
         (omega, xi, kyg, coupled), vs_final = finals[q]
@@ -505,8 +517,8 @@ def _prepared(analyses):
         polarities = analysis.polarities
         tasks.append((r, omega, xi, kyg, coupled and slides, slides and "normal" in polarities,
                       slides and "inverse" in polarities, False, response_of[q] == q))
-        columns.append((vs_final, xi))
-    prepared = (*_kernel_input(inputs, tasks), response_of, columns, damped)
+        templates.append(_row(analysis, np.nan, np.nan, vs_final, xi))
+    prepared = (*_kernel_input(inputs, tasks), response_of, templates, damped)
     if all(analysis.reference_strain is None for analysis in analyses):
         if len(_PREPARED) >= 32:
             _PREPARED.clear()
@@ -584,9 +596,8 @@ def _run_kernel(arrays, offsets, tasks, work):
     """The compiled analyses ``tasks`` (n, len(TASK_FIELDS)) on ``arrays`` (each
     excitation's pieces between its ``offsets``), ``work`` pieces in all: (n, 3, width)
     outcomes, in parallel over cores for a large batch (:data:`PARALLEL_WORK`)."""
-    parallel, serial = _fused.kernels()
+    kernel = _fused.kernels()[0 if 2 * work >= PARALLEL_WORK else 1]  # parallel or serial
     out = np.empty((len(tasks), 3, _fused.WIDTH))
-    kernel = parallel if 2 * work >= PARALLEL_WORK else serial
     notice_numba("the flexible sliding mass's engine", _fused.COMPILE_SECONDS, kernel)
     kernel(*arrays, offsets, tasks, out)
     return out

@@ -235,15 +235,15 @@ def _difference_bound(du, dv, row):
 
 
 @register_jitable
-def _free_powers(m, row, step, n):
-    """The free STICK oscillation over 2^p whole steps [s], p = 0 .. bits of ``n`` - 1:
-    row p holds M^(2^p) (m0, m1, m2, m3; M the step map ``m``'s (u, u') part) and its
+def _free_powers(m, row, step, n, scratch):
+    """The free STICK oscillation over 2^p whole steps [s], p = 0 .. bits of ``n`` - 1
+    (at most 64), in ``scratch`` (at least 5 per row): row p holds M^(2^p) (m0, m1, m2, m3; M the step map ``m``'s (u, u') part) and its
     amplitude's decay over those steps, rounded up (e^(-c step / 2) widened, then
     squared: each factor keeps its widening above a product's rounding)."""
     count = 1
     while (1 << count) <= n:
         count += 1
-    powers = np.empty((count, 5))
+    powers = scratch[:5 * count].reshape((count, 5))
     powers[0, 0], powers[0, 1], powers[0, 2], powers[0, 3] = m[0], m[1], m[2], m[3]
     powers[0, 4] = math.exp(-0.5 * row[1] * step) * _WIDEN
     for p in range(1, count):
@@ -287,7 +287,7 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
     # |HEA| and that bound's factor over a step (rounded up)
     tracking, du, dv, bound = coupled, 0.0, 0.0, 0.0
     decay = powers[0, 4]
-    no_log = np.empty((0, 8))
+    no_log = stack[:0, :8]  # an empty knot log (a view: no allocation)
     n = t0.shape[0]
     i = -1
     while i + 1 < n:
@@ -361,15 +361,22 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     all the same, as every run reads it). Writes ``out`` (3, len(OUTCOME_FIELDS)): rows RESPONSE and the
     runs asked for."""
     n = t0.shape[0]
-    stack = np.empty((STACK_DEPTH, STACK_COLUMNS))
-    cached = np.full(6, math.nan)
+    # one allocation, in views: the response's u, u', HEA at the knots (n + 1 each), the free
+    # amplitude on each step and the bit patterns of its bounds of |HEA| (n each; :func:`_bits`);
+    # the searches' stack, the exp/cos/sin cache, a run's counters, the free powers
+    scratch = np.empty(5 * n + 3 + STACK_DEPTH * STACK_COLUMNS + 6 + len(COUNT_FIELDS) + 64 * 5)
+    u, v, hea = scratch[:n + 1], scratch[n + 1:2 * n + 2], scratch[2 * n + 2:3 * n + 3]  # each entry written
+    amplitude, reach = scratch[3 * n + 3:4 * n + 3], scratch[4 * n + 3:5 * n + 3].view(np.int64)  # before read
+    at = 5 * n + 3
+    stack = scratch[at:at + STACK_DEPTH * STACK_COLUMNS].reshape((STACK_DEPTH, STACK_COLUMNS))
+    at += STACK_DEPTH * STACK_COLUMNS
+    cached, counts = scratch[at:at + 6], scratch[at + 6:at + 6 + len(COUNT_FIELDS)]
+    free = scratch[at + 6 + len(COUNT_FIELDS):]
+    cached[:] = math.nan
     damped = _damped(omega, xi, coupled)
     step = h[0]
     maps, table = _step_tables(omega, xi, coupled, kyg, damped, step)
     stick = table[STICK]
-    # the response: u, u', HEA at the knots, the free amplitude on each step
-    u, v, hea = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)  # every entry is written before it is read
-    amplitude, reach = np.empty(n), np.empty(n, np.int64)  # reach: bit patterns (_bits)
     _response(t0, h, p0, p1, omega, xi, damped[STICK], maps, table, step, u, v, hea, amplitude, reach)
     if respond:
         hea_samples = _largest(hea)
@@ -380,10 +387,10 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     response_status = UNSETTLED if hea_sup == -math.inf or u_sup == -math.inf else FINISHED
     _put(out[RESPONSE], (u[n], v[n], 0.0, 0.0, float(STICK), 0.0, 0.0, hea_samples, hea_sup,
                          u_sup if want_u else math.nan, u_samples, float(response_status), 0.0, math.nan))
-    powers = _free_powers(maps[STICK], stick, step, n)
+    powers = _free_powers(maps[STICK], stick, step, n, free)
     for r in range(2):
         if runs[r]:
-            counts = np.zeros(len(COUNT_FIELDS))
+            counts[:] = 0.0
             counts[4] = -math.inf
             mode, run_u, run_v, s, w = _run(t0, h, p0, p1, 1.0 - 2.0 * r, omega, xi, kyg, coupled, damped, maps, table,
                                             step, u, v, hea, amplitude, reach, powers, cached, stack, counts)
