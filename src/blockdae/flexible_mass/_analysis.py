@@ -13,6 +13,7 @@ import dataclasses
 import functools
 import math
 import numbers
+import operator
 
 import numpy as np
 
@@ -256,6 +257,11 @@ def _kept_plan(*args):
     """(:func:`plan`'s analyses as a tuple, each one's motion's peak [g]). Those of one
     record and plain numbers are kept (a warm loop plans once: the record and the models
     are immutable); the column's rules, which warn, run on every call."""
+    global _LAST_PLAN
+    last_args, last = _LAST_PLAN
+    if len(args) == len(last_args) and all(map(operator.is_, args, last_args)):  # the last call's very objects
+        check_column(*args[2:6])  # height, vs, vr, damping
+        return last
     types = tuple(map(type, args))
     if types[0] is not Record or args[9] is not None or not _PLAIN.issuperset(types[1:]):  # args[9]: pga
         return _with_peaks(_plan(*args))
@@ -267,6 +273,7 @@ def _kept_plan(*args):
         found = _PLANS[key] = _with_peaks(_plan(*args))
     else:
         check_column(*args[2:6])  # height, vs, vr, damping
+    _LAST_PLAN = args, found
     return found
 
 
@@ -279,6 +286,9 @@ def _with_peaks(analyses):
 _PLAIN = frozenset((float, int, bool, str, type(None)))
 #: :func:`_kept_plan`'s store: its arguments and their types -> what it returns
 _PLANS = {}
+#: the arguments of :func:`_kept_plan`'s last kept call and what it returned (a warm loop
+#: passes the same objects: no key to hash)
+_LAST_PLAN = ((), None)
 
 
 def _plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
@@ -487,15 +497,19 @@ def _prepared(analyses):
     (the engine arrays and offsets of their excitations, the tasks (n, len(TASK_FIELDS)),
     their work (:func:`_kernel_input`), the analysis whose response each reads, each one's
     row before its outcome (:func:`_row`: vs [m/s] and total damping [-] after the
-    equivalent-linear iteration), the analyses whose slides run in closed form after); None where one's total damping is
-    too close to 1 for the compiled engine. Kept for analyses without that iteration (a
-    warm loop of :func:`plan`'s kept analyses prepares once): it depends only on the
-    analyses, which are immutable."""
+    equivalent-linear iteration), the analyses whose slides run in closed form after);
+    None where one's total damping is too close to 1 for the compiled engine. Kept for
+    analyses without that iteration (a warm loop of :func:`plan`'s kept analyses prepares
+    once): it depends only on the analyses, which are immutable."""
     analyses = tuple(analyses)
+    last = _LAST_PREPARED[0]
+    if last[0] is analyses:
+        return last[1]
     key = tuple(map(id, analyses))
     found = _PREPARED.get(key)
     if found is not None and (found[0] is analyses or found[0] == analyses):
-        return found[1]  # the same analyses (their ids are not reused while they are kept)
+        _LAST_PREPARED[0] = found  # the same analyses (their ids are not reused while they are kept)
+        return found[1]
     if any(analysis.model.damping >= COMPILED_RESPONSE_LIMIT for analysis in analyses):
         return None
     inputs, index, input_of = [], {}, []
@@ -522,12 +536,14 @@ def _prepared(analyses):
     if all(analysis.reference_strain is None for analysis in analyses):
         if len(_PREPARED) >= 32:
             _PREPARED.clear()
-        _PREPARED[key] = (analyses, prepared)  # holds the analyses: their ids stay theirs
+        _PREPARED[key] = _LAST_PREPARED[0] = (analyses, prepared)  # holds the analyses: their ids stay theirs
     return prepared
 
 
 #: :func:`_prepared`'s store: the analyses' ids -> (the analyses, what they prepared)
 _PREPARED = {}
+#: the last analyses :func:`_prepared` found or kept and what they prepared
+_LAST_PREPARED = [((), None)]
 
 
 def _row(analysis, kmax_g, kmax_sup_g, vs_final, damping_final) -> dict:
