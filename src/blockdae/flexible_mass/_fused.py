@@ -277,7 +277,9 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
     and bound of |HEA| ``reach`` (n,; bit patterns) times ``sign``), else in closed form.
     In STICK a coupled run differs from the response times ``sign`` by a free
     oscillation d, stepped alone, whose share of HEA has a bound that decays with it: a
-    step where the response's bound plus it stays below ky g needs no more. Returns
+    step where the response's bound plus it stays below ky g needs no more, and a stretch
+    of such steps, found by the scan of the bounds, advances d at once by ``powers``
+    (:func:`_free_powers`). Returns
     (mode, u, u', s, w) at the end; ``counts`` (COUNT_FIELDS) holds its counters and
     status."""
     stick_map, stick = maps[STICK], table[STICK]
@@ -296,8 +298,9 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
             i = _first_reaching(reach, i, kyg)
             if i == n:
                 break
-        if tracking:  # pass at once the steps where the response's bound stays below ky g less d's bound
-            j = _first_reaching(reach, i, kyg - bound)
+        level = kyg - bound
+        if tracking and level > 0:  # pass at once the steps where the response's bound stays below it (a
+            j = _first_reaching(reach, i, level)  # bound that is nan passes none)
             if j > i:
                 du, dv, bound = _free_steps(powers, j - i, du, dv, bound)
                 i = j
