@@ -498,9 +498,10 @@ def _prepared(analyses):
     their work (:func:`_kernel_input`), the analysis whose response each reads, each one's
     row before its outcome (:func:`_row`: vs [m/s] and total damping [-] after the
     equivalent-linear iteration), the analyses whose slides run in closed form after);
-    None where one's total damping is too close to 1 for the compiled engine. Kept for
-    analyses without that iteration (a warm loop of :func:`plan`'s kept analyses prepares
-    once): it depends only on the analyses, which are immutable."""
+    None where one's total damping is too close to 1 for the compiled engine. Kept for a
+    few analyses of one record without that iteration (a warm loop of :func:`plan`'s kept
+    analyses prepares once; a study's batches are not held): it depends only on the
+    analyses, which are immutable."""
     analyses = tuple(analyses)
     last = _LAST_PREPARED[0]
     if last[0] is analyses:
@@ -533,7 +534,7 @@ def _prepared(analyses):
                       slides and "inverse" in polarities, False, response_of[q] == q))
         templates.append(_row(analysis, np.nan, np.nan, vs_final, xi))
     prepared = (*_kernel_input(inputs, tasks), response_of, templates, damped)
-    if all(analysis.reference_strain is None for analysis in analyses):
+    if len(inputs) == 1 and len(analyses) <= _KEPT_ANALYSES and all(a.reference_strain is None for a in analyses):
         if len(_PREPARED) >= 32:
             _PREPARED.clear()
         _PREPARED[key] = _LAST_PREPARED[0] = (analyses, prepared)  # holds the analyses: their ids stay theirs
@@ -542,6 +543,8 @@ def _prepared(analyses):
 
 #: :func:`_prepared`'s store: the analyses' ids -> (the analyses, what they prepared)
 _PREPARED = {}
+#: the most analyses :func:`_prepared` keeps what they prepared of
+_KEPT_ANALYSES = 64
 #: the last analyses :func:`_prepared` found or kept and what they prepared
 _LAST_PREPARED = [((), None)]
 
