@@ -11,7 +11,7 @@ import pytest
 
 import blockdae as bd
 from blockdae.solvers import _linear
-from blockdae.flexible_mass import _analysis, _fused, _roots
+from blockdae.flexible_mass import _analysis, _engine, _fused, _roots
 from conftest import load_sample_record
 
 _EPS = np.finfo(float).eps
@@ -112,3 +112,45 @@ def test_a_parallel_batch_equals_the_serial_one(method, monkeypatch):
     for column in ("normal_m", "inverse_m", "kmax_g", "kmax_sup_g", "episodes_normal", "episodes_inverse"):
         np.testing.assert_array_equal(tables[0][column].to_numpy(float), tables[1][column].to_numpy(float))
     assert (tables[0]["episodes_normal"] > 0).any()
+
+
+@pytest.mark.parametrize("count", [1, 2, 3, 7, 64, 999])
+def test_free_steps_at_once_equal_the_steps_one_by_one(count):
+    """Reference: the free STICK oscillation stepped one step at a time by its step map
+    (the path the jump replaces, xi = 0.25 as PAC-175's column): the jump by powers of the
+    map gives du, du' within 1e-13 of the largest it reached (the products' rounding over
+    up to 999 steps), and a bound of its |HEA| no smaller than the one stepped."""
+    omega, xi, step = 47.12388980384689, 0.25, 0.02
+    damped = _engine._damped(omega, xi, True)
+    maps, table = _engine._step_tables(omega, xi, True, 0.98, damped, step)
+    m, row = maps[_engine.STICK], table[_engine.STICK]
+    powers = _fused._free_powers(m, row, step, 1000, np.empty(64 * 5))
+    du, dv, bound = 1e-3, -0.02, 2.5
+    ref_u, ref_v, ref_bound, largest = du, dv, bound, max(abs(du), abs(dv))
+    for _ in range(count):
+        ref_u, ref_v = m[0] * ref_u + m[1] * ref_v, m[2] * ref_u + m[3] * ref_v
+        ref_bound *= powers[0, 4]
+        largest = max(largest, abs(ref_u), abs(ref_v))
+    jump_u, jump_v, jump_bound = _fused._free_steps(powers, count, du, dv, bound)
+    assert abs(jump_u - ref_u) <= 1e-13 * largest and abs(jump_v - ref_v) <= 1e-13 * largest
+    assert jump_bound >= ref_bound >= bound * math.exp(-xi * omega * step * count)
+
+
+def test_a_warm_call_checks_every_call_and_returns_rows_of_its_own():
+    """A repeated call (its analyses and compiled input kept) still warns on every call
+    about an implausible height, gives the same numbers, and rows that the caller may
+    change without changing the next call's."""
+    record = bd.Record(load_sample_record("Northridge_1994_PAC-175").acceleration_samples[:301], 0.02,
+                       name="PAC-175", units="m/s2")
+    results = []
+    for _ in range(3):
+        with pytest.warns(bd.UnitsWarning, match="height=0.3 m is implausible"):
+            results.append(bd.flexible(record, ky=0.1, height=0.3, vs=300.0, polarity="normal"))
+    results[0].rows[0]["normal_m"] = -1.0
+    assert results[1].rows == results[2].rows and results[1].rows[0]["normal_m"] > 0
+    assert results[1].rows[0] is not results[2].rows[0]
+    with pytest.warns(bd.UnitsWarning):  # planned afresh: nothing kept
+        analyses = _analysis._plan(record, 0.1, 0.3, 300.0, None, 0.05, "coupled", False, None, None, "normal",
+                                   "exact", bd.STANDARD_GRAVITY, None, True)
+    fresh = _analysis.exact_rows(analyses)
+    assert fresh == results[2].rows

@@ -12,6 +12,7 @@ implausible.
 - a result: finite, or an error naming it (:func:`check_finite_result`).
 """
 
+import math
 import warnings
 
 import numpy as np
@@ -190,21 +191,35 @@ def check_column(height, vs, vr=None, damping=None):
     :data:`PLAUSIBLE_VS_M_S`; for a soil ``damping`` ratio [-] of 1 or more a ValueError
     (a percentage), above :data:`MAX_PLAUSIBLE_DAMPING` a warning. Values that are not
     positive finite numbers are left to the model's own checks."""
+    if (type(height) in _NUMBERS and type(vs) in _NUMBERS and (vr is None or type(vr) in _NUMBERS) and
+            type(damping) in _NUMBERS and PLAUSIBLE_HEIGHT_M[0] <= height <= PLAUSIBLE_HEIGHT_M[1] and
+            PLAUSIBLE_VS_M_S[0] <= vs <= PLAUSIBLE_VS_M_S[1] and
+            (vr is None or PLAUSIBLE_VS_M_S[0] <= vr <= PLAUSIBLE_VS_M_S[1]) and damping <= MAX_PLAUSIBLE_DAMPING):
+        return  # plain numbers, each plausible: no rule speaks
     _check_range("height", height, PLAUSIBLE_HEIGHT_M, "m", _LENGTHS, "a sliding mass's height")
     for name, value in (("vs", vs), ("vr", vr)):
         _check_range(name, value, PLAUSIBLE_VS_M_S, "m/s", _VELOCITIES, "a soil's or rock's shear-wave velocity")
     if damping is None:
         return
-    values = np.atleast_1d(np.asarray(damping, dtype=float))
-    if np.any(values >= 1):
-        value = float(values[values >= 1][0])
+    if type(damping) in _NUMBERS:  # one number: no array
+        percent = high = float(damping)
+    else:  # the first value of each rule's (nan: none)
+        values = np.atleast_1d(np.asarray(damping, dtype=float))
+        percent, high = (float(values[test][0]) if np.any(test) else math.nan
+                         for test in (values >= 1, values > MAX_PLAUSIBLE_DAMPING))
+    if percent >= 1:
+        value = percent
         raise ValueError(f"damping={value:g} is a damping ratio of {100 * value:g} %: give the ratio, not a "
                          f"percentage ({value:g} % is damping={value / 100:g})")
-    if np.any(values > MAX_PLAUSIBLE_DAMPING):
-        value = float(values[values > MAX_PLAUSIBLE_DAMPING][0])
+    if high > MAX_PLAUSIBLE_DAMPING:
+        value = high
         warnings.warn(f"damping={value:g} is a damping ratio of {100 * value:g} %, above the "
                       f"{100 * MAX_PLAUSIBLE_DAMPING:g} % a soil reaches: if it is a percentage, give damping="
                       f"{value / 100:g}", UnitsWarning, stacklevel=outside_blockdae())
+
+
+#: the types of one plain number (a bool is none: np.asarray gives it its own dtype)
+_NUMBERS = (float, int)
 
 
 def _check_range(name, value, plausible, unit, others, what):
@@ -212,12 +227,17 @@ def _check_range(name, value, plausible, unit, others, what):
     the ``others`` (unit, factor to ``unit``) that would bring it in."""
     if value is None:
         return
-    values = np.atleast_1d(np.asarray(value, dtype=float))
     low, high = plausible
-    out = values[np.isfinite(values) & (values > 0) & ((values < low) | (values > high))]
-    if not out.size:
-        return
-    v = float(out[0])
+    if type(value) in _NUMBERS:  # one number: no array
+        v = float(value)
+        if not (math.isfinite(v) and v > 0 and (v < low or v > high)):
+            return
+    else:
+        values = np.atleast_1d(np.asarray(value, dtype=float))
+        out = values[np.isfinite(values) & (values > 0) & ((values < low) | (values > high))]
+        if not out.size:
+            return
+        v = float(out[0])
     likely = [f"{v:g} {other} = {v * factor:g} {unit}" for other, factor in others if low <= v * factor <= high]
     hint = f"in other units? {' or '.join(likely)}" if likely else "check the value and its units"
     warnings.warn(f"{name}={v:g} {unit} is implausible for {what} (plausible: {low:g} {unit} to {high:g} {unit}); "

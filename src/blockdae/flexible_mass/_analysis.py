@@ -13,6 +13,7 @@ import dataclasses
 import functools
 import math
 import numbers
+import operator
 
 import numpy as np
 
@@ -40,6 +41,7 @@ PARALLEL_WORK = 5e5
 _FIELD = {name: i for i, name in enumerate(_engine.OUTCOME_FIELDS)}
 _STATUS, _S, _EPISODES, _HEA_SAMPLES, _HEA_SUP = (_FIELD[name] for name in ("status", "s", "n_episodes", "hea_samples",
                                                                              "hea_sup"))
+_FINISHED, _RESPONSE = _engine.FINISHED, _fused.RESPONSE
 
 
 @dataclasses.dataclass(frozen=True)
@@ -63,7 +65,7 @@ class Analysis:
     reference_strain: float | None
 
 
-@dataclasses.dataclass(frozen=True, eq=False)
+@dataclasses.dataclass(frozen=True, eq=False, init=False)
 class FlexibleResult:
     """Results of :func:`flexible`: one row per (motion, parameter set).
 
@@ -88,6 +90,10 @@ class FlexibleResult:
     integration: str
     pga_g: tuple = ()
     metadata: object = None
+
+    def __init__(self, rows, method, integration, pga_g=(), metadata=None):
+        # the fields at once: a frozen dataclass's own __init__ sets each through object.__setattr__
+        self.__dict__.update(rows=rows, method=method, integration=integration, pga_g=pga_g, metadata=metadata)
 
     def to_dataframe(self):
         """The rows as a pandas DataFrame, units in the column names, in the columns of
@@ -168,17 +174,17 @@ def flexible(motion, ky, height, vs, vr=None, damping=0.05, method="coupled", eq
     Returns:
         A :class:`FlexibleResult` (``.to_dataframe()``).
     """
-    pga = pga_keyword("bd.flexible", pga, target_pga)
-    analyses = plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga,
-                    polarity, integration, g, t_end, check_peak)
-    rows_of, _ = INTEGRATIONS[integration]
+    if target_pga is not None:
+        pga = pga_keyword("bd.flexible", pga, target_pga)
+    analyses, pga_g = _kept_plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain,
+                                 pga, polarity, integration, g, t_end, check_peak)
+    rows_of = INTEGRATIONS[integration][0]
     if analyses and analyses[0].model.table is not None:  # plan gives every model the table or none
         rows_of = table_rows
     rows = _rows_in_parts(rows_of, analyses, progress)
     _check_rows(rows, analyses)
-    return FlexibleResult(rows=rows, method=method, integration=integration,
-                          pga_g=tuple(a.record.peak_acceleration / a.model.g for a in analyses),
-                          metadata=motion.metadata if isinstance(motion, RecordSet) else None)
+    return FlexibleResult(rows, method, integration, pga_g,
+                          motion.metadata if type(motion) is not Record and isinstance(motion, RecordSet) else None)
 
 
 def _check_rows(rows, analyses):
@@ -187,9 +193,12 @@ def _check_rows(rows, analyses):
     against kmax, the peak of the sliding mass's average acceleration that drives its slide
     (over time; at the samples for integration "slammer")."""
     check_finite_rows(rows, analyses, "bd.flexible")
+    still = [row for row in rows if row["ky_g"] >= driving_peak(row)]  # the only cases the rule speaks of
+    if not still:
+        return
     several = len({(row["height_m"], row["vs_m_s"]) for row in rows}) > 1
     cases = [(f"{row['record']}" + (f" (H {row['height_m']:g} m, vs {row['vs_m_s']:g} m/s)" if several else ""),
-              driving_peak(row), row["ky_g"]) for row in rows]
+              driving_peak(row), row["ky_g"]) for row in still]
     warn_not_sliding(cases, len(rows), peak_name="kmax", body="mass", kind="analyses", peak_words="kmax")
 
 
@@ -197,7 +206,13 @@ def check_finite_rows(rows, analyses, caller):
     """ValueError naming the column, the record, the model and ``caller`` (the function run)
     where a row's kmax or displacement is not finite."""
     for row, analysis in zip(rows, analyses):
-        names = ("kmax_g", *(_RUN_OF[polarity][1] for polarity in analysis.polarities))
+        names = _FINITE_COLUMNS.get(analysis.polarities) or ("kmax_g", *(_RUN_OF[polarity][1]
+                                                                         for polarity in analysis.polarities))
+        total = 0.0
+        for name in names:
+            total += row[name]
+        if math.isfinite(total):  # each is (a sum overflows only past 1e308: the check below then decides)
+            continue
         check_finite_result([row[name] for name in names],
                             lambda index: f"{caller}: {names[index[0]]} of {row['record']!r} ({analysis.model})")
 
@@ -212,6 +227,8 @@ def _rows_in_parts(rows_of, analyses, progress) -> list[dict]:
     """``rows_of(analyses)``: in one call, or, where a progress bar over the motions is
     shown, in :data:`PROGRESS_PARTS` parts of a few motions each, in order (the rows of an
     analysis do not depend on the others run with it)."""
+    if len(analyses) < 2:
+        return rows_of(analyses)
     starts = [q for q, a in enumerate(analyses) if q == 0 or a.record is not analyses[q - 1].record]
     if len(starts) < 2 or not show_progress(progress):
         return rows_of(analyses)
@@ -232,6 +249,51 @@ PROGRESS_PARTS = 20
 def plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
          integration, g, t_end, check_peak=True) -> list[Analysis]:
     """The analyses of a :func:`flexible` call, every input checked before any work."""
+    return list(_kept_plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga,
+                           polarity, integration, g, t_end, check_peak)[0])
+
+
+def _kept_plan(*args):
+    """(:func:`plan`'s analyses as a tuple, each one's motion's peak [g]). Those of one
+    record and plain numbers are kept (a warm loop plans once: the record and the models
+    are immutable); the column's rules, which warn, run on every call."""
+    global _LAST_PLAN
+    last_args, last = _LAST_PLAN
+    if len(args) == len(last_args) and all(map(operator.is_, args, last_args)):  # the last call's very objects
+        check_column(*args[2:6])  # height, vs, vr, damping
+        return last
+    types = tuple(map(type, args))
+    if types[0] is not Record or args[9] is not None or not _PLAIN.issuperset(types[1:]):  # args[9]: pga
+        return _with_peaks(_plan(*args))
+    key = (args, types)  # True == 1 == 1.0 must not find each other's analyses
+    found = _PLANS.get(key)
+    if found is None:
+        if len(_PLANS) >= 32:  # each holds its record
+            _PLANS.clear()
+        found = _PLANS[key] = _with_peaks(_plan(*args))
+    else:
+        check_column(*args[2:6])  # height, vs, vr, damping
+    _LAST_PLAN = args, found
+    return found
+
+
+def _with_peaks(analyses):
+    """(``analyses`` as a tuple, the peak of each one's motion [g])."""
+    return tuple(analyses), tuple([a.record.peak_acceleration / a.model.g for a in analyses])
+
+
+#: the types of the arguments :func:`plan` keeps the analyses of (immutable, hashable)
+_PLAIN = frozenset((float, int, bool, str, type(None)))
+#: :func:`_kept_plan`'s store: its arguments and their types -> what it returns
+_PLANS = {}
+#: the arguments of :func:`_kept_plan`'s last kept call and what it returned (a warm loop
+#: passes the same objects: no key to hash)
+_LAST_PLAN = ((), None)
+
+
+def _plan(motion, ky, height, vs, vr, damping, method, equivalent_linear, reference_strain, pga, polarity,
+          integration, g, t_end, check_peak):
+    """:func:`plan`, each time."""
     if integration not in INTEGRATIONS:
         raise ValueError(f"integration={integration!r} is unknown; choose one of {tuple(INTEGRATIONS)}")
     if method not in METHODS:
@@ -360,6 +422,8 @@ def as_ky_table(ky):
 def _motions(motion, g):
     """(names, records, a record set's metadata or None) of one record, a sequence or dict
     of them, a :class:`RecordSet` or a path to a record file or a folder (one g = ``g`` [m/s²])."""
+    if type(motion) is Record:  # one record: labelled by its name, as labelled_motions does
+        return (motion.name or "motion 0",), [motion], None
     names, records, metadata = labelled_motions(motion, g)
     for name, record in zip(names, records):
         if not isinstance(record, Record):
@@ -399,20 +463,65 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
     in one compiled call, parallel over cores for a large batch (:mod:`._fused`). A
     total damping too close to 1 for its closed forms runs on matrix exponentials
     (:func:`_near_critical_row`)."""
-    near = {q for q, analysis in enumerate(analyses) if analysis.model.damping >= COMPILED_RESPONSE_LIMIT}
-    if near:
+    prepared = _prepared(analyses)
+    if prepared is None:
+        near = {q for q, analysis in enumerate(analyses) if analysis.model.damping >= COMPILED_RESPONSE_LIMIT}
         others = [analysis for q, analysis in enumerate(analyses) if q not in near]
         rest = iter(exact_rows(others) if others else ())
         return [_near_critical_row(analysis) if q in near else next(rest) for q, analysis in enumerate(analyses)]
+    arrays, offsets, tasks, work, response_of, templates, damped = prepared
+    out = _run_kernel(arrays, offsets, tasks, work).tolist()
+    rows = []
+    for q, analysis in enumerate(analyses):
+        response = out[response_of[q]][_RESPONSE]
+        if response[_STATUS] != _FINISHED:
+            check(response, f" ({analysis.name}, {analysis.model})")
+        model = analysis.model
+        row = templates[q].copy()
+        row["kmax_g"], row["kmax_sup_g"] = response[_HEA_SAMPLES] / model.g, response[_HEA_SUP] / model.g
+        for polarity in () if q in damped else analysis.polarities:
+            run_row, displacement, episodes = _RUN_OF[polarity]
+            run = out[q][run_row]
+            if run[_STATUS] != _FINISHED:
+                check(run, f" ({analysis.name}, {model})")
+            row[displacement] = 0.0 + run[_S]
+            row[episodes] = int(run[_EPISODES])
+        rows.append(row)
+    for q in damped:
+        _slides_in_closed_form(analyses[q], rows[q])
+    return rows
+
+
+def _prepared(analyses):
+    """What the compiled call of ``analyses`` takes, and how its outcomes map to rows:
+    (the engine arrays and offsets of their excitations, the tasks (n, len(TASK_FIELDS)),
+    their work (:func:`_kernel_input`), the analysis whose response each reads, each one's
+    row before its outcome (:func:`_row`: vs [m/s] and total damping [-] after the
+    equivalent-linear iteration), the analyses whose slides run in closed form after);
+    None where one's total damping is too close to 1 for the compiled engine. Kept for a
+    few analyses of one record without that iteration (a warm loop of :func:`plan`'s kept
+    analyses prepares once; a study's batches are not held): it depends only on the
+    analyses, which are immutable."""
+    analyses = tuple(analyses)
+    last = _LAST_PREPARED[0]
+    if last[0] is analyses:
+        return last[1]
+    key = tuple(map(id, analyses))
+    found = _PREPARED.get(key)
+    if found is not None and (found[0] is analyses or found[0] == analyses):
+        _LAST_PREPARED[0] = found  # the same analyses (their ids are not reused while they are kept)
+        return found[1]
+    if any(analysis.model.damping >= COMPILED_RESPONSE_LIMIT for analysis in analyses):
+        return None
     inputs, index, input_of = [], {}, []
     for analysis in analyses:
-        key = (id(analysis.record), analysis.t_end)
-        if key not in index:
-            index[key] = len(inputs)
+        key_input = (id(analysis.record), analysis.t_end)
+        if key_input not in index:
+            index[key_input] = len(inputs)
             inputs.append(_engine_input(analysis.record, analysis.t_end))
-        input_of.append(index[key])
+        input_of.append(index[key_input])
     finals = _final_columns(analyses, inputs, input_of)
-    tasks, response_of, vs_finals, first_with, damped = [], [], [], {}, set()
+    tasks, response_of, templates, first_with, damped = [], [], [], {}, set()
     for q, analysis in enumerate(analyses):
         r = input_of[q]
         (omega, xi, kyg, coupled), vs_final = finals[q]
@@ -423,27 +532,21 @@ def exact_rows(analyses: list[Analysis]) -> list[dict]:
         polarities = analysis.polarities
         tasks.append((r, omega, xi, kyg, coupled and slides, slides and "normal" in polarities,
                       slides and "inverse" in polarities, False, response_of[q] == q))
-        vs_finals.append(vs_final)
-    out = _run_analyses(inputs, tasks).tolist()
-    rows = []
-    for q, analysis in enumerate(analyses):
-        model = analysis.model
-        response = out[response_of[q]][_fused.RESPONSE]
-        if response[_STATUS] != _engine.FINISHED:
-            check(response, f" ({analysis.name}, {model})")
-        row = _row(analysis, response[_HEA_SAMPLES] / model.g, response[_HEA_SUP] / model.g, vs_finals[q],
-                   tasks[q][2])
-        for polarity in () if q in damped else analysis.polarities:
-            run_row, displacement, episodes = _RUN_OF[polarity]
-            run = out[q][run_row]
-            if run[_STATUS] != _engine.FINISHED:
-                check(run, f" ({analysis.name}, {model})")
-            row[displacement] = 0.0 + run[_S]
-            row[episodes] = int(run[_EPISODES])
-        rows.append(row)
-    for q in damped:
-        _slides_in_closed_form(analyses[q], rows[q])
-    return rows
+        templates.append(_row(analysis, np.nan, np.nan, vs_final, xi))
+    prepared = (*_kernel_input(inputs, tasks), response_of, templates, damped)
+    if len(inputs) == 1 and len(analyses) <= _KEPT_ANALYSES and all(a.reference_strain is None for a in analyses):
+        if len(_PREPARED) >= 32:
+            _PREPARED.clear()
+        _PREPARED[key] = _LAST_PREPARED[0] = (analyses, prepared)  # holds the analyses: their ids stay theirs
+    return prepared
+
+
+#: :func:`_prepared`'s store: the analyses' ids -> (the analyses, what they prepared)
+_PREPARED = {}
+#: the most analyses :func:`_prepared` keeps what they prepared of
+_KEPT_ANALYSES = 64
+#: the last analyses :func:`_prepared` found or kept and what they prepared
+_LAST_PREPARED = [((), None)]
 
 
 def _row(analysis, kmax_g, kmax_sup_g, vs_final, damping_final) -> dict:
@@ -460,6 +563,9 @@ def _row(analysis, kmax_g, kmax_sup_g, vs_final, damping_final) -> dict:
 #: polarity -> (its row of a compiled outcome, its displacement and episodes columns)
 _RUN_OF = {"normal": (_fused.NORMAL, "normal_m", "episodes_normal"),
            "inverse": (_fused.INVERSE, "inverse_m", "episodes_inverse")}
+#: polarities -> the columns of a row that :func:`check_finite_rows` checks
+_FINITE_COLUMNS = {polarities: ("kmax_g", *(_RUN_OF[polarity][1] for polarity in polarities))
+                   for polarities in (("normal",), ("inverse",), ("normal", "inverse"))}
 
 
 def _near_critical_row(analysis):
@@ -489,19 +595,30 @@ def _run_analyses(inputs, tasks):
     """The compiled analyses (:func:`._fused._analyses`) of excitations ``inputs`` (engine
     arrays): analysis j runs ``tasks[j]`` (a tuple of TASK_FIELDS) on
     ``inputs[tasks[j][0]]``. Returns (n, 3, width) outcomes."""
-    parallel, serial = _fused.kernels()
+    return _run_kernel(*_kernel_input(inputs, tasks))
+
+
+def _kernel_input(inputs, tasks):
+    """(the arrays, the offsets of each excitation in them, the tasks as an array, their
+    work: the pieces they step) of excitations ``inputs`` (engine arrays) and ``tasks``
+    (tuples of TASK_FIELDS) as the kernels take them."""
+    lengths = [len(x[0]) for x in inputs]
+    work = sum(lengths[int(task[0])] for task in tasks)
     if len(inputs) == 1:
-        arrays, offsets = inputs[0], _offsets(len(inputs[0][0]))
-        work = len(inputs[0][0]) * len(tasks)
-    else:
-        arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
-        lengths = [len(x[0]) for x in inputs]
-        offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
-        work = sum(lengths[task[0]] for task in tasks)
+        return inputs[0], _offsets(lengths[0]), np.array(tasks, dtype=float), work
+    arrays = tuple(np.concatenate([x[k] for x in inputs]) for k in range(4))
+    offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64)
+    return arrays, offsets, np.array(tasks, dtype=float), work
+
+
+def _run_kernel(arrays, offsets, tasks, work):
+    """The compiled analyses ``tasks`` (n, len(TASK_FIELDS)) on ``arrays`` (each
+    excitation's pieces between its ``offsets``), ``work`` pieces in all: (n, 3, width)
+    outcomes, in parallel over cores for a large batch (:data:`PARALLEL_WORK`)."""
+    kernel = _fused.kernels()[0 if 2 * work >= PARALLEL_WORK else 1]  # parallel or serial
     out = np.empty((len(tasks), 3, _fused.WIDTH))
-    kernel = parallel if 2 * work >= PARALLEL_WORK else serial
     notice_numba("the flexible sliding mass's engine", _fused.COMPILE_SECONDS, kernel)
-    kernel(*arrays, offsets, np.array(tasks, dtype=float), out)
+    kernel(*arrays, offsets, tasks, out)
     return out
 
 

@@ -118,10 +118,14 @@ def _step_maps(mode, coupled, omega, xi, damped, kyg, step):
     + (m8, m9)."""
     k, c, b, forced = _oscillator(mode, coupled, omega, xi, kyg)
     maps = np.empty(10)
+    decay, cos, sin = 1.0, 1.0, 0.0
     for j in range(5):  # unit u, u', a, rate; then b alone
         f = piece_form(k, c, b * (j == 4), damped, forced * (j == 2), forced * (j == 3), 1.0 * (j == 0), 1.0 * (j == 1))
+        if j == 0:  # the five forms share exp(-sigma step), cos and sin(w step)
+            decay, cos, sin = math.exp(-f[6] * step), math.cos(f[7] * step), math.sin(f[7] * step)
         row = (0, 1, 4, 5, 8)[j]
-        maps[row], maps[row + 2 if j < 4 else row + 1] = evaluate_form(f, step), evaluate_form(form_derivative(f), step)
+        maps[row], maps[row + 2 if j < 4 else row + 1] = (evaluate_form_at(f, step, decay, cos, sin),
+                                                          evaluate_form_at(form_derivative(f), step, decay, cos, sin))
     return maps
 
 

@@ -235,15 +235,51 @@ def _difference_bound(du, dv, row):
 
 
 @register_jitable
+def _free_powers(m, row, step, n, scratch):
+    """The free STICK oscillation over 2^p whole steps [s], p = 0 .. bits of ``n`` - 1
+    (at most 64), in ``scratch`` (at least 5 per row): row p holds M^(2^p) (m0, m1, m2, m3; M the step map ``m``'s (u, u') part) and its
+    amplitude's decay over those steps, rounded up (e^(-c step / 2) widened, then
+    squared: each factor keeps its widening above a product's rounding)."""
+    count = 1
+    while (1 << count) <= n:
+        count += 1
+    powers = scratch[:5 * count].reshape((count, 5))
+    powers[0, 0], powers[0, 1], powers[0, 2], powers[0, 3] = m[0], m[1], m[2], m[3]
+    powers[0, 4] = math.exp(-0.5 * row[1] * step) * _WIDEN
+    for p in range(1, count):
+        a, b, c, d = powers[p - 1, 0], powers[p - 1, 1], powers[p - 1, 2], powers[p - 1, 3]
+        powers[p, 0], powers[p, 1] = a * a + b * c, a * b + b * d
+        powers[p, 2], powers[p, 3] = c * a + d * c, c * b + d * d
+        powers[p, 4] = powers[p - 1, 4] * powers[p - 1, 4] * _WIDEN
+    return powers
+
+
+@register_jitable
+def _free_steps(powers, count, du, dv, bound):
+    """(du [m], du' [m/s], the bound of its |HEA| [m/s²]) of a free STICK oscillation
+    ``count`` >= 1 whole steps on, by the powers of its step map (:func:`_free_powers`)."""
+    p = 0
+    while count:
+        if count & 1:
+            du, dv = powers[p, 0] * du + powers[p, 1] * dv, powers[p, 2] * du + powers[p, 3] * dv
+            bound *= powers[p, 4]
+        count >>= 1
+        p += 1
+    return du, dv, bound
+
+
+@register_jitable
 def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step, u, v, hea, amplitude, reach,
-         cached, stack, counts):
+         powers, cached, stack, counts):
     """One sliding run of a(t) times ``sign`` from rest, its state in registers: each
     whole step quick where bounds allow (a coupled run steps its own column; a
     decoupled one's is the response's ``u``, ``v``, ``hea`` (n + 1,), ``amplitude``
     and bound of |HEA| ``reach`` (n,; bit patterns) times ``sign``), else in closed form.
     In STICK a coupled run differs from the response times ``sign`` by a free
     oscillation d, stepped alone, whose share of HEA has a bound that decays with it: a
-    step where the response's bound plus it stays below ky g needs no more. Returns
+    step where the response's bound plus it stays below ky g needs no more, and a stretch
+    of such steps, found by the scan of the bounds, advances d at once by ``powers``
+    (:func:`_free_powers`). Returns
     (mode, u, u', s, w) at the end; ``counts`` (COUNT_FIELDS) holds its counters and
     status."""
     stick_map, stick = maps[STICK], table[STICK]
@@ -252,8 +288,8 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
     # the free oscillation d = run - sign x response in STICK (from rest: 0), its bound of
     # |HEA| and that bound's factor over a step (rounded up)
     tracking, du, dv, bound = coupled, 0.0, 0.0, 0.0
-    decay = math.exp(-0.5 * stick[1] * step) * _WIDEN
-    no_log = np.empty((0, 8))
+    decay = powers[0, 4]
+    no_log = stack[:0, :8]  # an empty knot log (a view: no allocation)
     n = t0.shape[0]
     i = -1
     while i + 1 < n:
@@ -262,6 +298,14 @@ def _run(t0, h, p0, p1, sign, omega, xi, kyg, coupled, damped, maps, table, step
             i = _first_reaching(reach, i, kyg)
             if i == n:
                 break
+        level = kyg - bound
+        if tracking and level > 0:  # pass at once the steps where the response's bound stays below it (a
+            j = _first_reaching(reach, i, level)  # bound that is nan passes none)
+            if j > i:
+                du, dv, bound = _free_steps(powers, j - i, du, dv, bound)
+                i = j
+                if i == n:
+                    break
         a0, rate = sign * p0[i], sign * p1[i]
         if h[i] == step:
             if coupled:  # each mode's map picked statically (a tuple indexed at run time is copied)
@@ -320,15 +364,22 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     all the same, as every run reads it). Writes ``out`` (3, len(OUTCOME_FIELDS)): rows RESPONSE and the
     runs asked for."""
     n = t0.shape[0]
-    stack = np.empty((STACK_DEPTH, STACK_COLUMNS))
-    cached = np.full(6, math.nan)
+    # one allocation, in views: the response's u, u', HEA at the knots (n + 1 each), the free
+    # amplitude on each step and the bit patterns of its bounds of |HEA| (n each; :func:`_bits`);
+    # the searches' stack, the exp/cos/sin cache, a run's counters, the free powers
+    scratch = np.empty(5 * n + 3 + STACK_DEPTH * STACK_COLUMNS + 6 + len(COUNT_FIELDS) + 64 * 5)
+    u, v, hea = scratch[:n + 1], scratch[n + 1:2 * n + 2], scratch[2 * n + 2:3 * n + 3]  # each entry written
+    amplitude, reach = scratch[3 * n + 3:4 * n + 3], scratch[4 * n + 3:5 * n + 3].view(np.int64)  # before read
+    at = 5 * n + 3
+    stack = scratch[at:at + STACK_DEPTH * STACK_COLUMNS].reshape((STACK_DEPTH, STACK_COLUMNS))
+    at += STACK_DEPTH * STACK_COLUMNS
+    cached, counts = scratch[at:at + 6], scratch[at + 6:at + 6 + len(COUNT_FIELDS)]
+    free = scratch[at + 6 + len(COUNT_FIELDS):]
+    cached[:] = math.nan
     damped = _damped(omega, xi, coupled)
     step = h[0]
     maps, table = _step_tables(omega, xi, coupled, kyg, damped, step)
     stick = table[STICK]
-    # the response: u, u', HEA at the knots, the free amplitude on each step
-    u, v, hea = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)  # every entry is written before it is read
-    amplitude, reach = np.empty(n), np.empty(n, np.int64)  # reach: bit patterns (_bits)
     _response(t0, h, p0, p1, omega, xi, damped[STICK], maps, table, step, u, v, hea, amplitude, reach)
     if respond:
         hea_samples = _largest(hea)
@@ -339,12 +390,13 @@ def _analysis(t0, h, p0, p1, omega, xi, kyg, coupled, runs, want_u, respond, out
     response_status = UNSETTLED if hea_sup == -math.inf or u_sup == -math.inf else FINISHED
     _put(out[RESPONSE], (u[n], v[n], 0.0, 0.0, float(STICK), 0.0, 0.0, hea_samples, hea_sup,
                          u_sup if want_u else math.nan, u_samples, float(response_status), 0.0, math.nan))
+    powers = _free_powers(maps[STICK], stick, step, n, free)
     for r in range(2):
         if runs[r]:
-            counts = np.zeros(len(COUNT_FIELDS))
+            counts[:] = 0.0
             counts[4] = -math.inf
             mode, run_u, run_v, s, w = _run(t0, h, p0, p1, 1.0 - 2.0 * r, omega, xi, kyg, coupled, damped, maps, table,
-                                            step, u, v, hea, amplitude, reach, cached, stack, counts)
+                                            step, u, v, hea, amplitude, reach, powers, cached, stack, counts)
             _put(out[1 + r], (run_u, run_v, s, w, float(mode), counts[0], counts[1], 0.0, 0.0, 0.0, 0.0, counts[5],
                               counts[3], counts[4]))
 
