@@ -1,0 +1,583 @@
+"""The complete free-standing block: rest, slide, rock, slide-rock (the pivot slips),
+flight and overturning, with frictional plastic impacts and landings.
+
+A uniform rectangular block 2b wide and 2h high [m] on a rigid base that accelerates by
+a_x(t) and a_z(t) [m/s²]; g_e = g + a_z. Newton-Euler for a rigid body with two unilateral
+Coulomb contacts (its base corners), per unit mass, in the base's frame. The state is the
+centroid's position relative to the base, x and z [m] (z = h standing flat, x = 0 at
+rest at the start), the rotation theta [rad] (theta > 0: leaning toward +x on the corner
+at +b), their rates, and two work integrals [J/kg]: of the base's inertial force,
+∫ (-a_x x' - a_z z') dt, and of friction, ∫ F u' dt (the energy balance's terms).
+
+Modes (:class:`FreeMode`): REST; SLIDE sigma (flat, x'' = -a_x - sigma mu_k g_e); ROCK s
+(the pivot s sticks; out, in and beyond alpha as Housner's block, whose rules they share);
+SLIDE_ROCK (s, sigma) (the pivot slips toward sigma, F = -sigma mu_k N); FLIGHT (no
+contact: x'' = -a_x, z'' = -g_e, theta'' = 0); OVERTURNED (|theta| = pi/2). Impacts and
+landings are instant modes whose entry is the velocity jump (perfectly plastic, sticking
+if static friction can hold the corner, else slipping through with mu_k), after which the
+state decides the mode. The laws are :mod:`._slide_rock_laws`'.
+"""
+
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+
+from ..core.contract import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
+from ..excitation import AbstractExcitation, BaseMotion, Pieces
+from ..sliding import stop_mode
+from ..units import STANDARD_GRAVITY
+from . import _rules as rules
+from . import _slide_rock_laws as laws
+from ._free_modes import (BEYOND, IN, INSTANT, OUT, OVERTURNED, SETTLE, SLIDE_ROCK_KINDS, FreeMode, kind_of,
+                          rock_mode, side, slide_rock_mode, slip_direction)
+from ._free_solution import FreeEvent, FreeStandingSolution
+
+X, Z, THETA, X_RATE, Z_RATE, THETA_RATE, BASE_WORK, FRICTION_WORK = range(8)
+_ROCK = (OUT, IN, BEYOND)
+#: a rotation rate below RATE_FLOOR p alpha [rad/s] is no contradiction of its mode
+RATE_FLOOR = 1e-10
+#: Painlevé's paradox is possible from this kinetic friction on [-]
+PAINLEVE_FRICTION = 4.0 / 3.0
+
+
+class PainleveWarning(UserWarning):
+    """Kinetic friction of 4/3 or more: slide-rocking may meet Painlevé's paradox (no
+    consistent contact force), which stops a run with an error naming the time."""
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class FreeStandingBlock(AbstractHybridModel):
+    """A free-standing rectangular block that rests, slides, rocks, slide-rocks, flies
+    and overturns, with frictional plastic impacts and landings.
+
+    Args:
+        b: half-width [m], > 0.
+        h: half-height [m], > 0.
+        mu: static friction coefficient at the base [-], >= 0.
+        mu_kinetic: kinetic friction coefficient [-], in [0, mu]; defaults to ``mu``.
+        theta0: initial tilt [rad], |theta0| < pi/2, released at rest on its corner.
+        zeno_arc: the arc [s] below which the rest of a Zeno sequence of sticking impacts
+            is summed (and a slide-rock's chatter ends in a slide).
+        g: gravitational acceleration [m/s²].
+
+    The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x and
+    z components [m/s²]. Backends: "cvode" (default) and "ida".
+    """
+
+    b: float
+    h: float
+    mu: float
+    mu_kinetic: float | None = None
+    theta0: float = 0.0
+    zeno_arc: float = 1e-5
+    g: float = STANDARD_GRAVITY
+
+    state_names = ("x", "z", "theta", "x_rate", "z_rate", "theta_rate", "base_work", "friction_work")
+    state_units = ("m", "m", "rad", "m/s", "m/s", "rad/s", "J/kg", "J/kg")
+    modes = FreeMode
+    instant_modes = INSTANT
+    component_names = ("x", "z")
+    displacement_states = (X,)
+
+    def __post_init__(self):
+        for name in ("b", "h", "mu", "theta0", "zeno_arc", "g"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)) \
+                    or not math.isfinite(value):
+                raise ValueError(f"{name}={value!r} must be a finite number")
+        for name in ("b", "h", "g", "zeno_arc"):
+            if getattr(self, name) <= 0:
+                raise ValueError(f"{name}={getattr(self, name)!r} must be > 0")
+        if self.mu < 0:
+            raise ValueError(f"mu={self.mu!r} must be >= 0")
+        if self.mu_kinetic is not None and not (isinstance(self.mu_kinetic, (int, float, np.floating))
+                                                and 0 <= self.mu_kinetic <= self.mu):
+            raise ValueError(f"mu_kinetic={self.mu_kinetic!r} must be in [0, mu={self.mu}] (kinetic friction "
+                             "cannot exceed static friction)")
+        if not abs(self.theta0) < math.pi / 2:
+            raise ValueError(f"theta0={self.theta0!r} must be in (-pi/2, pi/2) [rad]")
+        if self.friction_kinetic >= PAINLEVE_FRICTION:
+            warnings.warn(f"mu_kinetic={self.friction_kinetic} >= 4/3: slide-rocking may meet Painlevé's paradox "
+                          "(no consistent contact force, D <= 0), where a run stops with an error naming the time",
+                          PainleveWarning, stacklevel=3)
+
+    # ---- what the block is ----------------------------------------------------------
+    @property
+    def alpha(self):
+        """Slenderness atan(b/h) [rad]."""
+        return math.atan2(self.b, self.h)
+
+    @property
+    def R(self):
+        """Distance from a base corner to the centroid [m]."""
+        return math.hypot(self.b, self.h)
+
+    @property
+    def slenderness_ratio(self):
+        """lambda = b/h = tan(alpha) [-]: |a_x|/g_e that tips the block from rest."""
+        return self.b / self.h
+
+    @property
+    def frequency(self):
+        """p = sqrt(3 g / (4 R)) [rad/s]."""
+        return math.sqrt(0.75 * self.g / self.R)
+
+    @property
+    def r(self):
+        """Housner's restitution 1 - 3/2 sin² alpha [-]: a sticking impact's theta'+/theta'-."""
+        return 1.0 - 1.5 * math.sin(self.alpha) ** 2
+
+    @property
+    def friction_kinetic(self):
+        """Kinetic friction coefficient [-] (mu unless given)."""
+        return self.mu if self.mu_kinetic is None else self.mu_kinetic
+
+    @property
+    def initial_mode(self):
+        """REST, or RELEASE from the tilt theta0 (an instant mode whose guard takes the
+        state to the tilt: the mode after it depends on a(0))."""
+        return FreeMode.RELEASE if self.theta0 != 0 else FreeMode.REST
+
+    def initial_state(self):
+        """At rest flat on the base: x = 0, z = h, no rotation, no work done."""
+        y = np.zeros(len(self.state_names))
+        y[Z] = self.h
+        return y
+
+    def replace(self, **changes) -> "FreeStandingBlock":
+        """A copy with some parameters changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    # ---- the motion -----------------------------------------------------------------
+    def check_motion(self, motion) -> None:
+        """An excitation (a_x) or a :class:`~blockdae.BaseMotion` with x and z components."""
+        if isinstance(motion, BaseMotion):
+            if motion.y is not None:
+                raise ValueError("a free-standing block moves in the x-z plane: its BaseMotion takes no y component")
+            return
+        if not isinstance(motion, AbstractExcitation):
+            raise TypeError(f"motion must be an excitation (Harmonic, Record, ...) or a BaseMotion, "
+                            f"got {type(motion).__name__}")
+        super().check_motion(motion)
+
+    def excitation_pieces(self, excitation, t_end):
+        """(a_x, a_z) pieces on one partition of [0, t_end] [s]."""
+        if not isinstance(excitation, BaseMotion):
+            ax = excitation.pieces(t_end)
+            return ax, Pieces.linear(ax.t0, ax.h, 0.0, 0.0)
+        ax, _, az = excitation.aligned_pieces(t_end)
+        return ax, az
+
+    def _base(self, t, excitation):
+        """(a_x [m/s²], g_e [m/s²], a_x' [m/s³], a_z' [m/s³]) at ``t`` [s]."""
+        return (excitation.component(0, t), self.g + excitation.component(1, t),
+                excitation.component_rate(0, t), excitation.component_rate(1, t))
+
+    # ---- the laws in this state layout ------------------------------------------------
+    def rock_forces(self, s, y, ax, ge, xp=SCALAR):
+        """(theta'' [rad/s²], F, N [m/s²]) rocking on the sticking pivot ``s`` in state ``y``."""
+        accel = laws.rock_acceleration(s, y[THETA], ax, ge, self.R, self.alpha, xp)
+        force, normal = laws.rock_contact_force(s, y[THETA], y[THETA_RATE], accel, ax, ge, self.R, self.alpha, xp)
+        return accel, force, normal
+
+    def slide_rock(self, s, sigma, y, ax, ge, xp=SCALAR):
+        """(D [-], N [m/s²], theta'' [rad/s²], u'' [m/s²]) on pivot ``s`` slipping toward ``sigma``."""
+        return laws.slide_rock_acceleration(s, sigma, y[THETA], y[THETA_RATE], ax, ge, self.R, self.alpha,
+                                            self.friction_kinetic, xp)
+
+    def pivot_slip_rate(self, s, y, xp=SCALAR):
+        """u' [m/s]: the velocity of corner ``s`` along the base (x' - R cos phi theta')."""
+        return y[X_RATE] - self.R * xp.cos(s * self.alpha - y[THETA]) * y[THETA_RATE]
+
+    def corner_height(self, c, y, xp=SCALAR):
+        """z_c [m]: corner ``c``'s height above the base."""
+        return y[Z] - c * self.b * xp.sin(y[THETA]) - self.h * xp.cos(y[THETA])
+
+    # ---- the automaton ----------------------------------------------------------------
+    def flow(self, mode, t, y, excitation, xp=np):
+        """dy/dt in ``mode`` (zero at rest, overturned and in the instant modes)."""
+        kind, s = kind_of(mode), side(mode)
+        ax, ge, _, _ = self._base(t, excitation)
+        zero = 0.0 * y[X]
+        power = laws.base_power(ax, ge - self.g, y[X_RATE], y[Z_RATE])
+        if kind == 1:
+            x_accel = laws.slide_acceleration(s, ax, ge, self.friction_kinetic)
+            friction = laws.friction_power(-s * self.friction_kinetic * ge, y[X_RATE])
+            return xp.stack([y[X_RATE], zero, zero, zero + x_accel, zero, zero, power, zero + friction])
+        if kind in _ROCK or kind in SLIDE_ROCK_KINDS:
+            phi = s * self.alpha - y[THETA]
+            if kind in _ROCK:
+                accel = laws.rock_acceleration(s, y[THETA], ax, ge, self.R, self.alpha, xp)
+                x_accel = self.R * (xp.cos(phi) * accel + xp.sin(phi) * y[THETA_RATE] ** 2)
+                friction = zero
+            else:
+                sigma = slip_direction(mode)
+                _, normal, accel, _ = self.slide_rock(s, sigma, y, ax, ge, xp)
+                x_accel = -ax - sigma * self.friction_kinetic * normal
+                friction = laws.friction_power(-sigma * self.friction_kinetic * normal, self.pivot_slip_rate(s, y, xp))
+            z_accel = self.R * (xp.sin(phi) * accel - xp.cos(phi) * y[THETA_RATE] ** 2)
+            return xp.stack([y[X_RATE], y[Z_RATE], y[THETA_RATE], x_accel, z_accel, accel, power, zero + friction])
+        if kind == 9:
+            return xp.stack([y[X_RATE], y[Z_RATE], y[THETA_RATE], zero - ax, zero - ge, zero, power, zero])
+        if kind == SETTLE:
+            return xp.stack([zero] * 5 + [zero + self._settle_rate(s, t, excitation), zero, zero])
+        return xp.stack([zero] * len(self.state_names))
+
+    def guards(self, mode, t, y, excitation, xp=np):
+        """Guards of ``mode``, each left as it falls through zero.
+
+        REST: (limit - a_x, limit + a_x, g_e), limit = min(mu, b/h) g_e; SLIDE sigma:
+        (sigma x', g_e); ROCK s: its two own (out: s theta' -> apex, alpha - s theta; in:
+        s theta -> impact, -s theta' -> out again; beyond: s theta', pi/2 - s theta), N
+        (-> flight), mu N - |F| (-> slip); SLIDE_ROCK (s, sigma): (s theta -> impact,
+        pi/2 - s theta, N, sigma u' -> the slip stops, D -> Painlevé's paradox); FLIGHT:
+        (z_+, z_-, pi/2 - |theta|); SETTLE s: (s theta' -> rest, the two onsets, g_e)."""
+        kind, s = kind_of(mode), side(mode)
+        ax, ge, _, _ = self._base(t, excitation)
+        one = 0.0 * y[X] + 1.0
+        if mode == FreeMode.REST:
+            limit = min(self.mu, self.slenderness_ratio) * ge
+            return xp.stack([limit - ax, limit + ax, ge])
+        if kind == 1:
+            return xp.stack([s * y[X_RATE], ge])
+        if kind in _ROCK:
+            own = rules.rocking_guards(kind, s, y[THETA], y[THETA_RATE], self.alpha)
+            _, force, normal = self.rock_forces(s, y, ax, ge, xp)
+            return xp.stack([*own, normal, self.mu * normal - xp.abs(force)])
+        if kind in SLIDE_ROCK_KINDS:
+            denominator, normal, _, _ = self.slide_rock(s, slip_direction(mode), y, ax, ge, xp)
+            return xp.stack([s * y[THETA], 0.5 * math.pi - s * y[THETA], normal,
+                             slip_direction(mode) * self.pivot_slip_rate(s, y, xp), denominator])
+        if kind == 9:
+            return xp.stack([self.corner_height(1, y, xp), self.corner_height(-1, y, xp),
+                             0.5 * math.pi - xp.abs(y[THETA])])
+        if kind == SETTLE:
+            limit = self.slenderness_ratio * ge
+            return xp.stack([s * y[THETA_RATE], limit - ax, limit + ax, ge])
+        if mode in INSTANT:
+            return xp.stack([-one - t])  # left at once
+        return xp.stack([one])
+
+    def mode_at_rest(self, t, excitation, xp=np, y=None):
+        """The mode a block at rest takes at ``t``: section 6's map (Shenton 1996 with g_e),
+        a threshold touched decided by the demand's rate."""
+        ax, ge, ax_rate, az_rate = self._base(t, excitation)
+        kind, d = laws.rest_mode(ax, ge, self.slenderness_ratio, self.mu, self.friction_kinetic, ax_rate, az_rate)
+        return self._mode_of(kind, d)
+
+    def _mode_of(self, kind, d, s=None):
+        """The mode of a law's (kind, direction): d the side driven to (a slide's sigma, a
+        pivot; a slide-rock's slip with pivot ``s``, d when not given)."""
+        if kind == laws.REST:
+            return FreeMode.REST
+        if kind == laws.SLIDE:
+            return FreeMode(d)
+        if kind == laws.ROCK:
+            return rock_mode(OUT, d)
+        if kind == laws.SLIDE_ROCK:
+            return slide_rock_mode(d if s is None else s, d)
+        return FreeMode.FLIGHT
+
+    def _on_corner(self, s, y, ax, ge):
+        """The mode of a block on corner ``s`` whose pivot has stopped (a slip that stops, a
+        sticking impact, the release): ROCK s (out, in or beyond by theta'), SLIDE_ROCK
+        (s, -sgn F) or FLIGHT (:func:`._slide_rock_laws.pivot_mode`)."""
+        kind, sigma = laws.pivot_mode(s, y[THETA], y[THETA_RATE], ax, ge, self.R, self.alpha, self.mu,
+                                      self.friction_kinetic)
+        if kind == laws.SLIDE_ROCK:
+            return slide_rock_mode(s, sigma)
+        if kind != laws.ROCK:
+            return FreeMode.FLIGHT
+        if s * y[THETA_RATE] > 0:
+            return rock_mode(OUT if s * y[THETA] < self.alpha else BEYOND, s)
+        if s * y[THETA_RATE] < 0:
+            return rock_mode(IN, s)
+        accel = laws.rock_acceleration(s, y[THETA], ax, ge, self.R, self.alpha, math)
+        return FreeMode(rules.mode_after_apex(s, y[THETA], accel, self.alpha))
+
+    def _impact_mode(self, y):
+        """The instant mode of the impact or landing from the located state ``y`` (theta = 0
+        from a rocking mode, a corner at 0 height from flight)."""
+        c, *_, sticks, _, _ = laws.landing(y[THETA], y[X_RATE], y[Z_RATE], y[THETA_RATE], self.b, self.h, self.mu,
+                                           self.friction_kinetic)
+        if c == 0:
+            return FreeMode.LANDING_FLAT
+        return FreeMode((10 if sticks else 11) * c)
+
+    def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
+        """The mode after guard ``guard_index`` of ``mode`` (see :meth:`guards`): impacts and
+        landings enter their instant mode, after which the jumped state decides."""
+        kind, s = kind_of(mode), side(mode)
+        ax, ge, ax_rate, az_rate = self._base(t, excitation)
+        if mode == FreeMode.REST:
+            if guard_index == 2:
+                return FreeMode.FLIGHT
+            d = -1 if guard_index == 0 else 1
+            # at the threshold |a_x| = min(mu, b/h) g_e: a slide, or (mu > b/h) a rock, whose
+            # pivot holds there with the margin 4 g_e (1 + lambda²)(mu - lambda) of (S)
+            return FreeMode(d) if self.mu <= self.slenderness_ratio else rock_mode(OUT, d)
+        if kind == 1:
+            if guard_index == 1:
+                return FreeMode.FLIGHT
+            return self._after_slide_stop(int(mode), t, y, excitation, time_tol)
+        if kind in _ROCK:
+            if guard_index == 2:
+                return FreeMode.FLIGHT
+            if guard_index == 3:
+                _, force, _ = self.rock_forces(s, y, ax, ge)
+                return slide_rock_mode(s, -1 if force > 0 else 1)
+            if kind == IN and guard_index == 0:
+                return self._impact_mode(y)
+            after = rules.mode_after_rocking_guard(kind, s, guard_index, y[THETA], 0.0, 0.0, 0.0, self.alpha,
+                                                   self.zeno_arc)
+            return self.mode_at_rest(t, excitation) if after == rules.DEMAND_DECIDES else FreeMode(after)
+        if kind in SLIDE_ROCK_KINDS:
+            if guard_index == 0:
+                return self._impact_mode(y)
+            if guard_index == 1:
+                return rock_mode(OVERTURNED, s)
+            if guard_index == 2:
+                return FreeMode.FLIGHT
+            if guard_index == 3:
+                return self._on_corner(s, y, ax, ge)
+            raise ValueError(f"at t = {t:.12g} s Painlevé's paradox: slide-rocking on the corner {s:+d}b with "
+                             f"mu_kinetic = {self.friction_kinetic} has no consistent contact force (D = 0 at "
+                             f"theta = {y[THETA]:+.6g} rad); outside this model")
+        if kind == 9:
+            if guard_index == 2:
+                return rock_mode(OVERTURNED, 1 if y[THETA] > 0 else -1)
+            return self._impact_mode(y)
+        if kind == SETTLE:
+            if guard_index == 3:
+                return FreeMode.FLIGHT
+            return FreeMode.REST if guard_index == 0 else rock_mode(OUT, -1 if guard_index == 1 else 1)
+        if mode == FreeMode.RELEASE:
+            return self._on_corner(1 if self.theta0 > 0 else -1, y, ax, ge)
+        if mode in INSTANT:
+            return self._after_impact(mode, t, y, excitation)
+        return mode
+
+    def _after_slide_stop(self, mode, t, y, excitation, time_tol):
+        """The mode after a slide stops: REST, the slide on or reversed (the sliding block's
+        rule, with min(mu, b/h) for mu), or what the rest map starts toward that side."""
+        ax, ge, ax_rate, az_rate = self._base(t, excitation)
+        slip_rate = self.flow(mode, t, y, excitation, SCALAR)[X_RATE]
+        d = int(stop_mode(mode, slip_rate, ax_rate, t, min(self.mu, self.slenderness_ratio), self.friction_kinetic,
+                          ge, True, True, SCALAR, time_tol))
+        if d == 0 or self.mu <= self.slenderness_ratio:
+            return FreeMode(d)
+        kind, _ = laws.rest_mode(-d * max(abs(ax), self.slenderness_ratio * ge), ge, self.slenderness_ratio,
+                                 self.mu, self.friction_kinetic)
+        return self._mode_of(kind if kind != laws.REST else laws.ROCK, d)
+
+    def _after_impact(self, mode, t, y, excitation):
+        """The mode after the jump of an impact or landing (``mode``, instant) in the state
+        ``y`` after it."""
+        ax, ge, _, _ = self._base(t, excitation)
+        if mode == FreeMode.LANDING_FLAT:
+            if y[X_RATE] == 0:
+                return self.mode_at_rest(t, excitation)
+            sigma = 1 if y[X_RATE] > 0 else -1
+            return slide_rock_mode(sigma, sigma) if self.friction_kinetic > self.slenderness_ratio else FreeMode(sigma)
+        c = side(mode)
+        slip = self.pivot_slip_rate(c, y)
+        if kind_of(mode) == 10 or slip == 0:
+            after = self._on_corner(c, y, ax, ge)
+        else:
+            sigma = 1 if slip > 0 else -1
+            after = slide_rock_mode(c, sigma)
+            if self.slide_rock(c, sigma, y, ax, ge)[1] < 0:
+                return FreeMode.FLIGHT
+        if kind_of(after) == OUT and self._settles(c, t, y, excitation):
+            return rock_mode(SETTLE, c)
+        if kind_of(after) in SLIDE_ROCK_KINDS and self._chatters(c, slip_direction(after), y, ax, ge):
+            return FreeMode(slip_direction(after))
+        return after
+
+    def deceleration(self, s, t, excitation):
+        """-s theta'' [rad/s²] rocking on corner ``s`` at theta = 0: how fast an arc from the
+        base about that corner turns back (<= 0: the demand holds it out)."""
+        ax, ge, _, _ = self._base(t, excitation)
+        return -s * laws.rock_acceleration(s, 0.0, ax, ge, self.R, self.alpha, math)
+
+    def _settles(self, c, t, y, excitation):
+        """Whether the arc on corner ``c`` that a sticking impact starts with theta' in ``y`` is
+        shorter than ``zeno_arc`` and both corners restore: the Zeno tail is summed."""
+        ahead, behind = self.deceleration(c, t, excitation), self.deceleration(-c, t, excitation)
+        return ahead > 0 and behind > 0 and 2 * abs(y[THETA_RATE]) / ahead < self.zeno_arc
+
+    def _chatters(self, c, sigma, y, ax, ge):
+        """Whether a slide-rock arc on corner ``c`` slipping toward ``sigma`` that an impact
+        starts is restoring and shorter than ``zeno_arc`` with mu_k <= b/h: the chatter ends
+        in a slide."""
+        if self.friction_kinetic > self.slenderness_ratio:
+            return False
+        rest = np.array(y, dtype=float)
+        rest[THETA], rest[THETA_RATE] = 0.0, 0.0
+        accel = self.slide_rock(c, sigma, rest, ax, ge)[2]
+        return c * accel < 0 and 2 * abs(y[THETA_RATE]) / abs(accel) < self.zeno_arc
+
+    def _settle_rate(self, s, t, excitation):
+        """d theta'/dt [rad/s²] of the Zeno envelope on side ``s`` (:func:`._rules.settle_rate`)."""
+        return rules.settle_rate(s, self.deceleration(s, t, excitation), self.deceleration(-s, t, excitation), self.r)
+
+    # ---- states on guards and on entry ------------------------------------------------
+    def _pivot_state(self, s, y, theta, rate, xp=SCALAR):
+        """``y`` on the sticking pivot ``s`` (kept where it is) at (theta, theta'): the centroid's
+        x, z and rates from the rotation alone."""
+        radius, alpha = self.R, self.alpha
+        u = y[X] + radius * xp.sin(s * alpha - y[THETA])
+        phi = s * alpha - theta
+        return xp.stack([u - radius * xp.sin(phi), radius * xp.cos(phi), theta, radius * xp.cos(phi) * rate,
+                         radius * xp.sin(phi) * rate, rate, y[BASE_WORK], y[FRICTION_WORK]])
+
+    def _slipping_state(self, s, y, theta, rate, slip, xp=SCALAR):
+        """``y`` on pivot ``s`` (kept where it is) at (theta, theta') slipping with u' = ``slip``."""
+        pivot = self._pivot_state(s, y, theta, rate, xp)
+        return xp.stack([pivot[X], pivot[Z], theta, pivot[X_RATE] + slip, pivot[Z_RATE], rate,
+                         y[BASE_WORK], y[FRICTION_WORK]])
+
+    def _flat_state(self, y, x_rate, xp=SCALAR):
+        """``y`` standing flat (theta = 0, z = h) with x' = ``x_rate`` [m/s]."""
+        zero = 0.0 * y[X]
+        return xp.stack([y[X], zero + self.h, zero, zero + x_rate, zero, zero, y[BASE_WORK], y[FRICTION_WORK]])
+
+    def state_at_guard(self, mode, guard_index, y, xp=np):
+        """The state exactly on the guard: theta' = 0 at an apex, theta = 0 at an impact,
+        alpha or pi/2 at those guards, u' = 0 where a slip stops, the corner at height 0
+        at a landing, x' = 0 where a slide stops; the tilt on release."""
+        kind, s = kind_of(mode), side(mode)
+        if kind == 1 and guard_index == 0:
+            return self._flat_state(y, 0.0, xp)
+        if kind in _ROCK and guard_index < 2:
+            theta, rate = y[THETA], y[THETA_RATE]
+            if (kind == IN) == (guard_index == 0):
+                theta = 0.0 * theta + (0.0 if kind == IN else s * (self.alpha if kind == OUT else 0.5 * math.pi))
+            else:
+                rate = 0.0 * rate
+            return self._pivot_state(s, y, theta, rate, xp)
+        if kind in SLIDE_ROCK_KINDS and guard_index < 2:
+            theta = 0.0 * y[THETA] + (0.0 if guard_index == 0 else s * 0.5 * math.pi)
+            return self._slipping_state(s, y, theta, y[THETA_RATE], self.pivot_slip_rate(s, y, xp), xp)
+        if kind in SLIDE_ROCK_KINDS and guard_index == 3:
+            return self._pivot_state(s, y, y[THETA], y[THETA_RATE], xp)
+        if kind == 9 and guard_index < 2:
+            c = 1 if guard_index == 0 else -1
+            level = np.array(y, dtype=float)
+            level[Z] = c * self.b * math.sin(y[THETA]) + self.h * math.cos(y[THETA])
+            return level
+        if kind == SETTLE and guard_index == 0:
+            return self._flat_state(y, 0.0, xp)
+        if mode == FreeMode.RELEASE:
+            s = 1 if self.theta0 > 0 else -1
+            return self._pivot_state(s, self.initial_state(), self.theta0, 0.0, xp)
+        return y
+
+    def state_on_entry(self, before, after, t, y, excitation, xp=np):
+        """The jump on entering ``after`` from ``before`` at ``t`` (:meth:`entry_state`)."""
+        return self.entry_state(before, after, y)
+
+    def entry_state(self, before, after, y):
+        """The state on entering ``after`` from ``before`` [the units of :attr:`state_names`]:
+        an impact's or landing's velocity jump (:func:`._slide_rock_laws.landing`); the
+        rocking state made exact on its pivot; flat in a slide or at rest after an impact;
+        still on its side overturned. Needs no excitation (the event records use it)."""
+        y = np.array(y, dtype=float)
+        kind = kind_of(after)
+        if after in (FreeMode.LANDING_FLAT,) or kind in (10, 11):
+            _, x_rate, z_rate, theta_rate, *_ = laws.landing(y[THETA], y[X_RATE], y[Z_RATE], y[THETA_RATE], self.b,
+                                                           self.h, self.mu, self.friction_kinetic)
+            y[X_RATE], y[Z_RATE], y[THETA_RATE] = x_rate, z_rate, theta_rate
+            return y
+        s = side(after)
+        if kind in _ROCK:
+            return np.array(self._pivot_state(s, y, y[THETA], y[THETA_RATE]))
+        if kind == SETTLE:
+            settled = self._flat_state(y, 0.0)
+            return np.array([*settled[:THETA_RATE], y[THETA_RATE], *settled[BASE_WORK:]])
+        if kind in SLIDE_ROCK_KINDS:
+            return np.array(self._slipping_state(s, y, y[THETA], y[THETA_RATE], self.pivot_slip_rate(s, y)))
+        if kind == OVERTURNED:
+            return np.array(self._pivot_state(s, y, s * 0.5 * math.pi, 0.0))
+        if after == FreeMode.REST or (kind == 1 and kind_of(before) not in (0, 1)):
+            return np.array(self._flat_state(y, 0.0 if after == FreeMode.REST else y[X_RATE]))
+        return y
+
+    # ---- what the hybrid driver asks ------------------------------------------------
+    def is_static(self, mode):
+        return mode == FreeMode.REST or kind_of(mode) == OVERTURNED
+
+    def at_rest(self, mode, y):
+        return mode == FreeMode.REST or (kind_of(mode) == 1 and y[X_RATE] == 0)
+
+    def rest_state(self, y):
+        y = np.array(y, dtype=float)
+        y[X_RATE:BASE_WORK] = 0.0
+        return y
+
+    def output_step(self):
+        """Largest gap between dense-output knots [s]: 1 / (32 p)."""
+        return 1.0 / (KNOTS_PER_RADIAN * self.frequency)
+
+    def turn_rate(self, mode, t, y, excitation, xp=np):
+        """x'' sliding, theta'' rocking at the state ``y``: the integrator stops where the
+        slide's or the rotation's rate may turn."""
+        kind = kind_of(mode)
+        if kind == 1:
+            return self.flow(mode, t, y, excitation, xp)[X_RATE]
+        if kind in _ROCK:
+            return self.flow(mode, t, y, excitation, xp)[THETA_RATE]
+        return None
+
+    def guard_rates(self, mode, guard_index, t, y, excitation):
+        if mode in INSTANT:
+            return -1.0, 0.0
+        if kind_of(mode) == OVERTURNED:
+            return 0.0, 0.0
+        return super().guard_rates(mode, guard_index, t, y, excitation)
+
+    def contradiction(self, mode, y, velocity_error):
+        """A slide, a slip or a rotation whose rate points against its mode beyond the
+        velocity error (a rotation also beyond 1e-10 p alpha [rad/s])."""
+        kind, s = kind_of(mode), side(mode)
+        if kind == 1 and s * y[X_RATE] < -velocity_error:
+            return f"x' = {y[X_RATE]:+.6g} m/s points against the slide"
+        if kind in SLIDE_ROCK_KINDS and slip_direction(mode) * self.pivot_slip_rate(s, y) < -velocity_error:
+            return f"the pivot's slip u' = {self.pivot_slip_rate(s, y):+.6g} m/s points against its mode"
+        velocity_error = max(velocity_error, RATE_FLOOR * self.frequency * self.alpha)
+        if kind in (OUT, BEYOND) and s * y[THETA_RATE] < -velocity_error:
+            return f"theta' = {y[THETA_RATE]:+.6g} rad/s points toward the base"
+        if kind == IN and s * y[THETA_RATE] > velocity_error:
+            return f"theta' = {y[THETA_RATE]:+.6g} rad/s points away from the base"
+        return None
+
+    def speed(self, y):
+        """max(|x'|, |z'|, R |theta'|) [m/s]."""
+        return max(abs(float(y[X_RATE])), abs(float(y[Z_RATE])), self.R * abs(float(y[THETA_RATE])))
+
+    def time_to_rest(self, mode, y):
+        """A bound [s] on the time to rest after the excitation: the free decay of the
+        impacts and a slide's stop."""
+        f = self.friction_kinetic
+        if f == 0 and self.speed(y) != 0:
+            raise ValueError("a block without kinetic friction slides on forever: give t_end [s]")
+        slide = 2.0 * self.speed(y) / (f * self.g) if f > 0 else 0.0
+        return 200.0 * math.pi / (self.frequency * (1.0 - self.r)) + 10.0 / self.frequency + slide
+
+    def event(self, t, mode_before, mode_after, y):
+        after = self.entry_state(mode_before, mode_after, y)
+        return FreeEvent.make(float(t), mode_before, mode_after, np.asarray(y, dtype=float)[:BASE_WORK],
+                              after[:BASE_WORK])
+
+    def solution(self, *, t, y, mode, events, backend, dense, stats):
+        return FreeStandingSolution(t=t, state=y, mode=mode, events=FreeEvent.merge(events), backend=backend,
+                                    dense=dense, stats=stats)
+
+    def energy(self, mode, y):
+        """E = ½ (x'² + z'²) + (R²/6) theta'² + g z [J/kg] in ``mode`` (a settling block's
+        rotation rate is the envelope of its summed impacts: no kinetic energy)."""
+        if kind_of(mode) == SETTLE:
+            return self.g * y[Z]
+        return laws.energy(y[X_RATE], y[Z_RATE], y[THETA_RATE], y[Z], self.R, self.g)
