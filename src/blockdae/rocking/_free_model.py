@@ -38,6 +38,11 @@ X, Z, THETA, X_RATE, Z_RATE, THETA_RATE, BASE_WORK, FRICTION_WORK = range(8)
 _ROCK = (OUT, IN, BEYOND)
 #: a rotation rate below RATE_FLOOR p alpha [rad/s] is no contradiction of its mode
 RATE_FLOOR = 1e-10
+#: a force guard below -JUMP_FLOOR g [-] is past zero (a jump of a(t)), not at a located root
+JUMP_FLOOR = 1e-9
+#: a corner of a flying block that reaches the base at a speed below GRAZE_SPEED times the
+#: block's speed scale [-] while accelerating away grazes it (rounding of its height)
+GRAZE_SPEED = 1e-12
 #: Painlevé's paradox is possible from this kinetic friction on [-]
 PAINLEVE_FRICTION = 4.0 / 3.0
 
@@ -297,6 +302,16 @@ class FreeStandingBlock(AbstractHybridModel):
         accel = laws.rock_acceleration(s, y[THETA], ax, ge, self.R, self.alpha, math)
         return FreeMode(rules.mode_after_apex(s, y[THETA], accel, self.alpha))
 
+    def _grazes(self, c, y, ge):
+        """Whether corner ``c`` of a block in flight that reached height 0 in state ``y`` only
+        grazes the base: it does not approach it (v_cz >= 0 within rounding of the speed) and
+        accelerates away (z_c'' = -g_e - r_cz theta'² > 0). Just after a lift-off, where N
+        fell to 0, the corner rises as the cube of the time and its height is rounding."""
+        *_, v_cz = laws.corner_state(c, y[Z], y[THETA], y[X_RATE], y[Z_RATE], y[THETA_RATE], self.b, self.h, math)
+        r_cz = laws.corner_offset(c, y[THETA], self.b, self.h, math)[1]
+        return v_cz >= -GRAZE_SPEED * max(self.speed(y), self.R * self.frequency) and \
+            -ge - r_cz * y[THETA_RATE] ** 2 > 0
+
     def _impact_mode(self, y):
         """The instant mode of the impact or landing from the located state ``y`` (theta = 0
         from a rocking mode, a corner at 0 height from flight)."""
@@ -348,6 +363,8 @@ class FreeStandingBlock(AbstractHybridModel):
         if kind == 9:
             if guard_index == 2:
                 return rock_mode(OVERTURNED, 1 if y[THETA] > 0 else -1)
+            if self._grazes(1 if guard_index == 0 else -1, y, ge):
+                return mode
             return self._impact_mode(y)
         if kind == SETTLE:
             if guard_index == 3:
@@ -531,11 +548,30 @@ class FreeStandingBlock(AbstractHybridModel):
             return self.flow(mode, t, y, excitation, xp)[THETA_RATE]
         return None
 
+    def guard_restarts(self, mode, guard_index):
+        """A corner of a flying block that grazes the base (:meth:`_grazes`) restarts the
+        flight (an event FLIGHT -> FLIGHT, which the solution leaves out): an integrator
+        cannot go on from a root it found."""
+        return kind_of(mode) == 9 and guard_index < 2
+
+    def _is_force_guard(self, mode, guard_index):
+        """Whether guard ``guard_index`` of ``mode`` is a force [m/s²] (g_e, a rest limit, N,
+        a friction margin): the only guards a jump of a(t) moves."""
+        kind = kind_of(mode)
+        return (mode == FreeMode.REST or (kind == 1 and guard_index == 1) or (kind in _ROCK and guard_index >= 2)
+                or (kind in SLIDE_ROCK_KINDS and guard_index == 2) or (kind == SETTLE and guard_index >= 1))
+
     def guard_rates(self, mode, guard_index, t, y, excitation):
+        """(rate, curvature) of the guard in time [its unit /s, /s²], by differences along the
+        flow; a force guard that a jump of a(t) at a knot carried below zero (by more than
+        JUMP_FLOOR g) falls at once: the event is at the knot."""
         if mode in INSTANT:
             return -1.0, 0.0
         if kind_of(mode) == OVERTURNED:
             return 0.0, 0.0
+        if self._is_force_guard(mode, guard_index) and \
+                self.guards(mode, t, y, excitation, SCALAR)[guard_index] < -JUMP_FLOOR * self.g:
+            return -1.0, 0.0
         return super().guard_rates(mode, guard_index, t, y, excitation)
 
     def contradiction(self, mode, y, velocity_error):

@@ -42,10 +42,13 @@ class FreeEvent(AbstractEvent):
     @classmethod
     def merge(cls, events):
         """``events`` with each change into an instant mode and the change out of it merged
-        into one event (an impact, a landing, the release)."""
+        into one event (an impact, a landing, the release), restarts within a mode left out."""
         merged, i = [], 0
         while i < len(events):
             e = events[i]
+            if e.mode_before == e.mode_after:  # a restart (a corner that grazes the base in flight)
+                i += 1
+                continue
             if e.mode_after in INSTANT and i + 1 < len(events) and events[i + 1].mode_before == e.mode_after:
                 out = events[i + 1]
                 merged.append(cls(e.t, e.mode_before, out.mode_after, impact_kind(e.mode_before, e.mode_after,
