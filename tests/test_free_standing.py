@@ -183,15 +183,15 @@ def test_pure_sliding_is_the_sliding_block(backend):
     assert sol.state[-1, 7] == pytest.approx(-mu * G * slid, rel=1e-10)  # friction's work
 
 
-@pytest.mark.parametrize("amplitude, mu, expected", [
-    (0.3, 0.3, FreeMode.ROCK_POS_OUT), (0.6, 0.3, FreeMode.SLIDE_ROCK_POS_POS), (0.3, 0.2, FreeMode.SLIDE_POS),
-    (0.2, 0.3, FreeMode.REST)])
-def test_a_step_from_rest_starts_the_rest_maps_mode(amplitude, mu, expected):
+@pytest.mark.parametrize("amplitude, mu, mu_kinetic, expected", [
+    (0.3, 0.3, 0.3, FreeMode.ROCK_POS_OUT), (0.6, 0.3, 0.3, FreeMode.SLIDE_ROCK_POS_POS),
+    (0.3, 0.2, 0.2, FreeMode.SLIDE_POS), (0.2, 0.3, 0.3, FreeMode.REST), (0.6, 0.3, 0.2, FreeMode.SLIDE_POS)])
+def test_a_step_from_rest_starts_the_rest_maps_mode(amplitude, mu, mu_kinetic, expected):
     """A step a_x = -amplitude g on the block with b/h = 1/4: the mode it starts is that of
     the rest map (Shenton 1996 with g_e: :func:`rest_mode`'s (kind, side))."""
-    block = FreeStandingBlock(b=0.25, h=1.0, mu=mu)
+    block = FreeStandingBlock(b=0.25, h=1.0, mu=mu, mu_kinetic=mu_kinetic)
     sol = run(block, bd.RectangularPulse(-amplitude * G, 0.05), "cvode", t_end=0.05)
-    kind, d = laws.rest_mode(-amplitude * G, G, 0.25, mu, mu)
+    kind, d = laws.rest_mode(-amplitude * G, G, 0.25, mu, mu_kinetic)
     assert block._mode_of(kind, d) == expected
     assert (sol.events[0].mode_after if sol.events else FreeMode.REST) == expected
     assert not sol.events or sol.events[0].t == 0
@@ -249,6 +249,48 @@ def test_vertical_drop_lifts_a_rocking_block_off_and_it_lands(backend):
     assert abs(land.t - float(t_land)) <= 1e-12
     assert land.mode_after == FreeMode.ROCK_NEG_IN and land.state[0] == pytest.approx(float(x0 + u0 * (t_land - t0)),
                                                                                         abs=1e-12)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_slide_rock_chatter_ends_in_a_slide_that_sticks(backend):
+    """mu_k = 0.2 <= b/h = 1/4 < mu_s = 0.3: the rocking block's pivot slips, its impacts
+    on alternate corners come ever faster while it slips (each arc restoring), and once an
+    arc would be shorter than zeno_arc the chatter ends in a slide (event "chatter", the
+    face down with the centroid's velocity after the last impact), which sticks: friction only takes energy."""
+    block = FreeStandingBlock(b=0.25, h=1.0, mu=0.3, mu_kinetic=0.2)
+    sol = run(block, bd.SinePulse(-0.6 * G, 0.4), backend, t_end=1.5)
+    assert kinds(sol)[:3] == ["uplift", "slip", "impact"] and kinds(sol)[-2:] == ["chatter", "stick"]
+    chatter = sol.events_of("chatter")[0]
+    assert chatter.mode_after == FreeMode.SLIDE_POS
+    assert chatter.state_after[1:3] == (block.h, 0.0) and chatter.state_after[4:] == (0.0, 0.0)
+    assert chatter.state_after[3] > 0  # the last impact's jump of x' is of the order of R theta'
+    assert abs(chatter.state_after[3] - chatter.state[3]) <= 2 * block.R * abs(chatter.state[5])
+    assert 2 * abs(chatter.state[5]) / G < 10 * block.zeno_arc
+    assert np.all(np.diff(sol.state[:, 7]) <= 1e-15)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_squat_block_lands_flat(backend):
+    """b/h = 2 (r = 1 - 3/2 sin² alpha < 0): released from a tilt, its other corner would be
+    driven down at the impact, so the face lands flat and the block rests (closed form:
+    z'+ = theta'+ = 0; no rebound)."""
+    block = FreeStandingBlock(b=0.8, h=0.4, mu=2.5, mu_kinetic=1.0, theta0=0.2)
+    assert block.r < 0
+    sol = run(block, QUIET, backend, t_end=1.0)
+    assert kinds(sol) == ["release", "land"]
+    land = sol.events[1]
+    assert land.via == FreeMode.LANDING_FLAT and land.mode_after == FreeMode.REST
+    assert land.state_after[1:] == (block.h, 0.0, 0.0, 0.0, 0.0)
+
+
+def test_painleves_paradox_stops_the_run_naming_the_time():
+    """mu_k = 2 >= 4/3: where the pivot of a rocking block starts to slip into a slide-rock
+    with D = 1 + 3 sin phi (sin phi - sigma mu_k cos phi) <= 0, no contact force is
+    consistent: an error naming the time and D."""
+    with pytest.warns(PainleveWarning):
+        block = FreeStandingBlock(b=0.3, h=0.5, mu=2.0)
+    with pytest.raises(ValueError, match=r"at t = 0\.2537\d+ s Painlevé's paradox.*D = -0\.108"):
+        bd.simulate(block, bd.SinePulse(-3 * G, 0.5), t_end=2.0, backend="cvode")
 
 
 def test_bad_input_is_refused_by_name():

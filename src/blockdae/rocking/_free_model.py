@@ -323,7 +323,24 @@ class FreeStandingBlock(AbstractHybridModel):
 
     def mode_after_guard(self, mode, guard_index, t, y, excitation, xp=np, time_tol=0.0):
         """The mode after guard ``guard_index`` of ``mode`` (see :meth:`guards`): impacts and
-        landings enter their instant mode, after which the jumped state decides."""
+        landings enter their instant mode, after which the jumped state decides. A
+        slide-rock entered, or left by its guard D, where D <= 0 is Painlevé's paradox: a
+        ValueError naming the time."""
+        after = self._next_mode(mode, guard_index, t, y, excitation, time_tol)
+        if kind_of(after) in SLIDE_ROCK_KINDS:
+            ax, ge, _, _ = self._base(t, excitation)
+            denominator = self.slide_rock(side(after), slip_direction(after), y, ax, ge)[0]
+            if denominator <= 0:
+                raise self._painleve(after, t, y, denominator)
+        return after
+
+    def _painleve(self, mode, t, y, denominator):
+        return ValueError(f"at t = {t:.12g} s Painlevé's paradox: slide-rocking on the corner {side(mode):+d} b "
+                          f"slipping toward {slip_direction(mode):+d} x with mu_kinetic = {self.friction_kinetic} "
+                          f"has no consistent contact force (D = {denominator:.6g} <= 0 at theta = "
+                          f"{y[THETA]:+.6g} rad, theta' = {y[THETA_RATE]:+.6g} rad/s); outside this model")
+
+    def _next_mode(self, mode, guard_index, t, y, excitation, time_tol):
         kind, s = kind_of(mode), side(mode)
         ax, ge, ax_rate, az_rate = self._base(t, excitation)
         if mode == FreeMode.REST:
@@ -357,9 +374,7 @@ class FreeStandingBlock(AbstractHybridModel):
                 return FreeMode.FLIGHT
             if guard_index == 3:
                 return self._on_corner(s, y, ax, ge)
-            raise ValueError(f"at t = {t:.12g} s Painlevé's paradox: slide-rocking on the corner {s:+d}b with "
-                             f"mu_kinetic = {self.friction_kinetic} has no consistent contact force (D = 0 at "
-                             f"theta = {y[THETA]:+.6g} rad); outside this model")
+            raise self._painleve(mode, t, y, 0.0)
         if kind == 9:
             if guard_index == 2:
                 return rock_mode(OVERTURNED, 1 if y[THETA] > 0 else -1)
