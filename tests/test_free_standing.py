@@ -293,6 +293,20 @@ def test_painleves_paradox_stops_the_run_naming_the_time():
         bd.simulate(block, bd.SinePulse(-3 * G, 0.5), t_end=2.0, backend="cvode")
 
 
+@pytest.mark.slow
+def test_the_jax_twin_runs_the_same_automaton():
+    """backend="jax" (diffrax, compiled: about a minute of compilation): the flight's
+    landing at its closed form (1e-12 s), and the slip-stick-overturn run's events as
+    CVODE's at rtol 1e-12 (1e-10 s), energy residuals within 1e-9 of their scale."""
+    motion = bd.BaseMotion(x=bd.RectangularPulse(0.3 * G, 0.2), z=bd.RectangularPulse(-1.5 * G, 0.2))
+    sol = run(FreeStandingBlock(b=0.3, h=0.5, mu=0.5), motion, "jax", t_end=1.0)
+    assert kinds(sol) == ["lift", "land"] and abs(sol.events[1].t - (0.3 + math.sqrt(0.03))) <= 1e-12
+    block, pulse = FreeStandingBlock(b=0.25, h=1.0, mu=0.3), bd.SinePulse(-0.6 * G, 0.4)
+    sol, ref = run(block, pulse, "jax", t_end=3.0), run(block, pulse, "cvode", t_end=3.0)
+    assert kinds(sol) == kinds(ref)
+    assert np.max(np.abs([a.t - b.t for a, b in zip(sol.events, ref.events)])) <= 1e-10
+
+
 def test_bad_input_is_refused_by_name():
     for kwargs, field in [(dict(b=0.0, h=1.0, mu=0.5), "b"), (dict(b=0.2, h=-1.0, mu=0.5), "h"),
                           (dict(b=0.2, h=1.0, mu=-0.1), "mu"),

@@ -18,6 +18,7 @@ if static friction can hold the corner, else slipping through with mu_k), after 
 state decides the mode. The laws are :mod:`._slide_rock_laws`'.
 """
 
+import copy
 import dataclasses
 import math
 import warnings
@@ -68,7 +69,7 @@ class FreeStandingBlock(AbstractHybridModel):
         g: gravitational acceleration [m/s²].
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x and
-    z components [m/s²]. Backends: "cvode" (default) and "ida".
+    z components [m/s²]. Backends: "cvode" (default), "ida" and "jax" (the diffrax twin).
     """
 
     b: float
@@ -181,20 +182,27 @@ class FreeStandingBlock(AbstractHybridModel):
                 excitation.component_rate(0, t), excitation.component_rate(1, t))
 
     # ---- the laws in this state layout ------------------------------------------------
+    def _geometry(self, xp):
+        """(alpha [rad], R [m]) from the (possibly traced: the JAX twin's) parameters."""
+        return xp.arctan2(self.b, self.h), xp.hypot(self.b, self.h)
+
     def rock_forces(self, s, y, ax, ge, xp=SCALAR):
         """(theta'' [rad/s²], F, N [m/s²]) rocking on the sticking pivot ``s`` in state ``y``."""
-        accel = laws.rock_acceleration(s, y[THETA], ax, ge, self.R, self.alpha, xp)
-        force, normal = laws.rock_contact_force(s, y[THETA], y[THETA_RATE], accel, ax, ge, self.R, self.alpha, xp)
+        alpha, radius = self._geometry(xp)
+        accel = laws.rock_acceleration(s, y[THETA], ax, ge, radius, alpha, xp)
+        force, normal = laws.rock_contact_force(s, y[THETA], y[THETA_RATE], accel, ax, ge, radius, alpha, xp)
         return accel, force, normal
 
     def slide_rock(self, s, sigma, y, ax, ge, xp=SCALAR):
         """(D [-], N [m/s²], theta'' [rad/s²], u'' [m/s²]) on pivot ``s`` slipping toward ``sigma``."""
-        return laws.slide_rock_acceleration(s, sigma, y[THETA], y[THETA_RATE], ax, ge, self.R, self.alpha,
+        alpha, radius = self._geometry(xp)
+        return laws.slide_rock_acceleration(s, sigma, y[THETA], y[THETA_RATE], ax, ge, radius, alpha,
                                             self.friction_kinetic, xp)
 
     def pivot_slip_rate(self, s, y, xp=SCALAR):
         """u' [m/s]: the velocity of corner ``s`` along the base (x' - R cos phi theta')."""
-        return y[X_RATE] - self.R * xp.cos(s * self.alpha - y[THETA]) * y[THETA_RATE]
+        alpha, radius = self._geometry(xp)
+        return y[X_RATE] - radius * xp.cos(s * alpha - y[THETA]) * y[THETA_RATE]
 
     def corner_height(self, c, y, xp=SCALAR):
         """z_c [m]: corner ``c``'s height above the base."""
@@ -212,22 +220,23 @@ class FreeStandingBlock(AbstractHybridModel):
             friction = laws.friction_power(-s * self.friction_kinetic * ge, y[X_RATE])
             return xp.stack([y[X_RATE], zero, zero, zero + x_accel, zero, zero, power, zero + friction])
         if kind in _ROCK or kind in SLIDE_ROCK_KINDS:
-            phi = s * self.alpha - y[THETA]
+            alpha, radius = self._geometry(xp)
+            phi = s * alpha - y[THETA]
             if kind in _ROCK:
-                accel = laws.rock_acceleration(s, y[THETA], ax, ge, self.R, self.alpha, xp)
-                x_accel = self.R * (xp.cos(phi) * accel + xp.sin(phi) * y[THETA_RATE] ** 2)
+                accel = laws.rock_acceleration(s, y[THETA], ax, ge, radius, alpha, xp)
+                x_accel = radius * (xp.cos(phi) * accel + xp.sin(phi) * y[THETA_RATE] ** 2)
                 friction = zero
             else:
                 sigma = slip_direction(mode)
                 _, normal, accel, _ = self.slide_rock(s, sigma, y, ax, ge, xp)
                 x_accel = -ax - sigma * self.friction_kinetic * normal
                 friction = laws.friction_power(-sigma * self.friction_kinetic * normal, self.pivot_slip_rate(s, y, xp))
-            z_accel = self.R * (xp.sin(phi) * accel - xp.cos(phi) * y[THETA_RATE] ** 2)
+            z_accel = radius * (xp.sin(phi) * accel - xp.cos(phi) * y[THETA_RATE] ** 2)
             return xp.stack([y[X_RATE], y[Z_RATE], y[THETA_RATE], x_accel, z_accel, accel, power, zero + friction])
         if kind == 9:
             return xp.stack([y[X_RATE], y[Z_RATE], y[THETA_RATE], zero - ax, zero - ge, zero, power, zero])
         if kind == SETTLE:
-            return xp.stack([zero] * 5 + [zero + self._settle_rate(s, t, excitation), zero, zero])
+            return xp.stack([zero] * 5 + [zero + self._settle_rate(s, t, excitation, xp), zero, zero])
         return xp.stack([zero] * len(self.state_names))
 
     def guards(self, mode, t, y, excitation, xp=np):
@@ -243,12 +252,12 @@ class FreeStandingBlock(AbstractHybridModel):
         ax, ge, _, _ = self._base(t, excitation)
         one = 0.0 * y[X] + 1.0
         if mode == FreeMode.REST:
-            limit = min(self.mu, self.slenderness_ratio) * ge
+            limit = xp.minimum(self.mu, self.slenderness_ratio) * ge
             return xp.stack([limit - ax, limit + ax, ge])
         if kind == 1:
             return xp.stack([s * y[X_RATE], ge])
         if kind in _ROCK:
-            own = rules.rocking_guards(kind, s, y[THETA], y[THETA_RATE], self.alpha)
+            own = rules.rocking_guards(kind, s, y[THETA], y[THETA_RATE], self._geometry(xp)[0])
             _, force, normal = self.rock_forces(s, y, ax, ge, xp)
             return xp.stack([*own, normal, self.mu * normal - xp.abs(force)])
         if kind in SLIDE_ROCK_KINDS:
@@ -428,11 +437,12 @@ class FreeStandingBlock(AbstractHybridModel):
             return FreeMode(slip_direction(after))
         return after
 
-    def deceleration(self, s, t, excitation):
+    def deceleration(self, s, t, excitation, xp=SCALAR):
         """-s theta'' [rad/s²] rocking on corner ``s`` at theta = 0: how fast an arc from the
         base about that corner turns back (<= 0: the demand holds it out)."""
         ax, ge, _, _ = self._base(t, excitation)
-        return -s * laws.rock_acceleration(s, 0.0, ax, ge, self.R, self.alpha, math)
+        alpha, radius = self._geometry(xp)
+        return -s * laws.rock_acceleration(s, 0.0, ax, ge, radius, alpha, xp)
 
     def _settles(self, c, t, y, excitation):
         """Whether the arc on corner ``c`` that a sticking impact starts with theta' in ``y`` is
@@ -451,9 +461,10 @@ class FreeStandingBlock(AbstractHybridModel):
         accel = self.slide_rock(c, sigma, rest, ax, ge)[2]
         return c * accel < 0 and 2 * abs(y[THETA_RATE]) / abs(accel) < self.zeno_arc
 
-    def _settle_rate(self, s, t, excitation):
+    def _settle_rate(self, s, t, excitation, xp=SCALAR):
         """d theta'/dt [rad/s²] of the Zeno envelope on side ``s`` (:func:`._rules.settle_rate`)."""
-        return rules.settle_rate(s, self.deceleration(s, t, excitation), self.deceleration(-s, t, excitation), self.r)
+        r = 1.0 - 1.5 * xp.sin(self._geometry(xp)[0]) ** 2
+        return rules.settle_rate(s, self.deceleration(s, t, excitation, xp), self.deceleration(-s, t, excitation, xp), r)
 
     # ---- states on guards and on entry ------------------------------------------------
     def _pivot_state(self, s, y, theta, rate, xp=SCALAR):
@@ -536,6 +547,21 @@ class FreeStandingBlock(AbstractHybridModel):
         if after == FreeMode.REST or (kind == 1 and kind_of(before) not in (0, 1)):
             return np.array(self._flat_state(y, 0.0 if after == FreeMode.REST else y[X_RATE]))
         return y
+
+    # ---- parameters, for the JAX twin ------------------------------------------------
+    def parameters(self):
+        """b [m], h [m], mu [-], mu_kinetic [-] (where given) and g [m/s²]: what ``flow`` and
+        ``guards`` read."""
+        values = {"b": self.b, "h": self.h, "mu": self.mu}
+        if self.mu_kinetic is not None:
+            values["mu_kinetic"] = self.mu_kinetic
+        return {**values, "g": self.g}
+
+    def with_parameters(self, values):
+        model = copy.copy(self)
+        for name, value in values.items():
+            object.__setattr__(model, name, value)
+        return model
 
     # ---- what the hybrid driver asks ------------------------------------------------
     def is_static(self, mode):
