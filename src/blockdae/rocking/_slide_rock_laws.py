@@ -74,6 +74,14 @@ def slide_rock_acceleration(s, sigma, theta, rate, ax, ge, R, alpha, mu_k, xp):
     return denominator, normal, theta_dd, -ax - sigma * mu_k * normal - R * cos * theta_dd - R * sin * rate * rate
 
 
+def centroid_from_pivot(s, theta, rate, u, u_rate, R, alpha, xp):
+    """(x, z [m], x', z' [m/s]) of the centroid on pivot ``s`` at u [m] moving at u' [m/s]:
+    x = u - R sin phi, z = R cos phi, x' = u' + R cos phi theta', z' = R sin phi theta'."""
+    phi = s * alpha - theta
+    sin, cos = xp.sin(phi), xp.cos(phi)
+    return u - R * sin, R * cos, u_rate + R * cos * rate, R * sin * rate
+
+
 def slide_acceleration(sigma, ax, ge, mu_k):
     """x'' [m/s²] of the flat block sliding toward ``sigma``: -a_x - sigma mu_k g_e."""
     return -ax - sigma * mu_k * ge
@@ -96,19 +104,19 @@ def slide_rock_threshold(mu, ge, lam):
     """a_SR [m/s²]: the demand |a_x| above which a block that starts to rock from rest
     slips at its pivot under friction ``mu`` (> lam):
     g_e [mu (4 + lam²) - 3 lam] / (1 + 4 lam² - 3 mu lam); infinite (the pivot always
-    holds) where the denominator is <= 0."""
-    denominator = 1.0 + 4.0 * lam * lam - 3.0 * mu * lam
+    holds) where the denominator is <= 0. Exact on fractions."""
+    denominator = 1 + 4 * lam * lam - 3 * mu * lam
     if denominator <= 0:
         return math.inf
-    return ge * (mu * (4.0 + lam * lam) - 3.0 * lam) / denominator
+    return ge * (mu * (4 + lam * lam) - 3 * lam) / denominator
 
 
 def critical_friction(a, ge, lam):
     """mu_cr [-]: the least friction (mu_s = mu_k) with which a block at rest under the demand
     |a_x| = ``a`` > lam g_e [m/s²] rocks rather than slide-rocks:
-    [(a/g_e)(1 + 4 lam²) + 3 lam] / [4 + lam² + 3 lam (a/g_e)]."""
+    [(a/g_e)(1 + 4 lam²) + 3 lam] / [4 + lam² + 3 lam (a/g_e)]. Exact on fractions."""
     ratio = a / ge
-    return (ratio * (1.0 + 4.0 * lam * lam) + 3.0 * lam) / (4.0 + lam * lam + 3.0 * lam * ratio)
+    return (ratio * (1 + 4 * lam * lam) + 3 * lam) / (4 + lam * lam + 3 * lam * ratio)
 
 
 def rest_mode(ax, ge, lam, mu_s, mu_k, ax_rate=0.0, ge_rate=0.0):
