@@ -2,6 +2,8 @@
 overturning (Housner 1963); its model, modes and solution; overturning spectra (Zhang &
 Makris 2001), the rest/slide/rock map and overturning fragility."""
 
+from ._figures import plot_mode_map
+from ._mode_map import mode_map
 from ._model import RockingBlock, housner_restitution
 from ._modes import RockingMode
 from ._solution import ContactWarning, RockingEvent, RockingSolution
@@ -10,4 +12,5 @@ from ._spectra import (OverturningFragility, OverturningSpectrum, motion_regime,
 
 __all__ = ["ContactWarning", "OverturningFragility", "OverturningSpectrum", "RockingBlock", "RockingEvent",
            "RockingMode", "RockingSolution", "housner_restitution", "motion_regime", "overturning_amplitude",
-           "overturning_fragility", "overturning_spectrum", "overturns", "pulse"]
+           "overturning_fragility", "overturning_spectrum", "overturns", "pulse",
+           "mode_map", "plot_mode_map"]
