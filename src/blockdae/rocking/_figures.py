@@ -75,9 +75,9 @@ def plot_mode_map(b_over_h, *, mu_k_ratio=1.0, av_over_g=0.0, a_max=None, mu_max
         ax.plot([lam * ge, lam * ge], [lam, mu_max], **line)  # a_x = g_e b/h
         demand = np.linspace(lam * ge, a_max, 200)
         ax.plot(demand, laws.critical_friction(demand, ge, lam), **line)  # rock above, slips below
-        if mu_k_ratio < 1 and lam / mu_k_ratio < mu_max:  # slide-rock above mu_k = b/h, slide below
+        if mu_k_ratio > 0 and lam / mu_k_ratio < mu_max:  # slide-rock above mu_k = b/h, slide below
             start = np.interp(lam / mu_k_ratio, laws.critical_friction(demand, ge, lam), demand)
-            ax.plot([start, a_max], [lam / mu_k_ratio] * 2, ls="--", **line)
+            ax.plot([start, a_max], [lam / mu_k_ratio] * 2, **line)
     present = np.unique(codes)
     ax.legend(handles=[Patch(color=_MODE_COLOURS[k], label=MODE_NAMES[k]) for k in present], loc="upper left",
               fontsize="small", framealpha=0.9)
