@@ -344,6 +344,63 @@ def test_shenton_thresholds_in_exact_arithmetic():
         assert margin == 4 * ge * (1 + lam ** 2) * (mu - lam)
 
 
+# ---- a pivot at rest relative to the base: the mode it takes ---------------------------
+def pivot_candidates(s, theta, rate, ax, ge, b, h, mu_s, mu_k):
+    """Each way pivot ``s`` can go on (stick, slip +1 / -1, lift; the other corner above the
+    base) with its Newton-Euler solution: ((kind, sigma), margins), consistent where every
+    margin is >= 0 (the sticking cone's, N's) or > 0 (a slip's or a lift's acceleration)."""
+    col = 3 if s == 1 else 5
+    out = []
+    for contact in ("stick", 1, -1, "free"):
+        y, acc = newton_euler(theta, rate, ax, ge, b, h, {s: contact, -s: "free"}, mu_s, mu_k)
+        F, N = y[col], y[col + 1]
+        if contact == "stick":
+            out.append(((ROCK, 0), (N, mu_s * N - abs(F))))
+        elif contact == "free":
+            out.append(((FLIGHT, 0), (acc[s][1],)))
+        else:
+            out.append(((SLIDE_ROCK, contact), (N, contact * acc[s][0])))
+    return out
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(0.001, 1.4), st.floats(-4.0, 4.0), st.floats(-20.0, 20.0), st.floats(-3.0, 15.0),
+       st.floats(0.05, 2.0), st.floats(0.05, 2.0), st.floats(0.0, 1.3), st.floats(0.3, 1.0), st.sampled_from([1, -1]))
+def test_pivot_mode_is_the_consistent_one(s_theta, rate, ax, ge, b, h, mu_s, kinetic_ratio, s):
+    """After a slip stops or a sticking impact: pivot_mode's mode satisfies the contact
+    conditions, and it sticks wherever sticking does; with mu_s = mu_k it is the only one."""
+    mu_k = kinetic_ratio * mu_s
+    R, alpha, _ = geometry(b, h)
+    theta = s * s_theta
+    candidates = pivot_candidates(s, theta, rate, ax, ge, b, h, mu_s, mu_k)
+    scale = max(abs(ax), abs(ge), R * rate ** 2, 1.0)
+    assume(all(abs(m) > 1e-9 * scale for _, margins in candidates for m in margins))
+    consistent = [mode for mode, margins in candidates if all(m > 0 for m in margins)]
+    chosen = laws.pivot_mode(s, theta, rate, ax, ge, R, alpha, mu_s, mu_k)
+    assert chosen in consistent, (chosen, consistent)
+    if (ROCK, 0) in consistent:
+        assert chosen == (ROCK, 0)
+    if kinetic_ratio == 1.0:
+        assert consistent == [chosen]
+
+
+def test_mode_after_an_impact():
+    """Housner's return (sticking): ROCK on the new pivot; frictionless: SLIDE-ROCK toward the
+    corner's slip; a hard, fast strike of a squat block: flight (N < 0)."""
+    b, h = 0.3, 1.0
+    x, z, rate = rocking_return(1, -1.0, b, h)
+    after = laws.corner_impact(-1, 0.0, x, z, rate, b, h, 0.8, 0.8)
+    assert not laws.lands_flat(-1, 0.0, after[1], after[2], b, h)
+    assert laws.mode_after_impact(-1, 0.0, *after[:4], 0.0, G, b, h, 0.8, 0.8) == (ROCK, -1, 0)
+    after = laws.corner_impact(-1, 0.0, x, z, rate, b, h, 0.0, 0.0)
+    slip = laws.corner_state(-1, h, 0.0, *after[:3], b, h, math)[3]
+    assert slip != 0 and laws.mode_after_impact(-1, 0.0, *after[:4], 0.0, G, b, h, 0.0, 0.0) == (SLIDE_ROCK, -1,
+                                                                                                   int(np.sign(slip)))
+    x, z, rate = rocking_return(1, -30.0, b, h)
+    after = laws.corner_impact(-1, 0.0, x, z, rate, b, h, 0.8, 0.8)
+    assert laws.mode_after_impact(-1, 0.0, *after[:4], 0.0, G, b, h, 0.8, 0.8) == (FLIGHT, 0, 0)
+
+
 # ---- a slide-rock motion: the energy balance of section 9 -----------------------------
 def test_energy_balance_while_slide_rocking():
     """SLIDE-ROCK (+1, +1) under constant a_x, a_z: E(t) - E(0) = the base's work + friction's
@@ -407,7 +464,9 @@ def test_the_laws_compile_with_numba():
         return (laws.slide_rock_acceleration(1, 1, theta, rate, ax, ge, R, alpha, 0.5, xp_scalar),
                 laws.rest_mode(ax, ge, lam, 0.6, 0.5, 0.0, 0.0),
                 laws.pivot_mode(1, theta, rate, ax, ge, R, alpha, 0.6, 0.5),
-                laws.landing(0.0, 2.0, -1.0, 0.0, 0.4, 1.0, 2.0, 2.0), laws.slide_rock_threshold(0.6, ge, lam))
+                laws.landing(0.0, 2.0, -1.0, 0.0, 0.4, 1.0, 2.0, 2.0), laws.slide_rock_threshold(0.6, ge, lam),
+                laws.mode_after_impact(-1, 0.0, 0.3, -0.1, 0.2, False, ax, ge, 0.4, 1.0, 0.6, 0.5),
+                laws.corner_impact(1, theta, 0.2, -1.0, rate, 0.4, 1.0, 0.6, 0.5))
 
     compiled, plain = everything(0.1, 0.3, -5.0, G), everything.py_func(0.1, 0.3, -5.0, G)
     assert compiled == plain

@@ -82,6 +82,11 @@ def centroid_from_pivot(s, theta, rate, u, u_rate, R, alpha, xp):
     return u - R * sin, R * cos, u_rate + R * cos * rate, R * sin * rate
 
 
+def flight_acceleration(ax, ge):
+    """(x'', z'' [m/s²], theta'' [rad/s²]) of the block in flight: (-a_x, -g_e, 0)."""
+    return -ax, -ge, 0.0
+
+
 def slide_acceleration(sigma, ax, ge, mu_k):
     """x'' [m/s²] of the flat block sliding toward ``sigma``: -a_x - sigma mu_k g_e."""
     return -ax - sigma * mu_k * ge
@@ -232,6 +237,25 @@ def landing(theta, x_rate, z_rate, theta_rate, b, h, mu_s, mu_k):
                 return (c,) + after
     x_after, sticks, p_t, p_n = flat_landing(x_rate, z_rate, mu_s, mu_k)
     return 0, x_after, 0.0, 0.0, sticks, p_t, p_n
+
+
+def mode_after_impact(c, theta, x_rate, z_rate, theta_rate, sticks, ax, ge, b, h, mu_s, mu_k):
+    """(kind, s, sigma) after a single-corner impact of corner ``c`` that is not a flat
+    landing (:func:`lands_flat`), from the rates after it and ``sticks``
+    (:func:`corner_impact`): a corner still slipping goes on slide-rocking toward
+    sgn(v_cx+) (FLIGHT, s = sigma = 0, where its N < 0); one at rest relative to the base
+    takes :func:`pivot_mode` (ROCK with sigma = 0, SLIDE_ROCK, or FLIGHT)."""
+    R, alpha = math.sqrt(b * b + h * h), math.atan2(b, h)
+    slip = 0.0 if sticks else corner_state(c, 0.0, theta, x_rate, z_rate, theta_rate, b, h, math)[3]
+    if slip == 0:
+        kind, sigma = pivot_mode(c, theta, theta_rate, ax, ge, R, alpha, mu_s, mu_k)
+    else:
+        sigma = _sign(slip)
+        normal = slide_rock_acceleration(c, sigma, theta, theta_rate, ax, ge, R, alpha, mu_k, math)[1]
+        kind = SLIDE_ROCK if normal >= 0 else FLIGHT
+    if kind == FLIGHT:
+        return FLIGHT, 0, 0
+    return kind, c, sigma
 
 
 # ---- energy (section 9) ----------------------------------------------------------------
