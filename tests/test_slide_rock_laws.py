@@ -221,9 +221,13 @@ def consistent_modes(ax, ge, b, h, mu_s, mu_k):
     tol = 1e-12 * max(abs(ax), abs(ge))
     for plus, minus in itertools.product(("free", "stick", 1, -1), repeat=2):
         contacts = {1: plus, -1: minus}
-        if plus == minus == "stick":  # both stick: a rigid block at rest, only the totals determined
-            n_plus, n_minus = laws.rest_normal_forces(ax, ge, b / h)
-            if n_plus >= 0 and n_minus >= 0 and abs(ax) <= mu_s * ge:
+        if plus == minus == "stick":
+            # both stick: the block stays, x'' = z'' = theta'' = 0; only the total F = F_+ + F_- is
+            # determined (F = a_x, N_+ + N_- = g_e, -h F - b N_+ + b N_- = 0), and a split within
+            # both cones exists iff N_+, N_- >= 0 and |F| <= mu_s (N_+ + N_-)
+            F, n_plus, n_minus = np.linalg.solve([[1.0, 0.0, 0.0], [0.0, 1.0, 1.0], [-h, -b, b]], [ax, ge, 0.0])
+            assert np.allclose((n_plus, n_minus), laws.rest_normal_forces(ax, ge, b / h), rtol=1e-13, atol=1e-13 * G)
+            if n_plus >= 0 and n_minus >= 0 and abs(F) <= mu_s * ge:
                 found.append((REST, 0))
             continue
         try:

@@ -141,7 +141,7 @@ def rest_mode(ax, ge, lam, mu_s, mu_k, ax_rate=0.0, ge_rate=0.0):
     a, a_rate = abs(ax), -d * ax_rate  # |a_x| and its rate
     limit = min(mu_s, lam)
     excess = a - limit * ge
-    if excess < 0 or (excess == 0 and a_rate - limit * ge_rate <= 0) or d == 0:
+    if excess < 0 or (excess == 0 and a_rate - limit * ge_rate <= 0):
         return REST, 0
     if mu_s <= lam:
         return SLIDE, d
