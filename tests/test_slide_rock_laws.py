@@ -327,6 +327,35 @@ def test_rest_map_on_its_thresholds_the_rate_decides():
     assert laws.rest_mode(1.0, -0.1, lam, mu, mu) == (FLIGHT, 0)
 
 
+@pytest.mark.parametrize("ax_rate, az_rate", [(-1.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.0, -1.0), (-2.0, 0.3),
+                                              (-2.0, 0.5)])
+def test_on_the_slip_threshold_the_rate_decides_as_the_rocking_flow_does(ax_rate, az_rate):
+    """At a_x = -a_SR(mu) the pivot's margin mu N - |F| is 0; rocking on from rest under
+    a_x + a_x' t, g_e + a_z' t (ROCK's flow, DOP853) its sign soon after is ROCK's (> 0) or
+    SLIDE-ROCK's (< 0): rest_mode's choice from the rates alone. The margin is linear in t
+    there (its values at 1e-7 s and 1e-6 s in ratio 10 within 2 %: the rate's term)."""
+    b, h, mu = 0.5, 1.0, 1.0
+    R, alpha, lam = geometry(b, h)
+    ge0 = 8.0
+    ax0 = -laws.slide_rock_threshold(mu, ge0, lam)  # -44 m/s²: drives the block onto its +b corner
+
+    def base(t):
+        return ax0 + ax_rate * t, ge0 + az_rate * t
+
+    def rhs(t, y):
+        return [y[1], laws.rock_acceleration(1, y[0], *base(t), R, alpha, math)]
+
+    def margin(t):
+        theta, rate = solve_ivp(rhs, (0, t), [0.0, 0.0], method="DOP853", rtol=1e-13, atol=1e-22).y[:, -1]
+        accel = laws.rock_acceleration(1, theta, *base(t), R, alpha, math)
+        F, N = laws.rock_contact_force(1, theta, rate, accel, *base(t), R, alpha, math)
+        return mu * N - abs(F)
+
+    early, later = margin(1e-7), margin(1e-6)
+    assert later / early == pytest.approx(10.0, rel=0.02)
+    assert laws.rest_mode(ax0, ge0, lam, mu, mu, ax_rate, az_rate) == ((ROCK, 1) if later > 0 else (SLIDE_ROCK, 1))
+
+
 def test_shenton_thresholds_in_exact_arithmetic():
     """a_SR(mu) - mu g_e = 3 g_e (mu - lam)(1 + mu lam)/(1 + 4 lam² - 3 mu lam); mu_cr inverts
     a_SR, equals lam at a = lam g_e and rises with a; at a = lam g_e the pivot's margin in
