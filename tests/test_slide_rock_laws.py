@@ -434,6 +434,16 @@ def test_mode_after_an_impact():
     assert laws.mode_after_impact(-1, 0.0, *after[:4], 0.0, G, b, h, 0.8, 0.8) == (FLIGHT, 0, 0)
 
 
+@pytest.mark.parametrize("b_over_h", [0.5, 1.2, 1.5, 3.0])
+def test_a_squat_block_lands_flat(b_over_h):
+    """Housner's r < 0 where sin² alpha > 2/3 (b/h > sqrt 2): the sticking impact would drive
+    the old pivot down through the base (v_z = 2 b r |w| < 0), a flat landing."""
+    b, h = b_over_h, 1.0
+    x, z, rate = rocking_return(1, -1.0, b, h)
+    after = laws.corner_impact(-1, 0.0, x, z, rate, b, h, 2.0, 2.0)
+    assert after[3] and laws.lands_flat(-1, 0.0, after[1], after[2], b, h) == (b_over_h > math.sqrt(2))
+
+
 # ---- a slide-rock motion: the energy balance of section 9 -----------------------------
 def test_energy_balance_while_slide_rocking():
     """SLIDE-ROCK (+1, +1) under constant a_x, a_z: E(t) - E(0) = the base's work + friction's
