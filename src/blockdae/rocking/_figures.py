@@ -36,3 +36,51 @@ def rocking_figure(solution, *, n_points, title=None):
     if title:
         fig.suptitle(title)
     return fig
+
+
+#: the regions' colours, indexed by the mode codes (rest, slide, rock, slide-rock, flight)
+_MODE_COLOURS = ("0.88", "#6baed6", "#fb6a4a", "#fdae6b", "#74c476")
+
+
+def plot_mode_map(b_over_h, *, mu_k_ratio=1.0, av_over_g=0.0, a_max=None, mu_max=None, n=400, ax=None):
+    """The rest -> mode map of a block of aspect ratio ``b_over_h`` = b/h [-] (Shenton 1996):
+    static friction mu_s [-] against the horizontal base acceleration a_x / g [-], the
+    regions (:func:`~blockdae.rocking.mode_map`) shaded on an ``n`` x ``n`` grid and their
+    exact boundaries drawn (a_x = mu_s g_e, a_x = g_e b/h, Shenton's critical friction,
+    mu_k = b/h). ``mu_k_ratio`` = mu_k / mu_s [-], ``av_over_g`` = a_z / g [-]; the axes
+    reach ``a_max`` and ``mu_max`` (default: 2.5 b/h, at least 1). A matplotlib Figure."""
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    from . import _slide_rock_laws as laws
+    from ._mode_map import MODE_NAMES, mode_codes
+
+    if not 0.0 <= mu_k_ratio <= 1.0:
+        raise ValueError(f"mu_k_ratio = mu_k / mu_s must be in [0, 1], got {mu_k_ratio!r}")
+    if n < 2:
+        raise ValueError(f"n (grid points per axis) must be >= 2, got {n!r}")
+    lam, ge = float(b_over_h), 1.0 + av_over_g
+    a_max = max(1.0, 2.5 * lam) if a_max is None else a_max
+    mu_max = max(1.0, 2.5 * lam) if mu_max is None else mu_max
+    a, mu = (np.linspace(0.0, top, n) for top in (a_max, mu_max))
+    codes = mode_codes(lam, mu[:, None], a[None, :], mu_k_ratio * mu[:, None], av_over_g)
+    fig = plt.figure(figsize=(6, 4.5), constrained_layout=True) if ax is None else ax.figure
+    ax = ax or fig.add_subplot()
+    ax.imshow(codes, origin="lower", extent=(0.0, a_max, 0.0, mu_max), aspect="auto", interpolation="nearest",
+              cmap=ListedColormap(_MODE_COLOURS), vmin=-0.5, vmax=len(MODE_NAMES) - 0.5)
+    if ge > 0:
+        line = dict(color="k", lw=1.0)
+        ax.plot([0.0, lam * ge], [0.0, lam], **line)  # a_x = mu_s g_e while mu_s <= b/h
+        ax.plot([lam * ge, lam * ge], [lam, mu_max], **line)  # a_x = g_e b/h
+        demand = np.linspace(lam * ge, a_max, 200)
+        ax.plot(demand, laws.critical_friction(demand, ge, lam), **line)  # rock above, slips below
+        if mu_k_ratio > 0 and lam / mu_k_ratio < mu_max:  # slide-rock above mu_k = b/h, slide below
+            start = np.interp(lam / mu_k_ratio, laws.critical_friction(demand, ge, lam), demand)
+            ax.plot([start, a_max], [lam / mu_k_ratio] * 2, **line)
+    present = np.unique(codes)
+    ax.legend(handles=[Patch(color=_MODE_COLOURS[k], label=MODE_NAMES[k]) for k in present], loc="upper left",
+              fontsize="small", framealpha=0.9)
+    ax.set(xlim=(0.0, a_max), ylim=(0.0, mu_max), xlabel="a_x / g [-]", ylabel="static friction mu_s [-]",
+           title=f"rest -> mode map, b/h = {lam:g}, mu_k/mu_s = {mu_k_ratio:g}, a_z/g = {av_over_g:g}")
+    return fig

@@ -295,11 +295,15 @@ class FreeStandingBlock(AbstractHybridModel):
         return FreeMode.FLIGHT
 
     def _on_corner(self, s, y, ax, ge):
-        """The mode of a block on corner ``s`` whose pivot has stopped (a slip that stops, a
-        sticking impact, the release): ROCK s (out, in or beyond by theta'), SLIDE_ROCK
-        (s, -sgn F) or FLIGHT (:func:`._slide_rock_laws.pivot_mode`)."""
+        """The mode of a block on corner ``s`` whose pivot has stopped (a slip that stops, the
+        release): ROCK s, SLIDE_ROCK (s, -sgn F) or FLIGHT (:func:`._slide_rock_laws.pivot_mode`)."""
         kind, sigma = laws.pivot_mode(s, y[THETA], y[THETA_RATE], ax, ge, self.R, self.alpha, self.mu,
                                       self.friction_kinetic)
+        return self._contact_mode(kind, s, sigma, y, ax, ge)
+
+    def _contact_mode(self, kind, s, sigma, y, ax, ge):
+        """The mode of a law's (kind, pivot ``s``, slip ``sigma``) in state ``y``: a rocking mode
+        out, in or beyond alpha by theta' (at theta' = 0 by theta'')."""
         if kind == laws.SLIDE_ROCK:
             return slide_rock_mode(s, sigma)
         if kind != laws.ROCK:
@@ -421,16 +425,11 @@ class FreeStandingBlock(AbstractHybridModel):
             if y[X_RATE] == 0:
                 return self.mode_at_rest(t, excitation)
             sigma = 1 if y[X_RATE] > 0 else -1
-            return slide_rock_mode(sigma, sigma) if self.friction_kinetic > self.slenderness_ratio else FreeMode(sigma)
+            return self._mode_of(laws.sliding_kind(self.slenderness_ratio, self.friction_kinetic), sigma)
         c = side(mode)
-        slip = self.pivot_slip_rate(c, y)
-        if kind_of(mode) == 10 or slip == 0:
-            after = self._on_corner(c, y, ax, ge)
-        else:
-            sigma = 1 if slip > 0 else -1
-            after = slide_rock_mode(c, sigma)
-            if self.slide_rock(c, sigma, y, ax, ge)[1] < 0:
-                return FreeMode.FLIGHT
+        kind, _, sigma = laws.mode_after_impact(c, y[THETA], y[X_RATE], y[Z_RATE], y[THETA_RATE], kind_of(mode) == 10,
+                                                ax, ge, self.b, self.h, self.mu, self.friction_kinetic)
+        after = self._contact_mode(kind, c, sigma, y, ax, ge)
         if kind_of(after) == OUT and self._settles(c, t, y, excitation):
             return rock_mode(SETTLE, c)
         if kind_of(after) in SLIDE_ROCK_KINDS and self._chatters(c, slip_direction(after), y, ax, ge):

@@ -74,6 +74,19 @@ def slide_rock_acceleration(s, sigma, theta, rate, ax, ge, R, alpha, mu_k, xp):
     return denominator, normal, theta_dd, -ax - sigma * mu_k * normal - R * cos * theta_dd - R * sin * rate * rate
 
 
+def centroid_from_pivot(s, theta, rate, u, u_rate, R, alpha, xp):
+    """(x, z [m], x', z' [m/s]) of the centroid on pivot ``s`` at u [m] moving at u' [m/s]:
+    x = u - R sin phi, z = R cos phi, x' = u' + R cos phi theta', z' = R sin phi theta'."""
+    phi = s * alpha - theta
+    sin, cos = xp.sin(phi), xp.cos(phi)
+    return u - R * sin, R * cos, u_rate + R * cos * rate, R * sin * rate
+
+
+def flight_acceleration(ax, ge):
+    """(x'', z'' [m/s²], theta'' [rad/s²]) of the block in flight: (-a_x, -g_e, 0)."""
+    return -ax, -ge, 0.0
+
+
 def slide_acceleration(sigma, ax, ge, mu_k):
     """x'' [m/s²] of the flat block sliding toward ``sigma``: -a_x - sigma mu_k g_e."""
     return -ax - sigma * mu_k * ge
@@ -96,19 +109,19 @@ def slide_rock_threshold(mu, ge, lam):
     """a_SR [m/s²]: the demand |a_x| above which a block that starts to rock from rest
     slips at its pivot under friction ``mu`` (> lam):
     g_e [mu (4 + lam²) - 3 lam] / (1 + 4 lam² - 3 mu lam); infinite (the pivot always
-    holds) where the denominator is <= 0."""
-    denominator = 1.0 + 4.0 * lam * lam - 3.0 * mu * lam
+    holds) where the denominator is <= 0. Exact on fractions."""
+    denominator = 1 + 4 * lam * lam - 3 * mu * lam
     if denominator <= 0:
         return math.inf
-    return ge * (mu * (4.0 + lam * lam) - 3.0 * lam) / denominator
+    return ge * (mu * (4 + lam * lam) - 3 * lam) / denominator
 
 
 def critical_friction(a, ge, lam):
     """mu_cr [-]: the least friction (mu_s = mu_k) with which a block at rest under the demand
     |a_x| = ``a`` > lam g_e [m/s²] rocks rather than slide-rocks:
-    [(a/g_e)(1 + 4 lam²) + 3 lam] / [4 + lam² + 3 lam (a/g_e)]."""
+    [(a/g_e)(1 + 4 lam²) + 3 lam] / [4 + lam² + 3 lam (a/g_e)]. Exact on fractions."""
     ratio = a / ge
-    return (ratio * (1.0 + 4.0 * lam * lam) + 3.0 * lam) / (4.0 + lam * lam + 3.0 * lam * ratio)
+    return (ratio * (1 + 4 * lam * lam) + 3 * lam) / (4 + lam * lam + 3 * lam * ratio)
 
 
 def rest_mode(ax, ge, lam, mu_s, mu_k, ax_rate=0.0, ge_rate=0.0):
@@ -128,7 +141,7 @@ def rest_mode(ax, ge, lam, mu_s, mu_k, ax_rate=0.0, ge_rate=0.0):
     a, a_rate = abs(ax), -d * ax_rate  # |a_x| and its rate
     limit = min(mu_s, lam)
     excess = a - limit * ge
-    if excess < 0 or (excess == 0 and a_rate - limit * ge_rate <= 0) or d == 0:
+    if excess < 0 or (excess == 0 and a_rate - limit * ge_rate <= 0):
         return REST, 0
     if mu_s <= lam:
         return SLIDE, d
@@ -224,6 +237,25 @@ def landing(theta, x_rate, z_rate, theta_rate, b, h, mu_s, mu_k):
                 return (c,) + after
     x_after, sticks, p_t, p_n = flat_landing(x_rate, z_rate, mu_s, mu_k)
     return 0, x_after, 0.0, 0.0, sticks, p_t, p_n
+
+
+def mode_after_impact(c, theta, x_rate, z_rate, theta_rate, sticks, ax, ge, b, h, mu_s, mu_k):
+    """(kind, s, sigma) after a single-corner impact of corner ``c`` that is not a flat
+    landing (:func:`lands_flat`), from the rates after it and ``sticks``
+    (:func:`corner_impact`): a corner still slipping goes on slide-rocking toward
+    sgn(v_cx+) (FLIGHT, s = sigma = 0, where its N < 0); one at rest relative to the base
+    takes :func:`pivot_mode` (ROCK with sigma = 0, SLIDE_ROCK, or FLIGHT)."""
+    R, alpha = math.sqrt(b * b + h * h), math.atan2(b, h)
+    slip = 0.0 if sticks else corner_state(c, 0.0, theta, x_rate, z_rate, theta_rate, b, h, math)[3]
+    if slip == 0:
+        kind, sigma = pivot_mode(c, theta, theta_rate, ax, ge, R, alpha, mu_s, mu_k)
+    else:
+        sigma = _sign(slip)
+        normal = slide_rock_acceleration(c, sigma, theta, theta_rate, ax, ge, R, alpha, mu_k, math)[1]
+        kind = SLIDE_ROCK if normal >= 0 else FLIGHT
+    if kind == FLIGHT:
+        return FLIGHT, 0, 0
+    return kind, c, sigma
 
 
 # ---- energy (section 9) ----------------------------------------------------------------
