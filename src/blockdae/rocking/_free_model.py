@@ -281,9 +281,9 @@ class FreeStandingBlock(AbstractHybridModel):
         kind, d = laws.rest_mode(ax, ge, self.slenderness_ratio, self.mu, self.friction_kinetic, ax_rate, az_rate)
         return self._mode_of(kind, d)
 
-    def _mode_of(self, kind, d, s=None):
-        """The mode of a law's (kind, direction): d the side driven to (a slide's sigma, a
-        pivot; a slide-rock's slip with pivot ``s``, d when not given)."""
+    def _mode_of(self, kind, d):
+        """The mode of a law's (kind, direction) from rest: d the side driven to (a slide's
+        sigma, a pivot, a slide-rock's pivot and slip)."""
         if kind == laws.REST:
             return FreeMode.REST
         if kind == laws.SLIDE:
@@ -291,7 +291,7 @@ class FreeStandingBlock(AbstractHybridModel):
         if kind == laws.ROCK:
             return rock_mode(OUT, d)
         if kind == laws.SLIDE_ROCK:
-            return slide_rock_mode(d if s is None else s, d)
+            return slide_rock_mode(d, d)
         return FreeMode.FLIGHT
 
     def _on_corner(self, s, y, ax, ge):
@@ -489,7 +489,8 @@ class FreeStandingBlock(AbstractHybridModel):
     def state_at_guard(self, mode, guard_index, y, xp=np):
         """The state exactly on the guard: theta' = 0 at an apex, theta = 0 at an impact,
         alpha or pi/2 at those guards, u' = 0 where a slip stops, the corner at height 0
-        at a landing, x' = 0 where a slide stops; the tilt on release."""
+        at a landing, x' = 0 where a slide stops, flat and still where a Zeno tail ends; the
+        tilt on release."""
         kind, s = kind_of(mode), side(mode)
         if kind == 1 and guard_index == 0:
             return self._flat_state(y, 0.0, xp)
@@ -510,7 +511,7 @@ class FreeStandingBlock(AbstractHybridModel):
             level = np.array(y, dtype=float)
             level[Z] = c * self.b * math.sin(y[THETA]) + self.h * math.cos(y[THETA])
             return level
-        if kind == SETTLE and guard_index == 0:
+        if kind == SETTLE:  # its theta' is the envelope of the summed impacts, not a rotation
             return self._flat_state(y, 0.0, xp)
         if mode == FreeMode.RELEASE:
             s = 1 if self.theta0 > 0 else -1
@@ -528,7 +529,7 @@ class FreeStandingBlock(AbstractHybridModel):
         still on its side overturned. Needs no excitation (the event records use it)."""
         y = np.array(y, dtype=float)
         kind = kind_of(after)
-        if after in (FreeMode.LANDING_FLAT,) or kind in (10, 11):
+        if after == FreeMode.LANDING_FLAT or kind in (10, 11):
             _, x_rate, z_rate, theta_rate, *_ = laws.landing(y[THETA], y[X_RATE], y[Z_RATE], y[THETA_RATE], self.b,
                                                            self.h, self.mu, self.friction_kinetic)
             y[X_RATE], y[Z_RATE], y[THETA_RATE] = x_rate, z_rate, theta_rate

@@ -112,6 +112,12 @@ class FreeStandingSolution(DriverSolution):
         return rests[-1].t if rests else float("nan")
 
     @property
+    def time_beyond_alpha(self) -> float:
+        """First time |theta| passed alpha while rocking [s] (gravity no longer restores); nan if never."""
+        events = self.events_of("beyond_alpha")
+        return events[0].t if events else float("nan")
+
+    @property
     def max_theta_over_alpha(self) -> float:
         """max |theta| / alpha over the run [-] (at the knots and events)."""
         return float(np.max(np.abs(self.state[:, 2]))) / self.block.alpha
