@@ -25,12 +25,13 @@ import warnings
 
 import numpy as np
 
-from ..core.contract import KNOTS_PER_RADIAN, SCALAR, AbstractHybridModel
+from ..core.contract import KNOTS_PER_RADIAN, SCALAR
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import stop_mode
 from ..units import STANDARD_GRAVITY
 from . import _rules as rules
 from . import _slide_rock_laws as laws
+from ._derivatives import FreeStandingDerivatives
 from ._free_modes import (BEYOND, IN, INSTANT, OUT, OVERTURNED, SETTLE, SLIDE_ROCK_KINDS, FreeMode, kind_of,
                           rock_mode, side, slide_rock_mode, slip_direction)
 from ._free_solution import FreeEvent, FreeStandingSolution
@@ -54,7 +55,7 @@ class PainleveWarning(UserWarning):
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class FreeStandingBlock(AbstractHybridModel):
+class FreeStandingBlock(FreeStandingDerivatives):
     """A free-standing rectangular block that rests, slides, rocks, slide-rocks, flies
     and overturns, with frictional plastic impacts and landings.
 
@@ -469,7 +470,7 @@ class FreeStandingBlock(AbstractHybridModel):
     def _pivot_state(self, s, y, theta, rate, xp=SCALAR):
         """``y`` on the sticking pivot ``s`` (kept where it is) at (theta, theta'): the centroid's
         x, z and rates from the rotation alone."""
-        radius, alpha = self.R, self.alpha
+        alpha, radius = self._geometry(xp)
         u = y[X] + radius * xp.sin(s * alpha - y[THETA])
         phi = s * alpha - theta
         return xp.stack([u - radius * xp.sin(phi), radius * xp.cos(phi), theta, radius * xp.cos(phi) * rate,
@@ -497,7 +498,7 @@ class FreeStandingBlock(AbstractHybridModel):
         if kind in _ROCK and guard_index < 2:
             theta, rate = y[THETA], y[THETA_RATE]
             if (kind == IN) == (guard_index == 0):
-                theta = 0.0 * theta + (0.0 if kind == IN else s * (self.alpha if kind == OUT else 0.5 * math.pi))
+                theta = 0.0 * theta + (0.0 if kind == IN else s * (self._geometry(xp)[0] if kind == OUT else 0.5 * math.pi))
             else:
                 rate = 0.0 * rate
             return self._pivot_state(s, y, theta, rate, xp)
@@ -508,45 +509,57 @@ class FreeStandingBlock(AbstractHybridModel):
             return self._pivot_state(s, y, y[THETA], y[THETA_RATE], xp)
         if kind == 9 and guard_index < 2:
             c = 1 if guard_index == 0 else -1
-            level = np.array(y, dtype=float)
-            level[Z] = c * self.b * math.sin(y[THETA]) + self.h * math.cos(y[THETA])
-            return level
+            level = c * self.b * xp.sin(y[THETA]) + self.h * xp.cos(y[THETA])
+            return xp.stack([y[X], level, *(y[i] for i in range(THETA, len(self.state_names)))])
         if kind == SETTLE:  # its theta' is the envelope of the summed impacts, not a rotation
             return self._flat_state(y, 0.0, xp)
         if mode == FreeMode.RELEASE:
             s = 1 if self.theta0 > 0 else -1
-            return self._pivot_state(s, self.initial_state(), self.theta0, 0.0, xp)
+            return self._pivot_state(s, self._flat_state(y, 0.0, xp), self.theta0, 0.0, xp)
         return y
 
     def state_on_entry(self, before, after, t, y, excitation, xp=np):
         """The jump on entering ``after`` from ``before`` at ``t`` (:meth:`entry_state`)."""
-        return self.entry_state(before, after, y)
+        return self.entry_state(before, after, y, xp)
 
-    def entry_state(self, before, after, y):
+    def entry_state(self, before, after, y, xp=np):
         """The state on entering ``after`` from ``before`` [the units of :attr:`state_names`]:
-        an impact's or landing's velocity jump (:func:`._slide_rock_laws.landing`); the
-        rocking state made exact on its pivot; flat in a slide or at rest after an impact;
-        still on its side overturned. Needs no excitation (the event records use it)."""
-        y = np.array(y, dtype=float)
+        an impact's or landing's velocity jump on the branch its instant mode names (the
+        corner struck, sticking or slipping: :func:`._slide_rock_laws.impact_jump`; the face
+        landing flat: :func:`._slide_rock_laws.flat_landing`); the rocking state made exact on
+        its pivot; flat in a slide or at rest after an impact; still on its side overturned.
+        Needs no excitation (the event records use it); xp-generic (the JAX twin
+        differentiates it)."""
         kind = kind_of(after)
-        if after == FreeMode.LANDING_FLAT or kind in (10, 11):
-            _, x_rate, z_rate, theta_rate, *_ = laws.landing(y[THETA], y[X_RATE], y[Z_RATE], y[THETA_RATE], self.b,
-                                                           self.h, self.mu, self.friction_kinetic)
-            y[X_RATE], y[Z_RATE], y[THETA_RATE] = x_rate, z_rate, theta_rate
-            return y
+        if after == FreeMode.LANDING_FLAT:
+            p_n = -y[Z_RATE]
+            sliding = y[X_RATE] - xp.sign(y[X_RATE]) * self.friction_kinetic * p_n
+            x_rate = xp.where(xp.abs(y[X_RATE]) <= self.mu * p_n, 0.0 * p_n, sliding)
+            return self._rates(y, x_rate, 0.0 * p_n, 0.0 * p_n, xp)
+        if kind in (10, 11):
+            x_rate, z_rate, theta_rate, _, _ = laws.impact_jump(side(after), kind == 10, y[THETA], y[X_RATE],
+                                                                y[Z_RATE], y[THETA_RATE], self.b, self.h,
+                                                                self.friction_kinetic, xp)
+            return self._rates(y, x_rate, z_rate, theta_rate, xp)
         s = side(after)
         if kind in _ROCK:
-            return np.array(self._pivot_state(s, y, y[THETA], y[THETA_RATE]))
+            return self._pivot_state(s, y, y[THETA], y[THETA_RATE], xp)
         if kind == SETTLE:
-            settled = self._flat_state(y, 0.0)
-            return np.array([*settled[:THETA_RATE], y[THETA_RATE], *settled[BASE_WORK:]])
+            settled = self._flat_state(y, 0.0, xp)
+            return xp.stack([*(settled[i] for i in range(THETA_RATE)), y[THETA_RATE], settled[BASE_WORK],
+                             settled[FRICTION_WORK]])
         if kind in SLIDE_ROCK_KINDS:
-            return np.array(self._slipping_state(s, y, y[THETA], y[THETA_RATE], self.pivot_slip_rate(s, y)))
+            return self._slipping_state(s, y, y[THETA], y[THETA_RATE], self.pivot_slip_rate(s, y, xp), xp)
         if kind == OVERTURNED:
-            return np.array(self._pivot_state(s, y, s * 0.5 * math.pi, 0.0))
+            return self._pivot_state(s, y, 0.0 * y[THETA] + s * 0.5 * math.pi, 0.0 * y[THETA], xp)
         if after == FreeMode.REST or (kind == 1 and kind_of(before) not in (0, 1)):
-            return np.array(self._flat_state(y, 0.0 if after == FreeMode.REST else y[X_RATE]))
+            return self._flat_state(y, 0.0 if after == FreeMode.REST else y[X_RATE], xp)
         return y
+
+    @staticmethod
+    def _rates(y, x_rate, z_rate, theta_rate, xp):
+        """``y`` with the rates (x', z', theta') replaced."""
+        return xp.stack([y[X], y[Z], y[THETA], x_rate, z_rate, theta_rate, y[BASE_WORK], y[FRICTION_WORK]])
 
     # ---- parameters, for the JAX twin ------------------------------------------------
     def parameters(self):
@@ -644,7 +657,7 @@ class FreeStandingBlock(AbstractHybridModel):
         return 200.0 * math.pi / (self.frequency * (1.0 - self.r)) + 10.0 / self.frequency + slide
 
     def event(self, t, mode_before, mode_after, y):
-        after = self.entry_state(mode_before, mode_after, y)
+        after = np.asarray(self.entry_state(mode_before, mode_after, np.asarray(y, dtype=float)), dtype=float)
         return FreeEvent.make(float(t), mode_before, mode_after, np.asarray(y, dtype=float)[:BASE_WORK],
                               after[:BASE_WORK])
 

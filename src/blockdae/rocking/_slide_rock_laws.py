@@ -182,18 +182,28 @@ def corner_impact(c, theta, x_rate, z_rate, theta_rate, b, h, mu_s, mu_k):
     Sticking (v_cx+ = 0) is tried first and kept if |P_t| <= mu_s P_n; otherwise the
     corner slides through the impact with P_t = tau P_n, tau = sgn(P_t of sticking) mu_k
     (needs mu_k < 4/3, as D > 0 does)."""
-    r_cx, r_cz, _, v_cx, v_cz = corner_state(c, 0.0, theta, x_rate, z_rate, theta_rate, b, h, math)
+    jump = impact_jump(c, True, theta, x_rate, z_rate, theta_rate, b, h, mu_k, math)
+    sticks = abs(jump[3]) <= mu_s * jump[4]
+    if not sticks:
+        jump = impact_jump(c, False, theta, x_rate, z_rate, theta_rate, b, h, mu_k, math)
+    return (*jump[:3], sticks, *jump[3:])
+
+
+def impact_jump(c, sticks, theta, x_rate, z_rate, theta_rate, b, h, mu_k, xp):
+    """The jump of corner ``c``'s plastic impact on the branch given (``sticks``: v_cx+ = 0;
+    else slipping through with P_t = sgn(P_t of sticking) mu_k P_n): (x'+, z'+ [m/s],
+    theta'+ [rad/s], P_t, P_n [m/s]); xp-generic (the JAX twin differentiates it)."""
+    r_cx, r_cz, _, v_cx, v_cz = corner_state(c, 0.0, theta, x_rate, z_rate, theta_rate, b, h, xp)
     k = 3.0 / (b * b + h * h)
     w11, w12, w22 = 1.0 + k * r_cz * r_cz, -k * r_cx * r_cz, 1.0 + k * r_cx * r_cx
     det = w11 * w22 - w12 * w12
     p_t = (-w22 * v_cx + w12 * v_cz) / det
     p_n = (w12 * v_cx - w11 * v_cz) / det
-    sticks = abs(p_t) <= mu_s * p_n
     if not sticks:
-        tau = _sign(p_t) * mu_k
+        tau = getattr(xp, "sign", _sign)(p_t) * mu_k
         p_n = -v_cz / (w12 * tau + w22)
         p_t = tau * p_n
-    return x_rate + p_t, z_rate + p_n, theta_rate + k * (r_cz * p_t - r_cx * p_n), sticks, p_t, p_n
+    return x_rate + p_t, z_rate + p_n, theta_rate + k * (r_cz * p_t - r_cx * p_n), p_t, p_n
 
 
 def flat_landing(x_rate, z_rate, mu_s, mu_k):
