@@ -84,3 +84,76 @@ def plot_mode_map(b_over_h, *, mu_k_ratio=1.0, av_over_g=0.0, a_max=None, mu_max
     ax.set(xlim=(0.0, a_max), ylim=(0.0, mu_max), xlabel="a_x / g [-]", ylabel="static friction mu_s [-]",
            title=f"rest -> mode map, b/h = {lam:g}, mu_k/mu_s = {mu_k_ratio:g}, a_z/g = {av_over_g:g}")
     return fig
+
+
+#: the complete block's shaded motions: label -> (colour, the mode kinds it spans)
+#: (:func:`._free_modes.kind_of`; a Zeno tail of rocking impacts counts as rock)
+MOTION_SPANS = {"slide": ("#6baed6", (1,)), "rock": ("#fb6a4a", (2, 3, 4, 5)),
+                "slide-rock": ("#fdae6b", (7, 8)), "flight": ("#74c476", (9,))}
+
+
+def motion_spans(solution):
+    """The spans of each shaded motion of a complete block's run: label -> [(t_start,
+    t_end) [s], ...] (:data:`MOTION_SPANS`), from the mode after each knot; rest and
+    overturned are not shaded."""
+    from ._free_modes import kind_of
+
+    label_of = {kind: label for label, (_, kinds) in MOTION_SPANS.items() for kind in kinds}
+    labels = [label_of.get(kind_of(mode)) for mode in solution.mode[:-1]]
+    spans = {label: [] for label in MOTION_SPANS}
+    start = 0
+    for i in range(1, len(labels) + 1):
+        if i == len(labels) or labels[i] != labels[start]:
+            if labels[start] is not None and solution.t[i] > solution.t[start]:
+                spans[labels[start]].append((float(solution.t[start]), float(solution.t[i])))
+            start = i
+    return spans
+
+
+def free_standing_figure(solution, *, n_points, title=None):
+    """A complete block's run against t [s]: theta [rad] (impacts and overturning marked),
+    the base's slip [m] (:func:`._free_solution.base_slip`), the corners' heights above the
+    base [m] and a_x [m/s²], each panel shaded by the motion (:data:`MOTION_SPANS`:
+    slide, rock, slide-rock, flight) with a legend."""
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Patch
+
+    from ._free_solution import base_slip
+
+    block = solution.block
+    t = time_grid(solution, n_points)
+    y = np.asarray(solution(t))
+    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 8), constrained_layout=True,
+                             gridspec_kw=dict(height_ratios=(2, 1.5, 1.5, 1)))
+    theta, slip, heights, base = axes
+    spans = motion_spans(solution)
+    for ax in axes:
+        for label, (colour, _) in MOTION_SPANS.items():
+            for start, end in spans[label]:
+                ax.axvspan(start, end, color=colour, alpha=0.35, lw=0, zorder=0, gid=label)
+        ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    theta.plot(t, y[2], color="k", lw=1.1, label="theta")
+    for level in (-block.alpha, block.alpha):
+        theta.axhline(level, color="0.6", lw=0.8, ls=":")
+    impacts = solution.impact_times
+    if impacts.size:
+        theta.plot(impacts, 0 * impacts, ls="none", marker="|", color="k", ms=8, label="impacts")
+    if solution.overturned:
+        theta.axvline(solution.overturn_time, color="k", ls="--", lw=0.8, label="overturned")
+    theta.set_ylabel("theta [rad]")
+    slip.plot(t, base_slip(y[0], y[2], block.b, block.h), color="C0", lw=1.1)
+    slip.set_ylabel("slip [m]")
+    heights.plot(t, block.corner_height(1, y, np), color="C3", lw=1.0, label="corner +b")
+    heights.plot(t, block.corner_height(-1, y, np), color="C2", lw=1.0, label="corner -b")
+    heights.set_ylabel("corner heights [m]")
+    heights.legend(loc="upper right", fontsize="small")
+    if solution.motion is not None:
+        components = getattr(solution.motion, "components", None)
+        x = solution.motion if components is None else components[0]
+        base.plot(t, np.asarray(x.acceleration(t)), color="0.4", lw=0.8)
+    base.set(ylabel="a_x [m/s²]", xlabel="t [s]")
+    handles = [Patch(color=MOTION_SPANS[label][0], alpha=0.35, label=label) for label in MOTION_SPANS if spans[label]]
+    theta.legend(handles=theta.get_legend_handles_labels()[0] + handles, loc="best", fontsize="small")
+    if title:
+        fig.suptitle(title)
+    return fig

@@ -141,6 +141,14 @@ class FreeStandingSolution(DriverSolution):
         """The base's slip at t_end [m] (:func:`base_slip`)."""
         return float(self.slip[-1])
 
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """theta [rad], the slip [m], the corners' heights [m] and a_x [m/s²] against t [s],
+        shaded by the motion (slide, rock, slide-rock, flight; ``excitation`` and ``block``
+        unused); a matplotlib Figure (:func:`._figures.free_standing_figure`)."""
+        from ._figures import free_standing_figure
+
+        return free_standing_figure(self, n_points=n_points, title=title)
+
     def energy_balance(self) -> dict:
         """The energy balance per unit mass at the knots away from events (section 9 of the
         formulation): E(t) - E(0) = W_base + W_friction + the impacts' jumps.
