@@ -141,7 +141,7 @@ def free_standing_figure(solution, *, n_points, title=None):
     if solution.overturned:
         theta.axvline(solution.overturn_time, color="k", ls="--", lw=0.8, label="overturned")
     theta.set_ylabel("theta [rad]")
-    slip.plot(t, base_slip(y[0], y[2], block.b, block.h), color="C0", lw=1.1)
+    slip.plot(t, base_slip(y[0], y[2], block.b, block.h), color="C0", lw=1.1, label="slip")
     slip.set_ylabel("slip [m]")
     heights.plot(t, block.corner_height(1, y, np), color="C3", lw=1.0, label="corner +b")
     heights.plot(t, block.corner_height(-1, y, np), color="C2", lw=1.0, label="corner -b")
