@@ -494,15 +494,17 @@ class FreeStandingBlock(AbstractHybridModel):
         kind, s = kind_of(mode), side(mode)
         if kind == 1 and guard_index == 0:
             return self._flat_state(y, 0.0, xp)
-        if kind in _ROCK and guard_index < 2:
+        if kind in _ROCK:
             theta, rate = y[THETA], y[THETA_RATE]
-            if (kind == IN) == (guard_index == 0):
+            if guard_index >= 2:  # lift-off, slip onset: on the pivot exactly (no drift of x', z')
+                pass
+            elif (kind == IN) == (guard_index == 0):
                 theta = 0.0 * theta + (0.0 if kind == IN else s * (self.alpha if kind == OUT else 0.5 * math.pi))
             else:
                 rate = 0.0 * rate
             return self._pivot_state(s, y, theta, rate, xp)
-        if kind in SLIDE_ROCK_KINDS and guard_index < 2:
-            theta = 0.0 * y[THETA] + (0.0 if guard_index == 0 else s * 0.5 * math.pi)
+        if kind in SLIDE_ROCK_KINDS and guard_index != 3:
+            theta = y[THETA] if guard_index > 1 else 0.0 * y[THETA] + (0.0 if guard_index == 0 else s * 0.5 * math.pi)
             return self._slipping_state(s, y, theta, y[THETA_RATE], self.pivot_slip_rate(s, y, xp), xp)
         if kind in SLIDE_ROCK_KINDS and guard_index == 3:
             return self._pivot_state(s, y, y[THETA], y[THETA_RATE], xp)
@@ -540,8 +542,10 @@ class FreeStandingBlock(AbstractHybridModel):
         if kind == SETTLE:
             settled = self._flat_state(y, 0.0)
             return np.array([*settled[:THETA_RATE], y[THETA_RATE], *settled[BASE_WORK:]])
-        if kind in SLIDE_ROCK_KINDS:
-            return np.array(self._slipping_state(s, y, y[THETA], y[THETA_RATE], self.pivot_slip_rate(s, y)))
+        if kind in SLIDE_ROCK_KINDS:  # the pivot slips on, or starts to slip from rest relative to the base
+            slipping = kind_of(before) in SLIDE_ROCK_KINDS or kind_of(before) == 11
+            slip = self.pivot_slip_rate(s, y) if slipping else 0.0
+            return np.array(self._slipping_state(s, y, y[THETA], y[THETA_RATE], slip))
         if kind == OVERTURNED:
             return np.array(self._pivot_state(s, y, s * 0.5 * math.pi, 0.0))
         if after == FreeMode.REST or (kind == 1 and kind_of(before) not in (0, 1)):
