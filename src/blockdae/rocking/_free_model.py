@@ -11,8 +11,10 @@ at +b), their rates, and two work integrals [J/kg]: of the base's inertial force
 
 Modes (:class:`FreeMode`): REST; SLIDE sigma (flat, x'' = -a_x - sigma mu_k g_e); ROCK s
 (the pivot s sticks; out, in and beyond alpha as Housner's block, whose rules they share);
-SLIDE_ROCK (s, sigma) (the pivot slips toward sigma, F = -sigma mu_k N); FLIGHT (no
-contact: x'' = -a_x, z'' = -g_e, theta'' = 0); OVERTURNED (|theta| = pi/2). Impacts and
+SLIDE_ROCK (s, sigma) (the pivot slips toward sigma, F = -sigma mu_k N); FLIGHT c (no
+contact: x'' = -a_x, z'' = -g_e, theta'' = 0; while it flies the state's position and
+rates are those of its corner c, the one that lifted, converted back to the centroid's in
+events and the solution); OVERTURNED (|theta| = pi/2). Impacts and
 landings are instant modes whose entry is the velocity jump (perfectly plastic, sticking
 if static friction can hold the corner, else slipping through with mu_k), after which the
 state decides the mode. The laws are :mod:`._slide_rock_laws`'.
