@@ -65,7 +65,11 @@ def test_panels_have_units_and_each_motion_is_shaded_where_the_modes_say(run, sh
         assert slip[-1] == solution.final_slip
         assert np.array_equal(slip, bd.rocking.base_slip(x, angle, solution.block.b, solution.block.h))
         heights = [line(fig.axes[2], f"corner {c}")[1] for c in ("+b", "-b")]
-        assert min(heights[0].min(), heights[1].min()) >= -1e-9  # no corner below the base
+        knots = np.isin(t, solution.t)
+        low = np.minimum(heights[0], heights[1])
+        # no corner below the base: at the knots to the integration's error (measured 1.1e-11
+        # m on these runs), between them to the cubic Hermite dense output's (6.5e-9 m)
+        assert low[knots].min() >= -1e-10 and low.min() >= -1e-8
         if "flight" in shaded:
             start, end = spans["flight"][0]
             assert solution.events_of("lift")[0].t == start and solution.events_of("land")[0].t == end

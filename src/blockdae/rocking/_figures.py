@@ -118,6 +118,7 @@ def free_standing_figure(solution, *, n_points, title=None):
     import matplotlib.pyplot as plt
     from matplotlib.patches import Patch
 
+    from . import _slide_rock_laws as laws
     from ._free_solution import base_slip
 
     block = solution.block
@@ -143,8 +144,9 @@ def free_standing_figure(solution, *, n_points, title=None):
     theta.set_ylabel("theta [rad]")
     slip.plot(t, base_slip(y[0], y[2], block.b, block.h), color="C0", lw=1.1, label="slip")
     slip.set_ylabel("slip [m]")
-    heights.plot(t, block.corner_height(1, y, np), color="C3", lw=1.0, label="corner +b")
-    heights.plot(t, block.corner_height(-1, y, np), color="C2", lw=1.0, label="corner -b")
+    for c, colour in ((1, "C3"), (-1, "C2")):  # z + r_cz of each corner
+        heights.plot(t, y[1] + laws.corner_offset(c, y[2], block.b, block.h, np)[1], color=colour, lw=1.0,
+                     label=f"corner {'+' if c > 0 else '-'}b")
     heights.set_ylabel("corner heights [m]")
     heights.legend(loc="upper right", fontsize="small")
     if solution.motion is not None:

@@ -11,8 +11,10 @@ at +b), their rates, and two work integrals [J/kg]: of the base's inertial force
 
 Modes (:class:`FreeMode`): REST; SLIDE sigma (flat, x'' = -a_x - sigma mu_k g_e); ROCK s
 (the pivot s sticks; out, in and beyond alpha as Housner's block, whose rules they share);
-SLIDE_ROCK (s, sigma) (the pivot slips toward sigma, F = -sigma mu_k N); FLIGHT (no
-contact: x'' = -a_x, z'' = -g_e, theta'' = 0); OVERTURNED (|theta| = pi/2). Impacts and
+SLIDE_ROCK (s, sigma) (the pivot slips toward sigma, F = -sigma mu_k N); FLIGHT c (no
+contact: x'' = -a_x, z'' = -g_e, theta'' = 0; while it flies the state's position and
+rates are those of its corner c, the one that lifted, converted back to the centroid's in
+events and the solution); OVERTURNED (|theta| = pi/2). Impacts and
 landings are instant modes whose entry is the velocity jump (perfectly plastic, sticking
 if static friction can hold the corner, else slipping through with mu_k), after which the
 state decides the mode. The laws are :mod:`._slide_rock_laws`'.
@@ -25,6 +27,7 @@ import warnings
 
 import numpy as np
 
+from ..core import HermiteDense
 from ..core.contract import KNOTS_PER_RADIAN, SCALAR
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import stop_mode
@@ -205,9 +208,43 @@ class FreeStandingBlock(FreeStandingDerivatives):
         alpha, radius = self._geometry(xp)
         return y[X_RATE] - radius * xp.cos(s * alpha - y[THETA]) * y[THETA_RATE]
 
-    def corner_height(self, c, y, xp=SCALAR):
-        """z_c [m]: corner ``c``'s height above the base."""
-        return y[Z] - c * self.b * xp.sin(y[THETA]) - self.h * xp.cos(y[THETA])
+    def to_corner(self, c, y, xp=SCALAR):
+        """``y`` (the centroid's position and rates) as a flight's state: corner ``c``'s
+        position (x_c, z_c) and velocity, the rest as it is. A corner that just lifted has
+        z_c = 0 exactly and rises as t³: as a state its height keeps every digit, as the
+        difference of the centroid's height and h cos theta it would be rounding."""
+        r_cx, r_cz = laws.corner_offset(c, y[THETA], self.b, self.h, xp)
+        rate = y[THETA_RATE]
+        return xp.stack([y[X] + r_cx, y[Z] + r_cz, y[THETA], y[X_RATE] + r_cz * rate, y[Z_RATE] - r_cx * rate,
+                         rate, y[BASE_WORK], y[FRICTION_WORK]])
+
+    def to_centroid(self, c, y, xp=SCALAR):
+        """A flight's state with reference corner ``c`` as the centroid's (:meth:`to_corner`'s inverse)."""
+        r_cx, r_cz = laws.corner_offset(c, y[THETA], self.b, self.h, xp)
+        rate = y[THETA_RATE]
+        return xp.stack([y[X] - r_cx, y[Z] - r_cz, y[THETA], y[X_RATE] - r_cz * rate, y[Z_RATE] + r_cx * rate,
+                         rate, y[BASE_WORK], y[FRICTION_WORK]])
+
+    def centroid_state(self, mode, y):
+        """``y`` in ``mode`` as the centroid's state (a flight's converted, :meth:`to_centroid`)."""
+        y = np.asarray(y, dtype=float)
+        return np.array(self.to_centroid(side(mode), y)) if kind_of(mode) == 9 else y
+
+    def centroid_rate(self, mode, y, rate):
+        """d/dt of :meth:`centroid_state` from a state ``y`` in ``mode`` and its rate."""
+        if kind_of(mode) != 9:
+            return rate
+        r_cx, r_cz = laws.corner_offset(side(mode), y[THETA], self.b, self.h, math)
+        w, dw = y[THETA_RATE], rate[THETA_RATE]
+        out = np.array(rate, dtype=float)
+        out[X], out[Z] = rate[X] - r_cz * rate[THETA], rate[Z] + r_cx * rate[THETA]
+        out[X_RATE] = rate[X_RATE] + r_cx * w * rate[THETA] - r_cz * dw
+        out[Z_RATE] = rate[Z_RATE] + r_cz * w * rate[THETA] + r_cx * dw
+        return out
+
+    def _flight(self, c=1):
+        """FLIGHT with reference corner ``c`` (the one that lifted; +b for a flat block)."""
+        return FreeMode(9 * c)
 
     # ---- the automaton ----------------------------------------------------------------
     def flow(self, mode, t, y, excitation, xp=np):
@@ -234,8 +271,12 @@ class FreeStandingBlock(FreeStandingDerivatives):
                 friction = laws.friction_power(-sigma * self.friction_kinetic * normal, self.pivot_slip_rate(s, y, xp))
             z_accel = radius * (xp.sin(phi) * accel - xp.cos(phi) * y[THETA_RATE] ** 2)
             return xp.stack([y[X_RATE], y[Z_RATE], y[THETA_RATE], x_accel, z_accel, accel, power, zero + friction])
-        if kind == 9:
-            return xp.stack([y[X_RATE], y[Z_RATE], y[THETA_RATE], zero - ax, zero - ge, zero, power, zero])
+        if kind == 9:  # the state's position is corner s's: x_c'' = -a_x - r_cx theta'², z_c'' = -g_e - r_cz theta'²
+            r_cx, r_cz = laws.corner_offset(s, y[THETA], self.b, self.h, xp)
+            rate = y[THETA_RATE]
+            power = laws.base_power(ax, ge - self.g, y[X_RATE] - r_cz * rate, y[Z_RATE] + r_cx * rate)
+            return xp.stack([y[X_RATE], y[Z_RATE], rate, -ax - r_cx * rate**2, -ge - r_cz * rate**2, zero, power,
+                             zero])
         if kind == SETTLE:
             return xp.stack([zero] * 5 + [zero + self._settle_rate(s, t, excitation, xp), zero, zero])
         return xp.stack([zero] * len(self.state_names))
@@ -248,7 +289,7 @@ class FreeStandingBlock(FreeStandingDerivatives):
         s theta -> impact, -s theta' -> out again; beyond: s theta', pi/2 - s theta), N
         (-> flight), mu N - |F| (-> slip); SLIDE_ROCK (s, sigma): (s theta -> impact,
         pi/2 - s theta, N, sigma u' -> the slip stops, D -> Painlevé's paradox); FLIGHT:
-        (z_+, z_-, pi/2 - |theta|); SETTLE s: (s theta' -> rest, the two onsets, g_e)."""
+        (z_+, z_-, pi/2 - |theta|) (the corners' heights); SETTLE s: (s theta' -> rest, the two onsets, g_e)."""
         kind, s = kind_of(mode), side(mode)
         ax, ge, _, _ = self._base(t, excitation)
         one = 0.0 * y[X] + 1.0
@@ -265,9 +306,9 @@ class FreeStandingBlock(FreeStandingDerivatives):
             denominator, normal, _, _ = self.slide_rock(s, slip_direction(mode), y, ax, ge, xp)
             return xp.stack([s * y[THETA], 0.5 * math.pi - s * y[THETA], normal,
                              slip_direction(mode) * self.pivot_slip_rate(s, y, xp), denominator])
-        if kind == 9:
-            return xp.stack([self.corner_height(1, y, xp), self.corner_height(-1, y, xp),
-                             0.5 * math.pi - xp.abs(y[THETA])])
+        if kind == 9:  # z_c' = z_c + (c - c') b sin theta from the reference corner c
+            lift = self.b * xp.sin(y[THETA])
+            return xp.stack([y[Z] + (s - 1) * lift, y[Z] + (s + 1) * lift, 0.5 * math.pi - xp.abs(y[THETA])])
         if kind == SETTLE:
             limit = self.slenderness_ratio * ge
             return xp.stack([s * y[THETA_RATE], limit - ax, limit + ax, ge])
@@ -293,7 +334,7 @@ class FreeStandingBlock(FreeStandingDerivatives):
             return rock_mode(OUT, d)
         if kind == laws.SLIDE_ROCK:
             return slide_rock_mode(d, d)
-        return FreeMode.FLIGHT
+        return self._flight()
 
     def _on_corner(self, s, y, ax, ge):
         """The mode of a block on corner ``s`` whose pivot has stopped (a slip that stops, the
@@ -308,7 +349,7 @@ class FreeStandingBlock(FreeStandingDerivatives):
         if kind == laws.SLIDE_ROCK:
             return slide_rock_mode(s, sigma)
         if kind != laws.ROCK:
-            return FreeMode.FLIGHT
+            return self._flight(s)
         if s * y[THETA_RATE] > 0:
             return rock_mode(OUT if s * y[THETA] < self.alpha else BEYOND, s)
         if s * y[THETA_RATE] < 0:
@@ -359,18 +400,18 @@ class FreeStandingBlock(FreeStandingDerivatives):
         ax, ge, ax_rate, az_rate = self._base(t, excitation)
         if mode == FreeMode.REST:
             if guard_index == 2:
-                return FreeMode.FLIGHT
+                return self._flight()
             d = -1 if guard_index == 0 else 1
             # at the threshold |a_x| = min(mu, b/h) g_e: a slide, or (mu > b/h) a rock, whose
             # pivot holds there with the margin 4 g_e (1 + lambda²)(mu - lambda) of (S)
             return FreeMode(d) if self.mu <= self.slenderness_ratio else rock_mode(OUT, d)
         if kind == 1:
             if guard_index == 1:
-                return FreeMode.FLIGHT
+                return self._flight()
             return self._after_slide_stop(int(mode), t, y, excitation, time_tol)
         if kind in _ROCK:
             if guard_index == 2:
-                return FreeMode.FLIGHT
+                return self._flight(s)
             if guard_index == 3:
                 _, force, _ = self.rock_forces(s, y, ax, ge)
                 return slide_rock_mode(s, -1 if force > 0 else 1)
@@ -385,19 +426,20 @@ class FreeStandingBlock(FreeStandingDerivatives):
             if guard_index == 1:
                 return rock_mode(OVERTURNED, s)
             if guard_index == 2:
-                return FreeMode.FLIGHT
+                return self._flight(s)
             if guard_index == 3:
                 return self._on_corner(s, y, ax, ge)
             raise self._painleve(mode, t, y, 0.0)
         if kind == 9:
             if guard_index == 2:
                 return rock_mode(OVERTURNED, 1 if y[THETA] > 0 else -1)
-            if self._grazes(1 if guard_index == 0 else -1, y, ge):
+            centroid = self.centroid_state(mode, y)
+            if self._grazes(1 if guard_index == 0 else -1, centroid, ge):
                 return mode
-            return self._impact_mode(y)
+            return self._impact_mode(centroid)
         if kind == SETTLE:
             if guard_index == 3:
-                return FreeMode.FLIGHT
+                return self._flight()
             return FreeMode.REST if guard_index == 0 else rock_mode(OUT, -1 if guard_index == 1 else 1)
         if mode == FreeMode.RELEASE:
             return self._on_corner(1 if self.theta0 > 0 else -1, y, ax, ge)
@@ -495,21 +537,22 @@ class FreeStandingBlock(FreeStandingDerivatives):
         kind, s = kind_of(mode), side(mode)
         if kind == 1 and guard_index == 0:
             return self._flat_state(y, 0.0, xp)
-        if kind in _ROCK and guard_index < 2:
+        if kind in _ROCK:
             theta, rate = y[THETA], y[THETA_RATE]
-            if (kind == IN) == (guard_index == 0):
+            if guard_index >= 2:  # lift-off, slip onset: on the pivot exactly (no drift of x', z')
+                pass
+            elif (kind == IN) == (guard_index == 0):
                 theta = 0.0 * theta + (0.0 if kind == IN else s * (self._geometry(xp)[0] if kind == OUT else 0.5 * math.pi))
             else:
                 rate = 0.0 * rate
             return self._pivot_state(s, y, theta, rate, xp)
-        if kind in SLIDE_ROCK_KINDS and guard_index < 2:
-            theta = 0.0 * y[THETA] + (0.0 if guard_index == 0 else s * 0.5 * math.pi)
+        if kind in SLIDE_ROCK_KINDS and guard_index != 3:
+            theta = y[THETA] if guard_index > 1 else 0.0 * y[THETA] + (0.0 if guard_index == 0 else s * 0.5 * math.pi)
             return self._slipping_state(s, y, theta, y[THETA_RATE], self.pivot_slip_rate(s, y, xp), xp)
         if kind in SLIDE_ROCK_KINDS and guard_index == 3:
             return self._pivot_state(s, y, y[THETA], y[THETA_RATE], xp)
-        if kind == 9 and guard_index < 2:
-            c = 1 if guard_index == 0 else -1
-            level = c * self.b * xp.sin(y[THETA]) + self.h * xp.cos(y[THETA])
+        if kind == 9 and guard_index < 2:  # the corner struck at height 0 exactly (see guards)
+            level = -(s - (1 if guard_index == 0 else -1)) * self.b * xp.sin(y[THETA])
             return xp.stack([y[X], level, *(y[i] for i in range(THETA, len(self.state_names)))])
         if kind == SETTLE:  # its theta' is the envelope of the summed impacts, not a rotation
             return self._flat_state(y, 0.0, xp)
@@ -531,6 +574,12 @@ class FreeStandingBlock(FreeStandingDerivatives):
         Needs no excitation (the event records use it); xp-generic (the JAX twin
         differentiates it)."""
         kind = kind_of(after)
+        if kind_of(before) == 9:
+            if kind == 9:  # a restart (a corner that grazed the base)
+                return y
+            y = self.to_centroid(side(before), y, xp)
+        if kind == 9:
+            return self.to_corner(side(after), y, xp)
         if after == FreeMode.LANDING_FLAT:
             p_n = -y[Z_RATE]
             sliding = y[X_RATE] - xp.sign(y[X_RATE]) * self.friction_kinetic * p_n
@@ -548,8 +597,10 @@ class FreeStandingBlock(FreeStandingDerivatives):
             settled = self._flat_state(y, 0.0, xp)
             return xp.stack([*(settled[i] for i in range(THETA_RATE)), y[THETA_RATE], settled[BASE_WORK],
                              settled[FRICTION_WORK]])
-        if kind in SLIDE_ROCK_KINDS:
-            return self._slipping_state(s, y, y[THETA], y[THETA_RATE], self.pivot_slip_rate(s, y, xp), xp)
+        if kind in SLIDE_ROCK_KINDS:  # the pivot slips on, or starts to slip from rest relative to the base
+            slipping = kind_of(before) in SLIDE_ROCK_KINDS or kind_of(before) == 11
+            slip = self.pivot_slip_rate(s, y, xp) if slipping else 0.0 * y[X]
+            return self._slipping_state(s, y, y[THETA], y[THETA_RATE], slip, xp)
         if kind == OVERTURNED:
             return self._pivot_state(s, y, 0.0 * y[THETA] + s * 0.5 * math.pi, 0.0 * y[THETA], xp)
         if after == FreeMode.REST or (kind == 1 and kind_of(before) not in (0, 1)):
@@ -604,9 +655,10 @@ class FreeStandingBlock(FreeStandingDerivatives):
 
     def guard_restarts(self, mode, guard_index):
         """A corner of a flying block that grazes the base (:meth:`_grazes`) restarts the
-        flight (an event FLIGHT -> FLIGHT, which the solution leaves out): an integrator
-        cannot go on from a root it found."""
-        return kind_of(mode) == 9 and guard_index < 2
+        flight, and a slipping pivot whose slip touches zero and goes on the same way
+        restarts its slide-rock (an event within one mode, which the solution leaves out):
+        an integrator cannot go on from a root it found."""
+        return (kind_of(mode) == 9 and guard_index < 2) or (kind_of(mode) in SLIDE_ROCK_KINDS and guard_index == 3)
 
     def _is_force_guard(self, mode, guard_index):
         """Whether guard ``guard_index`` of ``mode`` is a force [m/s²] (g_e, a rest limit, N,
@@ -657,17 +709,23 @@ class FreeStandingBlock(FreeStandingDerivatives):
         return 200.0 * math.pi / (self.frequency * (1.0 - self.r)) + 10.0 / self.frequency + slide
 
     def event(self, t, mode_before, mode_after, y):
-        after = np.asarray(self.entry_state(mode_before, mode_after, np.asarray(y, dtype=float)), dtype=float)
-        return FreeEvent.make(float(t), mode_before, mode_after, np.asarray(y, dtype=float)[:BASE_WORK],
+        """The event record: the centroid's state before and after the mode change."""
+        after = self.centroid_state(mode_after, self.entry_state(mode_before, mode_after, y))
+        return FreeEvent.make(float(t), mode_before, mode_after, self.centroid_state(mode_before, y)[:BASE_WORK],
                               after[:BASE_WORK])
 
     def solution(self, *, t, y, mode, events, backend, dense, stats):
+        """The solution in the centroid's coordinates (a flight's knots and rates converted)."""
+        y = np.array([self.centroid_state(m, state) for m, state in zip(mode, y)])
+        rates = [np.array([self.centroid_rate(m, state, rate) for m, state, rate in zip(mode, dense.y, rates)])
+                 for rates in (dense.rate_start, dense.rate_end)]
         return FreeStandingSolution(t=t, state=y, mode=mode, events=FreeEvent.merge(events), backend=backend,
-                                    dense=dense, stats=stats)
+                                    dense=HermiteDense(t, y, *rates), stats=stats)
 
     def energy(self, mode, y):
-        """E = ½ (x'² + z'²) + (R²/6) theta'² + g z [J/kg] in ``mode`` (a settling block's
-        rotation rate is the envelope of its summed impacts: no kinetic energy)."""
+        """E = ½ (x'² + z'²) + (R²/6) theta'² + g z [J/kg] of the centroid's state ``y`` in
+        ``mode`` (a settling block's rotation rate is the envelope of its summed impacts: no
+        kinetic energy)."""
         if kind_of(mode) == SETTLE:
             return self.g * y[Z]
         return laws.energy(y[X_RATE], y[Z_RATE], y[THETA_RATE], y[Z], self.R, self.g)

@@ -31,7 +31,8 @@ class FreeMode(enum.IntEnum):
     SLIDE_ROCK_NEG_NEG = -7  # on -b, slipping toward -x
     SLIDE_ROCK_POS_NEG = 8  # on +b, slipping toward -x
     SLIDE_ROCK_NEG_POS = -8  # on -b, slipping toward +x
-    FLIGHT = 9  # no corner touches the base
+    FLIGHT_POS = 9  # no corner touches the base; the state's position is the corner +b's (the one that lifted)
+    FLIGHT_NEG = -9  # the same, the state's position the corner -b's
     IMPACT_POS_STICK = 10  # instant: the corner +b strikes and sticks
     IMPACT_NEG_STICK = -10
     IMPACT_POS_SLIP = 11  # instant: the corner +b strikes and slips through the impact
@@ -58,10 +59,10 @@ def kind_of(mode) -> int:
 
 def side(mode) -> int:
     """The pivot's side (+1: +b, -1: -b) of a rocking, settling, slide-rocking,
-    overturned or impact mode; a slide's direction; 0 for REST, FLIGHT, the flat landing
-    and the release."""
+    overturned or impact mode; a flight's reference corner; a slide's direction; 0 for
+    REST, the flat landing and the release."""
     value = int(mode)
-    if kind_of(mode) in (0, 9, 12, 13):
+    if kind_of(mode) in (0, 12, 13):
         return 0
     return 1 if value > 0 else -1
 
