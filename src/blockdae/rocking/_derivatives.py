@@ -18,6 +18,8 @@ import numpy as np
 from ..core.contract import DifferentiableModel, parameter_names, scale_factor_units
 from ._free_modes import OVERTURNED, kind_of
 
+FLIGHT = 9  # the kind of a flight (:func:`._free_modes.kind_of`)
+
 #: the events at which |theta| may be largest: theta' = 0 there, or theta = pi/2
 EXTREMES = ("release", "apex", "overturn")
 
@@ -106,7 +108,11 @@ def free_max_theta_jacobian(block, solution, final, events) -> np.ndarray:
 
 def free_slip_jacobian(block, solution, final, events) -> np.ndarray:
     """d slip(t_end)/dp [m/unit], shape (n_p,), slip = x - h sin theta - sgn(theta) b (1 -
-    cos theta) (:func:`._free_solution.base_slip`)."""
+    cos theta) (:func:`._free_solution.base_slip`), from the centroid's state at t_end
+    (ValueError where the block is in flight then: its state is a corner's)."""
+    if kind_of(solution.mode[-1]) == FLIGHT:
+        raise ValueError(f"the block is in flight at t_end = {solution.t_end:.6g} s: its slip is that of no corner "
+                         "on the base; choose a t_end where it stands on the base")
     names = parameter_names(block)
     theta = float(solution.state[-1, 2])
     s = float(np.sign(theta))
