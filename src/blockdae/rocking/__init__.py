@@ -6,7 +6,7 @@ slide-rock and flight (:class:`FreeStandingBlock`)."""
 from ._figures import plot_mode_map
 from ._free_model import FreeStandingBlock, PainleveWarning
 from ._free_modes import FreeMode
-from ._free_solution import FreeEvent, FreeStandingSolution, base_slip
+from ._free_solution import FreeEvent, FreeStandingSolution
 from ._mode_map import mode_map
 from ._model import RockingBlock, housner_restitution
 from ._modes import RockingMode
@@ -14,7 +14,7 @@ from ._solution import ContactWarning, RockingEvent, RockingSolution
 from ._spectra import (OverturningFragility, OverturningSpectrum, motion_regime, overturning_amplitude,
                        overturning_fragility, overturning_spectrum, overturns, pulse)
 
-__all__ = ["base_slip", "ContactWarning", "FreeEvent", "FreeMode", "FreeStandingBlock", "FreeStandingSolution", "PainleveWarning",
+__all__ = ["ContactWarning", "FreeEvent", "FreeMode", "FreeStandingBlock", "FreeStandingSolution", "PainleveWarning",
            "OverturningFragility", "OverturningSpectrum", "RockingBlock", "RockingEvent",
            "RockingMode", "RockingSolution", "housner_restitution", "motion_regime", "overturning_amplitude",
            "overturning_fragility", "overturning_spectrum", "overturns", "pulse",

@@ -51,7 +51,7 @@ class FreeStandingDerivatives(DifferentiableModel):
     scale factors ("A" [g], "A_x", "A_z" [-]).
 
     Quantities (``of=``): "max_theta_over_alpha" [-], "slip" [m] (the base's slip at
-    t_end, :func:`._free_solution.base_slip`) and "overturn_time" [s]; without ``of``, the
+    t_end, :func:`._slide_rock_laws.base_slip`) and "overturn_time" [s]; without ``of``, the
     centroid's x(t_end) relative to the base [m]."""
 
     def parameter_units(self) -> dict:
@@ -108,7 +108,7 @@ def free_max_theta_jacobian(block, solution, final, events) -> np.ndarray:
 
 def free_slip_jacobian(block, solution, final, events) -> np.ndarray:
     """d slip(t_end)/dp [m/unit], shape (n_p,), slip = x - h sin theta - sgn(theta) b (1 -
-    cos theta) (:func:`._free_solution.base_slip`), from the centroid's state at t_end
+    cos theta) (:func:`._slide_rock_laws.base_slip`), from the centroid's state at t_end
     (ValueError where the block is in flight then: its state is a corner's)."""
     if kind_of(solution.mode[-1]) == FLIGHT:
         raise ValueError(f"the block is in flight at t_end = {solution.t_end:.6g} s: its slip is that of no corner "

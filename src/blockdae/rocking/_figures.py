@@ -112,14 +112,13 @@ def motion_spans(solution):
 
 def free_standing_figure(solution, *, n_points, title=None):
     """A complete block's run against t [s]: theta [rad] (impacts and overturning marked),
-    the base's slip [m] (:func:`._free_solution.base_slip`), the corners' heights above the
+    the base's slip [m] (:func:`._slide_rock_laws.base_slip`), the corners' heights above the
     base [m] and a_x [m/s²], each panel shaded by the motion (:data:`MOTION_SPANS`:
     slide, rock, slide-rock, flight) with a legend."""
     import matplotlib.pyplot as plt
     from matplotlib.patches import Patch
 
     from . import _slide_rock_laws as laws
-    from ._free_solution import base_slip
 
     block = solution.block
     t = time_grid(solution, n_points)
@@ -142,7 +141,7 @@ def free_standing_figure(solution, *, n_points, title=None):
     if solution.overturned:
         theta.axvline(solution.overturn_time, color="k", ls="--", lw=0.8, label="overturned")
     theta.set_ylabel("theta [rad]")
-    slip.plot(t, base_slip(y[0], y[2], block.b, block.h), color="C0", lw=1.1, label="slip")
+    slip.plot(t, laws.base_slip(y[0], y[2], block.b, block.h, np), color="C0", lw=1.1, label="slip")
     slip.set_ylabel("slip [m]")
     for c, colour in ((1, "C3"), (-1, "C2")):  # z + r_cz of each corner
         heights.plot(t, y[1] + laws.corner_offset(c, y[2], block.b, block.h, np)[1], color=colour, lw=1.0,

@@ -7,15 +7,7 @@ import numpy as np
 
 from ..core import AbstractEvent, DriverSolution, compact_repr
 from ._free_modes import INSTANT, event_kind, impact_kind
-
-def base_slip(x, theta, b, h):
-    """The slip of the block's base relative to the base [m]: the horizontal displacement
-    of its lower corner from where that corner stood at rest, x - h sin theta - sgn(theta)
-    b (1 - cos theta) (x [m] the centroid's, theta [rad]; arrays broadcast). Flat, it is x;
-    on a sticking pivot it does not change; it moves only where a corner slips."""
-    theta = np.asarray(theta, dtype=float)
-    return x - h * np.sin(theta) - np.sign(theta) * b * (1.0 - np.cos(theta))
-
+from ._slide_rock_laws import base_slip
 
 #: the kinds of event whose velocity jump dissipates energy (the balance's impact term)
 JUMP_KINDS = ("impact", "land", "zeno", "chatter", "overturn")
@@ -134,7 +126,7 @@ class FreeStandingSolution(DriverSolution):
     @property
     def slip(self) -> np.ndarray:
         """The base's slip at the knots [m], shape (n,) (:func:`base_slip`)."""
-        return base_slip(self.state[:, 0], self.state[:, 2], self.block.b, self.block.h)
+        return base_slip(self.state[:, 0], self.state[:, 2], self.block.b, self.block.h, np)
 
     @property
     def final_slip(self) -> float:

@@ -43,6 +43,14 @@ def corner_state(c, z, theta, x_rate, z_rate, theta_rate, b, h, xp):
     return r_cx, r_cz, z + r_cz, x_rate + r_cz * theta_rate, z_rate - r_cx * theta_rate
 
 
+def base_slip(x, theta, b, h, xp):
+    """The slip of the block's base relative to the base [m]: the horizontal displacement
+    of its lower corner from where that corner stood at rest, x - h sin theta - sgn(theta)
+    b (1 - cos theta) (x [m] the centroid's, theta [rad]). Flat, it is x; on a sticking
+    pivot it does not change; it moves only where a corner slips."""
+    return x - h * xp.sin(theta) - xp.sign(theta) * b * (1.0 - xp.cos(theta))
+
+
 # ---- flows and contact forces ----------------------------------------------------------
 def rock_acceleration(s, theta, ax, ge, R, alpha, xp):
     """theta'' [rad/s²] rocking on a sticking pivot ``s``: -(3/(4R)) (g_e sin phi + a_x cos phi)."""
