@@ -65,13 +65,11 @@ def test_housners_block_falling_back_after_the_motion_may_still_overturn():
     assert rocking.overturns(FreeStandingBlock(b=0.2, h=1.0, mu=1.3), motion)
 
 
-@pytest.mark.xfail(strict=True, raises=RuntimeError, reason="FreeStandingBlock: a slide-rock beyond alpha restarts "
-                   "itself at one instant until the driver's cap of events at one instant (model bug)")
 def test_a_slide_rock_beyond_alpha_does_not_restart_itself_at_one_instant():
     """b/h = 0.2, mu = 1.3 under a one-sine pulse of 1.2221578 g b/h at omega_p / p = 2 (an
     amplitude the overturning spectrum's bisection tries): at t = 3.368 s the block goes
-    ROCK_POS_BEYOND -> SLIDE_ROCK_POS_POS and restarts its slide-rock 5 times at that
-    instant: RuntimeError "chatter; raise max_events_at_one_instant". It should run on."""
+    ROCK_POS_BEYOND -> SLIDE_ROCK_POS_POS, which restarted itself at that instant until the
+    driver's cap ("chatter") while the slide-rock's state was the centroid's; it runs on."""
     block = FreeStandingBlock(b=0.2, h=1.0, mu=1.3)
     motion = rocking.pulse("sine", 1.222157844209278 * G * 0.2, 2 * math.pi / (2.0 * block.frequency))
     assert bd.simulate(block, motion).events[-1].kind in ("overturn", "rest")

@@ -16,7 +16,7 @@ m / alpha = (pi/2) / alpha, which moves with b and h alone.
 import numpy as np
 
 from ..core.contract import DifferentiableModel, parameter_names, scale_factor_units
-from ._free_modes import OVERTURNED, kind_of
+from ._free_modes import OVERTURNED, SLIDE_ROCK_KINDS, kind_of, side
 
 FLIGHT = 9  # the kind of a flight (:func:`._free_modes.kind_of`)
 
@@ -114,6 +114,9 @@ def free_slip_jacobian(block, solution, final, events) -> np.ndarray:
         raise ValueError(f"the block is in flight at t_end = {solution.t_end:.6g} s: its slip is that of no corner "
                          "on the base; choose a t_end where it stands on the base")
     names = parameter_names(block)
+    if kind_of(solution.mode[-1]) in SLIDE_ROCK_KINDS:  # the state holds the pivot's u: slip = u - s b
+        s = float(side(solution.mode[-1]))
+        return np.asarray(final[0]) - s * np.array([name == "b" for name in names], dtype=float)
     theta = float(solution.state[-1, 2])
     s = float(np.sign(theta))
     d_slip = np.asarray(final[0]) - (block.h * np.cos(theta) + s * block.b * np.sin(theta)) * np.asarray(final[2])

@@ -41,7 +41,8 @@ from ._free_solution import FreeEvent, FreeStandingSolution
 
 X, Z, THETA, X_RATE, Z_RATE, THETA_RATE, BASE_WORK, FRICTION_WORK = range(8)
 _ROCK = (OUT, IN, BEYOND)
-#: a rotation rate below RATE_FLOOR p alpha [rad/s] is no contradiction of its mode
+#: a rotation rate below RATE_FLOOR p alpha [rad/s] (a slip below RATE_FLOOR p R [m/s]) is
+#: no contradiction of its mode
 RATE_FLOOR = 1e-10
 #: a force guard below -JUMP_FLOOR g [-] is past zero (a jump of a(t)), not at a located root
 JUMP_FLOOR = 1e-9
@@ -226,12 +227,22 @@ class FreeStandingBlock(FreeStandingDerivatives):
                          rate, y[BASE_WORK], y[FRICTION_WORK]])
 
     def centroid_state(self, mode, y):
-        """``y`` in ``mode`` as the centroid's state (a flight's converted, :meth:`to_centroid`)."""
+        """``y`` in ``mode`` as the centroid's state (a flight's and a slide-rock's converted:
+        :meth:`to_centroid`, :meth:`from_pivot`)."""
         y = np.asarray(y, dtype=float)
+        if kind_of(mode) in SLIDE_ROCK_KINDS:
+            return np.array(self.from_pivot(side(mode), y))
         return np.array(self.to_centroid(side(mode), y)) if kind_of(mode) == 9 else y
 
     def centroid_rate(self, mode, y, rate):
         """d/dt of :meth:`centroid_state` from a state ``y`` in ``mode`` and its rate."""
+        if kind_of(mode) in SLIDE_ROCK_KINDS:
+            phi = side(mode) * self.alpha - y[THETA]
+            out = np.array(rate, dtype=float)
+            out[X] = rate[X] + self.R * math.cos(phi) * rate[THETA]
+            out[X_RATE] = (rate[X_RATE] + self.R * math.sin(phi) * y[THETA_RATE] * rate[THETA]
+                           + self.R * math.cos(phi) * rate[THETA_RATE])
+            return out
         if kind_of(mode) != 9:
             return rate
         r_cx, r_cz = laws.corner_offset(side(mode), y[THETA], self.b, self.h, math)
@@ -264,11 +275,12 @@ class FreeStandingBlock(FreeStandingDerivatives):
                 accel = laws.rock_acceleration(s, y[THETA], ax, ge, radius, alpha, xp)
                 x_accel = radius * (xp.cos(phi) * accel + xp.sin(phi) * y[THETA_RATE] ** 2)
                 friction = zero
-            else:
+            else:  # the state's x, x' are the pivot's u, u' (the slip)
                 sigma = slip_direction(mode)
-                _, normal, accel, _ = self.slide_rock(s, sigma, y, ax, ge, xp)
-                x_accel = -ax - sigma * self.friction_kinetic * normal
-                friction = laws.friction_power(-sigma * self.friction_kinetic * normal, self.pivot_slip_rate(s, y, xp))
+                _, normal, accel, x_accel = self.slide_rock(s, sigma, y, ax, ge, xp)
+                friction = laws.friction_power(-sigma * self.friction_kinetic * normal, y[X_RATE])
+                centroid_rate = y[X_RATE] + radius * xp.cos(phi) * y[THETA_RATE]
+                power = laws.base_power(ax, ge - self.g, centroid_rate, y[Z_RATE])
             z_accel = radius * (xp.sin(phi) * accel - xp.cos(phi) * y[THETA_RATE] ** 2)
             return xp.stack([y[X_RATE], y[Z_RATE], y[THETA_RATE], x_accel, z_accel, accel, power, zero + friction])
         if kind == 9:  # the state's position is corner s's: x_c'' = -a_x - r_cx theta'², z_c'' = -g_e - r_cz theta'²
@@ -305,7 +317,7 @@ class FreeStandingBlock(FreeStandingDerivatives):
         if kind in SLIDE_ROCK_KINDS:
             denominator, normal, _, _ = self.slide_rock(s, slip_direction(mode), y, ax, ge, xp)
             return xp.stack([s * y[THETA], 0.5 * math.pi - s * y[THETA], normal,
-                             slip_direction(mode) * self.pivot_slip_rate(s, y, xp), denominator])
+                             slip_direction(mode) * y[X_RATE], denominator])
         if kind == 9:  # z_c' = z_c + (c - c') b sin theta from the reference corner c
             lift = self.b * xp.sin(y[THETA])
             return xp.stack([y[Z] + (s - 1) * lift, y[Z] + (s + 1) * lift, 0.5 * math.pi - xp.abs(y[THETA])])
@@ -422,7 +434,7 @@ class FreeStandingBlock(FreeStandingDerivatives):
             return self.mode_at_rest(t, excitation) if after == rules.DEMAND_DECIDES else FreeMode(after)
         if kind in SLIDE_ROCK_KINDS:
             if guard_index == 0:
-                return self._impact_mode(y)
+                return self._impact_mode(self.centroid_state(mode, y))
             if guard_index == 1:
                 return rock_mode(OVERTURNED, s)
             if guard_index == 2:
@@ -518,11 +530,28 @@ class FreeStandingBlock(FreeStandingDerivatives):
         return xp.stack([u - radius * xp.sin(phi), radius * xp.cos(phi), theta, radius * xp.cos(phi) * rate,
                          radius * xp.sin(phi) * rate, rate, y[BASE_WORK], y[FRICTION_WORK]])
 
-    def _slipping_state(self, s, y, theta, rate, slip, xp=SCALAR):
-        """``y`` on pivot ``s`` (kept where it is) at (theta, theta') slipping with u' = ``slip``."""
-        pivot = self._pivot_state(s, y, theta, rate, xp)
-        return xp.stack([pivot[X], pivot[Z], theta, pivot[X_RATE] + slip, pivot[Z_RATE], rate,
+    def _slide_rock_state(self, s, u, theta, rate, slip, y, xp=SCALAR):
+        """A slide-rock's state on pivot ``s`` at u [m] slipping at u' = ``slip`` [m/s], at
+        (theta, theta'): (u, z, theta, u', z', theta') with the centroid's z, z' from the
+        rotation (and ``y``'s work integrals). Its slip as a state starts at 0 exactly at a
+        slip onset and grows as t², below the rounding of x' - R cos phi theta'."""
+        alpha, radius = self._geometry(xp)
+        phi = s * alpha - theta
+        return xp.stack([u, radius * xp.cos(phi), theta, slip, radius * xp.sin(phi) * rate, rate,
                          y[BASE_WORK], y[FRICTION_WORK]])
+
+    def to_pivot(self, s, y, slip, xp=SCALAR):
+        """The centroid's state ``y`` as a slide-rock's on pivot ``s`` slipping at u' = ``slip``."""
+        alpha, radius = self._geometry(xp)
+        u = y[X] + radius * xp.sin(s * alpha - y[THETA])
+        return self._slide_rock_state(s, u, y[THETA], y[THETA_RATE], slip, y, xp)
+
+    def from_pivot(self, s, y, xp=SCALAR):
+        """A slide-rock's state on pivot ``s`` as the centroid's (:meth:`to_pivot`'s inverse)."""
+        alpha, radius = self._geometry(xp)
+        phi = s * alpha - y[THETA]
+        return xp.stack([y[X] - radius * xp.sin(phi), y[Z], y[THETA], y[X_RATE] + radius * xp.cos(phi) * y[THETA_RATE],
+                         y[Z_RATE], y[THETA_RATE], y[BASE_WORK], y[FRICTION_WORK]])
 
     def _flat_state(self, y, x_rate, xp=SCALAR):
         """``y`` standing flat (theta = 0, z = h) with x' = ``x_rate`` [m/s]."""
@@ -546,11 +575,10 @@ class FreeStandingBlock(FreeStandingDerivatives):
             else:
                 rate = 0.0 * rate
             return self._pivot_state(s, y, theta, rate, xp)
-        if kind in SLIDE_ROCK_KINDS and guard_index != 3:
+        if kind in SLIDE_ROCK_KINDS and guard_index < 4:
             theta = y[THETA] if guard_index > 1 else 0.0 * y[THETA] + (0.0 if guard_index == 0 else s * 0.5 * math.pi)
-            return self._slipping_state(s, y, theta, y[THETA_RATE], self.pivot_slip_rate(s, y, xp), xp)
-        if kind in SLIDE_ROCK_KINDS and guard_index == 3:
-            return self._pivot_state(s, y, y[THETA], y[THETA_RATE], xp)
+            slip = 0.0 * y[X_RATE] if guard_index == 3 else y[X_RATE]
+            return self._slide_rock_state(s, y[X], theta, y[THETA_RATE], slip, y, xp)
         if kind == 9 and guard_index < 2:  # the corner struck at height 0 exactly (see guards)
             level = -(s - (1 if guard_index == 0 else -1)) * self.b * xp.sin(y[THETA])
             return xp.stack([y[X], level, *(y[i] for i in range(THETA, len(self.state_names)))])
@@ -574,10 +602,10 @@ class FreeStandingBlock(FreeStandingDerivatives):
         Needs no excitation (the event records use it); xp-generic (the JAX twin
         differentiates it)."""
         kind = kind_of(after)
-        if kind_of(before) == 9:
-            if kind == 9:  # a restart (a corner that grazed the base)
-                return y
-            y = self.to_centroid(side(before), y, xp)
+        if kind_of(before) in (9, *SLIDE_ROCK_KINDS):
+            if kind == kind_of(before) or (kind in SLIDE_ROCK_KINDS and kind_of(before) in SLIDE_ROCK_KINDS):
+                return y  # a restart, a slip reversed on the same pivot
+            y = (self.to_centroid if kind_of(before) == 9 else self.from_pivot)(side(before), y, xp)
         if kind == 9:
             return self.to_corner(side(after), y, xp)
         if after == FreeMode.LANDING_FLAT:
@@ -598,9 +626,8 @@ class FreeStandingBlock(FreeStandingDerivatives):
             return xp.stack([*(settled[i] for i in range(THETA_RATE)), y[THETA_RATE], settled[BASE_WORK],
                              settled[FRICTION_WORK]])
         if kind in SLIDE_ROCK_KINDS:  # the pivot slips on, or starts to slip from rest relative to the base
-            slipping = kind_of(before) in SLIDE_ROCK_KINDS or kind_of(before) == 11
-            slip = self.pivot_slip_rate(s, y, xp) if slipping else 0.0 * y[X]
-            return self._slipping_state(s, y, y[THETA], y[THETA_RATE], slip, xp)
+            slip = self.pivot_slip_rate(s, y, xp) if kind_of(before) == 11 else 0.0 * y[X]
+            return self.to_pivot(s, y, slip, xp)
         if kind == OVERTURNED:
             return self._pivot_state(s, y, 0.0 * y[THETA] + s * 0.5 * math.pi, 0.0 * y[THETA], xp)
         if after == FreeMode.REST or (kind == 1 and kind_of(before) not in (0, 1)):
@@ -682,12 +709,15 @@ class FreeStandingBlock(FreeStandingDerivatives):
 
     def contradiction(self, mode, y, velocity_error):
         """A slide, a slip or a rotation whose rate points against its mode beyond the
-        velocity error (a rotation also beyond 1e-10 p alpha [rad/s])."""
+        velocity error, and beyond 1e-10 p R [m/s] (1e-10 p alpha [rad/s]): a stop located
+        within the root's time tolerance (2e-13 s at t = 10 s) may lie past zero by its
+        acceleration times that, more than the velocity error of a block that barely moves."""
         kind, s = kind_of(mode), side(mode)
-        if kind == 1 and s * y[X_RATE] < -velocity_error:
+        speed_error = max(velocity_error, RATE_FLOOR * self.frequency * self.R)
+        if kind == 1 and s * y[X_RATE] < -speed_error:
             return f"x' = {y[X_RATE]:+.6g} m/s points against the slide"
-        if kind in SLIDE_ROCK_KINDS and slip_direction(mode) * self.pivot_slip_rate(s, y) < -velocity_error:
-            return f"the pivot's slip u' = {self.pivot_slip_rate(s, y):+.6g} m/s points against its mode"
+        if kind in SLIDE_ROCK_KINDS and slip_direction(mode) * y[X_RATE] < -speed_error:
+            return f"the pivot's slip u' = {y[X_RATE]:+.6g} m/s points against its mode"
         velocity_error = max(velocity_error, RATE_FLOOR * self.frequency * self.alpha)
         if kind in (OUT, BEYOND) and s * y[THETA_RATE] < -velocity_error:
             return f"theta' = {y[THETA_RATE]:+.6g} rad/s points toward the base"

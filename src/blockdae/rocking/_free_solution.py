@@ -6,6 +6,7 @@ import dataclasses
 import numpy as np
 
 from ..core import AbstractEvent, DriverSolution, compact_repr
+from ..core._states import state_columns, state_labels
 from ._free_modes import INSTANT, event_kind, impact_kind
 from ._slide_rock_laws import base_slip
 
@@ -84,6 +85,27 @@ class FreeStandingSolution(DriverSolution):
     def events_of(self, kind: str) -> tuple:
         """The events of one ``kind`` (see :class:`FreeEvent`)."""
         return tuple(e for e in self.events if e.kind == kind)
+
+    def event_table(self, events=None) -> str:
+        """``events`` (default: all) as an aligned text table: time [s], kind, the mode after
+        and the state before the event in its units (theta' also after it)."""
+        events = self.events if events is None else events
+        names = state_labels(self.block, 6)[:6] + ["theta_rate after [rad/s]"]
+        lines = [f"{'t [s]':>14}  {'kind':<12}  {'after':<18}  " + "  ".join(f"{n:>24}" for n in names)]
+        lines += [f"{e.t:14.9f}  {e.kind:<12}  {e.mode_after.name:<18}  "
+                  + "  ".join(f"{v:24.12e}" for v in (*e.state, e.state_after[5])) for e in events]
+        return "\n".join(lines)
+
+    def to_dataframe(self):
+        """The events as a pandas DataFrame: kind, t_s [s], mode_before, mode_after, the
+        state before (x_m, z_m, theta_rad, x_rate_m_s, z_rate_m_s, theta_rate_rad_s) and
+        after it (the same names ending in _after)."""
+        import pandas as pd
+
+        names = state_columns(self.block)[:6]
+        rows = [(e.kind, e.t, e.mode_before.name, e.mode_after.name, *e.state, *e.state_after) for e in self.events]
+        return pd.DataFrame(rows, columns=["kind", "t_s", "mode_before", "mode_after", *names,
+                                           *(f"{name}_after" for name in names)])
 
     @property
     def impacts(self) -> tuple:
