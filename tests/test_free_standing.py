@@ -103,7 +103,8 @@ def mu0_first_impact(block, theta0, ge):
 
     def slowness(theta):
         phi = alpha - theta
-        return 1 / mpmath.sqrt(2 * ge * (mpmath.cos(phi0) - mpmath.cos(phi)) / (radius * (mpmath.sin(phi)**2 + mpmath.mpf(1) / 3)))
+        inertia = radius * (mpmath.sin(phi) ** 2 + mpmath.mpf(1) / 3)
+        return 1 / mpmath.sqrt(2 * ge * (mpmath.cos(phi0) - mpmath.cos(phi)) / inertia)
 
     return float(mpmath.quad(slowness, [0, mpmath.mpf(theta0)]))
 

@@ -518,7 +518,8 @@ class FreeStandingBlock(FreeStandingDerivatives):
     def _settle_rate(self, s, t, excitation, xp=SCALAR):
         """d theta'/dt [rad/s²] of the Zeno envelope on side ``s`` (:func:`._rules.settle_rate`)."""
         r = 1.0 - 1.5 * xp.sin(self._geometry(xp)[0]) ** 2
-        return rules.settle_rate(s, self.deceleration(s, t, excitation, xp), self.deceleration(-s, t, excitation, xp), r)
+        ahead, behind = self.deceleration(s, t, excitation, xp), self.deceleration(-s, t, excitation, xp)
+        return rules.settle_rate(s, ahead, behind, r)
 
     # ---- states on guards and on entry ------------------------------------------------
     def _pivot_state(self, s, y, theta, rate, xp=SCALAR):
