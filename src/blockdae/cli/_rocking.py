@@ -67,6 +67,7 @@ def add_rocking_parser(subparsers):
 
 def run_rocking(args) -> int:
     """Run the block that ``args`` describe; print what it did; the exit status."""
+    contact = contact_model(args)
     if args.units is not None:
         checked(lambda: unit_factor(args.units), "--units")
     record = read(args.record, args)
@@ -75,7 +76,7 @@ def run_rocking(args) -> int:
         factor = checked(lambda: pga_factor(record.peak_acceleration, args.pga, args.g, name="--pga",
                                             check_peak=not args.accept_peak), str(args.record))
         record = record.scaled(factor)
-    if contact_model(args) == "complete":
+    if contact == "complete":
         return run_complete(args, record, factor)
     block = checked(lambda: RockingBlock(b=args.b, h=args.h, mu=args.mu, mu_kinetic=args.mu_kinetic,
                                          restitution=args.restitution, linearised=args.linearised,
@@ -149,11 +150,9 @@ def _json(record, factor, block, solution, contact, wall):
 def contact_model(args) -> str:
     """"complete" or "housner": --contact, or by default the complete block unless an option
     only Housner's block has asks for it (a UsageError where --contact complete meets one)."""
-    housner_only = [flag for flag, given in (("--linearised", args.linearised),
-                                             ("--restitution", args.restitution is not None),
-                                             ("--strict", args.strict),
-                                             (f"--backend {args.backend}", args.backend not in (None, *COMPLETE_BACKENDS)))
-                    if given]
+    options = (("--linearised", args.linearised), ("--restitution", args.restitution is not None),
+               ("--strict", args.strict), (f"--backend {args.backend}", args.backend not in (None, *COMPLETE_BACKENDS)))
+    housner_only = [flag for flag, given in options if given]
     if args.contact == "complete" and housner_only:
         raise UsageError(f"--contact complete: {', '.join(housner_only)} applies to Housner's block only "
                          "(--contact housner)")

@@ -572,7 +572,8 @@ class FreeStandingBlock(FreeStandingDerivatives):
             if guard_index >= 2:  # lift-off, slip onset: on the pivot exactly (no drift of x', z')
                 pass
             elif (kind == IN) == (guard_index == 0):
-                theta = 0.0 * theta + (0.0 if kind == IN else s * (self._geometry(xp)[0] if kind == OUT else 0.5 * math.pi))
+                edge = self._geometry(xp)[0] if kind == OUT else 0.5 * math.pi
+                theta = 0.0 * theta + (0.0 if kind == IN else s * edge)
             else:
                 rate = 0.0 * rate
             return self._pivot_state(s, y, theta, rate, xp)

@@ -87,8 +87,9 @@ def overturning_amplitude(block, shape, frequency_ratio, *, max_factor=30.0, ste
                           **options) -> float:
     """The smallest amplitude of a one-``shape`` pulse of angular frequency
     ``frequency_ratio`` p that overturns ``block``, in units of its rocking threshold g
-    tan(alpha) (g alpha linearised) [-] (a pulse below 1 does not lift it); found on a geometric grid of ``steps`` from 1 to
-    ``max_factor`` and bisected to ``rtol``. inf where none on the grid overturns."""
+    tan(alpha) (g alpha linearised) [-] (a pulse below 1 does not lift it); found on a
+    geometric grid of ``steps`` from 1 to ``max_factor`` and bisected to ``rtol``. inf
+    where none on the grid overturns."""
     if not frequency_ratio > 0:
         raise ValueError(f"frequency_ratio={frequency_ratio!r} must be > 0")
     unit = block.g * rocking_threshold(block)
