@@ -216,6 +216,9 @@ def test_rocking_slips_sticks_and_overturns_with_friction(backend):
     _, force, normal = block.rock_forces(1, y, ax, G)
     assert abs(0.3 * normal - abs(force)) <= 1e-9 * G
     assert sol.overturned and np.all(np.diff(sol.state[:, 7]) <= 1e-15)
+    table = sol.to_dataframe()
+    assert list(table["kind"]) == kinds(sol) and table["theta_rad"][1] == slip.state[2]
+    assert table.columns[-1] == "theta_rate_rad_s_after" and len(sol.event_table().splitlines()) == 8
 
 
 @pytest.mark.parametrize("backend", BACKENDS)

@@ -5,8 +5,7 @@ import dataclasses
 
 import numpy as np
 
-from ..core import AbstractEvent, DriverSolution, compact_repr
-from ..core._states import state_columns, state_labels
+from ..core import AbstractEvent, DriverSolution, compact_repr, state_columns, state_labels
 from ._free_modes import INSTANT, event_kind, impact_kind
 from ._slide_rock_laws import base_slip
 
