@@ -38,10 +38,11 @@ def test_rocking_block_json_is_the_api(capsys):
 
 
 def test_exact_equation_runs_compiled(capsys):
-    """The exact equation under Kobe TAK-090 at 0.4 g runs on the compiled engine by
-    default: the impacts of bd.simulate there."""
+    """Housner's block (--contact housner) with the exact equation under Kobe TAK-090 at
+    0.4 g runs on the compiled engine by default: the impacts of bd.simulate there."""
     path = _kobe_path()
-    found = json.loads(_run([path, "--b", 0.2, "--h", 0.8, "--mu", 0.6, "--pga", 0.4, "--json"], capsys).out)
+    found = json.loads(_run([path, "--b", 0.2, "--h", 0.8, "--mu", 0.6, "--pga", 0.4, "--contact", "housner", "--json"],
+                            capsys).out)
     record = bd.read_record(path, units="g")
     solution = bd.simulate(bd.RockingBlock(b=0.2, h=0.8, mu=0.6), record.scaled(0.4 * G / record.peak_acceleration),
                            backend="compiled")
@@ -50,9 +51,9 @@ def test_exact_equation_runs_compiled(capsys):
 
 
 def test_sliding_block_says_it_slides(capsys):
-    """mu < b/h: the block slides, and u(t_end) is the SlidingBlock's."""
+    """Housner's block with mu < b/h slides, and u(t_end) is the SlidingBlock's."""
     path = _kobe_path()
-    text = _run([path, "--b", 0.5, "--h", 0.6, "--mu", 0.3, "--t-end", 10], capsys).out
+    text = _run([path, "--b", 0.5, "--h", 0.6, "--mu", 0.3, "--t-end", 10, "--contact", "housner"], capsys).out
     sliding = bd.simulate(bd.SlidingBlock(mu=0.3), bd.read_record(path, units="g"), t_end=10.0, backend="cvode")
     assert "slides: mu < b/h" in text
     assert f"u(t_end) = {sliding.displacement:+.6f} m" in text

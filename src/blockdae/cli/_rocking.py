@@ -1,5 +1,6 @@
 """``blockdae rocking``: a free-standing block under one horizontal record: whether it
-rests, slides, rocks or overturns (Housner 1963), its impacts and its rest."""
+rests, slides, rocks, slide-rocks, flies or overturns (the complete block, by default), or
+Housner's (1963) block whose pivot never slips; its events, its rest and its energy balance."""
 
 import json
 import math
@@ -7,29 +8,45 @@ import pathlib
 import time
 import warnings
 
-from ._common import (checked, clean, describe_record, number, positive, read, record_arguments,
+from ._common import (UsageError, checked, clean, describe_record, number, positive, read, record_arguments,
                       record_fields, save_figure)
 from ..core import simulate
 from ..excitation import pga_factor, unit_factor
-from ..rocking import ContactWarning, RockingBlock
+from ..rocking import ContactWarning, FreeStandingBlock, PainleveWarning, RockingBlock
 from ..units import STANDARD_GRAVITY
 
 #: the backends that run a RockingBlock ("compiled": one that rocks; "exact": the linearised one)
 BACKENDS = ("cvode", "ida", "jax", "compiled", "exact")
+#: the backends that run the complete block (FreeStandingBlock)
+COMPLETE_BACKENDS = ("cvode", "ida", "jax")
+#: the complete block's kinds of event (:class:`~blockdae.rocking.FreeEvent`), in the report's order
+EVENT_KINDS = ("release", "uplift", "slide", "slip", "lift", "stick", "reverse", "apex", "return", "beyond_alpha",
+               "land", "chatter", "impact", "zeno", "rest", "overturn")
 
 
 def add_rocking_parser(subparsers):
     """The ``rocking`` subcommand on an argparse ``subparsers`` object."""
-    p = subparsers.add_parser("rocking", help="a free-standing block under a horizontal record: rest, slide, rock "
-                                              "with impacts or overturn (Housner 1963)")
+    p = subparsers.add_parser("rocking", help="a free-standing block under a horizontal record: rest, slide, rock, "
+                                              "slide-rock, flight with impacts, or overturn")
     p.add_argument("record", type=pathlib.Path, help="horizontal base acceleration (CSV t,a / one column / .AT2)")
     p.add_argument("--b", type=positive("--b"), required=True, help="half-width b of the block [m]")
     p.add_argument("--h", type=positive("--h"), required=True, help="half-height h of the block [m]")
     p.add_argument("--mu", type=number("--mu", lambda x: math.isfinite(x) and x >= 0, "a finite number >= 0"),
-                   required=True, help="friction coefficient at the base [-] (below b/h the block slides; linearised: below alpha)")
+                   required=True, help="(static) friction coefficient at the base [-] (below b/h the block slides; "
+                                       "linearised: below alpha)")
+    p.add_argument("--mu-kinetic", type=number("--mu-kinetic", lambda x: math.isfinite(x) and x >= 0,
+                                               "a finite number >= 0"), default=None,
+                   help="kinetic friction coefficient [-], at most --mu (complete block; default --mu)")
+    p.add_argument("--contact", choices=("complete", "housner"), default=None,
+                   help="complete: the block's corners may slip and lift, impacts are plastic with friction (backends "
+                        "cvode, ida, jax); housner: its pivot never slips or lifts, Housner's restitution (also "
+                        "compiled and exact). Default: complete, unless --linearised, --restitution or a backend only "
+                        "Housner's block runs (compiled, exact) asks for housner")
     p.add_argument("--restitution", type=number("--restitution", lambda x: 0 <= x <= 1, "in [0, 1]"), default=None,
-                   help="ratio of angular velocities through an impact [-] (default Housner's 1 - 1.5 sin² alpha)")
-    p.add_argument("--linearised", action="store_true", help="the linearised block (slender, small rotations)")
+                   help="ratio of angular velocities through an impact [-] (housner; default Housner's 1 - 1.5 "
+                        "sin² alpha)")
+    p.add_argument("--linearised", action="store_true",
+                   help="the linearised block (housner; slender, small rotations)")
     p.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
                    help="scale the record so that its peak |a| is PGA_G [g]")
     p.add_argument("--g", type=positive("--g"), default=STANDARD_GRAVITY,
@@ -37,8 +54,8 @@ def add_rocking_parser(subparsers):
     p.add_argument("--t-end", type=positive("--t-end"), default=None,
                    help="final time [s] (default: until the block rests or overturns after the record)")
     p.add_argument("--backend", choices=BACKENDS, default=None,
-                   help="solver backend (default for a block that rocks: exact with --linearised, else "
-                        "compiled; cvode for one that slides)")
+                   help="solver backend (default: cvode for the complete block; for Housner's block that rocks: "
+                        "exact with --linearised, else compiled; cvode for one that slides)")
     p.add_argument("--strict", action="store_true",
                    help="an error where the contact force leaves its limits (N <= 0 or |F| > mu N), not a warning")
     record_arguments(p)
@@ -50,6 +67,7 @@ def add_rocking_parser(subparsers):
 
 def run_rocking(args) -> int:
     """Run the block that ``args`` describe; print what it did; the exit status."""
+    contact = contact_model(args)
     if args.units is not None:
         checked(lambda: unit_factor(args.units), "--units")
     record = read(args.record, args)
@@ -58,8 +76,11 @@ def run_rocking(args) -> int:
         factor = checked(lambda: pga_factor(record.peak_acceleration, args.pga, args.g, name="--pga",
                                             check_peak=not args.accept_peak), str(args.record))
         record = record.scaled(factor)
-    block = checked(lambda: RockingBlock(b=args.b, h=args.h, mu=args.mu, restitution=args.restitution,
-                                         linearised=args.linearised, strict=args.strict, g=args.g), "")
+    if contact == "complete":
+        return run_complete(args, record, factor)
+    block = checked(lambda: RockingBlock(b=args.b, h=args.h, mu=args.mu, mu_kinetic=args.mu_kinetic,
+                                         restitution=args.restitution, linearised=args.linearised,
+                                         strict=args.strict, g=args.g), "")
     backend = args.backend or ("cvode" if block.slides else "exact" if block.linearised else "compiled")
     start = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:  # simulate warns of the contact limits: printed below
@@ -111,7 +132,7 @@ def _finite_or_none(x):
 
 def _json(record, factor, block, solution, contact, wall):
     return {
-        **record_fields(record), "scale": factor, "b_m": block.b, "h_m": block.h, "mu": block.mu,
+        **record_fields(record), "scale": factor, "contact": "housner", "b_m": block.b, "h_m": block.h, "mu": block.mu,
         "alpha_rad": block.alpha, "p_rad_s": block.frequency, "restitution": block.r, "linearised": block.linearised,
         "regime": "slide" if block.slides else "rock", "backend": solution.backend, "t_end_s": clean(solution.t_end),
         "displacement": solution.displacement, "max_theta_over_alpha": solution.max_theta_over_alpha,
@@ -123,4 +144,78 @@ def _json(record, factor, block, solution, contact, wall):
         "contact_limits": [{"t_s": t, "kind": kind, "F_m_s2": force, "N_m_s2": normal}
                            for t, kind, _, _, force, normal in contact],
         "wall_time_s": wall,
+    }
+
+
+def contact_model(args) -> str:
+    """"complete" or "housner": --contact, or by default the complete block unless an option
+    only Housner's block has asks for it (a UsageError where --contact complete meets one)."""
+    options = (("--linearised", args.linearised), ("--restitution", args.restitution is not None),
+               ("--strict", args.strict), (f"--backend {args.backend}", args.backend not in (None, *COMPLETE_BACKENDS)))
+    housner_only = [flag for flag, given in options if given]
+    if args.contact == "complete" and housner_only:
+        raise UsageError(f"--contact complete: {', '.join(housner_only)} applies to Housner's block only "
+                         "(--contact housner)")
+    return args.contact or ("housner" if housner_only else "complete")
+
+
+def run_complete(args, record, factor) -> int:
+    """Run the complete block (:class:`~blockdae.rocking.FreeStandingBlock`); print its
+    events and energy balance; the exit status."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", PainleveWarning)
+        block = checked(lambda: FreeStandingBlock(b=args.b, h=args.h, mu=args.mu, mu_kinetic=args.mu_kinetic,
+                                                  g=args.g), "")
+    backend = args.backend or "cvode"
+    start = time.perf_counter()
+    solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=backend), str(args.record))
+    wall = time.perf_counter() - start
+    residual, scale = solution.energy_residual, solution.energy_scale
+    if args.plot is not None:
+        from .._plot import plot
+
+        save_figure(plot(solution, title=f"{record.name}: b = {block.b:g} m, h = {block.h:g} m, mu = {block.mu:g}, "
+                                          f"mu_k = {block.friction_kinetic:g}"), args.plot)
+    if args.json:
+        print(json.dumps(_complete_json(record, factor, block, solution, residual, scale, wall), indent=2))
+        return 0
+    print(f"record: {describe_record(record)}")
+    if factor != 1.0:
+        print(f"scaled by {factor:.6g} [-] to a peak of {record.peak_acceleration / block.g:.6g} g")
+    print(f"block (complete contact): b = {block.b:g} m, h = {block.h:g} m, b/h = {block.slenderness_ratio:.6g}, "
+          f"alpha = {block.alpha:.6f} rad, p = {block.frequency:.6f} rad/s, mu = {block.mu:g}, "
+          f"mu_k = {block.friction_kinetic:g} [-]")
+    for warning in caught:
+        print(f"warning: {warning.message}")
+    print(f"backend {solution.backend}; t_end = {solution.t_end:.4f} s")
+    counts = {kind: len(solution.events_of(kind)) for kind in EVENT_KINDS}
+    print("events: " + (", ".join(f"{kind} {n}" for kind, n in counts.items() if n) or "none"))
+    for event in solution.events:
+        print(f"  t = {event.t:.6f} s  {event.kind:<12} {str(event.mode_before):<18} -> {event.mode_after}")
+    print(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; slip at t_end = "
+          f"{solution.final_slip:+.6f} m; impacts: {len(solution.impacts)}")
+    if solution.overturned:
+        print(f"overturned at t = {solution.overturn_time:.6f} s")
+    elif math.isfinite(solution.rest_time):
+        print(f"at rest from t = {solution.rest_time:.6f} s")
+    print(f"energy balance: residual {residual:.3e} J/kg of a scale {scale:.3e} J/kg")
+    print(f"time: {wall:.3f} s (wall clock of the simulation, including compilation on a first call)")
+    if args.plot is not None:
+        print(f"figure: {args.plot}")
+    return 0
+
+
+def _complete_json(record, factor, block, solution, residual, scale, wall):
+    return {
+        **record_fields(record), "scale": factor, "contact": "complete", "b_m": block.b, "h_m": block.h,
+        "mu": block.mu, "mu_kinetic": block.friction_kinetic, "alpha_rad": block.alpha, "p_rad_s": block.frequency,
+        "backend": solution.backend, "t_end_s": clean(solution.t_end),
+        "max_theta_over_alpha": solution.max_theta_over_alpha, "final_slip_m": solution.final_slip,
+        "overturned": solution.overturned, "overturn_time_s": _finite_or_none(solution.overturn_time),
+        "rest_time_s": _finite_or_none(solution.rest_time),
+        "event_counts": {kind: len(solution.events_of(kind)) for kind in EVENT_KINDS},
+        "events": [{"t_s": e.t, "kind": e.kind, "mode_before": str(e.mode_before), "mode_after": str(e.mode_after),
+                    "theta_rad": e.state[2], "theta_rate_before_rad_s": e.state[5],
+                    "theta_rate_after_rad_s": e.state_after[5]} for e in solution.events],
+        "energy_residual_J_kg": residual, "energy_scale_J_kg": scale, "wall_time_s": wall,
     }

@@ -37,7 +37,7 @@ __all__ = ["AbstractHybridModel", "BatchedModel", "DifferentiableModel", "Engine
 #: and IDA's callbacks): the names of ``numpy``/``jax.numpy`` a rule may call
 SCALAR = types.SimpleNamespace(
     stack=tuple, where=lambda cond, a, b: a if cond else b, pi=math.pi,
-    abs=abs, sign=lambda x: float((x > 0) - (x < 0)), minimum=min, maximum=max, hypot=math.hypot,
+    abs=abs, sign=lambda x: float(x > 0) - float(x < 0), minimum=min, maximum=max, hypot=math.hypot,
     sqrt=math.sqrt, exp=math.exp, log=math.log, sin=math.sin, cos=math.cos, tan=math.tan,
     arcsin=math.asin, arccos=math.acos, arctan=math.atan, arctan2=math.atan2, sinh=math.sinh,
     cosh=math.cosh, tanh=math.tanh)

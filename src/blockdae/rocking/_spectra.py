@@ -1,6 +1,7 @@
 """What users run with a free-standing block: overturning spectra under one-sine and
 one-cosine pulses (Zhang & Makris 2001), the rest/slide/rock map, overturning fragility
-over a record set."""
+over a record set; for Housner's block (:class:`RockingBlock`) or the complete one
+(:class:`FreeStandingBlock`, whose pivot may slip and lift)."""
 
 import dataclasses
 import math
@@ -9,6 +10,7 @@ import numpy as np
 
 from ..core import Horizon, available, make_backend, progress_bar
 from ..excitation import Record
+from ._free_model import FreeStandingBlock
 from ._modes import side
 
 #: samples per pulse period of a sampled pulse: linear interpolation keeps its peak and
@@ -31,7 +33,9 @@ def pulse(shape: str, amplitude: float, period: float) -> Record:
 def overturns_freely(block, mode, theta, rate) -> bool:
     """Whether a block left without excitation in ``mode`` at (theta [rad], theta'
     [rad/s]) overturns: it passes theta = s alpha moving out (energy above the top of its
-    potential), or is beyond it and not carried back over it."""
+    potential), or is beyond it and not carried back over it; or, falling back, the
+    impact at theta = 0 (theta' times r) leaves it energy above the top on the other side
+    (later impacts only take energy)."""
     s = side(mode)
     if abs(int(mode)) == 6:
         return True
@@ -40,39 +44,55 @@ def overturns_freely(block, mode, theta, rate) -> bool:
     p2, alpha = block.frequency ** 2, block.alpha
     if block.linearised:
         energy = 0.5 * rate ** 2 - 0.5 * p2 * (theta - s * alpha) ** 2  # top of the potential: 0
+        barrier = 0.5 * p2 * alpha ** 2  # the energy from the top down to theta = 0
     else:
         energy = 0.5 * rate ** 2 + p2 * (math.cos(alpha - s * theta) - 1.0)
+        barrier = p2 * (1.0 - math.cos(alpha))
     outward = s * rate > 0
-    if s * theta >= alpha:
-        return outward or energy < 0
-    return outward and energy > 0
+    if s * theta >= alpha and (outward or energy < 0):
+        return True
+    if s * theta < alpha and outward and energy > 0:
+        return True
+    return 0.5 * block.r ** 2 * 2.0 * (energy + barrier) > barrier  # after the impact, on the other side
 
 
 def overturns(block, motion, backend=None, **options) -> bool:
-    """Whether ``motion`` overturns ``block``: run to the motion's end, then decided by
-    the free block's energy (no impact can follow a rotation past alpha). Housner's pivot
-    holds: the contact-force limits are not checked (no ContactWarning; ``strict`` still
-    stops at them), as the literature's spectra assume."""
+    """Whether ``motion`` overturns ``block``.
+
+    A :class:`RockingBlock` runs to the motion's end, then is decided by the free block's
+    energy (no impact can follow a rotation past alpha). Housner's pivot holds: the
+    contact-force limits are not checked (no ContactWarning; ``strict`` still stops at
+    them), as the literature's spectra assume. A :class:`FreeStandingBlock` runs until it
+    rests or overturns after the motion (its pivot may slip or lift on the way)."""
     block.check_motion(motion)
     solver = make_backend(block.default_backend if backend is None else backend, **options)
     if not solver.runs(block):
-        raise ValueError(f"backend={solver.name!r} does not run this RockingBlock; choose one of "
+        raise ValueError(f"backend={solver.name!r} does not run this {type(block).__name__}; choose one of "
                          f"{list(available(block))}")
+    if isinstance(block, FreeStandingBlock):
+        return solver.solve(block, motion, Horizon.resolve(motion, None)).overturned
     solution = solver.solve(block, motion, Horizon.resolve(motion, motion.duration))
     if solution.overturned:
         return True
     return overturns_freely(block, solution.mode[-1], *solution.state[-1])
 
 
+def rocking_threshold(block) -> float:
+    """|a_x| / g that tips ``block`` from rest where its pivot holds [-]: b/h (alpha for the
+    linearised block)."""
+    return block.slenderness_ratio if isinstance(block, FreeStandingBlock) else block.rocking_threshold
+
+
 def overturning_amplitude(block, shape, frequency_ratio, *, max_factor=30.0, steps=30, rtol=1e-4, backend=None,
                           **options) -> float:
     """The smallest amplitude of a one-``shape`` pulse of angular frequency
     ``frequency_ratio`` p that overturns ``block``, in units of its rocking threshold g
-    tan(alpha) (g alpha linearised) [-] (a pulse below 1 does not lift it); found on a geometric grid of ``steps`` from 1 to
-    ``max_factor`` and bisected to ``rtol``. inf where none on the grid overturns."""
+    tan(alpha) (g alpha linearised) [-] (a pulse below 1 does not lift it); found on a
+    geometric grid of ``steps`` from 1 to ``max_factor`` and bisected to ``rtol``. inf
+    where none on the grid overturns."""
     if not frequency_ratio > 0:
         raise ValueError(f"frequency_ratio={frequency_ratio!r} must be > 0")
-    unit = block.g * block.rocking_threshold
+    unit = block.g * rocking_threshold(block)
     period = 2 * math.pi / (frequency_ratio * block.frequency)
     tips = lambda factor: overturns(block, pulse(shape, factor * unit, period), backend, **options)
     grid = np.geomspace(1.0, max_factor, steps)
@@ -111,7 +131,7 @@ class OverturningSpectrum:
         import pandas as pd
 
         return pd.DataFrame({"frequency_ratio": self.frequency_ratio, "amplitude_over_threshold": self.amplitude,
-                             "amplitude_g": self.amplitude * self.block.rocking_threshold})
+                             "amplitude_g": self.amplitude * rocking_threshold(self.block)})
 
     def figure(self, ax=None):
         """a_p over the rocking threshold against omega_p / p; a matplotlib Figure."""
@@ -127,7 +147,10 @@ class OverturningSpectrum:
 
 
 def overturning_spectrum(block, frequency_ratios, shape="sine", **search) -> OverturningSpectrum:
-    """:func:`overturning_amplitude` at each of ``frequency_ratios`` (omega_p / p [-])."""
+    """:func:`overturning_amplitude` at each of ``frequency_ratios`` (omega_p / p [-]) for
+    ``block``: Housner's (:class:`RockingBlock`) or the complete one
+    (:class:`FreeStandingBlock`: its pivot may slip and lift, its impacts are plastic with
+    friction)."""
     ratios = np.asarray(frequency_ratios, dtype=float)
     amplitudes = np.array([overturning_amplitude(block, shape, ratio, **search) for ratio in ratios])
     return OverturningSpectrum(ratios, amplitudes, shape, block)
@@ -179,7 +202,8 @@ class OverturningFragility:
 
 
 def overturning_fragility(block, records, pga, backend=None, *, progress=None, **options) -> OverturningFragility:
-    """Which of ``records`` overturn ``block`` when each is scaled to a peak of each
+    """Which of ``records`` overturn ``block`` (a :class:`RockingBlock` or a
+    :class:`FreeStandingBlock`, see :func:`overturns`) when each is scaled to a peak of each
     ``pga`` [g]; the fraction at each peak. ``progress``: a tqdm bar over the records on
     stderr; None: only when stderr is a terminal."""
     pga = np.atleast_1d(np.asarray(pga, dtype=float))

@@ -68,7 +68,9 @@ def displacement_jacobian(model, motion, horizon, backend):
 def trajectory_sensitivities(model, motion, horizon, backend):
     """The trajectory the JAX twin ``backend`` locates and its derivatives by the
     parameters of :func:`~blockdae.core.contract.parameter_names`: (solution, dy(t_end)/dp of shape (n_y, n_p),
-    one :class:`EventSensitivity` per event of the solution, in its order)."""
+    one :class:`EventSensitivity` per mode change of the run, in its order: one per event
+    of the solution, unless the model merges some (an impact through an instant mode is
+    two changes and one event))."""
     trace = []
     solution = drive(model, motion, horizon, backend.integrator, backend.name, backend.max_events_at_one_instant,
                      backend.event_resolution, (backend.rtol, backend.atol), trace=trace)
@@ -78,8 +80,9 @@ def trajectory_sensitivities(model, motion, horizon, backend):
     events = []
     with jax_context():
         S = _replay(model, template, settings, theta, trace, events)
-    if len(events) != len(solution.events):
-        raise RuntimeError(f"the replay found {len(events)} events, the run {len(solution.events)}")
+    changes = solution.stats["n_events"]  # the run's mode changes, before a model merges any
+    if len(events) != changes:
+        raise RuntimeError(f"the replay found {len(events)} events, the run {changes}")
     return solution, S, events
 
 
@@ -103,6 +106,13 @@ def _replay(model, template, settings, theta, trace, events):
                 S = np.asarray(S)
         elif kind == "guard":
             _, mode, index, t, y, piece = step
+            if pending is not None and mode in model.instant_modes:
+                # left at the instant it was entered: the event's time moves as the one
+                # that entered it (its dt/dp kept), and the flow after it is f+
+                S_bar, tau = pending[:2]
+                S_bar, _, y, located = _guard_jump(template, mode, index)(theta, *_arrays(piece), t, y, S_bar)
+                pending = (S_bar, tau, mode, t, y, piece)
+                continue
             if pending is not None:
                 S, pending = _finish(template, pending, theta), None
             S_bar, tau, y, located = _guard_jump(template, mode, index)(theta, *_arrays(piece), t, y, S)
