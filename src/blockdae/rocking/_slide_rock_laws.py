@@ -21,6 +21,7 @@ are a kind (:data:`REST`, :data:`SLIDE`, :data:`ROCK`, :data:`SLIDE_ROCK`,
 
 import math
 
+from ..solvers import xp_scalar
 from ._rules import angular_acceleration
 
 REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT = 0, 1, 2, 3, 4
@@ -190,10 +191,10 @@ def corner_impact(c, theta, x_rate, z_rate, theta_rate, b, h, mu_s, mu_k):
     Sticking (v_cx+ = 0) is tried first and kept if |P_t| <= mu_s P_n; otherwise the
     corner slides through the impact with P_t = tau P_n, tau = sgn(P_t of sticking) mu_k
     (needs mu_k < 4/3, as D > 0 does)."""
-    jump = impact_jump(c, True, theta, x_rate, z_rate, theta_rate, b, h, mu_k, math)
+    jump = impact_jump(c, True, theta, x_rate, z_rate, theta_rate, b, h, mu_k, xp_scalar)
     sticks = abs(jump[3]) <= mu_s * jump[4]
     if not sticks:
-        jump = impact_jump(c, False, theta, x_rate, z_rate, theta_rate, b, h, mu_k, math)
+        jump = impact_jump(c, False, theta, x_rate, z_rate, theta_rate, b, h, mu_k, xp_scalar)
     return (*jump[:3], sticks, *jump[3:])
 
 
@@ -208,7 +209,7 @@ def impact_jump(c, sticks, theta, x_rate, z_rate, theta_rate, b, h, mu_k, xp):
     p_t = (-w22 * v_cx + w12 * v_cz) / det
     p_n = (w12 * v_cx - w11 * v_cz) / det
     if not sticks:
-        tau = getattr(xp, "sign", _sign)(p_t) * mu_k
+        tau = xp.sign(p_t) * mu_k
         p_n = -v_cz / (w12 * tau + w22)
         p_t = tau * p_n
     return x_rate + p_t, z_rate + p_n, theta_rate + k * (r_cz * p_t - r_cx * p_n), p_t, p_n
