@@ -4,15 +4,17 @@ Dataset on the terrain's grid; lazy and chunk by chunk where the terrain is Dask
 
 import warnings
 
+import numba
 import numpy as np
 
-from ._infinite_slope import CATEGORIES, FLAT, NODATA, STABLE, infinite_slope
+from ._infinite_slope import CATEGORIES, FLAT, NODATA, STABLE, WATER_UNIT_WEIGHT, cell, infinite_slope
 from ._pairs import ProjectedPairs, RecordPair
-from ._tables import DisplacementTables, statistics_of
+from ._tables import DisplacementTables, cell_displacements, median_of, statistics_of
 from ._terrain import _crs, _with_crs, slope_and_azimuth
 
 #: the largest PGA accepted [g]: above it the values are likely in m/s² or %g
 MAX_PGA_G = 2.0
+_MAX_PGA = MAX_PGA_G  # the compiled kernel's copy
 _STRENGTH = ("cohesion_kpa", "friction_deg", "unit_weight_kn_m3")
 _REGRESSIONS = {"jibson_2007_median_m": "Jibson (2007) eq. 6, median",
                 "saygili_rathje_2008_median_m": "Saygili & Rathje (2008) PGA model, median (fitted for ky 0.05-0.30 g)"}
@@ -211,21 +213,29 @@ def _cells(slope, cohesion, friction, unit_weight, thickness, saturated, pga, az
            per_record, regressions):
     """Every quantity of :func:`_quantities` at each cell of one block: a tuple of arrays shaped as the block
     (``azimuth``: the dip azimuth [deg], used by record pairs)."""
-    _check_pga_values(np.asarray(pga))
-    fs, ky, category = infinite_slope(slope, cohesion, friction, unit_weight, thickness, saturated)
-    shape = category.shape
-    pga = np.broadcast_to(pga, shape)
-    category[np.isnan(pga)] = NODATA  # no ground motion there: no displacement
-    pga = pga.ravel()
-    flat = (category == FLAT).ravel()
-    ky_stable = np.where(category == STABLE, ky, np.nan).ravel()
-    if isinstance(tables, ProjectedPairs):
-        d = tables.exact(ky_stable, pga, np.broadcast_to(azimuth, shape).ravel())
-        median, exceed = statistics_of(d, thresholds)
+    inputs = (slope, cohesion, friction, unit_weight, thickness, saturated, pga)
+    if isinstance(tables, DisplacementTables) and method == "table":
+        fs, ky, category, median, exceed = _fused(inputs, tables, thresholds)
+        shape, flat = category.shape, (category == FLAT).ravel()
+        pga = np.broadcast_to(pga, shape).ravel()
+        ky_stable = np.where(category == STABLE, ky, np.nan).ravel()
+        d = tables.displacement(ky_stable, pga) if per_record else None
     else:
-        median, exceed = tables.statistics(ky_stable, pga, thresholds, method)
-        d = tables.displacement(ky_stable, pga, method) if per_record else None
-    median[flat], exceed[:, flat] = 0.0, 0.0
+        _check_pga_values(np.asarray(pga))
+        fs, ky, category = infinite_slope(*inputs[:-1])
+        shape = category.shape
+        pga = np.broadcast_to(pga, shape)
+        category[np.isnan(pga)] = NODATA  # no ground motion there: no displacement
+        pga = pga.ravel()
+        flat = (category == FLAT).ravel()
+        ky_stable = np.where(category == STABLE, ky, np.nan).ravel()
+        if isinstance(tables, ProjectedPairs):
+            d = tables.exact(ky_stable, pga, np.broadcast_to(azimuth, shape).ravel())
+            median, exceed = statistics_of(d, thresholds)
+        else:
+            median, exceed = tables.statistics(ky_stable, pga, thresholds, method)
+            d = tables.displacement(ky_stable, pga, method) if per_record else None
+        median[flat], exceed[:, flat] = 0.0, 0.0
     out = [fs, ky, category.astype(float), median.reshape(shape), *(p.reshape(shape) for p in exceed)]
     if per_record:
         d[:, flat] = 0.0
@@ -233,6 +243,74 @@ def _cells(slope, cohesion, friction, unit_weight, thickness, saturated, pga, az
     if regressions:
         out += [r.reshape(shape) for r in _regressions(ky_stable, pga, flat).T]
     return tuple(out)
+
+
+def _fused(inputs, tables, thresholds):
+    """(FS [-], ky [g], category, median D [m], P(D > d) [-]) of one block in one compiled pass per cell:
+    the infinite slope, every member's table and the statistics over the suite; the few cells with
+    ky/PGA < r_min then run on the exact engine."""
+    shape = np.broadcast_shapes(*(np.shape(v) for v in inputs))
+    if len(shape) != 2:
+        raise ValueError(f"a map's block is 2-D (y, x), got the shape {shape}")
+    fields = [np.broadcast_to(np.asarray(v, dtype=float), shape) for v in inputs]
+    fs, ky, median = np.empty(shape), np.empty(shape), np.empty(shape)
+    category = np.empty(shape, dtype=np.int8)
+    exceed = np.empty((thresholds.size,) + shape)
+    low = np.empty(fs.size, dtype=np.int64)
+    bad, n_low = _map_kernel(*fields, WATER_UNIT_WEIGHT, *tables._lookup(), thresholds, fs, ky, category, median,
+                             exceed, low)
+    if bad >= 0:  # one of them raises, naming the field and the value
+        _check_pga_values(fields[6])
+        infinite_slope(*fields[:-1])
+    if n_low:
+        cells = low[:n_low]
+        rows, columns = np.unravel_index(cells, shape)
+        d = tables.exact(ky[rows, columns], fields[6][rows, columns])
+        median[rows, columns], exceed[:, rows, columns] = statistics_of(d, thresholds)
+    return fs, ky, category, median, exceed
+
+
+@numba.njit(cache=True, nogil=True)
+def _map_kernel(slope, cohesion, friction, unit_weight, thickness, saturated, pga, gamma_w, pieces, index, per_log,
+                tops, r_min, thresholds, fs, ky, category, median, exceed, low):
+    """Every cell of a block (2-D arrays, outputs written in place): FS, ky and category, then
+    for a stable cell each member's D from its table, the median and the exceedance counts
+    (NaN on nodata and statically unstable cells, 0 on flat ones). Returns (the index of an
+    input out of range, 6 for the PGA, or -1; the number of cells with ky/PGA < r_min, listed
+    by flat index in ``low``: their D is left to the exact engine)."""
+    buffer = np.empty(pieces.shape[0])
+    n_low = 0
+    columns = slope.shape[1]
+    for i in range(slope.shape[0]):
+        for j in range(columns):
+            p = pga[i, j]
+            if not (p != p or 0.0 <= p <= _MAX_PGA):
+                return 6, n_low
+            f, k, c, bad = cell(slope[i, j], cohesion[i, j], friction[i, j], unit_weight[i, j], thickness[i, j],
+                                saturated[i, j], gamma_w)
+            if bad >= 0:
+                return bad, n_low
+            if p != p:
+                c = NODATA
+            fs[i, j], ky[i, j], category[i, j] = f, k, c
+            if c == FLAT:
+                median[i, j] = 0.0
+                exceed[:, i, j] = 0.0
+            elif c != STABLE:
+                median[i, j] = np.nan
+                exceed[:, i, j] = np.nan
+            elif k < r_min * p:
+                low[n_low] = i * columns + j
+                n_low += 1
+            else:
+                cell_displacements(pieces, index, per_log, tops, r_min, k, p, buffer)
+                for t in range(thresholds.size):
+                    above = 0
+                    for m in range(buffer.size):
+                        above += buffer[m] > thresholds[t]
+                    exceed[t, i, j] = above / buffer.size
+                median[i, j] = median_of(buffer)
+    return -1, n_low
 
 
 def _regressions(ky, pga, flat):
