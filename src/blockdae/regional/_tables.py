@@ -59,8 +59,9 @@ class DisplacementTables:
         pieces: per member and interval, (r_k, r_k+1, then the cubic's coefficients in
             powers of r - r_k [m, m, m, m]); rows past the last interval hold +inf:
             shape (n_members, n_knots_max, 6).
-        index: per member, the interval holding the left edge of each of equal parts of
-            log r over [r_min, max r_top], shape (n_members, n_parts) (the lookup starts there).
+        index: the interval of each member holding the left edge of each of equal parts of
+            log r over [r_min, max r_top], shape (n_parts, n_members) (the lookup starts there).
+        index_scale: the index's parts per unit of ln r [-].
     """
 
     members: tuple
@@ -76,6 +77,7 @@ class DisplacementTables:
     g: float
     pieces: np.ndarray
     index: np.ndarray
+    index_scale: float
 
     def __repr__(self):
         return (f"DisplacementTables({len(self.members)} members, {int(self.counts.sum())} knots, "
@@ -109,11 +111,12 @@ class DisplacementTables:
         n = max(len(t[0]) for t in tables)
         pad = lambda k, fill: np.array([np.concatenate([t[k], np.full(n - len(t[k]), fill)]) for t in tables])
         knots, values, slopes, tops = pad(0, np.inf), pad(1, 0.0), pad(2, 0.0), np.array(tops)
+        r_hi = max(float(tops.max()), 2 * r_min)
         counts = np.array([len(t[0]) for t in tables])
         return cls(members=tuple(members), knots=knots, values=values, slopes=slopes, counts=counts,
                    r_min=float(r_min), r_top=tops, rtol=float(rtol), atol_m=float(atol_m), motions=tuple(motions),
                    g=float(g), pieces=_pieces(knots, values, slopes, counts),
-                   index=_index(knots, r_min, max(float(tops.max()), 2 * r_min), _INDEX_PARTS))
+                   index=_index(knots, r_min, r_hi, _INDEX_PARTS), index_scale=_INDEX_PARTS / math.log(r_hi / r_min))
 
     def select(self, record: str, polarity: str) -> "DisplacementTables":
         """The table of one member (a record's name and "normal" or "inverse") alone."""
@@ -123,12 +126,12 @@ class DisplacementTables:
         one = slice(k, k + 1)
         return dataclasses.replace(self, members=self.members[one], knots=self.knots[one], values=self.values[one],
                                    slopes=self.slopes[one], counts=self.counts[one], r_top=self.r_top[one],
-                                   motions=self.motions[one], pieces=self.pieces[one], index=self.index[one])
+                                   motions=self.motions[one], pieces=self.pieces[one], index=self.index[:, one])
 
     def displacement(self, ky_g, pga_g, method: str = "table") -> np.ndarray:
         """D [m] of every member at each cell: shape ``(n_members, *cells)`` (cells: ky and pga broadcast);
         ``ky_g`` [g] > 0 and ``pga_g`` [g] >= 0 (NaN stays NaN); ``method`` "table" or "exact"."""
-        ky, pga = np.broadcast_arrays(np.asarray(ky_g, float), np.asarray(pga_g, float))
+        ky, pga = _broadcast(ky_g, pga_g)
         flat_ky, flat_pga = ky.ravel(), pga.ravel()
         if method == "exact":
             out = self.exact(flat_ky, flat_pga)
@@ -143,7 +146,7 @@ class DisplacementTables:
         """(median D [m], P(D > d) for each threshold d [m]) over the members at each cell,
         without storing D per member: shapes ``cells`` and ``(n_thresholds, *cells)``; NaN where
         ky or pga is NaN."""
-        ky, pga = np.broadcast_arrays(np.asarray(ky_g, float), np.asarray(pga_g, float))
+        ky, pga = _broadcast(ky_g, pga_g)
         flat_ky, flat_pga = ky.ravel(), pga.ravel()
         thresholds = np.asarray(thresholds_m, dtype=float).reshape(-1)
         median = np.empty(flat_ky.size)
@@ -156,10 +159,8 @@ class DisplacementTables:
         return median.reshape(ky.shape), exceed.reshape((thresholds.size,) + ky.shape)
 
     def _lookup(self):
-        """The arguments of the compiled lookup: (pieces, index, parts per unit of log r, r_top, r_min)."""
-        r_hi = max(float(self.r_top.max()), 2 * self.r_min)
-        return (self.pieces, self.index, self.index.shape[1] / math.log(r_hi / self.r_min), self.r_top,
-                self.r_min)
+        """The arguments of the compiled lookup: (pieces, index, parts per unit of ln r, r_top, r_min)."""
+        return self.pieces, self.index, self.index_scale, self.r_top, self.r_min
 
     def _exact_below_r_min(self, ky, pga):
         """(D [m] of every member at the cells with ky/PGA < r_min, exact: (n_members, n_low);
@@ -188,6 +189,13 @@ class DisplacementTables:
                 unit = Record(samples, dt, check_peak=False)
                 out[m, slides] = pga[slides] * _run(newmark, unit, r, pol, self.g)
         return out
+
+
+def _broadcast(ky_g, pga_g):
+    """ky and pga as float arrays of their common shape (read-only views where broadcast)."""
+    ky, pga = np.asarray(ky_g, dtype=float), np.asarray(pga_g, dtype=float)
+    shape = np.broadcast_shapes(ky.shape, pga.shape)
+    return np.broadcast_to(ky, shape), np.broadcast_to(pga, shape)
 
 
 def statistics_of(d, thresholds):
@@ -293,7 +301,8 @@ def _failing(exact, knots, values, slopes, which, middle, rtol, atol):
     unknown = np.ones(points.shape, dtype=bool)
     unknown[known, 1] = False
     truth[unknown] = exact(points[unknown])
-    guess = _hermite(y0[:, None], y1[:, None], d0[:, None], d1[:, None], h[:, None], (points - x0[:, None]) / h[:, None])
+    fractions = (points - x0[:, None]) / h[:, None]
+    guess = _hermite(y0[:, None], y1[:, None], d0[:, None], d1[:, None], h[:, None], fractions)
     missed = np.any(np.abs(guess - truth) > np.maximum(rtol * np.abs(truth), atol), axis=1)
     secant = (y1 - y0) / h
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -325,10 +334,11 @@ def _pieces(knots, values, slopes, counts):
 
 
 def _index(knots, r_min, r_hi, parts):
-    """Per member, the index of the last knot <= the left edge of each of ``parts`` equal
-    parts of log r over [r_min, r_hi]: shape (n_members, parts), int32."""
+    """The index of each member's last knot <= the left edge of each of ``parts`` equal
+    parts of log r over [r_min, r_hi]: shape (parts, n_members), int32 (a part's members side by side)."""
     edges = r_min * np.exp(math.log(r_hi / r_min) * np.arange(parts) / parts)
-    return np.array([np.maximum(np.searchsorted(k, edges, side="right") - 1, 0) for k in knots], dtype=np.int32)
+    starts = [np.maximum(np.searchsorted(k, edges, side="right") - 1, 0) for k in knots]
+    return np.ascontiguousarray(np.array(starts, dtype=np.int32).T)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -348,7 +358,7 @@ def _below(ky, pga, r_min, where):
 @numba.njit(cache=True, nogil=True, inline="always")
 def _unit(pieces, index, m, part, r):
     """D_1(r) [m] of member m by its table, for r_min <= r < r_top; ``part``: r's part of the index."""
-    k = index[m, part]
+    k = index[part, m]
     while pieces[m, k, 1] <= r:  # the last interval ends at r_top > r
         k += 1
     while k > 0 and pieces[m, k, 0] > r:  # log r rounded into the next part
@@ -383,7 +393,7 @@ def cell_displacements(pieces, index, per_log, tops, r_min, ky, pga, buffer):
             buffer[m] = 0.0
             continue
         if part < 0:
-            part = min(int(math.log(r / r_min) * per_log), index.shape[1] - 1)
+            part = min(int(math.log(r / r_min) * per_log), index.shape[0] - 1)
         buffer[m] = pga * _unit(pieces, index, m, part, r)
 
 
