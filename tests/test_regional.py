@@ -149,6 +149,22 @@ def test_the_table_agrees_with_the_exact_engine_at_random_cells_within_the_bound
     assert np.max(exact) > 0.1 and np.count_nonzero(exact == 0) > 0
 
 
+def test_every_interval_of_a_table_meets_a_tenth_of_the_bound_at_fresh_exact_runs(two_records, tables):
+    """The halving reuses exact runs (a halved interval's midpoint and quarter points): every final
+    interval checked again from scratch, at its quarter points and midpoint, meets max(rtol D, atol) / 10."""
+    from blockdae.regional import _tables
+
+    for m, (name, polarity) in enumerate(tables.members[:2]):
+        k = tables.counts[m]
+        knots, values, slopes = tables.knots[m, :k], tables.values[m, :k], tables.slopes[m, :k]
+        exact = lambda r: tables.select(name, polarity).exact(r, np.ones_like(r))[0]
+        every = np.ones(k - 1, dtype=bool)
+        failing, points, _ = _tables._failing(exact, knots, values, slopes, every, np.full((k - 1, 2), np.nan),
+                                              tables.rtol / 10, tables.atol_m / 10)
+        assert not np.any(failing) and k > 500
+        np.testing.assert_array_equal(values[:-1], exact(knots[:-1]))  # the knots' values are exact runs there
+
+
 def _terrain(n, seed=0):
     rng = np.random.default_rng(seed)
     x = 500000 + 10.0 * np.arange(n)

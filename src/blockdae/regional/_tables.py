@@ -192,10 +192,12 @@ class DisplacementTables:
 
 
 def _broadcast(ky_g, pga_g):
-    """ky and pga as float arrays of their common shape (read-only views where broadcast)."""
+    """ky and pga as float arrays of their common shape (copied where broadcast: the compiled
+    loops then see one kind of array)."""
     ky, pga = np.asarray(ky_g, dtype=float), np.asarray(pga_g, dtype=float)
     shape = np.broadcast_shapes(ky.shape, pga.shape)
-    return np.broadcast_to(ky, shape), np.broadcast_to(pga, shape)
+    full = lambda a: a if a.shape == shape else np.broadcast_to(a, shape).copy()
+    return full(ky), full(pga)
 
 
 def statistics_of(d, thresholds):
