@@ -311,7 +311,8 @@ def _map_kernel():
         input out of range, 6 for the PGA, or -1; the number of cells with ky/PGA < r_min, listed
         by flat index in ``low``: their D is left to the exact engine)."""
         fingerprint  # noqa: B018 -- numba keys its disk cache by the closure's contents
-        buffer = np.empty(pieces.shape[0])
+        n = pieces.shape[0]
+        buffer, values, order = np.empty(n), np.empty(n), np.arange(n)
         n_low = 0
         columns = slope.shape[1]
         for i in range(slope.shape[0]):
@@ -342,7 +343,7 @@ def _map_kernel():
                         for m in range(buffer.size):
                             above += buffer[m] > thresholds[t]
                         exceed[t, i, j] = above / buffer.size
-                    median[i, j] = median_of(buffer)
+                    median[i, j] = median_of(buffer, order, values)
         return -1, n_low
 
     return numba.njit(cache=True, nogil=True)(kernel)

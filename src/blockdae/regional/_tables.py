@@ -410,7 +410,7 @@ def _evaluate(pieces, index, per_log, tops, r_min, ky, pga, exact_low, where_low
 @numba.njit(cache=True, nogil=True)
 def _statistics(pieces, index, per_log, tops, r_min, ky, pga, exact_low, where_low, thresholds, median, exceed):
     n = pieces.shape[0]
-    buffer = np.empty(n)
+    buffer, values, order = np.empty(n), np.empty(n), np.arange(n)
     for i in range(ky.size):
         _cell(pieces, index, per_log, tops, r_min, ky[i], pga[i], where_low[i], exact_low, buffer)
         if not (buffer[0] == buffer[0]):
@@ -423,12 +423,14 @@ def _statistics(pieces, index, per_log, tops, r_min, ky, pga, exact_low, where_l
                 if buffer[m] > thresholds[j]:
                     above += 1
             exceed[j, i] = above / n
-        median[i] = median_of(buffer)
+        median[i] = median_of(buffer, order, values)
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def median_of(buffer):
-    """The median of ``buffer`` (sorted in place unless more than half of it is 0 and none below)."""
+def median_of(buffer, order, values):
+    """The median of ``buffer`` (n,): 0 where more than half of it is 0 and none below; else
+    sorted into ``values`` (n,) starting from the permutation ``order`` (int, n) of the last
+    call, updated: a neighbouring cell's members come nearly in order."""
     n = buffer.size
     zeros, negative = 0, False
     for m in range(n):
@@ -436,11 +438,15 @@ def median_of(buffer):
         negative |= buffer[m] < 0.0
     if zeros > n // 2 and not negative:  # both middle values are 0
         return 0.0
-    for a in range(1, n):  # insertion sort: a few tens of members
-        v = buffer[a]
+    for t in range(n):
+        values[t] = buffer[order[t]]
+    for a in range(1, n):  # insertion sort: a few tens of members, nearly in order
+        v, o = values[a], order[a]
         b = a - 1
-        while b >= 0 and buffer[b] > v:
-            buffer[b + 1] = buffer[b]
+        while b >= 0 and values[b] > v:
+            values[b + 1] = values[b]
+            order[b + 1] = order[b]
             b -= 1
-        buffer[b + 1] = v
-    return 0.5 * (buffer[(n - 1) // 2] + buffer[n // 2])
+        values[b + 1] = v
+        order[b + 1] = o
+    return 0.5 * (values[(n - 1) // 2] + values[n // 2])
