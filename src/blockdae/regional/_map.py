@@ -18,7 +18,6 @@ from ._terrain import _crs, _with_crs, slope_and_azimuth
 
 #: the largest PGA accepted [g]: above it the values are likely in m/s² or %g
 MAX_PGA_G = 2.0
-_MAX_PGA = MAX_PGA_G  # the compiled kernel's copy
 _STRENGTH = ("cohesion_kpa", "friction_deg", "unit_weight_kn_m3")
 _REGRESSIONS = {"jibson_2007_median_m": "Jibson (2007) eq. 6, median",
                 "saygili_rathje_2008_median_m": "Saygili & Rathje (2008) PGA model, median (fitted for ky 0.05-0.30 g)"}
@@ -318,7 +317,7 @@ def _map_kernel():
         for i in range(slope.shape[0]):
             for j in range(columns):
                 p = pga[i, j]
-                if not (p != p or 0.0 <= p <= _MAX_PGA):
+                if not (p != p or 0.0 <= p <= MAX_PGA_G):
                     return 6, n_low
                 f, k, c, bad = cell(slope[i, j], cohesion[i, j], friction[i, j], unit_weight[i, j], thickness[i, j],
                                     saturated[i, j], gamma_w)
