@@ -314,6 +314,7 @@ def _map_kernel():
         buffer, values, order = np.empty(n), np.empty(n), np.arange(n)
         n_low = 0
         columns = slope.shape[1]
+        top = tops.max()  # ky/PGA at or above it: D = 0 for every member
         for i in range(slope.shape[0]):
             for j in range(columns):
                 p = pga[i, j]
@@ -326,7 +327,7 @@ def _map_kernel():
                 if p != p:
                     c = NODATA
                 fs[i, j], ky[i, j], category[i, j] = f, k, c
-                if c == FLAT:
+                if c == FLAT or (c == STABLE and k >= top * p):
                     median[i, j] = 0.0
                     exceed[:, i, j] = 0.0
                 elif c != STABLE:
