@@ -1,9 +1,10 @@
 """A regional map: a 10,000 x 10,000 synthetic terrain (10^8 cells, 10 m cells, two
-geological zones, a PGA field), 10 records of the FEMA P695 far-field set in both
+geological zones, a PGA field) on disk, 10 records of the FEMA P695 far-field set in both
 polarities, median D and P(D > 0.05 m) written to a Zarr store chunk by chunk on 2 threads;
-the bar: under 60 s and under 4 GB of peak memory. Then pyNewmarkDisp's spatial_newmark
-against the tables on the same 10^4 cells and one record (time per cell and the differences),
-and the rectangular pulse against its closed form.
+the bar: the tables and the map in under 60 s of wall time and under 4 GB of peak memory.
+Each stage is timed alone (wall and CPU: process time over both threads). Then
+pyNewmarkDisp's spatial_newmark against blockdae on the same 10^4 cells and record, and
+the rectangular pulse against its closed form. Exit status 1 when a bar is not met.
 
     python benchmarks/regional.py [--quick] [--size N] [--out FOLDER]
 """
@@ -22,10 +23,23 @@ from _common import print_table, verdict
 
 BAR_S = 60.0
 BAR_GB = 4.0
+BAR_SPEED_UP = 1e4
 RECORDS = 10
 THRESHOLD_M = 0.05
 CELL_M = 10.0
 CHUNK = 2000
+THREADS = 2
+
+
+class Stage:
+    """Wall [s] and CPU [s] (process time: every thread) of a ``with`` block."""
+
+    def __enter__(self):
+        self.wall, self.cpu = time.perf_counter(), time.process_time()
+        return self
+
+    def __exit__(self, *exc):
+        self.wall, self.cpu = time.perf_counter() - self.wall, time.process_time() - self.cpu
 
 
 def main(argv=None):
@@ -34,61 +48,84 @@ def main(argv=None):
     parser.add_argument("--size", type=int, default=None, help="cells along each side (default 10,000)")
     parser.add_argument("--peer-side", type=int, default=None,
                         help="pyNewmarkDisp's cells along each side (default 100: 10^4 cells)")
-    parser.add_argument("--out", default=None, help="folder of the Zarr store (default: a temporary one)")
+    parser.add_argument("--out", default=None, help="folder of the Zarr stores (default: a temporary one)")
     args = parser.parse_args(argv)
     import dask
     import xarray as xr
     from blockdae import regional as rg
 
     n = args.size or (400 if args.quick else 10_000)
+    chunk = min(CHUNK, n)
     n_records = 2 if args.quick else RECORDS
     suite = bd.RecordSet.fema_p695("far-field")
     records = [suite[name] for name in suite.names[:n_records]]
-    load_before = os.getloadavg()
-    start, cpu_start = time.perf_counter(), time.process_time()
-    tables = rg.DisplacementTables.build(records, "both", atol_m=1e-6 / rg.MAX_PGA_G)
-    t_tables, cpu_tables = time.perf_counter() - start, time.process_time() - cpu_start
-    dem, zones, pga = _terrain(n, min(CHUNK, n))
-    strength = rg.strength_from_zones(zones, {"zone": [1, 2], "cohesion_kpa": [3.0, 10.0],
-                                              "friction_deg": [30.0, 36.0], "unit_weight_kn_m3": [18.5, 20.5]})
     out = args.out or tempfile.mkdtemp(prefix="blockdae-regional-")
-    with dask.config.set(scheduler="threads", num_workers=2):
-        start, cpu_start = time.perf_counter(), time.process_time()
-        ds = rg.displacement_map(dem, strength, None, pga, thickness_m=2.5, saturated_fraction=0.2,
-                                 thresholds_m=(THRESHOLD_M,), regressions=False, tables=tables)
-        written = ds[["median_displacement_m", "exceedance"]].astype("float32")
-        rg.write_map(written, os.path.join(out, "map.zarr"))
-        t_map, cpu_map = time.perf_counter() - start, time.process_time() - cpu_start
+    load_before = os.getloadavg()
+    with dask.config.set(scheduler="threads", num_workers=THREADS):
+        with Stage() as inputs:
+            _terrain(n, chunk).to_zarr(os.path.join(out, "terrain.zarr"), mode="w", zarr_format=2)
+        with Stage() as build:
+            tables = rg.DisplacementTables.build(records, "both", atol_m=1e-6 / rg.MAX_PGA_G)
+        terrain = lambda: xr.open_zarr(os.path.join(out, "terrain.zarr"), decode_coords="all")
+        zone_table = {"zone": [1, 2], "cohesion_kpa": [3.0, 10.0], "friction_deg": [30.0, 36.0],
+                      "unit_weight_kn_m3": [18.5, 20.5]}
+
+        def the_map(window=None):
+            stored = terrain() if window is None else terrain().isel(x=window, y=window)
+            dem = stored["dem"].astype(float).rio.write_crs(stored.rio.crs)
+            strength = rg.strength_from_zones(stored["zone"].astype(float).rio.write_crs(stored.rio.crs), zone_table)
+            ds = rg.displacement_map(dem, strength, None, stored["pga_g"].astype(float), thickness_m=2.5,
+                                     saturated_fraction=0.2, thresholds_m=(THRESHOLD_M,), regressions=False,
+                                     tables=tables)
+            return ds[["median_displacement_m", "exceedance"]].astype("float32"), dem
+
+        with Stage() as warm:  # numba's compiled kernels (from its cache after the first run) on 50 x 50 cells
+            float(the_map(slice(0, 50))[0]["median_displacement_m"].sum().compute())
+        with Stage() as slope:  # read the DEM, Horn's slope of every cell, a sum (nothing written)
+            stored = terrain()
+            rg.slope_and_azimuth(stored["dem"].astype(float))["slope_deg"].sum().compute()
+        with Stage() as computed:  # the whole map, summed (nothing written)
+            float(the_map()[0]["median_displacement_m"].sum().compute())
+        with Stage() as written:  # the whole map written: the bar's
+            written_map, dem = the_map()
+            rg.write_map(written_map, os.path.join(out, "map.zarr"))
     peak_gb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
     load_after = os.getloadavg()
     back = xr.open_zarr(os.path.join(out, "map.zarr"))
-    median = back["median_displacement_m"]
-    sliding = float((median > 0).mean())
-    print(f"terrain {n:,} x {n:,} = {n * n:,} cells of {CELL_M:g} m, {n_records} records x 2 polarities, "
-          f"chunks {min(CHUNK, n)} x {min(CHUNK, n)}, 2 threads; tables {int(tables.counts.sum()):,} knots "
-          f"({tables.counts.min()}-{tables.counts.max()} per member)")
-    print(f"machine load (1-min average over its 2 cores, shared): {load_before[0]:.1f} before, "
-          f"{load_after[0]:.1f} after")
-    print_table(["step", "wall [s]", "CPU [s]"],
-                [("tables (exact engine + exact dD/dky, JAX compile incl.)", f"{t_tables:.1f}", f"{cpu_tables:.1f}"),
-                 ("map: slope, FS, ky, median D, P(D > 0.05 m) -> Zarr, 2 threads", f"{t_map:.1f}", f"{cpu_map:.1f}"),
-                 ("total", f"{t_tables + t_map:.1f}", f"{cpu_tables + cpu_map:.1f}")])
-    print(f"map: {1e9 * cpu_map / (n * n * len(tables.members)):.1f} ns of CPU per cell and record-polarity, "
-          "everything included")
+    sliding = float((back["median_displacement_m"] > 0).mean())
+    cells, members = n * n, len(tables.members)
+    print(f"terrain {n:,} x {n:,} = {cells:,} cells of {CELL_M:g} m (float32 DEM, zones and PGA [g] in a Zarr "
+          f"store), {n_records} records x 2 polarities, chunks {chunk} x {chunk}, {THREADS} threads; tables "
+          f"{int(tables.counts.sum()):,} knots ({tables.counts.min()}-{tables.counts.max()} per member)")
+    print(f"machine load (1-min average over its cores, shared): {load_before[0]:.1f} before, "
+          f"{load_after[0]:.1f} after; CPU: process time over all threads")
+    total_wall, total_cpu = build.wall + warm.wall + written.wall, build.cpu + warm.cpu + written.cpu
+    print_table(["stage", "wall [s]", "CPU [s]"], [
+        ("inputs: the synthetic terrain written to Zarr (not in the bar)", f"{inputs.wall:.1f}", f"{inputs.cpu:.1f}"),
+        (f"tables: exact engine, {n_records} records x 2 polarities", f"{build.wall:.1f}", f"{build.cpu:.1f}"),
+        ("kernels compiled or loaded from numba's cache (a 50 x 50 map)", f"{warm.wall:.1f}", f"{warm.cpu:.1f}"),
+        ("terrain: DEM read, Horn slope of every cell (summed)", f"{slope.wall:.1f}", f"{slope.cpu:.1f}"),
+        ("map: read, slope, strength, FS, ky, median D, P (summed)", f"{computed.wall:.1f}", f"{computed.cpu:.1f}"),
+        ("map written: the same, float32 to Zarr", f"{written.wall:.1f}", f"{written.cpu:.1f}"),
+        ("the bar's total: tables + kernels + map written", f"{total_wall:.1f}", f"{total_cpu:.1f}")])
+    per_cell_ns = 1e9 * written.cpu / (cells * members)
+    print(f"map written: {per_cell_ns:.2f} ns of CPU per cell and record-polarity, everything included; "
+          f"writing {written.cpu - computed.cpu:+.1f} s of CPU over computing alone")
     print(f"cells with median D > 0: {100 * sliding:.1f} %; peak memory {peak_gb:.2f} GB")
-    print(f"bar {BAR_S:g} s for the map written: {verdict(t_map < BAR_S, args.quick)} ({t_map:.1f} s)")
-    print(f"bar {BAR_S:g} s with the tables built in the same run: "
-          f"{verdict(t_tables + t_map < BAR_S, args.quick)} ({t_tables + t_map:.1f} s)")
-    print(f"bar {BAR_GB:g} GB peak memory: {verdict(peak_gb < BAR_GB, args.quick)} ({peak_gb:.2f} GB)")
+    met = {"wall": total_wall < BAR_S, "memory": peak_gb < BAR_GB}
+    print(f"bar {BAR_S:g} s of wall time for the tables and the map written: {verdict(met['wall'], args.quick)} "
+          f"({total_wall:.1f} s; {total_cpu / THREADS:.1f} s of CPU per core)")
+    print(f"bar {BAR_GB:g} GB peak memory: {verdict(met['memory'], args.quick)} ({peak_gb:.2f} GB)")
     print()
-    _versus_pynewmarkdisp(records[0], tables, args.peer_side or (20 if args.quick else 100))
+    met["speed-up"] = _versus_pynewmarkdisp(records[0], tables, args.peer_side or (20 if args.quick else 100),
+                                            per_cell_ns, args.quick)
     print()
     _rectangular_pulse()
-    return 0
+    return 0 if args.quick or all(met.values()) else 1
 
 
 def _terrain(n, chunk):
-    """(DEM [m], zones, PGA [g]) of n x n cells, Dask arrays computed chunk by chunk."""
+    """A Dataset of n x n cells, Dask arrays computed chunk by chunk: dem [m], zone, pga_g [g] (float32)."""
     import dask.array as da
     import rioxarray  # noqa: F401  (the .rio accessor)
     import xarray as xr
@@ -100,27 +137,31 @@ def _terrain(n, chunk):
         (r0, r1), (c0, c1) = block_info[None]["array-location"]
         X, Y = np.meshgrid(CELL_M * np.arange(c0, c1), CELL_M * np.arange(r0, r1))
         if kind == "dem":
-            return 80 * np.sin(X / 900) * np.cos(Y / 700) + 30 * np.sin(X / 130 + Y / 170) + 0.2 * X
-        if kind == "zones":
-            return np.where(np.sin(X / 2500) * np.cos(Y / 3100) > 0, 1.0, 2.0)
-        side = n * CELL_M
-        return 0.25 + 0.2 * np.exp(-((X - 0.4 * side) ** 2 + (Y - 0.6 * side) ** 2) / (0.3 * side) ** 2)
+            z = 80 * np.sin(X / 900) * np.cos(Y / 700) + 30 * np.sin(X / 130 + Y / 170) + 0.2 * X
+        elif kind == "zone":
+            z = np.where(np.sin(X / 2500) * np.cos(Y / 3100) > 0, 1.0, 2.0)
+        else:
+            side = n * CELL_M
+            z = 0.25 + 0.2 * np.exp(-((X - 0.4 * side) ** 2 + (Y - 0.6 * side) ** 2) / (0.3 * side) ** 2)
+        return z.astype(np.float32)
 
-    arrays = []
-    for kind in ("dem", "zones", "pga"):
-        data = da.map_blocks(field, kind, chunks=((chunk,) * (n // chunk) + ((n % chunk,) if n % chunk else ()),) * 2,
-                             dtype=float, meta=np.array((), dtype=float))
-        arrays.append(xr.DataArray(data, dims=("y", "x"), coords={"x": x, "y": y}).rio.write_crs("EPSG:32611"))
-    return arrays
+    chunks = ((chunk,) * (n // chunk) + ((n % chunk,) if n % chunk else ()),) * 2
+    units = {"dem": "m", "zone": "1", "pga_g": "g"}
+    arrays = {name: (("y", "x"), da.map_blocks(field, name, chunks=chunks, dtype=np.float32,
+                                               meta=np.array((), dtype=np.float32)), {"units": unit})
+              for name, unit in units.items()}
+    return xr.Dataset(arrays, coords={"x": x, "y": y}).rio.write_crs("EPSG:32611")
 
 
-def _versus_pynewmarkdisp(record, tables, side):
-    """Time per cell and the differences on side x side cells, one record, the normal polarity."""
+def _versus_pynewmarkdisp(record, tables, side, map_ns, quick):
+    """CPU time per cell and the differences on side x side cells, one record, the normal polarity;
+    pyNewmarkDisp's time per cell over blockdae's in the map (``map_ns`` [ns] per cell and
+    record-polarity) against the bar: True where met (or not installed)."""
     try:
         from pynewmarkdisp.spatial import spatial_newmark
     except ImportError:
         print("pyNewmarkDisp is not installed (pip install pynewmarkdisp): its comparison is skipped")
-        return
+        return True
     rng = np.random.default_rng(0)
     pga_g = record.peak_acceleration / bd.STANDARD_GRAVITY
     ky = pga_g * rng.uniform(0.05, 0.6, (side, side))
@@ -128,32 +169,36 @@ def _versus_pynewmarkdisp(record, tables, side):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         spatial_newmark(time_s, accel, ky[:1, :1], 9.81)  # its first call compiles (numba)
-    start = time.perf_counter()
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), Stage() as peer:
         warnings.simplefilter("ignore")
         theirs = spatial_newmark(time_s, accel, ky * bd.STANDARD_GRAVITY / 9.81, 9.81)
-    t_theirs = time.perf_counter() - start
     one = tables.select(record.name, "normal")
+    one.displacement(ky, pga_g)  # compiled (or loaded from numba's cache) before the clock
     repeat = 200
-    start = time.perf_counter()
-    for _ in range(repeat):
-        ours = one.displacement(ky, pga_g)[0]
-    t_ours = (time.perf_counter() - start) / repeat
+    with Stage() as call:
+        for _ in range(repeat):
+            ours = one.displacement(ky, pga_g)[0]
     exact_to_end = np.asarray(bd.newmark(record, ky.ravel(), polarity="normal", t_end=record.duration).normal)
     cells = ky.size
-    print(f"pyNewmarkDisp spatial_newmark vs the tables: {cells:,} cells, {record.name} (normal polarity), "
-          f"ky/PGA 0.05-0.6")
-    print_table(["", "per cell [ms]", "total [s]"],
-                [("pyNewmarkDisp (a Python loop, trapezoid, D at the record's end)",
-                  f"{1e3 * t_theirs / cells:.4f}", f"{t_theirs:.3f}"),
-                 ("blockdae: the record's table (mean of 200 calls)", f"{1e3 * t_ours / cells:.6f}", f"{t_ours:.5f}")])
-    print(f"per-cell speed-up: {t_theirs / t_ours:,.0f}x")
+    theirs_ns, call_ns = 1e9 * peer.cpu / cells, 1e9 * call.cpu / (repeat * cells)
+    print(f"pyNewmarkDisp spatial_newmark vs blockdae: {cells:,} cells, {record.name} (normal polarity), "
+          f"ky/PGA 0.05-0.6; CPU time (process time), one thread")
+    print_table(["", "per cell [ns]", "total [s]"], [
+        ("pyNewmarkDisp: one call (a Python loop, trapezoid, D at the record's end)", f"{theirs_ns:,.0f}",
+         f"{peer.cpu:.3f}"),
+        ("blockdae: the record's table, one call (mean of 200)", f"{call_ns:,.1f}", f"{call.cpu / repeat:.5f}"),
+        ("blockdae: the 10^8-cell map, per cell and record-polarity, everything included", f"{map_ns:.2f}", "")])
+    print(f"speed-up, the same 10^4 cells in one call each: {theirs_ns / call_ns:,.0f}x")
+    ok = theirs_ns / map_ns >= BAR_SPEED_UP
+    print(f"bar {BAR_SPEED_UP:,.0f}x per cell and record, pyNewmarkDisp's call against blockdae's map: "
+          f"{verdict(ok, quick)} ({theirs_ns / map_ns:,.0f}x)")
     sliding = exact_to_end.reshape(ky.shape) > 0.01
     rel_end = (theirs - exact_to_end.reshape(ky.shape))[sliding] / exact_to_end.reshape(ky.shape)[sliding]
     rel_rest = (theirs - ours)[sliding] / ours[sliding]
     print(f"pyNewmarkDisp - exact, cells with D > 1 cm ({np.count_nonzero(sliding):,}): against D at the record's end "
           f"{100 * rel_end.min():+.1f} % to {100 * rel_end.max():+.1f} % (median {100 * np.median(rel_end):+.1f} %); "
           f"against D at rest {100 * rel_rest.min():+.1f} % to {100 * rel_rest.max():+.1f} %")
+    return ok
 
 
 def _rectangular_pulse():

@@ -149,6 +149,22 @@ def test_the_table_agrees_with_the_exact_engine_at_random_cells_within_the_bound
     assert np.max(exact) > 0.1 and np.count_nonzero(exact == 0) > 0
 
 
+def test_every_interval_of_a_table_meets_a_tenth_of_the_bound_at_fresh_exact_runs(two_records, tables):
+    """The halving reuses exact runs (a halved interval's midpoint and quarter points): every final
+    interval checked again from scratch, at its quarter points and midpoint, meets max(rtol D, atol) / 10."""
+    from blockdae.regional import _tables
+
+    for m, (name, polarity) in enumerate(tables.members[:2]):
+        k = tables.counts[m]
+        knots, values, slopes = tables.knots[m, :k], tables.values[m, :k], tables.slopes[m, :k]
+        exact = lambda r: tables.select(name, polarity).exact(r, np.ones_like(r))[0]
+        every = np.ones(k - 1, dtype=bool)
+        failing, points, _ = _tables._failing(exact, knots, values, slopes, every, np.full((k - 1, 2), np.nan),
+                                              tables.rtol / 10, tables.atol_m / 10)
+        assert not np.any(failing) and k > 500
+        np.testing.assert_array_equal(values[:-1], exact(knots[:-1]))  # the knots' values are exact runs there
+
+
 def _terrain(n, seed=0):
     rng = np.random.default_rng(seed)
     x = 500000 + 10.0 * np.arange(n)
@@ -186,6 +202,53 @@ def test_the_map_keeps_every_category_and_matches_the_exact_method(tables):
     assert table.rio.crs.to_epsg() == 32611 and table["median_displacement_m"].attrs["units"] == "m"
     jibson = bd.empirical.jibson_2007(table["ky_g"].values[stable], 0.45).median_m
     np.testing.assert_allclose(table["jibson_2007_median_m"].values[stable], jibson, rtol=1e-14)
+
+
+def _slopes(slope_deg):
+    """A terrain Dataset of the given slopes [deg] (2-D) on 10 m cells."""
+    rows, columns = np.shape(slope_deg)
+    x, y = 400000 + 10.0 * np.arange(columns), 3700000 - 10.0 * np.arange(rows)
+    return xr.Dataset({"slope_deg": (("y", "x"), np.asarray(slope_deg, float), {"units": "deg"})},
+                      coords={"x": x, "y": y}).rio.write_crs(CRS)
+
+
+def test_cells_barely_stable_run_exact_inside_the_one_pass_map(tables):
+    """Cells of ky/PGA below r_min (FS just above 1) take the exact engine's D; every cell's median and
+    P(D > d) equal those of its members' D (statistics_of), and the exact map's within the bound."""
+    rng = np.random.default_rng(5)
+    slope = rng.uniform(5, 45, (12, 15))
+    slope[3, :6] = 31.99  # tan 32° / tan 31.99°: FS - 1 ≈ 4e-4, ky ≈ 2e-4 g, ky/PGA ≈ 4e-4
+    slope[4, 0], slope[4, 1], slope[5, 2] = np.nan, 0.0, 60.0  # nodata, flat, statically unstable
+    terrain = _slopes(slope)
+    strength = {"cohesion_kpa": 0.0, "friction_deg": 32.0, "unit_weight_kn_m3": 19.0}
+    kwargs = dict(thickness_m=2.0, thresholds_m=(0.01, 0.2), per_record=True, regressions=False, tables=tables)
+    table = rg.displacement_map(terrain, strength, None, 0.5, **kwargs)
+    exact = rg.displacement_map(terrain, strength, None, 0.5, method="exact", **kwargs)
+    ratio = table["ky_g"].values / 0.5
+    assert np.count_nonzero(ratio < tables.r_min) == 6
+    d = table["displacement_m"].values.reshape(len(tables.members), -1)
+    median, exceed = rg._tables.statistics_of(d, np.array([0.01, 0.2]))
+    category = table["category"].values.ravel()
+    median[category == 3], exceed[:, category == 3] = 0.0, 0.0
+    np.testing.assert_array_equal(table["median_displacement_m"].values.ravel(), median)
+    np.testing.assert_array_equal(table["exceedance"].values.reshape(2, -1), exceed)
+    low = (ratio < tables.r_min).ravel()
+    np.testing.assert_array_equal(d[:, low], exact["displacement_m"].values.reshape(d.shape)[:, low])
+    stable = category == 1
+    assert np.all(_within_bound(table["median_displacement_m"].values.ravel()[stable],
+                                exact["median_displacement_m"].values.ravel()[stable], 0.5, tables))
+    assert [int(category[k]) for k in (4 * 15, 4 * 15 + 1, 5 * 15 + 2)] == [0, 3, 2]
+
+
+@pytest.mark.parametrize("field, value", [("friction_deg", 95.0), ("thickness_m", -1.0), ("pga_g", 9.81)])
+def test_a_raster_out_of_range_in_a_dask_map_is_refused_naming_the_field(tables, field, value):
+    dem = _terrain(30).chunk({"x": 15, "y": 15})
+    fields = {"friction_deg": 30.0, "thickness_m": 2.0, "pga_g": 0.4}
+    fields[field] = xr.full_like(dem, value).where(dem["x"] > float(dem["x"][20]), fields[field])
+    strength = {"cohesion_kpa": 5.0, "friction_deg": fields["friction_deg"], "unit_weight_kn_m3": 19.0}
+    ds = rg.displacement_map(dem, strength, None, fields["pga_g"], thickness_m=fields["thickness_m"], tables=tables)
+    with pytest.raises(ValueError, match=f"{field}={value!r}"):
+        ds["median_displacement_m"].compute()
 
 
 def test_rasters_on_another_grid_and_pga_in_the_wrong_units_are_refused(tables):

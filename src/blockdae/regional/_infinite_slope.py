@@ -70,34 +70,37 @@ def _cells(alpha, c, phi, gamma, t, m, gamma_w, fs, ky, category):
     """FS, ky and category of every cell (2-D arrays, written in place); returns the index
     in :data:`_RANGES` of the first input out of range (the caller raises), or -1."""
     for i in np.ndindex(alpha.shape):
-        a, ci, p, gi, ti, mi = alpha[i], c[i], phi[i], gamma[i], t[i], m[i]
-        if a != a or ci != ci or p != p or gi != gi or ti != ti or mi != mi:
-            fs[i], ky[i], category[i] = np.nan, np.nan, NODATA
-            continue
-        if not (0.0 <= a < 90.0):
-            return 0
-        if not ci >= 0.0:
-            return 1
-        if not (0.0 < p < 90.0):
-            return 2
-        if not gi > 0.0:
-            return 3
-        if not ti > 0.0:
-            return 4
-        if not (0.0 <= mi <= 1.0):
-            return 5
-        if a == 0.0:
-            fs[i], ky[i], category[i] = np.inf, np.nan, FLAT
-            continue
-        ar = np.radians(a)
-        sin_a, tan_a, tan_p = np.sin(ar), np.tan(ar), np.tan(np.radians(p))
-        f = ci / (gi * ti * sin_a) + tan_p / tan_a - mi * gamma_w * tan_p / (gi * tan_a)
-        fs[i] = f
-        if f >= 1.0:
-            ky[i], category[i] = (f - 1.0) * sin_a, STABLE
-        else:
-            ky[i], category[i] = np.nan, UNSTABLE
+        fs[i], ky[i], category[i], bad = cell(alpha[i], c[i], phi[i], gamma[i], t[i], m[i], gamma_w)
+        if bad >= 0:
+            return bad
     return -1
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def cell(a, c, p, gamma, t, m, gamma_w):
+    """(FS [-], ky [g], category, the index in :data:`_RANGES` of an input out of range or -1) of one cell."""
+    if a != a or c != c or p != p or gamma != gamma or t != t or m != m:
+        return np.nan, np.nan, NODATA, -1
+    if not (0.0 <= a < 90.0):
+        return np.nan, np.nan, NODATA, 0
+    if not c >= 0.0:
+        return np.nan, np.nan, NODATA, 1
+    if not (0.0 < p < 90.0):
+        return np.nan, np.nan, NODATA, 2
+    if not gamma > 0.0:
+        return np.nan, np.nan, NODATA, 3
+    if not t > 0.0:
+        return np.nan, np.nan, NODATA, 4
+    if not (0.0 <= m <= 1.0):
+        return np.nan, np.nan, NODATA, 5
+    if a == 0.0:
+        return np.inf, np.nan, FLAT, -1
+    ar = np.radians(a)
+    sin_a, tan_a, tan_p = np.sin(ar), np.tan(ar), np.tan(np.radians(p))
+    f = c / (gamma * t * sin_a) + tan_p / tan_a - m * gamma_w * tan_p / (gamma * tan_a)
+    if f >= 1.0:
+        return f, (f - 1.0) * sin_a, STABLE, -1
+    return f, np.nan, UNSTABLE, -1
 
 
 def count_categories(category) -> dict:

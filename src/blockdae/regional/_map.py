@@ -2,13 +2,18 @@
 to every cell's PGA, its statistics over the suite and the regressions, as one xarray
 Dataset on the terrain's grid; lazy and chunk by chunk where the terrain is Dask-backed."""
 
+import functools
+import hashlib
+import pathlib
 import warnings
 
+import numba
 import numpy as np
 
-from ._infinite_slope import CATEGORIES, FLAT, NODATA, STABLE, infinite_slope
+from . import _infinite_slope, _tables
+from ._infinite_slope import CATEGORIES, FLAT, NODATA, STABLE, WATER_UNIT_WEIGHT, cell, infinite_slope
 from ._pairs import ProjectedPairs, RecordPair
-from ._tables import DisplacementTables, statistics_of
+from ._tables import DisplacementTables, cell_displacements, median_of, statistics_of
 from ._terrain import _crs, _with_crs, slope_and_azimuth
 
 #: the largest PGA accepted [g]: above it the values are likely in m/s² or %g
@@ -45,18 +50,38 @@ def strength_from_zones(zones, table):
     columns = {name: frame[name].to_numpy(dtype=float)[order] for name in _STRENGTH}
 
     def lookup(z, name):
-        at = np.clip(np.searchsorted(codes, z), 0, codes.size - 1)
-        found = codes[at] == z
-        unknown = ~found & ~np.isnan(z)
-        if np.any(unknown):
-            raise ValueError(f"zone {float(z[unknown].flat[0]):g} of the raster is not in the zone table "
-                             f"(zones {codes.tolist()})")
-        return np.where(found, columns[name][at], np.nan)
+        out = np.empty(z.shape)
+        unknown = _zone_lookup(np.ascontiguousarray(z, dtype=float).reshape(-1), codes, columns[name], out.reshape(-1))
+        if unknown == unknown:
+            raise ValueError(f"zone {unknown:g} of the raster is not in the zone table (zones {codes.tolist()})")
+        return out
 
     units = {"cohesion_kpa": "kPa", "friction_deg": "deg", "unit_weight_kn_m3": "kN/m3"}
     fields = {name: xr.apply_ufunc(lookup, zones.astype(float), kwargs={"name": name}, dask="parallelized",
                                    output_dtypes=[float]).assign_attrs(units=units[name]) for name in _STRENGTH}
     return _with_crs(xr.Dataset(fields), zones)
+
+
+@numba.njit(cache=True, nogil=True)
+def _zone_lookup(zones, codes, values, out):
+    """``values`` of each cell's zone among the sorted ``codes`` into ``out`` (NaN where the zone
+    is NaN); returns the first zone not among the codes, or NaN."""
+    for i in range(zones.size):
+        z = zones[i]
+        if z != z:
+            out[i] = np.nan
+            continue
+        lo, hi = 0, codes.size  # bisection: the first code >= z
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if codes[mid] < z:
+                lo = mid + 1
+            else:
+                hi = mid
+        if lo == codes.size or codes[lo] != z:
+            return z
+        out[i] = values[lo]
+    return np.nan
 
 
 def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturated_fraction=0.0,
@@ -132,10 +157,11 @@ def displacement_map(terrain, strength, records, pga_g, *, thickness_m, saturate
         tables = DisplacementTables.build(records, polarity, rtol=rtol, atol_m=atol_m / MAX_PGA_G)
     names = _quantities(tables, thresholds, per_record, regressions)
     order = ("cohesion_kpa", "friction_deg", "unit_weight_kn_m3", "thickness_m", "saturated_fraction", "pga_g")
+    dtypes = [np.int8 if name == "category" else float for name in names]
     outputs = xr.apply_ufunc(
         _cells, grid, *(fields[k] for k in order), azimuth, output_core_dims=[[]] * len(names), dask="parallelized",
         kwargs=dict(tables=tables, thresholds=thresholds, method=method, per_record=per_record,
-                    regressions=regressions), output_dtypes=[float] * len(names))
+                    regressions=regressions), output_dtypes=dtypes)
     return _dataset(outputs, names, slopes, fields["pga_g"], tables, thresholds, method, per_record, regressions)
 
 
@@ -211,28 +237,116 @@ def _cells(slope, cohesion, friction, unit_weight, thickness, saturated, pga, az
            per_record, regressions):
     """Every quantity of :func:`_quantities` at each cell of one block: a tuple of arrays shaped as the block
     (``azimuth``: the dip azimuth [deg], used by record pairs)."""
-    _check_pga_values(np.asarray(pga))
-    fs, ky, category = infinite_slope(slope, cohesion, friction, unit_weight, thickness, saturated)
-    shape = category.shape
-    pga = np.broadcast_to(pga, shape)
-    category[np.isnan(pga)] = NODATA  # no ground motion there: no displacement
-    pga = pga.ravel()
-    flat = (category == FLAT).ravel()
-    ky_stable = np.where(category == STABLE, ky, np.nan).ravel()
-    if isinstance(tables, ProjectedPairs):
-        d = tables.exact(ky_stable, pga, np.broadcast_to(azimuth, shape).ravel())
-        median, exceed = statistics_of(d, thresholds)
+    inputs = (slope, cohesion, friction, unit_weight, thickness, saturated, pga)
+    if isinstance(tables, DisplacementTables) and method == "table":
+        fs, ky, category, median, exceed = _fused(inputs, tables, thresholds)
+        shape = category.shape
+        if per_record or regressions:
+            flat, pga = (category == FLAT).ravel(), np.broadcast_to(pga, shape).ravel()
+            ky_stable = np.where(category == STABLE, ky, np.nan).ravel()
+        d = tables.displacement(ky_stable, pga) if per_record else None
     else:
-        median, exceed = tables.statistics(ky_stable, pga, thresholds, method)
-        d = tables.displacement(ky_stable, pga, method) if per_record else None
-    median[flat], exceed[:, flat] = 0.0, 0.0
-    out = [fs, ky, category.astype(float), median.reshape(shape), *(p.reshape(shape) for p in exceed)]
+        _check_pga_values(np.asarray(pga))
+        fs, ky, category = infinite_slope(*inputs[:-1])
+        shape = category.shape
+        pga = np.broadcast_to(pga, shape)
+        category[np.isnan(pga)] = NODATA  # no ground motion there: no displacement
+        pga = pga.ravel()
+        flat = (category == FLAT).ravel()
+        ky_stable = np.where(category == STABLE, ky, np.nan).ravel()
+        if isinstance(tables, ProjectedPairs):
+            d = tables.exact(ky_stable, pga, np.broadcast_to(azimuth, shape).ravel())
+            median, exceed = statistics_of(d, thresholds)
+        else:
+            median, exceed = tables.statistics(ky_stable, pga, thresholds, method)
+            d = tables.displacement(ky_stable, pga, method) if per_record else None
+        median[flat], exceed[:, flat] = 0.0, 0.0
+    out = [fs, ky, category, median.reshape(shape), *(p.reshape(shape) for p in exceed)]
     if per_record:
         d[:, flat] = 0.0
         out += [member.reshape(shape) for member in d]
     if regressions:
         out += [r.reshape(shape) for r in _regressions(ky_stable, pga, flat).T]
     return tuple(out)
+
+
+def _fused(inputs, tables, thresholds):
+    """(FS [-], ky [g], category, median D [m], P(D > d) [-]) of one block in one compiled pass per cell:
+    the infinite slope, every member's table and the statistics over the suite; the few cells with
+    ky/PGA < r_min then run on the exact engine."""
+    shape = np.broadcast_shapes(*(np.shape(v) for v in inputs))
+    if len(shape) != 2:
+        raise ValueError(f"a map's block is 2-D (y, x), got the shape {shape}")
+    fields = [np.broadcast_to(np.asarray(v, dtype=float), shape) for v in inputs]
+    fs, ky, median = np.empty(shape), np.empty(shape), np.empty(shape)
+    category = np.empty(shape, dtype=np.int8)
+    exceed = np.empty((thresholds.size,) + shape)
+    low = np.empty(fs.size, dtype=np.int64)
+    bad, n_low = _map_kernel()(*fields, WATER_UNIT_WEIGHT, *tables._lookup(), thresholds, fs, ky, category, median,
+                             exceed, low)
+    if bad >= 0:  # one of them raises, naming the field and the value
+        _check_pga_values(fields[6])
+        infinite_slope(*fields[:-1])
+    if n_low:
+        cells = low[:n_low]
+        rows, columns = np.unravel_index(cells, shape)
+        d = tables.exact(ky[rows, columns], fields[6][rows, columns])
+        median[rows, columns], exceed[:, rows, columns] = statistics_of(d, thresholds)
+    return fs, ky, category, median, exceed
+
+
+@functools.cache
+def _map_kernel():
+    """The compiled pass over a block's cells (compiled on first use or loaded from numba's cache,
+    keyed also by the sources of the modules whose functions it inlines, which numba would not check)."""
+    fingerprint = hashlib.sha256(b"".join(pathlib.Path(m.__file__).read_bytes()
+                                          for m in (_infinite_slope, _tables))).hexdigest()
+
+    def kernel(slope, cohesion, friction, unit_weight, thickness, saturated, pga, gamma_w, pieces, index, per_log,
+               tops, r_min, thresholds, fs, ky, category, median, exceed, low):
+        """Every cell of a block (2-D arrays, outputs written in place): FS, ky and category, then
+        for a stable cell each member's D from its table, the median and the exceedance counts
+        (NaN on nodata and statically unstable cells, 0 on flat ones). Returns (the index of an
+        input out of range, 6 for the PGA, or -1; the number of cells with ky/PGA < r_min, listed
+        by flat index in ``low``: their D is left to the exact engine)."""
+        fingerprint  # noqa: B018 -- numba keys its disk cache by the closure's contents
+        n = pieces.shape[0]
+        buffer, values, order = np.empty(n), np.empty(n), np.arange(n)
+        n_low = 0
+        columns = slope.shape[1]
+        top = tops.max()  # ky/PGA at or above it: D = 0 for every member
+        for i in range(slope.shape[0]):
+            for j in range(columns):
+                p = pga[i, j]
+                if not (p != p or 0.0 <= p <= MAX_PGA_G):
+                    return 6, n_low
+                f, k, c, bad = cell(slope[i, j], cohesion[i, j], friction[i, j], unit_weight[i, j], thickness[i, j],
+                                    saturated[i, j], gamma_w)
+                if bad >= 0:
+                    return bad, n_low
+                if p != p:
+                    c = NODATA
+                fs[i, j], ky[i, j], category[i, j] = f, k, c
+                if c == FLAT or (c == STABLE and k >= top * p):
+                    median[i, j] = 0.0
+                    exceed[:, i, j] = 0.0
+                elif c != STABLE:
+                    median[i, j] = np.nan
+                    exceed[:, i, j] = np.nan
+                elif k < r_min * p:
+                    low[n_low] = i * columns + j
+                    n_low += 1
+                else:
+                    cell_displacements(pieces, index, per_log, tops, r_min, k, p, buffer)
+                    for t in range(thresholds.size):
+                        above = 0
+                        for m in range(buffer.size):
+                            above += buffer[m] > thresholds[t]
+                        exceed[t, i, j] = above / buffer.size
+                    median[i, j] = median_of(buffer, order, values)
+        return -1, n_low
+
+    return numba.njit(cache=True, nogil=True)(kernel)
 
 
 def _regressions(ky, pga, flat):
@@ -261,7 +375,7 @@ def _dataset(outputs, names, slopes, pga, tables, thresholds, method, per_record
     data["factor_of_safety"] = take(0).assign_attrs(units="1", long_name="static factor of safety (infinite slope)")
     data["ky_g"] = take(1).assign_attrs(units="g", long_name="yield acceleration (NaN unless stable)")
     codes = list(CATEGORIES)
-    data["category"] = take(2).astype(np.int8).assign_attrs(
+    data["category"] = take(2).assign_attrs(
         flag_values=np.array(codes, dtype=np.int8), flag_meanings=" ".join(CATEGORIES[c] for c in codes),
         long_name="cell category")
     data["pga_g"] = (pga if isinstance(pga, xr.DataArray) else xr.full_like(take(0), pga)).assign_attrs(

@@ -1,5 +1,5 @@
 """Each record's rigid-block displacement as one function of ky/PGA, tabulated with the
-exact engine and interpolated by cubic Hermite with its exact derivative.
+exact engine and interpolated by cubic Hermite.
 
 A record scaled by s gives D_s(ky) = s · D_1(ky / s) exactly (the block's equation
 v' = s a(t) - ky g is s times the unscaled one at ky / s, event times unchanged). With
@@ -7,19 +7,25 @@ D_1 the displacement under the record scaled to a peak of 1 g, a cell of peak gr
 acceleration p [g] and yield acceleration ky [g] slides D = p · D_1(ky / p) [m]: one
 function of r = ky / PGA per record and polarity, whatever the cell.
 
-The table of each (record, polarity): knots r_k in [r_min, r_top] with D_1(r_k) and dD_1/dr
-(r_k) from the exact engine (:func:`blockdae.newmark`, its ``derivative=True``, exact
-through the event times); r_top is the record's largest acceleration in the sliding
-direction over its peak |a| (above it D = 0 exactly); below r_min a cell runs on the exact
-engine. The knots are placed by halving: every interval is checked at its quarter points
-and midpoint against exact runs, and halved until the cubic Hermite interpolant meets
-``|D_table - D_exact| <= max(rtol · D_exact, atol_m)`` [m, at PGA 1 g] at all three and is
-monotone there (Fritsch & Carlson 1980: α² + β² <= 9). Halving uses central differences
-of exact runs for speed; the final knots carry the exact derivatives, and the check is
-repeated on that final interpolant until it passes.
+The table of each (record, polarity): knots r_k in [r_min, r_top] with D_1(r_k) from the
+exact engine (:func:`blockdae.newmark`, all the r of a round in one batched call) and
+dD_1/dr(r_k) by central differences of exact runs (a step of 10⁻⁷ r: its rounding error,
+about 10⁻⁹ D_1/r, is a thousandth of the bound); r_top is the record's largest
+acceleration in the sliding direction over its peak |a| (above it D = 0 exactly); below
+r_min a cell runs on the exact engine. The knots are placed by halving: every interval is
+checked at its quarter points and midpoint against exact runs, and the intervals that miss
+``|D_table - D_exact| <= max(rtol · D_exact, atol_m) / 10`` [m, at PGA 1 g] at any of the
+three, or are not monotone there (Fritsch & Carlson 1980: α² + β² <= 9), are halved; only
+the two halves are checked again. The margin of 10 covers the points between the checks
+(the tests check the bound itself against exact runs at random cells).
+
+A cell's lookup costs one logarithm, shared by all members (the knot at or left of each of
+equal parts of log r, per member), a step or two along the knots and a cubic in the
+power form of its interval.
 """
 
 import dataclasses
+import math
 import warnings
 
 import numba
@@ -28,9 +34,11 @@ import numpy as np
 from ..units import STANDARD_GRAVITY
 
 POLARITIES = ("normal", "inverse")
-#: knots evaluated together in one derivative call (a fixed size: JAX compiles once per record length)
-_DERIVATIVE_BATCH = 1024
 _MAX_HALVINGS = 60
+#: the tables are placed to the bound over this factor at the check points (see the module)
+_MARGIN = 10.0
+#: equal parts of log r of the lookup's index
+_INDEX_PARTS = 16384
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -48,8 +56,12 @@ class DisplacementTables:
         motions: (samples [m/s²], dt [s], polarity) of each member's record scaled to 1 g,
             for the exact engine (plain arrays: the tables travel to Dask workers).
         g: one g [m/s²].
-        buckets: for each member, the knot at or left of each of equal parts of [r_min, r_top]
-            (the lookup starts there), shape (n_members, n_buckets).
+        pieces: per member and interval, (r_k, r_k+1, then the cubic's coefficients in
+            powers of r - r_k [m, m, m, m]); rows past the last interval hold +inf:
+            shape (n_members, n_knots_max, 6).
+        index: the interval of each member holding the left edge of each of equal parts of
+            log r over [r_min, max r_top], shape (n_parts, n_members) (the lookup starts there).
+        index_scale: the index's parts per unit of ln r [-].
     """
 
     members: tuple
@@ -63,7 +75,9 @@ class DisplacementTables:
     atol_m: float
     motions: tuple
     g: float
-    buckets: np.ndarray
+    pieces: np.ndarray
+    index: np.ndarray
+    index_scale: float
 
     def __repr__(self):
         return (f"DisplacementTables({len(self.members)} members, {int(self.counts.sum())} knots, "
@@ -96,11 +110,13 @@ class DisplacementTables:
                               (np.array([r_min]), np.zeros(1), np.zeros(1)))
         n = max(len(t[0]) for t in tables)
         pad = lambda k, fill: np.array([np.concatenate([t[k], np.full(n - len(t[k]), fill)]) for t in tables])
-        knots, tops = pad(0, np.inf), np.array(tops)
-        return cls(members=tuple(members), knots=knots, values=pad(1, 0.0), slopes=pad(2, 0.0),
-                   counts=np.array([len(t[0]) for t in tables]), r_min=float(r_min), r_top=tops,
-                   rtol=float(rtol), atol_m=float(atol_m), motions=tuple(motions), g=float(g),
-                   buckets=_buckets(knots, r_min, tops, 4 * n))
+        knots, values, slopes, tops = pad(0, np.inf), pad(1, 0.0), pad(2, 0.0), np.array(tops)
+        r_hi = max(float(tops.max()), 2 * r_min)
+        counts = np.array([len(t[0]) for t in tables])
+        return cls(members=tuple(members), knots=knots, values=values, slopes=slopes, counts=counts,
+                   r_min=float(r_min), r_top=tops, rtol=float(rtol), atol_m=float(atol_m), motions=tuple(motions),
+                   g=float(g), pieces=_pieces(knots, values, slopes, counts),
+                   index=_index(knots, r_min, r_hi, _INDEX_PARTS), index_scale=_INDEX_PARTS / math.log(r_hi / r_min))
 
     def select(self, record: str, polarity: str) -> "DisplacementTables":
         """The table of one member (a record's name and "normal" or "inverse") alone."""
@@ -110,19 +126,18 @@ class DisplacementTables:
         one = slice(k, k + 1)
         return dataclasses.replace(self, members=self.members[one], knots=self.knots[one], values=self.values[one],
                                    slopes=self.slopes[one], counts=self.counts[one], r_top=self.r_top[one],
-                                   motions=self.motions[one], buckets=self.buckets[one])
+                                   motions=self.motions[one], pieces=self.pieces[one], index=self.index[:, one])
 
     def displacement(self, ky_g, pga_g, method: str = "table") -> np.ndarray:
         """D [m] of every member at each cell: shape ``(n_members, *cells)`` (cells: ky and pga broadcast);
         ``ky_g`` [g] > 0 and ``pga_g`` [g] >= 0 (NaN stays NaN); ``method`` "table" or "exact"."""
-        ky, pga = np.broadcast_arrays(np.asarray(ky_g, float), np.asarray(pga_g, float))
+        ky, pga = _broadcast(ky_g, pga_g)
         flat_ky, flat_pga = ky.ravel(), pga.ravel()
         if method == "exact":
             out = self.exact(flat_ky, flat_pga)
         elif method == "table":
             out = np.empty((len(self.members), flat_ky.size))
-            _evaluate(self.knots, self.values, self.slopes, self.buckets, self.r_top, self.r_min, flat_ky, flat_pga,
-                      *self._exact_below_r_min(flat_ky, flat_pga), out)
+            _evaluate(*self._lookup(), flat_ky, flat_pga, *self._exact_below_r_min(flat_ky, flat_pga), out)
         else:
             raise ValueError(f"method must be 'table' or 'exact', got {method!r}")
         return out.reshape((len(self.members),) + ky.shape)
@@ -131,27 +146,31 @@ class DisplacementTables:
         """(median D [m], P(D > d) for each threshold d [m]) over the members at each cell,
         without storing D per member: shapes ``cells`` and ``(n_thresholds, *cells)``; NaN where
         ky or pga is NaN."""
-        ky, pga = np.broadcast_arrays(np.asarray(ky_g, float), np.asarray(pga_g, float))
+        ky, pga = _broadcast(ky_g, pga_g)
         flat_ky, flat_pga = ky.ravel(), pga.ravel()
         thresholds = np.asarray(thresholds_m, dtype=float).reshape(-1)
         median = np.empty(flat_ky.size)
         exceed = np.empty((thresholds.size, flat_ky.size))
         if method == "table":
-            _statistics(self.knots, self.values, self.slopes, self.buckets, self.r_top, self.r_min, flat_ky, flat_pga,
-                        *self._exact_below_r_min(flat_ky, flat_pga), thresholds, median, exceed)
+            _statistics(*self._lookup(), flat_ky, flat_pga, *self._exact_below_r_min(flat_ky, flat_pga), thresholds,
+                        median, exceed)
         else:
             median[:], exceed[:] = statistics_of(self.displacement(flat_ky, flat_pga, method), thresholds)
         return median.reshape(ky.shape), exceed.reshape((thresholds.size,) + ky.shape)
 
+    def _lookup(self):
+        """The arguments of the compiled lookup: (pieces, index, parts per unit of ln r, r_top, r_min)."""
+        return self.pieces, self.index, self.index_scale, self.r_top, self.r_min
+
     def _exact_below_r_min(self, ky, pga):
         """(D [m] of every member at the cells with ky/PGA < r_min, exact: (n_members, n_low);
         per cell its column there or -1)."""
-        with np.errstate(invalid="ignore", divide="ignore"):
-            low = np.isfinite(ky) & np.isfinite(pga) & (pga > 0) & (ky < self.r_min * pga)
-        where = np.full(ky.size, -1, dtype=np.int64)
-        where[low] = np.arange(np.count_nonzero(low))
-        exact = self.exact(ky[low], pga[low]) if np.any(low) else np.empty((len(self.members), 0))
-        return exact, where
+        where = np.empty(ky.size, dtype=np.int64)
+        n_low = _below(ky, pga, self.r_min, where)
+        if n_low == 0:
+            return np.empty((len(self.members), 0)), where
+        low = where >= 0
+        return self.exact(ky[low], pga[low]), where
 
     def exact(self, ky_g, pga_g) -> np.ndarray:
         """D [m] of every member at each cell (1-D ky_g, pga_g [g]) from the exact engine:
@@ -170,6 +189,15 @@ class DisplacementTables:
                 unit = Record(samples, dt, check_peak=False)
                 out[m, slides] = pga[slides] * _run(newmark, unit, r, pol, self.g)
         return out
+
+
+def _broadcast(ky_g, pga_g):
+    """ky and pga as float arrays of their common shape (copied where broadcast: the compiled
+    loops then see one kind of array)."""
+    ky, pga = np.asarray(ky_g, dtype=float), np.asarray(pga_g, dtype=float)
+    shape = np.broadcast_shapes(ky.shape, pga.shape)
+    full = lambda a: a if a.shape == shape else np.broadcast_to(a, shape).copy()
+    return full(ky), full(pga)
 
 
 def statistics_of(d, thresholds):
@@ -196,25 +224,12 @@ def _named_records(records):
     return named
 
 
-def _run(newmark, unit, r, polarity, g, derivative=False):
-    """D_1(r) [m] (and dD_1/dr [m]) of ``unit`` (a record of peak 1 g) in ``polarity``."""
+def _run(newmark, unit, r, polarity, g):
+    """D_1(r) [m] of ``unit`` (a record of peak 1 g) in ``polarity``."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # r at or above the peak in this direction: D = 0, as wanted
-        result = newmark(unit, np.asarray(r, float), polarity=polarity, g=g, derivative=derivative)
-    d = np.asarray(getattr(result, polarity), float)
-    return (d, np.asarray(getattr(result, f"{polarity}_dky"), float)) if derivative else d
-
-
-def _exact_slopes(unit, r, polarity, g):
-    """dD_1/dr [m] at ``r``, exact, in batches of a fixed size (JAX compiles once per record length)."""
-    from ..sliding import newmark
-
-    out = np.empty(r.size)
-    for start in range(0, r.size, _DERIVATIVE_BATCH):
-        part = r[start:start + _DERIVATIVE_BATCH]
-        padded = np.concatenate([part, np.full(_DERIVATIVE_BATCH - part.size, part[-1])])
-        out[start:start + part.size] = _run(newmark, unit, padded, polarity, g, derivative=True)[1][:part.size]
-    return out
+        result = newmark(unit, np.asarray(r, float), polarity=polarity, g=g)
+    return np.asarray(getattr(result, polarity), float)
 
 
 def _tabulate(unit, polarity, r_min, top, rtol, atol, g):
@@ -223,62 +238,83 @@ def _tabulate(unit, polarity, r_min, top, rtol, atol, g):
 
     exact = lambda r: _run(newmark, unit, r, polarity, g)
     knots = np.unique(np.concatenate([np.geomspace(r_min, top, 65), np.linspace(r_min, top, 65)]))
-    values = exact(knots)
-    values[-1] = 0.0
-    # placement: slopes by central differences of exact runs (cheap), intervals halved until they pass
-    slopes = _central_slopes(exact, knots, top)
-    knots, values, slopes = _refine(exact, knots, values, slopes, rtol / 10, atol / 10,
-                                    lambda r: _central_slopes(exact, r, top))
-    # the table: exact slopes at the final knots, checked again (and halved where needed)
-    slopes = _exact_slopes(unit, knots, polarity, g)
-    slopes[-1] = 0.0
-    return _refine(exact, knots, values, slopes, rtol, atol, lambda r: _exact_slopes(unit, r, polarity, g))
+    values, slopes = _values(exact, knots, top), _slopes(exact, knots, top)
+    values[-1], slopes[-1] = 0.0, 0.0
+    return _refine(exact, knots, values, slopes, rtol / _MARGIN, atol / _MARGIN, top)
 
 
-def _central_slopes(exact, r, top):
+def _values(exact, r, top):
+    """D_1(r) [m]; 0 from r_top on."""
+    return np.where(r >= top, 0.0, exact(r))
+
+
+def _slopes(exact, r, top):
+    """dD_1/dr [m] by central differences of exact runs (one batched call); 0 from r_top on."""
     h = 1e-7 * np.maximum(r, 1e-3)
     lo, hi = np.maximum(r - h, 1e-12), np.minimum(r + h, top)
-    d = np.where(hi > lo, (exact(hi) - exact(lo)) / (hi - lo), 0.0)
-    d[-1] = 0.0 if r[-1] >= top else d[-1]
-    return d
+    d = exact(np.concatenate([lo, hi])).reshape(2, -1)
+    return np.where((r >= top) | (hi <= lo), 0.0, (d[1] - d[0]) / (hi - lo))
 
 
-def _refine(exact, knots, values, slopes, rtol, atol, slopes_at):
+def _refine(exact, knots, values, slopes, rtol, atol, top):
     """Halve every interval that fails the bound or monotonicity at its check points until
-    none does; returns (knots, values, slopes)."""
+    none does, checking only the halves of those halved; returns (knots, values, slopes).
+    A halved interval's midpoint is its new knot and its quarter points the midpoints of
+    its halves: those exact runs are reused."""
+    pending = np.ones(knots.size - 1, dtype=bool)  # intervals to check, by their left knot
+    # (r [-], D_1 [m]) at each interval's midpoint where known (NaN elsewhere), by left knot
+    middle = np.full((knots.size - 1, 2), np.nan)
     for _ in range(_MAX_HALVINGS):
-        bad = _failing(exact, knots, values, slopes, rtol, atol)
+        bad = np.zeros(knots.size - 1, dtype=bool)
+        failing, points, truth = _failing(exact, knots, values, slopes, pending, middle[pending], rtol, atol)
+        bad[pending] = failing
         if not np.any(bad):
             return knots, values, slopes
-        new = 0.5 * (knots[:-1][bad] + knots[1:][bad])
-        new_values, new_slopes = exact(new), slopes_at(new)
+        points, truth = points[failing], truth[failing]
+        new = points[:, 1]
+        new_values, new_slopes = np.where(new >= top, 0.0, truth[:, 1]), _slopes(exact, new, top)
         order = np.argsort(np.concatenate([knots, new]), kind="stable")
         knots = np.concatenate([knots, new])[order]
         values = np.concatenate([values, new_values])[order]
         slopes = np.concatenate([slopes, new_slopes])[order]
+        # the halves: each halved interval's left part and the new knot's right part
+        pending = np.concatenate([bad, [False], np.ones(new.size, dtype=bool)])[order][:-1]
+        left = np.full((bad.size + 1, 2), np.nan)
+        left[:-1][bad] = np.column_stack([points[:, 0], truth[:, 0]])
+        middle = np.concatenate([left, np.column_stack([points[:, 2], truth[:, 2]])])[order][:-1]
     raise RuntimeError(f"the table did not meet max({rtol:g} D, {atol:g} m) after {_MAX_HALVINGS} halvings "
-                       f"near r = {knots[:-1][bad][:5]}")
+                       f"near r = {knots[:-1][pending][:5]}")
 
 
-def _failing(exact, knots, values, slopes, rtol, atol) -> np.ndarray:
-    """Per interval: True where the Hermite interpolant misses the bound at a quarter point
-    or the midpoint, or fails Fritsch & Carlson's monotonicity condition."""
-    h = np.diff(knots)
-    fractions = np.array([0.25, 0.5, 0.75])
-    points = knots[:-1, None] + fractions[None, :] * h[:, None]
-    truth = exact(points.ravel()).reshape(points.shape)
-    guess = _hermite(values[:-1, None], values[1:, None], slopes[:-1, None], slopes[1:, None], h[:, None],
-                     fractions[None, :])
+def _failing(exact, knots, values, slopes, which, middle, rtol, atol):
+    """For the intervals ``which`` (a mask by left knot), with (r, D_1) at their midpoints
+    where known (``middle``, (n, 2), NaN elsewhere: a midpoint within a rounding of the
+    exact one): (True where the Hermite interpolant misses the bound at a quarter point or
+    the midpoint, or fails Fritsch & Carlson's monotonicity condition; the three points r
+    [-] and D_1 there [m], each shape (n, 3))."""
+    x0, x1 = knots[:-1][which], knots[1:][which]
+    y0, y1, d0, d1 = values[:-1][which], values[1:][which], slopes[:-1][which], slopes[1:][which]
+    h = x1 - x0
+    points = x0[:, None] + np.array([0.25, 0.5, 0.75])[None, :] * h[:, None]
+    known = ~np.isnan(middle[:, 1])
+    points[known, 1] = middle[known, 0]
+    truth = np.empty(points.shape)
+    truth[known, 1] = middle[known, 1]
+    unknown = np.ones(points.shape, dtype=bool)
+    unknown[known, 1] = False
+    truth[unknown] = exact(points[unknown])
+    fractions = (points - x0[:, None]) / h[:, None]
+    guess = _hermite(y0[:, None], y1[:, None], d0[:, None], d1[:, None], h[:, None], fractions)
     missed = np.any(np.abs(guess - truth) > np.maximum(rtol * np.abs(truth), atol), axis=1)
-    secant = np.diff(values) / h
+    secant = (y1 - y0) / h
     with np.errstate(invalid="ignore", divide="ignore"):
-        alpha, beta = slopes[:-1] / secant, slopes[1:] / secant
+        alpha, beta = d0 / secant, d1 / secant
     flat = secant == 0
     wrong_way = ~flat & ((alpha < 0) | (beta < 0) | (alpha**2 + beta**2 > 9))
-    steps_in_flat = flat & ((slopes[:-1] != 0) | (slopes[1:] != 0))
+    steps_in_flat = flat & ((d0 != 0) | (d1 != 0))
     # an interval of adjacent floats cannot be halved: it passes or the table fails
-    splittable = h > 4 * np.spacing(knots[1:])
-    return (missed | ((wrong_way | steps_in_flat) & (np.abs(values[:-1] - values[1:]) > atol))) & splittable
+    splittable = h > 4 * np.spacing(x1)
+    return (missed | ((wrong_way | steps_in_flat) & (np.abs(y0 - y1) > atol))) & splittable, points, truth
 
 
 def _hermite(y0, y1, d0, d1, h, t):
@@ -286,84 +322,131 @@ def _hermite(y0, y1, d0, d1, h, t):
     return (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * d0 + (-2 * t3 + 3 * t2) * y1 + (t3 - t2) * h * d1
 
 
-def _buckets(knots, r_min, tops, n_buckets):
-    """Per member, the index of the last knot <= the left edge of each of ``n_buckets``
-    equal parts of [r_min, r_top]: shape (n_members, n_buckets)."""
-    out = np.zeros((knots.shape[0], n_buckets), dtype=np.int64)
-    for m, top in enumerate(tops):
-        if top > r_min:
-            edges = r_min + (top - r_min) * np.arange(n_buckets) / n_buckets
-            out[m] = np.maximum(np.searchsorted(knots[m], edges, side="right") - 1, 0)
+def _pieces(knots, values, slopes, counts):
+    """Each interval's (r_k, r_k+1, c0, c1, c2, c3): the Hermite cubic as c0 + c1 x + c2 x² + c3 x³,
+    x = r - r_k; +inf past the last interval. Shape (n_members, n_knots_max, 6)."""
+    out = np.full(knots.shape + (6,), np.inf)
+    for m, k in enumerate(counts):
+        x, y, d = knots[m, :k], values[m, :k], slopes[m, :k]
+        h = np.diff(x)
+        secant = np.diff(y) / h
+        out[m, :k - 1] = np.stack([x[:-1], x[1:], y[:-1], d[:-1], (3 * secant - 2 * d[:-1] - d[1:]) / h,
+                                   (d[:-1] + d[1:] - 2 * secant) / h**2], axis=1)
     return out
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
-def _unit(knots, values, slopes, buckets, r_min, per_bucket, r):
-    """D_1(r) [m] of one member by its table, for r_min <= r < r_top."""
-    b = min(int((r - r_min) * per_bucket), buckets.size - 1)
-    lo = buckets[b]
-    while knots[lo + 1] <= r:  # knots[-1] is r_top > r
-        lo += 1
-    h = knots[lo + 1] - knots[lo]
-    t = (r - knots[lo]) / h
-    t2 = t * t
-    t3 = t2 * t
-    return ((2 * t3 - 3 * t2 + 1) * values[lo] + (t3 - 2 * t2 + t) * h * slopes[lo]
-            + (-2 * t3 + 3 * t2) * values[lo + 1] + (t3 - t2) * h * slopes[lo + 1])
+def _index(knots, r_min, r_hi, parts):
+    """The index of each member's last knot <= the left edge of each of ``parts`` equal
+    parts of log r over [r_min, r_hi]: shape (parts, n_members), int32 (a part's members side by side)."""
+    edges = r_min * np.exp(math.log(r_hi / r_min) * np.arange(parts) / parts)
+    starts = [np.maximum(np.searchsorted(k, edges, side="right") - 1, 0) for k in knots]
+    return np.ascontiguousarray(np.array(starts, dtype=np.int32).T)
+
+
+@numba.njit(cache=True, nogil=True)
+def _below(ky, pga, r_min, where):
+    """Number the cells with 0 < ky < r_min · pga (finite) in ``where`` (0, 1, ...; -1 elsewhere); returns how many."""
+    n_low = 0
+    for i in range(ky.size):
+        k, p = ky[i], pga[i]
+        if k == k and p == p and p > 0.0 and k < r_min * p and abs(k) < np.inf and abs(p) < np.inf:
+            where[i] = n_low
+            n_low += 1
+        else:
+            where[i] = -1
+    return n_low
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def _cell(knots, values, slopes, buckets, tops, r_min, ky, pga, low, exact_low, buffer):
+def _unit(pieces, index, m, part, r):
+    """D_1(r) [m] of member m by its table, for r_min <= r < r_top; ``part``: r's part of the index."""
+    k = index[part, m]
+    while pieces[m, k, 1] <= r:  # the last interval ends at r_top > r
+        k += 1
+    while k > 0 and pieces[m, k, 0] > r:  # log r rounded into the next part
+        k -= 1
+    x = r - pieces[m, k, 0]
+    return pieces[m, k, 2] + x * (pieces[m, k, 3] + x * (pieces[m, k, 4] + x * pieces[m, k, 5]))
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _cell(pieces, index, per_log, tops, r_min, ky, pga, low, exact_low, buffer):
     """D [m] of every member at one cell into ``buffer``: NaN where ky or pga is NaN, the
     exact runs ``exact_low[:, low]`` where ``low`` >= 0 (r < r_min), else the tables."""
     if not (ky == ky) or not (pga == pga):
         buffer[:] = np.nan
-        return
-    if low >= 0:
+    elif low >= 0:
         buffer[:] = exact_low[:, low]
-        return
+    else:
+        cell_displacements(pieces, index, per_log, tops, r_min, ky, pga, buffer)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def cell_displacements(pieces, index, per_log, tops, r_min, ky, pga, buffer):
+    """D [m] of every member at one cell from the tables into ``buffer`` (ky [g] >= r_min · pga,
+    pga [g] >= 0; the arguments before them: :meth:`DisplacementTables._lookup`)."""
     if pga <= 0.0 or ky >= pga:
         buffer[:] = 0.0
         return
     r = ky / pga
-    for m in range(knots.shape[0]):
-        top = tops[m]
-        if r >= top:
+    part = -1  # found at the first member that slides: one logarithm per cell
+    for m in range(pieces.shape[0]):
+        if r >= tops[m]:
             buffer[m] = 0.0
-        else:
-            buffer[m] = pga * _unit(knots[m], values[m], slopes[m], buckets[m], r_min,
-                                    buckets.shape[1] / (top - r_min), r)
+            continue
+        if part < 0:
+            part = min(int(math.log(r / r_min) * per_log), index.shape[0] - 1)
+        buffer[m] = pga * _unit(pieces, index, m, part, r)
 
 
 @numba.njit(cache=True, nogil=True)
-def _evaluate(knots, values, slopes, buckets, tops, r_min, ky, pga, exact_low, where_low, out):
-    buffer = np.empty(knots.shape[0])
+def _evaluate(pieces, index, per_log, tops, r_min, ky, pga, exact_low, where_low, out):
+    buffer = np.empty(pieces.shape[0])
     for i in range(ky.size):
-        _cell(knots, values, slopes, buckets, tops, r_min, ky[i], pga[i], where_low[i], exact_low, buffer)
+        _cell(pieces, index, per_log, tops, r_min, ky[i], pga[i], where_low[i], exact_low, buffer)
         out[:, i] = buffer
 
 
 @numba.njit(cache=True, nogil=True)
-def _statistics(knots, values, slopes, buckets, tops, r_min, ky, pga, exact_low, where_low, thresholds, median, exceed):
-    n = knots.shape[0]
-    buffer = np.empty(n)
+def _statistics(pieces, index, per_log, tops, r_min, ky, pga, exact_low, where_low, thresholds, median, exceed):
+    n = pieces.shape[0]
+    buffer, values, order = np.empty(n), np.empty(n), np.arange(n)
     for i in range(ky.size):
-        _cell(knots, values, slopes, buckets, tops, r_min, ky[i], pga[i], where_low[i], exact_low, buffer)
+        _cell(pieces, index, per_log, tops, r_min, ky[i], pga[i], where_low[i], exact_low, buffer)
         if not (buffer[0] == buffer[0]):
             median[i] = np.nan
             exceed[:, i] = np.nan
             continue
-        for a in range(1, n):  # insertion sort: a few tens of members
-            v = buffer[a]
-            b = a - 1
-            while b >= 0 and buffer[b] > v:
-                buffer[b + 1] = buffer[b]
-                b -= 1
-            buffer[b + 1] = v
-        median[i] = 0.5 * (buffer[(n - 1) // 2] + buffer[n // 2])
         for j in range(thresholds.size):
             above = 0
             for m in range(n):
                 if buffer[m] > thresholds[j]:
                     above += 1
             exceed[j, i] = above / n
+        median[i] = median_of(buffer, order, values)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def median_of(buffer, order, values):
+    """The median of ``buffer`` (n,): 0 where more than half of it is 0 and none below; else
+    sorted into ``values`` (n,) starting from the permutation ``order`` (int, n) of the last
+    call, updated: a neighbouring cell's members come nearly in order."""
+    n = buffer.size
+    zeros, negative = 0, False
+    for m in range(n):
+        zeros += buffer[m] == 0.0
+        negative |= buffer[m] < 0.0
+    if zeros > n // 2 and not negative:  # both middle values are 0
+        return 0.0
+    for t in range(n):
+        values[t] = buffer[order[t]]
+    for a in range(1, n):  # insertion sort: a few tens of members, nearly in order
+        v, o = values[a], order[a]
+        b = a - 1
+        while b >= 0 and values[b] > v:
+            values[b + 1] = values[b]
+            order[b + 1] = order[b]
+            b -= 1
+        values[b + 1] = v
+        order[b + 1] = o
+    return 0.5 * (values[(n - 1) // 2] + values[n // 2])
