@@ -18,6 +18,7 @@ import pandas as pd
 
 from ..excitation import Record
 from ._distributions import LogNormal, Normal, Truncated, Uniform
+from ._infinite_slope_model import InfiniteSlope, log_posterior as slopes_log_posterior, slopes_back_analysis
 from ._models import Rigid
 
 #: the prior quantiles whose D bound what an observation may be (the reachability check)
@@ -208,7 +209,13 @@ def log_posterior(observations, model, priors):
     """ln p(ky | observations) up to a constant, as a JAX function of ky [g] (a scalar):
     the prior's log density plus each observation's log likelihood; its gradient
     (``jax.grad``) is exact, through the engine's dD/dky. Evaluate it with JAX in float64
-    (inside ``jax.enable_x64(True)``)."""
+    (inside ``jax.enable_x64(True)``).
+
+    For an :class:`InfiniteSlope` (``observations`` slope name -> observations), a JAX
+    function of θ, the 1-D array of its uncertain parameters (c_kPa [kPa], phi_deg [deg],
+    then each t_<slope>_m [m] with a prior, in that order)."""
+    if isinstance(model, InfiniteSlope):
+        return slopes_log_posterior(observations, model, priors)
     observations, prior = _checked(observations, model, priors)
     return _log_posterior(observations, model, prior)
 
@@ -373,7 +380,11 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
     Args:
         observations: a :class:`Observation` or a sequence of them (each a record, its
             PGA, and a displacement or a bound [m] with its log-normal error).
-        model: :class:`Rigid` (the rigid block; D from :func:`blockdae.newmark`).
+        model: :class:`Rigid` (the rigid block; D from :func:`blockdae.newmark`), or an
+            :class:`InfiniteSlope`: slopes of one unit sharing c' and φ' (then
+            ``observations`` is a dict slope name -> observations, ``priors``
+            ``{"c_kPa": ..., "phi_deg": ...}`` (a distribution, or a number where known),
+            NUTS only, and the result a :class:`SlopesBackAnalysis`).
         priors: ``{"ky": distribution}`` (:class:`LogNormal`, :class:`Uniform`, or a
             :class:`Truncated` one; ky > 0 [g]).
         method: "nuts" (NumPyro's No-U-Turn sampler on the exact gradient, ``chains``
@@ -391,6 +402,10 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
             4 sigma_ln above D at the prior's 1e-6 quantile of ky, or below D at its
             1 - 1e-6 quantile), a prior with ky <= 0, a model other than the rigid block.
     """
+    if isinstance(model, InfiniteSlope):
+        if method != "nuts":
+            raise ValueError(f"method={method!r}: the slopes' shared strength is sampled by NUTS only (method='nuts')")
+        return slopes_back_analysis(observations, model, priors, chains=chains, draws=draws, warmup=warmup, seed=seed)
     observations, prior = _checked(observations, model, priors)
     if method not in ("nuts", "laplace"):
         raise ValueError(f"method={method!r} is unknown; choose 'nuts' or 'laplace'")
