@@ -15,6 +15,6 @@ from ._result import Exceedance
 from ._study import exceedance
 
 __all__ = ["BackAnalysis", "ConvergenceWarning", "DesignModel", "Exceedance", "Flexible", "InfiniteSlope", "LogNormal",
-           "MeanKyDesign", "Normal", "Observation", "Planar", "Rigid", "Simulated", "Slope", "SlopesBackAnalysis", "Truncated", "Uniform",
-           "back_analysis", "exceedance", "exceedance_figure", "ky_for_displacement", "ky_for_percentile",
-           "log_posterior", "mean_ky_for_probability"]
+           "MeanKyDesign", "Normal", "Observation", "Planar", "Rigid", "Simulated", "Slope", "SlopesBackAnalysis",
+           "Truncated", "Uniform", "back_analysis", "exceedance", "exceedance_figure", "ky_for_displacement",
+           "ky_for_percentile", "log_posterior", "mean_ky_for_probability"]

@@ -212,8 +212,17 @@ def _log_prior(uncertain):
     """The uncertain parameters' joint log prior density as a JAX function (name -> a scalar)."""
     from ._back_analysis import _numpyro_prior
 
+    import jax.numpy as jnp
+
     densities = {name: _numpyro_prior(prior) for name, prior in uncertain.items()}
-    return lambda values: sum(d.log_prob(values[name]) for name, d in densities.items())
+    medians = {name: float(prior.ppf(0.5)) for name, prior in uncertain.items()}
+
+    def log_prior(values):  # -inf outside a prior's support (its density evaluated at the median there)
+        inside = {name: d.support(values[name]) for name, d in densities.items()}
+        return sum(jnp.where(inside[n], d.log_prob(jnp.where(inside[n], values[n], medians[n])), -jnp.inf)
+                   for n, d in densities.items())
+
+    return log_prior
 
 
 def log_posterior(observations, slopes, priors):
@@ -330,7 +339,6 @@ def _nuts(log_likelihood, uncertain, starts, draws, warmup, seed):
     """NumPyro's NUTS from ``starts`` (name -> (chains,)); the draws (name -> (chains,
     draws)) and ArviZ's diagnostics per parameter."""
     import jax
-    import numpyro
     from numpyro.distributions.transforms import biject_to
     from numpyro.infer import MCMC, NUTS
 
@@ -341,17 +349,25 @@ def _nuts(log_likelihood, uncertain, starts, draws, warmup, seed):
         import arviz
 
     densities = {name: _numpyro_prior(prior) for name, prior in uncertain.items()}
+    transforms = {name: biject_to(d.support) for name, d in densities.items()}
+    names = list(densities)
     chains = len(next(iter(starts.values())))
 
-    def numpyro_model():
-        values = {name: numpyro.sample(name, d) for name, d in densities.items()}
-        numpyro.factor("observations", log_likelihood(values))
+    def constrained(z):
+        return {name: transforms[name](z[i]) for i, name in enumerate(names)}
 
-    mcmc = MCMC(NUTS(numpyro_model), num_warmup=warmup, num_samples=draws, num_chains=chains,
-                chain_method="vectorized", progress_bar=False)
-    init = {name: biject_to(densities[name].support).inv(jax.numpy.asarray(v)) for name, v in starts.items()}
+    def potential(z):  # -ln p of the unconstrained parameters (the transforms' Jacobians included)
+        values = constrained(z)
+        log_p = sum(densities[n].log_prob(values[n]) + transforms[n].log_abs_det_jacobian(z[i], values[n])
+                    for i, n in enumerate(names))
+        return -(log_p + log_likelihood(values))
+
+    mcmc = MCMC(NUTS(potential_fn=potential, dense_mass=True), num_warmup=warmup, num_samples=draws,
+                num_chains=chains, chain_method="vectorized", progress_bar=False)
+    init = jax.numpy.stack([transforms[n].inv(jax.numpy.asarray(starts[n])) for n in names], axis=-1)
     mcmc.run(jax.random.PRNGKey(seed), init_params=init, extra_fields=("diverging",))
-    samples = {name: np.asarray(v, dtype=float) for name, v in mcmc.get_samples(group_by_chain=True).items()}
+    z = np.asarray(mcmc.get_samples(group_by_chain=True), dtype=float)
+    samples = {n: np.asarray(v, dtype=float) for n, v in jax.vmap(jax.vmap(constrained))(z).items()}
     divergences = int(np.sum(mcmc.get_extra_fields()["diverging"]))
     rows = [{"parameter": name, "r_hat": float(arviz.rhat(x)) if chains > 1 else np.nan,
              "ess_bulk": float(arviz.ess(x, method="bulk")), "ess_tail": float(arviz.ess(x, method="tail")),
