@@ -18,7 +18,6 @@ import pandas as pd
 
 from ..excitation import Record
 from ._distributions import LogNormal, Normal, Truncated, Uniform
-from ._infinite_slope_model import InfiniteSlope, log_posterior as slopes_log_posterior, slopes_back_analysis
 from ._models import Rigid
 
 #: the prior quantiles whose D bound what an observation may be (the reachability check)
@@ -214,8 +213,8 @@ def log_posterior(observations, model, priors):
     For an :class:`InfiniteSlope` (``observations`` slope name -> observations), a JAX
     function of θ, the 1-D array of its uncertain parameters (c_kPa [kPa], phi_deg [deg],
     then each t_<slope>_m [m] with a prior, in that order)."""
-    if isinstance(model, InfiniteSlope):
-        return slopes_log_posterior(observations, model, priors)
+    if hasattr(model, "log_posterior"):  # a parameterisation of its own (design.InfiniteSlope)
+        return model.log_posterior(observations, priors)
     observations, prior = _checked(observations, model, priors)
     return _log_posterior(observations, model, prior)
 
@@ -402,10 +401,9 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
             4 sigma_ln above D at the prior's 1e-6 quantile of ky, or below D at its
             1 - 1e-6 quantile), a prior with ky <= 0, a model other than the rigid block.
     """
-    if isinstance(model, InfiniteSlope):
-        if method != "nuts":
-            raise ValueError(f"method={method!r}: the slopes' shared strength is sampled by NUTS only (method='nuts')")
-        return slopes_back_analysis(observations, model, priors, chains=chains, draws=draws, warmup=warmup, seed=seed)
+    if hasattr(model, "sample_posterior"):  # a parameterisation that samples itself (design.InfiniteSlope)
+        return model.sample_posterior(observations, priors, method=method, chains=chains, draws=draws, warmup=warmup,
+                                      seed=seed)
     observations, prior = _checked(observations, model, priors)
     if method not in ("nuts", "laplace"):
         raise ValueError(f"method={method!r} is unknown; choose 'nuts' or 'laplace'")

@@ -18,7 +18,9 @@ import warnings
 import numpy as np
 import pandas as pd
 
-from ..regional._infinite_slope import WATER_UNIT_WEIGHT, factor_of_safety
+from ..regional import WATER_UNIT_WEIGHT, factor_of_safety
+from ._back_analysis import (ESS_PER_CHAIN, RHAT_LIMIT, ConvergenceWarning, Observation, _float64,
+                             _log_likelihood as _observation_log_likelihood, _numpyro_prior)
 from ._distributions import DISTRIBUTIONS
 from ._models import Rigid
 
@@ -90,6 +92,16 @@ class InfiniteSlope:
         """slope name -> the name of its thickness parameter ``t_<slope>_m``."""
         return {name: f"t_{name}_m" for name in self.slopes}
 
+    def log_posterior(self, observations, priors):
+        """:func:`log_posterior` for these slopes (what :func:`design.log_posterior` calls)."""
+        return log_posterior(observations, self, priors)
+
+    def sample_posterior(self, observations, priors, *, method="nuts", chains=4, draws=500, warmup=500, seed=0):
+        """:func:`slopes_back_analysis` (what :func:`design.back_analysis` calls); NUTS only."""
+        if method != "nuts":
+            raise ValueError(f"method={method!r}: the slopes' shared strength is sampled by NUTS only (method='nuts')")
+        return slopes_back_analysis(observations, self, priors, chains=chains, draws=draws, warmup=warmup, seed=seed)
+
     def yield_accelerations(self, values, xp=np):
         """(FS [-], ky [g]) of each slope, two dicts slope name -> an array, from
         ``values`` (``c_kPa``, ``phi_deg`` and, for a slope whose thickness is a prior,
@@ -110,8 +122,6 @@ class InfiniteSlope:
 def _checked(observations, slopes, priors):
     """(observations: slope name -> list of Observation, fixed: name -> number,
     uncertain: name -> distribution), checked."""
-    from ._back_analysis import Observation
-
     if not isinstance(observations, dict) or not observations:
         raise ValueError("observations must be a dict slope name -> a design.Observation or a list of them")
     by_slope = {}
@@ -182,8 +192,6 @@ def _log_likelihood(observations, slopes, fixed):
     the formula's domain."""
     import jax.numpy as jnp
 
-    from ._back_analysis import _log_likelihood as of_one
-
     functions = {name: [(o, _displacement_function(slopes.model, o.record, o.pga_g)) for o in seen]
                  for name, seen in observations.items()}
 
@@ -198,7 +206,7 @@ def _log_likelihood(observations, slopes, fixed):
         for name, pairs in functions.items():
             stands = ky[name] > 0  # FS > 1
             at = jnp.where(stands, ky[name], 1.0)  # any ky > 0: the value is masked below
-            total += sum(jnp.where(stands, of_one(o, f(at)), -jnp.inf) for o, f in pairs)
+            total += sum(jnp.where(stands, _observation_log_likelihood(o, f(at)), -jnp.inf) for o, f in pairs)
         return jnp.where(inside, total, -jnp.inf)
 
     return log_likelihood
@@ -210,8 +218,6 @@ _SAFE = {"c_kPa": 0.0, "phi_deg": 30.0}
 
 def _log_prior(uncertain):
     """The uncertain parameters' joint log prior density as a JAX function (name -> a scalar)."""
-    from ._back_analysis import _numpyro_prior
-
     import jax.numpy as jnp
 
     densities = {name: _numpyro_prior(prior) for name, prior in uncertain.items()}
@@ -293,8 +299,6 @@ def slopes_back_analysis(observations, slopes, priors, *, chains=4, draws=500, w
     chains), started from the most probable of 256 prior draws."""
     import time
 
-    from ._back_analysis import _float64
-
     started = time.perf_counter()
     observations, fixed, uncertain = _checked(observations, slopes, priors)
     names = list(uncertain)
@@ -341,8 +345,6 @@ def _nuts(log_likelihood, uncertain, starts, draws, warmup, seed):
     import jax
     from numpyro.distributions.transforms import biject_to
     from numpyro.infer import MCMC, NUTS
-
-    from ._back_analysis import ESS_PER_CHAIN, RHAT_LIMIT, ConvergenceWarning, _numpyro_prior
 
     with warnings.catch_warnings():  # ArviZ's notice of its coming refactor, at import
         warnings.simplefilter("ignore", FutureWarning)
