@@ -300,6 +300,9 @@ def slopes_back_analysis(observations, slopes, priors, *, chains=4, draws=500, w
     import time
 
     started = time.perf_counter()
+    for field, value in (("chains", chains), ("draws", draws), ("warmup", warmup)):
+        if not (isinstance(value, int) and not isinstance(value, bool) and value >= (field != "warmup")):
+            raise ValueError(f"{field}={value!r} must be a whole number >= {int(field != 'warmup')}")
     observations, fixed, uncertain = _checked(observations, slopes, priors)
     names = list(uncertain)
     with _float64():
