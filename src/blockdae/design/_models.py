@@ -121,18 +121,11 @@ class Rigid(DesignModel):
             return self._with_derivative(record, pga, ky)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", UnitsWarning)  # a sample at or above the peak slides nowhere: D = 0
-            result = newmark(record, ky=ky, pga=pga, polarity=_engine_polarity(self.polarity), g=self.g,
-                             derivative=derivative)
-        d = _read(self.polarity, result.normal, result.inverse)
-        if not derivative:
-            return d
-        if self.polarity == "larger":
-            slope = np.where(result.normal >= result.inverse, result.normal_dky, result.inverse_dky)
-        else:
-            slope = result.normal_dky if self.polarity == "normal" else result.inverse_dky
-        return d, np.asarray(slope, dtype=float)
+            result = newmark(record, ky=ky, pga=pga, polarity=_engine_polarity(self.polarity), g=self.g)
+        return _read(self.polarity, result.normal, result.inverse)
 
     def _with_derivative(self, record, pga, ky):
+        """D [m] and dD/dky [m/g] at each ky [g] from :func:`blockdae.sliding.downslope`."""
         if not np.all(np.isfinite(ky) & (ky > 0)):
             bad = ky[~(np.isfinite(ky) & (ky > 0))].flat[0]
             raise ValueError(f"ky={float(bad)!r} must be a positive yield acceleration [g]")
