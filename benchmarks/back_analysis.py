@@ -33,7 +33,7 @@ import numpy as np
 
 import blockdae as bd
 from blockdae import design
-from _common import G, print_table, sample_records
+from _common import print_table, sample_records
 
 RECORD = "Northridge_1994_PAC-175"
 PGA = 0.4  # g
