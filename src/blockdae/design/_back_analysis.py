@@ -208,7 +208,13 @@ def log_posterior(observations, model, priors):
     """ln p(ky | observations) up to a constant, as a JAX function of ky [g] (a scalar):
     the prior's log density plus each observation's log likelihood; its gradient
     (``jax.grad``) is exact, through the engine's dD/dky. Evaluate it with JAX in float64
-    (inside ``jax.enable_x64(True)``)."""
+    (inside ``jax.enable_x64(True)``).
+
+    For an :class:`InfiniteSlope` (``observations`` slope name -> observations), a JAX
+    function of θ, the 1-D array of its uncertain parameters (c_kPa [kPa], phi_deg [deg],
+    then each t_<slope>_m [m] with a prior, in that order)."""
+    if hasattr(model, "log_posterior"):  # a parameterisation of its own (design.InfiniteSlope)
+        return model.log_posterior(observations, priors)
     observations, prior = _checked(observations, model, priors)
     return _log_posterior(observations, model, prior)
 
@@ -373,7 +379,11 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
     Args:
         observations: a :class:`Observation` or a sequence of them (each a record, its
             PGA, and a displacement or a bound [m] with its log-normal error).
-        model: :class:`Rigid` (the rigid block; D from :func:`blockdae.newmark`).
+        model: :class:`Rigid` (the rigid block; D from :func:`blockdae.newmark`), or an
+            :class:`InfiniteSlope`: slopes of one unit sharing c' and φ' (then
+            ``observations`` is a dict slope name -> observations, ``priors``
+            ``{"c_kPa": ..., "phi_deg": ...}`` (a distribution, or a number where known),
+            NUTS only, and the result a :class:`SlopesBackAnalysis`).
         priors: ``{"ky": distribution}`` (:class:`LogNormal`, :class:`Uniform`, or a
             :class:`Truncated` one; ky > 0 [g]).
         method: "nuts" (NumPyro's No-U-Turn sampler on the exact gradient, ``chains``
@@ -391,6 +401,9 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
             4 sigma_ln above D at the prior's 1e-6 quantile of ky, or below D at its
             1 - 1e-6 quantile), a prior with ky <= 0, a model other than the rigid block.
     """
+    if hasattr(model, "sample_posterior"):  # a parameterisation that samples itself (design.InfiniteSlope)
+        return model.sample_posterior(observations, priors, method=method, chains=chains, draws=draws, warmup=warmup,
+                                      seed=seed)
     observations, prior = _checked(observations, model, priors)
     if method not in ("nuts", "laplace"):
         raise ValueError(f"method={method!r} is unknown; choose 'nuts' or 'laplace'")
