@@ -11,7 +11,7 @@ from blockdae.planar import PlanarMode
 from blockdae.core._sensitivities import finite_differences
 from blockdae.backends import make_backend
 from conftest import load_sample_record
-from test_planar_ida import (PULSE, VERTICAL, X_ONLY, assert_agrees, assert_reduces, elms, slide_reference,
+from test_planar_ida import (MU, PULSE, VERTICAL, X_ONLY, assert_agrees, assert_reduces, elms, slide_reference,
                              stop_after_the_pulse)
 
 RTOL = 1e-10
@@ -150,6 +150,20 @@ def test_planar_sensitivities_of_a_batch_are_those_of_its_sets():
     assert derivatives.shape == (2, 2)
     for i in range(2):
         np.testing.assert_array_equal(derivatives[i], bd.sensitivities(batch.item(i), motion, wrt=("bias_x",))["bias_x"])
+
+
+def test_an_item_of_a_batch_keeps_the_kinetic_friction_following_mu():
+    """mu_kinetic None (f = mu): an item of a batch over mu has the single block's
+    derivative by mu, the kinetic part included (an item with f fixed at its value
+    would give only the static part, ~1e-15)."""
+    block, motion = elms(0.4)
+    batch = block.replace(mu=np.array([MU, 1.1 * MU]))
+    item = batch.item(0)
+    assert item.mu_kinetic is None and item.tied_parameters() == block.tied_parameters()
+    single = bd.sensitivities(block, motion, wrt=("mu",))["mu"]
+    assert np.linalg.norm(single) > 1.0  # the kinetic part: the static one alone is ~1e-15
+    np.testing.assert_allclose(bd.sensitivities(item, motion, wrt=("mu",))["mu"], single, rtol=1e-12)
+    np.testing.assert_allclose(bd.sensitivities(batch, motion, wrt=("mu",))["mu"][0], single, rtol=1e-12)
 
 
 def test_planar_sensitivities_refuse_unknown_parameters():

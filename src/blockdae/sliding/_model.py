@@ -255,10 +255,12 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         return float(self.mu), float(self.friction_kinetic), float(self.bias), float(self.g), 1.0
 
     def item(self, index: int) -> "SlidingBlock":
-        """The ``index``-th parameter set of a batch, as a scalar block."""
+        """The ``index``-th parameter set of a batch, as a scalar block (whose
+        ``mu_kinetic`` stays None, following ``mu``, where the batch's does)."""
         mu, f, bias = (np.broadcast_to(p, self.batch_shape)[index]
                        for p in (self.mu, self.friction_kinetic, self.bias))
-        return dataclasses.replace(self, mu=float(mu), mu_kinetic=float(f), bias=float(bias))
+        return dataclasses.replace(self, mu=float(mu), mu_kinetic=None if self.mu_kinetic is None else float(f),
+                                   bias=float(bias))
 
     def replace(self, **changes) -> "SlidingBlock":
         """A copy with some parameters changed (validated again)."""
