@@ -3,6 +3,8 @@ sensitivities (variational equation and saltation jumps along the located trajec
 against IDA, CVODE, the 1-D exact block, the polar reference of tests/test_planar_ida.py
 and central differences on CVODE (an independent backend) at rtol 1e-12."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -41,6 +43,31 @@ def test_jax_runs_a_planar_block():
     sol = bd.simulate(block, motion, backend="jax")
     assert isinstance(sol, bd.planar.PlanarSolution) and sol.backend == "jax"
     assert sol.stats["n_steps"] > 0
+
+
+def test_a_planar_run_warns_of_no_invalid_value():
+    """The driver checks the slide's rates at the state at rest (c = 0, no direction): no
+    0/0 there. Recorded rather than raised, as the check catches what the hooks raise."""
+    block, _, motion, _ = X_ONLY["pulse"]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        bd.simulate(block, motion, backend="jax")
+    assert [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)] == []
+
+
+def test_the_slide_rates_at_c_zero_have_finite_values_and_derivatives():
+    """e = 0 where c = 0, and the rates' Jacobian there finite (no infinite slope of |c|)."""
+    import jax
+    import jax.numpy as jnp
+    from blockdae.planar import _rules
+
+    rates = lambda y: jnp.stack(_rules.slip_rates(y, -0.3, 0.2, 0.5, jnp))
+    with jax.enable_x64(True):
+        at_rest = jnp.array([0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+        assert np.all(np.isfinite(rates(at_rest))) and float(rates(at_rest)[0]) == 0.0
+        assert np.all(np.isfinite(jax.jacfwd(rates)(at_rest))) and np.all(np.isfinite(jax.jacrev(rates)(at_rest)))
+        moving = at_rest.at[3].set(0.6).at[4].set(0.8)  # |c| = 1: e = c exactly
+        np.testing.assert_array_equal(np.asarray(rates(moving))[:2], [0.6, 0.8])
 
 
 @pytest.mark.parametrize("case", ["pulse", pytest.param("harmonic", marks=pytest.mark.slow)])
