@@ -3,6 +3,8 @@ sensitivities (variational equation and saltation jumps along the located trajec
 against IDA, CVODE, the 1-D exact block, the polar reference of tests/test_planar_ida.py
 and central differences on CVODE (an independent backend) at rtol 1e-12."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -11,7 +13,7 @@ from blockdae.planar import PlanarMode
 from blockdae.core._sensitivities import finite_differences
 from blockdae.backends import make_backend
 from conftest import load_sample_record
-from test_planar_ida import (PULSE, VERTICAL, X_ONLY, assert_agrees, assert_reduces, elms, slide_reference,
+from test_planar_ida import (MU, PULSE, VERTICAL, X_ONLY, assert_agrees, assert_reduces, elms, slide_reference,
                              stop_after_the_pulse)
 
 RTOL = 1e-10
@@ -41,6 +43,31 @@ def test_jax_runs_a_planar_block():
     sol = bd.simulate(block, motion, backend="jax")
     assert isinstance(sol, bd.planar.PlanarSolution) and sol.backend == "jax"
     assert sol.stats["n_steps"] > 0
+
+
+def test_a_planar_run_warns_of_no_invalid_value():
+    """The driver checks the slide's rates at the state at rest (c = 0, no direction): no
+    0/0 there. Recorded rather than raised, as the check catches what the hooks raise."""
+    block, _, motion, _ = X_ONLY["pulse"]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        bd.simulate(block, motion, backend="jax")
+    assert [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)] == []
+
+
+def test_the_slide_rates_at_c_zero_have_finite_values_and_derivatives():
+    """e = 0 where c = 0, and the rates' Jacobian there finite (no infinite slope of |c|)."""
+    import jax
+    import jax.numpy as jnp
+    from blockdae.planar import _rules
+
+    rates = lambda y: jnp.stack(_rules.slip_rates(y, -0.3, 0.2, 0.5, jnp))
+    with jax.enable_x64(True):
+        at_rest = jnp.array([0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+        assert np.all(np.isfinite(rates(at_rest))) and float(rates(at_rest)[0]) == 0.0
+        assert np.all(np.isfinite(jax.jacfwd(rates)(at_rest))) and np.all(np.isfinite(jax.jacrev(rates)(at_rest)))
+        moving = at_rest.at[3].set(0.6).at[4].set(0.8)  # |c| = 1: e = c exactly
+        np.testing.assert_array_equal(np.asarray(rates(moving))[:2], [0.6, 0.8])
 
 
 @pytest.mark.parametrize("case", ["pulse", pytest.param("harmonic", marks=pytest.mark.slow)])
@@ -150,6 +177,20 @@ def test_planar_sensitivities_of_a_batch_are_those_of_its_sets():
     assert derivatives.shape == (2, 2)
     for i in range(2):
         np.testing.assert_array_equal(derivatives[i], bd.sensitivities(batch.item(i), motion, wrt=("bias_x",))["bias_x"])
+
+
+def test_an_item_of_a_batch_keeps_the_kinetic_friction_following_mu():
+    """mu_kinetic None (f = mu): an item of a batch over mu has the single block's
+    derivative by mu, the kinetic part included (an item with f fixed at its value
+    would give only the static part, ~1e-15)."""
+    block, motion = elms(0.4)
+    batch = block.replace(mu=np.array([MU, 1.1 * MU]))
+    item = batch.item(0)
+    assert item.mu_kinetic is None and item.tied_parameters() == block.tied_parameters()
+    single = bd.sensitivities(block, motion, wrt=("mu",))["mu"]
+    assert np.linalg.norm(single) > 1.0  # the kinetic part: the static one alone is ~1e-15
+    np.testing.assert_allclose(bd.sensitivities(item, motion, wrt=("mu",))["mu"], single, rtol=1e-12)
+    np.testing.assert_allclose(bd.sensitivities(batch, motion, wrt=("mu",))["mu"][0], single, rtol=1e-12)
 
 
 def test_planar_sensitivities_refuse_unknown_parameters():

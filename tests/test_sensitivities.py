@@ -144,6 +144,20 @@ def test_batch_is_one_vmapped_call_matching_single_sets(backend):
         np.testing.assert_allclose(s[name][1], one[name], rtol=1e-12)
 
 
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_an_item_of_a_batch_keeps_the_kinetic_friction_following_mu(backend):
+    """mu_kinetic None (f = mu): an item of a batch over mu has the single block's
+    derivative by mu, the kinetic part included (with f fixed at its value, only the
+    static part: ~1e-16 m against 0.139 m here)."""
+    motion = bd.Harmonic(3.0, 1.0)
+    item = bd.SlidingBlock(mu=np.array([0.2, 0.25])).item(0)
+    assert item.mu_kinetic is None
+    single = bd.sensitivities(bd.SlidingBlock(mu=0.2), motion, 3.0, wrt="mu", backend=backend)["mu"]
+    assert abs(single) > 0.1
+    np.testing.assert_allclose(bd.sensitivities(item, motion, 3.0, wrt="mu", backend=backend)["mu"], single,
+                               rtol=1e-12)
+
+
 def test_backends_agree_on_harmonic_with_kinetic_friction_and_bias():
     """Seed 000 Example 3 (f = 0.4, R/Q = 0.3), u(3 s): twin vs exact within 1e-8."""
     block, motion = bd.SlidingBlock(0.6, 0.4, bias=0.3), bd.Harmonic(7.0, 1.0)

@@ -151,9 +151,11 @@ class PlanarBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
                 for name, p in zip(("mu", "mu_kinetic", "bias_x", "bias_y"), values)}
 
     def item(self, index: int) -> "PlanarBlock":
-        """The ``index``-th parameter set of a batch, as one block."""
+        """The ``index``-th parameter set of a batch, as one block (whose ``mu_kinetic``
+        stays None, following ``mu``, where the batch's does)."""
         p = {name: float(value[index]) for name, value in self.batch_parameters().items()}
-        return dataclasses.replace(self, mu=p["mu"], mu_kinetic=p["mu_kinetic"], bias=(p["bias_x"], p["bias_y"]))
+        mu_kinetic = None if self.mu_kinetic is None else p["mu_kinetic"]  # None: f follows mu (tied_parameters)
+        return dataclasses.replace(self, mu=p["mu"], mu_kinetic=mu_kinetic, bias=(p["bias_x"], p["bias_y"]))
 
     def engine_parameters(self, scale=(1.0,)) -> np.ndarray:
         """The compiled engine's parameter rows, (m * s, 8): (mu, mu_kinetic, bias_x,

@@ -48,11 +48,13 @@ def circle_margin(mu, n, n_rate, sx, sy, rx, ry):
 
 # ---- flows ------------------------------------------------------------------------------
 def slip_rates(y, rx, ry, kinetic, xp):
-    """The slide's e = c / |c| [-], s' [m/s²] and c' [1/s] as (e_x, e_y, s', c_x', c_y'),
+    """The slide's e = c / |c| [-] (0 where c = 0), s' [m/s²] and c' [1/s] as (e_x, e_y, s', c_x', c_y'),
     with relative acceleration (rx, ry) = F - sigma [m/s²] besides the kinetic friction
     ``kinetic`` = f n [m/s²] along -e (0 where F is the friction already)."""
-    size = xp.sqrt(y[_CX] ** 2 + y[_CY] ** 2)
-    ex, ey = y[_CX] / size, y[_CY] / size
+    square = y[_CX] ** 2 + y[_CY] ** 2
+    moving = square > 0  # c = 0 (a state at rest, as the driver's shape check gives): e = 0, no 0/0
+    size = xp.where(moving, xp.sqrt(xp.where(moving, square, 1.0)), 0.0)  # no infinite slope of sqrt at 0
+    ex, ey = y[_CX] / xp.where(moving, size, 1.0), y[_CY] / xp.where(moving, size, 1.0)
     along = ex * rx + ey * ry - kinetic  # e . (F - sigma) - f n
     across = ex * ry - ey * rx  # e_perp . (F - sigma), e_perp = (-e_y, e_x)
     s = y[_S]

@@ -11,6 +11,7 @@ Stick holds while |sigma| <= mu g. In slip+ / slip- the kinetic friction f g opp
 the relative velocity, so dv/dt = (R/Q -/+ f) g - a(t).
 """
 
+import copy
 import dataclasses
 
 import numpy as np
@@ -255,10 +256,12 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
         return float(self.mu), float(self.friction_kinetic), float(self.bias), float(self.g), 1.0
 
     def item(self, index: int) -> "SlidingBlock":
-        """The ``index``-th parameter set of a batch, as a scalar block."""
+        """The ``index``-th parameter set of a batch, as a scalar block (whose
+        ``mu_kinetic`` stays None, following ``mu``, where the batch's does)."""
         mu, f, bias = (np.broadcast_to(p, self.batch_shape)[index]
                        for p in (self.mu, self.friction_kinetic, self.bias))
-        return dataclasses.replace(self, mu=float(mu), mu_kinetic=float(f), bias=float(bias))
+        return dataclasses.replace(self, mu=float(mu), mu_kinetic=None if self.mu_kinetic is None else float(f),
+                                   bias=float(bias))
 
     def replace(self, **changes) -> "SlidingBlock":
         """A copy with some parameters changed (validated again)."""
@@ -273,6 +276,22 @@ class SlidingBlock(BatchedModel, DifferentiableModel, EngineModel, StudyModel):
     def parameter_units(self) -> dict:
         """mu, mu_kinetic, bias, scale [-] and A [g]."""
         return dict(PARAMETER_UNITS)
+
+    def parameters(self) -> dict:
+        """What :func:`bd.sensitivities` differentiates it by (besides the motion's A and
+        scale): mu, mu_kinetic (f, the coefficient in effect), bias [-]."""
+        return {"mu": self.mu, "mu_kinetic": self.friction_kinetic, "bias": self.bias}
+
+    def with_parameters(self, values) -> "SlidingBlock":
+        """This block with ``values`` (names of :meth:`parameters`), not validated; its
+        ``mu_kinetic`` stays None (following mu) unless ``values`` gives it."""
+        model = copy.copy(self)
+        for name in ("mu", "mu_kinetic", "bias"):
+            if name in values:
+                object.__setattr__(model, name, values[name])
+        object.__setattr__(model, "_batch_shape",
+                           np.broadcast_shapes(*(np.shape(p) for p in (model.mu, model.friction_kinetic, model.bias))))
+        return model
 
     #: what :func:`bd.study` sweeps: its keyword, the table's column, the unit
     study_parameter = ("mu", "mu", "-")
