@@ -9,8 +9,8 @@ function of r = ky / PGA per record and polarity, whatever the cell.
 
 The table of each (record, polarity): knots r_k in [r_min, r_top] with D_1(r_k) from the
 exact engine (:func:`blockdae.newmark`, all the r of a round in one batched call) and
-dD_1/dr(r_k) by central differences of exact runs (a step of 10⁻⁷ r: its rounding error,
-about 10⁻⁹ D_1/r, is a thousandth of the bound); r_top is the record's largest
+its exact dD_1/dr(r_k) (:func:`blockdae.sliding.downslope`: -g Σ T_i²/2 over the located
+sliding episodes); r_top is the record's largest
 acceleration in the sliding direction over its peak |a| (above it D = 0 exactly); below
 r_min a cell runs on the exact engine. The knots are placed by halving: every interval is
 checked at its quarter points and midpoint against exact runs, and the intervals that miss
@@ -234,13 +234,15 @@ def _run(newmark, unit, r, polarity, g):
 
 def _tabulate(unit, polarity, r_min, top, rtol, atol, g):
     """(knots r, D_1, dD_1/dr) of one member meeting the bound at every interval's check points."""
-    from ..sliding import newmark
+    from ..sliding import downslope, newmark
 
     exact = lambda r: _run(newmark, unit, r, polarity, g)
+    sign = 1.0 if polarity == "normal" else -1.0
+    derivative = lambda r: downslope(unit, r, sign, g)[1]
     knots = np.unique(np.concatenate([np.geomspace(r_min, top, 65), np.linspace(r_min, top, 65)]))
-    values, slopes = _values(exact, knots, top), _slopes(exact, knots, top)
+    values, slopes = _values(exact, knots, top), _slopes(derivative, knots, top)
     values[-1], slopes[-1] = 0.0, 0.0
-    return _refine(exact, knots, values, slopes, rtol / _MARGIN, atol / _MARGIN, top)
+    return _refine(exact, derivative, knots, values, slopes, rtol / _MARGIN, atol / _MARGIN, top)
 
 
 def _values(exact, r, top):
@@ -248,15 +250,16 @@ def _values(exact, r, top):
     return np.where(r >= top, 0.0, exact(r))
 
 
-def _slopes(exact, r, top):
-    """dD_1/dr [m] by central differences of exact runs (one batched call); 0 from r_top on."""
-    h = 1e-7 * np.maximum(r, 1e-3)
-    lo, hi = np.maximum(r - h, 1e-12), np.minimum(r + h, top)
-    d = exact(np.concatenate([lo, hi])).reshape(2, -1)
-    return np.where((r >= top) | (hi <= lo), 0.0, (d[1] - d[0]) / (hi - lo))
+def _slopes(derivative, r, top):
+    """dD_1/dr [m] from the exact engine's ``derivative``; 0 from r_top on."""
+    below = r < top
+    slopes = np.zeros(r.shape)
+    if np.any(below):
+        slopes[below] = derivative(r[below])
+    return slopes
 
 
-def _refine(exact, knots, values, slopes, rtol, atol, top):
+def _refine(exact, derivative, knots, values, slopes, rtol, atol, top):
     """Halve every interval that fails the bound or monotonicity at its check points until
     none does, checking only the halves of those halved; returns (knots, values, slopes).
     A halved interval's midpoint is its new knot and its quarter points the midpoints of
@@ -272,7 +275,7 @@ def _refine(exact, knots, values, slopes, rtol, atol, top):
             return knots, values, slopes
         points, truth = points[failing], truth[failing]
         new = points[:, 1]
-        new_values, new_slopes = np.where(new >= top, 0.0, truth[:, 1]), _slopes(exact, new, top)
+        new_values, new_slopes = np.where(new >= top, 0.0, truth[:, 1]), _slopes(derivative, new, top)
         order = np.argsort(np.concatenate([knots, new]), kind="stable")
         knots = np.concatenate([knots, new])[order]
         values = np.concatenate([values, new_values])[order]
