@@ -305,8 +305,10 @@ def test_a_study_killed_mid_run_resumes_bit_identical(tmp_path, monkeypatch, one
     finally:
         out, _ = process.communicate(timeout=60)
     assert process.returncode == -signal.SIGKILL and "finished" not in out
-    saved = len(list(folder.glob("task-*.csv")))
-    assert 3 <= saved < len(stems)
+    on_disk = {path.name for path in folder.glob("task-*.csv")}
+    # a table saved just before the kill, its hash not yet in the manifest, is run again
+    saved = len(on_disk & set(json.loads((folder / "manifest.json").read_text()).get("files", {})))
+    assert 2 <= saved <= len(on_disk) and 3 <= len(on_disk) < len(stems)
     ran = _counting_tasks(monkeypatch)
     resumed = bd.study(records, **grid, checkpoint=folder)
     assert len(ran) == len(stems) - saved

@@ -255,7 +255,8 @@ def test_a_batch_of_planar_blocks_is_each_block_alone():
         assert np.array_equal(batch[i].t_events, alone.t_events)
     table = batch.to_dataframe()
     assert list(table.columns[:5]) == ["mu", "mu_kinetic", "bias_x", "bias_y", "g_m_s2"]
-    np.testing.assert_array_equal(table[["displacement_x_m", "displacement_y_m"]].to_numpy(), batch.displacement)
+    columns = ["displacement_x_gs2", "displacement_y_gs2"]  # g = 1: lengths in g s²
+    np.testing.assert_array_equal(table[columns].to_numpy(), batch.displacement)
     assert table["bias_y"].tolist() == [0.05] * 3
 
 

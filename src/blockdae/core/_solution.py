@@ -8,7 +8,7 @@ from typing import Callable
 import numpy as np
 from ..excitation import AbstractExcitation
 from ._repr import compact_repr
-from ._states import state_columns, state_labels
+from ._states import state_columns, state_labels, unit_suffix
 
 
 @dataclasses.dataclass(frozen=True)
@@ -285,12 +285,14 @@ class BatchSolution:
             columns |= {"g_m_s2": float(self.block.g)}
             if hasattr(self.block, "direction"):  # the 1-D block's sliding directions
                 columns |= {"direction": self.block.direction}
-        u, unit = np.asarray(self.displacement, dtype=float), self.unit
-        if unit != "m":  # the state's own name, as an ensemble's table names it
-            columns |= {f"{self.block.state_names[self.block.displacement_states[0]]}_end_{unit}": u}
+        u, suffix = np.asarray(self.displacement, dtype=float), unit_suffix(self.unit)
+        if u.ndim == 2:
+            columns |= {f"displacement_x_{suffix}": u[:, 0], f"displacement_y_{suffix}": u[:, 1]}
+        elif suffix != "m":  # the state's own name, as an ensemble's table names it
+            columns |= {f"{self.block.state_names[self.block.displacement_states[0]]}_end_{suffix}": u}
         else:
-            columns |= {"u_end_m": u} if u.ndim == 1 else {"displacement_x_m": u[:, 0], "displacement_y_m": u[:, 1]}
-        columns |= {f"max_abs_displacement_{unit}": np.asarray(self.max_abs_displacement, dtype=float),
+            columns |= {"u_end_m": u}
+        columns |= {f"max_abs_displacement_{suffix}": np.asarray(self.max_abs_displacement, dtype=float),
                     "n_events": np.asarray(self.n_events, dtype=int),
                     "t_end_s": np.asarray(self.t_end, dtype=float)}
         return pd.DataFrame(columns, index=pd.RangeIndex(len(self)))

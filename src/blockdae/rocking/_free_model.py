@@ -301,7 +301,7 @@ class FreeStandingBlock(FreeStandingDerivatives):
         s theta -> impact, -s theta' -> out again; beyond: s theta', pi/2 - s theta), N
         (-> flight), mu N - |F| (-> slip); SLIDE_ROCK (s, sigma): (s theta -> impact,
         pi/2 - s theta, N, sigma u' -> the slip stops, D -> Painlevé's paradox); FLIGHT:
-        (z_+, z_-, pi/2 - |theta|) (the corners' heights); SETTLE s: (s theta' -> rest, the two onsets, g_e)."""
+        (``z_+``, ``z_-``, pi/2 - |theta|) (the corners' heights); SETTLE s: (s theta' -> rest, the two onsets, g_e)."""
         kind, s = kind_of(mode), side(mode)
         ax, ge, _, _ = self._base(t, excitation)
         one = 0.0 * y[X] + 1.0
