@@ -359,15 +359,21 @@ class Planar(DesignModel):
         runs = {False: u[0], True: u[-1]}  # the final u of the record as given, and inverted
         inverse = _inverse_read(self.polarity, *(np.hypot(*runs[flip].T) for flip in (False, True)))
         n, sets = _sets(values)
+        follows = "mu_kinetic" not in sets  # the kinetic coefficient is mu: dD/dmu moves both
+        sets = {"mu_kinetic": sets["mu"]} | sets  # given explicitly, each set's derivatives keep them apart
+        wrt = tuple(dict.fromkeys((*names, "mu_kinetic") if follows and "mu" in names else names))
         factor = _scale(record, pga, self.g)
         slopes = {name: np.zeros(n) for name in names}
         for flip in (False, True):
             where = np.flatnonzero((inverse == flip) & (d > 0))  # D = 0: no slide, no change to first order
             if where.size:
                 block = self.block({name: v[where] for name, v in sets.items()})
-                du = sensitivities(block, record.scaled(-factor if flip else factor), None, wrt=tuple(names))
+                du = {name: np.reshape(value, (where.size, 2)) for name, value in
+                      sensitivities(block, record.scaled(-factor if flip else factor), None, wrt=wrt).items()}
+                if follows and "mu" in names:
+                    du["mu"] = du["mu"] + du["mu_kinetic"]
                 for name in names:
-                    slopes[name][where] = _size_slopes(runs[flip][where], np.reshape(du[name], (where.size, 2)))
+                    slopes[name][where] = _size_slopes(runs[flip][where], du[name])
         return d, slopes
 
     def sliding_limit(self, record, pga, values):
