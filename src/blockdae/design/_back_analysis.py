@@ -126,7 +126,12 @@ def _check_reachable(parameter, observations):
     grid = _prior_quantiles(parameter.prior)
     name, unit = parameter.name, parameter.unit
     for obs in observations:
-        d = parameter.displacements(obs.record, obs.pga_g, grid)
+        try:
+            d = parameter.displacements(obs.record, obs.pga_g, grid)
+        except ValueError as error:
+            raise ValueError(f"the {parameter.model.kind} model refuses a value of {name} the prior gives (its "
+                             f"quantiles from 1e-6 to 1 - 1e-6 span {grid[0]:.4g} to {grid[-1]:.4g} {unit}): {error}; "
+                             "truncate the prior (design.Truncated(..., low=..., high=...))") from error
         largest, smallest = int(np.argmax(d)), int(np.argmin(d))
         margin = math.exp(_REACH_SIGMAS * obs.sigma_ln)
         if obs.kind != "less_than" and obs.value_m > d[largest] * margin:
