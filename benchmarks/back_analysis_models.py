@@ -1,12 +1,12 @@
 """What a back-analysis costs per design model (design.back_analysis with method="laplace"):
 the rigid block (ky), the block on a plane (mu, bias_x -0.05 held), the flexible mass
 decoupled (ky) and coupled (vs), H 10 m, vs 250 m/s, vr 800 m/s held, one displacement
-seen at PGA 0.3 g with sigma_ln 0.05, on a decaying 1 Hz sine of 3 s (--quick) or
-pySLAMMER's shortest sample record. Per model: a warm forward run of one parameter set
-[s], one dD/dp (the first call, JAX compiling, and the median of --repeat warm ones) [s],
-the whole Laplace back-analysis [s] and how many gradient calls it made.
+seen at PGA 0.3 g with sigma_ln 0.05, on a decaying 1 Hz sine of --seconds (default 3 s,
+the tests' record). Per model: a warm forward run of one parameter set [s], one dD/dp (the
+first call, JAX compiling, and the median of --repeat warm ones) [s], the whole Laplace
+back-analysis [s] and how many gradient calls it made.
 
-    python benchmarks/back_analysis_models.py [--quick] [--repeat N]
+    python benchmarks/back_analysis_models.py [--seconds S] [--repeat N]
 """
 
 import argparse
@@ -17,7 +17,7 @@ import numpy as np
 
 import blockdae as bd
 from blockdae import design
-from _common import G, print_table, sample_records, timed
+from _common import G, print_table, timed
 
 PGA = 0.3  # [g]
 CASES = (("rigid, ky", design.Rigid(), {"ky": design.LogNormal(0.1, 0.3)}, "ky", 0.1),
@@ -44,15 +44,12 @@ def counting(model):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="the 3 s sine only (a smoke run)")
+    parser.add_argument("--seconds", type=float, default=3.0, help="the record's duration [s]")
     parser.add_argument("--repeat", type=int, default=3, help="warm gradient calls timed per model")
     args = parser.parse_args(argv)
     warnings.simplefilter("ignore", bd.CompileNotice)
-    if args.quick:
-        t = np.arange(0, 3, 0.01)
-        record = bd.Record(0.3 * G * np.sin(2 * np.pi * t) * np.exp(-0.3 * t), 0.01, "decaying sine")
-    else:
-        record = sample_records(quick=True)[0]
+    t = np.arange(0, args.seconds, 0.01)
+    record = bd.Record(0.3 * G * np.sin(2 * np.pi * t) * np.exp(-0.3 * t), 0.01, "decaying sine")
     print(f"record {record.name!r}: {record.duration:.2f} s, scaled to PGA {PGA} g")
     rows = []
     for label, model, priors, name, truth in CASES:

@@ -245,8 +245,8 @@ class Flexible(DesignModel):
         (name -> shape (n,), [m per unit of p]) from
         :func:`blockdae.flexible_mass.displacement_sensitivities`: the JAX twin's
         variational equation and saltation jumps through the located events (exact to
-        its tolerance, rtol 1e-10; about 3 s (decoupled) to 13 s (coupled) per sliding
-        set of a 6 s record on one core)."""
+        its tolerance, rtol 1e-10), one JAX run per sliding set (seconds each:
+        benchmarks/back_analysis_models.py)."""
         self.check_differentiable(names)
         result = self._run(record, pga, values)
         d = _read(self.polarity, result["normal_m"], result["inverse_m"])
