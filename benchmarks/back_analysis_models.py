@@ -6,7 +6,9 @@ the tests' record). Per model: a warm forward run of one parameter set [s], one 
 first call, JAX compiling, and the median of --repeat warm ones) [s], the whole Laplace
 back-analysis [s] and how many gradient calls it made.
 
-    python benchmarks/back_analysis_models.py [--seconds S] [--repeat N]
+    python benchmarks/back_analysis_models.py [--seconds S] [--repeat N] [--quick]
+
+--quick (a smoke run, not a measurement): the rigid block and the plane on 1.5 s, no warm repeats.
 """
 
 import argparse
@@ -17,7 +19,7 @@ import numpy as np
 
 import blockdae as bd
 from blockdae import design
-from _common import G, print_table, timed
+from _common import G, SMOKE_RUN, print_table, timed
 
 PGA = 0.3  # [g]
 CASES = (("rigid, ky", design.Rigid(), {"ky": design.LogNormal(0.1, 0.3)}, "ky", 0.1),
@@ -46,13 +48,16 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=3.0, help="the record's duration [s]")
     parser.add_argument("--repeat", type=int, default=3, help="warm gradient calls timed per model")
+    parser.add_argument("--quick", action="store_true", help="a smoke run: the rigid block and the plane, 1.5 s")
     args = parser.parse_args(argv)
+    if args.quick:
+        args.seconds, args.repeat = 1.5, 0
     warnings.simplefilter("ignore", bd.CompileNotice)
     t = np.arange(0, args.seconds, 0.01)
     record = bd.Record(0.3 * G * np.sin(2 * np.pi * t) * np.exp(-0.3 * t), 0.01, "decaying sine")
     print(f"record {record.name!r}: {record.duration:.2f} s, scaled to PGA {PGA} g")
     rows = []
-    for label, model, priors, name, truth in CASES:
+    for label, model, priors, name, truth in CASES[:2] if args.quick else CASES:
         values = {k: v for k, v in priors.items() if k != name} | {name: np.array([truth])}
         d, _, forward = timed(lambda: model.displacements(record, PGA, values), args.repeat)
         _, first, warm = timed(lambda: model.gradient(record, PGA, values, (name,)), args.repeat)
@@ -66,6 +71,8 @@ def main(argv=None):
                      str(len(calls)), f"{result.map_value:.4g} {result.unit}"])
     print_table(["model, parameter", "D [m]", "forward [s]", "dD/dp first [s]", "dD/dp warm [s]", "Laplace [s]",
                  "gradient calls", "MAP"], rows)
+    if args.quick:
+        print(SMOKE_RUN)
     return 0
 
 
