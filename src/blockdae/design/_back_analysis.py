@@ -233,9 +233,10 @@ class BackAnalysis:
 
     def __repr__(self):
         s = self.summary().iloc[0]
+        unit = "" if self.unit == "-" else f" {self.unit}"
         return (f"BackAnalysis(method={self.method!r}, {len(self.samples)} draws, {len(self.observations)} "
-                f"observations, {self.parameter} median {s['median']:.4g} {self.unit}, 90 % interval "
-                f"{s.q05:.4g}-{s.q95:.4g} {self.unit})")
+                f"observations, {self.parameter} median {s['median']:.4g}{unit}, 90 % interval "
+                f"{s.q05:.4g}-{s.q95:.4g}{unit})")
 
     @property
     def column(self) -> str:
