@@ -164,7 +164,13 @@ def log_posterior(observations, model, priors):
     distribution, as a JAX function of its value (a scalar, in its unit): the prior's log
     density plus each observation's log likelihood; its gradient (``jax.grad``) follows
     the model's dD/dp (:meth:`DesignModel.gradient`). Evaluate it with JAX in float64
-    (inside ``jax.enable_x64(True)``)."""
+    (inside ``jax.enable_x64(True)``).
+
+    For an :class:`InfiniteSlope` (``observations`` slope name -> observations), a JAX
+    function of θ, the 1-D array of its uncertain parameters (c_kPa [kPa], phi_deg [deg],
+    then each t_<slope>_m [m] with a prior, in that order)."""
+    if hasattr(model, "log_posterior"):  # a parameterisation of its own (design.InfiniteSlope)
+        return model.log_posterior(observations, priors)
     observations, parameter = _checked(observations, model, priors)
     return _log_posterior(observations, parameter)
 
@@ -347,7 +353,11 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
             :func:`blockdae.newmark`), :class:`Flexible` (ky, height, vs, damping; not
             with the equivalent-linear iteration), :class:`Planar` (mu, mu_kinetic,
             bias_x, bias_y), :class:`Simulated` (a differentiable model's parameters),
-            or one of your own.
+            or one of your own; or an :class:`InfiniteSlope`: slopes of one unit
+            sharing c' and φ' (then ``observations`` is a dict slope name ->
+            observations, ``priors`` ``{"c_kPa": ..., "phi_deg": ...}`` (a distribution,
+            or a number where known), each slope's thickness t [m] in its
+            :class:`Slope`, NUTS only: several parameters at once).
         priors: name -> a distribution (:class:`LogNormal`, :class:`Uniform`, or a
             :class:`Truncated` one; positive values) for the one parameter inferred, a
             number [its unit] for each other parameter the model needs (e.g.
@@ -370,6 +380,9 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
             a parameter the model does not differentiate D by (NUTS and the Laplace
             approximation both need dD/dp).
     """
+    if hasattr(model, "sample_posterior"):  # a parameterisation that samples itself (design.InfiniteSlope)
+        return model.sample_posterior(observations, priors, method=method, chains=chains, draws=draws, warmup=warmup,
+                                      seed=seed)
     observations, parameter = _checked(observations, model, priors)
     if method not in ("nuts", "laplace"):
         raise ValueError(f"method={method!r} is unknown; choose 'nuts' or 'laplace'")

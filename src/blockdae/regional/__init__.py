@@ -7,7 +7,7 @@ exceedance probabilities and the regressions beside it (or two horizontal compon
 projected on each cell's dip azimuth, exact per cell); xarray Datasets, Dask chunk by
 chunk. Needs the ``regional`` extra (xarray, rioxarray, dask)."""
 
-from ._infinite_slope import CATEGORIES, WATER_UNIT_WEIGHT, count_categories, infinite_slope
+from ._infinite_slope import CATEGORIES, WATER_UNIT_WEIGHT, count_categories, factor_of_safety, infinite_slope
 from ._figures import map_figure
 from ._io import write_map
 from ._map import MAX_PGA_G, displacement_map, strength_from_zones, summarize
@@ -17,5 +17,5 @@ from ._tables import DisplacementTables
 from ._terrain import read_raster, slope_and_azimuth
 
 __all__ = ["CATEGORIES", "DisplacementTables", "MAX_PGA_G", "RecordPair", "WATER_UNIT_WEIGHT", "count_categories",
-           "displacement_map", "infinite_slope", "map_figure", "read_raster", "read_shakemap", "shakemap_on_terrain",
-           "slope_and_azimuth", "strength_from_zones", "summarize", "write_map"]
+           "displacement_map", "factor_of_safety", "infinite_slope", "map_figure", "read_raster", "read_shakemap",
+           "shakemap_on_terrain", "slope_and_azimuth", "strength_from_zones", "summarize", "write_map"]

@@ -13,6 +13,7 @@ slide downslope, a cell with no elevation or strength is nodata.
 
 import numba
 import numpy as np
+from numba.extending import register_jitable
 
 from ..units import STANDARD_GRAVITY
 
@@ -65,6 +66,18 @@ _RANGES = (lambda a, c, p, g, t, m: ("slope_deg", a, (a >= 0) & (a < 90), "must 
            lambda a, c, p, g, t, m: ("saturated_fraction", m, (m >= 0) & (m <= 1), "must lie in [0, 1]"))
 
 
+@register_jitable
+def factor_of_safety(sin_a, tan_a, tan_phi, cohesion_kpa, unit_weight_kn_m3, thickness_m, saturated_fraction,
+                     water_unit_weight_kn_m3):
+    """(FS [-], (FS - 1) sin α [g]) of the infinite slope (Jibson et al. 2000, eqs. 2-3)
+    from sin α, tan α, tan φ' and c' [kPa], γ [kN/m³], t [m], m [-], γ_w [kN/m³]: plain
+    arithmetic on numbers or arrays (numpy, JAX, inside numba), so that every caller,
+    and JAX's derivatives, use this one formula. The second value is ky only where FS >= 1."""
+    fs = (cohesion_kpa / (unit_weight_kn_m3 * thickness_m * sin_a) + tan_phi / tan_a
+          - saturated_fraction * water_unit_weight_kn_m3 * tan_phi / (unit_weight_kn_m3 * tan_a))
+    return fs, (fs - 1.0) * sin_a
+
+
 @numba.njit(cache=True, nogil=True)
 def _cells(alpha, c, phi, gamma, t, m, gamma_w, fs, ky, category):
     """FS, ky and category of every cell (2-D arrays, written in place); returns the index
@@ -90,11 +103,10 @@ def _cells(alpha, c, phi, gamma, t, m, gamma_w, fs, ky, category):
             fs[i], ky[i], category[i] = np.inf, np.nan, FLAT
             continue
         ar = np.radians(a)
-        sin_a, tan_a, tan_p = np.sin(ar), np.tan(ar), np.tan(np.radians(p))
-        f = ci / (gi * ti * sin_a) + tan_p / tan_a - mi * gamma_w * tan_p / (gi * tan_a)
+        f, k = factor_of_safety(np.sin(ar), np.tan(ar), np.tan(np.radians(p)), ci, gi, ti, mi, gamma_w)
         fs[i] = f
         if f >= 1.0:
-            ky[i], category[i] = (f - 1.0) * sin_a, STABLE
+            ky[i], category[i] = k, STABLE
         else:
             ky[i], category[i] = np.nan, UNSTABLE
     return -1

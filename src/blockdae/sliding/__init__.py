@@ -24,6 +24,7 @@ __all__ = ["AdjustmentFactor", "BatchSolution", "Event", "EventLog", "FinalNumbe
            "simulate_final", "simulate_many", "yield_acceleration"]
 
 # what the other packages of blockdae use
+from ._downslope import downslope
 from ._examples import example_solution
 from ._figures import newmark_history_figure
 from ._model import relative_acceleration, rest_mode, slip_constant, stop_mode

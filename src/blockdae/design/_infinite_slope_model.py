@@ -1,0 +1,356 @@
+"""Back-analysis of the strength shared by several slopes of one geological unit: c' [kPa]
+and φ' [deg] common to all, each slope with its own thickness t [m] (a prior, or known),
+angle, unit weight and saturated fraction; each slope's ky [g] from the infinite slope of
+Jibson et al. (2000) (:func:`blockdae.regional.infinite_slope`'s formula), its D [m] from
+the rigid block (:class:`Rigid`'s compiled engine and exact dD/dky), and the posterior of
+the named parameters by NUTS on the exact gradient (the chain rule through the formula
+in JAX).
+
+A parameter draw under which a slope's FS <= 1 (ky <= 0) has zero posterior density:
+the slopes stood before the shaking whose displacements are observed, so each FS > 1 is
+known. A draw outside the formula's domain (c' < 0, φ' outside (0, 90) deg, t <= 0)
+has zero density too."""
+
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+import pandas as pd
+
+from ..regional import WATER_UNIT_WEIGHT, factor_of_safety
+from ._back_analysis import (ESS_PER_CHAIN, RHAT_LIMIT, ConvergenceWarning, Observation, _float64,
+                             _log_likelihood as _observation_log_likelihood, _numpyro_prior)
+from ._distributions import DISTRIBUTIONS
+from ._inferred import InferredParameter
+from ._models import Rigid
+
+#: the parameters shared by every slope and their units
+SHARED = {"c_kPa": "kPa", "phi_deg": "deg"}
+#: prior draws examined for the chains' starting points
+_START_DRAWS = 256
+
+
+def _number(field, value, low, high, closed_low=False):
+    ok = isinstance(value, (int, float, np.floating)) and not isinstance(value, bool) and math.isfinite(value)
+    if not (ok and (low <= value if closed_low else low < value) and value < high):
+        raise ValueError(f"{field}={value!r} must be a number in {'[' if closed_low else '('}{low:g}, {high:g})")
+    return float(value)
+
+
+@dataclasses.dataclass(frozen=True)
+class Slope:
+    """One slope of the unit: its angle α [deg], unit weight γ [kN/m³], saturated fraction
+    m [-] of the failure-surface thickness, and that thickness t [m], a number (known) or
+    a distribution (a prior: :class:`LogNormal`, :class:`Uniform`, :class:`Truncated`
+    with t > 0); ``water_unit_weight_kn_m3`` γ_w [kN/m³]."""
+
+    slope_deg: float
+    unit_weight_kn_m3: float
+    thickness_m: object
+    saturated_fraction: float = 0.0
+    water_unit_weight_kn_m3: float = WATER_UNIT_WEIGHT
+
+    def __post_init__(self):
+        _number("slope_deg", self.slope_deg, 0.0, 90.0)
+        _number("unit_weight_kn_m3", self.unit_weight_kn_m3, 0.0, math.inf)
+        m = self.saturated_fraction
+        if not (isinstance(m, (int, float, np.floating)) and not isinstance(m, bool) and 0.0 <= m <= 1.0):
+            raise ValueError(f"saturated_fraction={m!r} must be a number in [0, 1]")
+        _number("water_unit_weight_kn_m3", self.water_unit_weight_kn_m3, 0.0, math.inf)
+        if not isinstance(self.thickness_m, DISTRIBUTIONS):
+            _number("thickness_m", self.thickness_m, 0.0, math.inf)
+
+
+@dataclasses.dataclass(frozen=True)
+class InfiniteSlope:
+    """Slopes of one geological unit sharing c' [kPa] and φ' [deg], as a back-analysis
+    parameterisation (pass it as :func:`back_analysis`'s ``model``): the named
+    parameters ``c_kPa``, ``phi_deg`` and ``t_<slope>_m`` for each slope whose thickness
+    is a prior map to each slope's ky [g] = (FS - 1) sin α, FS of the infinite slope
+    (Jibson et al. 2000); D [m] from ``model`` (the rigid block).
+
+    Attributes:
+        slopes: slope name -> :class:`Slope`.
+        model: the rigid block (:class:`Rigid`, its polarity and g).
+    """
+
+    slopes: dict
+    model: Rigid = Rigid()
+
+    def __post_init__(self):
+        if not isinstance(self.slopes, dict) or not self.slopes:
+            raise ValueError(f"slopes must be a non-empty dict name -> design.Slope, got {self.slopes!r}")
+        for name, slope in self.slopes.items():
+            if not (isinstance(name, str) and name.isidentifier()) or not isinstance(slope, Slope):
+                raise ValueError(f"slopes[{name!r}] must be a design.Slope under a name made of letters, digits and "
+                                 f"_ (it names the column t_<name>_m), got {slope!r}")
+        if not isinstance(self.model, Rigid):
+            raise ValueError(f"model must be the rigid block (design.Rigid), got {type(self.model).__name__}")
+
+    @property
+    def thickness_names(self) -> dict:
+        """slope name -> the name of its thickness parameter ``t_<slope>_m``."""
+        return {name: f"t_{name}_m" for name in self.slopes}
+
+    def log_posterior(self, observations, priors):
+        """:func:`log_posterior` for these slopes (what :func:`design.log_posterior` calls)."""
+        return log_posterior(observations, self, priors)
+
+    def sample_posterior(self, observations, priors, *, method="nuts", chains=4, draws=500, warmup=500, seed=0):
+        """:func:`slopes_back_analysis` (what :func:`design.back_analysis` calls); NUTS only."""
+        if method != "nuts":
+            raise ValueError(f"method={method!r}: the slopes' shared strength is sampled by NUTS only (method='nuts')")
+        return slopes_back_analysis(observations, self, priors, chains=chains, draws=draws, warmup=warmup, seed=seed)
+
+    def yield_accelerations(self, values, xp=np):
+        """(FS [-], ky [g]) of each slope, two dicts slope name -> an array, from
+        ``values`` (``c_kPa``, ``phi_deg`` and, for a slope whose thickness is a prior,
+        ``t_<slope>_m``: numbers or arrays); ``xp`` numpy or jax.numpy. ky is
+        (FS - 1) sin α; the slope has one only where FS > 1."""
+        fs, ky = {}, {}
+        tan_phi = xp.tan(xp.radians(values["phi_deg"]))
+        for name, slope in self.slopes.items():
+            alpha = math.radians(slope.slope_deg)
+            t = values[self.thickness_names[name]] if isinstance(slope.thickness_m, DISTRIBUTIONS) \
+                else slope.thickness_m
+            fs[name], ky[name] = factor_of_safety(math.sin(alpha), math.tan(alpha), tan_phi, values["c_kPa"],
+                                                  slope.unit_weight_kn_m3, t, slope.saturated_fraction,
+                                                  slope.water_unit_weight_kn_m3)
+        return fs, ky
+
+
+def _checked(observations, slopes, priors):
+    """(observations: slope name -> list of Observation, fixed: name -> number,
+    uncertain: name -> distribution), checked."""
+    if not isinstance(observations, dict) or not observations:
+        raise ValueError("observations must be a dict slope name -> a design.Observation or a list of them")
+    by_slope = {}
+    for name, seen in observations.items():
+        if name not in slopes.slopes:
+            raise ValueError(f"observations[{name!r}]: no such slope; the slopes are {list(slopes.slopes)}")
+        seen = [seen] if isinstance(seen, Observation) else list(seen)
+        if not seen or not all(isinstance(o, Observation) for o in seen):
+            raise ValueError(f"observations[{name!r}] must be a design.Observation or a non-empty list of them")
+        by_slope[name] = seen
+    if not isinstance(priors, dict) or set(priors) != set(SHARED):
+        raise ValueError(f"priors must be {{'c_kPa': ..., 'phi_deg': ...}} (a distribution, or a number where "
+                         f"known), got {priors!r}; each slope's thickness is given in its design.Slope")
+    fixed, uncertain = {}, {}
+    given = dict(priors) | {slopes.thickness_names[n]: s.thickness_m for n, s in slopes.slopes.items()}
+    domain = {"c_kPa": (0.0, math.inf, True), "phi_deg": (0.0, 90.0, False)}
+    for name, value in given.items():
+        low, high, closed = domain.get(name, (0.0, math.inf, False))
+        if isinstance(value, DISTRIBUTIONS):
+            q_low, q_high = (float(value.ppf(u)) for u in (1e-6, 1.0 - 1e-6))
+            if not ((low <= q_low if closed else low < q_low) and q_high < high):
+                raise ValueError(f"the prior of {name} ({value!r}) reaches {q_low:.4g} to {q_high:.4g} between its "
+                                 f"1e-6 and 1 - 1e-6 quantiles, beyond the infinite slope's domain {'[' if closed else '('}"
+                                 f"{low:g}, {high:g}); truncate it (design.Truncated)")
+            uncertain[name] = value
+        else:
+            fixed[name] = _number(name, value, low, high, closed)
+    if not uncertain:
+        raise ValueError("every parameter is known: give c_kPa, phi_deg or a slope's thickness_m a distribution")
+    return by_slope, fixed, uncertain
+
+
+def _log_likelihood(observations, slopes, fixed):
+    """The observations' joint log likelihood as a JAX function of the uncertain
+    parameters (name -> a scalar): -inf where a slope's FS <= 1 or a value lies outside
+    the formula's domain."""
+    import jax.numpy as jnp
+
+    rigid = InferredParameter(slopes.model, "ky", None, {})  # a slope's D [m] as a function of its ky [g]
+    functions = {name: [(o, rigid.displacement_function(o.record, o.pga_g)) for o in seen]
+                 for name, seen in observations.items()}
+
+    def log_likelihood(values):
+        values = dict(fixed) | dict(values)
+        inside = (values["c_kPa"] >= 0) & (values["phi_deg"] > 0) & (values["phi_deg"] < 90)
+        for name in slopes.slopes:
+            inside &= jnp.asarray(values.get(slopes.thickness_names[name], 1.0)) > 0
+        safe = {k: jnp.where(inside, v, _SAFE[k] if k in _SAFE else 1.0) for k, v in values.items()}
+        _, ky = slopes.yield_accelerations(safe, jnp)
+        total = 0.0
+        for name, pairs in functions.items():
+            stands = ky[name] > 0  # FS > 1
+            at = jnp.where(stands, ky[name], 1.0)  # any ky > 0: the value is masked below
+            total += sum(jnp.where(stands, _observation_log_likelihood(o, f(at)), -jnp.inf) for o, f in pairs)
+        return jnp.where(inside, total, -jnp.inf)
+
+    return log_likelihood
+
+
+#: values inside the formula's domain that stand in for a draw outside it (masked)
+_SAFE = {"c_kPa": 0.0, "phi_deg": 30.0}
+
+
+def _log_prior(uncertain):
+    """The uncertain parameters' joint log prior density as a JAX function (name -> a scalar)."""
+    import jax.numpy as jnp
+
+    densities = {name: _numpyro_prior(prior) for name, prior in uncertain.items()}
+    medians = {name: float(prior.ppf(0.5)) for name, prior in uncertain.items()}
+
+    def log_prior(values):  # -inf outside a prior's support (its density evaluated at the median there)
+        inside = {name: d.support(values[name]) for name, d in densities.items()}
+        return sum(jnp.where(inside[n], d.log_prob(jnp.where(inside[n], values[n], medians[n])), -jnp.inf)
+                   for n, d in densities.items())
+
+    return log_prior
+
+
+def log_posterior(observations, slopes, priors):
+    """ln p(θ | observations) up to a constant as a JAX function of θ, a 1-D array of
+    the uncertain parameters in :func:`parameter_names`' order (c_kPa [kPa], phi_deg
+    [deg], then t_<slope>_m [m]); its gradient (``jax.grad``) is exact: the chain rule
+    through the infinite slope's formula and the engine's dD/dky. Evaluate it with JAX in
+    float64 (inside ``jax.enable_x64(True)``)."""
+    observations, fixed, uncertain = _checked(observations, slopes, priors)
+    return _vector_function(_log_likelihood(observations, slopes, fixed), _log_prior(uncertain), list(uncertain))
+
+
+def parameter_names(slopes, priors) -> list:
+    """The names of the uncertain parameters, in the order of :func:`log_posterior`'s θ."""
+    given = dict(priors) | {slopes.thickness_names[n]: s.thickness_m for n, s in slopes.slopes.items()}
+    return [name for name, value in given.items() if isinstance(value, DISTRIBUTIONS)]
+
+
+def _vector_function(log_likelihood, log_prior, names):
+    def log_p(theta):
+        values = {name: theta[i] for i, name in enumerate(names)}
+        return log_prior(values) + log_likelihood(values)
+
+    return log_p
+
+
+@dataclasses.dataclass
+class SlopesBackAnalysis:
+    """The posterior of the strength shared by the slopes (and of their thicknesses).
+
+    Attributes:
+        samples: the posterior draws, a table: ``chain``, ``draw``, each uncertain
+            parameter (``c_kPa``, ``phi_deg``, ``t_<slope>_m``) and each slope's
+            ``ky_<slope>_g`` and ``fs_<slope>`` [-].
+        diagnostics: per uncertain parameter: R-hat, bulk and tail effective sample
+            sizes, divergent transitions (of all chains), a table.
+        observations: slope name -> the observations analysed.
+        slopes: the :class:`InfiniteSlope` they were analysed with.
+        seconds: the wall time of the sampling [s] (compiling included).
+    """
+
+    samples: pd.DataFrame
+    diagnostics: pd.DataFrame
+    observations: dict
+    slopes: InfiniteSlope
+    seconds: float
+
+    def __repr__(self):
+        return (f"SlopesBackAnalysis({len(self.samples)} draws, {len(self.slopes.slopes)} slopes, "
+                f"{sum(len(v) for v in self.observations.values())} observations, parameters "
+                f"{list(self.diagnostics.parameter)})")
+
+    def summary(self) -> pd.DataFrame:
+        """Per parameter (the uncertain ones, then each slope's ky [g]): its unit, mean,
+        standard deviation, median and 90 % interval, in that unit."""
+        rows = []
+        for column in [*self.diagnostics.parameter, *(f"ky_{n}_g" for n in self.slopes.slopes)]:
+            x = self.samples[column].to_numpy()
+            q05, q50, q95 = np.quantile(x, [0.05, 0.5, 0.95])
+            rows.append({"parameter": column, "unit": column.rsplit("_", 1)[1], "mean": x.mean(),
+                         "sd": x.std(ddof=1), "median": q50, "q05": q05, "q95": q95})
+        return pd.DataFrame(rows)
+
+
+def slopes_back_analysis(observations, slopes, priors, *, chains=4, draws=500, warmup=500, seed=0):
+    """:func:`back_analysis` for an :class:`InfiniteSlope`: NUTS (NumPyro, ``chains``
+    chains run together, vectorised: one engine call per observation and step for all
+    chains), started from the most probable of 256 prior draws."""
+    import time
+
+    started = time.perf_counter()
+    for field, value in (("chains", chains), ("draws", draws), ("warmup", warmup)):
+        if not (isinstance(value, int) and not isinstance(value, bool) and value >= (field != "warmup")):
+            raise ValueError(f"{field}={value!r} must be a whole number >= {int(field != 'warmup')}")
+    observations, fixed, uncertain = _checked(observations, slopes, priors)
+    names = list(uncertain)
+    with _float64():
+        log_likelihood = _log_likelihood(observations, slopes, fixed)
+        log_prior = _log_prior(uncertain)
+        starts = _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains, seed)
+        samples, diagnostics = _nuts(log_likelihood, uncertain, starts, draws, warmup, seed)
+    table = {"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains)}
+    table |= {name: samples[name].reshape(-1) for name in names}
+    fs, ky = slopes.yield_accelerations(fixed | {name: table[name] for name in names})
+    for name in slopes.slopes:
+        table[f"ky_{name}_g"] = np.broadcast_to(ky[name], (chains * draws,)).astype(float)
+        table[f"fs_{name}"] = np.broadcast_to(fs[name], (chains * draws,)).astype(float)
+    return SlopesBackAnalysis(pd.DataFrame(table), diagnostics, observations, slopes, time.perf_counter() - started)
+
+
+def _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains, seed):
+    """The ``chains`` most probable of :data:`_START_DRAWS` prior draws (name -> shape
+    (chains,)); ValueError where none has a positive posterior density (each slope's
+    share of draws with FS <= 1 named)."""
+    import jax
+
+    rng = np.random.default_rng(seed)
+    draws = {name: np.asarray(prior.ppf(rng.uniform(size=_START_DRAWS)), dtype=float)
+             for name, prior in uncertain.items()}
+    values = np.asarray(jax.vmap(lambda v: log_prior(v) + log_likelihood(v))(draws), dtype=float)
+    finite = np.isfinite(values)
+    if finite.sum() < 1:
+        fs, _ = slopes.yield_accelerations(fixed | draws)
+        unstable = {name: f"{np.mean(np.broadcast_to(f, (_START_DRAWS,)) <= 1):.0%}" for name, f in fs.items()}
+        raise ValueError(f"none of {_START_DRAWS} draws of the priors explains the observations: the share of draws "
+                         f"under which a slope's FS <= 1 (it would not have stood: zero density) is {unstable}; "
+                         "otherwise the observations lie beyond the D the priors give. Check the priors of c_kPa, "
+                         "phi_deg and the thicknesses against the slopes")
+    best = np.argsort(np.where(finite, -values, np.inf))[:chains]
+    best = np.resize(best[: max(1, min(chains, int(finite.sum())))], chains)
+    return {name: v[best] for name, v in draws.items()}
+
+
+def _nuts(log_likelihood, uncertain, starts, draws, warmup, seed):
+    """NumPyro's NUTS from ``starts`` (name -> (chains,)); the draws (name -> (chains,
+    draws)) and ArviZ's diagnostics per parameter."""
+    import jax
+    from numpyro.distributions.transforms import biject_to
+    from numpyro.infer import MCMC, NUTS
+
+    with warnings.catch_warnings():  # ArviZ's notice of its coming refactor, at import
+        warnings.simplefilter("ignore", FutureWarning)
+        import arviz
+
+    densities = {name: _numpyro_prior(prior) for name, prior in uncertain.items()}
+    transforms = {name: biject_to(d.support) for name, d in densities.items()}
+    names = list(densities)
+    chains = len(next(iter(starts.values())))
+
+    def constrained(z):
+        return {name: transforms[name](z[i]) for i, name in enumerate(names)}
+
+    def potential(z):  # -ln p of the unconstrained parameters (the transforms' Jacobians included)
+        values = constrained(z)
+        log_p = sum(densities[n].log_prob(values[n]) + transforms[n].log_abs_det_jacobian(z[i], values[n])
+                    for i, n in enumerate(names))
+        return -(log_p + log_likelihood(values))
+
+    mcmc = MCMC(NUTS(potential_fn=potential, dense_mass=True), num_warmup=warmup, num_samples=draws,
+                num_chains=chains, chain_method="vectorized", progress_bar=False)
+    init = jax.numpy.stack([transforms[n].inv(jax.numpy.asarray(starts[n])) for n in names], axis=-1)
+    mcmc.run(jax.random.PRNGKey(seed), init_params=init, extra_fields=("diverging",))
+    z = np.asarray(mcmc.get_samples(group_by_chain=True), dtype=float)
+    samples = {n: np.asarray(v, dtype=float) for n, v in jax.vmap(jax.vmap(constrained))(z).items()}
+    divergences = int(np.sum(mcmc.get_extra_fields()["diverging"]))
+    rows = [{"parameter": name, "r_hat": float(arviz.rhat(x)) if chains > 1 else np.nan,
+             "ess_bulk": float(arviz.ess(x, method="bulk")), "ess_tail": float(arviz.ess(x, method="tail")),
+             "divergences": divergences} for name, x in samples.items()]
+    diagnostics = pd.DataFrame(rows)
+    worst_rhat, least_ess = diagnostics.r_hat.max(), diagnostics.ess_bulk.min()
+    if (chains > 1 and worst_rhat > RHAT_LIMIT) or least_ess < ESS_PER_CHAIN * chains or divergences:
+        warnings.warn(f"the NUTS chains did not mix well: largest R-hat {worst_rhat:.3f} (want <= {RHAT_LIMIT}), "
+                      f"smallest bulk ESS {least_ess:.0f} (want >= {ESS_PER_CHAIN * chains}), {divergences} divergent "
+                      "transitions; run more draws or warmup", ConvergenceWarning, stacklevel=4)
+    return samples, diagnostics
