@@ -27,6 +27,9 @@ _REACH_SIGMAS = 4.0
 #: R-hat above which, and bulk effective sample size per chain below which, a warning is raised
 RHAT_LIMIT = 1.01
 ESS_PER_CHAIN = 100
+#: NumPyro's statistics of each NUTS draw -> their names in ArviZ's sample_stats
+_NUTS_STATS = {"diverging": "diverging", "accept_prob": "acceptance_rate", "num_steps": "n_steps",
+               "adapt_state.step_size": "step_size", "energy": "energy", "potential_energy": "lp"}
 
 
 class ConvergenceWarning(UserWarning):
@@ -259,6 +262,10 @@ class BackAnalysis:
         method: "nuts" or "laplace".
         observations: the observations analysed (:class:`Observation`).
         model: the :class:`Rigid` block they were analysed with.
+        priors: the priors given (parameter -> distribution).
+        sample_stats: NUTS's statistics of each draw (``chain``, ``draw``, ``diverging``,
+            ``acceptance_rate`` [-], ``n_steps``, ``step_size``, ``energy``, ``lp``), a
+            table; empty for the Laplace approximation.
     """
 
     samples: pd.DataFrame
@@ -268,6 +275,8 @@ class BackAnalysis:
     method: str
     observations: list
     model: Rigid
+    priors: dict = None
+    sample_stats: pd.DataFrame = dataclasses.field(default_factory=pd.DataFrame)
 
     def __repr__(self):
         s = self.summary().iloc[0]
@@ -309,6 +318,35 @@ class BackAnalysis:
             rows.append({"observation": obs.name, "kind": obs.kind, "observed_m": obs.value_m,
                          "median_D_m": q50, "q05_D_m": q05, "q95_D_m": q95})
         return pd.DataFrame(rows)
+
+    def to_inference_data(self, *, seed=0):
+        """The result as ArviZ's ``InferenceData`` (posterior, sample_stats, posterior_predictive,
+        observed_data, log_likelihood and prior groups, units in each variable's attrs); see
+        :func:`blockdae.design.inference_data`."""
+        from ._back_analysis_result import inference_data
+
+        return inference_data(self, seed=seed)
+
+    def posterior_figure(self, *, title=None):
+        """Each parameter's prior and posterior densities, the maximum a posteriori and the
+        90 % interval marked; a matplotlib Figure."""
+        from ._back_analysis_figures import posterior_figure
+
+        return posterior_figure(self, title=title)
+
+    def predictive_figure(self, *, scenarios=None, title=None):
+        """Each observation (with its measurement error, or its bound) beside the posterior
+        predictive D [m], and the D predicted under each of ``scenarios`` (label ->
+        (record, pga_g)); a matplotlib Figure."""
+        from ._back_analysis_figures import predictive_figure
+
+        return predictive_figure(self, scenarios=scenarios, title=title)
+
+    def pair_figure(self, *, title=None):
+        """The posterior draws of each pair of parameters (two or more); a matplotlib Figure."""
+        from ._back_analysis_figures import pair_figure
+
+        return pair_figure(self, title=title)
 
 
 @contextlib.contextmanager
@@ -402,13 +440,14 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
         log_p = _log_posterior(observations, model, prior)
         ky_map, sd_ln = _maximum(log_p, prior)
         if method == "laplace":
-            ky, diagnostics = _laplace_draws(prior, ky_map, sd_ln, chains, draws, seed)
+            ky, diagnostics, stats = _laplace_draws(prior, ky_map, sd_ln, chains, draws, seed)
         else:
             starts = _laplace_draws(prior, ky_map, sd_ln, chains, 1, seed)[0][:, 0]
-            ky, diagnostics = _nuts(_log_likelihoods(observations, model), prior, starts, draws, warmup, seed)
+            ky, diagnostics, stats = _nuts(_log_likelihoods(observations, model), prior, starts, draws, warmup, seed)
     samples = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains),
                             "ky_g": ky.reshape(-1)})
-    return BackAnalysis(samples, ky_map, ky_map * sd_ln, diagnostics, method, observations, model)
+    return BackAnalysis(samples, ky_map, ky_map * sd_ln, diagnostics, method, observations, model, dict(priors),
+                        stats)
 
 
 def _laplace_draws(prior, ky_map, sd_ln, chains, draws, seed):
@@ -419,13 +458,13 @@ def _laplace_draws(prior, ky_map, sd_ln, chains, draws, seed):
     if ky.min() <= low or ky.max() >= high:
         warnings.warn(f"the Laplace approximation reaches beyond the prior's support [{low}, {high}] g; "
                       "use method='nuts'", ConvergenceWarning, stacklevel=3)
-    return ky, pd.DataFrame()
+    return ky, pd.DataFrame(), pd.DataFrame()
 
 
 def _nuts(log_likelihood, prior, starts, draws, warmup, seed):
     """NumPyro's NUTS, one chain from each of ``starts`` [g] (draws of the Laplace
     approximation), vectorised (one engine call per step for all chains); its R-hat and
-    effective sample sizes from ArviZ."""
+    effective sample sizes from ArviZ, and the statistics of each draw (a table)."""
     import jax
     import numpyro
 
@@ -444,15 +483,19 @@ def _nuts(log_likelihood, prior, starts, draws, warmup, seed):
     mcmc = MCMC(NUTS(numpyro_model), num_warmup=warmup, num_samples=draws, num_chains=chains,
                 chain_method="vectorized", progress_bar=False)
     start = biject_to(density.support).inv(jax.numpy.asarray(starts))
-    mcmc.run(jax.random.PRNGKey(seed), init_params={"ky": start}, extra_fields=("diverging",))
+    mcmc.run(jax.random.PRNGKey(seed), init_params={"ky": start}, extra_fields=tuple(_NUTS_STATS))
     ky = np.asarray(mcmc.get_samples(group_by_chain=True)["ky"], dtype=float)
+    fields = mcmc.get_extra_fields(group_by_chain=True)
+    stats = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains)}
+                         | {name: np.asarray(fields[field]).reshape(-1) for field, name in _NUTS_STATS.items()})
+    stats["lp"] = -stats["lp"]  # NumPyro's potential energy: minus the log density (in the sampler's space)
     diagnostics = pd.DataFrame({"parameter": ["ky"], "r_hat": [float(arviz.rhat(ky)) if chains > 1 else np.nan],
                                 "ess_bulk": [float(arviz.ess(ky, method="bulk"))],
                                 "ess_tail": [float(arviz.ess(ky, method="tail"))],
-                                "divergences": [int(np.sum(mcmc.get_extra_fields()["diverging"]))]})
+                                "divergences": [int(stats["diverging"].sum())]})
     row = diagnostics.iloc[0]
     if (chains > 1 and row.r_hat > RHAT_LIMIT) or row.ess_bulk < ESS_PER_CHAIN * chains or row.divergences:
         warnings.warn(f"the NUTS chains of ky did not mix well: R-hat {row.r_hat:.3f} (want <= {RHAT_LIMIT}), bulk "
                       f"ESS {row.ess_bulk:.0f} (want >= {ESS_PER_CHAIN * chains}), {row.divergences} divergent "
                       "transitions; run more draws or warmup", ConvergenceWarning, stacklevel=3)
-    return ky, diagnostics
+    return ky, diagnostics, stats

@@ -1,0 +1,143 @@
+"""A back-analysis as ArviZ's ``InferenceData``, and what its figures share: the
+parameters with their columns and units, the priors' densities, each observation's
+posterior predictive D [m]."""
+
+import math
+import warnings
+
+import numpy as np
+
+from ._result import column_name
+
+
+def parameters(result):
+    """(name, column, unit) of each parameter of ``result``'s posterior table, in its order:
+    the model's own parameters with their units ("ky", "ky_g", "g"); any other column of
+    the table as its own name, its unit in that name (unit None)."""
+    own = {column_name(name, result.model): (name, unit) for name, unit in result.model.PARAMETERS.items()}
+    listed = []
+    for column in result.samples.columns:
+        if column not in ("chain", "draw"):
+            name, unit = own.get(column, (column, None))
+            listed.append((name, column, unit))
+    return listed
+
+
+#: what a parameter is, on a figure's axis
+_MEANINGS = {"ky": "yield acceleration"}
+
+
+def axis_label(name, unit):
+    """"yield acceleration ky [g]"; a column named with its unit ("ky_g") as it is."""
+    meaning = _MEANINGS.get(name)
+    label = name if meaning is None else f"{meaning} {name}"
+    return label if unit is None else f"{label} [{unit}]"
+
+
+def prior_density(prior, x):
+    """The density of ``prior`` (a :mod:`blockdae.design` distribution) at ``x`` (an array,
+    in the parameter's unit), per unit of it: NumPyro's, the one the posterior is computed
+    with."""
+    import jax
+
+    from ._back_analysis import _float64, _numpyro_prior, _support
+
+    low, high = _support(prior)
+    x = np.asarray(x, dtype=float)
+    inside = (x > low) & (x < high)
+    with _float64():
+        log_p = _numpyro_prior(prior).log_prob(jax.numpy.asarray(np.where(inside, x, float(prior.ppf(0.5)))))
+    return np.where(inside, np.exp(np.asarray(log_p)), 0.0)
+
+
+def predictive_draws(result):
+    """The model's D [m] at each posterior draw, for each observation: shape (chains,
+    draws, observations)."""
+    chains, draws = result.samples["chain"].nunique(), result.samples["draw"].nunique()
+    d = [result.predict(o.record, o.pga_g)["D_m"].to_numpy() for o in result.observations]
+    return np.stack(d, axis=-1).reshape(chains, draws, len(result.observations))
+
+
+def _log_likelihood(result, d):
+    """ln p(observation | D = ``d`` [m]) of each observation (the last axis of ``d``): the
+    normal log density of ln D_observed, or the log probability of the bound."""
+    import jax.numpy as jnp
+
+    from ._back_analysis import _float64
+    from ._back_analysis import _log_likelihood as up_to_a_constant
+
+    with _float64():
+        columns = []
+        for i, obs in enumerate(result.observations):
+            value = np.asarray(up_to_a_constant(obs, jnp.asarray(d[..., i])))
+            if obs.kind == "displacement":
+                value = value - math.log(obs.sigma_ln * math.sqrt(2 * math.pi))
+            columns.append(value)
+    return np.stack(columns, axis=-1)
+
+
+def inference_data(result, *, seed=0):
+    """``result`` (a :class:`BackAnalysis`) as ArviZ's ``InferenceData``.
+
+    Groups: ``posterior`` (each parameter by name, e.g. ``ky``, shape (chain, draw));
+    ``sample_stats`` (NUTS: ``diverging``, ``acceptance_rate``, ``n_steps``,
+    ``step_size``, ``energy``, ``lp``; absent for the Laplace approximation);
+    ``posterior_predictive`` (``D``: the model's D [m] at each draw for each
+    observation; ``D_measured``: D with its log-normal measurement error, drawn with
+    ``seed``); ``observed_data`` (``D_measured``: the value or bound [m], with each
+    observation's ``kind`` and ``sigma_ln`` as coordinates); ``log_likelihood``
+    (``D_measured``: ln of the normal density of ln D_observed, or ln P of the bound,
+    per draw and observation); ``prior`` (each parameter drawn from its prior, as many
+    draws as the posterior, with ``seed``). Each variable's unit is in its attrs
+    (``units``). Needs ArviZ (the ``inference`` extra)."""
+    with warnings.catch_warnings():  # ArviZ's notice of its coming refactor, at import
+        warnings.simplefilter("ignore", FutureWarning)
+        import arviz
+    import xarray as xr
+
+    samples = result.samples.sort_values(["chain", "draw"])
+    chains, draws = samples["chain"].nunique(), samples["draw"].nunique()
+    coords = {"chain": np.arange(chains), "draw": np.arange(draws)}
+    names = [o.name for o in result.observations]
+
+    def dataset(variables, units, extra_coords=None):
+        return xr.Dataset({name: xr.DataArray(values, dims=dims, attrs=units[name])
+                           for name, (dims, values) in variables.items()}, coords=coords | (extra_coords or {}))
+
+    chain_draw = ("chain", "draw")
+    posterior = {name: (chain_draw, samples[column].to_numpy().reshape(chains, draws))
+                 for name, column, _ in parameters(result)}
+    units = {name: {"units": unit, "column": column} if unit else {"column": column}
+             for name, column, unit in parameters(result)}
+    groups = {"posterior": dataset(posterior, units)}
+    groups["posterior"].attrs.update(inference_library="blockdae", method=result.method)
+
+    if len(result.sample_stats):
+        stats = result.sample_stats.sort_values(["chain", "draw"])
+        stat_units = dict.fromkeys(("diverging", "acceptance_rate", "n_steps", "step_size", "energy", "lp"),
+                                   {"units": "-"})
+        groups["sample_stats"] = dataset({name: (chain_draw, stats[name].to_numpy().reshape(chains, draws))
+                                          for name in stat_units if name in stats}, stat_units)
+
+    observation_coords = {"observation": names, "kind": ("observation", [o.kind for o in result.observations]),
+                          "sigma_ln": ("observation", [o.sigma_ln for o in result.observations])}
+    d = predictive_draws(result)
+    sigma = np.array([o.sigma_ln for o in result.observations])
+    rng = np.random.default_rng(seed)
+    with np.errstate(divide="ignore"):  # D = 0 is measured as 0
+        measured = np.exp(np.log(d) + sigma * rng.standard_normal(d.shape))
+    dims = ("chain", "draw", "observation")
+    groups["posterior_predictive"] = dataset({"D": (dims, d), "D_measured": (dims, measured)},
+                                             {"D": {"units": "m"}, "D_measured": {"units": "m"}}, observation_coords)
+    groups["observed_data"] = xr.Dataset(
+        {"D_measured": xr.DataArray([o.value_m for o in result.observations], dims=("observation",),
+                                    attrs={"units": "m"})}, coords=observation_coords)
+    groups["log_likelihood"] = dataset({"D_measured": (dims, _log_likelihood(result, d))},
+                                       {"D_measured": {"units": "-"}}, observation_coords)
+
+    if result.priors:
+        prior_draws = {name: (chain_draw, np.asarray(result.priors[name].ppf(rng.uniform(size=(chains, draws))),
+                                                     dtype=float))
+                       for name, _, _ in parameters(result) if name in result.priors}
+        groups["prior"] = dataset(prior_draws, units)
+    return arviz.InferenceData(**groups)
