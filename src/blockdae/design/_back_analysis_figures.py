@@ -66,7 +66,7 @@ def predictive_figure(result, *, scenarios=None, title=None):
     columns = [d[..., i].reshape(-1) for i in range(len(result.observations))]
     columns += [result.predict(record, pga_g)["D_m"].to_numpy() for record, pga_g in scenarios.values()]
     q_low, q50, q_high = np.quantile(np.stack(columns, axis=1), [(1 - LEVEL) / 2, 0.5, (1 + LEVEL) / 2], axis=0)
-    fig, ax = plt.subplots(figsize=(max(5.0, 1.3 * len(columns) + 2.5), 4.2))
+    fig, ax = plt.subplots(figsize=(max(5.0, 1.3 * len(columns) + 2.5) + 3.0, 4.2))
     n = len(result.observations)
     position = np.arange(len(columns), dtype=float)
     ax.errorbar(position[:n] - 0.12, q50[:n], yerr=[q50[:n] - q_low[:n], q_high[:n] - q50[:n]], fmt="o",
@@ -89,16 +89,21 @@ def predictive_figure(result, *, scenarios=None, title=None):
         ax.set_yscale("log")
         ax.yaxis.set_major_formatter(ticker.FormatStrFormatter("%g"))
         ax.yaxis.set_minor_formatter(ticker.FormatStrFormatter("%g"))
-    names = [o.name + (f"\nPGA {o.pga_g:g} g" if o.pga_g is not None else "") for o in result.observations]
-    names += [label + (f"\nPGA {pga_g:g} g" if pga_g is not None else "") for label, (_, pga_g) in scenarios.items()]
+    names = [f"{o.name}\n{_scaling(o.pga_g)}" for o in result.observations]
+    names += [f"{label}\n{_scaling(pga_g)}" for label, (_, pga_g) in scenarios.items()]
     ax.set_xticks(position, names, fontsize="small")
     ax.set_xlim(-0.6, len(columns) - 0.4)
     ax.set_ylabel("displacement D [m]")
     ax.set_xlabel("observation" + (" | scenario" if scenarios else ""))
-    ax.legend(fontsize="small")
+    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title(title or "Observed and predicted displacements")
     fig.tight_layout()
     return fig
+
+
+def _scaling(pga_g):
+    """How a record was scaled, for a tick label."""
+    return "as recorded" if pga_g is None else f"PGA {pga_g:g} g"
 
 
 def pair_figure(result, *, title=None):

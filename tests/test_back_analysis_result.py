@@ -1,0 +1,179 @@
+"""A back-analysis's result as ArviZ's InferenceData (the same numbers as its tables) and
+its figures (what they draw, with units on every axis)."""
+
+import math
+import warnings
+
+import matplotlib
+import numpy as np
+import pandas as pd
+import pytest
+from scipy import stats
+
+import blockdae as bd
+from blockdae import design
+
+pytest.importorskip("numpyro")
+arviz = pytest.importorskip("arviz")
+matplotlib.use("Agg")
+
+PRIOR = design.LogNormal(median=0.1, sigma_ln=0.5)  # ky [g]
+
+
+@pytest.fixture(scope="module")
+def record():
+    t = np.arange(0, 8, 0.01)
+    return bd.Record(0.3 * 9.80665 * np.sin(2 * np.pi * t) * np.exp(-0.3 * t), 0.01, "decaying sine")
+
+
+@pytest.fixture(scope="module")
+def observations(record):
+    return [design.Observation(record, sigma_ln=0.2, displacement_m=0.1, pga_g=0.3, name="measured"),
+            design.Observation(record, sigma_ln=0.3, more_than_m=0.15, pga_g=0.4, name="at least"),
+            design.Observation(record, sigma_ln=0.3, less_than_m=0.6, pga_g=0.45, name="at most")]
+
+
+@pytest.fixture(scope="module")
+def nuts(observations):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", design.ConvergenceWarning)  # short chains
+        return design.back_analysis(observations, design.Rigid(), {"ky": PRIOR}, chains=2, draws=100, warmup=100)
+
+
+@pytest.fixture(scope="module")
+def laplace(observations):
+    return design.back_analysis(observations, design.Rigid(), {"ky": PRIOR}, method="laplace", chains=2, draws=150)
+
+
+def test_inference_data_holds_the_tables_numbers(nuts, observations):
+    """Posterior, sample statistics and predictive D: the very numbers of the result's
+    tables; the diagnostics ArviZ computes from it: those of the result."""
+    idata = nuts.to_inference_data()
+    assert {"posterior", "sample_stats", "posterior_predictive", "observed_data", "log_likelihood",
+            "prior"} <= set(idata.groups())
+    ky = idata.posterior["ky"]
+    assert ky.dims == ("chain", "draw") and ky.shape == (2, 100) and ky.attrs["units"] == "g"
+    table = nuts.samples.pivot(index="chain", columns="draw", values="ky_g").to_numpy()
+    np.testing.assert_array_equal(ky.values, table)
+
+    summary = nuts.summary().iloc[0]
+    assert float(ky.mean()) == pytest.approx(summary.mean_g, rel=1e-14)
+    assert float(ky.std(ddof=1)) == pytest.approx(summary.sd_g, rel=1e-12)
+    assert float(ky.quantile(0.05)) == pytest.approx(summary.q05_g, rel=1e-14)
+    diagnostics = nuts.diagnostics.iloc[0]
+    assert float(arviz.rhat(idata)["ky"]) == pytest.approx(diagnostics.r_hat, rel=1e-12)
+    assert float(arviz.ess(idata, method="bulk")["ky"]) == pytest.approx(diagnostics.ess_bulk, rel=1e-12)
+    assert int(idata.sample_stats["diverging"].sum()) == diagnostics.divergences
+    assert idata.sample_stats["diverging"].dtype == bool
+    assert set(idata.sample_stats.data_vars) == {"diverging", "acceptance_rate", "n_steps", "step_size", "energy",
+                                                 "lp"}
+    assert (idata.sample_stats["acceptance_rate"] >= 0).all() and (idata.sample_stats["acceptance_rate"] <= 1).all()
+
+    d = idata.posterior_predictive["D"]
+    assert d.dims == ("chain", "draw", "observation") and d.attrs["units"] == "m"
+    assert list(d["observation"].values) == ["measured", "at least", "at most"]
+    predictive = nuts.predictive().set_index("observation")
+    for name in predictive.index:
+        draws = d.sel(observation=name).values.reshape(-1)
+        np.testing.assert_allclose(np.quantile(draws, [0.05, 0.5, 0.95]),
+                                   predictive.loc[name, ["q05_D_m", "median_D_m", "q95_D_m"]].to_numpy(dtype=float),
+                                   rtol=1e-14)
+    observed = idata.observed_data["D_measured"]
+    assert observed.attrs["units"] == "m"
+    assert list(observed.values) == [o.value_m for o in observations]
+    assert list(observed["kind"].values) == ["displacement", "more_than", "less_than"]
+
+
+def test_the_log_likelihood_is_each_observations_density(nuts, observations):
+    """Against scipy, per draw and observation: ln of the normal density of ln D_observed
+    (mean ln D, sd sigma_ln), ln Phi(z) for 'more than' and ln Phi(-z) for 'less than'."""
+    idata = nuts.to_inference_data()
+    d = idata.posterior_predictive["D"].values
+    log_lik = idata.log_likelihood["D_measured"].values
+    assert log_lik.shape == d.shape
+    z = [(np.log(d[..., i]) - math.log(o.value_m)) / o.sigma_ln for i, o in enumerate(observations)]
+    np.testing.assert_allclose(log_lik[..., 0], stats.norm.logpdf(z[0]) - math.log(0.2), rtol=1e-12)
+    np.testing.assert_allclose(log_lik[..., 1], stats.norm.logcdf(z[1]), rtol=1e-12)
+    np.testing.assert_allclose(log_lik[..., 2], stats.norm.logcdf(-z[2]), rtol=1e-12)
+    assert np.isfinite(arviz.loo(idata).elpd_loo)  # ArviZ finds what it needs
+
+
+def test_the_prior_group_is_drawn_from_the_prior(nuts):
+    idata = nuts.to_inference_data(seed=3)
+    prior = idata.prior["ky"]
+    assert prior.shape == (2, 100) and prior.attrs["units"] == "g"
+    assert stats.kstest(prior.values.reshape(-1), PRIOR.cdf).pvalue > 0.001
+    measured = idata.posterior_predictive["D_measured"].values
+    ratio = np.log(measured / idata.posterior_predictive["D"].values)  # the measurement's error
+    sigma = idata.posterior_predictive["sigma_ln"].values
+    assert stats.kstest((ratio / sigma).reshape(-1), "norm").pvalue > 0.001
+    np.testing.assert_array_equal(idata.prior["ky"].values, nuts.to_inference_data(seed=3).prior["ky"].values)
+
+
+def test_a_laplace_result_has_no_sampler_statistics(laplace):
+    idata = laplace.to_inference_data()
+    assert "sample_stats" not in idata.groups() and len(laplace.sample_stats) == 0
+    np.testing.assert_array_equal(idata.posterior["ky"].values.reshape(-1),
+                                  laplace.samples.sort_values(["chain", "draw"]).ky_g.to_numpy())
+    assert idata.posterior.attrs["method"] == "laplace"
+
+
+def test_the_posterior_figure_draws_the_prior_posterior_and_maximum(nuts):
+    """Three lines: the prior (its density, checked against scipy's log-normal), the
+    posterior's kernel estimate, the maximum a posteriori; the 90 % interval shaded."""
+    import matplotlib.pyplot as plt
+
+    fig = nuts.posterior_figure()
+    ax, = fig.axes
+    assert ax.get_xlabel() == "yield acceleration ky [g]" and ax.get_ylabel() == "density [1/g]"
+    prior, posterior, best = ax.get_lines()
+    x, y = prior.get_data()
+    np.testing.assert_allclose(y, stats.lognorm.pdf(x, 0.5, scale=0.1), rtol=1e-10)
+    assert best.get_xdata()[0] == nuts.map_ky_g
+    x, y = posterior.get_data()
+    assert x[np.argmax(y)] == pytest.approx(nuts.samples.ky_g.median(), abs=2 * nuts.summary().sd_g.iloc[0])
+    assert len(ax.collections) == 1  # the interval
+    plt.close(fig)
+
+
+def test_the_predictive_figure_draws_each_observation_and_scenario(nuts, observations, record):
+    """One errorbar of the predictive D over the observations, one per observation (its
+    value and 90 % measurement interval), one over the scenarios; D [m] on the y axis."""
+    import matplotlib.pyplot as plt
+
+    fig = nuts.predictive_figure(scenarios={"design motion": (record, 0.5)})
+    ax, = fig.axes
+    assert ax.get_ylabel() == "displacement D [m]" and ax.get_yscale() == "log"
+    assert len(ax.containers) == 1 + 1 + len(observations)
+    predictive, scenario, *seen = ax.containers
+    np.testing.assert_allclose(predictive.lines[0].get_ydata(), nuts.predictive().median_D_m, rtol=1e-14)
+    np.testing.assert_allclose(scenario.lines[0].get_ydata(), np.median(nuts.predict(record, 0.5).D_m), rtol=1e-14)
+    for container, obs in zip(seen, observations):
+        assert container.lines[0].get_ydata()[0] == obs.value_m
+        bar = container.lines[2][0].get_segments()[0]
+        spread = math.exp(1.6448536269514722 * obs.sigma_ln)
+        np.testing.assert_allclose(bar[:, 1], [obs.value_m / spread, obs.value_m * spread], rtol=1e-12)
+    ticks = [t.get_text() for t in ax.get_xticklabels()]
+    assert ticks == ["measured\nPGA 0.3 g", "at least\nPGA 0.4 g", "at most\nPGA 0.45 g", "design motion\nPGA 0.5 g"]
+    plt.close(fig)
+
+
+def test_the_pair_figure_needs_two_parameters(nuts, record):
+    """One parameter: a clear error. Two (a table of the flexible mass's ky and height):
+    a 2 x 2 corner, the pair's draws below the diagonal, units on the outer axes."""
+    import matplotlib.pyplot as plt
+
+    with pytest.raises(ValueError, match=r"needs two or more parameters; this posterior has one \(ky\)"):
+        nuts.pair_figure()
+    rng = np.random.default_rng(0)
+    samples = pd.DataFrame({"chain": np.repeat([0, 1], 50), "draw": np.tile(np.arange(50), 2),
+                            "ky_g": rng.lognormal(np.log(0.1), 0.1, 100), "height_m": rng.normal(10, 1, 100)})
+    two = design.BackAnalysis(samples, 0.1, 0.01, pd.DataFrame(), "nuts", nuts.observations, design.Flexible())
+    fig = two.pair_figure()
+    axes = np.array(fig.axes).reshape(2, 2)
+    assert not axes[0, 1].get_visible()
+    assert axes[1, 0].get_xlabel() == "yield acceleration ky [g]" and axes[1, 0].get_ylabel() == "height [m]"
+    assert axes[1, 1].get_xlabel() == "height [m]"
+    np.testing.assert_array_equal(axes[1, 0].collections[0].get_offsets(), samples[["ky_g", "height_m"]].to_numpy())
+    assert len(axes[0, 0].patches) == 40 and len(axes[1, 1].patches) == 40  # the histograms' bars
+    plt.close(fig)
