@@ -275,7 +275,7 @@ class BackAnalysis:
     method: str
     observations: list
     model: Rigid
-    priors: dict = None
+    priors: dict | None = None
     sample_stats: pd.DataFrame = dataclasses.field(default_factory=pd.DataFrame)
 
     def __repr__(self):
@@ -320,9 +320,17 @@ class BackAnalysis:
         return pd.DataFrame(rows)
 
     def to_inference_data(self, *, seed=0):
-        """The result as ArviZ's ``InferenceData`` (posterior, sample_stats, posterior_predictive,
-        observed_data, log_likelihood and prior groups, units in each variable's attrs); see
-        :func:`blockdae.design.inference_data`."""
+        """The result as ArviZ's ``InferenceData``; each variable's unit in its
+        ``attrs["units"]``. Groups: ``posterior`` (each parameter by name, e.g. ``ky``, shape
+        (chain, draw)); ``sample_stats`` (NUTS's ``diverging``, ``acceptance_rate``,
+        ``n_steps``, ``step_size``, ``energy``, ``lp`` of each draw; none for the Laplace
+        approximation); ``posterior_predictive`` (``D``: the model's D [m] at each draw for
+        each observation; ``D_measured``: D with its log-normal measurement error, drawn
+        with ``seed``); ``observed_data`` (``D_measured``: the value or bound [m], each
+        observation's ``kind`` and ``sigma_ln`` as coordinates); ``log_likelihood``
+        (``D_measured``: ln of the normal density of ln D_observed, or ln P of the bound,
+        per draw and observation); ``prior`` (each parameter drawn from its prior, as many
+        draws as the posterior, with ``seed``). Needs ArviZ (the ``inference`` extra)."""
         from ._back_analysis_result import inference_data
 
         return inference_data(self, seed=seed)

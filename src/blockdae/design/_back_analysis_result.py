@@ -77,19 +77,8 @@ def _log_likelihood(result, d):
 
 
 def inference_data(result, *, seed=0):
-    """``result`` (a :class:`BackAnalysis`) as ArviZ's ``InferenceData``.
-
-    Groups: ``posterior`` (each parameter by name, e.g. ``ky``, shape (chain, draw));
-    ``sample_stats`` (NUTS: ``diverging``, ``acceptance_rate``, ``n_steps``,
-    ``step_size``, ``energy``, ``lp``; absent for the Laplace approximation);
-    ``posterior_predictive`` (``D``: the model's D [m] at each draw for each
-    observation; ``D_measured``: D with its log-normal measurement error, drawn with
-    ``seed``); ``observed_data`` (``D_measured``: the value or bound [m], with each
-    observation's ``kind`` and ``sigma_ln`` as coordinates); ``log_likelihood``
-    (``D_measured``: ln of the normal density of ln D_observed, or ln P of the bound,
-    per draw and observation); ``prior`` (each parameter drawn from its prior, as many
-    draws as the posterior, with ``seed``). Each variable's unit is in its attrs
-    (``units``). Needs ArviZ (the ``inference`` extra)."""
+    """``result`` (a :class:`BackAnalysis`) as ArviZ's ``InferenceData``: its groups are
+    those :meth:`BackAnalysis.to_inference_data` lists."""
     with warnings.catch_warnings():  # ArviZ's notice of its coming refactor, at import
         warnings.simplefilter("ignore", FutureWarning)
         import arviz
@@ -100,16 +89,16 @@ def inference_data(result, *, seed=0):
     coords = {"chain": np.arange(chains), "draw": np.arange(draws)}
     names = [o.name for o in result.observations]
 
-    def dataset(variables, units, extra_coords=None):
-        return xr.Dataset({name: xr.DataArray(values, dims=dims, attrs=units[name])
+    def dataset(variables, attrs, extra_coords=None):
+        return xr.Dataset({name: xr.DataArray(values, dims=dims, attrs=attrs[name])
                            for name, (dims, values) in variables.items()}, coords=coords | (extra_coords or {}))
 
     chain_draw = ("chain", "draw")
     posterior = {name: (chain_draw, samples[column].to_numpy().reshape(chains, draws))
                  for name, column, _ in parameters(result)}
-    units = {name: {"units": unit, "column": column} if unit else {"column": column}
-             for name, column, unit in parameters(result)}
-    groups = {"posterior": dataset(posterior, units)}
+    parameter_attrs = {name: {"units": unit, "column": column} if unit else {"column": column}
+                       for name, column, unit in parameters(result)}
+    groups = {"posterior": dataset(posterior, parameter_attrs)}
     groups["posterior"].attrs.update(inference_library="blockdae", method=result.method)
 
     if len(result.sample_stats):
@@ -139,5 +128,5 @@ def inference_data(result, *, seed=0):
         prior_draws = {name: (chain_draw, np.asarray(result.priors[name].ppf(rng.uniform(size=(chains, draws))),
                                                      dtype=float))
                        for name, _, _ in parameters(result) if name in result.priors}
-        groups["prior"] = dataset(prior_draws, units)
+        groups["prior"] = dataset(prior_draws, parameter_attrs)
     return arviz.InferenceData(**groups)
