@@ -84,18 +84,37 @@ def test_inference_data_holds_the_tables_numbers(nuts, observations):
     assert list(observed["kind"].values) == ["displacement", "more_than", "less_than"]
 
 
-def test_the_log_likelihood_is_each_observations_density(nuts, observations):
-    """Against scipy, per draw and observation: ln of the normal density of ln D_observed
-    (mean ln D, sd sigma_ln), ln Phi(z) for 'more than' and ln Phi(-z) for 'less than'."""
+def test_the_log_likelihood_is_the_one_the_posterior_is_computed_with(nuts, observations):
+    """Per draw: the prior's log density plus the observations' log likelihoods (as stored)
+    minus design.log_posterior (JAX, the one NUTS samples) is the normal density's constant
+    of the measured displacement, -ln(sigma_ln sqrt(2 pi)); the bounds' terms are log
+    probabilities with no constant."""
+    import jax
+
+    from blockdae.design._back_analysis_result import prior_density
+
     idata = nuts.to_inference_data()
-    d = idata.posterior_predictive["D"].values
     log_lik = idata.log_likelihood["D_measured"].values
-    assert log_lik.shape == d.shape
-    z = [(np.log(d[..., i]) - math.log(o.value_m)) / o.sigma_ln for i, o in enumerate(observations)]
-    np.testing.assert_allclose(log_lik[..., 0], stats.norm.logpdf(z[0]) - math.log(0.2), rtol=1e-12)
-    np.testing.assert_allclose(log_lik[..., 1], stats.norm.logcdf(z[1]), rtol=1e-12)
-    np.testing.assert_allclose(log_lik[..., 2], stats.norm.logcdf(-z[2]), rtol=1e-12)
+    assert log_lik.shape == idata.posterior_predictive["D"].shape
+    ky = idata.posterior["ky"].values
+    log_p = design.log_posterior(observations, design.Rigid(), {"ky": PRIOR})
+    constant = -math.log(0.2 * math.sqrt(2 * math.pi))
+    with jax.enable_x64(True):
+        for chain, draw in [(0, 0), (0, 57), (1, 13), (1, 99)]:
+            total = math.log(prior_density(PRIOR, ky[chain, draw])) + log_lik[chain, draw].sum()
+            assert total - float(log_p(ky[chain, draw])) == pytest.approx(constant, abs=1e-9)
     assert np.isfinite(arviz.loo(idata).elpd_loo)  # ArviZ finds what it needs
+
+
+@pytest.mark.parametrize("prior", [PRIOR, design.Truncated(PRIOR, low=0.02, high=0.3),
+                                   design.Truncated(design.Normal(0.1, 0.05), low=0.0), design.Uniform(0.02, 0.3)])
+def test_the_prior_density_drawn_is_the_priors(prior):
+    """Against the distribution's own cdf differenced over ± 1e-6 g."""
+    from blockdae.design._back_analysis_result import prior_density
+
+    x = np.array([0.03, 0.08, 0.12, 0.25])
+    np.testing.assert_allclose(prior_density(prior, x), (prior.cdf(x + 1e-6) - prior.cdf(x - 1e-6)) / 2e-6, rtol=1e-6)
+    assert prior_density(prior, np.array([-0.1]))[0] == 0.0
 
 
 def test_the_prior_group_is_drawn_from_the_prior(nuts):
@@ -119,7 +138,7 @@ def test_a_laplace_result_has_no_sampler_statistics(laplace):
 
 
 def test_the_posterior_figure_draws_the_prior_posterior_and_maximum(nuts):
-    """Three lines: the prior (its density, checked against scipy's log-normal), the
+    """Three lines: the prior (its density, against its cdf differenced), the
     posterior's kernel estimate, the maximum a posteriori; the 90 % interval shaded."""
     import matplotlib.pyplot as plt
 
@@ -128,7 +147,7 @@ def test_the_posterior_figure_draws_the_prior_posterior_and_maximum(nuts):
     assert ax.get_xlabel() == "yield acceleration ky [g]" and ax.get_ylabel() == "density [1/g]"
     prior, posterior, best = ax.get_lines()
     x, y = prior.get_data()
-    np.testing.assert_allclose(y, stats.lognorm.pdf(x, 0.5, scale=0.1), rtol=1e-10)
+    np.testing.assert_allclose(y, (PRIOR.cdf(x + 1e-7) - PRIOR.cdf(x - 1e-7)) / 2e-7, rtol=1e-6)
     assert best.get_xdata()[0] == nuts.map_ky_g
     x, y = posterior.get_data()
     assert x[np.argmax(y)] == pytest.approx(nuts.samples.ky_g.median(), abs=2 * nuts.summary().sd_g.iloc[0])

@@ -36,11 +36,12 @@ def posterior_figure(result, *, title=None):
         ax.plot(x, density, color="C0", label=f"posterior ({result.method}, {len(draws)} draws)")
         low, high = np.quantile(draws, [(1 - LEVEL) / 2, (1 + LEVEL) / 2])
         inside = (x >= low) & (x <= high)
+        in_unit = f" {unit}" if unit else ""
         ax.fill_between(x[inside], density[inside], color="C0", alpha=0.2, lw=0,
-                        label=f"{LEVEL * 100:.0f} % interval {low:.4g}-{high:.4g}" + (f" {unit}" if unit else ""))
+                        label=f"{LEVEL * 100:.0f} % interval {low:.4g}-{high:.4g}{in_unit}")
         best = getattr(result, f"map_{column}", None)
         if best is not None:
-            ax.axvline(best, color="C3", ls=":", label=f"maximum a posteriori {best:.4g}" + (f" {unit}" if unit else ""))
+            ax.axvline(best, color="C3", ls=":", label=f"maximum a posteriori {best:.4g}{in_unit}")
         ax.set_xlabel(axis_label(name, unit))
         ax.set_ylabel("density" + (f" [1/{unit}]" if unit and unit != "-" else " [-]"))
         ax.set_ylim(bottom=0)

@@ -7,6 +7,7 @@ import warnings
 
 import numpy as np
 
+from ._distributions import LogNormal, Normal, Truncated, Uniform
 from ._result import column_name
 
 
@@ -36,18 +37,21 @@ def axis_label(name, unit):
 
 def prior_density(prior, x):
     """The density of ``prior`` (a :mod:`blockdae.design` distribution) at ``x`` (an array,
-    in the parameter's unit), per unit of it: NumPyro's, the one the posterior is computed
-    with."""
-    import jax
+    in the parameter's unit), per unit of it."""
+    from scipy import stats
 
-    from ._back_analysis import _float64, _numpyro_prior, _support
-
-    low, high = _support(prior)
     x = np.asarray(x, dtype=float)
-    inside = (x > low) & (x < high)
-    with _float64():
-        log_p = _numpyro_prior(prior).log_prob(jax.numpy.asarray(np.where(inside, x, float(prior.ppf(0.5)))))
-    return np.where(inside, np.exp(np.asarray(log_p)), 0.0)
+    if isinstance(prior, Truncated):
+        low, high = (-math.inf if prior.low is None else prior.low), (math.inf if prior.high is None else prior.high)
+        mass = float(np.diff(prior.distribution.cdf(np.array([low, high])))[0])
+        return np.where((x >= low) & (x <= high), prior_density(prior.distribution, x) / mass, 0.0)
+    if isinstance(prior, LogNormal):
+        return stats.lognorm.pdf(x, prior.sigma_ln, scale=prior.median)
+    if isinstance(prior, Normal):
+        return stats.norm.pdf(x, prior.mean, prior.std)
+    if isinstance(prior, Uniform):
+        return stats.uniform.pdf(x, prior.low, prior.high - prior.low)
+    raise ValueError(f"prior={prior!r} must be a design.LogNormal, Normal, Uniform or Truncated")
 
 
 def predictive_draws(result):
@@ -58,21 +62,21 @@ def predictive_draws(result):
     return np.stack(d, axis=-1).reshape(chains, draws, len(result.observations))
 
 
-def _log_likelihood(result, d):
-    """ln p(observation | D = ``d`` [m]) of each observation (the last axis of ``d``): the
-    normal log density of ln D_observed, or the log probability of the bound."""
-    import jax.numpy as jnp
+def log_likelihood(observations, d):
+    """ln p(observation | D = ``d`` [m]) of each of ``observations`` (the last axis of
+    ``d``): the normal log density of ln D_observed (mean ln D, sd sigma_ln), or ln Phi(z)
+    of a bound (z = (ln D - ln bound) / sigma_ln; Phi(-z) for 'less than'); -inf for a
+    displacement seen where D = 0."""
+    from scipy import stats
 
-    from ._back_analysis import _float64
-    from ._back_analysis import _log_likelihood as up_to_a_constant
-
-    with _float64():
-        columns = []
-        for i, obs in enumerate(result.observations):
-            value = np.asarray(up_to_a_constant(obs, jnp.asarray(d[..., i])))
-            if obs.kind == "displacement":
-                value = value - math.log(obs.sigma_ln * math.sqrt(2 * math.pi))
-            columns.append(value)
+    columns = []
+    for i, obs in enumerate(observations):
+        with np.errstate(divide="ignore"):
+            z = (np.log(d[..., i]) - math.log(obs.value_m)) / obs.sigma_ln
+        if obs.kind == "displacement":
+            columns.append(stats.norm.logpdf(z) - math.log(obs.sigma_ln))
+        else:
+            columns.append(stats.norm.logcdf(z if obs.kind == "more_than" else -z))
     return np.stack(columns, axis=-1)
 
 
@@ -121,7 +125,7 @@ def inference_data(result, *, seed=0):
     groups["observed_data"] = xr.Dataset(
         {"D_measured": xr.DataArray([o.value_m for o in result.observations], dims=("observation",),
                                     attrs={"units": "m"})}, coords=observation_coords)
-    groups["log_likelihood"] = dataset({"D_measured": (dims, _log_likelihood(result, d))},
+    groups["log_likelihood"] = dataset({"D_measured": (dims, log_likelihood(result.observations, d))},
                                        {"D_measured": {"units": "-"}}, observation_coords)
 
     if result.priors:
