@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from ..excitation import Record
+from ._back_analysis_result import Posterior
 from ._distributions import LogNormal, Normal, Uniform
 from ._inferred import InferredParameter, inferred_parameter, support
 from ._models import DesignModel
@@ -30,6 +31,9 @@ _REACH_SIGMAS = 4.0
 #: R-hat above which, and bulk effective sample size per chain below which, a warning is raised
 RHAT_LIMIT = 1.01
 ESS_PER_CHAIN = 100
+#: NumPyro's statistics of each NUTS draw -> their names in ArviZ's sample_stats
+_NUTS_STATS = {"diverging": "diverging", "accept_prob": "acceptance_rate", "num_steps": "n_steps",
+               "adapt_state.step_size": "step_size", "energy": "energy", "potential_energy": "lp"}
 
 
 class ConvergenceWarning(UserWarning):
@@ -146,6 +150,13 @@ def _check_reachable(parameter, observations):
                              f"sigma_ln above; widen the prior of {name} or check the observation")
 
 
+def check_counts(chains, draws, warmup):
+    """Raise unless ``chains`` and ``draws`` are whole numbers >= 1 and ``warmup`` >= 0."""
+    for field, value in (("chains", chains), ("draws", draws), ("warmup", warmup)):
+        if not (isinstance(value, int) and not isinstance(value, bool) and value >= (field != "warmup")):
+            raise ValueError(f"{field}={value!r} must be a whole number >= {int(field != 'warmup')}")
+
+
 def _log_likelihood(obs, d):
     """ln p(obs | D = ``d`` [m]) up to a constant, in JAX."""
     import jax.numpy as jnp
@@ -207,8 +218,9 @@ def _checked(observations, model, priors):
 
 
 @dataclasses.dataclass
-class BackAnalysis:
-    """The posterior of one parameter of a design model given the observations.
+class BackAnalysis(Posterior):
+    """The posterior of one parameter of a design model given the observations (its
+    summary, predictive table, ``InferenceData`` and figures: :class:`Posterior`).
 
     Attributes:
         samples: the posterior draws, a table (``chain``, ``draw``, the parameter's
@@ -224,6 +236,10 @@ class BackAnalysis:
         observations: the observations analysed (:class:`Observation`).
         model: the design model they were analysed with.
         fixed: the values of the model's other parameters (name -> number).
+        priors: the parameter's prior (name -> distribution).
+        sample_stats: NUTS's statistics of each draw (``chain``, ``draw``, ``diverging``,
+            ``acceptance_rate`` [-], ``n_steps``, ``step_size``, ``energy``, ``lp``), a
+            table; empty for the Laplace approximation.
     """
 
     samples: pd.DataFrame
@@ -236,6 +252,8 @@ class BackAnalysis:
     observations: list
     model: DesignModel
     fixed: dict
+    priors: dict
+    sample_stats: pd.DataFrame
 
     def __repr__(self):
         s = self.summary().iloc[0]
@@ -249,13 +267,19 @@ class BackAnalysis:
         """The parameter's column in :attr:`samples`."""
         return self.samples.columns[-1]
 
-    def summary(self) -> pd.DataFrame:
-        """The parameter's mean, standard deviation, median and 90 % interval, one row
-        (``parameter``, ``unit``, ``mean``, ``sd``, ``median``, ``q05``, ``q95``: in its unit)."""
-        value = self.samples[self.column].to_numpy()
-        q05, q50, q95 = np.quantile(value, [0.05, 0.5, 0.95])
-        return pd.DataFrame({"parameter": [self.parameter], "unit": [self.unit], "mean": [value.mean()],
-                             "sd": [value.std(ddof=1)], "median": [q50], "q05": [q05], "q95": [q95]})
+    @property
+    def inferred(self) -> list:
+        """[(name, column, unit)] of the parameter."""
+        return [(self.parameter, self.column, self.unit)]
+
+    @property
+    def map_values(self) -> dict:
+        """{name: the maximum a posteriori value [its unit]}."""
+        return {self.parameter: self.map_value}
+
+    def observed(self) -> list:
+        """(observation, (record, pga_g)) of each observation."""
+        return [(obs, (obs.record, obs.pga_g)) for obs in self.observations]
 
     def predict(self, record, pga_g=None) -> pd.DataFrame:
         """The posterior predictive D [m] of the slope under ``record`` scaled to ``pga_g``
@@ -269,18 +293,6 @@ class BackAnalysis:
         parameter = InferredParameter(self.model, self.parameter, None, self.fixed)
         table["D_m"] = parameter.displacements(record, pga_g, table[self.column].to_numpy())
         return table
-
-    def predictive(self) -> pd.DataFrame:
-        """Each observation beside its posterior predictive D [m] (median and 90 %
-        interval of the model's D over the posterior draws): ``observation``, ``kind``,
-        ``observed_m``, ``median_D_m``, ``q05_D_m``, ``q95_D_m``."""
-        rows = []
-        for obs in self.observations:
-            d = self.predict(obs.record, obs.pga_g)["D_m"].to_numpy()
-            q05, q50, q95 = np.quantile(d, [0.05, 0.5, 0.95])
-            rows.append({"observation": obs.name, "kind": obs.kind, "observed_m": obs.value_m,
-                         "median_D_m": q50, "q05_D_m": q05, "q95_D_m": q95})
-        return pd.DataFrame(rows)
 
 
 @contextlib.contextmanager
@@ -386,24 +398,25 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
     observations, parameter = _checked(observations, model, priors)
     if method not in ("nuts", "laplace"):
         raise ValueError(f"method={method!r} is unknown; choose 'nuts' or 'laplace'")
-    for field, value in (("chains", chains), ("draws", draws), ("warmup", warmup)):
-        if not (isinstance(value, int) and not isinstance(value, bool) and value >= (field != "warmup")):
-            raise ValueError(f"{field}={value!r} must be a whole number >= {int(field != 'warmup')}")
+    check_counts(chains, draws, warmup)
     _check_reachable(parameter, observations)
     prior, name = parameter.prior, parameter.name
     with _float64():
         log_p = _log_posterior(observations, parameter)
         at_map, sd_ln = _maximum(log_p, prior, name)
         if method == "laplace":
-            value, diagnostics = _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed)
+            value = _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed)
+            diagnostics, stats = pd.DataFrame(), pd.DataFrame()
         else:
-            starts = _laplace_draws(parameter, at_map, sd_ln, chains, 1, seed)[0][:, 0]
-            value, diagnostics = _nuts(_log_likelihoods(observations, parameter), parameter, starts, draws, warmup,
-                                       seed)
+            starts = {name: _laplace_draws(parameter, at_map, sd_ln, chains, 1, seed)[:, 0]}
+            log_likelihood = _log_likelihoods(observations, parameter)
+            drawn, diagnostics, stats = nuts(lambda values: log_likelihood(values[name]), {name: prior}, starts,
+                                             draws, warmup, seed)
+            value = drawn[name]
     samples = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains),
                             parameter.column: value.reshape(-1)})
     return BackAnalysis(samples, name, parameter.unit, at_map, at_map * sd_ln, diagnostics, method, observations,
-                        model, parameter.fixed)
+                        model, parameter.fixed, {name: prior}, stats)
 
 
 def _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed):
@@ -415,40 +428,65 @@ def _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed):
     if value.min() <= low or value.max() >= high:
         warnings.warn(f"the Laplace approximation of {parameter.name} reaches beyond the prior's support [{low}, "
                       f"{high}] {parameter.unit}; use method='nuts'", ConvergenceWarning, stacklevel=3)
-    return value, pd.DataFrame()
+    return value
 
 
-def _nuts(log_likelihood, parameter, starts, draws, warmup, seed):
-    """NumPyro's NUTS, one chain from each of ``starts`` [the parameter's unit] (draws of
-    the Laplace approximation), vectorised (one model call per step for all chains); its
-    R-hat and effective sample sizes from ArviZ."""
+def nuts(log_likelihood, priors, starts, draws, warmup, seed, stacklevel=3):
+    """NumPyro's No-U-Turn sampler on the vector of the parameters ``priors`` names
+    (name -> a :mod:`blockdae.design` distribution), each mapped to the real line
+    (NumPyro's ``biject_to`` of its support, the Jacobian in the potential), a dense mass
+    matrix adapted in warm-up; ``log_likelihood`` a JAX function of the values (name ->
+    a scalar, each in its unit); one chain from each of ``starts`` (name -> shape
+    (chains,)), the chains vectorised (one model call per step for all of them).
+
+    Returns:
+        (the draws, name -> shape (chains, draws); per parameter ArviZ's R-hat, bulk and
+        tail effective sample sizes and the divergent transitions of all chains, a table;
+        NUTS's statistics of each draw (``chain``, ``draw``, ``diverging``,
+        ``acceptance_rate``, ``n_steps``, ``step_size``, ``energy``, ``lp``), a table). A
+        :class:`ConvergenceWarning` where the chains did not mix (``stacklevel``:
+        warnings.warn's, the user's call it names)."""
     import jax
-    import numpyro
+    from numpyro.distributions.transforms import biject_to
+    from numpyro.infer import MCMC, NUTS
 
     with warnings.catch_warnings():  # ArviZ's notice of its coming refactor, at import
         warnings.simplefilter("ignore", FutureWarning)
         import arviz
-    from numpyro.distributions.transforms import biject_to
-    from numpyro.infer import MCMC, NUTS
 
-    density = _numpyro_prior(parameter.prior)
-    chains, name = len(starts), parameter.name
+    densities = {name: _numpyro_prior(prior) for name, prior in priors.items()}
+    transforms = {name: biject_to(d.support) for name, d in densities.items()}
+    names = list(densities)
+    chains = len(next(iter(starts.values())))
 
-    def numpyro_model():
-        numpyro.factor("observations", log_likelihood(numpyro.sample(name, density)))
+    def constrained(z):
+        return {name: transforms[name](z[i]) for i, name in enumerate(names)}
 
-    mcmc = MCMC(NUTS(numpyro_model), num_warmup=warmup, num_samples=draws, num_chains=chains,
-                chain_method="vectorized", progress_bar=False)
-    start = biject_to(density.support).inv(jax.numpy.asarray(starts))
-    mcmc.run(jax.random.PRNGKey(seed), init_params={name: start}, extra_fields=("diverging",))
-    value = np.asarray(mcmc.get_samples(group_by_chain=True)[name], dtype=float)
-    diagnostics = pd.DataFrame({"parameter": [name], "r_hat": [float(arviz.rhat(value)) if chains > 1 else np.nan],
-                                "ess_bulk": [float(arviz.ess(value, method="bulk"))],
-                                "ess_tail": [float(arviz.ess(value, method="tail"))],
-                                "divergences": [int(np.sum(mcmc.get_extra_fields()["diverging"]))]})
-    row = diagnostics.iloc[0]
-    if (chains > 1 and row.r_hat > RHAT_LIMIT) or row.ess_bulk < ESS_PER_CHAIN * chains or row.divergences:
-        warnings.warn(f"the NUTS chains of {name} did not mix well: R-hat {row.r_hat:.3f} (want <= {RHAT_LIMIT}), "
-                      f"bulk ESS {row.ess_bulk:.0f} (want >= {ESS_PER_CHAIN * chains}), {row.divergences} divergent "
-                      "transitions; run more draws or warmup", ConvergenceWarning, stacklevel=3)
-    return value, diagnostics
+    def potential(z):  # -ln p of the unconstrained parameters (the transforms' Jacobians included)
+        values = constrained(z)
+        log_p = sum(densities[n].log_prob(values[n]) + transforms[n].log_abs_det_jacobian(z[i], values[n])
+                    for i, n in enumerate(names))
+        return -(log_p + log_likelihood(values))
+
+    mcmc = MCMC(NUTS(potential_fn=potential, dense_mass=True), num_warmup=warmup, num_samples=draws,
+                num_chains=chains, chain_method="vectorized", progress_bar=False)
+    init = jax.numpy.stack([transforms[n].inv(jax.numpy.asarray(starts[n])) for n in names], axis=-1)
+    mcmc.run(jax.random.PRNGKey(seed), init_params=init, extra_fields=tuple(_NUTS_STATS))
+    z = np.asarray(mcmc.get_samples(group_by_chain=True), dtype=float)
+    samples = {n: np.asarray(v, dtype=float) for n, v in jax.vmap(jax.vmap(constrained))(z).items()}
+    fields = mcmc.get_extra_fields(group_by_chain=True)
+    stats = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains)}
+                         | {name: np.asarray(fields[field]).reshape(-1) for field, name in _NUTS_STATS.items()})
+    stats["lp"] = -stats["lp"]  # NumPyro's potential energy: minus the log density (in the sampler's space)
+    divergences = int(stats["diverging"].sum())
+    diagnostics = pd.DataFrame([{"parameter": name, "r_hat": float(arviz.rhat(x)) if chains > 1 else np.nan,
+                                 "ess_bulk": float(arviz.ess(x, method="bulk")),
+                                 "ess_tail": float(arviz.ess(x, method="tail")), "divergences": divergences}
+                                for name, x in samples.items()])
+    worst_rhat, least_ess = diagnostics.r_hat.max(), diagnostics.ess_bulk.min()
+    if (chains > 1 and worst_rhat > RHAT_LIMIT) or least_ess < ESS_PER_CHAIN * chains or divergences:
+        warnings.warn(f"the NUTS chains of {', '.join(names)} did not mix well: largest R-hat {worst_rhat:.3f} (want "
+                      f"<= {RHAT_LIMIT}), smallest bulk ESS {least_ess:.0f} (want >= {ESS_PER_CHAIN * chains}), "
+                      f"{divergences} divergent transitions; run more draws or warmup", ConvergenceWarning,
+                      stacklevel=stacklevel)
+    return samples, diagnostics, stats
