@@ -33,7 +33,7 @@ import numpy as np
 
 import blockdae as bd
 from blockdae import design
-from _common import G, print_table, sample_records
+from _common import print_table, sample_records
 
 RECORD = "Northridge_1994_PAC-175"
 PGA = 0.4  # g
@@ -41,7 +41,8 @@ KY_TRUE = 0.12  # g
 SIGMA_LN = 0.3
 KY_PRIOR = {"ky": design.LogNormal(median=0.1, sigma_ln=0.5)}
 SLOPES = design.InfiniteSlope({
-    "north": design.Slope(slope_deg=30.0, unit_weight_kn_m3=19.0, thickness_m=design.LogNormal(median=3.0, sigma_ln=0.2)),
+    "north": design.Slope(slope_deg=30.0, unit_weight_kn_m3=19.0,
+                          thickness_m=design.LogNormal(median=3.0, sigma_ln=0.2)),
     "south": design.Slope(slope_deg=25.0, unit_weight_kn_m3=19.0, saturated_fraction=0.3,
                           thickness_m=design.LogNormal(median=2.0, sigma_ln=0.2))})
 STRENGTH_PRIORS = {"c_kPa": design.LogNormal(median=6.0, sigma_ln=0.5),
@@ -177,9 +178,10 @@ def main():
                  "posterior mean [unit]", "MCSE [unit]"), rows)
     print(f"units: ky [g], c_kPa [kPa], phi_deg [deg], t_*_m [m]; random-walk acceptance {acceptance:.0%} (ky), "
           f"{acceptance_4:.0%} (four parameters)")
+    per_bar = nuts[2] / nuts[0] * SECONDS_BAR  # effective samples per SECONDS_BAR of wall time
     checks = [
-        (f"ky: NUTS bulk ESS {nuts[2]:.0f} in {nuts[0]:.2f} s wall (compile included), {nuts[2] / nuts[0] * SECONDS_BAR:.0f} "
-         f"per {SECONDS_BAR:g} s", nuts[2] / nuts[0] * SECONDS_BAR >= ESS_BAR, f">= {ESS_BAR:.0f} per {SECONDS_BAR:g} s"),
+        (f"ky: NUTS bulk ESS {nuts[2]:.0f} in {nuts[0]:.2f} s wall, {nuts[1]:.2f} s CPU (compile included), "
+         f"{per_bar:.0f} per {SECONDS_BAR:g} s wall", per_bar >= ESS_BAR, f">= {ESS_BAR:.0f} per {SECONDS_BAR:g} s"),
         (f"ky: NUTS / random-walk ESS per second {one_ratio:.1f} x", True, "reported"),
         (f"four parameters: NUTS / random-walk ESS per second (smallest over the parameters) {four_ratio:.1f} x",
          four_ratio >= RATIO_BAR, f">= {RATIO_BAR:g} x"),

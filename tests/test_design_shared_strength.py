@@ -26,7 +26,8 @@ def noise():
 
 
 SLOPES = design.InfiniteSlope({
-    "north": design.Slope(slope_deg=30.0, unit_weight_kn_m3=19.0, thickness_m=design.LogNormal(median=3.0, sigma_ln=0.2)),
+    "north": design.Slope(slope_deg=30.0, unit_weight_kn_m3=19.0,
+                          thickness_m=design.LogNormal(median=3.0, sigma_ln=0.2)),
     "south": design.Slope(slope_deg=25.0, unit_weight_kn_m3=19.0, saturated_fraction=0.3,
                           thickness_m=design.LogNormal(median=2.0, sigma_ln=0.2))})
 PRIORS = {"c_kPa": design.LogNormal(median=6.0, sigma_ln=0.5),

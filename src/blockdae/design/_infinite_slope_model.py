@@ -146,7 +146,8 @@ def _checked(observations, slopes, priors):
             q_low, q_high = (float(value.ppf(u)) for u in (1e-6, 1.0 - 1e-6))
             if not ((low <= q_low if closed else low < q_low) and q_high < high):
                 raise ValueError(f"the prior of {name} ({value!r}) reaches {q_low:.4g} to {q_high:.4g} between its "
-                                 f"1e-6 and 1 - 1e-6 quantiles, beyond the infinite slope's domain {'[' if closed else '('}"
+                                 f"1e-6 and 1 - 1e-6 quantiles, beyond the infinite slope's domain "
+                                 f"{'[' if closed else '('}"
                                  f"{low:g}, {high:g}); truncate it (design.Truncated)")
             uncertain[name] = value
         else:

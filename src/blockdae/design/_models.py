@@ -178,6 +178,7 @@ class Rigid(DesignModel):
         return _read(self.polarity, result.normal, result.inverse)
 
     def _with_derivative(self, record, pga, ky):
+        """D [m] and dD/dky [m/g] at each ky [g] from :func:`blockdae.sliding.downslope`."""
         if not np.all(np.isfinite(ky) & (ky > 0)):
             bad = ky[~(np.isfinite(ky) & (ky > 0))].flat[0]
             raise ValueError(f"ky={float(bad)!r} must be a positive yield acceleration [g]")
