@@ -56,9 +56,10 @@ def prior_density(prior, x):
 
 def predictive_draws(result):
     """The model's D [m] at each posterior draw, for each observation: shape (chains,
-    draws, observations)."""
+    draws, observations), draws in the order of (chain, draw)."""
     chains, draws = result.samples["chain"].nunique(), result.samples["draw"].nunique()
-    d = [result.predict(o.record, o.pga_g)["D_m"].to_numpy() for o in result.observations]
+    d = [result.predict(o.record, o.pga_g).sort_values(["chain", "draw"])["D_m"].to_numpy()
+         for o in result.observations]
     return np.stack(d, axis=-1).reshape(chains, draws, len(result.observations))
 
 
