@@ -14,7 +14,6 @@ posterior's longer tail toward low ky moves the Laplace draws up by about 0.1-0.
 posterior sd (against quadrature at ky 0.05-0.3 g), and 200 truths see it (KS p = 0.0007):
 there the calibration runs NUTS. About 5 min in all on one core."""
 
-import math
 import warnings
 
 import numpy as np
@@ -29,10 +28,10 @@ pytest.importorskip("arviz")
 
 PRIOR = design.LogNormal(median=0.1, sigma_ln=0.4)  # ky [g]
 SIGMA_LN = 0.2  # the measurement's error in ln D [-]: "± 20 %"
-SURVEYED = 0.05  # a surveyed displacement's [-]
+SURVEYED = 0.05  # the same for a surveyed displacement [-]
 PGA_G = 0.5  # P(ky >= 0.5 g) under the prior: 3e-5, so that every truth slides and D > 0
 #: the p-value below which the ranks are called non-uniform (chi-square over 10 equal bins and
-#: Kolmogorov-Smirnov, each): a calibrated posterior fails it once in 1000 seeds
+#: Kolmogorov-Smirnov): each fails a calibrated posterior once in 1000 seeds
 P_MIN = 0.001
 
 

@@ -124,9 +124,10 @@ def prior_density(prior, x):
 
 def predictive_draws(result):
     """The model's D [m] at each posterior draw, for each observation: shape (chains,
-    draws, observations)."""
+    draws, observations), draws in the order of (chain, draw)."""
     chains, draws = result.samples["chain"].nunique(), result.samples["draw"].nunique()
-    d = [result.predict(*arguments)["D_m"].to_numpy() for _, arguments in result.observed()]
+    d = [result.predict(*arguments).sort_values(["chain", "draw"])["D_m"].to_numpy()
+         for _, arguments in result.observed()]
     return np.stack(d, axis=-1).reshape(chains, draws, len(d))
 
 
