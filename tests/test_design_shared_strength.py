@@ -123,6 +123,8 @@ def test_priors_that_leave_no_slope_standing_are_refused_naming_the_share(record
 
 @pytest.mark.parametrize("observed, priors, message", [
     ({"east": None}, PRIORS, r"observations\['east'\]: no such slope"),
+    ({"north": [design.Observation(bd.Record(np.ones(3), 0.01, "same"), sigma_ln=0.2, displacement_m=0.1)] * 2},
+     PRIORS, r"observations\['north'\]: the observations' names must differ"),
     (None, {"c_kPa": design.LogNormal(median=6.0, sigma_ln=0.5)}, r"priors must be \{'c_kPa'"),
     (None, {"c_kPa": 5.0, "phi_deg": design.Normal(30.0, 20.0)}, r"prior of phi_deg .* beyond"),
 ])

@@ -7,8 +7,11 @@ The log posterior is written in JAX; the model's D and its own dD/dp (the rigid 
 exact dD/dky, the flexible mass's and the plane's through the located events of their JAX
 twins: :meth:`DesignModel.gradient`) come through a ``jax.pure_callback`` wrapped in a
 ``jax.custom_jvp`` (:mod:`._inferred`), so that gradient-based samplers (NumPyro's No-U-Turn
-sampler) and the maximum a posteriori use the model's derivative. JAX, NumPyro and ArviZ
-(the ``inference`` extra) are imported on first use."""
+sampler) and the maximum a posteriori use the model's derivative. One NUTS (:func:`nuts`,
+on the vector of the parameters mapped to the real line) serves this one-parameter
+back-analysis and that of several (:mod:`._infinite_slope_model`); their results share
+:class:`._back_analysis_result.Posterior`. JAX, NumPyro and ArviZ (the ``inference``
+extra) are imported on first use."""
 
 import contextlib
 import dataclasses
@@ -19,10 +22,10 @@ import numpy as np
 import pandas as pd
 
 from ..excitation import Record
-from ._back_analysis_result import Posterior
 from ._distributions import LogNormal, Normal, Uniform
 from ._inferred import InferredParameter, inferred_parameter, support
 from ._models import DesignModel
+from ._posterior import Posterior
 
 #: the extreme prior quantiles searched for the maximum and for what D an observation may be
 _REACH_QUANTILES = (1e-6, 1.0 - 1e-6)
@@ -354,15 +357,16 @@ def _maximum(log_p, prior, name):
 
 def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws=500, warmup=500, seed=0):
     """The posterior of one parameter of a design model (a slope's yield acceleration ky
-    [g], a flexible mass's vs [m/s], a plane's friction coefficient mu [-], ...) given
-    observed displacements.
+    [g], a flexible mass's vs [m/s], a plane's friction coefficient mu [-], ...), or of
+    the strength shared by slopes (:class:`InfiniteSlope`: c' [kPa], φ' [deg], thicknesses
+    [m]), given observed displacements.
 
     Args:
         observations: a :class:`Observation` or a sequence of them (each a record, its
             PGA, and a displacement or a bound [m] with its log-normal error).
         model: a design model that differentiates D by the parameter inferred
             (:attr:`DesignModel.differentiable`): :class:`Rigid` (ky, the exact dD/dky of
-            :func:`blockdae.newmark`), :class:`Flexible` (ky, height, vs, damping; not
+            the compiled engine's located episodes), :class:`Flexible` (ky, height, vs, damping; not
             with the equivalent-linear iteration), :class:`Planar` (mu, mu_kinetic,
             bias_x, bias_y), :class:`Simulated` (a differentiable model's parameters),
             or one of your own; or an :class:`InfiniteSlope`: slopes of one unit
@@ -381,8 +385,11 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
         seed: the random seed.
 
     Returns:
-        a :class:`BackAnalysis`. A :class:`ConvergenceWarning` is raised where R-hat
-        exceeds 1.01 or the bulk effective sample size is below 100 per chain.
+        a :class:`BackAnalysis` (a :class:`SlopesBackAnalysis` for an
+        :class:`InfiniteSlope`), both with the same summary, figures and
+        ``to_inference_data``. A :class:`ConvergenceWarning` is raised where R-hat
+        exceeds 1.01, the bulk effective sample size is below 100 per chain, or NUTS
+        made divergent transitions.
 
     Raises:
         ValueError: an observation beyond what the prior can give (D more than 4

@@ -21,10 +21,10 @@ from ..excitation import Record
 from ..regional import WATER_UNIT_WEIGHT, factor_of_safety
 from ._back_analysis import (Observation, _float64, _log_likelihood as _observation_log_likelihood, _numpyro_prior,
                              check_counts, nuts)
-from ._back_analysis_result import Posterior
 from ._distributions import DISTRIBUTIONS
 from ._inferred import InferredParameter
 from ._models import Rigid
+from ._posterior import Posterior
 
 #: the parameters shared by every slope and their units
 SHARED = {"c_kPa": "kPa", "phi_deg": "deg"}
@@ -133,6 +133,10 @@ def _checked(observations, slopes, priors):
         seen = [seen] if isinstance(seen, Observation) else list(seen)
         if not seen or not all(isinstance(o, Observation) for o in seen):
             raise ValueError(f"observations[{name!r}] must be a design.Observation or a non-empty list of them")
+        names = [o.name for o in seen]
+        if len(set(names)) != len(names):
+            raise ValueError(f"observations[{name!r}]: the observations' names must differ (give each a name=), got "
+                             f"{names}")
         by_slope[name] = seen
     if not isinstance(priors, dict) or set(priors) != set(SHARED):
         raise ValueError(f"priors must be {{'c_kPa': ..., 'phi_deg': ...}} (a distribution, or a number where "
