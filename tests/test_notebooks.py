@@ -177,7 +177,7 @@ def test_regional_notebook_runs(monkeypatch, jax_cache_dir):
     assert text.count("regression / time histories, median") == 2
 
 
-@pytest.mark.slow  # NUTS on a 56 s record and a quadrature of its posterior
+@pytest.mark.slow  # about 50 s of CPU: NUTS on a 56 s record, the posterior by quadrature
 def test_back_analysis_notebook_runs(monkeypatch, jax_cache_dir):
     """A slope seen to move 0.3 m under Loma Prieta HSP-000: NUTS's mean ky within 4 Monte
     Carlo standard errors of the posterior by quadrature (asserted inside), and the D
