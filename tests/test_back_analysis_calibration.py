@@ -5,9 +5,9 @@ posterior computed from it. Where the posterior is right, the rank of the truth 
 (independent) posterior draws is uniform, and a 90 % interval holds the truth 90 % of the
 time.
 
-NUTS costs about 6 s of one core per analysis, most of it JAX compiling its sampler
+NUTS costs about 8 s of one core per analysis, most of it JAX compiling its sampler
 afresh for the analysis's own forward model (a faster engine call shortens the rest):
-it runs on 40 truths with short chains. The calibration over more truths (150) uses the
+it runs on 30 truths with short chains. The calibration over more truths (150) uses the
 Laplace approximation (0.5 s each), where its normal in ln ky holds: a surveyed
 displacement (sigma_ln 0.05). Where one observation leaves ky wide (sigma_ln 0.2) the true
 posterior's longer tail toward low ky moves the Laplace draws up by about 0.1-0.3
@@ -85,11 +85,11 @@ def assert_calibrated(ranks, covered):
 
 @pytest.mark.slow
 def test_the_nuts_posterior_is_calibrated(record):
-    """40 truths, sigma_ln 0.2, each posterior from NUTS (2 chains of 100 draws after 100
-    of warm-up, every 4th draw kept: 50 draws, close to independent). 40 ranks see only a
+    """30 truths, sigma_ln 0.2, each posterior from NUTS (2 chains of 100 draws after 100
+    of warm-up, every 4th draw kept: 50 draws, close to independent). 30 ranks see only a
     gross miscalibration (a posterior too narrow, or shifted by a good part of its
-    width). Bound on the hits: the central 99.9 % of Binomial(40, 0.9), 29 to 40."""
-    truths, observed = simulate(record, 40, seed=2025, sigma_ln=SIGMA_LN)
+    width). Bound on the hits: the central 99.9 % of Binomial(30, 0.9), 21 to 30."""
+    truths, observed = simulate(record, 30, seed=2025, sigma_ln=SIGMA_LN)
     ranks, covered = calibration(record, truths, observed, SIGMA_LN, thin=4, method="nuts", chains=2, draws=100,
                                  warmup=100)
     assert_calibrated(ranks, covered)
