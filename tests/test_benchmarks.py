@@ -160,7 +160,7 @@ def test_back_analysis_models_quick(monkeypatch, capsys):
     """The rigid block and the plane back-analysed (Laplace) from D seen without noise: the
     maximum lands within 1 % of the value that gave D (the prior's pull is smaller)."""
     pytest.importorskip("numpyro")
-    assert _load("back_analysis_models", monkeypatch).main(["--quick"]) == 0
+    assert load_benchmark("back_analysis_models", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
     rows = [line.split() for line in out.splitlines() if line.lstrip().startswith(("rigid,", "plane,"))]
     assert len(rows) == 2 and "smoke run, not a measurement" in out
