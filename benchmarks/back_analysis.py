@@ -113,7 +113,7 @@ def one_parameter(record):
 
     start = clocks()
     log_p = jax.jit(jax.vmap(lambda theta: design.log_posterior(observation, design.Rigid(), KY_PRIOR)(theta[0])))
-    draws, acceptance = random_walk_metropolis(log_p, np.full((CHAINS, 1), result.map_ky_g), 4000, 600)
+    draws, acceptance = random_walk_metropolis(log_p, np.full((CHAINS, 1), result.map_value), 4000, 600)
     rwm_wall, rwm_cpu = since(start)
     rwm = (rwm_wall, rwm_cpu, *ess_and_mcse(draws[..., 0]), draws.mean())
     return nuts, rwm, acceptance

@@ -112,6 +112,7 @@ FRONT_ENDS = ("cli", "app", "__init__.py")
 NAMED_ON_PURPOSE = {
     ("studies/_study.py", "SlidingBlock"): "bd.study's default block",
     ("design/_models.py", "PlanarBlock"): "design.Planar, the block on a plane's design model",
+    ("design/_models.py", "FlexibleSlidingMass"): "design.Flexible's dD/dp, through the flexible mass's JAX twin",
     ("planar/_elms.py", "SlidingBlock"): "Elms's set-up: the 1-D block a plane's slide reduces to",
 }
 

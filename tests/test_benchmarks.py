@@ -153,3 +153,15 @@ def test_spectra_quick(monkeypatch, capsys):
     assert "every time the median of 1 warm calls" in out and "smoke run, not a measurement" in out
     table = out.split("\n\n")[1].splitlines()
     assert len(table) == 5 and "time / blockdae" in table[0]  # header + blockdae, eqsig x 2, pyrotd
+
+
+@pytest.mark.slow
+def test_back_analysis_models_quick(monkeypatch, capsys):
+    """The rigid block and the plane back-analysed (Laplace) from D seen without noise: the
+    maximum lands within 1 % of the value that gave D (the prior's pull is smaller)."""
+    pytest.importorskip("numpyro")
+    assert load_benchmark("back_analysis_models", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    rows = [line.split() for line in out.splitlines() if line.lstrip().startswith(("rigid,", "plane,"))]
+    assert len(rows) == 2 and "smoke run, not a measurement" in out
+    assert float(rows[0][-2]) == pytest.approx(0.1, rel=0.01) and float(rows[1][-2]) == pytest.approx(0.2, rel=0.01)

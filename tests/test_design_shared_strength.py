@@ -123,6 +123,8 @@ def test_priors_that_leave_no_slope_standing_are_refused_naming_the_share(record
 
 @pytest.mark.parametrize("observed, priors, message", [
     ({"east": None}, PRIORS, r"observations\['east'\]: no such slope"),
+    ({"north": [design.Observation(bd.Record(np.ones(3), 0.01, "same"), sigma_ln=0.2, displacement_m=0.1)] * 2},
+     PRIORS, r"observations\['north'\]: the observations' names must differ"),
     (None, {"c_kPa": design.LogNormal(median=6.0, sigma_ln=0.5)}, r"priors must be \{'c_kPa'"),
     (None, {"c_kPa": 5.0, "phi_deg": design.Normal(30.0, 20.0)}, r"prior of phi_deg .* beyond"),
 ])
@@ -154,3 +156,56 @@ def test_shared_strength_posterior_covers_the_truth_and_its_ky(record):
         assert row.q05 < ky[name] < row.q95 and row.sd < 0.15 * ky[name]
     assert (result.samples.filter(like="fs_") > 1).all().all()
     assert list(result.samples.columns[:6]) == ["chain", "draw", "c_kPa", "phi_deg", "t_north_m", "t_south_m"]
+
+
+@pytest.fixture(scope="module")
+def short_run(record):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", design.ConvergenceWarning)  # short chains
+        return design.back_analysis(observations(record), SLOPES, PRIORS, chains=2, draws=60, warmup=60, seed=2)
+
+
+def test_the_slopes_posterior_as_inference_data_holds_every_parameter(short_run, record):
+    """Each uncertain parameter in the posterior and prior groups with its unit, NUTS's
+    statistics per draw, and each slope's observation with the predictive D of its own ky."""
+    pytest.importorskip("arviz")
+    idata = short_run.to_inference_data()
+    assert list(idata.posterior.data_vars) == ["c_kPa", "phi_deg", "t_north_m", "t_south_m"]
+    assert [idata.posterior[n].attrs["units"] for n in idata.posterior.data_vars] == ["kPa", "deg", "m", "m"]
+    assert list(idata.prior.data_vars) == list(idata.posterior.data_vars)
+    np.testing.assert_array_equal(idata.posterior["phi_deg"].values.reshape(-1),
+                                  short_run.samples.sort_values(["chain", "draw"]).phi_deg.to_numpy())
+    assert int(idata.sample_stats["diverging"].sum()) == short_run.diagnostics.divergences.iloc[0]
+    d = idata.posterior_predictive["D"]
+    assert d.shape == (2, 60, 2) and list(d["observation"].values) == ["north: decaying sine", "south: decaying sine"]
+    for i, slope in enumerate(["north", "south"]):
+        np.testing.assert_array_equal(d.values[..., i].reshape(-1), short_run.predict(record, PGA, slope).D_m)
+    predictive = short_run.predictive()
+    assert list(predictive.observation) == ["north: decaying sine", "south: decaying sine"]
+    summary = short_run.summary()
+    assert list(summary.parameter) == ["c_kPa", "phi_deg", "t_north_m", "t_south_m", "ky_north_g", "ky_south_g"]
+    assert list(summary.unit) == ["kPa", "deg", "m", "m", "g", "g"]
+
+
+def test_the_slopes_figures_take_every_parameter(short_run, record):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig = short_run.posterior_figure()
+    assert [ax.get_xlabel() for ax in fig.axes] == ["effective cohesion c [kPa]", "effective friction angle phi [deg]",
+                                                    "t_north [m]", "t_south [m]"]
+    assert all(len(ax.get_lines()) == 2 for ax in fig.axes)  # prior and posterior; no maximum a posteriori
+    plt.close(fig)
+    fig = short_run.pair_figure()
+    assert len(fig.axes) == 16
+    plt.close(fig)
+    fig = short_run.predictive_figure(scenarios={"north at 0.5 g": (record, 0.5, "north")})
+    ax, = fig.axes
+    assert [t.get_text() for t in ax.get_xticklabels()][-1] == "north at 0.5 g\nPGA 0.5 g"
+    plt.close(fig)
+    with pytest.raises(ValueError, match="slope='east' is none of the slopes"):
+        short_run.predict(record, 0.5, "east")

@@ -175,3 +175,14 @@ def test_regional_notebook_runs(monkeypatch, jax_cache_dir):
     text = _text(_execute("13_regional.ipynb", monkeypatch, jax_cache_dir))
     assert "of the bound" in text and "statically_unstable" in text
     assert text.count("regression / time histories, median") == 2
+
+
+@pytest.mark.slow  # about 50 s of CPU: NUTS on a 56 s record, the posterior by quadrature
+def test_back_analysis_notebook_runs(monkeypatch, jax_cache_dir):
+    """A slope seen to move 0.3 m under Loma Prieta HSP-000: NUTS's mean ky within 4 Monte
+    Carlo standard errors of the posterior by quadrature (asserted inside), and the D
+    predicted under the design motion with its interval."""
+    pytest.importorskip("numpyro")
+    text = _text(_execute("14_back_analysis.ipynb", monkeypatch, jax_cache_dir))
+    assert "NUTS mean - quadrature mean:" in text
+    assert re.search(r"at PGA 0\.5 g: median [\d.]+ m, 90 % interval [\d.]+-[\d.]+ m", text)

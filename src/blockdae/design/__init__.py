@@ -2,8 +2,9 @@
 (log-normal, normal, uniform, truncated, correlated), the probability that their seismic
 displacement exceeds a threshold over a record set (Monte Carlo, Latin hypercube or
 scrambled Sobol samples, run until precise enough), the yield acceleration (the
-friction coefficient, on a plane) a design needs, and the back-analysis of a rigid
-block's ky from observed displacements (its posterior, by NUTS or a Laplace approximation)."""
+friction coefficient, on a plane) a design needs, and the back-analysis of a parameter
+(the rigid block's or the flexible mass's ky, the plane's mu, ...) from observed
+displacements (its posterior, by NUTS or a Laplace approximation)."""
 
 from ._back_analysis import BackAnalysis, ConvergenceWarning, Observation, back_analysis, log_posterior
 from ._figures import exceedance_figure

@@ -1,12 +1,17 @@
-"""Back-analysis: the posterior of a slope's yield acceleration ky [g] given observed
-displacements, each D [m] seen with a log-normal measurement error (or a bound on it),
-under a record scaled to a PGA.
+"""Back-analysis: the posterior of a parameter of a design model (the rigid block's ky
+[g], the flexible mass's ky or vs, the plane's mu, ...) given observed displacements, each
+D [m] seen with a log-normal measurement error (or a bound on it), under a record scaled
+to a PGA.
 
-The log posterior is written in JAX; the rigid block's D(ky) and its exact dD/dky come from
-the compiled engine (:func:`blockdae.newmark` with ``derivative=True``) through a
-``jax.pure_callback`` wrapped in a ``jax.custom_jvp``, so that gradient-based samplers
-(NumPyro's No-U-Turn sampler) and the maximum a posteriori use the exact derivative.
-JAX, NumPyro and ArviZ (the ``inference`` extra) are imported on first use."""
+The log posterior is written in JAX; the model's D and its own dD/dp (the rigid block's
+exact dD/dky, the flexible mass's and the plane's through the located events of their JAX
+twins: :meth:`DesignModel.gradient`) come through a ``jax.pure_callback`` wrapped in a
+``jax.custom_jvp`` (:mod:`._inferred`), so that gradient-based samplers (NumPyro's No-U-Turn
+sampler) and the maximum a posteriori use the model's derivative. One NUTS (:func:`nuts`,
+on the vector of the parameters mapped to the real line) serves this one-parameter
+back-analysis and that of several (:mod:`._infinite_slope_model`); their results share
+:class:`._back_analysis_result.Posterior`. JAX, NumPyro and ArviZ (the ``inference``
+extra) are imported on first use."""
 
 import contextlib
 import dataclasses
@@ -17,16 +22,21 @@ import numpy as np
 import pandas as pd
 
 from ..excitation import Record
-from ._distributions import LogNormal, Normal, Truncated, Uniform
-from ._models import Rigid
+from ._distributions import LogNormal, Normal, Uniform
+from ._inferred import InferredParameter, inferred_parameter, support
+from ._models import DesignModel
+from ._posterior import Posterior
 
-#: the prior quantiles whose D bound what an observation may be (the reachability check)
+#: the extreme prior quantiles searched for the maximum and for what D an observation may be
 _REACH_QUANTILES = (1e-6, 1.0 - 1e-6)
 #: how many measurement sigmas an observation may lie beyond the reachable D [-]
 _REACH_SIGMAS = 4.0
 #: R-hat above which, and bulk effective sample size per chain below which, a warning is raised
 RHAT_LIMIT = 1.01
 ESS_PER_CHAIN = 100
+#: NumPyro's statistics of each NUTS draw -> their names in ArviZ's sample_stats
+_NUTS_STATS = {"diverging": "diverging", "accept_prob": "acceptance_rate", "num_steps": "n_steps",
+               "adapt_state.step_size": "step_size", "energy": "energy", "potential_energy": "lp"}
 
 
 class ConvergenceWarning(UserWarning):
@@ -88,19 +98,6 @@ class Observation:
         return float(getattr(self, self.kind + "_m"))
 
 
-def _support(prior):
-    """(low, high) of ``prior``'s values."""
-    if isinstance(prior, LogNormal):
-        return 0.0, math.inf
-    if isinstance(prior, Normal):
-        return -math.inf, math.inf
-    if isinstance(prior, Uniform):
-        return prior.low, prior.high
-    low, high = _support(prior.distribution)
-    return max(low, -math.inf if prior.low is None else prior.low), min(high, math.inf if prior.high is None
-                                                                         else prior.high)
-
-
 def _numpyro_prior(prior):
     """The NumPyro distribution of a :mod:`blockdae.design` distribution."""
     import numpyro.distributions as dist
@@ -111,7 +108,7 @@ def _numpyro_prior(prior):
         return dist.Normal(prior.mean, prior.std)
     if isinstance(prior, Uniform):
         return dist.Uniform(prior.low, prior.high)
-    low, high = _support(prior)
+    low, high = support(prior)
     parent = prior.distribution
     if isinstance(parent, Uniform):
         return dist.Uniform(low, high)
@@ -124,71 +121,43 @@ def _numpyro_prior(prior):
                                 high=None if high == math.inf else high)
 
 
-def _check_priors(model, priors):
-    if not isinstance(model, Rigid):
-        raise ValueError(f"back_analysis takes the rigid block (design.Rigid), got {type(model).__name__}")
-    if not isinstance(priors, dict) or set(priors) != {"ky"}:
-        raise ValueError(f"priors must be {{'ky': a distribution}} for the rigid block, got {priors!r}")
-    prior = priors["ky"]
-    if not isinstance(prior, (LogNormal, Normal, Uniform, Truncated)):
-        raise ValueError(f"priors['ky']={prior!r} must be a design.LogNormal, Normal, Uniform or Truncated")
-    low, _ = _support(prior)
-    if low < 0:
-        raise ValueError(f"priors['ky']={prior!r} gives ky < 0 [g] a probability; truncate it "
-                         "(design.Truncated(..., low=0)) or use a LogNormal")
-    return prior
+def _prior_quantiles(prior):
+    """66 quantiles of ``prior``: 1e-6, 64 evenly spread, 1 - 1e-6."""
+    quantiles = np.concatenate([[_REACH_QUANTILES[0]], (np.arange(64) + 0.5) / 64, [_REACH_QUANTILES[1]]])
+    return np.asarray(prior.ppf(quantiles), dtype=float)
 
 
-def _check_reachable(model, observations, prior):
-    """Raise where an observation lies beyond the D [m] the prior's values of ky can give."""
-    ky_low, ky_high = (float(prior.ppf(u)) for u in _REACH_QUANTILES)
+def _check_reachable(parameter, observations):
+    """Raise where an observation lies beyond the D [m] the prior's values of the parameter
+    give (its quantiles from 1e-6 to 1 - 1e-6; one model call per observation)."""
+    grid = _prior_quantiles(parameter.prior)
+    name, unit = parameter.name, parameter.unit
     for obs in observations:
-        d_max, d_min = _engine(model, obs.record, obs.pga_g, np.array([ky_low, ky_high]))[0]
+        try:
+            d = parameter.displacements(obs.record, obs.pga_g, grid)
+        except ValueError as error:
+            raise ValueError(f"the {parameter.model.kind} model refuses a value of {name} the prior gives (its "
+                             f"quantiles from 1e-6 to 1 - 1e-6 span {grid[0]:.4g} to {grid[-1]:.4g} {unit}): {error}; "
+                             "truncate the prior (design.Truncated(..., low=..., high=...))") from error
+        largest, smallest = int(np.argmax(d)), int(np.argmin(d))
         margin = math.exp(_REACH_SIGMAS * obs.sigma_ln)
-        if obs.kind != "less_than" and obs.value_m > d_max * margin:
+        if obs.kind != "less_than" and obs.value_m > d[largest] * margin:
             raise ValueError(f"observation {obs.name!r}: {obs.kind}_m={obs.value_m!r} m lies beyond what the prior "
-                             f"reaches: D = {d_max:.4g} m at ky = {ky_low:.4g} g (its 1e-6 quantile), more than "
-                             f"{_REACH_SIGMAS:g} sigma_ln below; widen the prior of ky or check the observation")
-        if obs.kind != "more_than" and obs.value_m * margin < d_min:
+                             f"reaches: D = {d[largest]:.4g} m at most (at {name} = {grid[largest]:.4g} {unit}, over "
+                             f"the prior's quantiles from 1e-6 to 1 - 1e-6), more than {_REACH_SIGMAS:g} sigma_ln "
+                             f"below; widen the prior of {name} or check the observation")
+        if obs.kind != "more_than" and obs.value_m * margin < d[smallest]:
             raise ValueError(f"observation {obs.name!r}: {obs.kind}_m={obs.value_m!r} m lies below what the prior "
-                             f"reaches: D = {d_min:.4g} m at ky = {ky_high:.4g} g (its 1 - 1e-6 quantile), more "
-                             f"than {_REACH_SIGMAS:g} sigma_ln above; widen the prior of ky or check the observation")
+                             f"reaches: D = {d[smallest]:.4g} m at least (at {name} = {grid[smallest]:.4g} {unit}, "
+                             f"over the prior's quantiles from 1e-6 to 1 - 1e-6), more than {_REACH_SIGMAS:g} "
+                             f"sigma_ln above; widen the prior of {name} or check the observation")
 
 
-def _engine(model, record, pga_g, ky):
-    """D [m] and dD/dky [m/g] at each ky [g] (an array): 0 and 0 from the record's
-    sliding limit (its scaled peak) on. The engine runs on every entry (half the limit in
-    place of those at or above it), so that its kernel compiles once per batch shape."""
-    ky = np.asarray(ky, dtype=float)
-    flat = ky.reshape(-1)
-    limit = model.sliding_limit(record, pga_g, {"ky": flat})
-    slides = flat < limit
-    d, slope = model.displacements(record, pga_g, {"ky": np.where(slides, flat, 0.5 * limit)}, derivative=True)
-    return np.where(slides, d, 0.0).reshape(ky.shape), np.where(slides, slope, 0.0).reshape(ky.shape)
-
-
-def displacement_function(model, record, pga_g):
-    """D [m] of ``record`` scaled to ``pga_g`` [g] as a JAX function of ky [g] (any shape),
-    differentiable through the engine's exact dD/dky [m/g] (a ``jax.custom_jvp`` around
-    a ``jax.pure_callback``; batches under ``jax.vmap`` into one engine call)."""
-    import jax
-    import jax.numpy as jnp
-
-    def both(ky):
-        shape = jax.ShapeDtypeStruct(jnp.shape(ky), jnp.float64)
-        return jax.pure_callback(lambda k: _engine(model, record, pga_g, k), (shape, shape), ky,
-                                 vmap_method="broadcast_all")
-
-    @jax.custom_jvp
-    def displacement(ky):
-        return both(ky)[0]
-
-    @displacement.defjvp
-    def _jvp(primals, tangents):
-        d, slope = both(primals[0])
-        return d, slope * tangents[0]
-
-    return displacement
+def check_counts(chains, draws, warmup):
+    """Raise unless ``chains`` and ``draws`` are whole numbers >= 1 and ``warmup`` >= 0."""
+    for field, value in (("chains", chains), ("draws", draws), ("warmup", warmup)):
+        if not (isinstance(value, int) and not isinstance(value, bool) and value >= (field != "warmup")):
+            raise ValueError(f"{field}={value!r} must be a whole number >= {int(field != 'warmup')}")
 
 
 def _log_likelihood(obs, d):
@@ -205,9 +174,10 @@ def _log_likelihood(obs, d):
 
 
 def log_posterior(observations, model, priors):
-    """ln p(ky | observations) up to a constant, as a JAX function of ky [g] (a scalar):
-    the prior's log density plus each observation's log likelihood; its gradient
-    (``jax.grad``) is exact, through the engine's dD/dky. Evaluate it with JAX in float64
+    """ln p(p | observations) up to a constant of the parameter p ``priors`` gives a
+    distribution, as a JAX function of its value (a scalar, in its unit): the prior's log
+    density plus each observation's log likelihood; its gradient (``jax.grad``) follows
+    the model's dD/dp (:meth:`DesignModel.gradient`). Evaluate it with JAX in float64
     (inside ``jax.enable_x64(True)``).
 
     For an :class:`InfiniteSlope` (``observations`` slope name -> observations), a JAX
@@ -215,25 +185,25 @@ def log_posterior(observations, model, priors):
     then each t_<slope>_m [m] with a prior, in that order)."""
     if hasattr(model, "log_posterior"):  # a parameterisation of its own (design.InfiniteSlope)
         return model.log_posterior(observations, priors)
-    observations, prior = _checked(observations, model, priors)
-    return _log_posterior(observations, model, prior)
+    observations, parameter = _checked(observations, model, priors)
+    return _log_posterior(observations, parameter)
 
 
-def _log_posterior(observations, model, prior):
-    density = _numpyro_prior(prior)
-    log_likelihood = _log_likelihoods(observations, model)
-    return lambda ky: density.log_prob(ky) + log_likelihood(ky)
+def _log_posterior(observations, parameter):
+    density = _numpyro_prior(parameter.prior)
+    log_likelihood = _log_likelihoods(observations, parameter)
+    return lambda value: density.log_prob(value) + log_likelihood(value)
 
 
-def _log_likelihoods(observations, model):
-    """The observations' joint log likelihood as a JAX function of ky [g]."""
+def _log_likelihoods(observations, parameter):
+    """The observations' joint log likelihood as a JAX function of the parameter's value."""
     import jax.numpy as jnp
 
-    functions = [displacement_function(model, o.record, o.pga_g) for o in observations]
+    functions = [parameter.displacement_function(o.record, o.pga_g) for o in observations]
 
-    def log_likelihood(ky):
-        ky = jnp.maximum(ky, 1e-12)  # the engine's ky > 0; the prior's density is 0 below
-        return sum(_log_likelihood(obs, f(ky)) for obs, f in zip(observations, functions))
+    def log_likelihood(value):
+        value = jnp.maximum(value, 1e-12)  # the models' parameters > 0; the prior's density is 0 below
+        return sum(_log_likelihood(obs, f(value)) for obs, f in zip(observations, functions))
 
     return log_likelihood
 
@@ -247,74 +217,85 @@ def _checked(observations, model, priors):
     names = [o.name for o in observations]
     if len(set(names)) != len(names):
         raise ValueError(f"the observations' names must differ (give each a name=), got {names}")
-    prior = _check_priors(model, priors)
-    return observations, prior
+    return observations, inferred_parameter(model, priors)
 
 
 @dataclasses.dataclass
-class BackAnalysis:
-    """The posterior of ky [g] given the observations.
+class BackAnalysis(Posterior):
+    """The posterior of one parameter of a design model given the observations (its
+    summary, predictive table, ``InferenceData`` and figures: :class:`Posterior`).
 
     Attributes:
-        samples: the posterior draws, a table (``chain``, ``draw``, ``ky_g``).
-        map_ky_g: the maximum a posteriori ky [g].
-        laplace_sd_g: the standard deviation [g] of the Laplace approximation at the
-            maximum (in ln ky, mapped back to ky to first order).
-        diagnostics: R-hat and bulk/tail effective sample sizes of ky (NUTS only; empty
-            for the Laplace approximation), a table.
+        samples: the posterior draws, a table (``chain``, ``draw``, the parameter's
+            column: ``ky_g``, ``vs_m_s``, the plane's ``mu``, ...).
+        parameter: the parameter's name (``"ky"``, ``"mu"``, ...).
+        unit: its unit (the model's).
+        map_value: the maximum a posteriori value [its unit].
+        laplace_sd: the standard deviation [its unit] of the Laplace approximation at the
+            maximum (in the parameter's logarithm, mapped back to first order).
+        diagnostics: R-hat and bulk/tail effective sample sizes (NUTS only; empty for the
+            Laplace approximation), a table.
         method: "nuts" or "laplace".
         observations: the observations analysed (:class:`Observation`).
-        model: the :class:`Rigid` block they were analysed with.
+        model: the design model they were analysed with.
+        fixed: the values of the model's other parameters (name -> number).
+        priors: the parameter's prior (name -> distribution).
+        sample_stats: NUTS's statistics of each draw (``chain``, ``draw``, ``diverging``,
+            ``acceptance_rate`` [-], ``n_steps``, ``step_size``, ``energy``, ``lp``), a
+            table; empty for the Laplace approximation.
     """
 
     samples: pd.DataFrame
-    map_ky_g: float
-    laplace_sd_g: float
+    parameter: str
+    unit: str
+    map_value: float
+    laplace_sd: float
     diagnostics: pd.DataFrame
     method: str
     observations: list
-    model: Rigid
+    model: DesignModel
+    fixed: dict
+    priors: dict
+    sample_stats: pd.DataFrame
 
     def __repr__(self):
         s = self.summary().iloc[0]
+        unit = "" if self.unit == "-" else f" {self.unit}"
         return (f"BackAnalysis(method={self.method!r}, {len(self.samples)} draws, {len(self.observations)} "
-                f"observations, ky median {s.median_g:.4g} g, 90 % interval {s.q05_g:.4g}-{s.q95_g:.4g} g)")
+                f"observations, {self.parameter} median {s['median']:.4g}{unit}, 90 % interval "
+                f"{s.q05:.4g}-{s.q95:.4g}{unit})")
 
-    def summary(self) -> pd.DataFrame:
-        """ky's mean, standard deviation, median and 90 % interval [g], one row."""
-        ky = self.samples["ky_g"].to_numpy()
-        q05, q50, q95 = np.quantile(ky, [0.05, 0.5, 0.95])
-        return pd.DataFrame({"parameter": ["ky"], "mean_g": [ky.mean()], "sd_g": [ky.std(ddof=1)],
-                             "median_g": [q50], "q05_g": [q05], "q95_g": [q95]})
+    @property
+    def column(self) -> str:
+        """The parameter's column in :attr:`samples`."""
+        return self.samples.columns[-1]
+
+    @property
+    def inferred(self) -> list:
+        """[(name, column, unit)] of the parameter."""
+        return [(self.parameter, self.column, self.unit)]
+
+    @property
+    def map_values(self) -> dict:
+        """{name: the maximum a posteriori value [its unit]}."""
+        return {self.parameter: self.map_value}
+
+    def observed(self) -> list:
+        """(observation, (record, pga_g)) of each observation."""
+        return [(obs, (obs.record, obs.pga_g)) for obs in self.observations]
 
     def predict(self, record, pga_g=None) -> pd.DataFrame:
         """The posterior predictive D [m] of the slope under ``record`` scaled to ``pga_g``
-        [g] (None: as given): one row per posterior draw (``chain``, ``draw``, ``ky_g``,
-        ``D_m``), the model's D without measurement error."""
+        [g] (None: as given): one row per posterior draw (``chain``, ``draw``, the
+        parameter's column, ``D_m``), the model's D without measurement error."""
         if not isinstance(record, Record):
             raise ValueError(f"record must be a blockdae.Record, got {type(record).__name__}")
         if pga_g is not None:
             _positive("pga_g", pga_g)
         table = self.samples.copy()
-        ky = table["ky_g"].to_numpy()
-        slides = ky < self.model.sliding_limit(record, pga_g, {"ky": ky})  # D = 0 from the scaled peak on
-        d = np.zeros(ky.shape)
-        if slides.any():
-            d[slides] = self.model.displacements(record, pga_g, {"ky": ky[slides]})
-        table["D_m"] = d
+        parameter = InferredParameter(self.model, self.parameter, None, self.fixed)
+        table["D_m"] = parameter.displacements(record, pga_g, table[self.column].to_numpy())
         return table
-
-    def predictive(self) -> pd.DataFrame:
-        """Each observation beside its posterior predictive D [m] (median and 90 %
-        interval of the model's D over the posterior draws): ``observation``, ``kind``,
-        ``observed_m``, ``median_D_m``, ``q05_D_m``, ``q95_D_m``."""
-        rows = []
-        for obs in self.observations:
-            d = self.predict(obs.record, obs.pga_g)["D_m"].to_numpy()
-            q05, q50, q95 = np.quantile(d, [0.05, 0.5, 0.95])
-            rows.append({"observation": obs.name, "kind": obs.kind, "observed_m": obs.value_m,
-                         "median_D_m": q50, "q05_D_m": q05, "q95_D_m": q95})
-        return pd.DataFrame(rows)
 
 
 @contextlib.contextmanager
@@ -331,17 +312,19 @@ def _float64():
         jax.config.update("jax_enable_x64", before)
 
 
-def _maximum(log_p, prior):
-    """The maximum a posteriori ky [g] and the Laplace standard deviation of ln ky: the
-    best of 66 prior quantiles (1e-6, 64 evenly spread, 1 - 1e-6; one batched engine call
-    per observation), then scipy's L-BFGS-B in u = ln ky on the exact gradient between
-    its neighbours; the curvature at the maximum by central differences of the exact
-    gradient."""
+def _maximum(log_p, prior, name):
+    """The maximum a posteriori value of the parameter ``name`` and the Laplace standard
+    deviation of its logarithm: the best of 66 prior quantiles (1e-6, 64 evenly spread,
+    1 - 1e-6; one batched model call per observation), then scipy's L-BFGS-B in u = ln p
+    on the model's gradient between its neighbours; the curvature at the maximum by
+    central differences of that gradient."""
     import jax
     from scipy import optimize
 
-    def minus_log_density(u):  # of ln ky
+    def minus_log_density(u):  # of ln p
         return -log_p(jax.numpy.exp(u)) - u
+
+    value_only = jax.jit(minus_log_density)
 
     f = jax.jit(jax.value_and_grad(minus_log_density))
 
@@ -349,17 +332,16 @@ def _maximum(log_p, prior):
         value, grad = f(float(u[0]))
         return float(value), np.array([float(grad)])
 
-    quantiles = np.concatenate([[_REACH_QUANTILES[0]], (np.arange(64) + 0.5) / 64, [_REACH_QUANTILES[1]]])
-    grid = np.log(np.asarray(prior.ppf(quantiles), dtype=float))
+    grid = np.log(_prior_quantiles(prior))
     values = np.asarray(jax.jit(jax.vmap(minus_log_density))(grid), dtype=float)
     if not np.isfinite(values).any():
-        raise ValueError("the posterior of ky is zero at every prior quantile from 1e-6 to 1 - 1e-6: check the "
+        raise ValueError(f"the posterior of {name} is zero at every prior quantile from 1e-6 to 1 - 1e-6: check the "
                          "observations against the prior")
     best = int(np.nanargmin(np.where(np.isfinite(values), values, np.inf)))
     bounds = []
     for neighbour in (max(best - 1, 0), min(best + 1, len(grid) - 1)):
         edge = grid[neighbour]
-        while not np.isfinite(objective([edge])[0]):  # halve the way toward the best point
+        while not np.isfinite(float(value_only(edge))):  # halve the way toward the best point
             edge = 0.5 * (edge + grid[best])
         bounds.append(edge)
     found = optimize.minimize(objective, [grid[best]], jac=True, method="L-BFGS-B", bounds=[tuple(bounds)],
@@ -368,104 +350,150 @@ def _maximum(log_p, prior):
     h = 1e-4
     curvature = (objective([u + h])[1][0] - objective([u - h])[1][0]) / (2 * h)
     if not curvature > 0:
-        raise ValueError(f"the posterior of ln ky is not peaked at its maximum (curvature {curvature:.3g}): the "
+        raise ValueError(f"the posterior of ln {name} is not peaked at its maximum (curvature {curvature:.3g}): the "
                          "Laplace approximation does not hold; use method='nuts'")
     return math.exp(u), 1.0 / math.sqrt(curvature)
 
 
 def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws=500, warmup=500, seed=0):
-    """The posterior of a slope's yield acceleration ky [g] given observed displacements.
+    """The posterior of one parameter of a design model (a slope's yield acceleration ky
+    [g], a flexible mass's vs [m/s], a plane's friction coefficient mu [-], ...), or of
+    the strength shared by slopes (:class:`InfiniteSlope`: c' [kPa], φ' [deg], thicknesses
+    [m]), given observed displacements.
 
     Args:
         observations: a :class:`Observation` or a sequence of them (each a record, its
             PGA, and a displacement or a bound [m] with its log-normal error).
-        model: :class:`Rigid` (the rigid block; D from :func:`blockdae.newmark`), or an
-            :class:`InfiniteSlope`: slopes of one unit sharing c' and φ' (then
-            ``observations`` is a dict slope name -> observations, ``priors``
-            ``{"c_kPa": ..., "phi_deg": ...}`` (a distribution, or a number where known),
-            NUTS only, and the result a :class:`SlopesBackAnalysis`).
-        priors: ``{"ky": distribution}`` (:class:`LogNormal`, :class:`Uniform`, or a
-            :class:`Truncated` one; ky > 0 [g]).
-        method: "nuts" (NumPyro's No-U-Turn sampler on the exact gradient, ``chains``
+        model: a design model that differentiates D by the parameter inferred
+            (:attr:`DesignModel.differentiable`): :class:`Rigid` (ky, the exact dD/dky of
+            the compiled engine's located episodes), :class:`Flexible` (ky, height, vs, damping; not
+            with the equivalent-linear iteration), :class:`Planar` (mu, mu_kinetic,
+            bias_x, bias_y), :class:`Simulated` (a differentiable model's parameters),
+            or one of your own; or an :class:`InfiniteSlope`: slopes of one unit
+            sharing c' and φ' (then ``observations`` is a dict slope name ->
+            observations, ``priors`` ``{"c_kPa": ..., "phi_deg": ...}`` (a distribution,
+            or a number where known), each slope's thickness t [m] in its
+            :class:`Slope`, NUTS only: several parameters at once).
+        priors: name -> a distribution (:class:`LogNormal`, :class:`Uniform`, or a
+            :class:`Truncated` one; positive values) for the one parameter inferred, a
+            number [its unit] for each other parameter the model needs (e.g.
+            ``{"ky": design.LogNormal(0.1, 0.5), "height": 20.0, "vs": 300.0}``).
+        method: "nuts" (NumPyro's No-U-Turn sampler on the model's gradient, ``chains``
             chains run together, each ``warmup`` then ``draws`` iterations) or "laplace"
-            (the maximum a posteriori with a normal approximation of ln ky there,
-            ``chains * draws`` independent draws).
+            (the maximum a posteriori with a normal approximation of the parameter's
+            logarithm there, ``chains * draws`` independent draws).
         seed: the random seed.
 
     Returns:
-        a :class:`BackAnalysis`. A :class:`ConvergenceWarning` is raised where R-hat
-        exceeds 1.01 or the bulk effective sample size is below 100 per chain.
+        a :class:`BackAnalysis` (a :class:`SlopesBackAnalysis` for an
+        :class:`InfiniteSlope`), both with the same summary, figures and
+        ``to_inference_data``. A :class:`ConvergenceWarning` is raised where R-hat
+        exceeds 1.01, the bulk effective sample size is below 100 per chain, or NUTS
+        made divergent transitions.
 
     Raises:
-        ValueError: an observation beyond what the prior's ky can give (D more than
-            4 sigma_ln above D at the prior's 1e-6 quantile of ky, or below D at its
-            1 - 1e-6 quantile), a prior with ky <= 0, a model other than the rigid block.
+        ValueError: an observation beyond what the prior can give (D more than 4
+            sigma_ln above the largest D over the prior's quantiles from 1e-6 to
+            1 - 1e-6, or below the smallest), a prior giving values <= 0 a probability,
+            a parameter the model lacks, a required one missing, not one distribution,
+            a parameter the model does not differentiate D by (NUTS and the Laplace
+            approximation both need dD/dp).
     """
     if hasattr(model, "sample_posterior"):  # a parameterisation that samples itself (design.InfiniteSlope)
         return model.sample_posterior(observations, priors, method=method, chains=chains, draws=draws, warmup=warmup,
                                       seed=seed)
-    observations, prior = _checked(observations, model, priors)
+    observations, parameter = _checked(observations, model, priors)
     if method not in ("nuts", "laplace"):
         raise ValueError(f"method={method!r} is unknown; choose 'nuts' or 'laplace'")
-    for field, value in (("chains", chains), ("draws", draws), ("warmup", warmup)):
-        if not (isinstance(value, int) and not isinstance(value, bool) and value >= (field != "warmup")):
-            raise ValueError(f"{field}={value!r} must be a whole number >= {int(field != 'warmup')}")
-    _check_reachable(model, observations, prior)
+    check_counts(chains, draws, warmup)
+    _check_reachable(parameter, observations)
+    prior, name = parameter.prior, parameter.name
     with _float64():
-        log_p = _log_posterior(observations, model, prior)
-        ky_map, sd_ln = _maximum(log_p, prior)
+        log_p = _log_posterior(observations, parameter)
+        at_map, sd_ln = _maximum(log_p, prior, name)
         if method == "laplace":
-            ky, diagnostics = _laplace_draws(prior, ky_map, sd_ln, chains, draws, seed)
+            value = _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed)
+            diagnostics, stats = pd.DataFrame(), pd.DataFrame()
         else:
-            starts = _laplace_draws(prior, ky_map, sd_ln, chains, 1, seed)[0][:, 0]
-            ky, diagnostics = _nuts(_log_likelihoods(observations, model), prior, starts, draws, warmup, seed)
+            starts = {name: _laplace_draws(parameter, at_map, sd_ln, chains, 1, seed)[:, 0]}
+            log_likelihood = _log_likelihoods(observations, parameter)
+            drawn, diagnostics, stats = nuts(lambda values: log_likelihood(values[name]), {name: prior}, starts,
+                                             draws, warmup, seed)
+            value = drawn[name]
     samples = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains),
-                            "ky_g": ky.reshape(-1)})
-    return BackAnalysis(samples, ky_map, ky_map * sd_ln, diagnostics, method, observations, model)
+                            parameter.column: value.reshape(-1)})
+    return BackAnalysis(samples, name, parameter.unit, at_map, at_map * sd_ln, diagnostics, method, observations,
+                        model, parameter.fixed, {name: prior}, stats)
 
 
-def _laplace_draws(prior, ky_map, sd_ln, chains, draws, seed):
-    """ky = exp(N(ln ky_map, sd_ln²)) [g], restricted to the prior's support."""
-    low, high = _support(prior)
+def _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed):
+    """The parameter's exp(N(ln ``at_map``, sd_ln²)) [its unit], shape (chains, draws); a
+    warning where a draw lies beyond the prior's support."""
+    low, high = support(parameter.prior)
     rng = np.random.default_rng(seed)
-    ky = np.exp(math.log(ky_map) + sd_ln * rng.standard_normal((chains, draws)))
-    if ky.min() <= low or ky.max() >= high:
-        warnings.warn(f"the Laplace approximation reaches beyond the prior's support [{low}, {high}] g; "
-                      "use method='nuts'", ConvergenceWarning, stacklevel=3)
-    return ky, pd.DataFrame()
+    value = np.exp(math.log(at_map) + sd_ln * rng.standard_normal((chains, draws)))
+    if value.min() <= low or value.max() >= high:
+        warnings.warn(f"the Laplace approximation of {parameter.name} reaches beyond the prior's support [{low}, "
+                      f"{high}] {parameter.unit}; use method='nuts'", ConvergenceWarning, stacklevel=3)
+    return value
 
 
-def _nuts(log_likelihood, prior, starts, draws, warmup, seed):
-    """NumPyro's NUTS, one chain from each of ``starts`` [g] (draws of the Laplace
-    approximation), vectorised (one engine call per step for all chains); its R-hat and
-    effective sample sizes from ArviZ."""
+def nuts(log_likelihood, priors, starts, draws, warmup, seed, stacklevel=3):
+    """NumPyro's No-U-Turn sampler on the vector of the parameters ``priors`` names
+    (name -> a :mod:`blockdae.design` distribution), each mapped to the real line
+    (NumPyro's ``biject_to`` of its support, the Jacobian in the potential), a dense mass
+    matrix adapted in warm-up; ``log_likelihood`` a JAX function of the values (name ->
+    a scalar, each in its unit); one chain from each of ``starts`` (name -> shape
+    (chains,)), the chains vectorised (one model call per step for all of them).
+
+    Returns:
+        (the draws, name -> shape (chains, draws); per parameter ArviZ's R-hat, bulk and
+        tail effective sample sizes and the divergent transitions of all chains, a table;
+        NUTS's statistics of each draw (``chain``, ``draw``, ``diverging``,
+        ``acceptance_rate``, ``n_steps``, ``step_size``, ``energy``, ``lp``), a table). A
+        :class:`ConvergenceWarning` where the chains did not mix (``stacklevel``:
+        warnings.warn's, the user's call it names)."""
     import jax
-    import numpyro
+    from numpyro.distributions.transforms import biject_to
+    from numpyro.infer import MCMC, NUTS
 
     with warnings.catch_warnings():  # ArviZ's notice of its coming refactor, at import
         warnings.simplefilter("ignore", FutureWarning)
         import arviz
-    from numpyro.distributions.transforms import biject_to
-    from numpyro.infer import MCMC, NUTS
 
-    density = _numpyro_prior(prior)
-    chains = len(starts)
+    densities = {name: _numpyro_prior(prior) for name, prior in priors.items()}
+    transforms = {name: biject_to(d.support) for name, d in densities.items()}
+    names = list(densities)
+    chains = len(next(iter(starts.values())))
 
-    def numpyro_model():
-        numpyro.factor("observations", log_likelihood(numpyro.sample("ky", density)))
+    def constrained(z):
+        return {name: transforms[name](z[i]) for i, name in enumerate(names)}
 
-    mcmc = MCMC(NUTS(numpyro_model), num_warmup=warmup, num_samples=draws, num_chains=chains,
-                chain_method="vectorized", progress_bar=False)
-    start = biject_to(density.support).inv(jax.numpy.asarray(starts))
-    mcmc.run(jax.random.PRNGKey(seed), init_params={"ky": start}, extra_fields=("diverging",))
-    ky = np.asarray(mcmc.get_samples(group_by_chain=True)["ky"], dtype=float)
-    diagnostics = pd.DataFrame({"parameter": ["ky"], "r_hat": [float(arviz.rhat(ky)) if chains > 1 else np.nan],
-                                "ess_bulk": [float(arviz.ess(ky, method="bulk"))],
-                                "ess_tail": [float(arviz.ess(ky, method="tail"))],
-                                "divergences": [int(np.sum(mcmc.get_extra_fields()["diverging"]))]})
-    row = diagnostics.iloc[0]
-    if (chains > 1 and row.r_hat > RHAT_LIMIT) or row.ess_bulk < ESS_PER_CHAIN * chains or row.divergences:
-        warnings.warn(f"the NUTS chains of ky did not mix well: R-hat {row.r_hat:.3f} (want <= {RHAT_LIMIT}), bulk "
-                      f"ESS {row.ess_bulk:.0f} (want >= {ESS_PER_CHAIN * chains}), {row.divergences} divergent "
-                      "transitions; run more draws or warmup", ConvergenceWarning, stacklevel=3)
-    return ky, diagnostics
+    def potential(z):  # -ln p of the unconstrained parameters (the transforms' Jacobians included)
+        values = constrained(z)
+        log_p = sum(densities[n].log_prob(values[n]) + transforms[n].log_abs_det_jacobian(z[i], values[n])
+                    for i, n in enumerate(names))
+        return -(log_p + log_likelihood(values))
+
+    mcmc = MCMC(NUTS(potential_fn=potential, dense_mass=True), num_warmup=warmup, num_samples=draws,
+                num_chains=chains, chain_method="vectorized", progress_bar=False)
+    init = jax.numpy.stack([transforms[n].inv(jax.numpy.asarray(starts[n])) for n in names], axis=-1)
+    mcmc.run(jax.random.PRNGKey(seed), init_params=init, extra_fields=tuple(_NUTS_STATS))
+    z = np.asarray(mcmc.get_samples(group_by_chain=True), dtype=float)
+    samples = {n: np.asarray(v, dtype=float) for n, v in jax.vmap(jax.vmap(constrained))(z).items()}
+    fields = mcmc.get_extra_fields(group_by_chain=True)
+    stats = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains)}
+                         | {name: np.asarray(fields[field]).reshape(-1) for field, name in _NUTS_STATS.items()})
+    stats["lp"] = -stats["lp"]  # NumPyro's potential energy: minus the log density (in the sampler's space)
+    divergences = int(stats["diverging"].sum())
+    diagnostics = pd.DataFrame([{"parameter": name, "r_hat": float(arviz.rhat(x)) if chains > 1 else np.nan,
+                                 "ess_bulk": float(arviz.ess(x, method="bulk")),
+                                 "ess_tail": float(arviz.ess(x, method="tail")), "divergences": divergences}
+                                for name, x in samples.items()])
+    worst_rhat, least_ess = diagnostics.r_hat.max(), diagnostics.ess_bulk.min()
+    if (chains > 1 and worst_rhat > RHAT_LIMIT) or least_ess < ESS_PER_CHAIN * chains or divergences:
+        warnings.warn(f"the NUTS chains of {', '.join(names)} did not mix well: largest R-hat {worst_rhat:.3f} (want "
+                      f"<= {RHAT_LIMIT}), smallest bulk ESS {least_ess:.0f} (want >= {ESS_PER_CHAIN * chains}), "
+                      f"{divergences} divergent transitions; run more draws or warmup", ConvergenceWarning,
+                      stacklevel=stacklevel)
+    return samples, diagnostics, stats

@@ -13,16 +13,18 @@ has zero density too."""
 
 import dataclasses
 import math
-import warnings
 
 import numpy as np
 import pandas as pd
 
+from ..excitation import Record
 from ..regional import WATER_UNIT_WEIGHT, factor_of_safety
-from ._back_analysis import (ESS_PER_CHAIN, RHAT_LIMIT, ConvergenceWarning, Observation, _float64,
-                             _log_likelihood as _observation_log_likelihood, _numpyro_prior)
+from ._back_analysis import (Observation, _float64, _log_likelihood as _observation_log_likelihood, _numpyro_prior,
+                             check_counts, nuts)
 from ._distributions import DISTRIBUTIONS
+from ._inferred import InferredParameter
 from ._models import Rigid
+from ._posterior import Posterior
 
 #: the parameters shared by every slope and their units
 SHARED = {"c_kPa": "kPa", "phi_deg": "deg"}
@@ -131,6 +133,10 @@ def _checked(observations, slopes, priors):
         seen = [seen] if isinstance(seen, Observation) else list(seen)
         if not seen or not all(isinstance(o, Observation) for o in seen):
             raise ValueError(f"observations[{name!r}] must be a design.Observation or a non-empty list of them")
+        names = [o.name for o in seen]
+        if len(set(names)) != len(names):
+            raise ValueError(f"observations[{name!r}]: the observations' names must differ (give each a name=), got "
+                             f"{names}")
         by_slope[name] = seen
     if not isinstance(priors, dict) or set(priors) != set(SHARED):
         raise ValueError(f"priors must be {{'c_kPa': ..., 'phi_deg': ...}} (a distribution, or a number where "
@@ -155,45 +161,14 @@ def _checked(observations, slopes, priors):
     return by_slope, fixed, uncertain
 
 
-def _displacement_function(model, record, pga_g):
-    """D [m] of ``record`` scaled to ``pga_g`` [g] as a JAX function of ky [g] (any shape,
-    > 0), differentiable through :class:`Rigid`'s exact dD/dky (a ``jax.custom_jvp``
-    around one batched ``jax.pure_callback``); D = 0 from the scaled peak on."""
-    import jax
-    import jax.numpy as jnp
-
-    limit = float(model.sliding_limit(record, pga_g, {"ky": np.zeros(1)})[0])
-
-    def engine(ky):
-        ky = np.asarray(ky, dtype=float)
-        slides = ky < limit
-        d, slope = model.displacements(record, pga_g, {"ky": np.where(slides, ky, 0.5 * limit).reshape(-1)},
-                                       derivative=True)
-        return np.where(slides, d.reshape(ky.shape), 0.0), np.where(slides, slope.reshape(ky.shape), 0.0)
-
-    def both(ky):
-        shape = jax.ShapeDtypeStruct(jnp.shape(ky), jnp.float64)
-        return jax.pure_callback(engine, (shape, shape), ky, vmap_method="broadcast_all")
-
-    @jax.custom_jvp
-    def displacement(ky):
-        return both(ky)[0]
-
-    @displacement.defjvp
-    def _jvp(primals, tangents):
-        d, slope = both(primals[0])
-        return d, slope * tangents[0]
-
-    return displacement
-
-
 def _log_likelihood(observations, slopes, fixed):
     """The observations' joint log likelihood as a JAX function of the uncertain
     parameters (name -> a scalar): -inf where a slope's FS <= 1 or a value lies outside
     the formula's domain."""
     import jax.numpy as jnp
 
-    functions = {name: [(o, _displacement_function(slopes.model, o.record, o.pga_g)) for o in seen]
+    rigid = InferredParameter(slopes.model, "ky", None, {})  # a slope's D [m] as a function of its ky [g]
+    functions = {name: [(o, rigid.displacement_function(o.record, o.pga_g)) for o in seen]
                  for name, seen in observations.items()}
 
     def log_likelihood(values):
@@ -257,8 +232,9 @@ def _vector_function(log_likelihood, log_prior, names):
 
 
 @dataclasses.dataclass
-class SlopesBackAnalysis:
-    """The posterior of the strength shared by the slopes (and of their thicknesses).
+class SlopesBackAnalysis(Posterior):
+    """The posterior of the strength shared by the slopes (and of their thicknesses): its
+    summary, predictive table, ``InferenceData`` and figures (:class:`Posterior`).
 
     Attributes:
         samples: the posterior draws, a table: ``chain``, ``draw``, each uncertain
@@ -269,6 +245,9 @@ class SlopesBackAnalysis:
         observations: slope name -> the observations analysed.
         slopes: the :class:`InfiniteSlope` they were analysed with.
         seconds: the wall time of the sampling [s] (compiling included).
+        priors: each uncertain parameter's prior (name -> distribution).
+        sample_stats: NUTS's statistics of each draw (``chain``, ``draw``, ``diverging``,
+            ``acceptance_rate`` [-], ``n_steps``, ``step_size``, ``energy``, ``lp``), a table.
     """
 
     samples: pd.DataFrame
@@ -276,22 +255,45 @@ class SlopesBackAnalysis:
     observations: dict
     slopes: InfiniteSlope
     seconds: float
+    priors: dict
+    sample_stats: pd.DataFrame
+    method = "nuts"
 
     def __repr__(self):
         return (f"SlopesBackAnalysis({len(self.samples)} draws, {len(self.slopes.slopes)} slopes, "
                 f"{sum(len(v) for v in self.observations.values())} observations, parameters "
-                f"{list(self.diagnostics.parameter)})")
+                f"{list(self.priors)})")
 
-    def summary(self) -> pd.DataFrame:
-        """Per parameter (the uncertain ones, then each slope's ky [g]): its unit, mean,
-        standard deviation, median and 90 % interval, in that unit."""
-        rows = []
-        for column in [*self.diagnostics.parameter, *(f"ky_{n}_g" for n in self.slopes.slopes)]:
-            x = self.samples[column].to_numpy()
-            q05, q50, q95 = np.quantile(x, [0.05, 0.5, 0.95])
-            rows.append({"parameter": column, "unit": column.rsplit("_", 1)[1], "mean": x.mean(),
-                         "sd": x.std(ddof=1), "median": q50, "q05": q05, "q95": q95})
-        return pd.DataFrame(rows)
+    @property
+    def inferred(self) -> list:
+        """(name, column, unit) of each uncertain parameter (``("c_kPa", "c_kPa", "kPa")``)."""
+        return [(name, name, SHARED.get(name, "m")) for name in self.priors]
+
+    def summarised(self):
+        """The uncertain parameters, then each slope's ky [g]."""
+        return self.inferred + [(f"ky_{n}_g", f"ky_{n}_g", "g") for n in self.slopes.slopes]
+
+    def observed(self) -> list:
+        """(observation named ``<slope>: <its name>``, (record, pga_g, slope)) of each
+        observation."""
+        return [(dataclasses.replace(obs, name=f"{slope}: {obs.name}"), (obs.record, obs.pga_g, slope))
+                for slope, seen in self.observations.items() for obs in seen]
+
+    def predict(self, record, pga_g=None, slope=None) -> pd.DataFrame:
+        """The posterior predictive D [m] of ``slope`` (its name) under ``record`` scaled
+        to ``pga_g`` [g] (None: as given): one row per posterior draw (``chain``,
+        ``draw``, the parameters, ``ky_<slope>_g``, ``D_m``), the rigid block's D without
+        measurement error."""
+        if slope not in self.slopes.slopes:
+            raise ValueError(f"slope={slope!r} is none of the slopes {list(self.slopes.slopes)}")
+        if not isinstance(record, Record):
+            raise ValueError(f"record must be a blockdae.Record, got {type(record).__name__}")
+        if pga_g is not None:
+            _number("pga_g", pga_g, 0.0, math.inf)
+        table = self.samples[["chain", "draw", *self.priors, f"ky_{slope}_g"]].copy()
+        rigid = InferredParameter(self.slopes.model, "ky", None, {})
+        table["D_m"] = rigid.displacements(record, pga_g, table[f"ky_{slope}_g"].to_numpy())
+        return table
 
 
 def slopes_back_analysis(observations, slopes, priors, *, chains=4, draws=500, warmup=500, seed=0):
@@ -301,23 +303,22 @@ def slopes_back_analysis(observations, slopes, priors, *, chains=4, draws=500, w
     import time
 
     started = time.perf_counter()
-    for field, value in (("chains", chains), ("draws", draws), ("warmup", warmup)):
-        if not (isinstance(value, int) and not isinstance(value, bool) and value >= (field != "warmup")):
-            raise ValueError(f"{field}={value!r} must be a whole number >= {int(field != 'warmup')}")
+    check_counts(chains, draws, warmup)
     observations, fixed, uncertain = _checked(observations, slopes, priors)
     names = list(uncertain)
     with _float64():
         log_likelihood = _log_likelihood(observations, slopes, fixed)
         log_prior = _log_prior(uncertain)
         starts = _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains, seed)
-        samples, diagnostics = _nuts(log_likelihood, uncertain, starts, draws, warmup, seed)
+        samples, diagnostics, stats = nuts(log_likelihood, uncertain, starts, draws, warmup, seed, stacklevel=5)
     table = {"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains)}
     table |= {name: samples[name].reshape(-1) for name in names}
     fs, ky = slopes.yield_accelerations(fixed | {name: table[name] for name in names})
     for name in slopes.slopes:
         table[f"ky_{name}_g"] = np.broadcast_to(ky[name], (chains * draws,)).astype(float)
         table[f"fs_{name}"] = np.broadcast_to(fs[name], (chains * draws,)).astype(float)
-    return SlopesBackAnalysis(pd.DataFrame(table), diagnostics, observations, slopes, time.perf_counter() - started)
+    return SlopesBackAnalysis(pd.DataFrame(table), diagnostics, observations, slopes, time.perf_counter() - started,
+                              uncertain, stats)
 
 
 def _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains, seed):
@@ -341,47 +342,3 @@ def _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains
     best = np.argsort(np.where(finite, -values, np.inf))[:chains]
     best = np.resize(best[: max(1, min(chains, int(finite.sum())))], chains)
     return {name: v[best] for name, v in draws.items()}
-
-
-def _nuts(log_likelihood, uncertain, starts, draws, warmup, seed):
-    """NumPyro's NUTS from ``starts`` (name -> (chains,)); the draws (name -> (chains,
-    draws)) and ArviZ's diagnostics per parameter."""
-    import jax
-    from numpyro.distributions.transforms import biject_to
-    from numpyro.infer import MCMC, NUTS
-
-    with warnings.catch_warnings():  # ArviZ's notice of its coming refactor, at import
-        warnings.simplefilter("ignore", FutureWarning)
-        import arviz
-
-    densities = {name: _numpyro_prior(prior) for name, prior in uncertain.items()}
-    transforms = {name: biject_to(d.support) for name, d in densities.items()}
-    names = list(densities)
-    chains = len(next(iter(starts.values())))
-
-    def constrained(z):
-        return {name: transforms[name](z[i]) for i, name in enumerate(names)}
-
-    def potential(z):  # -ln p of the unconstrained parameters (the transforms' Jacobians included)
-        values = constrained(z)
-        log_p = sum(densities[n].log_prob(values[n]) + transforms[n].log_abs_det_jacobian(z[i], values[n])
-                    for i, n in enumerate(names))
-        return -(log_p + log_likelihood(values))
-
-    mcmc = MCMC(NUTS(potential_fn=potential, dense_mass=True), num_warmup=warmup, num_samples=draws,
-                num_chains=chains, chain_method="vectorized", progress_bar=False)
-    init = jax.numpy.stack([transforms[n].inv(jax.numpy.asarray(starts[n])) for n in names], axis=-1)
-    mcmc.run(jax.random.PRNGKey(seed), init_params=init, extra_fields=("diverging",))
-    z = np.asarray(mcmc.get_samples(group_by_chain=True), dtype=float)
-    samples = {n: np.asarray(v, dtype=float) for n, v in jax.vmap(jax.vmap(constrained))(z).items()}
-    divergences = int(np.sum(mcmc.get_extra_fields()["diverging"]))
-    rows = [{"parameter": name, "r_hat": float(arviz.rhat(x)) if chains > 1 else np.nan,
-             "ess_bulk": float(arviz.ess(x, method="bulk")), "ess_tail": float(arviz.ess(x, method="tail")),
-             "divergences": divergences} for name, x in samples.items()]
-    diagnostics = pd.DataFrame(rows)
-    worst_rhat, least_ess = diagnostics.r_hat.max(), diagnostics.ess_bulk.min()
-    if (chains > 1 and worst_rhat > RHAT_LIMIT) or least_ess < ESS_PER_CHAIN * chains or divergences:
-        warnings.warn(f"the NUTS chains did not mix well: largest R-hat {worst_rhat:.3f} (want <= {RHAT_LIMIT}), "
-                      f"smallest bulk ESS {least_ess:.0f} (want >= {ESS_PER_CHAIN * chains}), {divergences} divergent "
-                      "transitions; run more draws or warmup", ConvergenceWarning, stacklevel=4)
-    return samples, diagnostics

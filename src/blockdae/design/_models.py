@@ -14,7 +14,8 @@ from ..units import STANDARD_GRAVITY
 from ..core import sensitivities, simulate
 from ..core.contract import AbstractHybridModel, BatchedModel, DifferentiableModel
 from ..excitation import BaseMotion, Record, UnitsWarning, pga_factor
-from ..flexible_mass import flexible
+from ..flexible_mass import FlexibleSlidingMass, displacement_sensitivities, flexible, prechecked_column, \
+    with_zero_sample
 from ..planar import PlanarBlock
 from ..sliding import downslope, newmark
 
@@ -56,6 +57,8 @@ class DesignModel(abc.ABC):
     a :class:`blockdae.Record` by default), ``COLUMNS`` (name -> the table column, where
     not the name with its unit) and ``has_derivative`` (whether :meth:`displacements`
     gives dD/d``DESIGN``: the inverses then take Newton steps for one record).
+    :meth:`gradient` gives dD/dp for each parameter p of :attr:`differentiable` (what
+    :func:`back_analysis` runs on); by default that is ``DESIGN`` where ``has_derivative``.
     """
 
     PARAMETERS: dict
@@ -81,6 +84,56 @@ class DesignModel(abc.ABC):
     def floor(self, values):
         """The smallest value of ``DESIGN`` the inverses try, per parameter set."""
         return np.full(np.shape(values[self.DESIGN]), PARAMETER_FLOOR)
+
+    @property
+    def differentiable(self) -> tuple:
+        """The parameters :meth:`gradient` differentiates D by: ``DESIGN`` where
+        ``has_derivative``, else none."""
+        return (self.DESIGN,) if self.has_derivative else ()
+
+    def gradient(self, record, pga, values, names):
+        """D [m] of ``record`` scaled to ``pga`` [g] (None: as given) for each parameter set
+        of ``values`` (name -> an array of shape (n,) or a number), shape (n,), and dD/dp
+        [m per unit of p] for each p of ``names`` (among :attr:`differentiable`), name ->
+        shape (n,). By default dD/d``DESIGN`` from :meth:`displacements`."""
+        self.check_differentiable(names)
+        d, slope = self.displacements(record, pga, values, derivative=True)
+        return d, {self.DESIGN: slope}
+
+    def check_differentiable(self, names):
+        """ValueError naming the model and the first of ``names`` :meth:`gradient` does
+        not differentiate D by."""
+        for name in names:
+            if name not in self.differentiable:
+                raise ValueError(f"the {self.kind} model gives no dD/d{name}: it differentiates D by "
+                                 f"{list(self.differentiable) or 'no parameter'}")
+
+
+def _sets(values):
+    """(n, name -> an array of shape (n,)) of parameter sets given as arrays or numbers."""
+    n = max(np.size(v) for v in values.values())
+    return n, {name: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for name, v in values.items()}
+
+
+def _scale(record, pga, g):
+    """The factor [-] that scales ``record`` to ``pga`` [g] (1 for None)."""
+    return 1.0 if pga is None else pga_factor(record.peak_acceleration, pga, g)
+
+
+def _inverse_read(polarity, normal, inverse):
+    """Per set, whether D of ``polarity`` is read from the inverse run, shape (n,)."""
+    normal = np.asarray(normal, dtype=float)
+    if polarity == "larger":
+        return np.asarray(inverse, dtype=float) > normal
+    return np.full(normal.shape, polarity == "inverse")
+
+
+def _size_slopes(u, du):
+    """d|u|/dp = u . du/dp / |u| [m per unit of p] (0 where u = 0: nothing moved) of
+    final displacements ``u`` (n, d) and their derivatives ``du`` (n, d), shape (n,)."""
+    size = np.linalg.norm(u, axis=-1)
+    moved = size > 0
+    return np.where(moved, np.sum(u * du, axis=-1) / np.where(moved, size, 1.0), 0.0)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -189,11 +242,42 @@ class Flexible(DesignModel):
     def displacements(self, record, pga, values, derivative=False):
         """D [m] of ``record`` scaled to ``pga`` [g] for each parameter set of ``values``
         (name -> an array of shape (n,) or a number); no derivative (``derivative``
-        must be False)."""
+        must be False: the inverses bracket on the compiled engine, faster than
+        :meth:`gradient`)."""
         if derivative:
             raise ValueError("the flexible mass has no dD/dky here; root finding brackets instead")
         result = self._run(record, pga, values)
         return _read(self.polarity, result["normal_m"], result["inverse_m"])
+
+    @property
+    def differentiable(self) -> tuple:
+        """ky [g], height [m], vs [m/s] (vr held) and damping [-]; none with the
+        equivalent-linear iteration (its converged column has no derivative here)."""
+        return () if self.equivalent_linear else ("ky", "height", "vs", "damping")
+
+    def gradient(self, record, pga, values, names):
+        """D [m] from the compiled engine, shape (n,), and dD/dp for p in ``names``
+        (name -> shape (n,), [m per unit of p]) from
+        :func:`blockdae.flexible_mass.displacement_sensitivities`: the JAX twin's
+        variational equation and saltation jumps through the located events (exact to
+        its tolerance, rtol 1e-10), one JAX run per sliding set (seconds each:
+        benchmarks/back_analysis_models.py)."""
+        self.check_differentiable(names)
+        result = self._run(record, pga, values)
+        d = _read(self.polarity, result["normal_m"], result["inverse_m"])
+        inverse = _inverse_read(self.polarity, result["normal_m"], result["inverse_m"])
+        n, sets = _sets(values)
+        factor = _scale(record, pga, self.g)
+        slopes = {name: np.zeros(n) for name in names}
+        for i in np.flatnonzero(d > 0):  # D = 0: no slide, no change to first order
+            one = {name: float(v[i]) for name, v in sets.items()}
+            column = prechecked_column(**{k: one[k] for k in ("height", "vs", "vr", "damping") if k in one})
+            mass = FlexibleSlidingMass(column, ky=one["ky"], method=self.method, g=self.g)
+            motion = with_zero_sample(record.scaled(-factor if inverse[i] else factor))
+            derivatives = displacement_sensitivities(mass, motion, record.duration + record.dt, wrt=tuple(names))
+            for name in names:
+                slopes[name][i] = derivatives[name]
+        return d, slopes
 
     def sliding_limit(self, record, pga, values):
         """The ky [g] at and above which D = 0: the supremum over time of the
@@ -266,13 +350,46 @@ class Planar(DesignModel):
         number); no derivative (``derivative`` must be False). Shape (n,)."""
         if derivative:
             raise ValueError("the block on a plane has no dD/dmu here; root finding brackets instead")
-        n = max(np.size(v) for v in values.values())
-        sets = {name: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for name, v in values.items()}
+        return self._final(record, pga, values)[0]
+
+    def _final(self, record, pga, values):
+        """(D [m] shape (n,), the final u [m] of each polarity run shape (polarities, n, 2))."""
+        _, sets = _sets(values)
         ensemble = simulate(self.block(sets), [record], pga=None if pga is None else [pga],
                             polarity=_engine_polarity(self.polarity), final_only=True, backend="compiled")
-        u = ensemble.displacement[0, 0]  # (polarities, sets, 2)
+        u = np.asarray(ensemble.displacement, dtype=float)[0, 0]  # (polarities, sets, 2)
         d = np.hypot(u[..., 0], u[..., 1])
-        return _read(self.polarity, d[0], d[-1])
+        return _read(self.polarity, d[0], d[-1]), u
+
+    #: the parameters :meth:`gradient` differentiates D by
+    differentiable = ("mu", "mu_kinetic", "bias_x", "bias_y")
+
+    def gradient(self, record, pga, values, names):
+        """D [m] from the compiled engine, shape (n,), and dD/dp [m] for p in ``names``
+        (name -> shape (n,)): d|u|/dp = u . du/dp / |u|, du/dp from
+        :func:`blockdae.sensitivities` (the JAX twin's variational equation and
+        saltation jumps through the located events: exact to its tolerance, rtol 1e-10)."""
+        self.check_differentiable(names)
+        d, u = self._final(record, pga, values)
+        runs = {False: u[0], True: u[-1]}  # the final u of the record as given, and inverted
+        inverse = _inverse_read(self.polarity, *(np.hypot(*runs[flip].T) for flip in (False, True)))
+        n, sets = _sets(values)
+        follows = "mu_kinetic" not in sets  # the kinetic coefficient is mu: dD/dmu moves both
+        sets = {"mu_kinetic": sets["mu"]} | sets  # given explicitly, each set's derivatives keep them apart
+        wrt = tuple(dict.fromkeys((*names, "mu_kinetic") if follows and "mu" in names else names))
+        factor = _scale(record, pga, self.g)
+        slopes = {name: np.zeros(n) for name in names}
+        for flip in (False, True):
+            where = np.flatnonzero((inverse == flip) & (d > 0))  # D = 0: no slide, no change to first order
+            if where.size:
+                block = self.block({name: v[where] for name, v in sets.items()})
+                du = {name: np.reshape(value, (where.size, 2)) for name, value in
+                      sensitivities(block, record.scaled(-factor if flip else factor), None, wrt=wrt).items()}
+                if follows and "mu" in names:
+                    du["mu"] = du["mu"] + du["mu_kinetic"]
+                for name in names:
+                    slopes[name][where] = _size_slopes(runs[flip][where], du[name])
+        return d, slopes
 
     def sliding_limit(self, record, pga, values):
         """The mu [-] at and above which D = 0: the largest friction demand
@@ -377,8 +494,14 @@ class Simulated(DesignModel):
             raise ValueError(f"{self.kind} has no dD/d{self.design} here (a DifferentiableModel with "
                              f"{self.design!r} among its parameters() and measure='final' has); root finding brackets "
                              f"instead")
-        n = max(np.size(v) for v in values.values())
-        sets = {name: np.broadcast_to(np.asarray(v, dtype=float), (n,)) for name, v in values.items()}
+        if derivative:
+            d, slopes = self.gradient(record, pga, values, (self.design,))
+            return d, slopes[self.design]
+        return self._final(record, pga, values)[0]
+
+    def _final(self, record, pga, values):
+        """(D [m] shape (n,), what D is the size of per polarity run, shape (polarities, n, d))."""
+        n, sets = _sets(values)
         run = dict(t_end=self.t_end, backend=self.backend, pga=None if pga is None else [pga],
                    polarity=_engine_polarity(self.polarity), final_only=True)
         if isinstance(self.model, BatchedModel):
@@ -387,23 +510,34 @@ class Simulated(DesignModel):
             ends = np.concatenate([self._ends(simulate(self.model.replace(**{k: float(v[i]) for k, v in sets.items()}),
                                                        [record], **run)) for i in range(n)], axis=1)
         sizes = np.linalg.norm(ends, axis=-1)
-        d = _read(self.polarity, sizes[0], sizes[-1])
-        if not derivative:
-            return d
-        inverse = np.full(n, self.polarity == "inverse") | ((self.polarity == "larger") & (sizes[-1] > sizes[0]))
-        factor = 1.0 if pga is None else pga_factor(record.peak_acceleration, pga, getattr(self.model, "g",
-                                                                                          STANDARD_GRAVITY))
-        return d, np.array([self._slope(record.scaled(-factor if inverse[i] else factor),
-                                        {k: float(v[i]) for k, v in sets.items()}, ends[-1 if inverse[i] else 0, i])
-                            for i in range(n)])
+        return _read(self.polarity, sizes[0], sizes[-1]), ends
 
-    def _slope(self, motion, values, u):
-        """dD/d``design`` of one parameter set on ``motion`` where its final displacement
-        is ``u``: d|u|/dp = u . du/dp / |u| (0 where u = 0: nothing moved)."""
-        model = self.model.replace(**values)
-        du = np.atleast_1d(sensitivities(model, motion, self.t_end, wrt=(self.design,))[self.design])
-        size = np.linalg.norm(u)
-        return float(u @ du / size) if size > 0 else 0.0
+    @property
+    def differentiable(self) -> tuple:
+        """Those of ``parameters`` among the model's ``parameters()`` where it is a
+        :class:`~blockdae.core.contract.DifferentiableModel` and D is the final
+        displacement; else none."""
+        if self.measure != "final" or not isinstance(self.model, DifferentiableModel):
+            return ()
+        return tuple(name for name in self.parameters if name in self.model.parameters())
+
+    def gradient(self, record, pga, values, names):
+        """D [m], shape (n,), and dD/dp [m per unit of p] for p in ``names`` (name ->
+        shape (n,)): d|u|/dp = u . du/dp / |u| (0 where u = 0: nothing moved), du/dp
+        from :func:`blockdae.sensitivities` (the JAX twin), one parameter set at a time."""
+        self.check_differentiable(names)
+        d, ends = self._final(record, pga, values)
+        n, sets = _sets(values)
+        inverse = _inverse_read(self.polarity, *np.linalg.norm(ends[[0, -1]], axis=-1))
+        factor = _scale(record, pga, getattr(self.model, "g", STANDARD_GRAVITY))
+        slopes = {name: np.zeros(n) for name in names}
+        for i in np.flatnonzero(d > 0):
+            model = self.model.replace(**{k: float(v[i]) for k, v in sets.items()})
+            du = sensitivities(model, record.scaled(-factor if inverse[i] else factor), self.t_end, wrt=tuple(names))
+            u = ends[-1 if inverse[i] else 0, i]
+            for name in names:
+                slopes[name][i] = _size_slopes(u, np.reshape(du[name], u.shape))
+        return d, slopes
 
     def sliding_limit(self, record, pga, values):
         """The given ``sliding_limit_value``, else per set the floor doubled until D = 0."""
