@@ -5,9 +5,10 @@ import dataclasses
 
 import numpy as np
 
-from ..core import AbstractEvent, DriverSolution, compact_repr, state_columns, state_labels
+from ..core import AbstractEvent, state_columns, state_labels
 from ._free_modes import INSTANT, event_kind, impact_kind
 from ._slide_rock_laws import base_slip
+from ._solution import BlockSolution
 
 #: the kinds of event whose velocity jump dissipates energy (the balance's impact term)
 JUMP_KINDS = ("impact", "land", "zeno", "chatter", "overturn")
@@ -67,7 +68,7 @@ class FreeEvent(AbstractEvent):
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class FreeStandingSolution(DriverSolution):
+class FreeStandingSolution(BlockSolution):
     """The motion of a complete free-standing block.
 
     Attributes:
@@ -77,13 +78,6 @@ class FreeStandingSolution(DriverSolution):
         mode: mode right after each knot, shape (n,) (:class:`FreeMode`).
         events: located events (:class:`FreeEvent`), in time order.
     """
-
-    def __repr__(self):
-        return compact_repr(self)
-
-    def events_of(self, kind: str) -> tuple:
-        """The events of one ``kind`` (see :class:`FreeEvent`)."""
-        return tuple(e for e in self.events if e.kind == kind)
 
     def event_table(self, events=None) -> str:
         """``events`` (default: all) as an aligned text table: time [s], kind, the mode after
@@ -110,22 +104,6 @@ class FreeStandingSolution(DriverSolution):
     def impacts(self) -> tuple:
         """The corner impacts (each with the velocities before and after)."""
         return self.events_of("impact")
-
-    @property
-    def impact_times(self) -> np.ndarray:
-        """Times of the located impacts [s]."""
-        return np.array([e.t for e in self.impacts])
-
-    @property
-    def overturned(self) -> bool:
-        """Whether the block overturned."""
-        return bool(self.events_of("overturn"))
-
-    @property
-    def overturn_time(self) -> float:
-        """Time it reached |theta| = pi/2 [s]; nan if it did not."""
-        events = self.events_of("overturn")
-        return events[0].t if events else float("nan")
 
     @property
     def rest_time(self) -> float:

@@ -39,7 +39,36 @@ class RockingEvent(AbstractEvent):
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class RockingSolution(DriverSolution):
+class BlockSolution(DriverSolution):
+    """What the solutions of a free-standing block share: their events by kind, the
+    impacts' times and the overturn (each subclass says what its ``impacts`` are)."""
+
+    def __repr__(self):
+        return compact_repr(self)
+
+    def events_of(self, kind: str) -> tuple:
+        """The events of one ``kind`` (see the solution's event class)."""
+        return tuple(e for e in self.events if e.kind == kind)
+
+    @property
+    def impact_times(self) -> np.ndarray:
+        """Times of the located impacts [s]."""
+        return np.array([e.t for e in self.impacts])
+
+    @property
+    def overturned(self) -> bool:
+        """Whether the block overturned."""
+        return bool(self.events_of("overturn"))
+
+    @property
+    def overturn_time(self) -> float:
+        """Time it reached |theta| = pi/2 [s]; nan if it did not."""
+        events = self.events_of("overturn")
+        return events[0].t if events else float("nan")
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class RockingSolution(BlockSolution):
     """The motion of a free-standing block.
 
     Attributes:
@@ -51,22 +80,10 @@ class RockingSolution(DriverSolution):
         block, motion: the model and the base motion (set by :func:`blockdae.simulate`).
     """
 
-    def __repr__(self):
-        return compact_repr(self)
-
-    def events_of(self, kind: str) -> tuple:
-        """The events of one ``kind`` (see :class:`RockingEvent`)."""
-        return tuple(e for e in self.events if e.kind == kind)
-
     @property
     def impacts(self) -> tuple:
         """The impacts located one by one (each with theta' before and after [rad/s])."""
         return self.events_of("impact")
-
-    @property
-    def impact_times(self) -> np.ndarray:
-        """Times of the located impacts [s]."""
-        return np.array([e.t for e in self.impacts])
 
     @property
     def rest_time(self) -> float:
@@ -80,17 +97,6 @@ class RockingSolution(DriverSolution):
         located impact); nan if none."""
         zeno, rests = self.events_of("zeno"), self.events_of("rest")
         return rests[-1].t - zeno[-1].t if zeno and rests else float("nan")
-
-    @property
-    def overturned(self) -> bool:
-        """Whether the block overturned."""
-        return bool(self.events_of("overturn"))
-
-    @property
-    def overturn_time(self) -> float:
-        """Time it reached |theta| = pi/2 [s]; nan if it did not."""
-        events = self.events_of("overturn")
-        return events[0].t if events else float("nan")
 
     @property
     def time_beyond_alpha(self) -> float:
