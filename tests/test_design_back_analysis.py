@@ -108,6 +108,9 @@ def test_an_observation_beyond_the_prior_is_an_error(record):
     with pytest.raises(ValueError, match=r"the flexible model needs the parameters \['height', 'vs'\]"):
         design.back_analysis(design.Observation(record, sigma_ln=0.1, displacement_m=0.1), design.Flexible(),
                              PRIOR, method="laplace")
+    seen = design.Observation(record, sigma_ln=0.1, displacement_m=0.1)
+    with pytest.raises(ValueError, match=r"chains=1 must be a whole number >= 2 \(NUTS's R-hat compares its chains\)"):
+        design.back_analysis(seen, design.Rigid(), PRIOR, method="nuts", chains=1)
 
 
 @pytest.mark.slow

@@ -153,11 +153,14 @@ def _check_reachable(parameter, observations):
                              f"sigma_ln above; widen the prior of {name} or check the observation")
 
 
-def check_counts(chains, draws, warmup):
-    """Raise unless ``chains`` and ``draws`` are whole numbers >= 1 and ``warmup`` >= 0."""
+def check_counts(chains, draws, warmup, method="nuts"):
+    """Raise unless ``chains`` and ``draws`` are whole numbers >= 1 (chains >= 2 for NUTS,
+    whose R-hat compares them) and ``warmup`` >= 0."""
+    least = {"chains": 2 if method == "nuts" else 1, "draws": 1, "warmup": 0}
     for field, value in (("chains", chains), ("draws", draws), ("warmup", warmup)):
-        if not (isinstance(value, int) and not isinstance(value, bool) and value >= (field != "warmup")):
-            raise ValueError(f"{field}={value!r} must be a whole number >= {int(field != 'warmup')}")
+        if not (isinstance(value, int) and not isinstance(value, bool) and value >= least[field]):
+            why = " (NUTS's R-hat compares its chains)" if field == "chains" and method == "nuts" else ""
+            raise ValueError(f"{field}={value!r} must be a whole number >= {least[field]}{why}")
 
 
 def _log_likelihood(obs, d):
@@ -405,7 +408,7 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
     observations, parameter = _checked(observations, model, priors)
     if method not in ("nuts", "laplace"):
         raise ValueError(f"method={method!r} is unknown; choose 'nuts' or 'laplace'")
-    check_counts(chains, draws, warmup)
+    check_counts(chains, draws, warmup, method)
     _check_reachable(parameter, observations)
     prior, name = parameter.prior, parameter.name
     with _float64():
