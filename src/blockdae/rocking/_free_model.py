@@ -27,7 +27,7 @@ import warnings
 
 import numpy as np
 
-from ..core import HermiteDense
+from ..core import HermiteDense, LazyEngine
 from ..core.contract import KNOTS_PER_RADIAN, SCALAR
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import stop_mode
@@ -74,7 +74,8 @@ class FreeStandingBlock(FreeStandingDerivatives):
         g: gravitational acceleration [m/s²].
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x and
-    z components [m/s²]. Backends: "cvode" (default), "ida" and "jax" (the diffrax twin).
+    z components [m/s²]. Backends: "compiled" (default: a compiled DOP853 with located
+    events), "cvode", "ida" and "jax" (the diffrax twin).
     """
 
     b: float
@@ -91,6 +92,8 @@ class FreeStandingBlock(FreeStandingDerivatives):
     instant_modes = INSTANT
     component_names = ("x", "z")
     displacement_states = (X,)
+    default_backend = "compiled"
+    engines = {"compiled": LazyEngine("blockdae.rocking._free_engine", "FreeCompiledEngine")}
 
     def __post_init__(self):
         for name in ("b", "h", "mu", "theta0", "zeno_arc", "g"):

@@ -1,0 +1,490 @@
+"""The complete free-standing block's compiled flow: its modes integrated between events,
+compiled with numba, on records and on sine pieces, horizontal and vertical.
+
+The kernel runs the hybrid driver's loop (:mod:`blockdae.core._driver`) over the pieces of
+the base's motion and hands back to Python (:mod:`._free_engine`) only where the model's
+decisions are needed, which the driver's own event code then takes, unchanged: a guard
+root located (the mode after it, the state on its guard and on entry: the impacts, the
+landings, the slips), a block at rest whose piece starts a motion, and a mode entered with
+a guard at or below zero (whether it is left at once).
+
+Per mode:
+
+* REST: the state is constant; the guards depend on time alone and are located by
+  bisection to adjacent floats (:func:`blockdae.core.events.static_root`), as the driver
+  does; a linear piece with every guard positive at both ends has none;
+* OVERTURNED: terminal, no guard;
+* SLIDE, ROCK (out, in, beyond alpha), SLIDE_ROCK, FLIGHT and the Zeno tail (SETTLE):
+  DOP853 (:mod:`blockdae.solvers.dop853`) at the backend's tolerances. A guard that goes
+  from > 0 to <= 0 over a step is located by bisection to adjacent floats on the step's
+  dense output (the state there, a(t) at the time); the state at the root is a step of
+  the same method from the step's start. The step stops where x'' (sliding) or theta''
+  (rocking) at the frozen state turns, and knots are at most 1 / (32 w) and 1 / (32 p)
+  apart, as the driver's.
+
+The flows and the guards are the model's (:meth:`FreeStandingBlock.flow`,
+:meth:`~FreeStandingBlock.guards`), on the laws of :mod:`._slide_rock_laws` that numba
+compiles here.
+
+State (8,): (x, z, theta, x', z', theta', base work, friction work) in the model's layout
+(a slide-rock's x, x' its pivot's, a flight's its reference corner's).
+"""
+
+import functools
+import hashlib
+import inspect
+import math
+import pathlib
+import sys
+
+import numba
+import numpy as np
+from numba.extending import register_jitable
+
+from ..core import events
+from ..excitation import pieces as _pieces
+from ..solvers import dop853 as _dop853, xp_scalar as xp
+from . import _compiled as rocking
+from . import _rules as rules
+from . import _slide_rock_laws as laws
+from ._compiled import _component, _piece, _piece_at, _push
+
+N = 8
+X, Z, THETA, X_RATE, Z_RATE, THETA_RATE, BASE_WORK, FRICTION_WORK = range(N)
+REST, SLIDE, OUT, IN, BEYOND, SETTLE, OVERTURNED, SLIDE_ROCK_OWN, SLIDE_ROCK_BACK, FLIGHT = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9
+#: entries of ``params``: b, h [m], mu, mu_k [-], g [m/s²], R [m], alpha [rad], b/h [-],
+#: the knots' spacing 1 / (32 p) [s], the contradiction floors RATE_FLOOR p alpha [rad/s]
+#: and RATE_FLOOR p R [m/s]
+PARAM_FIELDS = ("b", "h", "mu", "mu_k", "g", "R", "alpha", "lam", "output_step", "theta_floor", "speed_floor")
+_B, _H, _MU, _MUK, _G, _R, _ALPHA, _LAM, _STEP, _THETA_FLOOR, _SPEED_FLOOR = range(11)
+#: entries of ``options``: rtol [-], atol [the states' units]
+OPTION_FIELDS = ("rtol", "atol")
+#: counters (int64): the piece, the mode, restarted (0/1), the piece entered (0/1), knots,
+#: steps, rejected steps, right-hand-side calls, running after the excitation (0/1)
+C_PIECE, C_MODE, C_RESTARTED, C_ENTERED, C_NK, C_STEPS, C_REJECTED, C_RHS, C_TAIL = range(9)
+N_COUNTERS = 9
+#: floats: time [s], largest speed [m/s], the step to try [s], the tail's end [s]
+F_T, F_VMAX, F_H, F_END = range(4)
+#: what a call of the kernel stopped at: the last piece done (or the tail at rest); guard
+#: ``index`` reached zero at F_T; a block at rest whose piece may start a motion; a mode
+#: (re)started with a guard at or below zero; the state contradicts its mode; the tail's
+#: bound is needed; a step below rounding
+DONE, GUARD, ENTRY, RESTART, INCONSISTENT, BOUND, STEP_TOO_SMALL = range(7)
+#: knot rows: t, y (8), mode after, dy/dt after (8), dy/dt before the next knot (8)
+KNOT_WIDTH = 2 + 3 * N
+_Y, _MODE_COL, _RIGHT, _LEFT = 1, 1 + N, 2 + N, 2 + 2 * N
+#: guards per mode, +inf where a mode has fewer
+N_GUARDS = 5
+_INF = math.inf
+
+
+def _side(mode):
+    return 1 if mode > 0 else -1
+
+
+def _rocks(kind):
+    return kind == OUT or kind == IN or kind == BEYOND
+
+
+def _slip_direction(mode):
+    """sigma of a slide-rock (kind 7: its pivot's side, 8: the other)."""
+    kind, s = abs(mode), _side(mode)
+    return s if kind == SLIDE_ROCK_OWN else -s
+
+
+def _is_static(mode):
+    return mode == REST or abs(mode) == OVERTURNED
+
+
+def _is_continuous(mode):
+    kind = abs(mode)
+    return kind == SLIDE or _rocks(kind) or kind == SETTLE or kind == SLIDE_ROCK_OWN or kind == SLIDE_ROCK_BACK \
+        or kind == FLIGHT
+
+
+# ---- the model's flow and guards on floats ----------------------------------------------
+def _base(t, pe, p):
+    """(a_x, g_e) [m/s²] at ``t``."""
+    return _component(pe, 0, t), p[_G] + _component(pe, 1, t)
+
+
+def _deceleration(s, ax, ge, p):
+    """-s theta'' at theta = 0 on corner ``s`` [rad/s²] (the model's ``deceleration``)."""
+    return -s * laws.rock_acceleration(s, 0.0, ax, ge, p[_R], p[_ALPHA], xp)
+
+
+def _flow(mode, t, y, pe, p, out):
+    """dy/dt in ``mode`` into ``out`` (8,) (:meth:`FreeStandingBlock.flow`)."""
+    kind, s = abs(mode), _side(mode)
+    for i in range(N):
+        out[i] = 0.0
+    if not _is_continuous(mode):
+        return
+    ax, ge = _base(t, pe, p)
+    b, h, g, R, alpha, mu_k = p[_B], p[_H], p[_G], p[_R], p[_ALPHA], p[_MUK]
+    if kind == SETTLE:
+        r = 1.0 - 1.5 * math.sin(alpha) ** 2
+        out[THETA_RATE] = rules.settle_rate(s, _deceleration(s, ax, ge, p), _deceleration(-s, ax, ge, p), r)
+        return
+    power = laws.base_power(ax, ge - g, y[X_RATE], y[Z_RATE])
+    if kind == SLIDE:
+        out[X] = y[X_RATE]
+        out[X_RATE] = laws.slide_acceleration(s, ax, ge, mu_k)
+        out[BASE_WORK] = power
+        out[FRICTION_WORK] = laws.friction_power(-s * mu_k * ge, y[X_RATE])
+        return
+    rate = y[THETA_RATE]
+    if kind == FLIGHT:  # the state's position is corner s's
+        r_cx, r_cz = laws.corner_offset(s, y[THETA], b, h, xp)
+        out[X], out[Z], out[THETA] = y[X_RATE], y[Z_RATE], rate
+        out[X_RATE], out[Z_RATE] = -ax - r_cx * rate * rate, -ge - r_cz * rate * rate
+        out[BASE_WORK] = laws.base_power(ax, ge - g, y[X_RATE] - r_cz * rate, y[Z_RATE] + r_cx * rate)
+        return
+    phi = s * alpha - y[THETA]
+    sin, cos = math.sin(phi), math.cos(phi)
+    friction = 0.0
+    if _rocks(kind):
+        accel = laws.rock_acceleration(s, y[THETA], ax, ge, R, alpha, xp)
+        x_accel = R * (cos * accel + sin * rate * rate)
+    else:  # the state's x, x' are the pivot's u, u' (the slip)
+        sigma = _slip_direction(mode)
+        _, normal, accel, x_accel = laws.slide_rock_acceleration(s, sigma, y[THETA], rate, ax, ge, R, alpha, mu_k, xp)
+        friction = laws.friction_power(-sigma * mu_k * normal, y[X_RATE])
+        power = laws.base_power(ax, ge - g, y[X_RATE] + R * cos * rate, y[Z_RATE])
+    out[X], out[Z], out[THETA] = y[X_RATE], y[Z_RATE], rate
+    out[X_RATE], out[Z_RATE], out[THETA_RATE] = x_accel, R * (sin * accel - cos * rate * rate), accel
+    out[BASE_WORK], out[FRICTION_WORK] = power, friction
+
+
+def _rhs(t, y, args, out):
+    """:func:`_flow` as the steps' right-hand side (args: (mode, pe, p))."""
+    mode, pe, p = args
+    _flow(mode, t, y, pe, p, out)
+
+
+def _guards(mode, t, y, pe, p):
+    """The guards of ``mode`` at (t, y), +inf past its own (:meth:`FreeStandingBlock.guards`):
+    each left as it falls through zero. An instant mode's is -1 - t (left at once)."""
+    kind, s = abs(mode), _side(mode)
+    if kind == OVERTURNED:
+        return _INF, _INF, _INF, _INF, _INF
+    if not _is_continuous(mode) and mode != REST:  # an instant mode
+        return -1.0 - t, _INF, _INF, _INF, _INF
+    ax, ge = _base(t, pe, p)
+    R, alpha = p[_R], p[_ALPHA]
+    if mode == REST:
+        limit = min(p[_MU], p[_LAM]) * ge
+        return limit - ax, limit + ax, ge, _INF, _INF
+    if kind == SLIDE:
+        return s * y[X_RATE], ge, _INF, _INF, _INF
+    if _rocks(kind):
+        own, back = rules.rocking_guards(kind, s, y[THETA], y[THETA_RATE], alpha)
+        accel = laws.rock_acceleration(s, y[THETA], ax, ge, R, alpha, xp)
+        force, normal = laws.rock_contact_force(s, y[THETA], y[THETA_RATE], accel, ax, ge, R, alpha, xp)
+        return own, back, normal, p[_MU] * normal - abs(force), _INF
+    if kind == SLIDE_ROCK_OWN or kind == SLIDE_ROCK_BACK:
+        sigma = _slip_direction(mode)
+        denominator, normal, _, _ = laws.slide_rock_acceleration(s, sigma, y[THETA], y[THETA_RATE], ax, ge, R, alpha,
+                                                                 p[_MUK], xp)
+        return s * y[THETA], 0.5 * math.pi - s * y[THETA], normal, sigma * y[X_RATE], denominator
+    if kind == FLIGHT:
+        lift = p[_B] * math.sin(y[THETA])
+        return y[Z] + (s - 1) * lift, y[Z] + (s + 1) * lift, 0.5 * math.pi - abs(y[THETA]), _INF, _INF
+    limit = p[_LAM] * ge  # SETTLE
+    return s * y[THETA_RATE], limit - ax, limit + ax, ge, _INF
+
+
+def _turn_value(args, t):
+    """(x'' sliding, theta'' rocking at the frozen state, whether the mode has it) (the
+    model's ``turn_rate``)."""
+    mode, y, pe, p, work = args
+    kind = abs(mode)
+    if kind == SLIDE or _rocks(kind):
+        _flow(mode, t, y, pe, p, work)
+        return (work[X_RATE] if kind == SLIDE else work[THETA_RATE]), True
+    return 0.0, False
+
+
+def _next_turn(mode, t, y, end, pe, p, work):
+    """Where the turn rate changes sign in (t, end), else nan (the driver's ``turning_point``)."""
+    return events.turning_point(_turn_value, (mode, y, pe, p, work), t, end)
+
+
+def _static_guards(args, t):
+    mode, y, pe, p = args
+    return _guards(mode, t, y, pe, p)
+
+
+def _static_guard(pair, t):
+    args, index = pair
+    return _static_guards(args, t)[index]
+
+
+def _dense_guard(args, t_mid):
+    """Guard ``index`` of ``mode`` on the step's dense output at ``t_mid`` [s] (args: (F, y,
+    t, hh, mode, index, pe, p, work))."""
+    F, y, t, hh, mode, index, pe, p, work = args
+    _dop853.dense_state(F, y, (t_mid - t) / hh, work)
+    return _guards(mode, t_mid, work, pe, p)[index]
+
+
+def _speed(y, p):
+    """max(|x'|, |z'|, R |theta'|) [m/s] (the model's ``speed``)."""
+    return max(abs(y[X_RATE]), abs(y[Z_RATE]), p[_R] * abs(y[THETA_RATE]))
+
+
+def _contradicts(mode, y, p, opt, v_max):
+    """Whether a slide, a slip or a rotation points against its mode beyond the velocity
+    error (the model's ``contradiction``, which then names it)."""
+    kind, s = abs(mode), _side(mode)
+    tolerance = events.velocity_error(opt[0], opt[1], v_max) + events.ROUNDING * v_max
+    speed_error, rate_error = max(tolerance, p[_SPEED_FLOOR]), max(tolerance, p[_THETA_FLOOR])
+    if kind == SLIDE:
+        return s * y[X_RATE] < -speed_error
+    if kind == SLIDE_ROCK_OWN or kind == SLIDE_ROCK_BACK:
+        return _slip_direction(mode) * y[X_RATE] < -speed_error
+    if kind == OUT or kind == BEYOND:
+        return s * y[THETA_RATE] < -rate_error
+    return kind == IN and s * y[THETA_RATE] > rate_error
+
+
+# ---- a mode's flow to its first guard root -----------------------------------------------
+_step, _initial_step, _dense_coefficients = _dop853.for_flow(_rhs)
+
+
+def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt):
+    """The first guard root in (t, t_new] of the step just taken from (t, y) (its stages in
+    ``K``): (time, index), or (nan, -1); a guard that goes from > 0 to <= 0 over the step,
+    located on its dense output."""
+    start, end = _guards(mode, t, y, pe, p), _guards(mode, t_new, y_new, pe, p)
+    dense = False
+    best, index = _INF, -1
+    for j in range(N_GUARDS):
+        if not (start[j] > 0 and start[j] < _INF and end[j] <= 0):
+            continue
+        if not dense:
+            _dense_coefficients((mode, pe, p), t, y, y_new, hh, K, F, work)
+            cnt[C_RHS] += 3
+            dense = True
+        root = events.first_nonpositive(_dense_guard, (F, y, t, hh, mode, j, pe, p, work), t, t_new)
+        if root < best:
+            best, index = root, j
+    return (best, index) if index >= 0 else (math.nan, -1)
+
+
+def _error_scale(y, y_new, rtol, atol, out):
+    for i in range(N):
+        out[i] = atol + rtol * max(abs(y[i]), abs(y_new[i]))
+    return out
+
+
+def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl):
+    """Integrate ``mode`` from (t, y) to ``stop`` [s] or to its first guard root before it:
+    (time, state, guard index or -1); ``cnt[C_STEPS]`` < 0 where a step fell below rounding.
+    The step to try is kept in ``fl[F_H]``."""
+    K, F, V = B
+    work, y_cur, y_new, z, scale = V[0], V[1], V[2], V[3], V[4]
+    args = (mode, pe, p)
+    rtol, atol = opt[0], opt[1]
+    h = fl[F_H]
+    for i in range(N):
+        y_cur[i] = y[i]
+    _rhs(t, y_cur, args, K[0])
+    cnt[C_RHS] += 1
+    if h <= 0:
+        h = _initial_step(args, t, y_cur, stop - t, rtol, atol, K, work)
+        cnt[C_RHS] += 1
+    rejected = False
+    while t < stop:
+        rest = stop - t
+        last = h >= rest
+        hh = rest if last else h
+        if not last and hh <= events.ULPS * 2.220446049250313e-16 * max(1.0, abs(t)):
+            fl[F_H] = h
+            return t, y_cur, -2
+        _step(args, t, y_cur, hh, K, y_new, work)
+        cnt[C_RHS] += 12
+        err = _dop853.error_norm(K, hh, _error_scale(y_cur, y_new, rtol, atol, scale))
+        accepted = err <= 1.0
+        h_next = hh * _dop853.factor(err, accepted)
+        if accepted and rejected:
+            h_next = min(h_next, hh)
+        rejected = not accepted
+        if rejected:
+            h = h_next
+            cnt[C_REJECTED] += 1
+            continue
+        cnt[C_STEPS] += 1
+        t_new = stop if last else t + hh
+        root, index = _first_root(t, y_cur, t_new, y_new, hh, mode, pe, p, K, F, work, cnt)
+        if index >= 0:
+            _step(args, t, y_cur, root - t, K, z, work)  # the state at the root, on the flow
+            cnt[C_RHS] += 12
+            fl[F_H] = h
+            return root, z, index
+        h = max(h, h_next) if last else h_next
+        t = t_new
+        for i in range(N):
+            y_cur[i] = y_new[i]
+            K[0, i] = K[_dop853.N_STAGES, i]
+    fl[F_H] = h
+    return t, y_cur, -1
+
+
+# ---- the driver's loop on floats -----------------------------------------------------------
+def add_knot(kb, cnt, t, y, mode, left, right):
+    """A knot (t, y, mode) with dy/dt ``right`` (8,) after it and ``left`` (8,) at the end
+    of the interval before it; ``kb`` grown where full."""
+    n = cnt[C_NK]
+    kb = _push(kb, n, KNOT_WIDTH)
+    kb[n, 0], kb[n, _MODE_COL] = t, mode
+    for i in range(N):
+        kb[n, _Y + i], kb[n, _RIGHT + i], kb[n, _LEFT + i] = y[i], right[i], 0.0
+        if n > 0:
+            kb[n - 1, _LEFT + i] = left[i]
+    cnt[C_NK] = n + 1
+    return kb
+
+
+def _output_step(pe, p):
+    """The driver's ``output_step`` [s]: 1 / (32 w) on a sine piece, at most 1 / (32 p)."""
+    w = max(pe[5] if pe[4] != 0 else 0.0, pe[10] if pe[9] != 0 else 0.0)
+    return min(1.0 / (32.0 * w) if w > 0 else _INF, p[_STEP])
+
+
+def _quiet_rest(y, pe, p, t, end):
+    """Whether REST certainly lasts from ``t`` to ``end`` [s]: a(t) is linear on the piece,
+    so are its guards, and each is positive at both ends."""
+    if pe[4] != 0 or pe[9] != 0:
+        return False
+    g0, g1, g2, _, _ = _guards(REST, t, y, pe, p)
+    e0, e1, e2, _, _ = _guards(REST, end, y, pe, p)
+    return g0 > 0 and g1 > 0 and g2 > 0 and e0 > 0 and e1 > 0 and e2 > 0
+
+
+def _advance(T0, H, CF, p, opt, cnt, fl, y, kb, B):
+    """The driver's pieces and ``advance_to`` from ``fl[F_T]`` in piece ``cnt[C_PIECE]``
+    until the model is needed or the last piece ends: (knots, what it stopped at, guard index)."""
+    K, F, V = B
+    rate = V[5]
+    n = T0.shape[0]
+    tail = cnt[C_TAIL] != 0
+    while cnt[C_PIECE] < n:
+        k = cnt[C_PIECE]
+        pe = _piece_at(T0, H, CF, k) if not tail else _piece(T0[k], _INF, CF[k], (0.0, 0.0))
+        end = T0[k + 1] if k + 1 < n else (fl[F_END] if tail else T0[k] + H[k])
+        if cnt[C_ENTERED] == 0:  # enter_piece
+            cnt[C_ENTERED], cnt[C_RESTARTED] = 1, 1
+            _flow(cnt[C_MODE], fl[F_T], y, pe, p, rate)
+            for i in range(N):
+                kb[cnt[C_NK] - 1, _RIGHT + i] = rate[i]
+            mode = cnt[C_MODE]
+            if mode == REST or (abs(mode) == SLIDE and y[X_RATE] == 0):
+                ax, ge = _base(pe[0], pe, p)
+                kind, _ = laws.rest_mode(ax, ge, p[_LAM], p[_MU], p[_MUK], rocking._component_rate(pe, 0, pe[0]),
+                                         rocking._component_rate(pe, 1, pe[0]))
+                if mode != REST or kind != laws.REST:
+                    return kb, ENTRY, -1
+        if tail:  # the driver's tail_to_rest
+            if _is_static(cnt[C_MODE]):
+                return kb, DONE, -1
+            if math.isnan(fl[F_END]):
+                return kb, BOUND, -1
+            end = fl[F_END]
+        turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p, rate)
+        while fl[F_T] < end:
+            mode, t = cnt[C_MODE], fl[F_T]
+            if tail and _is_static(mode):
+                return kb, DONE, -1
+            if _is_static(mode):
+                if mode == REST and _quiet_rest(y, pe, p, t, end):
+                    root, index = math.nan, -1
+                else:
+                    root, index = events.static_root(_static_guards, _static_guard, (mode, y, pe, p), t, math.nan,
+                                                     end)
+                if index < 0:
+                    fl[F_T], cnt[C_RESTARTED] = end, 1
+                    for i in range(N):
+                        rate[i] = 0.0
+                    kb = add_knot(kb, cnt, end, y, mode, rate, rate)
+                    break
+                fl[F_T] = root
+                return kb, GUARD, index
+            if cnt[C_RESTARTED]:
+                values = _guards(mode, t, y, pe, p)
+                for j in range(N_GUARDS):
+                    if values[j] <= 0:
+                        return kb, RESTART, -1
+                cnt[C_RESTARTED] = 0
+            target = end if math.isnan(turn) or turn <= t else turn
+            if events.too_short(t, target):
+                fl[F_T], cnt[C_RESTARTED] = target, 1
+                continue
+            t_out = min(target, t + _output_step(pe, p))
+            t_new, z, root = _flow_to(t, y, t_out, mode, pe, p, opt, B, cnt, fl)
+            if root == -2:
+                return kb, STEP_TOO_SMALL, -1
+            if root >= 0 and t_new >= end:  # left to the next piece's right-hand limits
+                root, t_new = -1, t_out
+            fl[F_T] = t_new
+            for i in range(N):
+                y[i] = z[i]
+            fl[F_VMAX] = max(fl[F_VMAX], _speed(y, p))
+            if _contradicts(mode, y, p, opt, fl[F_VMAX]):
+                return kb, INCONSISTENT, -1
+            if root >= 0:
+                return kb, GUARD, root
+            _flow(mode, t_new, y, pe, p, rate)
+            kb = add_knot(kb, cnt, t_new, y, mode, rate, rate)
+        cnt[C_PIECE] = k + 1
+        cnt[C_ENTERED] = 0
+    return kb, DONE, -1
+
+
+def _buffers():
+    """Work arrays: K (16, 8) of the steps' stages, F (7, 8) of a dense output, and rows
+    (8,) of V: a stage's state, the step's start, its end, the state at a root, the error
+    scale, a rate."""
+    return np.empty((_dop853.N_STAGES_EXTENDED, N)), np.empty((7, N)), np.empty((6, N))
+
+
+def _run(T0, H, CF, params, options, cnt, fl, y, kb):
+    """Advance from where ``cnt``, ``fl`` and ``y`` stand over the pieces (t0 (n,), h (n,)
+    [s], CF (n, 2, 5): (p0, p1, s, w, phi) of a_x and a_z), ``params``
+    (:data:`PARAM_FIELDS`), ``options`` (:data:`OPTION_FIELDS`), knots in ``kb`` (k, 26):
+    (knots, what it stopped at, guard index)."""
+    p = (params[0], params[1], params[2], params[3], params[4], params[5], params[6], params[7], params[8],
+         params[9], params[10])
+    opt = (options[0], options[1])
+    return _advance(T0, H, CF, p, opt, cnt, fl, y, kb, _buffers())
+
+
+@functools.cache
+def kernel():
+    """The kernel, compiled on first call (or loaded from numba's disk cache, keyed by the
+    sources of this module and of the ones it compiles):
+    ``run(T0, H, CF, params, options, cnt, fl, y, kb) -> (knots, stop, index)`` (:func:`_run`)."""
+    _register()
+    fingerprint = hashlib.sha256(b"".join(pathlib.Path(m.__file__).read_bytes() for m in _SHARED)).hexdigest()
+
+    def run(T0, H, CF, params, options, cnt, fl, y, kb):
+        fingerprint  # noqa: B018 -- numba keys its disk cache by the closure's contents
+        return _run(T0, H, CF, params, options, cnt, fl, y, kb)
+
+    return numba.njit(cache=True, nogil=True, **_OPTIONS)(run)
+
+
+_OPTIONS = dict(error_model="numpy")
+_INLINE = ("_rhs",)
+#: modules whose functions the engine compiles besides its own
+_SHARED = (rocking, laws, *rocking._SHARED)
+
+
+def _register():
+    """Let numba compile this module's plain functions and the laws' where the kernel calls
+    them (``register_jitable``; they stay plain Python), with the rocking engine's."""
+    rocking._register()
+    for module in (laws, sys.modules[__name__]):
+        for _, fn in inspect.getmembers(module, inspect.isfunction):
+            if fn.__module__ == module.__name__ and fn.__name__ not in ("kernel", "_register"):
+                register_jitable(**_OPTIONS, **({"inline": "always"} if fn.__name__ in _INLINE else {}))(fn)

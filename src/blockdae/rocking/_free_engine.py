@@ -1,0 +1,157 @@
+"""The complete free-standing block's compiled engine (``backend="compiled"``): the kernel
+of :mod:`._free_compiled` integrates the modes and locates their guards; at each event the
+hybrid driver's own code (:class:`blockdae.core._driver._Run`) takes the model's decisions
+(the mode after a guard, the states on the guard and on entry, a motion started from rest,
+a guard left at once, chatter, the checks), so that the events, their kinds and the
+solution are those of every other backend."""
+
+import math
+
+import numpy as np
+
+from ..core import HermiteDense, notice_numba
+from ..core._driver import _Run
+from ..core.contract import SCALAR
+from . import _free_compiled as compiled
+from ._engine import _OneSetEngine, _final_row
+from ._free_model import RATE_FLOOR
+
+#: the engine's name in the compile notice, and its compile time on one core [s]
+_ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 40
+#: knot rows first allocated
+_FIRST_ROWS = 1024
+
+
+class _Knots:
+    """The driver's knots, kept in the kernel's rows (:data:`._free_compiled.KNOT_WIDTH`)."""
+
+    def __init__(self, counters):
+        self.rows, self.counters = np.empty((_FIRST_ROWS, compiled.KNOT_WIDTH)), counters
+
+    def add(self, t, y, mode_after, rate_left, rate_right):
+        self.rows = compiled.add_knot(self.rows, self.counters, float(t), np.asarray(y, dtype=float),
+                                      int(mode_after), np.asarray(rate_left, dtype=float),
+                                      np.asarray(rate_right, dtype=float))
+
+    def set_right_rate(self, rate_right):
+        n = self.counters[compiled.C_NK] - 1
+        self.rows[n, compiled._RIGHT:compiled._LEFT] = rate_right
+
+    def arrays(self):
+        """t (n,), y (n, 8), mode (n,), rate_start (n, 8), rate_end (n, 8)."""
+        rows = self.rows[:self.counters[compiled.C_NK]]
+        return (rows[:, 0].copy(), rows[:, compiled._Y:compiled._MODE_COL].copy(),
+                rows[:, compiled._MODE_COL].astype(int), rows[:, compiled._RIGHT:compiled._LEFT].copy(),
+                rows[:, compiled._LEFT:].copy())
+
+
+class _Idle:
+    """The driver's integrator, which the kernel replaces."""
+
+    stats = {}
+
+    def restart(self, mode, t, y):
+        pass
+
+
+def engine_parameters(model) -> np.ndarray:
+    """The kernel's ``params`` (:data:`._free_compiled.PARAM_FIELDS`) of ``model``."""
+    p = model.frequency
+    return np.array([model.b, model.h, model.mu, model.friction_kinetic, model.g, model.R, model.alpha,
+                     model.slenderness_ratio, model.output_step(), RATE_FLOOR * p * model.alpha,
+                     RATE_FLOOR * p * model.R])
+
+
+class FreeCompiledEngine(_OneSetEngine):
+    """Runs a :class:`FreeStandingBlock` on the compiled engine (``backend="compiled"``: its
+    ``rtol``, ``atol``, ``event_resolution``, ``max_events_at_one_instant``)."""
+
+    def solve(self, model, excitation, horizon, backend):
+        ax, az = model.excitation_pieces(excitation, horizon.integration_end(excitation))
+        CF = np.ascontiguousarray(np.stack([np.stack([c.p0, c.p1, c.s, c.w, c.phi], axis=-1) for c in (ax, az)],
+                                           axis=1), dtype=float)
+        T0, H = (np.ascontiguousarray(a, dtype=float) for a in (ax.t0, ax.h))
+        run = compiled.kernel()
+        notice_numba(_ENGINE, _COMPILE_SECONDS, run)
+        driver = _Run(model, 2, lambda *_: _Idle(), backend.max_events_at_one_instant, backend.event_resolution,
+                      (backend.rtol, backend.atol))
+        cnt = np.zeros(compiled.N_COUNTERS, dtype=np.int64)
+        fl = np.array([0.0, 0.0, 0.0, math.nan])
+        driver.knots = _Knots(cnt)
+        driver.knots.add(driver.t, driver.y, driver.mode, driver.y, driver.y)
+        y = driver.y.copy()
+        cnt[compiled.C_MODE], cnt[compiled.C_RESTARTED] = int(driver.mode), 1
+        params = engine_parameters(model)
+        options = np.array([backend.rtol, backend.atol])
+        pieces = (T0, H, CF)
+        stepped = self._advance(run, pieces, params, options, cnt, fl, y, driver)
+        if horizon.until_rest:
+            tail = (np.array([T0[-1] + H[-1]]), np.array([math.inf]), np.zeros((1, 2, 5)))
+            cnt[compiled.C_PIECE], cnt[compiled.C_ENTERED], cnt[compiled.C_TAIL] = 0, 0, 1
+            stepped = self._advance(run, tail, params, options, cnt, fl, y, driver)
+            if not model.is_static(driver.mode):
+                raise RuntimeError(f"{driver.mode.name} found no rest by t = {fl[compiled.F_END]:.6g} s after "
+                                   "the excitation")
+        t, state, mode, rate_start, rate_end = driver.knots.arrays()
+        stats = {"max_events_at_one_instant": driver.max_run, "n_events": len(driver.events),
+                 "n_steps": int(cnt[compiled.C_STEPS]), "n_rejected_steps": int(cnt[compiled.C_REJECTED]),
+                 "n_rhs_evals": int(cnt[compiled.C_RHS])}
+        del stepped
+        return model.solution(t=t, y=state, mode=mode, events=tuple(driver.events), backend=backend.name,
+                              dense=HermiteDense(t, state, rate_start, rate_end), stats=stats)
+
+    def _final_row(self, model, excitation, horizon, factor, backend):
+        solution = self.solve(model, excitation.scaled(factor), horizon, backend)
+        return _final_row(solution.state[:, 2], solution.t, len(solution.events))
+
+    @staticmethod
+    def _advance(run, pieces, params, options, cnt, fl, y, driver):
+        """Run the kernel over ``pieces`` (t0, h, coefficients), the driver taking each
+        event; the state stays in ``cnt``, ``fl`` and ``y``."""
+        T0, H, CF = pieces
+        model = driver.model
+        while True:
+            driver.knots.rows, stop, index = run(T0, H, CF, params, options, cnt, fl, y, driver.knots.rows)
+            if stop == compiled.DONE:
+                return True
+            k = cnt[compiled.C_PIECE]
+            tail = cnt[compiled.C_TAIL] != 0
+            coefficients = tuple(tuple(float(c) for c in CF[k, i]) for i in range(2))
+            h = math.inf if tail else float(H[k])
+            driver.piece_excitation.set(float(T0[k]), coefficients, h)
+            driver.flow_excitation.set(float(T0[k]), coefficients, h)
+            driver.t, driver.y = float(fl[compiled.F_T]), y.copy()
+            driver.mode = model.modes(int(cnt[compiled.C_MODE]))
+            driver.v_max = float(fl[compiled.F_VMAX])
+            driver.restarted = False
+            if stop == compiled.GUARD:
+                driver.on_guard(index)
+            elif stop == compiled.ENTRY:  # the driver's enter_piece
+                rest = driver.to_mode(model.mode_at_rest(float(T0[k]), driver.piece_excitation, SCALAR, y=driver.y),
+                                      "mode_at_rest")
+                if rest != driver.mode:
+                    driver.y, driver.entry_tolerance = model.rest_state(driver.y), 0.0
+                    driver.log_event(float(T0[k]), rest)
+                driver.restarted = True
+            elif stop == compiled.RESTART:  # the driver's guard_left_at_once
+                before = driver.mode
+                at_once = driver.guard_left_at_once()
+                if at_once is not None:
+                    driver.on_guard(at_once)
+                driver.restarted = driver.mode != before
+            elif stop == compiled.BOUND:
+                fl[compiled.F_END] = driver.t + model.time_to_rest(driver.mode, driver.y)
+                driver.restarted = True
+            elif stop == compiled.INCONSISTENT:
+                driver.check_consistent(driver.t)
+                raise RuntimeError(f"the compiled free-standing engine stopped at t = {driver.t:.12g} s: the state "
+                                   f"contradicts {driver.mode.name}; please report")
+            else:
+                raise RuntimeError(f"the compiled free-standing engine stopped at t = {driver.t:.12g} s in "
+                                   f"{driver.mode.name}: the step fell below rounding")
+            if driver.entry_pending and driver.t < (fl[compiled.F_END] if tail else T0[-1] + H[-1]):
+                driver.check_entry()
+            fl[compiled.F_T] = driver.t
+            y[:] = driver.y
+            cnt[compiled.C_MODE] = int(driver.mode)
+            cnt[compiled.C_RESTARTED] = int(driver.restarted)
