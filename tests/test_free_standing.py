@@ -26,7 +26,7 @@ from conftest import load_sample_record
 
 G = bd.STANDARD_GRAVITY
 QUIET = bd.Record(np.zeros(3), 0.01, name="no shaking", units="m/s2")
-BACKENDS = ("cvode", "ida")
+BACKENDS = ("compiled", "cvode", "ida")
 mpmath.mp.dps = 40
 
 

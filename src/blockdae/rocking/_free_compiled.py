@@ -252,21 +252,54 @@ def _contradicts(mode, y, p, opt, v_max):
 _step, _initial_step, _dense_coefficients = _dop853.for_flow(_rhs)
 
 
+#: golden-section steps for the highest point of a guard on a step: below 1e-16 of it
+_MAXIMUM_STEPS = 80
+_GOLDEN = 0.5 * (math.sqrt(5.0) - 1.0)
+
+
+def _dense_maximum(args, lo, hi):
+    """Where a guard on the step's dense output (one arc: rising, then falling) is highest
+    in [lo, hi] [s], by golden-section search."""
+    a, b = hi - _GOLDEN * (hi - lo), lo + _GOLDEN * (hi - lo)
+    fa, fb = _dense_guard(args, a), _dense_guard(args, b)
+    for _ in range(_MAXIMUM_STEPS):
+        if fa < fb:
+            lo, a, fa = a, b, fb
+            b = lo + _GOLDEN * (hi - lo)
+            fb = _dense_guard(args, b)
+        else:
+            hi, b, fb = b, a, fa
+            a = hi - _GOLDEN * (hi - lo)
+            fa = _dense_guard(args, a)
+        if not lo < a < b < hi:
+            break
+    return a if fa >= fb else b
+
+
 def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt):
     """The first guard root in (t, t_new] of the step just taken from (t, y) (its stages in
     ``K``): (time, index), or (nan, -1); a guard that goes from > 0 to <= 0 over the step,
-    located on its dense output."""
+    located on its dense output. A guard that starts at zero (the mode entered on it: the
+    arc of a slide-rock from its impact) and ends below is located from its highest point on
+    the step where that is above zero, as CVODE looks past a root function that starts at
+    zero."""
     start, end = _guards(mode, t, y, pe, p), _guards(mode, t_new, y_new, pe, p)
     dense = False
     best, index = _INF, -1
     for j in range(N_GUARDS):
-        if not (start[j] > 0 and start[j] < _INF and end[j] <= 0):
+        if not (start[j] >= 0 and start[j] < _INF and end[j] <= 0):
             continue
         if not dense:
             _dense_coefficients((mode, pe, p), t, y, y_new, hh, K, F, work)
             cnt[C_RHS] += 3
             dense = True
-        root = events.first_nonpositive(_dense_guard, (F, y, t, hh, mode, j, pe, p, work), t, t_new)
+        args = (F, y, t, hh, mode, j, pe, p, work)
+        lo, hi = t, t_new
+        if start[j] == 0:  # entered on it (a slide-rock's impact): from its highest point, if above zero
+            lo = _dense_maximum(args, t, t_new)
+            if not _dense_guard(args, lo) > 0:
+                continue
+        root = events.first_nonpositive(_dense_guard, args, lo, hi)
         if root < best:
             best, index = root, j
     return (best, index) if index >= 0 else (math.nan, -1)

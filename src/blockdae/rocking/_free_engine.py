@@ -25,8 +25,8 @@ _FIRST_ROWS = 1024
 class _Knots:
     """The driver's knots, kept in the kernel's rows (:data:`._free_compiled.KNOT_WIDTH`)."""
 
-    def __init__(self, counters):
-        self.rows, self.counters = np.empty((_FIRST_ROWS, compiled.KNOT_WIDTH)), counters
+    def __init__(self, counters, rows):
+        self.rows, self.counters = np.empty((rows, compiled.KNOT_WIDTH)), counters
 
     def add(self, t, y, mode_after, rate_left, rate_right):
         self.rows = compiled.add_knot(self.rows, self.counters, float(t), np.asarray(y, dtype=float),
@@ -77,7 +77,7 @@ class FreeCompiledEngine(_OneSetEngine):
                       (backend.rtol, backend.atol))
         cnt = np.zeros(compiled.N_COUNTERS, dtype=np.int64)
         fl = np.array([0.0, 0.0, 0.0, math.nan])
-        driver.knots = _Knots(cnt)
+        driver.knots = _Knots(cnt, 2 * len(T0) + _FIRST_ROWS)
         driver.knots.add(driver.t, driver.y, driver.mode, driver.y, driver.y)
         y = driver.y.copy()
         cnt[compiled.C_MODE], cnt[compiled.C_RESTARTED] = int(driver.mode), 1
