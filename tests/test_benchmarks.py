@@ -165,3 +165,12 @@ def test_back_analysis_models_quick(monkeypatch, capsys):
     rows = [line.split() for line in out.splitlines() if line.lstrip().startswith(("rigid,", "plane,"))]
     assert len(rows) == 2 and "smoke run, not a measurement" in out
     assert float(rows[0][-2]) == pytest.approx(0.1, rel=0.01) and float(rows[1][-2]) == pytest.approx(0.2, rel=0.01)
+
+
+def test_free_standing_quick(monkeypatch, capsys):
+    """The complete block's compiled engine vs CVODE on the two shortest records: the same
+    event kinds, both bars reported."""
+    assert load_benchmark("free_standing", monkeypatch).main(["--quick", "--repeat", "0"]) == 0
+    out = capsys.readouterr().out
+    assert "compiled [ms]" in out and "cvode [ms]" in out and out.count("bar ") == 2
+    assert "on 2 of 2 records" in out and "smoke run, not a measurement" in out

@@ -750,10 +750,15 @@ class FreeStandingBlock(FreeStandingDerivatives):
                               after[:BASE_WORK])
 
     def solution(self, *, t, y, mode, events, backend, dense, stats):
-        """The solution in the centroid's coordinates (a flight's knots and rates converted)."""
-        y = np.array([self.centroid_state(m, state) for m, state in zip(mode, y)])
-        rates = [np.array([self.centroid_rate(m, state, rate) for m, state, rate in zip(mode, dense.y, rates)])
-                 for rates in (dense.rate_start, dense.rate_end)]
+        """The solution in the centroid's coordinates (the knots and rates of a flight and of
+        a slide-rock converted; the others are the centroid's already)."""
+        given, knots = np.asarray(y, dtype=float), np.asarray(dense.y, dtype=float)
+        y, rates = given.copy(), [np.array(r, dtype=float) for r in (dense.rate_start, dense.rate_end)]
+        for i in np.flatnonzero(np.isin(np.abs(np.asarray(mode, dtype=int)), (*SLIDE_ROCK_KINDS, 9))):
+            m = FreeMode(int(mode[i]))
+            y[i] = self.centroid_state(m, given[i])
+            for rate, raw in zip(rates, (dense.rate_start, dense.rate_end)):
+                rate[i] = self.centroid_rate(m, knots[i], raw[i])
         return FreeStandingSolution(t=t, state=y, mode=mode, events=FreeEvent.merge(events), backend=backend,
                                     dense=HermiteDense(t, y, *rates), stats=stats)
 
