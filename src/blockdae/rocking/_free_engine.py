@@ -84,11 +84,11 @@ class FreeCompiledEngine(_OneSetEngine):
         params = engine_parameters(model)
         options = np.array([backend.rtol, backend.atol])
         pieces = (T0, H, CF)
-        stepped = self._advance(run, pieces, params, options, cnt, fl, y, driver)
+        self._advance(run, pieces, params, options, cnt, fl, y, driver)
         if horizon.until_rest:
             tail = (np.array([T0[-1] + H[-1]]), np.array([math.inf]), np.zeros((1, 2, 5)))
             cnt[compiled.C_PIECE], cnt[compiled.C_ENTERED], cnt[compiled.C_TAIL] = 0, 0, 1
-            stepped = self._advance(run, tail, params, options, cnt, fl, y, driver)
+            self._advance(run, tail, params, options, cnt, fl, y, driver)
             if not model.is_static(driver.mode):
                 raise RuntimeError(f"{driver.mode.name} found no rest by t = {fl[compiled.F_END]:.6g} s after "
                                    "the excitation")
@@ -96,7 +96,6 @@ class FreeCompiledEngine(_OneSetEngine):
         stats = {"max_events_at_one_instant": driver.max_run, "n_events": len(driver.events),
                  "n_steps": int(cnt[compiled.C_STEPS]), "n_rejected_steps": int(cnt[compiled.C_REJECTED]),
                  "n_rhs_evals": int(cnt[compiled.C_RHS])}
-        del stepped
         return model.solution(t=t, y=state, mode=mode, events=tuple(driver.events), backend=backend.name,
                               dense=HermiteDense(t, state, rate_start, rate_end), stats=stats)
 
@@ -106,20 +105,23 @@ class FreeCompiledEngine(_OneSetEngine):
 
     @staticmethod
     def _advance(run, pieces, params, options, cnt, fl, y, driver):
-        """Run the kernel over ``pieces`` (t0, h, coefficients), the driver taking each
-        event; the state stays in ``cnt``, ``fl`` and ``y``."""
+        """Run the kernel over ``pieces`` (t0 (n,), h (n,) [s], coefficients (n, 2, 5)), the
+        driver taking each event; the run's state stays in ``cnt``, ``fl``, ``y`` and the
+        driver."""
         T0, H, CF = pieces
-        model = driver.model
+        model, current = driver.model, -1
+        tail = cnt[compiled.C_TAIL] != 0
         while True:
             driver.knots.rows, stop, index = run(T0, H, CF, params, options, cnt, fl, y, driver.knots.rows)
             if stop == compiled.DONE:
-                return True
-            k = cnt[compiled.C_PIECE]
-            tail = cnt[compiled.C_TAIL] != 0
-            coefficients = tuple(tuple(float(c) for c in CF[k, i]) for i in range(2))
-            h = math.inf if tail else float(H[k])
-            driver.piece_excitation.set(float(T0[k]), coefficients, h)
-            driver.flow_excitation.set(float(T0[k]), coefficients, h)
+                return
+            k = int(cnt[compiled.C_PIECE])
+            if k != current:  # the driver's excitation on this piece
+                coefficients = tuple(tuple(float(c) for c in CF[k, i]) for i in range(2))
+                h = math.inf if tail else float(H[k])
+                driver.piece_excitation.set(float(T0[k]), coefficients, h)
+                driver.flow_excitation.set(float(T0[k]), coefficients, h)
+                current = k
             driver.t, driver.y = float(fl[compiled.F_T]), y.copy()
             driver.mode = model.modes(int(cnt[compiled.C_MODE]))
             driver.v_max = float(fl[compiled.F_VMAX])
