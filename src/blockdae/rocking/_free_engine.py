@@ -14,7 +14,7 @@ from ..core._driver import _Run
 from ..core.contract import SCALAR
 from . import _free_compiled as compiled
 from ._engine import _OneSetEngine, _final_row
-from ._free_model import RATE_FLOOR
+from ._free_model import RATE_FLOOR, X
 
 #: the engine's name in the compile notice, and its compile time on one core [s]
 _ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 40
@@ -101,7 +101,7 @@ class FreeCompiledEngine(_OneSetEngine):
 
     def _final_row(self, model, excitation, horizon, factor, backend):
         solution = self.solve(model, excitation.scaled(factor), horizon, backend)
-        return _final_row(solution.state[:, 2], solution.t, len(solution.events))
+        return _final_row(solution.state[:, X], solution.t, len(solution.events))
 
     @staticmethod
     def _advance(run, pieces, params, options, cnt, fl, y, driver):
