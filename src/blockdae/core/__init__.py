@@ -22,7 +22,7 @@ from ._cases import cases, labelled_motions
 from ._checks import set_batch_fields, set_real_fields
 from ._compile_notice import CompileNotice, notice_numba
 from ._crosscheck import CrossCheck, crosscheck
-from ._driver import AbstractIntegrator, HermiteDense, drive
+from ._driver import AbstractIntegrator, EventRun, HermiteDense, drive
 from ._engines import LazyEngine
 from .events import falls, first_nonpositive, one_sign, sign_change, too_short
 from ._file_hashes import FILES, record_file, recorded, write_manifest

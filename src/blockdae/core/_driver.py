@@ -492,6 +492,30 @@ class _Run:
                                    dense=HermiteDense(t, y, rate_start, rate_end), stats=stats)
 
 
+class _Outside(AbstractIntegrator):
+    """No integrator: an :class:`EventRun`'s engine integrates the modes itself."""
+
+    stats = {}
+
+    def restart(self, mode, t, y):
+        pass
+
+    def step(self, t_out, t_stop):
+        raise NotImplementedError("an EventRun's engine integrates the modes itself")
+
+
+class EventRun(_Run):
+    """The driver's run (its events, knots, checks and rules at each event) for an engine
+    that integrates the modes and locates the guards itself (a compiled one), then hands
+    the run each event as the driver's loop would: ``on_guard``, ``guard_left_at_once``,
+    ``log_event`` with ``t``, ``y``, ``mode`` and ``v_max`` set, the current piece in
+    ``piece_excitation`` and ``flow_excitation``."""
+
+    def __init__(self, model, n_components, max_events_at_one_instant, event_resolution, velocity_tolerance):
+        super().__init__(model, n_components, lambda *_: _Outside(), max_events_at_one_instant, event_resolution,
+                         velocity_tolerance)
+
+
 class _Knots:
     """Knots of a run. Interval i = [t_i, t_i+1] runs in ``mode[i]``; dy/dt is
     ``rate_start[i]`` just after t_i and ``rate_end[i]`` just before t_i+1."""

@@ -42,7 +42,6 @@ import numpy as np
 from numba.extending import register_jitable
 
 from ..core import events
-from ..excitation import pieces as _pieces
 from ..solvers import dop853 as _dop853, xp_scalar as xp
 from . import _compiled as rocking
 from . import _rules as rules

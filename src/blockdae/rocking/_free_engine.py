@@ -1,6 +1,6 @@
 """The complete free-standing block's compiled engine (``backend="compiled"``): the kernel
 of :mod:`._free_compiled` integrates the modes and locates their guards; at each event the
-hybrid driver's own code (:class:`blockdae.core._driver._Run`) takes the model's decisions
+hybrid driver's own code (:class:`blockdae.core.EventRun`) takes the model's decisions
 (the mode after a guard, the states on the guard and on entry, a motion started from rest,
 a guard left at once, chatter, the checks), so that the events, their kinds and the
 solution are those of every other backend."""
@@ -9,8 +9,7 @@ import math
 
 import numpy as np
 
-from ..core import HermiteDense, notice_numba
-from ..core._driver import _Run
+from ..core import EventRun, HermiteDense, notice_numba
 from ..core.contract import SCALAR
 from . import _free_compiled as compiled
 from ._engine import _OneSetEngine, _final_row
@@ -45,15 +44,6 @@ class _Knots:
                 rows[:, compiled._LEFT:].copy())
 
 
-class _Idle:
-    """The driver's integrator, which the kernel replaces."""
-
-    stats = {}
-
-    def restart(self, mode, t, y):
-        pass
-
-
 def engine_parameters(model) -> np.ndarray:
     """The kernel's ``params`` (:data:`._free_compiled.PARAM_FIELDS`) of ``model``."""
     p = model.frequency
@@ -73,8 +63,8 @@ class FreeCompiledEngine(_OneSetEngine):
         T0, H = (np.ascontiguousarray(a, dtype=float) for a in (ax.t0, ax.h))
         run = compiled.kernel()
         notice_numba(_ENGINE, _COMPILE_SECONDS, run)
-        driver = _Run(model, 2, lambda *_: _Idle(), backend.max_events_at_one_instant, backend.event_resolution,
-                      (backend.rtol, backend.atol))
+        driver = EventRun(model, 2, backend.max_events_at_one_instant, backend.event_resolution,
+                          (backend.rtol, backend.atol))
         cnt = np.zeros(compiled.N_COUNTERS, dtype=np.int64)
         fl = np.array([0.0, 0.0, 0.0, math.nan])
         driver.knots = _Knots(cnt, 2 * len(T0) + _FIRST_ROWS)
