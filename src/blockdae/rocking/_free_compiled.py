@@ -22,9 +22,9 @@ Per mode:
   (rocking) at the frozen state turns, and knots are at most 1 / (32 w) and 1 / (32 p)
   apart, as the driver's.
 
-The flows and the guards are the model's (:meth:`FreeStandingBlock.flow`,
-:meth:`~FreeStandingBlock.guards`), on the laws of :mod:`._slide_rock_laws` that numba
-compiles here.
+The flows and the guards are :meth:`FreeStandingBlock.flow` and
+:meth:`~FreeStandingBlock.guards` on floats: the same laws of :mod:`._slide_rock_laws`
+(compiled here) in the model's state layout; every decision at an event is the model's.
 
 State (8,): (x, z, theta, x', z', theta', base work, friction work) in the model's layout
 (a slide-rock's x, x' its pivot's, a flight's its reference corner's).
