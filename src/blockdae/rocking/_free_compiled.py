@@ -22,9 +22,8 @@ Per mode:
   (rocking) at the frozen state turns, and knots are at most 1 / (32 w) and 1 / (32 p)
   apart, as the driver's.
 
-The flows and the guards are :meth:`FreeStandingBlock.flow` and
-:meth:`~FreeStandingBlock.guards` on floats: the same laws of :mod:`._slide_rock_laws`
-(compiled here) in the model's state layout; every decision at an event is the model's.
+The flows and the guards are the model's (:mod:`._free_rules`, on the laws of
+:mod:`._slide_rock_laws`), compiled here; every decision at an event is the model's.
 
 State (8,): (x, z, theta, x', z', theta', base work, friction work) in the model's layout
 (a slide-rock's x, x' its pivot's, a flight's its reference corner's).
@@ -44,7 +43,7 @@ from numba.extending import register_jitable
 from ..core import events
 from ..solvers import dop853 as _dop853, xp_scalar as xp
 from . import _compiled as rocking
-from . import _rules as rules
+from . import _free_rules as free_rules
 from . import _slide_rock_laws as laws
 from ._compiled import _component, _piece, _piece_at, _push
 
@@ -95,64 +94,18 @@ def _is_static(mode):
     return mode == REST or abs(mode) == OVERTURNED
 
 
-def _is_continuous(mode):
-    kind = abs(mode)
-    return kind == SLIDE or _rocks(kind) or kind == SETTLE or kind == SLIDE_ROCK_OWN or kind == SLIDE_ROCK_BACK \
-        or kind == FLIGHT
-
-
 # ---- the model's flow and guards on floats ----------------------------------------------
 def _base(t, pe, p):
     """(a_x, g_e) [m/s²] at ``t``."""
     return _component(pe, 0, t), p[_G] + _component(pe, 1, t)
 
 
-def _deceleration(s, ax, ge, p):
-    """-s theta'' at theta = 0 on corner ``s`` [rad/s²] (the model's ``deceleration``)."""
-    return -s * laws.rock_acceleration(s, 0.0, ax, ge, p[_R], p[_ALPHA], xp)
-
-
 def _flow(mode, t, y, pe, p, out):
-    """dy/dt in ``mode`` into ``out`` (8,) (:meth:`FreeStandingBlock.flow`)."""
-    kind, s = abs(mode), _side(mode)
-    for i in range(N):
-        out[i] = 0.0
-    if not _is_continuous(mode):
-        return
+    """dy/dt in ``mode`` into ``out`` (8,) (:func:`._free_rules.flow_values`)."""
     ax, ge = _base(t, pe, p)
-    b, h, g, R, alpha, mu_k = p[_B], p[_H], p[_G], p[_R], p[_ALPHA], p[_MUK]
-    if kind == SETTLE:
-        r = 1.0 - 1.5 * math.sin(alpha) ** 2
-        out[THETA_RATE] = rules.settle_rate(s, _deceleration(s, ax, ge, p), _deceleration(-s, ax, ge, p), r)
-        return
-    power = laws.base_power(ax, ge - g, y[X_RATE], y[Z_RATE])
-    if kind == SLIDE:
-        out[X] = y[X_RATE]
-        out[X_RATE] = laws.slide_acceleration(s, ax, ge, mu_k)
-        out[BASE_WORK] = power
-        out[FRICTION_WORK] = laws.friction_power(-s * mu_k * ge, y[X_RATE])
-        return
-    rate = y[THETA_RATE]
-    if kind == FLIGHT:  # the state's position is corner s's
-        r_cx, r_cz = laws.corner_offset(s, y[THETA], b, h, xp)
-        out[X], out[Z], out[THETA] = y[X_RATE], y[Z_RATE], rate
-        out[X_RATE], out[Z_RATE] = -ax - r_cx * rate * rate, -ge - r_cz * rate * rate
-        out[BASE_WORK] = laws.base_power(ax, ge - g, y[X_RATE] - r_cz * rate, y[Z_RATE] + r_cx * rate)
-        return
-    phi = s * alpha - y[THETA]
-    sin, cos = math.sin(phi), math.cos(phi)
-    friction = 0.0
-    if _rocks(kind):
-        accel = laws.rock_acceleration(s, y[THETA], ax, ge, R, alpha, xp)
-        x_accel = R * (cos * accel + sin * rate * rate)
-    else:  # the state's x, x' are the pivot's u, u' (the slip)
-        sigma = _slip_direction(mode)
-        _, normal, accel, x_accel = laws.slide_rock_acceleration(s, sigma, y[THETA], rate, ax, ge, R, alpha, mu_k, xp)
-        friction = laws.friction_power(-sigma * mu_k * normal, y[X_RATE])
-        power = laws.base_power(ax, ge - g, y[X_RATE] + R * cos * rate, y[Z_RATE])
-    out[X], out[Z], out[THETA] = y[X_RATE], y[Z_RATE], rate
-    out[X_RATE], out[Z_RATE], out[THETA_RATE] = x_accel, R * (sin * accel - cos * rate * rate), accel
-    out[BASE_WORK], out[FRICTION_WORK] = power, friction
+    values = free_rules.flow_values(mode, y, ax, ge, p[_G], p[_B], p[_H], p[_R], p[_ALPHA], p[_MUK], xp)
+    for i in range(N):
+        out[i] = values[i]
 
 
 def _rhs(t, y, args, out):
@@ -162,35 +115,12 @@ def _rhs(t, y, args, out):
 
 
 def _guards(mode, t, y, pe, p):
-    """The guards of ``mode`` at (t, y), +inf past its own (:meth:`FreeStandingBlock.guards`):
-    each left as it falls through zero. An instant mode's is -1 - t (left at once)."""
-    kind, s = abs(mode), _side(mode)
-    if kind == OVERTURNED:
+    """The guards of ``mode`` at (t, y), +inf past its own (:func:`._free_rules.guard_values`);
+    OVERTURNED's none."""
+    if abs(mode) == OVERTURNED:
         return _INF, _INF, _INF, _INF, _INF
-    if not _is_continuous(mode) and mode != REST:  # an instant mode
-        return -1.0 - t, _INF, _INF, _INF, _INF
     ax, ge = _base(t, pe, p)
-    R, alpha = p[_R], p[_ALPHA]
-    if mode == REST:
-        limit = min(p[_MU], p[_LAM]) * ge
-        return limit - ax, limit + ax, ge, _INF, _INF
-    if kind == SLIDE:
-        return s * y[X_RATE], ge, _INF, _INF, _INF
-    if _rocks(kind):
-        own, back = rules.rocking_guards(kind, s, y[THETA], y[THETA_RATE], alpha)
-        accel = laws.rock_acceleration(s, y[THETA], ax, ge, R, alpha, xp)
-        force, normal = laws.rock_contact_force(s, y[THETA], y[THETA_RATE], accel, ax, ge, R, alpha, xp)
-        return own, back, normal, p[_MU] * normal - abs(force), _INF
-    if kind == SLIDE_ROCK_OWN or kind == SLIDE_ROCK_BACK:
-        sigma = _slip_direction(mode)
-        denominator, normal, _, _ = laws.slide_rock_acceleration(s, sigma, y[THETA], y[THETA_RATE], ax, ge, R, alpha,
-                                                                 p[_MUK], xp)
-        return s * y[THETA], 0.5 * math.pi - s * y[THETA], normal, sigma * y[X_RATE], denominator
-    if kind == FLIGHT:
-        lift = p[_B] * math.sin(y[THETA])
-        return y[Z] + (s - 1) * lift, y[Z] + (s + 1) * lift, 0.5 * math.pi - abs(y[THETA]), _INF, _INF
-    limit = p[_LAM] * ge  # SETTLE
-    return s * y[THETA_RATE], limit - ax, limit + ax, ge, _INF
+    return free_rules.guard_values(mode, t, y, ax, ge, p[_B], p[_H], p[_R], p[_ALPHA], p[_MU], p[_MUK], xp)
 
 
 def _turn_value(args, t):
@@ -509,14 +439,14 @@ def kernel():
 _OPTIONS = dict(error_model="numpy")
 _INLINE = ("_rhs",)
 #: modules whose functions the engine compiles besides its own
-_SHARED = (rocking, laws, *rocking._SHARED)
+_SHARED = (rocking, laws, free_rules, *rocking._SHARED)
 
 
 def _register():
     """Let numba compile this module's plain functions and the laws' where the kernel calls
     them (``register_jitable``; they stay plain Python), with the rocking engine's."""
     rocking._register()
-    for module in (laws, sys.modules[__name__]):
+    for module in (laws, free_rules, sys.modules[__name__]):
         for _, fn in inspect.getmembers(module, inspect.isfunction):
             if fn.__module__ == module.__name__ and fn.__name__ not in ("kernel", "_register"):
                 register_jitable(**_OPTIONS, **({"inline": "always"} if fn.__name__ in _INLINE else {}))(fn)

@@ -32,6 +32,7 @@ from ..core.contract import KNOTS_PER_RADIAN, SCALAR
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import stop_mode
 from ..units import STANDARD_GRAVITY
+from . import _free_rules as free_rules
 from . import _rules as rules
 from . import _slide_rock_laws as laws
 from ._derivatives import FreeStandingDerivatives
@@ -262,42 +263,15 @@ class FreeStandingBlock(FreeStandingDerivatives):
 
     # ---- the automaton ----------------------------------------------------------------
     def flow(self, mode, t, y, excitation, xp=np):
-        """dy/dt in ``mode`` (zero at rest, overturned and in the instant modes)."""
-        kind, s = kind_of(mode), side(mode)
+        """dy/dt in ``mode`` (zero at rest, overturned and in the instant modes):
+        :func:`._free_rules.flow_values`."""
         ax, ge, _, _ = self._base(t, excitation)
-        zero = 0.0 * y[X]
-        power = laws.base_power(ax, ge - self.g, y[X_RATE], y[Z_RATE])
-        if kind == 1:
-            x_accel = laws.slide_acceleration(s, ax, ge, self.friction_kinetic)
-            friction = laws.friction_power(-s * self.friction_kinetic * ge, y[X_RATE])
-            return xp.stack([y[X_RATE], zero, zero, zero + x_accel, zero, zero, power, zero + friction])
-        if kind in _ROCK or kind in SLIDE_ROCK_KINDS:
-            alpha, radius = self._geometry(xp)
-            phi = s * alpha - y[THETA]
-            if kind in _ROCK:
-                accel = laws.rock_acceleration(s, y[THETA], ax, ge, radius, alpha, xp)
-                x_accel = radius * (xp.cos(phi) * accel + xp.sin(phi) * y[THETA_RATE] ** 2)
-                friction = zero
-            else:  # the state's x, x' are the pivot's u, u' (the slip)
-                sigma = slip_direction(mode)
-                _, normal, accel, x_accel = self.slide_rock(s, sigma, y, ax, ge, xp)
-                friction = laws.friction_power(-sigma * self.friction_kinetic * normal, y[X_RATE])
-                centroid_rate = y[X_RATE] + radius * xp.cos(phi) * y[THETA_RATE]
-                power = laws.base_power(ax, ge - self.g, centroid_rate, y[Z_RATE])
-            z_accel = radius * (xp.sin(phi) * accel - xp.cos(phi) * y[THETA_RATE] ** 2)
-            return xp.stack([y[X_RATE], y[Z_RATE], y[THETA_RATE], x_accel, z_accel, accel, power, zero + friction])
-        if kind == 9:  # the state's position is corner s's: x_c'' = -a_x - r_cx theta'², z_c'' = -g_e - r_cz theta'²
-            r_cx, r_cz = laws.corner_offset(s, y[THETA], self.b, self.h, xp)
-            rate = y[THETA_RATE]
-            power = laws.base_power(ax, ge - self.g, y[X_RATE] - r_cz * rate, y[Z_RATE] + r_cx * rate)
-            return xp.stack([y[X_RATE], y[Z_RATE], rate, -ax - r_cx * rate**2, -ge - r_cz * rate**2, zero, power,
-                             zero])
-        if kind == SETTLE:
-            return xp.stack([zero] * 5 + [zero + self._settle_rate(s, t, excitation, xp), zero, zero])
-        return xp.stack([zero] * len(self.state_names))
+        alpha, radius = self._geometry(xp)
+        return xp.stack(free_rules.flow_values(int(mode), y, ax, ge, self.g, self.b, self.h, radius, alpha,
+                                               self.friction_kinetic, xp))
 
     def guards(self, mode, t, y, excitation, xp=np):
-        """Guards of ``mode``, each left as it falls through zero.
+        """Guards of ``mode``, each left as it falls through zero (:func:`._free_rules.guard_values`).
 
         REST: (limit - a_x, limit + a_x, g_e), limit = min(mu, b/h) g_e; SLIDE sigma:
         (sigma x', g_e); ROCK s: its two own (out: s theta' -> apex, alpha - s theta; in:
@@ -305,31 +279,11 @@ class FreeStandingBlock(FreeStandingDerivatives):
         (-> flight), mu N - |F| (-> slip); SLIDE_ROCK (s, sigma): (s theta -> impact,
         pi/2 - s theta, N, sigma u' -> the slip stops, D -> Painlevé's paradox); FLIGHT:
         (``z_+``, ``z_-``, pi/2 - |theta|) (the corners' heights); SETTLE s: (s theta' -> rest, the two onsets, g_e)."""
-        kind, s = kind_of(mode), side(mode)
         ax, ge, _, _ = self._base(t, excitation)
-        one = 0.0 * y[X] + 1.0
-        if mode == FreeMode.REST:
-            limit = xp.minimum(self.mu, self.slenderness_ratio) * ge
-            return xp.stack([limit - ax, limit + ax, ge])
-        if kind == 1:
-            return xp.stack([s * y[X_RATE], ge])
-        if kind in _ROCK:
-            own = rules.rocking_guards(kind, s, y[THETA], y[THETA_RATE], self._geometry(xp)[0])
-            _, force, normal = self.rock_forces(s, y, ax, ge, xp)
-            return xp.stack([*own, normal, self.mu * normal - xp.abs(force)])
-        if kind in SLIDE_ROCK_KINDS:
-            denominator, normal, _, _ = self.slide_rock(s, slip_direction(mode), y, ax, ge, xp)
-            return xp.stack([s * y[THETA], 0.5 * math.pi - s * y[THETA], normal,
-                             slip_direction(mode) * y[X_RATE], denominator])
-        if kind == 9:  # z_c' = z_c + (c - c') b sin theta from the reference corner c
-            lift = self.b * xp.sin(y[THETA])
-            return xp.stack([y[Z] + (s - 1) * lift, y[Z] + (s + 1) * lift, 0.5 * math.pi - xp.abs(y[THETA])])
-        if kind == SETTLE:
-            limit = self.slenderness_ratio * ge
-            return xp.stack([s * y[THETA_RATE], limit - ax, limit + ax, ge])
-        if mode in INSTANT:
-            return xp.stack([-one - t])  # left at once
-        return xp.stack([one])
+        alpha, radius = self._geometry(xp)
+        values = free_rules.guard_values(int(mode), t, y, ax, ge, self.b, self.h, radius, alpha, self.mu,
+                                         self.friction_kinetic, xp)
+        return xp.stack(values[:free_rules.GUARD_COUNTS[kind_of(mode)]])
 
     def mode_at_rest(self, t, excitation, xp=np, y=None):
         """The mode a block at rest takes at ``t``: section 6's map (Shenton 1996 with g_e),
@@ -517,12 +471,6 @@ class FreeStandingBlock(FreeStandingDerivatives):
         rest[THETA], rest[THETA_RATE] = 0.0, 0.0
         accel = self.slide_rock(c, sigma, rest, ax, ge)[2]
         return c * accel < 0 and 2 * abs(y[THETA_RATE]) / abs(accel) < self.zeno_arc
-
-    def _settle_rate(self, s, t, excitation, xp=SCALAR):
-        """d theta'/dt [rad/s²] of the Zeno envelope on side ``s`` (:func:`._rules.settle_rate`)."""
-        r = 1.0 - 1.5 * xp.sin(self._geometry(xp)[0]) ** 2
-        ahead, behind = self.deceleration(s, t, excitation, xp), self.deceleration(-s, t, excitation, xp)
-        return rules.settle_rate(s, ahead, behind, r)
 
     # ---- states on guards and on entry ------------------------------------------------
     def _pivot_state(self, s, y, theta, rate, xp=SCALAR):
