@@ -16,7 +16,7 @@ from ._engine import _OneSetEngine, _final_row
 from ._free_model import RATE_FLOOR, X
 
 #: the engine's name in the compile notice, and its compile time on one core [s]
-_ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 40
+_ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 60
 #: knot rows first allocated
 _FIRST_ROWS = 1024
 
