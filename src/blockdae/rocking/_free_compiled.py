@@ -48,8 +48,10 @@ from . import _slide_rock_laws as laws
 from ._compiled import _component, _piece, _piece_at, _push
 
 N = 8
-X, Z, THETA, X_RATE, Z_RATE, THETA_RATE, BASE_WORK, FRICTION_WORK = range(N)
-REST, SLIDE, OUT, IN, BEYOND, SETTLE, OVERTURNED, SLIDE_ROCK_OWN, SLIDE_ROCK_BACK, FLIGHT = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9
+X_RATE, Z_RATE, THETA_RATE = 3, 4, 5
+#: kinds (|mode|, :class:`FreeMode`): rest, slide, rock out, in, beyond alpha, overturned,
+#: slide-rock slipping toward its pivot's side and back
+REST, SLIDE, OUT, IN, BEYOND, OVERTURNED, SLIDE_ROCK_OWN, SLIDE_ROCK_BACK = 0, 1, 2, 3, 4, 6, 7, 8
 #: entries of ``params``: b, h [m], mu, mu_k [-], g [m/s²], R [m], alpha [rad], b/h [-],
 #: the knots' spacing 1 / (32 p) [s], the contradiction floors RATE_FLOOR p alpha [rad/s]
 #: and RATE_FLOOR p R [m/s]
@@ -115,10 +117,7 @@ def _rhs(t, y, args, out):
 
 
 def _guards(mode, t, y, pe, p):
-    """The guards of ``mode`` at (t, y), +inf past its own (:func:`._free_rules.guard_values`);
-    OVERTURNED's none."""
-    if abs(mode) == OVERTURNED:
-        return _INF, _INF, _INF, _INF, _INF
+    """The guards of ``mode`` at (t, y), +inf past its own (:func:`._free_rules.guard_values`)."""
     ax, ge = _base(t, pe, p)
     return free_rules.guard_values(mode, t, y, ax, ge, p[_B], p[_H], p[_R], p[_ALPHA], p[_MU], p[_MUK], xp)
 
