@@ -10,11 +10,11 @@ from ._free_solution import FreeEvent, FreeStandingSolution
 from ._mode_map import mode_map
 from ._model import RockingBlock, housner_restitution
 from ._modes import RockingMode
-from ._solution import ContactWarning, RockingEvent, RockingSolution
+from ._solution import ContactLimit, RockingEvent, RockingSolution
 from ._spectra import (OverturningFragility, OverturningSpectrum, motion_regime, overturning_amplitude,
                        overturning_fragility, overturning_spectrum, overturns, pulse)
 
-__all__ = ["ContactWarning", "FreeEvent", "FreeMode", "FreeStandingBlock", "FreeStandingSolution", "PainleveWarning",
+__all__ = ["ContactLimit", "FreeEvent", "FreeMode", "FreeStandingBlock", "FreeStandingSolution", "PainleveWarning",
            "OverturningFragility", "OverturningSpectrum", "RockingBlock", "RockingEvent",
            "RockingMode", "RockingSolution", "housner_restitution", "motion_regime", "overturning_amplitude",
            "overturning_fragility", "overturning_spectrum", "overturns", "pulse",
