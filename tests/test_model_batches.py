@@ -49,6 +49,18 @@ def test_a_two_set_batch_under_three_records_and_two_scales(name):
         assert ensemble.n_events.ravel()[row] == len(alone.events)
 
 
+def _rows_and_single_runs(model, ensemble, records, scales):
+    """(row, (record i, scale k, set j), the set's own run of the scaled record) for each
+    row of a batch's ``ensemble``, its final numbers checked equal to that run's bit for bit."""
+    for row in range(len(records) * len(scales) * 2):
+        i, k, j = row // 4, (row // 2) % 2, row % 2
+        alone = bd.simulate(model.item(j), records[i].scaled(scales[k]), t_end=3.0)
+        assert ensemble.max_abs_displacement.ravel()[row] == alone.max_abs_displacement
+        assert ensemble.displacement.ravel()[row] == alone.displacement
+        assert ensemble.n_events.ravel()[row] == len(alone.events)
+        yield row, (i, k, j), alone
+
+
 def test_a_rocking_batch_equals_its_single_runs_exactly():
     """Every row of a rocking batch (the compiled engine, set by set) is its set's own run,
     bit for bit, with every case's solution and with the final numbers alone."""
@@ -57,12 +69,7 @@ def test_a_rocking_batch_equals_its_single_runs_exactly():
     finals = bd.simulate(model, records, t_end=3.0, scale=scales, final_only=True)
     table = ensemble.to_dataframe()
     assert list(table["b"]) == [0.25, 0.35] * 6 and "theta_end_rad" in table
-    for row in range(12):
-        i, k, j = row // 4, (row // 2) % 2, row % 2
-        alone = bd.simulate(model.item(j), records[i].scaled(scales[k]), t_end=3.0)
-        assert ensemble.max_abs_displacement.ravel()[row] == alone.max_abs_displacement
-        assert ensemble.displacement.ravel()[row] == alone.displacement
-        assert ensemble.n_events.ravel()[row] == len(alone.events)
+    for row, (i, k, j), alone in _rows_and_single_runs(model, ensemble, records, scales):
         assert table["max_theta_over_alpha"][row] == alone.max_abs_displacement / model.item(j).alpha
         one = bd.simulate(model.item(j), records[i], t_end=3.0, scale=[scales[k]], final_only=True)
         assert finals.max_abs_displacement.ravel()[row] == one.max_abs_displacement.ravel()[0]
@@ -108,12 +115,7 @@ def test_a_free_standing_batch_equals_its_single_runs_exactly():
     assert list(table["b"]) == [0.25, 0.35] * 6 and list(table["mu"]) == [0.3, 0.5] * 6
     assert {"x_end_m", "max_abs_displacement_m"} <= set(table)
     assert model.parameter_labels["mu"] == "static friction coefficient mu [-]"
-    for row in range(12):
-        i, k, j = row // 4, (row // 2) % 2, row % 2
-        alone = bd.simulate(model.item(j), records[i].scaled(scales[k]), t_end=3.0)
-        assert ensemble.max_abs_displacement.ravel()[row] == alone.max_abs_displacement
-        assert ensemble.displacement.ravel()[row] == alone.displacement
-        assert ensemble.n_events.ravel()[row] == len(alone.events)
+    for row, _, alone in _rows_and_single_runs(model, ensemble, records, scales):
         assert [(e.t, e.kind) for e in ensemble[row].events] == [(e.t, e.kind) for e in alone.events]
     assert {e.kind for row in range(12) for e in ensemble[row].events} >= {"uplift", "slip", "impact"}
     with pytest.raises(ValueError, match=r"parameter set 1: mu_kinetic=0.4 must be in \[0, mu=0.3\]"):

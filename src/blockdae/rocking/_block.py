@@ -14,6 +14,10 @@ from ..core.contract import BatchedModel
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
 
 
+#: the fields of both blocks
+SHARED_FIELDS = ("b", "h", "mu", "mu_kinetic", "theta0", "zeno_arc", "g")
+
+
 class BlockBase(BatchedModel):
     """The fields b, h [m], mu, mu_kinetic [-], theta0 [rad], zeno_arc [s] and g [m/s²]
     checked, alpha and R, batches and the motion (a_x, a_z), for a frozen dataclass that
@@ -86,8 +90,20 @@ class BlockBase(BatchedModel):
         return self.mu if self.mu_kinetic is None else self.mu_kinetic
 
     def replace(self, **changes):
-        """A copy with some parameters changed (validated again)."""
-        return dataclasses.replace(self, **changes)
+        """A copy with some parameters changed (validated again); ``contact=`` another
+        contact gives the other model of the same block (b, h, mu, mu_kinetic, theta0,
+        zeno_arc, g), where Housner's options (restitution, p, linearised, strict) are
+        left at their defaults."""
+        contact = changes.pop("contact", self.contact)
+        if contact == self.contact:
+            return dataclasses.replace(self, **changes)
+        from ._free_model import HOUSNER_OPTIONS, FreeStandingBlock
+
+        given = sorted(name for name in HOUSNER_OPTIONS if getattr(self, name, None) not in (None, False))
+        if given and contact == "complete":
+            raise ValueError(f"contact='complete': {', '.join(given)} belongs to Housner's block only (the complete "
+                             "block has none)")
+        return FreeStandingBlock(**{**{name: getattr(self, name) for name in SHARED_FIELDS}, **changes}, contact=contact)
 
     # ---- a batch of parameter sets ----------------------------------------------------
     @property
