@@ -83,12 +83,12 @@ def run_rocking(args) -> int:
         warnings.simplefilter("always", PainleveWarning)
         block = checked(lambda: FreeStandingBlock(b=args.b, h=args.h, mu=args.mu, mu_kinetic=args.mu_kinetic,
                                                   g=args.g, contact=contact, **housner), "")
-    backend = args.backend or ("exact" if args.linearised and not block.slides else block.default_backend) \
-        if contact == "housner" else args.backend or block.default_backend
+    exact = contact == "housner" and block.linearised and not block.slides  # the closed form
+    backend = args.backend or ("exact" if exact else block.default_backend)
     start = time.perf_counter()
     solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=backend), str(args.record))
     wall = time.perf_counter() - start
-    report = _complete_report if contact == "complete" else _housner_report
+    fields, lines = REPORTS[contact]
     if args.plot is not None:
         from .._plot import plot
 
@@ -101,7 +101,7 @@ def run_rocking(args) -> int:
                           "backend": solution.backend, "t_end_s": clean(solution.t_end),
                           "max_theta_over_alpha": solution.max_theta_over_alpha, "overturned": solution.overturned,
                           "overturn_time_s": _finite_or_none(solution.overturn_time),
-                          "rest_time_s": _finite_or_none(solution.rest_time), **report(block, solution, None),
+                          "rest_time_s": _finite_or_none(solution.rest_time), **fields(block, solution),
                           "wall_time_s": wall}, indent=2))
         return 0
     print(f"record: {describe_record(record)}")
@@ -109,7 +109,7 @@ def run_rocking(args) -> int:
         print(f"scaled by {factor:.6g} [-] to a peak of {record.peak_acceleration / block.g:.6g} g")
     for warning in caught:
         print(f"warning: {warning.message}")
-    report(block, solution, print)
+    print("\n".join(lines(block, solution)))
     print(f"time: {wall:.3f} s (wall clock of the simulation, including compilation on a first call)")
     if args.plot is not None:
         print(f"figure: {args.plot}")
@@ -120,66 +120,76 @@ def _finite_or_none(x):
     return x if math.isfinite(x) else None
 
 
-def _housner_report(block, solution, say):
-    """Housner's block: its JSON fields (``say`` None), or its lines said by ``say``:
-    the block, the backend, what it did, where its contact force left its limits."""
-    contact = solution.contact_events
-    if say is None:
-        return {"restitution": block.r, "linearised": block.linearised, "regime": "slide" if block.slides else "rock",
-                "displacement": solution.displacement,
-                "time_beyond_alpha_s": _finite_or_none(solution.time_beyond_alpha),
-                "impacts": [{"t_s": e.t, "theta_rate_before_rad_s": e.rate, "theta_rate_after_rad_s": e.rate_after}
-                            for e in solution.impacts],
-                "contact_limits": [{"t_s": c.t, "kind": c.kind, "theta_rad": c.theta, "theta_rate_rad_s": c.theta_rate,
-                                    "F_m_s2": c.force, "N_m_s2": c.normal} for c in contact]}
-    say(f"block (Housner's contact): b = {block.b:g} m, h = {block.h:g} m, alpha = {block.alpha:.6f} rad, "
-        f"p = {block.frequency:.6f} rad/s, r = {block.r:.6f}, mu = {block.mu:g} "
-        f"({'slides' if block.slides else 'rocks'}: mu {'<' if block.slides else '>='} "
-        f"{'alpha' if block.linearised else 'b/h'} = {block.rocking_threshold:.6g}){'; linearised' if block.linearised else ''}")
-    say(f"backend {solution.backend}; t_end = {solution.t_end:.4f} s")
+def _housner_fields(block, solution) -> dict:
+    """Housner's block in the JSON: its restitution, regime, impacts and contact limits."""
+    return {"restitution": block.r, "linearised": block.linearised, "regime": "slide" if block.slides else "rock",
+            "displacement": solution.displacement, "time_beyond_alpha_s": _finite_or_none(solution.time_beyond_alpha),
+            "impacts": [{"t_s": e.t, "theta_rate_before_rad_s": e.rate, "theta_rate_after_rad_s": e.rate_after}
+                        for e in solution.impacts],
+            "contact_limits": [{"t_s": c.t, "kind": c.kind, "theta_rad": c.theta, "theta_rate_rad_s": c.theta_rate,
+                                "F_m_s2": c.force, "N_m_s2": c.normal} for c in solution.contact_events]}
+
+
+def _housner_lines(block, solution) -> list:
+    """Housner's block in the text: the block, the backend, what it did, where its contact
+    force left its limits."""
+    lines = [f"block (Housner's contact): b = {block.b:g} m, h = {block.h:g} m, alpha = {block.alpha:.6f} rad, "
+             f"p = {block.frequency:.6f} rad/s, r = {block.r:.6f}, mu = {block.mu:g} "
+             f"({'slides' if block.slides else 'rocks'}: mu {'<' if block.slides else '>='} "
+             f"{'alpha' if block.linearised else 'b/h'} = {block.rocking_threshold:.6g})"
+             f"{'; linearised' if block.linearised else ''}",
+             f"backend {solution.backend}; t_end = {solution.t_end:.4f} s"]
     if block.slides:
-        say(f"slides: u(t_end) = {solution.displacement:+.6f} m, {len(solution.events)} events")
-        return
-    say(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; impacts located: {len(solution.impacts)}")
+        return lines + [f"slides: u(t_end) = {solution.displacement:+.6f} m, {len(solution.events)} events"]
+    lines.append(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; impacts located: "
+                 f"{len(solution.impacts)}")
     if solution.overturned:
-        say(f"overturned at t = {solution.overturn_time:.6f} s (|theta| passed alpha at "
-            f"t = {solution.time_beyond_alpha:.6f} s)")
+        lines.append(f"overturned at t = {solution.overturn_time:.6f} s (|theta| passed alpha at "
+                     f"t = {solution.time_beyond_alpha:.6f} s)")
     elif math.isfinite(solution.rest_time):
-        say(f"at rest from t = {solution.rest_time:.6f} s (the last tail of impacts summed: "
-            f"{solution.zeno_tail:.3e} s)")
-    if contact:
-        say(f"contact limits: {len(contact)} (Housner's pivot holds through them; the complete block would slip "
-            "or lift there: --contact complete)")
-        for limit in contact:
-            say(f"  {limit}")
+        lines.append(f"at rest from t = {solution.rest_time:.6f} s (the last tail of impacts summed: "
+                     f"{solution.zeno_tail:.3e} s)")
+    if solution.contact_events:
+        lines.append(f"contact limits: {len(solution.contact_events)} (Housner's pivot holds through them; the "
+                     "complete block would slip or lift there: --contact complete)")
+        lines += [f"  {limit}" for limit in solution.contact_events]
+    return lines
 
 
-def _complete_report(block, solution, say):
-    """The complete block: its JSON fields (``say`` None), or its lines said by ``say``:
-    the block, the backend, its events, its slip and its energy balance."""
-    residual, scale = solution.energy_residual, solution.energy_scale
+def _complete_fields(block, solution) -> dict:
+    """The complete block in the JSON: its kinetic friction, slip, events and energy balance."""
+    return {"mu_kinetic": block.friction_kinetic, "final_slip_m": solution.final_slip,
+            "event_counts": {kind: len(solution.events_of(kind)) for kind in EVENT_KINDS},
+            "events": [{"t_s": e.t, "kind": e.kind, "mode_before": str(e.mode_before),
+                        "mode_after": str(e.mode_after), "theta_rad": e.state[2],
+                        "theta_rate_before_rad_s": e.state[5], "theta_rate_after_rad_s": e.state_after[5]}
+                       for e in solution.events],
+            "energy_residual_J_kg": solution.energy_residual, "energy_scale_J_kg": solution.energy_scale}
+
+
+def _complete_lines(block, solution) -> list:
+    """The complete block in the text: the block, the backend, its events, its slip and its
+    energy balance."""
     counts = {kind: len(solution.events_of(kind)) for kind in EVENT_KINDS}
-    if say is None:
-        return {"mu_kinetic": block.friction_kinetic, "final_slip_m": solution.final_slip, "event_counts": counts,
-                "events": [{"t_s": e.t, "kind": e.kind, "mode_before": str(e.mode_before),
-                            "mode_after": str(e.mode_after), "theta_rad": e.state[2],
-                            "theta_rate_before_rad_s": e.state[5], "theta_rate_after_rad_s": e.state_after[5]}
-                           for e in solution.events],
-                "energy_residual_J_kg": residual, "energy_scale_J_kg": scale}
-    say(f"block (complete contact): b = {block.b:g} m, h = {block.h:g} m, b/h = {block.slenderness_ratio:.6g}, "
-        f"alpha = {block.alpha:.6f} rad, p = {block.frequency:.6f} rad/s, mu = {block.mu:g}, "
-        f"mu_k = {block.friction_kinetic:g} [-]")
-    say(f"backend {solution.backend}; t_end = {solution.t_end:.4f} s")
-    say("events: " + (", ".join(f"{kind} {n}" for kind, n in counts.items() if n) or "none"))
-    for event in solution.events:
-        say(f"  t = {event.t:.6f} s  {event.kind:<12} {str(event.mode_before):<18} -> {event.mode_after}")
-    say(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; slip at t_end = "
-        f"{solution.final_slip:+.6f} m; impacts: {len(solution.impacts)}")
+    lines = [f"block (complete contact): b = {block.b:g} m, h = {block.h:g} m, b/h = {block.slenderness_ratio:.6g}, "
+             f"alpha = {block.alpha:.6f} rad, p = {block.frequency:.6f} rad/s, mu = {block.mu:g}, "
+             f"mu_k = {block.friction_kinetic:g} [-]",
+             f"backend {solution.backend}; t_end = {solution.t_end:.4f} s",
+             "events: " + (", ".join(f"{kind} {n}" for kind, n in counts.items() if n) or "none")]
+    lines += [f"  t = {event.t:.6f} s  {event.kind:<12} {str(event.mode_before):<18} -> {event.mode_after}"
+              for event in solution.events]
+    lines.append(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; slip at t_end = "
+                 f"{solution.final_slip:+.6f} m; impacts: {len(solution.impacts)}")
     if solution.overturned:
-        say(f"overturned at t = {solution.overturn_time:.6f} s")
+        lines.append(f"overturned at t = {solution.overturn_time:.6f} s")
     elif math.isfinite(solution.rest_time):
-        say(f"at rest from t = {solution.rest_time:.6f} s")
-    say(f"energy balance: residual {residual:.3e} J/kg of a scale {scale:.3e} J/kg")
+        lines.append(f"at rest from t = {solution.rest_time:.6f} s")
+    return lines + [f"energy balance: residual {solution.energy_residual:.3e} J/kg of a scale "
+                    f"{solution.energy_scale:.3e} J/kg"]
+
+
+#: each contact's JSON fields and text lines
+REPORTS = {"complete": (_complete_fields, _complete_lines), "housner": (_housner_fields, _housner_lines)}
 
 
 def contact_model(args) -> str:

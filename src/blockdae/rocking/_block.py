@@ -61,12 +61,9 @@ class BlockBase(BatchedModel):
         object.__setattr__(self, "_batch_shape", shape)
         for j in range(shape[0]):
             try:
-                self._check_set(self.item(j))
+                self.item(j)
             except ValueError as error:
                 raise ValueError(f"parameter set {j}: {error}") from None
-
-    def _check_set(self, block) -> None:
-        """What a batch checks of its parameter set ``block`` beyond building it (nothing)."""
 
     # ---- what the block is ----------------------------------------------------------
     @property

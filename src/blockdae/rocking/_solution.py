@@ -3,14 +3,13 @@
 import dataclasses
 import functools
 import typing
-from typing import NamedTuple
 
 import numpy as np
 
 from ..core import AbstractEvent, DriverSolution, compact_repr
 
 
-class ContactLimit(NamedTuple):
+class ContactLimit(typing.NamedTuple):
     """Where the contact force of Housner's rocking block left its limits: there the
     complete block (:class:`FreeStandingBlock`) would slip or lift, while Housner's keeps
     its pivot.
@@ -183,7 +182,7 @@ class RockingSolution(BlockSolution):
     @property
     def contact_holds(self) -> bool:
         """Whether the contact force stayed within its limits all run (no
-        :attr:`contact_events`): Housner's block is then the complete one's."""
+        :attr:`contact_events`): Housner's assumption held."""
         return not self.contact_events
 
     def check_contact(self, strict=None) -> tuple:
