@@ -16,6 +16,19 @@ from ..excitation import AbstractExcitation, BaseMotion, Pieces
 
 #: the fields of both blocks
 SHARED_FIELDS = ("b", "h", "mu", "mu_kinetic", "theta0", "zeno_arc", "g")
+#: the options of Housner's block alone (``contact="housner"``)
+HOUSNER_OPTIONS = {"restitution", "p", "linearised", "strict"}
+#: contact -> the model of a block with that contact, as each is defined
+MODELS = {}
+
+
+def model_of(contact: str):
+    """The model of a free-standing block with ``contact`` ("complete": its pivot may slip
+    and lift; "housner": it holds); ValueError naming the contact otherwise."""
+    if contact not in MODELS:
+        raise ValueError(f"contact={contact!r} must be 'complete' (the pivot may slip and lift) or 'housner' (it "
+                         "holds: Housner's block)")
+    return MODELS[contact]
 
 
 class BlockBase(BatchedModel):
@@ -27,6 +40,12 @@ class BlockBase(BatchedModel):
     batch_fields: tuple = ("b", "h", "mu", "mu_kinetic", "theta0")
     #: the optional batch fields: None (their default) or a number [their units]
     optional_fields: tuple = ("mu_kinetic",)
+
+    def __init_subclass__(cls, **kwargs):
+        """A block with a ``contact`` of its own is that contact's model (:func:`model_of`)."""
+        super().__init_subclass__(**kwargs)
+        if "contact" in vars(cls):
+            MODELS[cls.contact] = cls
 
     parameter_labels = {"b": "half-width b [m]", "h": "half-height h [m]", "mu": "static friction coefficient mu [-]",
                         "mu_kinetic": "kinetic friction coefficient [-]", "restitution": "restitution r [-]",
@@ -94,13 +113,12 @@ class BlockBase(BatchedModel):
         contact = changes.pop("contact", self.contact)
         if contact == self.contact:
             return dataclasses.replace(self, **changes)
-        from ._free_model import HOUSNER_OPTIONS, FreeStandingBlock
-
-        given = sorted(name for name in HOUSNER_OPTIONS if getattr(self, name, None) not in (None, False))
+        given = sorted(name for name in HOUSNER_OPTIONS if getattr(self, name, None) is not None
+                       and getattr(self, name) is not False)
         if given and contact == "complete":
             raise ValueError(f"contact='complete': {', '.join(given)} belongs to Housner's block only (the complete "
                              "block has none)")
-        return FreeStandingBlock(**{**{name: getattr(self, name) for name in SHARED_FIELDS}, **changes}, contact=contact)
+        return model_of(contact)(**{**{name: getattr(self, name) for name in SHARED_FIELDS}, **changes})
 
     # ---- a batch of parameter sets ----------------------------------------------------
     @property

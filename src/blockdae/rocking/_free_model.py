@@ -33,7 +33,7 @@ from ..sliding import stop_mode
 from ..units import STANDARD_GRAVITY
 from . import _rules as rules
 from . import _slide_rock_laws as laws
-from ._block import BlockBase
+from ._block import HOUSNER_OPTIONS, BlockBase, model_of
 from ._derivatives import FreeStandingDerivatives
 from ._free_modes import (BEYOND, IN, INSTANT, OUT, OVERTURNED, SETTLE, SLIDE_ROCK_KINDS, FreeMode, kind_of,
                           rock_mode, side, slide_rock_mode, slip_direction)
@@ -51,8 +51,6 @@ JUMP_FLOOR = 1e-9
 GRAZE_SPEED = 1e-12
 #: Painlevé's paradox is possible from this kinetic friction on [-]
 PAINLEVE_FRICTION = 4.0 / 3.0
-#: the options of Housner's block alone (``contact="housner"``)
-HOUSNER_OPTIONS = {"restitution", "p", "linearised", "strict"}
 
 
 class PainleveWarning(UserWarning):
@@ -108,14 +106,9 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
     def __new__(cls, *args, contact: str = "complete", **kwargs):
         """The complete block, or with ``contact="housner"`` Housner's (a
         :class:`RockingBlock` of the same arguments)."""
-        if contact == "housner":
-            from ._model import RockingBlock
-
-            names = [field.name for field in dataclasses.fields(cls)]
-            return RockingBlock(**dict(zip(names, args)), **kwargs)
         if contact != "complete":
-            raise ValueError(f"contact={contact!r} must be 'complete' (the pivot may slip and lift) or 'housner' "
-                             "(it holds: Housner's block)")
+            names = [field.name for field in dataclasses.fields(cls)]
+            return model_of(contact)(**dict(zip(names, args)), **kwargs)
         housner_only = sorted(set(kwargs) & HOUSNER_OPTIONS)
         if housner_only:
             raise ValueError(f"{', '.join(housner_only)}: an option of Housner's block only "
