@@ -52,7 +52,8 @@ def housner_restitution(alpha: float) -> float:
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class RockingBlock(DifferentiableModel, BlockBase):
-    """A free-standing rectangular block that rests, slides, rocks or overturns.
+    """Housner's free-standing rectangular block, whose rocking pivot holds: it rests,
+    slides, rocks or overturns (``FreeStandingBlock(..., contact="housner")``).
 
     Args:
         b: half-width [m], > 0.
