@@ -33,8 +33,9 @@ def model_of(contact: str):
 
 class BlockBase(BatchedModel):
     """The fields b, h [m], mu, mu_kinetic [-], theta0 [rad], zeno_arc [s] and g [m/s²]
-    checked, alpha and R, batches and the motion (a_x, a_z), for a frozen dataclass that
-    declares them."""
+    checked, alpha and R, batches, the motion (a_x, a_z) and ``replace`` across contacts,
+    for a frozen dataclass that declares them and its ``contact`` ("complete" or
+    "housner": the one model of each, :func:`model_of`)."""
 
     #: the parameters a batch may give as 1-D arrays, one value per parameter set
     batch_fields: tuple = ("b", "h", "mu", "mu_kinetic", "theta0")
