@@ -27,6 +27,8 @@ BATCHES = {
     "rocking": bd.RockingBlock(b=np.array([0.25, 0.35]), h=1.0, mu=1.0),
     # slides (mu < b/h): on its default backend, "cvode"
     "rocking-slides": bd.RockingBlock(b=0.5, h=1.0, mu=np.array([0.1, 0.2])),
+    # the complete block: rocks, slide-rocks and slides, set by set on "cvode"
+    "free-standing": bd.rocking.FreeStandingBlock(b=np.array([0.25, 0.35]), h=1.0, mu=np.array([0.3, 0.5])),
 }
 
 
@@ -47,6 +49,18 @@ def test_a_two_set_batch_under_three_records_and_two_scales(name):
         assert ensemble.n_events.ravel()[row] == len(alone.events)
 
 
+def _rows_and_single_runs(model, ensemble, records, scales):
+    """(row, (record i, scale k, set j), the set's own run of the scaled record) for each
+    row of a batch's ``ensemble``, its final numbers checked equal to that run's bit for bit."""
+    for row in range(len(records) * len(scales) * 2):
+        i, k, j = row // 4, (row // 2) % 2, row % 2
+        alone = bd.simulate(model.item(j), records[i].scaled(scales[k]), t_end=3.0)
+        assert ensemble.max_abs_displacement.ravel()[row] == alone.max_abs_displacement
+        assert ensemble.displacement.ravel()[row] == alone.displacement
+        assert ensemble.n_events.ravel()[row] == len(alone.events)
+        yield row, (i, k, j), alone
+
+
 def test_a_rocking_batch_equals_its_single_runs_exactly():
     """Every row of a rocking batch (the compiled engine, set by set) is its set's own run,
     bit for bit, with every case's solution and with the final numbers alone."""
@@ -55,12 +69,7 @@ def test_a_rocking_batch_equals_its_single_runs_exactly():
     finals = bd.simulate(model, records, t_end=3.0, scale=scales, final_only=True)
     table = ensemble.to_dataframe()
     assert list(table["b"]) == [0.25, 0.35] * 6 and "theta_end_rad" in table
-    for row in range(12):
-        i, k, j = row // 4, (row // 2) % 2, row % 2
-        alone = bd.simulate(model.item(j), records[i].scaled(scales[k]), t_end=3.0)
-        assert ensemble.max_abs_displacement.ravel()[row] == alone.max_abs_displacement
-        assert ensemble.displacement.ravel()[row] == alone.displacement
-        assert ensemble.n_events.ravel()[row] == len(alone.events)
+    for row, (i, k, j), alone in _rows_and_single_runs(model, ensemble, records, scales):
         assert table["max_theta_over_alpha"][row] == alone.max_abs_displacement / model.item(j).alpha
         one = bd.simulate(model.item(j), records[i], t_end=3.0, scale=[scales[k]], final_only=True)
         assert finals.max_abs_displacement.ravel()[row] == one.max_abs_displacement.ravel()[0]
@@ -81,18 +90,41 @@ def test_a_rocking_batch_that_mixes_sliding_and_rocking_sets_is_refused():
         bd.RockingBlock(b=np.array([0.2, 0.3]), h=np.array([1.0, 1.0, 1.0]), mu=0.7)
 
 
-def test_a_rocking_batch_warns_of_each_sets_contact_as_its_run_does():
-    """The contact check of a batch reads each set's run: the warnings one run gives."""
+def test_a_rocking_batch_lists_each_sets_contact_limits_as_its_run_does():
+    """The contact check of a batch reads each set's run: the limits one run lists, and
+    with strict the error one run raises."""
     record = _records()[2].scaled(2.0)
     batch = bd.RockingBlock(b=np.array([0.25, 0.2]), h=1.0, mu=0.7)
-    with pytest.warns(bd.rocking.ContactWarning) as alone:
-        bd.simulate(batch.item(1), record, t_end=3.0)
-    with pytest.warns(bd.rocking.ContactWarning) as caught:
-        bd.simulate(batch, record, t_end=3.0)
-    assert [str(w.message) for w in caught] == [str(w.message) for w in alone]
+    alone = bd.simulate(batch.item(1), record, t_end=3.0).contact_events
+    runs = bd.simulate(batch, record, t_end=3.0)
+    assert alone and runs[1].contact_events == alone
+    with pytest.raises(ValueError) as one:
+        bd.simulate(batch.item(1).replace(strict=True), record, t_end=3.0)
+    with pytest.raises(ValueError) as both:
+        bd.simulate(batch.replace(strict=True), record, t_end=3.0)
+    assert str(both.value) == str(one.value)
 
 
-@pytest.mark.parametrize("name", ["upthrow", "flexible", "rocking"])
+def test_a_free_standing_batch_equals_its_single_runs_exactly():
+    """Every row of a batch of complete blocks (cvode, set by set) is its set's own run,
+    bit for bit; its table holds the parameter sets and metres (x, the centroid's
+    displacement relative to the base); each set is checked as a block of its own."""
+    model, records, scales = BATCHES["free-standing"], _records(), (1.0, 2.0)
+    ensemble = bd.simulate(model, records, t_end=3.0, scale=scales)
+    table = ensemble.to_dataframe()
+    assert list(table["b"]) == [0.25, 0.35] * 6 and list(table["mu"]) == [0.3, 0.5] * 6
+    assert {"x_end_m", "max_abs_displacement_m"} <= set(table)
+    assert model.parameter_labels["mu"] == "static friction coefficient mu [-]"
+    for row, _, alone in _rows_and_single_runs(model, ensemble, records, scales):
+        assert [(e.t, e.kind) for e in ensemble[row].events] == [(e.t, e.kind) for e in alone.events]
+    assert {e.kind for row in range(12) for e in ensemble[row].events} >= {"uplift", "slip", "impact"}
+    with pytest.raises(ValueError, match=r"parameter set 1: mu_kinetic=0.4 must be in \[0, mu=0.3\]"):
+        bd.rocking.FreeStandingBlock(b=0.2, h=1.0, mu=np.array([0.5, 0.3]), mu_kinetic=0.4)
+    with pytest.raises(ValueError, match="differ in size"):
+        bd.rocking.FreeStandingBlock(b=np.array([0.2, 0.3]), h=np.array([1.0, 1.0, 1.0]), mu=0.7)
+
+
+@pytest.mark.parametrize("name", ["upthrow", "flexible", "rocking", "free-standing"])
 def test_batch_items_and_parameters(name):
     model = BATCHES[name]
     assert model.batch_shape == (2,)

@@ -64,3 +64,23 @@ def test_bad_geometry_is_a_usage_error(capsys):
     assert main(["--no-cache", "rocking", str(_kobe_path()), "--units", "g", "--b", "-1", "--h", "1",
                  "--mu", "0.5"]) == 2
     assert "--b" in capsys.readouterr().err
+
+
+def test_housners_contact_limits_are_printed_and_in_the_json(capsys):
+    """Where Housner's assumption breaks (the linearised block under Kobe TAK-090 at 0.4 g:
+    a slip limit, then a lift limit, before it overturns) the command lists each limit as
+    bd.simulate locates it, in the text and the JSON, without a warning."""
+    path = _kobe_path()
+    argv = [path, "--b", 0.2, "--h", 0.8, "--mu", 0.6, "--linearised", "--pga", 0.4]
+    record = bd.read_record(path, units="g")
+    record = record.scaled(0.4 * G / record.peak_acceleration)
+    limits = bd.simulate(bd.FreeStandingBlock(b=0.2, h=0.8, mu=0.6, contact="housner", linearised=True), record,
+                         backend="exact").contact_events
+    assert [limit.kind for limit in limits] == ["slip_limit", "lift_limit"]
+    found = _run([*argv, "--json"], capsys)
+    assert [(c["t_s"], c["kind"], c["F_m_s2"], c["N_m_s2"]) for c in json.loads(found.out)["contact_limits"]] == \
+        [(c.t, c.kind, c.force, c.normal) for c in limits]
+    text = _run(argv, capsys)
+    assert "warning" not in text.out + text.err
+    assert f"contact limits: {len(limits)} (Housner's pivot holds through them" in text.out
+    assert all(f"  {limit}" in text.out.splitlines() for limit in limits)

@@ -28,7 +28,7 @@ from .excitation import (BaseMotion, Harmonic, Record, RecordSet, RecordWarning,
 from .flexible_mass import (EquivalentLinear, FlexibleEvent, FlexibleMode, FlexibleResult, FlexibleSlidingMass,
                             FlexibleSolution, KyTable, ShearColumn, flexible)
 from .planar import PlanarBlock
-from .rocking import RockingBlock
+from .rocking import FreeStandingBlock, RockingBlock
 from .sliding import SlidingBlock, newmark
 from .structures import ShearFrame
 from .studies import load_study, save_study, study
@@ -37,7 +37,7 @@ from .upthrow import RigidSupport, SpringSupport, SpringSupportedMass
 __all__ = [
     # the models (and what builds them)
     "AbstractHybridModel", "SlidingBlock", "PlanarBlock", "SpringSupportedMass", "SpringSupport", "RigidSupport",
-    "FlexibleSlidingMass", "ShearFrame", "RockingBlock",
+    "FlexibleSlidingMass", "ShearFrame", "FreeStandingBlock", "RockingBlock",
     # the analyses
     "simulate", "Ensemble", "sensitivities", "Sensitivities", "crosscheck", "newmark", "flexible", "study", "load_study",
     "save_study", "plot",

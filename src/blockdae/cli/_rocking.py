@@ -12,7 +12,7 @@ from ._common import (UsageError, checked, clean, describe_record, number, posit
                       record_fields, save_figure)
 from ..core import simulate
 from ..excitation import pga_factor, unit_factor
-from ..rocking import ContactWarning, FreeStandingBlock, PainleveWarning, RockingBlock
+from ..rocking import FreeStandingBlock, PainleveWarning
 from ..units import STANDARD_GRAVITY
 
 #: the backends that run a RockingBlock ("compiled": one that rocks; "exact": the linearised one)
@@ -57,7 +57,8 @@ def add_rocking_parser(subparsers):
                    help="solver backend (default: cvode for the complete block; for Housner's block that rocks: "
                         "exact with --linearised, else compiled; cvode for one that slides)")
     p.add_argument("--strict", action="store_true",
-                   help="an error where the contact force leaves its limits (N <= 0 or |F| > mu N), not a warning")
+                   help="housner: stop with an error where the contact force leaves its limits (N <= 0 or |F| > mu "
+                        "N) rather than list them")
     record_arguments(p)
     p.add_argument("--plot", type=pathlib.Path, default=None, metavar="PNG", help="save a figure (bd.plot)")
     p.add_argument("--json", action="store_true", help="print the results as JSON (SI units)")
@@ -76,50 +77,39 @@ def run_rocking(args) -> int:
         factor = checked(lambda: pga_factor(record.peak_acceleration, args.pga, args.g, name="--pga",
                                             check_peak=not args.accept_peak), str(args.record))
         record = record.scaled(factor)
-    if contact == "complete":
-        return run_complete(args, record, factor)
-    block = checked(lambda: RockingBlock(b=args.b, h=args.h, mu=args.mu, mu_kinetic=args.mu_kinetic,
-                                         restitution=args.restitution, linearised=args.linearised,
-                                         strict=args.strict, g=args.g), "")
-    backend = args.backend or ("cvode" if block.slides else "exact" if block.linearised else "compiled")
+    housner = dict(restitution=args.restitution, linearised=args.linearised, strict=args.strict) \
+        if contact == "housner" else {}
+    with warnings.catch_warnings(record=True) as caught:  # printed with the block
+        warnings.simplefilter("always", PainleveWarning)
+        block = checked(lambda: FreeStandingBlock(b=args.b, h=args.h, mu=args.mu, mu_kinetic=args.mu_kinetic,
+                                                  g=args.g, contact=contact, **housner), "")
+    exact = contact == "housner" and block.linearised and not block.slides  # the closed form
+    backend = args.backend or ("exact" if exact else block.default_backend)
     start = time.perf_counter()
-    with warnings.catch_warnings(record=True) as caught:  # simulate warns of the contact limits: printed below
-        warnings.simplefilter("always", ContactWarning)
-        solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=backend), str(args.record))
+    solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=backend), str(args.record))
     wall = time.perf_counter() - start
-    for other in (w for w in caught if not issubclass(w.category, ContactWarning)):
-        warnings.showwarning(other.message, other.category, other.filename, other.lineno)
-    caught = [w for w in caught if issubclass(w.category, ContactWarning)]
-    contact = solution.contact_events
+    fields, lines = REPORTS[contact]
     if args.plot is not None:
         from .._plot import plot
 
-        save_figure(plot(solution, title=f"{record.name}: b = {block.b:g} m, h = {block.h:g} m, mu = {block.mu:g}"),
-                    args.plot)
+        kinetic = f", mu_k = {block.friction_kinetic:g}" if contact == "complete" else ""
+        save_figure(plot(solution, title=f"{record.name}: b = {block.b:g} m, h = {block.h:g} m, mu = {block.mu:g}"
+                                         f"{kinetic}"), args.plot)
     if args.json:
-        print(json.dumps(_json(record, factor, block, solution, contact, wall), indent=2))
+        print(json.dumps({**record_fields(record), "scale": factor, "contact": contact, "b_m": block.b,
+                          "h_m": block.h, "mu": block.mu, "alpha_rad": block.alpha, "p_rad_s": block.frequency,
+                          "backend": solution.backend, "t_end_s": clean(solution.t_end),
+                          "max_theta_over_alpha": solution.max_theta_over_alpha, "overturned": solution.overturned,
+                          "overturn_time_s": _finite_or_none(solution.overturn_time),
+                          "rest_time_s": _finite_or_none(solution.rest_time), **fields(block, solution),
+                          "wall_time_s": wall}, indent=2))
         return 0
     print(f"record: {describe_record(record)}")
     if factor != 1.0:
         print(f"scaled by {factor:.6g} [-] to a peak of {record.peak_acceleration / block.g:.6g} g")
-    print(f"block: b = {block.b:g} m, h = {block.h:g} m, alpha = {block.alpha:.6f} rad, p = {block.frequency:.6f} "
-          f"rad/s, r = {block.r:.6f}, mu = {block.mu:g} ({'slides' if block.slides else 'rocks'}: mu "
-          f"{'<' if block.slides else '>='} {'alpha' if block.linearised else 'b/h'} = "
-          f"{block.rocking_threshold:.6g}){'; linearised' if block.linearised else ''}")
-    print(f"backend {solution.backend}; t_end = {solution.t_end:.4f} s")
-    if block.slides:
-        print(f"slides: u(t_end) = {solution.displacement:+.6f} m, {len(solution.events)} events")
-    else:
-        print(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; "
-              f"impacts located: {len(solution.impacts)}")
-        if solution.overturned:
-            print(f"overturned at t = {solution.overturn_time:.6f} s (|theta| passed alpha at "
-                  f"t = {solution.time_beyond_alpha:.6f} s)")
-        elif math.isfinite(solution.rest_time):
-            print(f"at rest from t = {solution.rest_time:.6f} s (the last tail of impacts summed: "
-                  f"{solution.zeno_tail:.3e} s)")
     for warning in caught:
         print(f"warning: {warning.message}")
+    print("\n".join(lines(block, solution)))
     print(f"time: {wall:.3f} s (wall clock of the simulation, including compilation on a first call)")
     if args.plot is not None:
         print(f"figure: {args.plot}")
@@ -130,21 +120,76 @@ def _finite_or_none(x):
     return x if math.isfinite(x) else None
 
 
-def _json(record, factor, block, solution, contact, wall):
-    return {
-        **record_fields(record), "scale": factor, "contact": "housner", "b_m": block.b, "h_m": block.h, "mu": block.mu,
-        "alpha_rad": block.alpha, "p_rad_s": block.frequency, "restitution": block.r, "linearised": block.linearised,
-        "regime": "slide" if block.slides else "rock", "backend": solution.backend, "t_end_s": clean(solution.t_end),
-        "displacement": solution.displacement, "max_theta_over_alpha": solution.max_theta_over_alpha,
-        "overturned": solution.overturned, "overturn_time_s": _finite_or_none(solution.overturn_time),
-        "time_beyond_alpha_s": _finite_or_none(solution.time_beyond_alpha),
-        "rest_time_s": _finite_or_none(solution.rest_time),
-        "impacts": [{"t_s": e.t, "theta_rate_before_rad_s": e.rate, "theta_rate_after_rad_s": e.rate_after}
-                    for e in solution.impacts],
-        "contact_limits": [{"t_s": t, "kind": kind, "F_m_s2": force, "N_m_s2": normal}
-                           for t, kind, _, _, force, normal in contact],
-        "wall_time_s": wall,
-    }
+def _housner_fields(block, solution) -> dict:
+    """Housner's block in the JSON: its restitution, regime, impacts and contact limits."""
+    return {"restitution": block.r, "linearised": block.linearised, "regime": "slide" if block.slides else "rock",
+            "displacement": solution.displacement, "time_beyond_alpha_s": _finite_or_none(solution.time_beyond_alpha),
+            "impacts": [{"t_s": e.t, "theta_rate_before_rad_s": e.rate, "theta_rate_after_rad_s": e.rate_after}
+                        for e in solution.impacts],
+            "contact_limits": [{"t_s": c.t, "kind": c.kind, "theta_rad": c.theta, "theta_rate_rad_s": c.theta_rate,
+                                "F_m_s2": c.force, "N_m_s2": c.normal} for c in solution.contact_events]}
+
+
+def _housner_lines(block, solution) -> list:
+    """Housner's block in the text: the block, the backend, what it did, where its contact
+    force left its limits."""
+    lines = [f"block (Housner's contact): b = {block.b:g} m, h = {block.h:g} m, alpha = {block.alpha:.6f} rad, "
+             f"p = {block.frequency:.6f} rad/s, r = {block.r:.6f}, mu = {block.mu:g} "
+             f"({'slides' if block.slides else 'rocks'}: mu {'<' if block.slides else '>='} "
+             f"{'alpha' if block.linearised else 'b/h'} = {block.rocking_threshold:.6g})"
+             f"{'; linearised' if block.linearised else ''}",
+             f"backend {solution.backend}; t_end = {solution.t_end:.4f} s"]
+    if block.slides:
+        return lines + [f"slides: u(t_end) = {solution.displacement:+.6f} m, {len(solution.events)} events"]
+    lines.append(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; impacts located: "
+                 f"{len(solution.impacts)}")
+    if solution.overturned:
+        lines.append(f"overturned at t = {solution.overturn_time:.6f} s (|theta| passed alpha at "
+                     f"t = {solution.time_beyond_alpha:.6f} s)")
+    elif math.isfinite(solution.rest_time):
+        lines.append(f"at rest from t = {solution.rest_time:.6f} s (the last tail of impacts summed: "
+                     f"{solution.zeno_tail:.3e} s)")
+    if solution.contact_events:
+        lines.append(f"contact limits: {len(solution.contact_events)} (Housner's pivot holds through them; the "
+                     "complete block would slip or lift there: --contact complete)")
+        lines += [f"  {limit}" for limit in solution.contact_events]
+    return lines
+
+
+def _complete_fields(block, solution) -> dict:
+    """The complete block in the JSON: its kinetic friction, slip, events and energy balance."""
+    return {"mu_kinetic": block.friction_kinetic, "final_slip_m": solution.final_slip,
+            "event_counts": {kind: len(solution.events_of(kind)) for kind in EVENT_KINDS},
+            "events": [{"t_s": e.t, "kind": e.kind, "mode_before": str(e.mode_before),
+                        "mode_after": str(e.mode_after), "theta_rad": e.state[2],
+                        "theta_rate_before_rad_s": e.state[5], "theta_rate_after_rad_s": e.state_after[5]}
+                       for e in solution.events],
+            "energy_residual_J_kg": solution.energy_residual, "energy_scale_J_kg": solution.energy_scale}
+
+
+def _complete_lines(block, solution) -> list:
+    """The complete block in the text: the block, the backend, its events, its slip and its
+    energy balance."""
+    counts = {kind: len(solution.events_of(kind)) for kind in EVENT_KINDS}
+    lines = [f"block (complete contact): b = {block.b:g} m, h = {block.h:g} m, b/h = {block.slenderness_ratio:.6g}, "
+             f"alpha = {block.alpha:.6f} rad, p = {block.frequency:.6f} rad/s, mu = {block.mu:g}, "
+             f"mu_k = {block.friction_kinetic:g} [-]",
+             f"backend {solution.backend}; t_end = {solution.t_end:.4f} s",
+             "events: " + (", ".join(f"{kind} {n}" for kind, n in counts.items() if n) or "none")]
+    lines += [f"  t = {event.t:.6f} s  {event.kind:<12} {str(event.mode_before):<18} -> {event.mode_after}"
+              for event in solution.events]
+    lines.append(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; slip at t_end = "
+                 f"{solution.final_slip:+.6f} m; impacts: {len(solution.impacts)}")
+    if solution.overturned:
+        lines.append(f"overturned at t = {solution.overturn_time:.6f} s")
+    elif math.isfinite(solution.rest_time):
+        lines.append(f"at rest from t = {solution.rest_time:.6f} s")
+    return lines + [f"energy balance: residual {solution.energy_residual:.3e} J/kg of a scale "
+                    f"{solution.energy_scale:.3e} J/kg"]
+
+
+#: each contact's JSON fields and text lines
+REPORTS = {"complete": (_complete_fields, _complete_lines), "housner": (_housner_fields, _housner_lines)}
 
 
 def contact_model(args) -> str:
@@ -157,65 +202,3 @@ def contact_model(args) -> str:
         raise UsageError(f"--contact complete: {', '.join(housner_only)} applies to Housner's block only "
                          "(--contact housner)")
     return args.contact or ("housner" if housner_only else "complete")
-
-
-def run_complete(args, record, factor) -> int:
-    """Run the complete block (:class:`~blockdae.rocking.FreeStandingBlock`); print its
-    events and energy balance; the exit status."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", PainleveWarning)
-        block = checked(lambda: FreeStandingBlock(b=args.b, h=args.h, mu=args.mu, mu_kinetic=args.mu_kinetic,
-                                                  g=args.g), "")
-    backend = args.backend or "cvode"
-    start = time.perf_counter()
-    solution = checked(lambda: simulate(block, record, t_end=args.t_end, backend=backend), str(args.record))
-    wall = time.perf_counter() - start
-    residual, scale = solution.energy_residual, solution.energy_scale
-    if args.plot is not None:
-        from .._plot import plot
-
-        save_figure(plot(solution, title=f"{record.name}: b = {block.b:g} m, h = {block.h:g} m, mu = {block.mu:g}, "
-                                          f"mu_k = {block.friction_kinetic:g}"), args.plot)
-    if args.json:
-        print(json.dumps(_complete_json(record, factor, block, solution, residual, scale, wall), indent=2))
-        return 0
-    print(f"record: {describe_record(record)}")
-    if factor != 1.0:
-        print(f"scaled by {factor:.6g} [-] to a peak of {record.peak_acceleration / block.g:.6g} g")
-    print(f"block (complete contact): b = {block.b:g} m, h = {block.h:g} m, b/h = {block.slenderness_ratio:.6g}, "
-          f"alpha = {block.alpha:.6f} rad, p = {block.frequency:.6f} rad/s, mu = {block.mu:g}, "
-          f"mu_k = {block.friction_kinetic:g} [-]")
-    for warning in caught:
-        print(f"warning: {warning.message}")
-    print(f"backend {solution.backend}; t_end = {solution.t_end:.4f} s")
-    counts = {kind: len(solution.events_of(kind)) for kind in EVENT_KINDS}
-    print("events: " + (", ".join(f"{kind} {n}" for kind, n in counts.items() if n) or "none"))
-    for event in solution.events:
-        print(f"  t = {event.t:.6f} s  {event.kind:<12} {str(event.mode_before):<18} -> {event.mode_after}")
-    print(f"max |theta| / alpha = {solution.max_theta_over_alpha:.6f} [-]; slip at t_end = "
-          f"{solution.final_slip:+.6f} m; impacts: {len(solution.impacts)}")
-    if solution.overturned:
-        print(f"overturned at t = {solution.overturn_time:.6f} s")
-    elif math.isfinite(solution.rest_time):
-        print(f"at rest from t = {solution.rest_time:.6f} s")
-    print(f"energy balance: residual {residual:.3e} J/kg of a scale {scale:.3e} J/kg")
-    print(f"time: {wall:.3f} s (wall clock of the simulation, including compilation on a first call)")
-    if args.plot is not None:
-        print(f"figure: {args.plot}")
-    return 0
-
-
-def _complete_json(record, factor, block, solution, residual, scale, wall):
-    return {
-        **record_fields(record), "scale": factor, "contact": "complete", "b_m": block.b, "h_m": block.h,
-        "mu": block.mu, "mu_kinetic": block.friction_kinetic, "alpha_rad": block.alpha, "p_rad_s": block.frequency,
-        "backend": solution.backend, "t_end_s": clean(solution.t_end),
-        "max_theta_over_alpha": solution.max_theta_over_alpha, "final_slip_m": solution.final_slip,
-        "overturned": solution.overturned, "overturn_time_s": _finite_or_none(solution.overturn_time),
-        "rest_time_s": _finite_or_none(solution.rest_time),
-        "event_counts": {kind: len(solution.events_of(kind)) for kind in EVENT_KINDS},
-        "events": [{"t_s": e.t, "kind": e.kind, "mode_before": str(e.mode_before), "mode_after": str(e.mode_after),
-                    "theta_rad": e.state[2], "theta_rate_before_rad_s": e.state[5],
-                    "theta_rate_after_rad_s": e.state_after[5]} for e in solution.events],
-        "energy_residual_J_kg": residual, "energy_scale_J_kg": scale, "wall_time_s": wall,
-    }

@@ -5,6 +5,25 @@ import numpy as np
 from ..core import time_grid
 
 
+def mark_impacts_and_overturn(ax, solution):
+    """The impacts as ticks on theta = 0 and the overturn as a dashed line on ``ax``."""
+    impacts = solution.impact_times
+    if impacts.size:
+        ax.plot(impacts, 0 * impacts, ls="none", marker="|", color="k", ms=8, label="impacts")
+    if solution.overturned:
+        ax.axvline(solution.overturn_time, color="k", ls="--", lw=0.8, label="overturned")
+
+
+def draw_base_acceleration(ax, solution, t):
+    """a_x [m/s²] of the solution's motion (its x component) at ``t`` [s] on ``ax``, the
+    bottom panel."""
+    if solution.motion is not None:
+        components = getattr(solution.motion, "components", None)
+        x = solution.motion if components is None else components[0]
+        ax.plot(t, np.asarray(x.acceleration(t)), color="0.4", lw=0.8)
+    ax.set(ylabel="a_x [m/s²]", xlabel="t [s]")
+
+
 def rocking_figure(solution, *, n_points, title=None):
     """theta / alpha [-] (or u [m] for a sliding block) against t [s] with impacts and
     overturning marked, over the base acceleration a_x [m/s²]."""
@@ -19,20 +38,12 @@ def rocking_figure(solution, *, n_points, title=None):
                                        gridspec_kw=dict(height_ratios=(2, 1)))
     motion.plot(t, q / scale, color="C3", lw=1.2, label="theta / alpha" if rocks else "u")
     motion.set_ylabel("theta / alpha [-]" if rocks else "u [m]")
-    impacts = solution.impact_times
-    if impacts.size:
-        motion.plot(impacts, 0 * impacts, ls="none", marker="|", color="k", ms=8, label="impacts")
-    if solution.overturned:
-        motion.axvline(solution.overturn_time, color="k", ls="--", lw=0.8, label="overturned")
+    mark_impacts_and_overturn(motion, solution)
     for level in (-1, 1) if rocks and block is not None else ():
         motion.axhline(level, color="0.7", lw=0.8, ls=":")
     motion.axhline(0.0, color="0.85", lw=0.8, zorder=0)
     motion.legend(loc="best", fontsize="small")
-    if solution.motion is not None:
-        components = getattr(solution.motion, "components", None)
-        x = solution.motion if components is None else components[0]
-        base.plot(t, np.asarray(x.acceleration(t)), color="0.4", lw=0.8)
-    base.set(ylabel="a_x [m/s²]", xlabel="t [s]")
+    draw_base_acceleration(base, solution, t)
     if title:
         fig.suptitle(title)
     return fig
@@ -135,11 +146,7 @@ def free_standing_figure(solution, *, n_points, title=None):
     theta.plot(t, y[2], color="k", lw=1.1, label="theta")
     for level in (-block.alpha, block.alpha):
         theta.axhline(level, color="0.6", lw=0.8, ls=":")
-    impacts = solution.impact_times
-    if impacts.size:
-        theta.plot(impacts, 0 * impacts, ls="none", marker="|", color="k", ms=8, label="impacts")
-    if solution.overturned:
-        theta.axvline(solution.overturn_time, color="k", ls="--", lw=0.8, label="overturned")
+    mark_impacts_and_overturn(theta, solution)
     theta.set_ylabel("theta [rad]")
     slip.plot(t, laws.base_slip(y[0], y[2], block.b, block.h, np), color="C0", lw=1.1, label="slip")
     slip.set_ylabel("slip [m]")
@@ -148,11 +155,7 @@ def free_standing_figure(solution, *, n_points, title=None):
                      label=f"corner {'+' if c > 0 else '-'}b")
     heights.set_ylabel("corner heights [m]")
     heights.legend(loc="upper right", fontsize="small")
-    if solution.motion is not None:
-        components = getattr(solution.motion, "components", None)
-        x = solution.motion if components is None else components[0]
-        base.plot(t, np.asarray(x.acceleration(t)), color="0.4", lw=0.8)
-    base.set(ylabel="a_x [m/s²]", xlabel="t [s]")
+    draw_base_acceleration(base, solution, t)
     handles = [Patch(color=MOTION_SPANS[label][0], alpha=0.35, label=label) for label in MOTION_SPANS if spans[label]]
     theta.legend(handles=theta.get_legend_handles_labels()[0] + handles, loc="best", fontsize="small")
     if title:

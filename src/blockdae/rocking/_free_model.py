@@ -29,12 +29,12 @@ import numpy as np
 
 from ..core import HermiteDense, LazyEngine
 from ..core.contract import KNOTS_PER_RADIAN, SCALAR
-from ..excitation import AbstractExcitation, BaseMotion, Pieces
 from ..sliding import stop_mode
 from ..units import STANDARD_GRAVITY
 from . import _free_rules as free_rules
 from . import _rules as rules
 from . import _slide_rock_laws as laws
+from ._block import HOUSNER_OPTIONS, BlockBase, model_of
 from ._derivatives import FreeStandingDerivatives
 from ._free_modes import (BEYOND, IN, INSTANT, OUT, OVERTURNED, SETTLE, SLIDE_ROCK_KINDS, FreeMode, kind_of,
                           rock_mode, side, slide_rock_mode, slip_direction)
@@ -60,7 +60,7 @@ class PainleveWarning(UserWarning):
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class FreeStandingBlock(FreeStandingDerivatives):
+class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
     """A free-standing rectangular block that rests, slides, rocks, slide-rocks, flies
     and overturns, with frictional plastic impacts and landings.
 
@@ -73,10 +73,20 @@ class FreeStandingBlock(FreeStandingDerivatives):
         zeno_arc: the arc [s] below which the rest of a Zeno sequence of sticking impacts
             is summed (and a slide-rock's chatter ends in a slide).
         g: gravitational acceleration [m/s²].
+        contact: "complete" (this block: its corners may slip and lift) or "housner":
+            Housner's block, whose rocking pivot holds (the literature's overturning
+            spectra): ``FreeStandingBlock(..., contact="housner")`` is a
+            :class:`RockingBlock` of the same arguments, which also takes
+            ``restitution``, ``p``, ``linearised`` and ``strict``.
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x and
     z components [m/s²]. Backends: "compiled" (default: a compiled DOP853 with located
     events), "cvode", "ida" and "jax" (the diffrax twin).
+
+    ``b``, ``h``, ``mu``, ``mu_kinetic`` and ``theta0`` may be 1-D arrays of one size (the
+    others numbers): a batch of parameter sets, which :func:`blockdae.simulate` runs set
+    by set on the backend of one set (``item(i)``: set i as a block of its own), each row
+    of its ensemble that set's own run.
     """
 
     b: float
@@ -86,6 +96,7 @@ class FreeStandingBlock(FreeStandingDerivatives):
     theta0: float = 0.0
     zeno_arc: float = 1e-5
     g: float = STANDARD_GRAVITY
+    contact: str = "complete"
 
     state_names = ("x", "z", "theta", "x_rate", "z_rate", "theta_rate", "base_work", "friction_work")
     state_units = ("m", "m", "rad", "m/s", "m/s", "rad/s", "J/kg", "J/kg")
@@ -96,44 +107,27 @@ class FreeStandingBlock(FreeStandingDerivatives):
     default_backend = "compiled"
     engines = {"compiled": LazyEngine("blockdae.rocking._free_engine", "FreeCompiledEngine")}
 
+    def __new__(cls, *args, contact: str = "complete", **kwargs):
+        """The complete block, or with ``contact="housner"`` Housner's (a
+        :class:`RockingBlock` of the same arguments)."""
+        if contact != "complete":
+            names = [field.name for field in dataclasses.fields(cls)]
+            return model_of(contact)(**dict(zip(names, args)), **kwargs)
+        housner_only = sorted(set(kwargs) & HOUSNER_OPTIONS)
+        if housner_only:
+            raise ValueError(f"{', '.join(housner_only)}: an option of Housner's block only "
+                             "(FreeStandingBlock(..., contact='housner'))")
+        return super().__new__(cls)
+
     def __post_init__(self):
-        for name in ("b", "h", "mu", "theta0", "zeno_arc", "g"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)) \
-                    or not math.isfinite(value):
-                raise ValueError(f"{name}={value!r} must be a finite number")
-        for name in ("b", "h", "g", "zeno_arc"):
-            if getattr(self, name) <= 0:
-                raise ValueError(f"{name}={getattr(self, name)!r} must be > 0")
-        if self.mu < 0:
-            raise ValueError(f"mu={self.mu!r} must be >= 0")
-        if self.mu_kinetic is not None and not (isinstance(self.mu_kinetic, (int, float, np.floating))
-                                                and 0 <= self.mu_kinetic <= self.mu):
-            raise ValueError(f"mu_kinetic={self.mu_kinetic!r} must be in [0, mu={self.mu}] (kinetic friction "
-                             "cannot exceed static friction)")
-        if not abs(self.theta0) < math.pi / 2:
-            raise ValueError(f"theta0={self.theta0!r} must be in (-pi/2, pi/2) [rad]")
+        if not self._check_fields():
+            return
         if self.friction_kinetic >= PAINLEVE_FRICTION:
             warnings.warn(f"mu_kinetic={self.friction_kinetic} >= 4/3: slide-rocking may meet Painlevé's paradox "
                           "(no consistent contact force, D <= 0), where a run stops with an error naming the time",
                           PainleveWarning, stacklevel=3)
 
     # ---- what the block is ----------------------------------------------------------
-    @property
-    def alpha(self):
-        """Slenderness atan(b/h) [rad]."""
-        return math.atan2(self.b, self.h)
-
-    @property
-    def R(self):
-        """Distance from a base corner to the centroid [m]."""
-        return math.hypot(self.b, self.h)
-
-    @property
-    def slenderness_ratio(self):
-        """lambda = b/h = tan(alpha) [-]: |a_x|/g_e that tips the block from rest."""
-        return self.b / self.h
-
     @property
     def frequency(self):
         """p = sqrt(3 g / (4 R)) [rad/s]."""
@@ -143,11 +137,6 @@ class FreeStandingBlock(FreeStandingDerivatives):
     def r(self):
         """Housner's restitution 1 - 3/2 sin² alpha [-]: a sticking impact's theta'+/theta'-."""
         return 1.0 - 1.5 * math.sin(self.alpha) ** 2
-
-    @property
-    def friction_kinetic(self):
-        """Kinetic friction coefficient [-] (mu unless given)."""
-        return self.mu if self.mu_kinetic is None else self.mu_kinetic
 
     @property
     def initial_mode(self):
@@ -160,35 +149,6 @@ class FreeStandingBlock(FreeStandingDerivatives):
         y = np.zeros(len(self.state_names))
         y[Z] = self.h
         return y
-
-    def replace(self, **changes) -> "FreeStandingBlock":
-        """A copy with some parameters changed (validated again)."""
-        return dataclasses.replace(self, **changes)
-
-    # ---- the motion -----------------------------------------------------------------
-    def check_motion(self, motion) -> None:
-        """An excitation (a_x) or a :class:`~blockdae.BaseMotion` with x and z components."""
-        if isinstance(motion, BaseMotion):
-            if motion.y is not None:
-                raise ValueError("a free-standing block moves in the x-z plane: its BaseMotion takes no y component")
-            return
-        if not isinstance(motion, AbstractExcitation):
-            raise TypeError(f"motion must be an excitation (Harmonic, Record, ...) or a BaseMotion, "
-                            f"got {type(motion).__name__}")
-        super().check_motion(motion)
-
-    def excitation_pieces(self, excitation, t_end):
-        """(a_x, a_z) pieces on one partition of [0, t_end] [s]."""
-        if not isinstance(excitation, BaseMotion):
-            ax = excitation.pieces(t_end)
-            return ax, Pieces.linear(ax.t0, ax.h, 0.0, 0.0)
-        ax, _, az = excitation.aligned_pieces(t_end)
-        return ax, az
-
-    def _base(self, t, excitation):
-        """(a_x [m/s²], g_e [m/s²], a_x' [m/s³], a_z' [m/s³]) at ``t`` [s]."""
-        return (excitation.component(0, t), self.g + excitation.component(1, t),
-                excitation.component_rate(0, t), excitation.component_rate(1, t))
 
     # ---- the laws in this state layout ------------------------------------------------
     def _geometry(self, xp):

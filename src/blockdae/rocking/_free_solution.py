@@ -79,15 +79,16 @@ class FreeStandingSolution(BlockSolution):
         events: located events (:class:`FreeEvent`), in time order.
     """
 
-    def event_table(self, events=None) -> str:
-        """``events`` (default: all) as an aligned text table: time [s], kind, the mode after
-        and the state before the event in its units (theta' also after it)."""
-        events = self.events if events is None else events
+    figure_name = "free_standing_figure"
+
+    def event_columns(self) -> tuple:
+        """t [s], kind, the mode after, the state before the event in its units, theta'
+        after it [rad/s]."""
         names = state_labels(self.block, 6)[:6] + ["theta_rate after [rad/s]"]
-        lines = [f"{'t [s]':>14}  {'kind':<12}  {'after':<18}  " + "  ".join(f"{n:>24}" for n in names)]
-        lines += [f"{e.t:14.9f}  {e.kind:<12}  {e.mode_after.name:<18}  "
-                  + "  ".join(f"{v:24.12e}" for v in (*e.state, e.state_after[5])) for e in events]
-        return "\n".join(lines)
+        state = [(name, 24, ".12e", lambda e, i=i: e.state[i]) for i, name in enumerate(names[:6])]
+        return (("t [s]", 14, ".9f", lambda e: e.t), ("kind", 12, "s", lambda e: e.kind),
+                ("after", 18, "s", lambda e: e.mode_after.name), *state,
+                (names[6], 24, ".12e", lambda e: e.state_after[5]))
 
     def to_dataframe(self):
         """The events as a pandas DataFrame: kind, t_s [s], mode_before, mode_after, the
@@ -99,23 +100,6 @@ class FreeStandingSolution(BlockSolution):
         rows = [(e.kind, e.t, e.mode_before.name, e.mode_after.name, *e.state, *e.state_after) for e in self.events]
         return pd.DataFrame(rows, columns=["kind", "t_s", "mode_before", "mode_after", *names,
                                            *(f"{name}_after" for name in names)])
-
-    @property
-    def impacts(self) -> tuple:
-        """The corner impacts (each with the velocities before and after)."""
-        return self.events_of("impact")
-
-    @property
-    def rest_time(self) -> float:
-        """Time [s] of the last rest after rocking (a Zeno accumulation point); nan if none."""
-        rests = self.events_of("rest")
-        return rests[-1].t if rests else float("nan")
-
-    @property
-    def time_beyond_alpha(self) -> float:
-        """First time |theta| passed alpha while rocking [s] (gravity no longer restores); nan if never."""
-        events = self.events_of("beyond_alpha")
-        return events[0].t if events else float("nan")
 
     @property
     def max_theta_over_alpha(self) -> float:
@@ -131,14 +115,6 @@ class FreeStandingSolution(BlockSolution):
     def final_slip(self) -> float:
         """The base's slip at t_end [m] (:func:`base_slip`)."""
         return float(self.slip[-1])
-
-    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
-        """theta [rad], the slip [m], the corners' heights [m] and a_x [m/s²] against t [s],
-        shaded by the motion (slide, rock, slide-rock, flight; ``excitation`` and ``block``
-        unused); a matplotlib Figure (:func:`._figures.free_standing_figure`)."""
-        from ._figures import free_standing_figure
-
-        return free_standing_figure(self, n_points=n_points, title=title)
 
     def energy_balance(self) -> dict:
         """The energy balance per unit mass at the knots away from events (section 9 of the

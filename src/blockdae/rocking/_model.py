@@ -29,21 +29,19 @@ import math
 
 import numpy as np
 
-from ..core import LazyEngine, set_batch_fields, set_real_fields
-from ..core.contract import KNOTS_PER_RADIAN, SCALAR, BatchedModel, DifferentiableModel, scale_factor_units
-from ..excitation import AbstractExcitation, BaseMotion, Pieces
+from ..core import LazyEngine
+from ..core.contract import KNOTS_PER_RADIAN, SCALAR, DifferentiableModel, scale_factor_units
 from ..sliding import relative_acceleration, rest_mode, slip_constant, stop_mode
 from ..units import STANDARD_GRAVITY
 from . import _rules as rules
+from ._block import BlockBase
 from ._modes import RockingMode, event_kind, rock_mode, side
-from ._solution import RockingEvent, RockingSolution
+from ._solution import ContactLimit, RockingEvent, RockingSolution
 
 _Q, _RATE = range(2)
 _OUT, _IN, _BEYOND, _SETTLE, _OVERTURNED = 2, 3, 4, 5, 6
 #: a rotation rate below RATE_FLOOR p alpha [rad/s] is no contradiction of its mode
 RATE_FLOOR = 1e-10
-#: the parameters a batch may give as 1-D arrays, one value per parameter set
-BATCH_FIELDS = ("b", "h", "mu", "mu_kinetic", "restitution", "p", "theta0")
 
 
 def housner_restitution(alpha: float) -> float:
@@ -53,8 +51,9 @@ def housner_restitution(alpha: float) -> float:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class RockingBlock(DifferentiableModel, BatchedModel):
-    """A free-standing rectangular block that rests, slides, rocks or overturns.
+class RockingBlock(DifferentiableModel, BlockBase):
+    """Housner's free-standing rectangular block, whose rocking pivot holds: it rests,
+    slides, rocks or overturns (``FreeStandingBlock(..., contact="housner")``).
 
     Args:
         b: half-width [m], > 0.
@@ -72,8 +71,9 @@ class RockingBlock(DifferentiableModel, BatchedModel):
         zeno_arc: the arc duration [s] below which the remaining impacts are summed.
         strict: stop with an error where the contact force leaves its limits (N <= 0: the
             pivot would lift, |F| > mu N: it would slip), located as a guard; otherwise
-            Housner's model goes on and :func:`blockdae.simulate` warns of them (a
-            ``ContactWarning``; ``solution.contact_events`` lists them).
+            Housner's model goes on through them and ``solution.contact_events`` lists
+            each, located (:class:`ContactLimit`: where the complete block would lift or
+            slip).
         g: gravitational acceleration [m/s²].
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x
@@ -104,6 +104,12 @@ class RockingBlock(DifferentiableModel, BatchedModel):
     strict: bool = False
     g: float = STANDARD_GRAVITY
 
+    #: the parameters a batch may give as 1-D arrays, one value per parameter set
+    batch_fields = ("b", "h", "mu", "mu_kinetic", "restitution", "p", "theta0")
+    optional_fields = ("mu_kinetic", "restitution", "p")
+    #: Housner's contact: the pivot holds (:class:`FreeStandingBlock`'s ``contact`` option)
+    contact = "housner"
+
     modes = RockingMode
     instant_modes = (RockingMode.RELEASE,)  # the release from theta0, left at once
     component_names = ("x", "z")
@@ -113,40 +119,17 @@ class RockingBlock(DifferentiableModel, BatchedModel):
     _exact = {**_compiled, "exact": LazyEngine("blockdae.rocking._engine", "LinearisedEngine")}
 
     def __post_init__(self):
-        if any(np.ndim(getattr(self, name)) for name in BATCH_FIELDS):
-            return _check_batch(self)
-        set_real_fields(self, ("b", "h", "mu", "theta0", "zeno_arc", "g"))
-        for name in ("b", "h", "g", "zeno_arc"):
-            if getattr(self, name) <= 0:
-                raise ValueError(f"{name}={getattr(self, name)!r} must be > 0")
-        if self.mu < 0:
-            raise ValueError(f"mu={self.mu!r} must be >= 0")
-        for name in ("mu_kinetic", "restitution", "p"):
-            if getattr(self, name) is not None:
-                set_real_fields(self, (name,))
-        if self.mu_kinetic is not None and not 0 <= self.mu_kinetic <= self.mu:
-            raise ValueError(f"mu_kinetic={self.mu_kinetic!r} must be in [0, mu={self.mu}]")
+        if not self._check_fields():
+            return
         if self.restitution is not None and not 0 <= self.restitution <= 1:
             raise ValueError(f"restitution={self.restitution!r} must be in [0, 1]")
         if self.p is not None and self.p <= 0:
             raise ValueError(f"p={self.p!r} must be > 0 [rad/s]")
-        if not abs(self.theta0) < math.pi / 2:
-            raise ValueError(f"theta0={self.theta0!r} must be in (-pi/2, pi/2) [rad]")
         if self.theta0 != 0 and self.slides:
             raise ValueError(f"theta0={self.theta0!r}: a block with mu={self.mu} below its rocking threshold "
                              f"{self.rocking_threshold:.6g} slides and never rocks")
 
     # ---- what the block is ----------------------------------------------------------
-    @property
-    def alpha(self):
-        """Slenderness atan(b/h) [rad]."""
-        return math.atan2(self.b, self.h)
-
-    @property
-    def R(self):
-        """Distance from a base corner to the centre of mass [m]."""
-        return math.hypot(self.b, self.h)
-
     @property
     def frequency(self):
         """p [rad/s]: the one given, else sqrt(3 g / (4 R)) (a uniform block)."""
@@ -156,11 +139,6 @@ class RockingBlock(DifferentiableModel, BatchedModel):
     def r(self):
         """Restitution [-]: the one given, else Housner's 1 - 3/2 sin² alpha."""
         return self.restitution if self.restitution is not None else housner_restitution(self.alpha)
-
-    @property
-    def friction_kinetic(self):
-        """Kinetic friction coefficient [-] (mu unless given)."""
-        return self.mu if self.mu_kinetic is None else self.mu_kinetic
 
     @property
     def rocking_threshold(self):
@@ -223,52 +201,19 @@ class RockingBlock(DifferentiableModel, BatchedModel):
         flows through that map (the initial state is taken as independent of the parameters)."""
         return RockingMode.RELEASE if self.theta0 != 0 else RockingMode.REST
 
-    def replace(self, **changes) -> "RockingBlock":
-        """A copy with some parameters changed (validated again)."""
-        return dataclasses.replace(self, **changes)
-
     # ---- a batch of parameter sets ----------------------------------------------------
-    @property
-    def batch_shape(self) -> tuple[int, ...]:
-        """() for one parameter set, (n,) for a batch of n."""
-        return self.__dict__.get("_batch_shape", ())
-
-    def item(self, index: int) -> "RockingBlock":
-        """Parameter set ``index`` of a batch, as a block of its own (the parameters given
-        as numbers as they were given)."""
-        return dataclasses.replace(self, **{name: float(getattr(self, name)[index]) for name in BATCH_FIELDS
-                                             if isinstance(getattr(self, name), np.ndarray)})
-
-    parameter_labels = {"b": "half-width b [m]", "h": "half-height h [m]", "mu": "static friction coefficient mu [-]",
-                        "mu_kinetic": "kinetic friction coefficient [-]", "restitution": "restitution r [-]",
-                        "p": "frequency parameter p [rad/s]", "theta0": "initial tilt theta0 [rad]"}
-
-    def batch_parameters(self) -> dict:
-        """The grid: b, h [m], mu [-], and mu_kinetic, restitution [-], p [rad/s] where
-        given, theta0 [rad], each of shape ``batch_shape``."""
-        return {name: np.broadcast_to(np.asarray(getattr(self, name), dtype=float), self.batch_shape)
-                for name in BATCH_FIELDS if getattr(self, name) is not None}
-
-    # ---- the motion -----------------------------------------------------------------
-    def check_motion(self, motion) -> None:
-        """An excitation (a_x) or a :class:`~blockdae.BaseMotion` with x and z components."""
-        if isinstance(motion, BaseMotion):
-            if motion.y is not None:
-                raise ValueError("a rocking block moves in the x-z plane: its BaseMotion takes no y component")
-            return
-        if not isinstance(motion, AbstractExcitation):
-            raise TypeError(f"motion must be an excitation (Harmonic, Record, ...) or a BaseMotion, "
-                            f"got {type(motion).__name__}")
-        super().check_motion(motion)
-
-    def excitation_pieces(self, excitation, t_end):
-        """(a_x, a_z) pieces on one partition of [0, t_end] [s] (a_x's own, a_z = 0, for
-        a horizontal excitation alone)."""
-        if not isinstance(excitation, BaseMotion):
-            ax = excitation.pieces(t_end)
-            return ax, Pieces.linear(ax.t0, ax.h, 0.0, 0.0)
-        ax, _, az = excitation.aligned_pieces(t_end)
-        return ax, az
+    def _check_batch(self) -> None:
+        """A batch (:meth:`BlockBase._check_batch`) whose sets all rock or all slide: one
+        that mixes them is refused (ValueError naming mu and the sets of each)."""
+        super()._check_batch()
+        slides = [self.item(j).slides for j in range(self.batch_shape[0])]
+        if any(slides) and not all(slides):
+            sliding, rocking = ([j for j, s in enumerate(slides) if s == value] for value in (True, False))
+            threshold = "alpha = atan(b/h)" if self.linearised else "b/h"
+            raise ValueError(f"mu: parameter sets {sliding} have mu below their rocking threshold {threshold} (they "
+                             f"slide: u [m]) and sets {rocking} at or above it (they rock: theta [rad]); a batch's "
+                             "displacements share one unit: run the sliding and the rocking sets as two batches")
+        object.__setattr__(self, "_slides", slides[0])
 
     # ---- the physics (xp: numpy, jax.numpy or SCALAR) ---------------------------------
     def _geometry(self, xp):
@@ -278,11 +223,6 @@ class RockingBlock(DifferentiableModel, BatchedModel):
         p2 = self.p * self.p if self.p is not None else 0.75 * self.g / radius
         r = self.restitution if self.restitution is not None else 1.0 - 1.5 * xp.sin(alpha) ** 2
         return alpha, radius, p2, r
-
-    def _base(self, t, excitation):
-        """(a_x [m/s²], g_e = g + a_z [m/s²], a_x' [m/s³], a_z' [m/s³]) at ``t``."""
-        return (excitation.component(0, t), self.g + excitation.component(1, t),
-                excitation.component_rate(0, t), excitation.component_rate(1, t))
 
     def angular_acceleration(self, s, theta, t, excitation, xp=np):
         """theta'' [rad/s²] rocking about the corner on side ``s`` at ``theta`` [rad]."""
@@ -392,10 +332,8 @@ class RockingBlock(DifferentiableModel, BatchedModel):
 
     def _contact_error(self, s, t, y, excitation, lifts):
         force, normal = self.contact_force(s, y[_Q], y[_RATE], t, excitation, SCALAR)
-        what = "N <= 0: the pivot would lift" if lifts else "|F| >= mu N: the pivot would slip"
-        return ValueError(f"at t = {t:.9f} s the contact force leaves its limits ({what}; theta = {y[_Q]:+.6g} rad, "
-                          f"theta' = {y[_RATE]:+.6g} rad/s, F = {force:+.6g} m/s², N = {normal:+.6g} m/s², "
-                          f"mu = {self.mu}); strict=True stops here")
+        limit = ContactLimit(t, "lift_limit" if lifts else "slip_limit", y[_Q], y[_RATE], force, normal)
+        return ValueError(f"at t = {t:.9f} s {limit.describe(self.mu)}; strict=True stops here")
 
     def _flight(self, t, excitation):
         ax, ge, _, _ = self._base(t, excitation)
@@ -563,14 +501,12 @@ class RockingBlock(DifferentiableModel, BatchedModel):
         return RockingSolution(t=t, state=y, mode=mode, events=events, backend=backend, dense=dense, stats=stats)
 
     def check_solution(self, solution):
-        """A :class:`ContactWarning` (an error with ``strict``) naming the time and the
-        forces where the contact force left its limits while the block rocked
-        (:meth:`RockingSolution.check_contact`); for a batch, of each set's run."""
-        if self.batch_shape:  # a BatchSolution keeps each set's run (its solve_one)
-            for j in range(self.batch_shape[0]):
-                solution.solve_one(j).check_contact()
-            return
-        solution.check_contact()
+        """Locate where the contact force left its limits while the block rocked
+        (``solution.contact_events``, kept on the solution; for a batch, on each set's
+        run); with ``strict``, a ValueError naming the first (:meth:`RockingSolution.check_contact`)."""
+        runs = [solution.solve_one(j) for j in range(self.batch_shape[0])] if self.batch_shape else [solution]
+        for run in runs:  # a BatchSolution keeps each set's run (its solve_one)
+            run.check_contact()
 
     # ---- parameters, for the JAX twin and derivatives --------------------------------
     def parameters(self):
@@ -612,25 +548,3 @@ class RockingBlock(DifferentiableModel, BatchedModel):
 
         return max_theta_jacobian(self, solution, final, events)
 
-
-def _check_batch(model) -> None:
-    """A batch: the array fields of ``model`` set to read-only 1-D arrays of one size [their
-    units], each parameter set checked as a block of its own (ValueError naming the set);
-    a batch whose sets do not all rock or all slide is refused (ValueError naming mu and the
-    sets of each)."""
-    shape = set_batch_fields(model, tuple(name for name in BATCH_FIELDS if getattr(model, name) is not None))
-    set_real_fields(model, ("zeno_arc", "g"))
-    object.__setattr__(model, "_batch_shape", shape)
-    slides = []
-    for j in range(shape[0]):
-        try:
-            slides.append(model.item(j).slides)
-        except ValueError as error:
-            raise ValueError(f"parameter set {j}: {error}") from None
-    if any(slides) and not all(slides):
-        sliding, rocking = ([j for j, s in enumerate(slides) if s == value] for value in (True, False))
-        threshold = "alpha = atan(b/h)" if model.linearised else "b/h"
-        raise ValueError(f"mu: parameter sets {sliding} have mu below their rocking threshold {threshold} (they slide: "
-                         f"u [m]) and sets {rocking} at or above it (they rock: theta [rad]); a batch's displacements "
-                         "share one unit: run the sliding and the rocking sets as two batches")
-    object.__setattr__(model, "_slides", slides[0])

@@ -2,16 +2,43 @@
 
 import dataclasses
 import functools
-import warnings
+import typing
 
 import numpy as np
 
 from ..core import AbstractEvent, DriverSolution, compact_repr
-from ..excitation import outside_blockdae
 
 
-class ContactWarning(UserWarning):
-    """The contact force of a rocking block left its limits (N <= 0 or |F| > mu N)."""
+class ContactLimit(typing.NamedTuple):
+    """Where the contact force of Housner's rocking block left its limits: there the
+    complete block (:class:`FreeStandingBlock`) would slip or lift, while Housner's keeps
+    its pivot.
+
+    Attributes:
+        t: time [s], located on the dense output.
+        kind: "lift_limit" (N fell to 0: the pivot would lift) or "slip_limit" (|F|
+            reached mu N: it would slip).
+        theta: the rotation [rad]; theta_rate: its rate [rad/s].
+        force, normal: the contact force's F and N per unit mass [m/s²].
+    """
+
+    t: float
+    kind: str
+    theta: float
+    theta_rate: float
+    force: float
+    normal: float
+
+    def __str__(self):
+        return f"at t = {self.t:.9f} s {self.describe()}"
+
+    def describe(self, mu=None, under="") -> str:
+        """"the contact force leaves its limits (what, theta, theta', F, N[, mu])", after
+        the motion's name ``under``."""
+        what = "N <= 0: the pivot would lift" if self.kind == "lift_limit" else "|F| >= mu N: the pivot would slip"
+        friction = "" if mu is None else f", mu = {mu}"
+        return (f"{under}the contact force leaves its limits ({what}; theta = {self.theta:+.6g} rad, theta' = "
+                f"{self.theta_rate:+.6g} rad/s, F = {self.force:+.6g} m/s², N = {self.normal:+.6g} m/s²{friction})")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -41,7 +68,9 @@ class RockingEvent(AbstractEvent):
 @dataclasses.dataclass(frozen=True, eq=False)
 class BlockSolution(DriverSolution):
     """What the solutions of a free-standing block share: their events by kind, the
-    impacts' times and the overturn (each subclass says what its ``impacts`` are)."""
+    impacts, rest and overturn, the figure and the event table (each subclass names its
+    figure, :attr:`figure_name`, and its table's columns, ``event_columns()``: (header
+    with its unit, width, format, the value of an event) each)."""
 
     def __repr__(self):
         return compact_repr(self)
@@ -56,6 +85,23 @@ class BlockSolution(DriverSolution):
         return np.array([e.t for e in self.impacts])
 
     @property
+    def impacts(self) -> tuple:
+        """The corner impacts located one by one (each with the rates before and after)."""
+        return self.events_of("impact")
+
+    @property
+    def rest_time(self) -> float:
+        """Time [s] of the last rest after rocking (a Zeno accumulation point); nan if none."""
+        rests = self.events_of("rest")
+        return rests[-1].t if rests else float("nan")
+
+    @property
+    def time_beyond_alpha(self) -> float:
+        """First time |theta| passed alpha while rocking [s] (gravity no longer restores); nan if never."""
+        events = self.events_of("beyond_alpha")
+        return events[0].t if events else float("nan")
+
+    @property
     def overturned(self) -> bool:
         """Whether the block overturned."""
         return bool(self.events_of("overturn"))
@@ -65,6 +111,25 @@ class BlockSolution(DriverSolution):
         """Time it reached |theta| = pi/2 [s]; nan if it did not."""
         events = self.events_of("overturn")
         return events[0].t if events else float("nan")
+
+    #: the name of the figure of :mod:`._figures` that draws this solution
+    figure_name: typing.ClassVar[str]
+
+    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
+        """The run against t [s] over a_x [m/s²] (``excitation`` and ``block`` unused): a
+        matplotlib Figure (the figure :attr:`figure_name` of :mod:`._figures`)."""
+        from . import _figures
+
+        return getattr(_figures, self.figure_name)(self, n_points=n_points, title=title)
+
+    def event_table(self, events=None) -> str:
+        """``events`` (default: all) as an aligned text table, a column a quantity with its
+        unit (``event_columns()``)."""
+        columns = self.event_columns()
+        lines = ["  ".join(f"{header:{'<' if 's' in spec else '>'}{width}}" for header, width, spec, _ in columns)]
+        lines += ["  ".join(f"{value(e):{width}{spec}}" for _, width, spec, value in columns)
+                  for e in (self.events if events is None else events)]
+        return "\n".join(lines)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -81,28 +146,11 @@ class RockingSolution(BlockSolution):
     """
 
     @property
-    def impacts(self) -> tuple:
-        """The impacts located one by one (each with theta' before and after [rad/s])."""
-        return self.events_of("impact")
-
-    @property
-    def rest_time(self) -> float:
-        """Time [s] of the last rest after rocking (the Zeno accumulation point); nan if none."""
-        rests = self.events_of("rest")
-        return rests[-1].t if rests else float("nan")
-
-    @property
     def zeno_tail(self) -> float:
         """Duration [s] of the last summed tail of impacts (rest time minus the last
         located impact); nan if none."""
         zeno, rests = self.events_of("zeno"), self.events_of("rest")
         return rests[-1].t - zeno[-1].t if zeno and rests else float("nan")
-
-    @property
-    def time_beyond_alpha(self) -> float:
-        """First time |theta| passed alpha [s] (gravity no longer restores); nan if never."""
-        events = self.events_of("beyond_alpha")
-        return events[0].t if events else float("nan")
 
     @property
     def rocks(self) -> bool:
@@ -120,54 +168,43 @@ class RockingSolution(BlockSolution):
 
     @functools.cached_property
     def contact_events(self) -> tuple:
-        """Where the contact force left its limits while the block rocked: rows (t [s],
-        kind, theta [rad], theta' [rad/s], F [m/s²], N [m/s²]), kind "lift_limit" (N fell
-        to 0: the pivot would lift) or "slip_limit" (|F| reached mu N: it would slip),
-        located on the dense output; Housner's model goes on through them. Empty for a
-        sliding block."""
+        """Where Housner's assumption broke: each time the contact force left its limits
+        while the block rocked (:class:`ContactLimit`: t [s], kind "lift_limit" or
+        "slip_limit", theta [rad], theta' [rad/s], F and N [m/s²]), in time order, located
+        on the dense output; Housner's model goes on through them (the complete block would
+        lift or slip there). Empty for a sliding block."""
         from ._contact import locate_contact_events
 
         if self.block is None or self.block.slides:
             return ()
-        return tuple(locate_contact_events(self))
+        return tuple(ContactLimit(*row) for row in locate_contact_events(self))
+
+    @property
+    def contact_holds(self) -> bool:
+        """Whether the contact force stayed within its limits all run (no
+        :attr:`contact_events`): Housner's assumption held."""
+        return not self.contact_events
 
     def check_contact(self, strict=None) -> tuple:
-        """:attr:`contact_events`, with a :class:`ContactWarning` naming the first of each
-        kind (its time, theta, theta', F and N) and how many there are, or a ValueError with
-        ``strict`` (None: the block's own ``strict``). :func:`blockdae.simulate` calls it
-        after every run."""
+        """:attr:`contact_events`, located (and kept); with ``strict`` (None: the block's
+        own) where there are any, the ValueError that ``strict=True`` raises, naming the
+        first (its time, theta, theta', F and N) and how many there are.
+        :func:`blockdae.simulate` calls it after every run."""
         events = self.contact_events
-        strict = self.block.strict if strict is None else strict
-        under = f" under {self.motion.name}" if getattr(self.motion, "name", None) else ""
-        for kind in ("lift_limit", "slip_limit"):
-            rows = [row for row in events if row[1] == kind]
-            if not rows:
-                continue
-            t, _, theta, rate, force, normal = rows[0]
-            what = "N <= 0: the pivot would lift" if kind == "lift_limit" else "|F| >= mu N: the pivot would slip"
-            more = f" (the first of {len(rows)} times; solution.contact_events lists them)" if len(rows) > 1 else ""
-            message = (f"at t = {t:.9f} s{under} the contact force leaves its limits ({what}; theta = {theta:+.6g} "
-                       f"rad, theta' = {rate:+.6g} rad/s, F = {force:+.6g} m/s², N = {normal:+.6g} m/s², mu = "
-                       f"{self.block.mu}){more}; Housner's model keeps its pivot")
-            if strict:
-                raise ValueError(message)
-            warnings.warn(message, ContactWarning, stacklevel=outside_blockdae())
+        if events and (self.block.strict if strict is None else strict):
+            under = f"under {self.motion.name} " if getattr(self.motion, "name", None) else ""
+            more = f" (the first of {len(events)}: solution.contact_events lists them)" if len(events) > 1 else ""
+            raise ValueError(f"at t = {events[0].t:.9f} s {events[0].describe(self.block.mu, under)}{more}; "
+                             "strict=True stops here")
         return events
 
-    def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
-        """theta / alpha (or u) against time with the impacts, over a_x (``excitation``
-        and ``block`` unused); a matplotlib Figure."""
-        from ._figures import rocking_figure
+    figure_name = "rocking_figure"
 
-        return rocking_figure(self, n_points=n_points, title=title)
-
-    def event_table(self, events=None) -> str:
-        """``events`` (default: all) as an aligned text table with units (q: theta [rad]
-        or u [m]; rates in rad/s or m/s)."""
-        lines = [f"{'t [s]':>14}  {'kind':<12}  {'q [rad|m]':>13}  {'rate [1/s|m/s]':>14}  {'after':>13}"]
-        lines += [f"{e.t:14.9f}  {e.kind:<12}  {e.q:13.6e}  {e.rate:14.6e}  {e.rate_after:13.6e}"
-                  for e in (self.events if events is None else events)]
-        return "\n".join(lines)
+    def event_columns(self) -> tuple:
+        """t [s], kind, q (theta [rad] or u [m]), its rate before and after [rad/s or m/s]."""
+        return (("t [s]", 14, ".9f", lambda e: e.t), ("kind", 12, "s", lambda e: e.kind),
+                ("q [rad|m]", 13, ".6e", lambda e: e.q), ("rate [1/s|m/s]", 14, ".6e", lambda e: e.rate),
+                ("after", 13, ".6e", lambda e: e.rate_after))
 
     def to_dataframe(self):
         """The events as a pandas DataFrame: kind, t_s [s], q (theta [rad] or u [m]),

@@ -1,7 +1,8 @@
 """What users run with a free-standing block: overturning spectra under one-sine and
 one-cosine pulses (Zhang & Makris 2001), the rest/slide/rock map, overturning fragility
-over a record set; for Housner's block (:class:`RockingBlock`) or the complete one
-(:class:`FreeStandingBlock`, whose pivot may slip and lift)."""
+over a record set; for the complete block (:class:`FreeStandingBlock`, whose pivot may
+slip and lift) or Housner's (``contact="housner"``: its pivot holds, as the literature's
+spectra assume)."""
 
 import dataclasses
 import math
@@ -10,7 +11,6 @@ import numpy as np
 
 from ..core import Horizon, available, make_backend, progress_bar
 from ..excitation import Record
-from ._free_model import FreeStandingBlock
 from ._modes import side
 
 #: samples per pulse period of a sampled pulse: linear interpolation keeps its peak and
@@ -59,17 +59,17 @@ def overturns_freely(block, mode, theta, rate) -> bool:
 def overturns(block, motion, backend=None, **options) -> bool:
     """Whether ``motion`` overturns ``block``.
 
-    A :class:`RockingBlock` runs to the motion's end, then is decided by the free block's
-    energy (no impact can follow a rotation past alpha). Housner's pivot holds: the
-    contact-force limits are not checked (no ContactWarning; ``strict`` still stops at
-    them), as the literature's spectra assume. A :class:`FreeStandingBlock` runs until it
+    Housner's block (``contact="housner"``) runs to the motion's end, then is decided by
+    the free block's energy (no impact can follow a rotation past alpha). Its pivot holds:
+    the contact-force limits are not located (``strict`` still stops at them), as the
+    literature's spectra assume. The complete block runs until it
     rests or overturns after the motion (its pivot may slip or lift on the way)."""
     block.check_motion(motion)
     solver = make_backend(block.default_backend if backend is None else backend, **options)
     if not solver.runs(block):
         raise ValueError(f"backend={solver.name!r} does not run this {type(block).__name__}; choose one of "
                          f"{list(available(block))}")
-    if isinstance(block, FreeStandingBlock):
+    if block.contact == "complete":
         return solver.solve(block, motion, Horizon.resolve(motion, None)).overturned
     solution = solver.solve(block, motion, Horizon.resolve(motion, motion.duration))
     if solution.overturned:
@@ -80,7 +80,7 @@ def overturns(block, motion, backend=None, **options) -> bool:
 def rocking_threshold(block) -> float:
     """|a_x| / g that tips ``block`` from rest where its pivot holds [-]: b/h (alpha for the
     linearised block)."""
-    return block.slenderness_ratio if isinstance(block, FreeStandingBlock) else block.rocking_threshold
+    return block.rocking_threshold if block.contact == "housner" else block.slenderness_ratio
 
 
 def overturning_amplitude(block, shape, frequency_ratio, *, max_factor=30.0, steps=30, rtol=1e-4, backend=None,
@@ -148,9 +148,8 @@ class OverturningSpectrum:
 
 def overturning_spectrum(block, frequency_ratios, shape="sine", **search) -> OverturningSpectrum:
     """:func:`overturning_amplitude` at each of ``frequency_ratios`` (omega_p / p [-]) for
-    ``block``: Housner's (:class:`RockingBlock`) or the complete one
-    (:class:`FreeStandingBlock`: its pivot may slip and lift, its impacts are plastic with
-    friction)."""
+    ``block``: the complete one (:class:`FreeStandingBlock`: its pivot may slip and lift,
+    its impacts are plastic with friction) or Housner's (``contact="housner"``)."""
     ratios = np.asarray(frequency_ratios, dtype=float)
     amplitudes = np.array([overturning_amplitude(block, shape, ratio, **search) for ratio in ratios])
     return OverturningSpectrum(ratios, amplitudes, shape, block)
@@ -202,8 +201,8 @@ class OverturningFragility:
 
 
 def overturning_fragility(block, records, pga, backend=None, *, progress=None, **options) -> OverturningFragility:
-    """Which of ``records`` overturn ``block`` (a :class:`RockingBlock` or a
-    :class:`FreeStandingBlock`, see :func:`overturns`) when each is scaled to a peak of each
+    """Which of ``records`` overturn ``block`` (a :class:`FreeStandingBlock`, complete or
+    Housner's: see :func:`overturns`) when each is scaled to a peak of each
     ``pga`` [g]; the fraction at each peak. ``progress``: a tqdm bar over the records on
     stderr; None: only when stderr is a terminal."""
     pga = np.atleast_1d(np.asarray(pga, dtype=float))
