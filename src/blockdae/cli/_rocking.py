@@ -18,7 +18,7 @@ from ..units import STANDARD_GRAVITY
 #: the backends that run a RockingBlock ("compiled": one that rocks; "exact": the linearised one)
 BACKENDS = ("cvode", "ida", "jax", "compiled", "exact")
 #: the backends that run the complete block (FreeStandingBlock)
-COMPLETE_BACKENDS = ("cvode", "ida", "jax")
+COMPLETE_BACKENDS = ("compiled", "cvode", "ida", "jax")
 #: the complete block's kinds of event (:class:`~blockdae.rocking.FreeEvent`), in the report's order
 EVENT_KINDS = ("release", "uplift", "slide", "slip", "lift", "stick", "reverse", "apex", "return", "beyond_alpha",
                "land", "chatter", "impact", "zeno", "rest", "overturn")
@@ -39,9 +39,9 @@ def add_rocking_parser(subparsers):
                    help="kinetic friction coefficient [-], at most --mu (complete block; default --mu)")
     p.add_argument("--contact", choices=("complete", "housner"), default=None,
                    help="complete: the block's corners may slip and lift, impacts are plastic with friction (backends "
-                        "cvode, ida, jax); housner: its pivot never slips or lifts, Housner's restitution (also "
-                        "compiled and exact). Default: complete, unless --linearised, --restitution or a backend only "
-                        "Housner's block runs (compiled, exact) asks for housner")
+                        "compiled, cvode, ida, jax); housner: its pivot never slips or lifts, Housner's restitution "
+                        "(also exact). Default: complete, unless --linearised, --restitution, --strict or --backend "
+                        "exact asks for housner")
     p.add_argument("--restitution", type=number("--restitution", lambda x: 0 <= x <= 1, "in [0, 1]"), default=None,
                    help="ratio of angular velocities through an impact [-] (housner; default Housner's 1 - 1.5 "
                         "sin² alpha)")
@@ -54,7 +54,7 @@ def add_rocking_parser(subparsers):
     p.add_argument("--t-end", type=positive("--t-end"), default=None,
                    help="final time [s] (default: until the block rests or overturns after the record)")
     p.add_argument("--backend", choices=BACKENDS, default=None,
-                   help="solver backend (default: cvode for the complete block; for Housner's block that rocks: "
+                   help="solver backend (default: compiled for the complete block; for Housner's block that rocks: "
                         "exact with --linearised, else compiled; cvode for one that slides)")
     p.add_argument("--strict", action="store_true",
                    help="housner: stop with an error where the contact force leaves its limits (N <= 0 or |F| > mu "
