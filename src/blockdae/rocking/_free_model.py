@@ -488,8 +488,24 @@ class FreeStandingBlock(FreeStandingDerivatives):
         if kind_of(after) == OUT and self._settles(c, t, y, excitation):
             return rock_mode(SETTLE, c)
         if kind_of(after) in SLIDE_ROCK_KINDS and self._chatters(c, slip_direction(after), y, ax, ge):
-            return FreeMode(slip_direction(after))
+            sigma = slip_direction(after)
+            if sigma * self.chatter_rate(sigma, y) > 0:
+                return FreeMode(sigma)
+            flat = self.mode_at_rest(t, excitation)  # the tail's friction stops the face
+            if kind_of(flat) in (0, 1):
+                return flat
         return after
+
+    def chatter_rate(self, sigma, y, xp=SCALAR):
+        """x' [m/s] with which the face slides on toward ``sigma`` from the impact (state
+        ``y`` after it) whose slide-rock's arcs, and all after them, are summed: x' + sigma mu_k z'.
+
+        Over the tail (duration T, the excitation frozen) the base's normal impulse is
+        g_e T - z' (z' of the centroid after the impact, 0 at its end) and friction's
+        -sigma mu_k times it, so x' ends at x' - a_x T - sigma mu_k (g_e T - z'): where a
+        slide from the impact's time arrives after T. Exact to O(T²) in the excitation's
+        rate and O(theta'²)."""
+        return y[X_RATE] + sigma * self.friction_kinetic * y[Z_RATE]
 
     def deceleration(self, s, t, excitation, xp=SCALAR):
         """-s theta'' [rad/s²] rocking on corner ``s`` at theta = 0: how fast an arc from the
@@ -632,6 +648,8 @@ class FreeStandingBlock(FreeStandingDerivatives):
             return self.to_pivot(s, y, slip, xp)
         if kind == OVERTURNED:
             return self._pivot_state(s, y, 0.0 * y[THETA] + s * 0.5 * math.pi, 0.0 * y[THETA], xp)
+        if kind_of(before) in (10, 11) and kind in (0, 1):  # a chatter's end: the tail summed
+            return self._flat_state(y, self.chatter_rate(side(after), y, xp) if kind == 1 else 0.0 * y[X], xp)
         if after == FreeMode.REST or (kind == 1 and kind_of(before) not in (0, 1)):
             return self._flat_state(y, 0.0 if after == FreeMode.REST else y[X_RATE], xp)
         return y
