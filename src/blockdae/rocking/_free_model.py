@@ -410,9 +410,10 @@ class FreeStandingBlock(FreeStandingDerivatives):
     def _next_mode(self, mode, guard_index, t, y, excitation, time_tol):
         kind, s = kind_of(mode), side(mode)
         ax, ge, ax_rate, az_rate = self._base(t, excitation)
+        if mode == FreeMode.REST or kind == SETTLE:
+            if ge <= 0 or guard_index == (2 if mode == FreeMode.REST else 3):
+                return self._flight()  # g_e at 0, or a jump below it that took the demand's limits along
         if mode == FreeMode.REST:
-            if guard_index == 2:
-                return self._flight()
             d = -1 if guard_index == 0 else 1
             # at the threshold |a_x| = min(mu, b/h) g_e: a slide, or (mu > b/h) a rock, whose
             # pivot holds there with the margin 4 g_e (1 + lambda²)(mu - lambda) of (S)
@@ -450,8 +451,6 @@ class FreeStandingBlock(FreeStandingDerivatives):
                 return mode
             return self._impact_mode(centroid)
         if kind == SETTLE:
-            if guard_index == 3:
-                return self._flight()
             return FreeMode.REST if guard_index == 0 else rock_mode(OUT, -1 if guard_index == 1 else 1)
         if mode == FreeMode.RELEASE:
             return self._on_corner(1 if self.theta0 > 0 else -1, y, ax, ge)
