@@ -133,3 +133,52 @@ def test_a_settling_block_lifts_off_when_the_base_falls_and_lands_flat(backend):
     assert lift.t == t_step and lift.state_after[2:] == (0.0, 0.0, 0.0, 0.0)
     assert abs(land.t - (t_step + d + d * (0.5 + math.sqrt(0.75)))) <= 1e-12
     assert land.via == FreeMode.LANDING_FLAT and land.mode_after == FreeMode.REST
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_block_that_lifts_off_beyond_alpha_overturns_in_flight(backend):
+    """Released from 0.3 rad > alpha on a sticking pivot (mu = 1), the block falls outward
+    by the energy integral theta'²/2 = p² [cos(alpha - theta0) - cos(alpha - theta)]
+    (closed form, 1e-10 rad/s); at 0.9 s the base drops at 2 g (g_e = -g): it lifts off and
+    flies, theta' constant, x' constant, z under +g, until |theta| = pi/2 at
+    0.9 + (pi/2 - theta)/theta' (closed forms: 1e-12 s, 1e-10 m)."""
+    block = FreeStandingBlock(b=0.25, h=1.0, mu=1.0, theta0=0.3)
+    motion = bd.BaseMotion(x=Steps([3.0], [0.0]), z=Steps([0.9, 3.0], [0.0, -2 * G]))
+    sol = run(block, motion, backend, t_end=3.0)
+    assert kinds(sol) == ["release", "lift", "overturn"]
+    lift, over = sol.events[1:]
+    assert lift.t == 0.9 and lift.mode_after == FreeMode.FLIGHT_POS
+    theta, rate = lift.state[2], lift.state[5]
+    p2, alpha = block.frequency**2, block.alpha
+    assert abs(rate - math.sqrt(2 * p2 * (math.cos(alpha - 0.3) - math.cos(alpha - theta)))) <= 1e-10
+    tau = (0.5 * math.pi - theta) / rate
+    assert abs(over.t - (0.9 + tau)) <= 1e-12 and over.mode_after == FreeMode.OVERTURNED_POS
+    assert abs(over.state[0] - (lift.state[0] + lift.state[3] * tau)) <= 1e-10
+    assert abs(over.state[1] - (lift.state[1] + lift.state[4] * tau + 0.5 * G * tau**2)) <= 1e-10
+    # the flight's state is its corner's, whose rates turn with theta: integrated at rtol 1e-12 (IDA: 5e-12 m/s)
+    assert abs(over.state[3] - lift.state[3]) <= 1e-11 and abs(over.state[5] - rate) <= 1e-11
+
+
+def test_painleves_paradox_met_inside_a_slide_rock_names_the_time_and_d():
+    """b/h = 3/2, mu_s = 1.7, mu_k = 1.6 (>= 4/3): a step -3 g for 0.1 s slide-rocks the
+    block onto +b; +6 g from 0.26 s throws it back, and it slide-rocks on -b slipping toward
+    -x while D = 1 + 3 sin phi (sin phi + mu_k cos phi) (phi = -alpha - theta) falls to 0:
+    an error naming the time and D at the located root. Its theta is D's closed-form root
+    (mpmath, to the 6 digits named); CVODE and IDA (rtol 1e-12) name the same time within
+    1e-10 s (measured 9e-12 s)."""
+    with pytest.warns(PainleveWarning):
+        block = FreeStandingBlock(b=1.5, h=1.0, mu=1.7, mu_kinetic=1.6)
+    motion = Steps([0.1, 0.26, 3.0], [-3 * G, 0.0, 6 * G])
+    times = []
+    for backend in BACKENDS:
+        with pytest.raises(ValueError, match=r"Painlevé's paradox: slide-rocking on the corner -1 b slipping toward "
+                                             r"-1 x.*D = -?\d\.\d+e-1\d (<= 0|falling to 0) at theta = ") as error:
+            bd.simulate(block, motion, t_end=0.6, backend=backend, rtol=1e-12)
+        message = str(error.value)
+        times.append(float(message.split("at t = ")[1].split(" s")[0]))
+        theta = float(message.split("at theta = ")[1].split(" rad")[0])
+        alpha = mpmath.atan(mpmath.mpf(1.5))
+        phi = mpmath.findroot(lambda p: 1 + 3 * mpmath.sin(p) * (mpmath.sin(p) + mpmath.mpf(1.6) * mpmath.cos(p)),
+                              -alpha - theta)
+        assert abs(theta - float(-alpha - phi)) <= 5e-7  # half a unit of the 6th digit named
+    assert abs(times[0] - times[1]) <= 1e-10 and times[0] > 0.26

@@ -402,9 +402,12 @@ class FreeStandingBlock(FreeStandingDerivatives):
         return after
 
     def _painleve(self, mode, t, y, denominator):
+        """The error of Painlevé's paradox at ``t`` [s] in ``mode``, state ``y``: D = ``denominator`` [-]
+        where a slide-rock is entered, or the located root where it falls to 0 inside one."""
+        where = "<= 0" if denominator <= 0 else "falling to 0"
         return ValueError(f"at t = {t:.12g} s Painlevé's paradox: slide-rocking on the corner {side(mode):+d} b "
                           f"slipping toward {slip_direction(mode):+d} x with mu_kinetic = {self.friction_kinetic} "
-                          f"has no consistent contact force (D = {denominator:.6g} <= 0 at theta = "
+                          f"has no consistent contact force (D = {denominator:.6g} {where} at theta = "
                           f"{y[THETA]:+.6g} rad, theta' = {y[THETA_RATE]:+.6g} rad/s); outside this model")
 
     def _next_mode(self, mode, guard_index, t, y, excitation, time_tol):
@@ -442,7 +445,7 @@ class FreeStandingBlock(FreeStandingDerivatives):
                 return self._flight(s)
             if guard_index == 3:
                 return self._on_corner(s, y, ax, ge)
-            raise self._painleve(mode, t, y, 0.0)
+            raise self._painleve(mode, t, y, self.slide_rock(s, slip_direction(mode), y, ax, ge)[0])
         if kind == 9:
             if guard_index == 2:
                 return rock_mode(OVERTURNED, 1 if y[THETA] > 0 else -1)
