@@ -182,3 +182,43 @@ def test_painleves_paradox_met_inside_a_slide_rock_names_the_time_and_d():
                               -alpha - theta)
         assert abs(theta - float(-alpha - phi)) <= 5e-7  # half a unit of the 6th digit named
     assert abs(times[0] - times[1]) <= 1e-10 and times[0] > 0.26
+
+
+class StillBase:
+    """The base at rest as the model's rules read an excitation: a_x = a_z = 0 [m/s²]."""
+
+    def component(self, index, t):
+        return 0.0
+
+    def component_rate(self, index, t):
+        return 0.0
+
+
+def test_a_face_that_lands_sliding_with_mu_k_above_b_over_h_tips_onto_its_leading_corner():
+    """b/h = 0.3 < mu_k = 0.92 < mu_s = 1.2, the base still: a slide-rock on +b falling back
+    (theta' = -1 rad/s) while its pivot slips forward (u' = 1.5 m/s) reaches theta = 0; the
+    corner -b's impact would drive +b down (the face lands: x'- = u' + h theta' = 0.5 m/s,
+    z'- = b theta' = -0.3 m/s, P_n = 0.3 m/s > |x'-| / mu_s is not enough to hold it), so
+    the face slides on with x'+ = x'- - mu_k P_n = 0.224 m/s (closed form). Flat, its
+    trailing corner would need N = (g/2)(1 - mu_k/lambda) < 0: it slide-rocks on its
+    leading corner +b from theta = 0, slipping at x'+, tipping (theta'' = -(3/R)(sin alpha -
+    mu_k cos alpha) N > 0, N = g / (cos² alpha (1 + 4 lambda² - 3 mu_k lambda)))."""
+    block, still, t = FreeStandingBlock(b=0.3, h=1.0, mu=1.2, mu_kinetic=0.92), StillBase(), 1.0
+    lam, alpha, R = 0.3, math.atan(0.3), math.hypot(0.3, 1.0)
+    state = block.initial_state()
+    falling = np.array(block.to_pivot(1, state, 1.5))
+    falling[5], falling[4] = -1.0, -0.3  # theta' [rad/s] and the centroid's z' = R sin(alpha) theta' [m/s]
+    via = block.mode_after_guard(FreeMode.SLIDE_ROCK_POS_POS, 0, t, falling, still)
+    assert via == FreeMode.LANDING_FLAT
+    landed = block.entry_state(FreeMode.SLIDE_ROCK_POS_POS, via, falling)
+    assert landed[3] == pytest.approx(0.5 - 0.92 * 0.3, abs=1e-15) and tuple(landed[4:6]) == (0.0, 0.0)
+    assert abs(landed[3]) > 0 and abs(0.5) > 1.2 * 0.3  # the face does not stick
+    after = block.mode_after_guard(via, 0, t, landed, still)
+    assert after == FreeMode.SLIDE_ROCK_POS_POS and 0.5 * G * (1 - 0.92 / lam) < 0
+    tipping = block.entry_state(via, after, landed)
+    assert tipping[2] == 0.0 and tipping[3] == pytest.approx(0.224, abs=1e-15)  # the pivot slips at x'+
+    _, normal, accel, _ = block.slide_rock(1, 1, tipping, 0.0, G)
+    expected = G / (math.cos(alpha) ** 2 * (1 + 4 * lam**2 - 3 * 0.92 * lam))
+    assert normal == pytest.approx(expected, rel=1e-14)
+    assert accel == pytest.approx(-3 / R * (math.sin(alpha) - 0.92 * math.cos(alpha)) * expected, rel=1e-13)
+    assert accel > 0

@@ -649,8 +649,8 @@ class FreeStandingBlock(FreeStandingDerivatives):
             settled = self._flat_state(y, 0.0, xp)
             return xp.stack([*(settled[i] for i in range(THETA_RATE)), y[THETA_RATE], settled[BASE_WORK],
                              settled[FRICTION_WORK]])
-        if kind in SLIDE_ROCK_KINDS:  # the pivot slips on, or starts to slip from rest relative to the base
-            slip = self.pivot_slip_rate(s, y, xp) if kind_of(before) == 11 else 0.0 * y[X]
+        if kind in SLIDE_ROCK_KINDS:  # slipping on through an impact or a face landing, or from rest
+            slip = self.pivot_slip_rate(s, y, xp) if kind_of(before) in (11, 12) else 0.0 * y[X]
             return self.to_pivot(s, y, slip, xp)
         if kind == OVERTURNED:
             return self._pivot_state(s, y, 0.0 * y[THETA] + s * 0.5 * math.pi, 0.0 * y[THETA], xp)
