@@ -5,7 +5,6 @@ met inside a slide-rock. Each reference is named in its test; every run's energy
 closes to 1e-9 of its scale."""
 
 import math
-import warnings
 
 import mpmath
 import numpy as np
@@ -14,6 +13,7 @@ import pytest
 import blockdae as bd
 from blockdae.excitation import AbstractExcitation, Pieces
 from blockdae.rocking import FreeMode, FreeStandingBlock, PainleveWarning
+from test_free_standing import kinds, run  # the run with its energy balance checked
 
 G = bd.STANDARD_GRAVITY
 BACKENDS = ("cvode", "ida")
@@ -41,17 +41,6 @@ class Steps(AbstractExcitation):
         t0, h = np.array([0.0] + self.ends[:-1]), np.diff([0.0] + self.ends)
         keep = t0 < t_end
         return Pieces.linear(t0[keep], np.minimum(h[keep], t_end - t0[keep]), np.array(self.values)[keep], 0.0)
-
-
-def run(block, motion, backend, t_end=None, rtol=1e-12):
-    """The block's run with its energy balance checked: residual <= 1e-9 of its scale."""
-    sol = bd.simulate(block, motion, t_end=t_end, backend=backend, rtol=rtol)
-    assert sol.energy_residual <= 1e-9 * sol.energy_scale, (sol.energy_residual, sol.energy_scale)
-    return sol
-
-
-def kinds(sol):
-    return [e.kind for e in sol.events]
 
 
 def pivot_forces(b, h, s, ax, ge):

@@ -101,17 +101,6 @@ class FreeStandingSolution(BlockSolution):
                                            *(f"{name}_after" for name in names)])
 
     @property
-    def impacts(self) -> tuple:
-        """The corner impacts (each with the velocities before and after)."""
-        return self.events_of("impact")
-
-    @property
-    def rest_time(self) -> float:
-        """Time [s] of the last rest after rocking (a Zeno accumulation point); nan if none."""
-        rests = self.events_of("rest")
-        return rests[-1].t if rests else float("nan")
-
-    @property
     def time_beyond_alpha(self) -> float:
         """First time |theta| passed alpha while rocking [s] (gravity no longer restores); nan if never."""
         events = self.events_of("beyond_alpha")

@@ -41,7 +41,7 @@ class RockingEvent(AbstractEvent):
 @dataclasses.dataclass(frozen=True, eq=False)
 class BlockSolution(DriverSolution):
     """What the solutions of a free-standing block share: their events by kind, the
-    impacts' times and the overturn (each subclass says what its ``impacts`` are)."""
+    impacts and their times, the rest and the overturn."""
 
     def __repr__(self):
         return compact_repr(self)
@@ -49,6 +49,18 @@ class BlockSolution(DriverSolution):
     def events_of(self, kind: str) -> tuple:
         """The events of one ``kind`` (see the solution's event class)."""
         return tuple(e for e in self.events if e.kind == kind)
+
+    @property
+    def impacts(self) -> tuple:
+        """The impacts located one by one, each with the rates before and after it (the
+        Zeno tail's summed ones are not among them)."""
+        return self.events_of("impact")
+
+    @property
+    def rest_time(self) -> float:
+        """Time [s] of the last rest after rocking (a Zeno accumulation point); nan if none."""
+        rests = self.events_of("rest")
+        return rests[-1].t if rests else float("nan")
 
     @property
     def impact_times(self) -> np.ndarray:
@@ -79,17 +91,6 @@ class RockingSolution(BlockSolution):
         events: located events (:class:`RockingEvent`), in time order.
         block, motion: the model and the base motion (set by :func:`blockdae.simulate`).
     """
-
-    @property
-    def impacts(self) -> tuple:
-        """The impacts located one by one (each with theta' before and after [rad/s])."""
-        return self.events_of("impact")
-
-    @property
-    def rest_time(self) -> float:
-        """Time [s] of the last rest after rocking (the Zeno accumulation point); nan if none."""
-        rests = self.events_of("rest")
-        return rests[-1].t if rests else float("nan")
 
     @property
     def zeno_tail(self) -> float:
