@@ -497,20 +497,19 @@ class FreeStandingBlock(FreeStandingDerivatives):
             sigma = slip_direction(after)
             if sigma * self.chatter_rate(sigma, y) > 0:
                 return FreeMode(sigma)
-            flat = self.mode_at_rest(t, excitation)  # the tail's friction stops the face
-            if kind_of(flat) in (0, 1):
-                return flat
+            if self.mode_at_rest(t, excitation) == FreeMode.REST:  # the tail's friction stops the face
+                return FreeMode.REST
         return after
 
     def chatter_rate(self, sigma, y, xp=SCALAR):
         """x' [m/s] with which the face slides on toward ``sigma`` from the impact (state
         ``y`` after it) whose slide-rock's arcs, and all after them, are summed: x' + sigma mu_k z'.
 
-        Over the tail (duration T, the excitation frozen) the base's normal impulse is
-        g_e T - z' (z' of the centroid after the impact, 0 at its end) and friction's
-        -sigma mu_k times it, so x' ends at x' - a_x T - sigma mu_k (g_e T - z'): where a
-        slide from the impact's time arrives after T. Exact to O(T²) in the excitation's
-        rate and O(theta'²)."""
+        Over the tail (duration T) the base's normal impulse is ∫ g_e dt - z' (z' of the
+        centroid after the impact, 0 at the tail's end) and friction's -sigma mu_k times it,
+        so x' ends at x' - ∫ a_x dt - sigma mu_k (∫ g_e dt - z'): where a slide from the
+        impact's time arrives after T, whatever the excitation, while the slip keeps its
+        sign (the position differs by O(T R theta'))."""
         return y[X_RATE] + sigma * self.friction_kinetic * y[Z_RATE]
 
     def deceleration(self, s, t, excitation, xp=SCALAR):
