@@ -71,10 +71,10 @@ class FreeStandingBlock(FreeStandingDerivatives):
         theta0: initial tilt [rad], |theta0| < pi/2, released at rest on its corner.
         zeno_arc: the arc [s] below which the rest of a Zeno sequence of sticking impacts
             is summed (and a slide-rock's chatter ends in a slide). An arc a rises only
-            p² sin(alpha) a²/8 (4e-11 rad at 1e-5 s), so the impacts of shorter arcs are
-            located no better than the integrator's atol on theta allows: the rest time is
-            8e-9 s from the impacts' accumulation time at 1e-5 s on CVODE, 9e-10 s at
-            1e-4 s, 7e-8 s at 1e-6 s; below about 3e-8 s the impacts are lost in atol.
+            p² sin(alpha) a²/8, so the impacts of shorter arcs are located no better than
+            the integrator's atol on theta allows (b/h = 1/2 on CVODE: the rest is 8e-9 s
+            from the impacts' accumulation time at 1e-5 s, 9e-10 s at 1e-4 s, 7e-8 s at
+            1e-6 s; below about 3e-8 s the impacts are lost in atol = 1e-14 rad).
         g: gravitational acceleration [m/s²].
 
     The motion is an excitation (a_x alone) or a :class:`~blockdae.BaseMotion` with x and
