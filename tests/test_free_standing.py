@@ -258,22 +258,56 @@ def test_vertical_drop_lifts_a_rocking_block_off_and_it_lands(backend):
                                                                                         abs=1e-12)
 
 
+def chatter_slide_rate(block, event):
+    """The slide's x' [m/s] after a chatter, from the state before its last impact by
+    momentum and impulse written here in mpmath: the corner c = side of the impact strikes
+    (theta = 0: r_cx = c b, r_cz = -h) plastically, v_cz+ = z'+ - r_cx theta'+ = 0, slipping
+    with P_t = -sigma mu_k P_n (sigma the slide's direction); over the arcs after it the
+    base's normal impulse is g_e T - z'+ (z' ends at 0) and friction's -sigma mu_k times it,
+    while a slide from the impact's time gets -sigma mu_k g_e T: it starts at x'+ + sigma mu_k z'+."""
+    c = 1 if int(event.via) > 0 else -1
+    sigma = 1 if event.mode_after == FreeMode.SLIDE_POS else -1
+    b, h, mu = (mpmath.mpf(v) for v in (block.b, block.h, block.friction_kinetic))
+    x_rate, z_rate, w = (mpmath.mpf(v) for v in (event.state[3], event.state[4], event.state[5]))
+    r_cx, r_cz, k = c * b, -h, 3 / (b * b + h * h)
+    # z'+ - r_cx theta'+ = 0 with z'+ = z' + P_n, theta'+ = w + k (r_cz P_t - r_cx P_n), P_t = -sigma mu P_n
+    p_n = -(z_rate - r_cx * w) / (1 - r_cx * k * (-r_cz * sigma * mu - r_cx))
+    return float(x_rate - sigma * mu * p_n + sigma * mu * (z_rate + p_n))
+
+
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_slide_rock_chatter_ends_in_a_slide_that_sticks(backend):
     """mu_k = 0.2 <= b/h = 1/4 < mu_s = 0.3: the rocking block's pivot slips, its impacts
     on alternate corners come ever faster while it slips (each arc restoring), and once an
     arc would be shorter than zeno_arc the chatter ends in a slide (event "chatter", the
-    face down with the centroid's velocity after the last impact), which sticks: friction only takes energy."""
+    face down), which sticks: friction only takes energy. The slide's x' is the impulse
+    balance's over the summed arcs (:func:`chatter_slide_rate`, 1e-15 m/s); the stick after
+    the pulse is at the slide's closed form (x' = v + ∫ (0.6 g sin(pi t/0.4) - mu_k g) dt = 0;
+    3e-12 s: the slide's x' integrated at rtol 1e-12, measured 1.2e-12 s) and does not depend on zeno_arc: with 1e-4 s and 1e-7 s (1000 times more
+    arcs resolved) it is the same within 1e-11 s (the pivot's slip velocity for x' puts it
+    2.3e-5 s off at zeno_arc = 1e-5 s, the centroid's x' 1.2e-6 s)."""
+    pulse = bd.SinePulse(-0.6 * G, 0.4)
     block = FreeStandingBlock(b=0.25, h=1.0, mu=0.3, mu_kinetic=0.2)
-    sol = run(block, bd.SinePulse(-0.6 * G, 0.4), backend, t_end=1.5)
+    sol = run(block, pulse, backend, t_end=1.5)
     assert kinds(sol)[:3] == ["uplift", "slip", "impact"] and kinds(sol)[-2:] == ["chatter", "stick"]
     chatter = sol.events_of("chatter")[0]
-    assert chatter.mode_after == FreeMode.SLIDE_POS
+    assert chatter.mode_after == FreeMode.SLIDE_POS and chatter.via in (FreeMode.IMPACT_POS_SLIP,
+                                                                       FreeMode.IMPACT_NEG_SLIP)
     assert chatter.state_after[1:3] == (block.h, 0.0) and chatter.state_after[4:] == (0.0, 0.0)
-    assert chatter.state_after[3] > 0  # the last impact's jump of x' is of the order of R theta'
-    assert abs(chatter.state_after[3] - chatter.state[3]) <= 2 * block.R * abs(chatter.state[5])
+    slide_rate = chatter_slide_rate(block, chatter)
+    assert abs(chatter.state_after[3] - slide_rate) <= 1e-15
+    assert abs(slide_rate - chatter.state[3]) > 1e-3 * block.R * abs(chatter.state[5])  # the tail's impulse counts
+    t_c, w = mpmath.mpf(chatter.t), mpmath.pi / mpmath.mpf(0.4)
+    a, mu_g = 0.6 * mpmath.mpf(G), mpmath.mpf(0.2) * mpmath.mpf(G)
+    at_end = slide_rate + a / w * (mpmath.cos(w * t_c) + 1) - mu_g * (mpmath.mpf(0.4) - t_c)
+    assert at_end > 0 and t_c < 0.4
+    stick = sol.events_of("stick")[-1]
+    assert abs(stick.t - float(mpmath.mpf(0.4) + at_end / mu_g)) <= 3e-12
     assert 2 * abs(chatter.state[5]) / G < 10 * block.zeno_arc
     assert np.all(np.diff(sol.state[:, 7]) <= 1e-15)
+    resolved = [run(block.replace(zeno_arc=arc), pulse, backend, t_end=1.5).events_of("stick")[-1].t
+                for arc in (1e-4, 1e-7)]
+    assert abs(resolved[0] - stick.t) <= 1e-11 and abs(resolved[1] - stick.t) <= 1e-11
 
 
 @pytest.mark.parametrize("backend", BACKENDS)

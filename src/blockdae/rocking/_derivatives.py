@@ -16,6 +16,7 @@ m / alpha = (pi/2) / alpha, which moves with b and h alone.
 import numpy as np
 
 from ..core.contract import DifferentiableModel, parameter_names, scale_factor_units
+from ..core.derivatives import Sensitivities, trajectory_quantity_sensitivities
 from ._free_modes import OVERTURNED, SLIDE_ROCK_KINDS, kind_of, side
 
 FLIGHT = 9  # the kind of a flight (:func:`._free_modes.kind_of`)
@@ -63,6 +64,30 @@ class FreeStandingDerivatives(DifferentiableModel):
     def scalar_quantities(self) -> dict:
         return {"max_theta_over_alpha": "-", "slip": "m", "overturn_time": "s"}
 
+    def sensitivities(self, motion, t_end, wrt, backend, of, options):
+        """The core's along the twin's trajectory (NotImplemented), except where the
+        largest rotation is reached at an apex inside a slide-rock (theta' = 0 there, no
+        mode change): max |theta| / alpha is then differentiated on the trajectory that
+        ends at that apex, located on the run's dense output, where d theta/dp is its
+        derivative (theta' = 0: the apex's time adds nothing), the other quantities on
+        the whole one."""
+        names = (of,) if isinstance(of, str) else tuple(of or ())
+        if "max_theta_over_alpha" not in names:
+            return NotImplemented
+        try:
+            return trajectory_quantity_sensitivities(self, motion, t_end, wrt, backend, of, options)
+        except ApexInSlideRock as apex:
+            largest = trajectory_quantity_sensitivities(self, motion, apex.t, wrt, backend,
+                                                        ("max_theta_over_alpha",), options)
+        others = tuple(name for name in names if name != "max_theta_over_alpha")
+        if not others:
+            return largest
+        rest = trajectory_quantity_sensitivities(self, motion, t_end, wrt, backend, others, options)
+        rows = [(largest, 0) if name == "max_theta_over_alpha" else (rest, others.index(name)) for name in names]
+        return Sensitivities(names, [r.quantity_units[i] for r, i in rows], rest.parameters,
+                             np.stack([r.array[i] for r, i in rows]), [r.units[i] for r, i in rows], self,
+                             rest.backend)
+
     def scalar_quantity_jacobian(self, name, solution, final, events):
         """d ``name`` / dp (:func:`free_max_theta_jacobian`, :func:`free_slip_jacobian`,
         :func:`free_overturn_time_jacobian`)."""
@@ -88,20 +113,49 @@ def _located(solution, events):
     return located
 
 
+class ApexInSlideRock(ValueError):
+    """The largest rotation is reached at an apex inside a slide-rock, at ``t`` [s]: no
+    event of the run (:meth:`FreeStandingDerivatives.sensitivities` differentiates it on
+    the trajectory that ends there)."""
+
+    def __init__(self, largest, at_events, t):
+        super().__init__(f"the largest rotation (|theta| = {largest:.9g} rad) is reached inside a slide-rock at "
+                         f"t = {t:.9g} s, at no located event (the largest at an event or t_end: {at_events:.9g} "
+                         "rad): differentiate it with t_end at that apex")
+        self.t = t
+
+
+def _apex_time(solution) -> float:
+    """The time [s] where theta' = 0 next to the knot of the largest |theta|, by bisection
+    on the run's dense output (its Hermite cubic of theta' between the knots)."""
+    t, state = solution.t, solution.state
+    k = int(np.argmax(np.abs(state[:, 2])))
+    s = np.sign(state[k, 2])
+    lo, hi = t[max(k - 1, 0)], t[min(k + 1, len(t) - 1)]
+
+    def turning(time):  # s theta' [rad/s] at ``time``
+        return s * float(solution.dense(np.array([time]))[5][0])
+
+    if turning(lo) < 0 or turning(hi) > 0:  # the apex is at a knot itself
+        return float(t[k])
+    while lo < 0.5 * (lo + hi) < hi:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if turning(mid) > 0 else (lo, mid)
+    return float(hi)
+
+
 def free_max_theta_jacobian(block, solution, final, events) -> np.ndarray:
     """d(max |theta| / alpha)/dp [-/unit], shape (n_p,): the largest |theta| at an event
     (an apex, where theta' = 0; a landing or lift-off, reached from flight where theta'' =
     0; the overturn at pi/2) or at t_end, differentiated as the located state there
-    (its total derivative, the event time's included). ValueError where the largest
-    rotation lies inside a slide-rock (its apex is no event of the model)."""
+    (its total derivative, the event time's included). :class:`ApexInSlideRock` where the
+    largest rotation lies inside a slide-rock (its apex is no event of the model)."""
     names = parameter_names(block)
     candidates = [(float(solution.state[-1, 2]), np.asarray(final[2]))] + _located(solution, events)
     theta, d_theta = max(candidates, key=lambda candidate: abs(candidate[0]))
     largest = float(np.max(np.abs(solution.state[:, 2])))
     if largest > abs(theta) + 1e-12 * max(block.alpha, largest):
-        raise ValueError(f"the largest rotation (|theta| = {largest:.9g} rad) is reached inside a slide-rock, at no "
-                         f"located event (the largest at an event or t_end: {abs(theta):.9g} rad): its derivative "
-                         "is not available")
+        raise ApexInSlideRock(largest, abs(theta), _apex_time(solution))
     alpha = block.alpha
     return np.sign(theta) * d_theta / alpha - abs(theta) / alpha ** 2 * _alpha_rates(block, names)
 

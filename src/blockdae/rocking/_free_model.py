@@ -71,7 +71,11 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
         mu_kinetic: kinetic friction coefficient [-], in [0, mu]; defaults to ``mu``.
         theta0: initial tilt [rad], |theta0| < pi/2, released at rest on its corner.
         zeno_arc: the arc [s] below which the rest of a Zeno sequence of sticking impacts
-            is summed (and a slide-rock's chatter ends in a slide).
+            is summed (and a slide-rock's chatter ends in a slide). An arc a rises only
+            p² sin(alpha) a²/8, so the impacts of shorter arcs are located no better than
+            the integrator's atol on theta allows (b/h = 1/2 on CVODE: the rest is 8e-9 s
+            from the impacts' accumulation time at 1e-5 s, 9e-10 s at 1e-4 s, 7e-8 s at
+            1e-6 s; below about 3e-8 s the impacts are lost in atol = 1e-14 rad).
         g: gravitational acceleration [m/s²].
         contact: "complete" (this block: its corners may slip and lift) or "housner":
             Housner's block, whose rocking pivot holds (the literature's overturning
@@ -319,17 +323,21 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
         return after
 
     def _painleve(self, mode, t, y, denominator):
+        """The error of Painlevé's paradox at ``t`` [s] in ``mode``, state ``y``: D = ``denominator`` [-]
+        where a slide-rock is entered, or the located root where it falls to 0 inside one."""
+        where = "<= 0" if denominator <= 0 else "falling to 0"
         return ValueError(f"at t = {t:.12g} s Painlevé's paradox: slide-rocking on the corner {side(mode):+d} b "
                           f"slipping toward {slip_direction(mode):+d} x with mu_kinetic = {self.friction_kinetic} "
-                          f"has no consistent contact force (D = {denominator:.6g} <= 0 at theta = "
+                          f"has no consistent contact force (D = {denominator:.6g} {where} at theta = "
                           f"{y[THETA]:+.6g} rad, theta' = {y[THETA_RATE]:+.6g} rad/s); outside this model")
 
     def _next_mode(self, mode, guard_index, t, y, excitation, time_tol):
         kind, s = kind_of(mode), side(mode)
         ax, ge, ax_rate, az_rate = self._base(t, excitation)
+        if mode == FreeMode.REST or kind == SETTLE:
+            if ge <= 0 or guard_index == (2 if mode == FreeMode.REST else 3):
+                return self._flight()  # g_e at 0, or a jump below it that took the demand's limits along
         if mode == FreeMode.REST:
-            if guard_index == 2:
-                return self._flight()
             d = -1 if guard_index == 0 else 1
             # at the threshold |a_x| = min(mu, b/h) g_e: a slide, or (mu > b/h) a rock, whose
             # pivot holds there with the margin 4 g_e (1 + lambda²)(mu - lambda) of (S)
@@ -358,7 +366,7 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
                 return self._flight(s)
             if guard_index == 3:
                 return self._on_corner(s, y, ax, ge)
-            raise self._painleve(mode, t, y, 0.0)
+            raise self._painleve(mode, t, y, self.slide_rock(s, slip_direction(mode), y, ax, ge)[0])
         if kind == 9:
             if guard_index == 2:
                 return rock_mode(OVERTURNED, 1 if y[THETA] > 0 else -1)
@@ -367,8 +375,6 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
                 return mode
             return self._impact_mode(centroid)
         if kind == SETTLE:
-            if guard_index == 3:
-                return self._flight()
             return FreeMode.REST if guard_index == 0 else rock_mode(OUT, -1 if guard_index == 1 else 1)
         if mode == FreeMode.RELEASE:
             return self._on_corner(1 if self.theta0 > 0 else -1, y, ax, ge)
@@ -405,8 +411,23 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
         if kind_of(after) == OUT and self._settles(c, t, y, excitation):
             return rock_mode(SETTLE, c)
         if kind_of(after) in SLIDE_ROCK_KINDS and self._chatters(c, slip_direction(after), y, ax, ge):
-            return FreeMode(slip_direction(after))
+            sigma = slip_direction(after)
+            if sigma * self.chatter_rate(sigma, y) > 0:
+                return FreeMode(sigma)
+            if self.mode_at_rest(t, excitation) == FreeMode.REST:  # the tail's friction stops the face
+                return FreeMode.REST
         return after
+
+    def chatter_rate(self, sigma, y, xp=SCALAR):
+        """x' [m/s] with which the face slides on toward ``sigma`` from the impact (state
+        ``y`` after it) whose slide-rock's arcs, and all after them, are summed: x' + sigma mu_k z'.
+
+        Over the tail (duration T) the base's normal impulse is ∫ g_e dt - z' (z' of the
+        centroid after the impact, 0 at the tail's end) and friction's -sigma mu_k times it,
+        so x' ends at x' - ∫ a_x dt - sigma mu_k (∫ g_e dt - z'): where a slide from the
+        impact's time arrives after T, whatever the excitation, while the slip keeps its
+        sign (the position differs by O(T R theta'))."""
+        return y[X_RATE] + sigma * self.friction_kinetic * y[Z_RATE]
 
     def deceleration(self, s, t, excitation, xp=SCALAR):
         """-s theta'' [rad/s²] rocking on corner ``s`` at theta = 0: how fast an arc from the
@@ -538,11 +559,13 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
             settled = self._flat_state(y, 0.0, xp)
             return xp.stack([*(settled[i] for i in range(THETA_RATE)), y[THETA_RATE], settled[BASE_WORK],
                              settled[FRICTION_WORK]])
-        if kind in SLIDE_ROCK_KINDS:  # the pivot slips on, or starts to slip from rest relative to the base
-            slip = self.pivot_slip_rate(s, y, xp) if kind_of(before) == 11 else 0.0 * y[X]
+        if kind in SLIDE_ROCK_KINDS:  # slipping on through an impact or a face landing, or from rest
+            slip = self.pivot_slip_rate(s, y, xp) if kind_of(before) in (11, 12) else 0.0 * y[X]
             return self.to_pivot(s, y, slip, xp)
         if kind == OVERTURNED:
             return self._pivot_state(s, y, 0.0 * y[THETA] + s * 0.5 * math.pi, 0.0 * y[THETA], xp)
+        if kind_of(before) in (10, 11) and kind in (0, 1):  # a chatter's end: the tail summed
+            return self._flat_state(y, self.chatter_rate(side(after), y, xp) if kind == 1 else 0.0 * y[X], xp)
         if after == FreeMode.REST or (kind == 1 and kind_of(before) not in (0, 1)):
             return self._flat_state(y, 0.0 if after == FreeMode.REST else y[X_RATE], xp)
         return y

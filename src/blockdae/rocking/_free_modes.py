@@ -89,21 +89,31 @@ def rock_mode(kind: int, s: int) -> FreeMode:
     return FreeMode(kind * s)
 
 
+def _ends_kind(before, after):
+    """The kind that the ends of a mode change ``before`` -> ``after`` decide alone, an
+    impact's instant between them or not: "release", "overturn", "land" from FLIGHT,
+    "zeno" into SETTLE; None otherwise."""
+    if before == FreeMode.RELEASE:
+        return "release"
+    if kind_of(after) == OVERTURNED:
+        return "overturn"
+    if kind_of(before) == 9:
+        return "land"
+    if kind_of(after) == SETTLE:
+        return "zeno"
+    return None
+
+
 def event_kind(before, after) -> str:
     """The kind of the mode change ``before`` -> ``after`` (an impact's two changes
     through its instant mode merged: ``before`` the mode that struck, ``after`` the one
     after it): "release", "uplift", "slide", "stick", "reverse", "slip", "lift",
     "apex", "return", "beyond_alpha", "impact", "land", "zeno", "chatter", "rest",
     "overturn"."""
+    shared = _ends_kind(before, after)
+    if shared is not None:
+        return shared
     b, a = kind_of(before), kind_of(after)
-    if before == FreeMode.RELEASE:
-        return "release"
-    if a == OVERTURNED:
-        return "overturn"
-    if b == 9:
-        return "land"
-    if a == SETTLE:
-        return "zeno"
     if b == SETTLE:
         return "rest" if a == 0 else ("lift" if a == 9 else "uplift")
     if a == 9:
@@ -130,19 +140,11 @@ def event_kind(before, after) -> str:
 def impact_kind(before, instant, after) -> str:
     """The kind of an impact from ``before`` through the ``instant`` mode (the jump) to
     ``after``: "land" from FLIGHT or where the face lands flat, "zeno" where the rest of
-    the impacts is summed, "chatter" where a slide-rock's shrinking arcs end in a slide,
-    "rest" where the impact stops the block, "overturn", else "impact"."""
-    b, a = kind_of(before), kind_of(after)
-    if before == FreeMode.RELEASE:
-        return "release"
-    if a == OVERTURNED:
-        return "overturn"
-    if b == 9:
-        return "land"
-    if a == SETTLE:
-        return "zeno"
-    if instant != FreeMode.LANDING_FLAT and a == 1:
-        return "chatter"
+    the impacts is summed, "chatter" where a slide-rock's shrinking arcs end with the face
+    down (sliding, or at rest), "overturn", else "impact"."""
+    shared = _ends_kind(before, after)
+    if shared is not None:
+        return shared
     if instant == FreeMode.LANDING_FLAT:
         return "land"
-    return "impact"
+    return "chatter" if kind_of(after) in (0, 1) else "impact"
