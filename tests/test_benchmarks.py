@@ -49,6 +49,7 @@ def test_scaling_quick(monkeypatch, capsys):
     assert out.count("log-log slope") == 2
 
 
+@pytest.mark.slow  # the longest smoke runs (about a minute each on 2 cores)
 def test_backends_quick(monkeypatch, capsys):
     module = load_benchmark("backends", monkeypatch)
     assert module.main(["--quick"]) == 0
@@ -86,6 +87,7 @@ def test_planar_quick(monkeypatch, capsys):
         assert float(row[7]) == pytest.approx(exact, abs=1e-6) and float(row[8]) == 0.0
 
 
+@pytest.mark.slow  # the longest smoke runs (about a minute each on 2 cores)
 def test_upthrow_quick(monkeypatch, capsys):
     assert load_benchmark("upthrow", monkeypatch).main(["--quick"]) == 0
     out = capsys.readouterr().out
@@ -111,6 +113,7 @@ def test_flexible_quick(monkeypatch, capsys):
     assert "SLAMMER's table shape:" in out and "exact [ms]" in out
 
 
+@pytest.mark.slow  # the longest smoke runs (about a minute each on 2 cores)
 def test_linear_engine_quick(monkeypatch, capsys):
     """Every bar of the linear engine reported, as a smoke run."""
     load_benchmark("linear_engine", monkeypatch).main(["--quick"])

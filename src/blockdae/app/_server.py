@@ -82,7 +82,7 @@ def serve(open_browser: bool = True, port: int = 0):
     in the browser; its temporary folder is removed on each."""
     local = LocalApp(port)
     if threading.current_thread() is threading.main_thread():  # each stops serving as Ctrl+C does
-        for name in ("SIGTERM", "SIGHUP"):
+        for name in ("SIGINT", "SIGTERM", "SIGHUP"):  # SIGINT too: a shell's background job inherits it ignored
             if hasattr(signal, name):
                 signal.signal(getattr(signal, name), signal.default_int_handler)
     print(f"blockdae app: {local.url} (Ctrl+C stops it)", flush=True)
