@@ -80,26 +80,24 @@ def same_samples(records, runs):
 
     for name, record in records.items():  # compiled (or loaded from numba's cache) before timing
         MODEL.displacements(record, PGA, batched[name])
-    mine, theirs, ours_s, serial_s, peer_s = {}, {}, 0.0, 0.0, 0.0
+    mine, theirs, peer_s = {}, {}, 0.0
     cores = numba.get_num_threads()
+    seconds = dict.fromkeys((cores, 1), 0.0)  # blockdae's time [s] by thread count (one entry on one core)
     for name, record in records.items():  # record by record, both sides in turn: they share the machine's load
-        for threads in (cores, 1):
+        for threads in seconds:
             numba.set_num_threads(threads)
             times = []
             for _ in range(3):
                 start = time.perf_counter()
                 mine[name] = MODEL.displacements(record, PGA, batched[name])
                 times.append(time.perf_counter() - start)
-            if threads == cores:
-                ours_s += statistics.median(times)
-            else:
-                serial_s += statistics.median(times)
+            seconds[threads] += statistics.median(times)
         numba.set_num_threads(cores)
         start = time.perf_counter()
         theirs[name] = np.array([_peer(record, k, v) for k, v in zip(batched[name]["ky"], batched[name]["vs"])])
         peer_s += time.perf_counter() - start
     n = sum(v.size for v in mine.values())
-    ours_each, peer_each = ours_s / n, peer_s / n
+    ours_each, peer_each = seconds[cores] / n, peer_s / n
     one_at_a_time = _one_at_a_time(records, batched)
     d_ours, d_peer = (np.concatenate(list(x.values())) for x in (mine, theirs))
     moving = d_ours > 0.01
@@ -111,7 +109,7 @@ def same_samples(records, runs):
     numbers = {"analyses": n, "moving": int(moving.sum()), "median [%]": np.median(relative),
                "p90 [%]": np.percentile(relative, 90), "max [%]": relative.max(), "ours [ms]": ours_each * 1e3,
                "one at a time [ms]": one_at_a_time * 1e3, "peer [ms]": peer_each * 1e3,
-               "one thread [ms]": serial_s / n * 1e3, "cores": cores,
+               "one thread [ms]": seconds[1] / n * 1e3, "cores": cores,
                "speed-up": peer_each / ours_each, "probability": probability}
     return numbers
 

@@ -59,3 +59,26 @@ def test_run_history_is_the_solutions(tmp_path, capsys):
     sol = bd.simulate(bd.SlidingBlock(mu=0.1), load_sample_record(KOBE))
     assert float(rows[-1]["u_m"]) == pytest.approx(sol.displacement, rel=1e-15)
     assert list(rows[0]) == ["t_s", "base_acceleration_m_s2", "u_m", "v_m_s", "mode"]
+
+
+def test_a_dimensionless_block_names_its_columns_in_g():
+    """With g = 1 (Elms's dimensionless set-up) accelerations are coefficients of g, so lengths
+    are in g s² and velocities in g s: the table's names say so, values untouched."""
+    record = load_sample_record(KOBE)
+    unit = bd.Record(record.acceleration_samples / bd.STANDARD_GRAVITY, record.dt, check_peak=False)
+    sol = bd.simulate(bd.SlidingBlock(mu=0.1, g=1.0, direction="negative"), unit)
+    history = sol.history()
+    assert list(history.columns) == ["t_s", "base_acceleration_g", "u_g_s2", "v_g_s", "mode"]
+    assert history.u_g_s2.iloc[-1] == sol.displacement
+    assert list(sol.to_dataframe().columns) == ["t_s", "mode_before", "mode_after", "u_g_s2", "v_g_s"]
+
+
+def test_run_history_of_a_g_1_set_up_is_in_g(tmp_path):
+    path = tmp_path / "triangle_g.csv"
+    path.write_text(f"time [s], acceleration [g]\n0.0, 0.0\n0.25, {9.0 / 9.81!r}\n0.5, 0.0\n")
+    out = tmp_path / "h.csv"
+    assert main(["--no-cache", "run", str(path), "--mu", "0.6", "--g", "1", "--units", "g", "--accept-step",
+                 "--history", str(out), "--quiet"]) == 0
+    rows = _csv(out)
+    assert list(rows[0]) == ["t_s", "base_acceleration_g", "u_g_s2", "v_g_s", "mode"]
+    assert float(rows[-1]["u_g_s2"]) == pytest.approx(-0.004614, abs=5e-7)  # seed Example 5 in g s²

@@ -444,6 +444,18 @@ def test_simulate_never_returns_a_result_that_overflows():
     assert np.isfinite(bd.simulate(block, ordinary).displacement)
 
 
+def test_a_planar_run_that_overflows_in_python_floats_is_named():
+    """The planar block's guards are Python floats: 1e300 m/s² on both axes squared to an
+    OverflowError raised from deep inside the event search, naming neither run nor motion."""
+    huge = np.array([0.0, 1e300, -1e300, 0.0])
+    motion = bd.BaseMotion(bd.Record(huge, 0.01, "huge x", check_peak=False),
+                           bd.Record(huge, 0.01, "huge y", check_peak=False))
+    with pytest.raises(ValueError, match=r"^bd.simulate: the run of PlanarBlock\(mu=0.2, .*\) under a BaseMotion "
+                                         r"overflowed \(a value beyond 1.8e308: .*\); check the motion's units") as caught:
+        bd.simulate(bd.PlanarBlock(mu=0.2), motion)
+    assert isinstance(caught.value.__cause__, OverflowError)
+
+
 # --- readers: a cut value, a malformed first row, time units, a changed file --------------
 
 def _at2(values):

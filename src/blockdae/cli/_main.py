@@ -248,10 +248,7 @@ def _run(args):
     if args.plot is not None:
         _save_plot(args, solution, record, block)
     if args.history is not None:
-        history = solution.history()
-        if block.g == 1:  # a dimensionless set-up: lengths in g s²
-            history.columns = [c.replace("_m_s2", "_g").replace("_m_s", "_g_s").replace("u_m", "u_g_s2")
-                               for c in history.columns]
+        history = solution.history()  # in g s² where --g is 1, a dimensionless set-up
         write_csv(args.history, history.to_dict(orient="records"), list(history.columns))
     if args.json:
         print(json.dumps(_run_json(record, block, solution, wall), indent=2))

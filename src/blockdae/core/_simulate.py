@@ -118,7 +118,12 @@ def solve(model, motion, t_end, solver):
     the model already) to ``t_end`` [s] (None: until rest) on the backend object ``solver``,
     checked by the model (its ``check_solution``)."""
     horizon = Horizon.resolve(motion, _end(motion, t_end))
-    result = solver.solve_batch(model, motion, horizon) if model.batch_shape else solver.solve(model, motion, horizon)
+    try:
+        result = (solver.solve_batch(model, motion, horizon) if model.batch_shape
+                  else solver.solve(model, motion, horizon))
+    except OverflowError as error:  # Python floats raise where arrays would give inf
+        raise ValueError(f"bd.simulate: the run of {model} under {_label(motion)} overflowed (a value beyond "
+                         f"1.8e308: {error}); check the motion's units and scale") from error
     solution = of_run(result, model, motion)
     if not _finite(solution.displacement):  # the end alone (an overflow stays there)
         check_finite_finals(model, Finals.of(solution), _label(motion))

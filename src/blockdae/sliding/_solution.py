@@ -7,7 +7,7 @@ from typing import Callable
 import numpy as np
 
 from ..core import AbstractEvent, AbstractSolution, compact_repr
-from ..units import STANDARD_GRAVITY, length_units
+from ..units import STANDARD_GRAVITY, column_suffixes, length_units
 from ..excitation import AbstractExcitation
 from ._modes import Mode
 
@@ -156,7 +156,8 @@ class Solution(AbstractSolution):
     def history(self, t=None):
         """The run at times ``t`` [s] (default: the record's samples, or 2001 even steps for
         another motion, and every event), as a pandas DataFrame: t_s, base_acceleration_m_s2
-        (where the motion is known), u_m, v_m_s (signed: u = x_block - x_base) and mode."""
+        (where the motion is known), u_m, v_m_s (signed: u = x_block - x_base) and mode; for a
+        block with g = 1 (a dimensionless set-up) base_acceleration_g, u_g_s2 and v_g_s."""
         import pandas as pd
 
         if t is None:
@@ -165,11 +166,12 @@ class Solution(AbstractSolution):
             t = np.union1d(np.append(grid, self.t_end), self.t_events)
         t = np.asarray(t, dtype=float)
         u, v = self(t)
+        length, velocity, acceleration = self._column_suffixes()
         columns = {"t_s": t}
         if self.motion is not None:
-            columns["base_acceleration_m_s2"] = np.asarray(self.motion.acceleration(t), dtype=float)
+            columns[f"base_acceleration_{acceleration}"] = np.asarray(self.motion.acceleration(t), dtype=float)
         after = np.clip(np.searchsorted(self.t, t, side="right") - 1, 0, self.t.size - 1)
-        return pd.DataFrame({**columns, "u_m": u, "v_m_s": v,
+        return pd.DataFrame({**columns, f"u_{length}": u, f"v_{velocity}": v,
                              "mode": [Mode(int(m)).name for m in np.asarray(self.mode)[after]]})
 
     def figure(self, excitation=None, block=None, *, n_points: int = 2000, title: str | None = None):
@@ -178,6 +180,9 @@ class Solution(AbstractSolution):
         from ._figures import solution_figure
 
         return solution_figure(self, excitation, block, n_points=n_points, title=title)
+
+    def _column_suffixes(self) -> tuple[str, str, str]:
+        return column_suffixes(self.block.g if self.block is not None else STANDARD_GRAVITY)
 
     def event_table(self, events=None) -> str:
         """``events`` (default: all of them) as an aligned text table with units (u in m, or
@@ -190,13 +195,14 @@ class Solution(AbstractSolution):
 
     def to_dataframe(self):
         """The events as a pandas DataFrame, one row per event: t_s [s], mode_before,
-        mode_after (mode names), u_m [m], v_m_s [m/s]."""
+        mode_after (mode names), u_m [m], v_m_s [m/s] (u_g_s2, v_g_s for a block with g = 1)."""
         import pandas as pd
 
+        length, velocity, _ = self._column_suffixes()
         return pd.DataFrame({
             "t_s": pd.Series([e.t for e in self.events], dtype=float),
             "mode_before": pd.Series([e.mode_before.name for e in self.events], dtype=object),
             "mode_after": pd.Series([e.mode_after.name for e in self.events], dtype=object),
-            "u_m": pd.Series([e.u for e in self.events], dtype=float),
-            "v_m_s": pd.Series([e.v for e in self.events], dtype=float),
+            f"u_{length}": pd.Series([e.u for e in self.events], dtype=float),
+            f"v_{velocity}": pd.Series([e.v for e in self.events], dtype=float),
         })
