@@ -48,6 +48,14 @@ def test_log_posterior_gradient_matches_central_differences(record):
             assert exact == pytest.approx(central, rel=1e-6, abs=1e-6)
 
 
+def test_log_posterior_in_float32_is_refused(record):
+    import jax
+
+    log_p = design.log_posterior(design.Observation(record, sigma_ln=0.2, displacement_m=0.1), design.Rigid(), PRIOR)
+    with jax.enable_x64(False), pytest.raises(ValueError, match="float32 here"):
+        log_p(0.1)
+
+
 def test_laplace_posterior_concentrates_at_the_true_ky(record):
     """Five records' scalings observed without noise at ky = 0.12 g, sigma_ln 0.1: the
     maximum lies at the truth (the observations are exact) and the posterior is narrow."""

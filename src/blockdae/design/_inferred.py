@@ -77,6 +77,9 @@ class InferredParameter:
         import jax.numpy as jnp
 
         def call(value, derivative):
+            if jax.dtypes.canonicalize_dtype(np.float64) != np.float64:
+                raise ValueError("the model's D is passed to JAX in float64, and JAX is in float32 here: evaluate "
+                                 "the log posterior inside `with jax.enable_x64(True):`")
             bits = jax.ShapeDtypeStruct(jnp.shape(value) + (2,), jnp.uint32)
             out = jax.pure_callback(lambda v: _as_bits(self.displacements(record, pga_g, v, derivative)),
                                     (bits, bits) if derivative else bits, value, vmap_method="broadcast_all")
