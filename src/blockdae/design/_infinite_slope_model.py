@@ -333,7 +333,7 @@ def _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains
     rng = np.random.default_rng(seed)
     draws = {name: np.asarray(prior.ppf(rng.uniform(size=_START_DRAWS)), dtype=float)
              for name, prior in uncertain.items()}
-    values = np.asarray(jax.vmap(lambda v: log_prior(v) + log_likelihood(v))(draws), dtype=float)
+    values = np.asarray(jax.jit(jax.vmap(lambda v: log_prior(v) + log_likelihood(v)))(draws), dtype=float)
     finite = np.isfinite(values)
     if finite.sum() < 1:
         fs, _ = slopes.yield_accelerations(fixed | draws)
