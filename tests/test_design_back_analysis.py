@@ -31,8 +31,9 @@ PRIOR = {"ky": design.LogNormal(median=0.1, sigma_ln=0.5)}
 
 def test_log_posterior_gradient_matches_central_differences(record):
     """The custom derivative (the engine's exact dD/dky) against central differences of
-    the log posterior itself (two observations under one motion: one engine call), step 1e-6 g (their own error, O(h²) f''' + eps f / h, about
-    1e-10 relative here); measured 3e-11 to 5e-11 relative at these four ky."""
+    the log posterior itself (two of the observations under one motion: one engine call),
+    step 1e-6 g (their own error, O(h²) f''' + eps f / h, about 1e-10 relative here);
+    measured 2e-11 to 5e-11 relative at these four ky."""
     import jax
 
     observations = [design.Observation(record, sigma_ln=0.2, displacement_m=observed(record, KY_TRUE)),
