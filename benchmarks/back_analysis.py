@@ -222,7 +222,8 @@ def main():
     print_table(("case", "sampler", "iterations per chain", "wall [s]", "CPU [s]", "JAX compile [s]", "tuning [s]",
                  "sampling [s]", "evaluations per draw [-]", "least ESS per wall s [1/s]",
                  "least ESS per 1,000 evaluations [-]"), timing)
-    print("NUTS's warm-up (its tuning) runs in the same compiled loop as its draws: its sampling column holds both; "
+    print("NUTS's sampling: its wall time but JAX's compiling (its start, its warm-up (its tuning, run in the loop of "
+          "its draws), draws and diagnostics); "
           "evaluations per draw: NUTS's mean leapfrog steps (the log posterior and its gradient, one engine call "
           "per motion for all chains), one for random-walk Metropolis; per 1,000 evaluations: of the kept draws; "
           f"random-walk acceptance {cases['ky'][1]['acceptance']:.0%} (ky), "
