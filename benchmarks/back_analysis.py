@@ -8,15 +8,20 @@ gradient-free sampler of the same posterior, in effective samples per second.
    its thickness t [m] a prior (design.InfiniteSlope), one observed D each.
 
 NUTS: ``design.back_analysis`` (NumPyro, 4 chains run together), timed whole: the start,
-every JAX compile in the call, warmup and draws (JAX, NumPyro and ArviZ imported before,
+every JAX compile in the call, warm-up and draws (JAX, NumPyro and ArviZ imported before,
 numba's engine loaded from its disk cache). The gradient-free sampler: random-walk
-Metropolis (4 chains run together, one engine call per step for all of them) on the
-same log posterior (``design.log_posterior``, compiled once), its proposal covariance
+Metropolis (4 chains run together, one engine call per motion and step for all of them) on
+the same log posterior (``design.log_posterior``, compiled once), its proposal covariance
 tuned on a pilot run (2.38²/d times the pilot's covariance, then its scale adapted toward
 a 25 % acceptance) whose time counts. Effective samples: ArviZ's bulk ESS over the
 chains (the smallest over the parameters in 2.). Both samplers' posterior means are
 printed with their Monte Carlo standard errors; they must agree within 5 combined
-standard errors. Wall and CPU seconds (the process's, all threads) are both printed.
+standard errors. Wall and CPU seconds (the process's, all threads) are both printed, and
+where the wall time went: JAX's tracing and compiling (its monitoring events), the random
+walk's pilot, the sampling (NUTS's warm-up, its tuning, runs in the loop of its draws);
+and the effective samples per 1,000 evaluations of the log posterior in the kept draws
+(NUTS: its leapfrog steps, each the value and gradient), the samplers' cost without their
+fixed costs.
 
 Bars: case 1 reaches 1,000 effective samples within 10 s of wall time; in case 2 NUTS
 gives at least 10 times the effective samples per second of random-walk Metropolis.
@@ -25,6 +30,7 @@ Exit status 1 when a bar fails.
     python benchmarks/back_analysis.py
 """
 
+import os
 import sys
 import time
 import warnings
@@ -52,13 +58,33 @@ CHAINS = 4
 ESS_BAR, SECONDS_BAR, RATIO_BAR = 1000.0, 10.0, 10.0
 
 
-def clocks():
-    return time.perf_counter(), time.process_time()
+#: JAX's monitoring events of tracing, lowering and compiling a program
+COMPILE_EVENTS = ("/jax/core/compile/jaxpr_trace_duration", "/jax/core/compile/jaxpr_to_mlir_module_duration",
+                  "/jax/core/compile/backend_compile_duration")
 
 
-def since(start):
-    wall, cpu = clocks()
-    return wall - start[0], cpu - start[1]
+class Clock:
+    """Wall and CPU seconds since the start, and the seconds JAX spent compiling in them
+    (its monitoring events, summed)."""
+
+    compiling = 0.0
+
+    @classmethod
+    def listen(cls):
+        import jax
+
+        def listener(event, seconds, **_):
+            if event in COMPILE_EVENTS:
+                cls.compiling += seconds
+
+        jax.monitoring.register_event_duration_secs_listener(listener)
+
+    def __init__(self):
+        self.wall, self.cpu, self.compile = time.perf_counter(), time.process_time(), Clock.compiling
+
+    def since(self):
+        """(wall [s], CPU [s], compiling [s]) since this clock started."""
+        return time.perf_counter() - self.wall, time.process_time() - self.cpu, Clock.compiling - self.compile
 
 
 def ess_and_mcse(x):
@@ -69,16 +95,16 @@ def ess_and_mcse(x):
 
 
 def random_walk_metropolis(log_p, start, steps, pilot, seed=0):
-    """(draws (chains, steps, d), acceptance) of random-walk Metropolis, ``len(start)``
-    chains together (``log_p`` takes (chains, d)); the proposal tuned on ``pilot`` steps
-    first (not kept)."""
+    """(draws (chains, steps, d), acceptance, the pilot's wall seconds) of random-walk
+    Metropolis, ``len(start)`` chains together (``log_p`` takes (chains, d)); the
+    proposal tuned on ``pilot`` steps first (not kept)."""
     rng = np.random.default_rng(seed)
     x = np.array(start, dtype=float)
     chains, d = x.shape
     lp = np.asarray(log_p(x))
     cov, scale = np.diag((0.05 * np.abs(x).mean(axis=0)) ** 2), 2.38 / np.sqrt(d)
 
-    def run(n, keep, adapt):
+    def run(n, adapt):
         nonlocal x, lp, scale
         chol = np.linalg.cholesky(cov)
         out, accepted = np.empty((chains, n, d)), 0
@@ -93,50 +119,71 @@ def random_walk_metropolis(log_p, start, steps, pilot, seed=0):
             out[:, i] = x
         return out, accepted / (n * chains)
 
+    began = time.perf_counter()
     for _ in range(3):  # pilot: learn the covariance, then the scale
-        draws, _ = run(pilot // 3, False, True)
+        draws, _ = run(pilot // 3, True)
         cov = np.cov(draws[:, draws.shape[1] // 2:].reshape(-1, d).T).reshape(d, d) + 1e-12 * np.eye(d)
         scale = 2.38 / np.sqrt(d)
-    return run(steps, True, True)
+    pilot_seconds = time.perf_counter() - began
+    draws, acceptance = run(steps, True)
+    return draws, acceptance, pilot_seconds
+
+
+def nuts_run(observations, model, priors, draws, warmup):
+    """NUTS through design.back_analysis, timed: a dict of its draws (name -> (chains,
+    draws)), clocks and the mean leapfrog steps per kept draw."""
+    clock = Clock()
+    result = design.back_analysis(observations, model, priors, chains=CHAINS, draws=draws, warmup=warmup)
+    wall, cpu, compiling = clock.since()
+    names = list(result.diagnostics.parameter)
+    columns = [result.column] if hasattr(result, "column") else names
+    samples = {n: result.samples[c].to_numpy().reshape(CHAINS, -1) for n, c in zip(names, columns)}
+    return {"draws": samples, "wall": wall, "cpu": cpu, "compile": compiling, "tuning": None,
+            "sampling": wall - compiling, "per_draw": float(result.sample_stats.n_steps.mean()),
+            "iterations": f"{warmup} warm-up + {draws}"}, result
+
+
+def rwm_run(log_posterior, names, begin, steps, pilot):
+    """Random-walk Metropolis on ``log_posterior`` (a JAX function of the parameters' vector),
+    compiled once, timed like :func:`nuts_run`."""
+    import jax
+
+    clock = Clock()
+    log_p = jax.jit(jax.vmap(log_posterior))
+    draws, acceptance, pilot_seconds = random_walk_metropolis(log_p, begin, steps, pilot)
+    wall, cpu, compiling = clock.since()
+    return {"draws": {n: draws[..., i] for i, n in enumerate(names)}, "wall": wall, "cpu": cpu,
+            "compile": compiling, "tuning": pilot_seconds, "sampling": wall - compiling - pilot_seconds,
+            "per_draw": 1.0, "iterations": f"{pilot} pilot + {steps}", "acceptance": acceptance}
 
 
 def one_parameter(record):
     d = float(design.Rigid().displacements(record, PGA, {"ky": np.array([KY_TRUE])})[0])
     observation = design.Observation(record, sigma_ln=SIGMA_LN, displacement_m=d, pga_g=PGA)
-    start = clocks()
-    result = design.back_analysis(observation, design.Rigid(), KY_PRIOR, chains=CHAINS, draws=1000, warmup=400)
-    nuts_wall, nuts_cpu = since(start)
-    ky = result.samples.ky_g.to_numpy().reshape(CHAINS, -1)
-    nuts = (nuts_wall, nuts_cpu, *ess_and_mcse(ky), ky.mean())
-
-    import jax
-
-    start = clocks()
-    log_p = jax.jit(jax.vmap(lambda theta: design.log_posterior(observation, design.Rigid(), KY_PRIOR)(theta[0])))
-    draws, acceptance = random_walk_metropolis(log_p, np.full((CHAINS, 1), result.map_value), 4000, 600)
-    rwm_wall, rwm_cpu = since(start)
-    rwm = (rwm_wall, rwm_cpu, *ess_and_mcse(draws[..., 0]), draws.mean())
-    return nuts, rwm, acceptance
+    nuts, result = nuts_run(observation, design.Rigid(), KY_PRIOR, 1000, 400)
+    log_p = design.log_posterior(observation, design.Rigid(), KY_PRIOR)
+    rwm = rwm_run(lambda theta: log_p(theta[0]), ["ky"], np.full((CHAINS, 1), result.map_value), 4000, 600)
+    return nuts, rwm
 
 
 def four_parameters(record):
     _, ky = SLOPES.yield_accelerations(TRUTH)
     observations = {name: design.Observation(record, sigma_ln=SIGMA_LN, pga_g=PGA, displacement_m=float(
         design.Rigid().displacements(record, PGA, {"ky": np.array([ky[name]])})[0])) for name in ky}
-    start = clocks()
-    result = design.back_analysis(observations, SLOPES, STRENGTH_PRIORS, chains=CHAINS, draws=500, warmup=500)
-    nuts_wall, nuts_cpu = since(start)
-    names = list(result.diagnostics.parameter)
-    nuts_draws = np.stack([result.samples[n].to_numpy().reshape(CHAINS, -1) for n in names], axis=-1)
-
-    import jax
-
-    start = clocks()
-    log_p = jax.jit(jax.vmap(design.log_posterior(observations, SLOPES, STRENGTH_PRIORS)))
+    nuts, _ = nuts_run(observations, SLOPES, STRENGTH_PRIORS, 500, 500)
+    names = list(nuts["draws"])
     begin = np.array([[TRUTH[n] for n in names]] * CHAINS) * (1 + 0.01 * np.arange(CHAINS)[:, None])
-    draws, acceptance = random_walk_metropolis(log_p, begin, 8000, 1500)
-    rwm_wall, rwm_cpu = since(start)
-    return names, (nuts_wall, nuts_cpu, nuts_draws), (rwm_wall, rwm_cpu, draws), acceptance
+    rwm = rwm_run(design.log_posterior(observations, SLOPES, STRENGTH_PRIORS), names, begin, 8000, 1500)
+    return nuts, rwm
+
+
+def summarised(run):
+    """Per parameter (bulk ESS, MCSE, mean), the smallest ESS per wall second [1/s] and per
+    1,000 evaluations of the log posterior in the kept draws."""
+    per = {n: (*ess_and_mcse(x), x.mean()) for n, x in run["draws"].items()}
+    least = min(p[0] for p in per.values())
+    chains, kept = next(iter(run["draws"].values())).shape
+    return per, least / run["wall"], 1000 * least / (chains * kept * run["per_draw"])
 
 
 def main():
@@ -146,47 +193,53 @@ def main():
     import numpyro  # noqa: F401
 
     jax.config.update("jax_enable_x64", True)
+    Clock.listen()
     warnings.simplefilter("ignore", bd.CompileNotice)
     warnings.simplefilter("ignore", FutureWarning)  # ArviZ's notice of its coming refactor
     record = next(r for r in sample_records() if r.name == RECORD)
     design.Rigid().displacements(record, PGA, {"ky": np.array([0.1])}, derivative=True)  # numba's disk cache, loaded
     print(f"{RECORD} scaled to {PGA} g ({record.acceleration_samples.size} samples, dt {record.dt} s); "
-          f"{CHAINS} chains per sampler; CPU = the process's CPU seconds over all its threads")
-    rows, failures = [], []
-    nuts, rwm, acceptance = one_parameter(record)
-    for name, (wall, cpu, ess, mcse, mean) in (("NUTS (exact gradient)", nuts), ("random-walk Metropolis", rwm)):
-        rows.append(("ky", name, f"{wall:.2f}", f"{cpu:.2f}", f"{ess:.0f}", f"{ess / wall:.1f}", f"{mean:.5f}",
-                     f"{mcse:.5f}"))
-    one_ratio = (nuts[2] / nuts[0]) / (rwm[2] / rwm[0])
-    agree_1 = abs(nuts[4] - rwm[4]) <= 5 * np.hypot(nuts[3], rwm[3])
-
-    names, (n_wall, n_cpu, n_draws), (r_wall, r_cpu, r_draws), acceptance_4 = four_parameters(record)
-    stats = {}
-    for label, wall, cpu, draws in (("NUTS (exact gradient)", n_wall, n_cpu, n_draws),
-                                    ("random-walk Metropolis", r_wall, r_cpu, r_draws)):
-        per = [ess_and_mcse(draws[..., i]) + (draws[..., i].mean(),) for i in range(len(names))]
-        stats[label] = (wall, per)
-        for i, name in enumerate(names):
-            ess, mcse, mean = per[i]
-            rows.append((name, label, f"{wall:.2f}", f"{cpu:.2f}", f"{ess:.0f}", f"{ess / wall:.1f}", f"{mean:.5g}",
-                         f"{mcse:.2g}"))
-    least = {label: min(p[0] for p in per) / wall for label, (wall, per) in stats.items()}
-    four_ratio = least["NUTS (exact gradient)"] / least["random-walk Metropolis"]
-    agree_4 = all(abs(a[2] - b[2]) <= 5 * np.hypot(a[1], b[1])
-                  for a, b in zip(stats["NUTS (exact gradient)"][1], stats["random-walk Metropolis"][1]))
-    print_table(("parameter", "sampler", "wall [s]", "CPU [s]", "bulk ESS [-]", "ESS per wall s [1/s]",
-                 "posterior mean [unit]", "MCSE [unit]"), rows)
-    print(f"units: ky [g], c_kPa [kPa], phi_deg [deg], t_*_m [m]; random-walk acceptance {acceptance:.0%} (ky), "
-          f"{acceptance_4:.0%} (four parameters)")
-    per_bar = nuts[2] / nuts[0] * SECONDS_BAR  # effective samples per SECONDS_BAR of wall time
+          f"{CHAINS} chains per sampler; CPU = the process's CPU seconds over all its threads; load average "
+          f"{os.getloadavg()[0]:.1f} at the start")
+    cases = {"ky": one_parameter(record), "four parameters": four_parameters(record)}
+    labels = ("NUTS (exact gradient)", "random-walk Metropolis")
+    rows, timing, ratios, agree = [], [], {}, True
+    for case, runs in cases.items():
+        results = [summarised(run) for run in runs]
+        for label, run, (per, per_second, per_thousand) in zip(labels, runs, results):
+            for name, (ess, mcse, mean) in per.items():
+                rows.append((name, label, f"{ess:.0f}", f"{ess / run['wall']:.1f}", f"{mean:.5g}", f"{mcse:.2g}"))
+            tuning = "in sampling" if run["tuning"] is None else f"{run['tuning']:.2f}"
+            timing.append((case, label, run["iterations"], f"{run['wall']:.2f}", f"{run['cpu']:.2f}",
+                           f"{run['compile']:.2f}", tuning, f"{run['sampling']:.2f}", f"{run['per_draw']:.1f}",
+                           f"{per_second:.1f}", f"{per_thousand:.1f}"))
+        ratios[case] = results[0][1] / results[1][1]
+        agree &= all(abs(a[2] - b[2]) <= 5 * np.hypot(a[1], b[1])
+                     for a, b in zip(results[0][0].values(), results[1][0].values()))
+    print_table(("parameter", "sampler", "bulk ESS [-]", "ESS per wall s [1/s]", "posterior mean [unit]",
+                 "MCSE [unit]"), rows)
+    print("units: ky [g], c_kPa [kPa], phi_deg [deg], t_*_m [m]")
+    print_table(("case", "sampler", "iterations per chain", "wall [s]", "CPU [s]", "JAX compile [s]", "tuning [s]",
+                 "sampling [s]", "evaluations per draw [-]", "least ESS per wall s [1/s]",
+                 "least ESS per 1,000 evaluations [-]"), timing)
+    print("NUTS's sampling: its wall time but JAX's compiling (its start, its warm-up (its tuning, run in the loop of "
+          "its draws), draws and diagnostics); "
+          "evaluations per draw: NUTS's mean leapfrog steps (the log posterior and its gradient, one engine call "
+          "per motion for all chains), one for random-walk Metropolis; per 1,000 evaluations: of the kept draws; "
+          f"random-walk acceptance {cases['ky'][1]['acceptance']:.0%} (ky), "
+          f"{cases['four parameters'][1]['acceptance']:.0%} (four parameters)")
+    nuts = cases["ky"][0]
+    ess_ky = ess_and_mcse(nuts["draws"]["ky"])[0]
+    per_bar = ess_ky / nuts["wall"] * SECONDS_BAR  # effective samples per SECONDS_BAR of wall time
     checks = [
-        (f"ky: NUTS bulk ESS {nuts[2]:.0f} in {nuts[0]:.2f} s wall, {nuts[1]:.2f} s CPU (compile included), "
+        (f"ky: NUTS bulk ESS {ess_ky:.0f} in {nuts['wall']:.2f} s wall, {nuts['cpu']:.2f} s CPU (compile included), "
          f"{per_bar:.0f} per {SECONDS_BAR:g} s wall", per_bar >= ESS_BAR, f">= {ESS_BAR:.0f} per {SECONDS_BAR:g} s"),
-        (f"ky: NUTS / random-walk ESS per second {one_ratio:.1f} x", True, "reported"),
-        (f"four parameters: NUTS / random-walk ESS per second (smallest over the parameters) {four_ratio:.1f} x",
-         four_ratio >= RATIO_BAR, f">= {RATIO_BAR:g} x"),
-        ("posterior means agree within 5 combined Monte Carlo standard errors", agree_1 and agree_4, "required"),
+        (f"ky: NUTS / random-walk ESS per second {ratios['ky']:.2f} x", True, "reported"),
+        (f"four parameters: NUTS / random-walk ESS per second (smallest over the parameters) "
+         f"{ratios['four parameters']:.2f} x", ratios["four parameters"] >= RATIO_BAR, f">= {RATIO_BAR:g} x"),
+        ("posterior means agree within 5 combined Monte Carlo standard errors", agree, "required"),
     ]
+    failures = []
     for text, ok, bar in checks:
         print(f"{text} (bar {bar}): {'met' if ok else 'NOT met'}")
         if not ok:

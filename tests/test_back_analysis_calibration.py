@@ -5,14 +5,14 @@ posterior computed from it. Where the posterior is right, the rank of the truth 
 (independent) posterior draws is uniform, and a 90 % interval holds the truth 90 % of the
 time.
 
-NUTS costs about 8 s of one core per analysis, most of it JAX compiling its sampler
+NUTS costs about 6 s of CPU per analysis, most of it JAX compiling its sampler
 afresh for the analysis's own forward model (a faster engine call shortens the rest):
 it runs on 30 truths with short chains. The calibration over more truths (150) uses the
 Laplace approximation (0.5 s each), where its normal in ln ky holds: a surveyed
 displacement (sigma_ln 0.05). Where one observation leaves ky wide (sigma_ln 0.2) the true
 posterior's longer tail toward low ky moves the Laplace draws up by about 0.1-0.3
 posterior sd (against quadrature at ky 0.05-0.3 g), and 200 truths see it (KS p = 0.0007):
-there the calibration runs NUTS. About 5 min in all on one core."""
+there the calibration runs NUTS. About 4 min of CPU in all."""
 
 import warnings
 

@@ -31,13 +31,15 @@ PRIOR = {"ky": design.LogNormal(median=0.1, sigma_ln=0.5)}
 
 def test_log_posterior_gradient_matches_central_differences(record):
     """The custom derivative (the engine's exact dD/dky) against central differences of
-    the log posterior itself, step 1e-6 g (their own error, O(h²) f''' + eps f / h, about
-    1e-10 relative here); measured 3e-11 to 5e-11 relative at these four ky."""
+    the log posterior itself (two of the observations under one motion: one engine call),
+    step 1e-6 g (their own error, O(h²) f''' + eps f / h, about 1e-10 relative here);
+    measured 2e-11 to 5e-11 relative at these four ky."""
     import jax
 
     observations = [design.Observation(record, sigma_ln=0.2, displacement_m=observed(record, KY_TRUE)),
                     design.Observation(record, sigma_ln=0.3, more_than_m=0.05, pga_g=0.35, name="bound"),
-                    design.Observation(record, sigma_ln=0.3, less_than_m=0.5, pga_g=0.25, name="upper")]
+                    design.Observation(record, sigma_ln=0.3, less_than_m=0.5, pga_g=0.25, name="upper"),
+                    design.Observation(record, sigma_ln=0.3, more_than_m=0.01, name="same motion")]
     log_p = design.log_posterior(observations, design.Rigid(), PRIOR)
     h = 1e-6
     with jax.enable_x64(True):
@@ -45,6 +47,14 @@ def test_log_posterior_gradient_matches_central_differences(record):
             exact = float(jax.grad(log_p)(ky))
             central = (float(log_p(ky + h)) - float(log_p(ky - h))) / (2 * h)
             assert exact == pytest.approx(central, rel=1e-6, abs=1e-6)
+
+
+def test_log_posterior_in_float32_is_refused(record):
+    import jax
+
+    log_p = design.log_posterior(design.Observation(record, sigma_ln=0.2, displacement_m=0.1), design.Rigid(), PRIOR)
+    with jax.enable_x64(False), pytest.raises(ValueError, match="float32 here"):
+        log_p(0.1)
 
 
 def test_laplace_posterior_concentrates_at_the_true_ky(record):
@@ -161,3 +171,26 @@ def test_short_nuts_chains_warn_and_report_their_diagnostics(record):
     assert result.diagnostics.ess_bulk.iloc[0] < 200
     assert len(result.samples) == 60 and set(result.samples.chain) == {0, 1}
     assert 0.05 < result.samples.ky_g.median() < 0.25
+
+
+def test_back_analysis_keeps_float64_to_its_own_thread(record):
+    """JAX's float64 holds only inside the analysis, on its thread: another thread's JAX
+    keeps its own precision while it runs (float32, JAX's default, unless the process
+    turned float64 on), and the global flag is as it was after."""
+    import threading
+
+    import jax
+    import jax.numpy as jnp
+
+    before = jax.config.jax_enable_x64
+    seen = design.Observation(record, sigma_ln=0.2, displacement_m=observed(record, KY_TRUE))
+    results = []
+    worker = threading.Thread(target=lambda: results.append(
+        design.back_analysis(seen, design.Rigid(), PRIOR, method="laplace", draws=100)))
+    worker.start()
+    dtypes = set()
+    while worker.is_alive():
+        dtypes.add(str(jnp.asarray(1.0).dtype))
+    worker.join()
+    assert results and results[0].map_value == pytest.approx(KY_TRUE, rel=0.2)
+    assert dtypes == {"float64" if before else "float32"} and jax.config.jax_enable_x64 == before

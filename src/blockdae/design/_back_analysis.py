@@ -13,7 +13,6 @@ back-analysis and that of several (:mod:`._infinite_slope_model`); their results
 :class:`._back_analysis_result.Posterior`. JAX, NumPyro and ArviZ (the ``inference``
 extra) are imported on first use."""
 
-import contextlib
 import dataclasses
 import math
 import warnings
@@ -21,6 +20,7 @@ import warnings
 import numpy as np
 import pandas as pd
 
+from ..core import jax_context
 from ..excitation import Record
 from ._distributions import LogNormal, Normal, Uniform
 from ._inferred import InferredParameter, inferred_parameter, support
@@ -202,13 +202,29 @@ def _log_likelihoods(observations, parameter):
     """The observations' joint log likelihood as a JAX function of the parameter's value."""
     import jax.numpy as jnp
 
-    functions = [parameter.displacement_function(o.record, o.pga_g) for o in observations]
+    groups = by_motion(observations)
+    functions = [parameter.displacement_function(record, pga_g) for record, pga_g in groups]
 
     def log_likelihood(value):
         value = jnp.maximum(value, 1e-12)  # the models' parameters > 0; the prior's density is 0 below
-        return sum(_log_likelihood(obs, f(value)) for obs, f in zip(observations, functions))
+        total = 0.0
+        for seen, f in zip(groups.values(), functions):
+            d = f(value)  # one model call for the observations under one motion
+            total += sum(_log_likelihood(obs, d) for obs in seen)
+        return total
 
     return log_likelihood
+
+
+def by_motion(observations, key=lambda o: o):
+    """The observations grouped by the motion they were seen under: (record, pga_g) -> the
+    observations (``key`` maps an item to its :class:`Observation`), in order of first
+    appearance; the model runs once per motion."""
+    groups = {}
+    for item in observations:
+        obs = key(item)
+        groups.setdefault((obs.record, obs.pga_g), []).append(item)  # a Record is hashed by identity
+    return groups
 
 
 def _checked(observations, model, priors):
@@ -299,20 +315,6 @@ class BackAnalysis(Posterior):
         parameter = InferredParameter(self.model, self.parameter, None, self.fixed)
         table["D_m"] = parameter.displacements(record, pga_g, table[self.column].to_numpy())
         return table
-
-
-@contextlib.contextmanager
-def _float64():
-    """JAX in float64 for the calls inside, on every thread (the engine's callbacks run on
-    XLA's threads, outside a thread-local ``jax.enable_x64``); the setting is restored."""
-    import jax
-
-    before = jax.config.jax_enable_x64
-    jax.config.update("jax_enable_x64", True)
-    try:
-        yield
-    finally:
-        jax.config.update("jax_enable_x64", before)
 
 
 def _maximum(log_p, prior, name):
@@ -411,7 +413,7 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
     check_counts(chains, draws, warmup, method)
     _check_reachable(parameter, observations)
     prior, name = parameter.prior, parameter.name
-    with _float64():
+    with jax_context():  # float64 on this thread only
         log_p = _log_posterior(observations, parameter)
         at_map, sd_ln = _maximum(log_p, prior, name)
         if method == "laplace":

@@ -1,7 +1,8 @@
 """The parameter a back-analysis infers: one of a design model's parameters with a prior,
 the others held at given values, and the model's D [m] as a function of it, in NumPy
 and in JAX (differentiable through the model's own dD/dp: :meth:`DesignModel.gradient`,
-called back from JAX with ``jax.pure_callback`` inside a ``jax.custom_jvp``)."""
+called back from JAX with ``jax.pure_callback`` inside a ``jax.custom_jvp``, its float64
+values passed as their bits so that JAX's float64 is needed only on the calling thread)."""
 
 import dataclasses
 
@@ -76,9 +77,13 @@ class InferredParameter:
         import jax.numpy as jnp
 
         def call(value, derivative):
-            shape = jax.ShapeDtypeStruct(jnp.shape(value), jnp.float64)
-            return jax.pure_callback(lambda v: self.displacements(record, pga_g, v, derivative),
-                                     (shape, shape) if derivative else shape, value, vmap_method="broadcast_all")
+            if jax.dtypes.canonicalize_dtype(np.float64) != np.float64:
+                raise ValueError("the model's D is passed to JAX in float64, and JAX is in float32 here: evaluate "
+                                 "the log posterior inside `with jax.enable_x64(True):`")
+            bits = jax.ShapeDtypeStruct(jnp.shape(value) + (2,), jnp.uint32)
+            out = jax.pure_callback(lambda v: _as_bits(self.displacements(record, pga_g, v, derivative)),
+                                    (bits, bits) if derivative else bits, value, vmap_method="broadcast_all")
+            return jax.tree.map(lambda b: jax.lax.bitcast_convert_type(b, jnp.float64), out)
 
         @jax.custom_jvp
         def displacement(value):
@@ -90,6 +95,15 @@ class InferredParameter:
             return d, slope * tangents[0]
 
         return displacement
+
+
+def _as_bits(arrays):
+    """float64 arrays as their bits, uint32 pairs along a last axis: what a JAX callback
+    returns intact on any thread (XLA's threads, where a thread-local ``jax.enable_x64``
+    does not reach, would cast float64 to float32)."""
+    if isinstance(arrays, tuple):
+        return tuple(_as_bits(a) for a in arrays)
+    return np.ascontiguousarray(arrays, dtype=np.float64).view(np.uint32).reshape(np.shape(arrays) + (2,))
 
 
 def inferred_parameter(model, priors) -> InferredParameter:

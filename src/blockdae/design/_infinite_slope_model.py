@@ -17,9 +17,10 @@ import math
 import numpy as np
 import pandas as pd
 
+from ..core import jax_context
 from ..excitation import Record
 from ..regional import WATER_UNIT_WEIGHT, factor_of_safety
-from ._back_analysis import (Observation, _float64, _log_likelihood as _observation_log_likelihood, _numpyro_prior,
+from ._back_analysis import (Observation, by_motion, _log_likelihood as _observation_log_likelihood, _numpyro_prior,
                              check_counts, nuts)
 from ._distributions import DISTRIBUTIONS
 from ._inferred import InferredParameter
@@ -168,8 +169,8 @@ def _log_likelihood(observations, slopes, fixed):
     import jax.numpy as jnp
 
     rigid = InferredParameter(slopes.model, "ky", None, {})  # a slope's D [m] as a function of its ky [g]
-    functions = {name: [(o, rigid.displacement_function(o.record, o.pga_g)) for o in seen]
-                 for name, seen in observations.items()}
+    groups = by_motion([(name, o) for name, seen in observations.items() for o in seen], key=lambda item: item[1])
+    functions = [rigid.displacement_function(record, pga_g) for record, pga_g in groups]
 
     def log_likelihood(values):
         values = dict(fixed) | dict(values)
@@ -178,11 +179,13 @@ def _log_likelihood(observations, slopes, fixed):
             inside &= jnp.asarray(values.get(slopes.thickness_names[name], 1.0)) > 0
         safe = {k: jnp.where(inside, v, _SAFE[k] if k in _SAFE else 1.0) for k, v in values.items()}
         _, ky = slopes.yield_accelerations(safe, jnp)
+        stands = {name: ky[name] > 0 for name in slopes.slopes}  # FS > 1
+        at = {name: jnp.where(stands[name], ky[name], 1.0) for name in slopes.slopes}  # any ky > 0: masked below
         total = 0.0
-        for name, pairs in functions.items():
-            stands = ky[name] > 0  # FS > 1
-            at = jnp.where(stands, ky[name], 1.0)  # any ky > 0: the value is masked below
-            total += sum(jnp.where(stands, _observation_log_likelihood(o, f(at)), -jnp.inf) for o, f in pairs)
+        for seen, f in zip(groups.values(), functions):
+            d = f(jnp.stack([at[name] for name, _ in seen]))  # one engine call for the slopes under one motion
+            total += sum(jnp.where(stands[name], _observation_log_likelihood(o, d[i]), -jnp.inf)
+                         for i, (name, o) in enumerate(seen))
         return jnp.where(inside, total, -jnp.inf)
 
     return log_likelihood
@@ -306,7 +309,7 @@ def slopes_back_analysis(observations, slopes, priors, *, chains=4, draws=500, w
     check_counts(chains, draws, warmup)
     observations, fixed, uncertain = _checked(observations, slopes, priors)
     names = list(uncertain)
-    with _float64():
+    with jax_context():  # float64 on this thread only
         log_likelihood = _log_likelihood(observations, slopes, fixed)
         log_prior = _log_prior(uncertain)
         starts = _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains, seed)
@@ -330,7 +333,7 @@ def _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains
     rng = np.random.default_rng(seed)
     draws = {name: np.asarray(prior.ppf(rng.uniform(size=_START_DRAWS)), dtype=float)
              for name, prior in uncertain.items()}
-    values = np.asarray(jax.vmap(lambda v: log_prior(v) + log_likelihood(v))(draws), dtype=float)
+    values = np.asarray(jax.jit(jax.vmap(lambda v: log_prior(v) + log_likelihood(v)))(draws), dtype=float)
     finite = np.isfinite(values)
     if finite.sum() < 1:
         fs, _ = slopes.yield_accelerations(fixed | draws)
