@@ -51,11 +51,11 @@ def strength_from_zones(zones, table):
 
     def lookup(z):
         z = _floats(z)
-        out = np.empty((len(_STRENGTH),) + z.shape)
-        unknown = _zone_lookup(z.reshape(-1), codes, columns, out.reshape(len(_STRENGTH), -1))
+        out = tuple(np.empty(z.shape) for _ in _STRENGTH)  # apart: a block's arrays stay under malloc's mmap size
+        unknown = _zone_lookup(z.reshape(-1), codes, columns, tuple(field.reshape(-1) for field in out))
         if unknown == unknown:
             raise ValueError(f"zone {unknown:g} of the raster is not in the zone table (zones {codes.tolist()})")
-        return tuple(out)
+        return out
 
     units = {"cohesion_kpa": "kPa", "friction_deg": "deg", "unit_weight_kn_m3": "kN/m3"}
     looked_up = xr.apply_ufunc(lookup, zones, dask="parallelized", output_core_dims=[[]] * len(_STRENGTH),
@@ -66,13 +66,14 @@ def strength_from_zones(zones, table):
 
 @numba.njit(cache=True, nogil=True)
 def _zone_lookup(zones, codes, values, out):
-    """``values[:, k]`` of each cell's zone ``codes[k]`` among the sorted ``codes`` into ``out[:, cell]``
+    """``values[k, j]`` of each cell's zone ``codes[j]`` among the sorted ``codes`` into ``out[k][cell]``
     (NaN where the zone is NaN; zones float32 or float64, compared as float64); returns the first zone
     not among the codes, or NaN."""
     for i in range(zones.size):
         z = float(zones[i])
         if z != z:
-            out[:, i] = np.nan
+            for k in range(values.shape[0]):
+                out[k][i] = np.nan
             continue
         lo, hi = 0, codes.size  # bisection: the first code >= z
         while lo < hi:
@@ -84,7 +85,7 @@ def _zone_lookup(zones, codes, values, out):
         if lo == codes.size or codes[lo] != z:
             return z
         for k in range(values.shape[0]):
-            out[k, i] = values[k, lo]
+            out[k][i] = values[k, lo]
     return np.nan
 
 
