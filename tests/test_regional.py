@@ -271,15 +271,16 @@ def test_a_map_of_float32_rasters_is_the_map_of_the_same_values_as_float64(table
     zones = (xr.where(dem["x"] > float(dem["x"][20]), 2.0, 1.0) + 0 * dem.fillna(0)).astype(np.float32)
     pga = (0.3 + 0.2 * np.cos(dem["y"] / 90.0) + 0 * dem.fillna(0)).astype(np.float32)
     pga[5, 5] = np.nan
+    thickness = (1.7 + 0.9 * np.sin(dem["x"] / 70.0) ** 2 + 0 * dem.fillna(0)).astype(np.float32)
     table = {"zone": [1, 2], "cohesion_kpa": [4.1, 12.3], "friction_deg": [28.3, 34.1],
              "unit_weight_kn_m3": [18.7, 20.1]}
     names = ["slope_deg", "factor_of_safety", "ky_g", "category", "median_displacement_m", "exceedance"]
 
     def the_map(convert, chunks):
-        given = [a.astype(float) if convert else a for a in (dem, zones, pga)]
+        given = [a.astype(float) if convert else a for a in (dem, zones, pga, thickness)]
         given = [a.chunk({"x": 16, "y": 20}) if chunks else a for a in given]
         strength = rg.strength_from_zones(given[1].rio.write_crs(CRS), table)
-        return rg.displacement_map(given[0].rio.write_crs(CRS), strength, None, given[2], thickness_m=2.2,
+        return rg.displacement_map(given[0].rio.write_crs(CRS), strength, None, given[2], thickness_m=given[3],
                                    saturated_fraction=0.1, thresholds_m=(0.01, 0.1), regressions=False,
                                    tables=tables)[names].compute()
 
