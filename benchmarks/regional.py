@@ -53,7 +53,8 @@ def main(argv=None):
     parser.add_argument("--size", type=int, default=None, help="cells along each side (default 10,000)")
     parser.add_argument("--peer-side", type=int, default=None,
                         help="pyNewmarkDisp's cells along each side (default 100: 10^4 cells)")
-    parser.add_argument("--chunk", type=int, default=CHUNK, help=f"cells along each side of a chunk (default {CHUNK:,})")
+    parser.add_argument("--chunk", type=int, default=CHUNK,
+                        help=f"cells along each side of a chunk (default {CHUNK:,})")
     parser.add_argument("--out", default=None, help="folder of the Zarr stores (default: a temporary one)")
     args = parser.parse_args(argv)
     import dask
