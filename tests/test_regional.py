@@ -96,6 +96,39 @@ def test_dask_slope_equals_the_in_memory_one_across_chunk_borders():
                                 rg.slope_and_azimuth(dem))
 
 
+def _numpy_horn(z, dx, dy):
+    """Horn's slope [deg] and dip azimuth [deg from north] of z's interior cells with NumPy's array
+    arithmetic (the independent reference of the compiled kernel), NaN on the border."""
+    a, b, c = z[:-2, :-2], z[:-2, 1:-1], z[:-2, 2:]
+    d, f = z[1:-1, :-2], z[1:-1, 2:]
+    g, h, i = z[2:, :-2], z[2:, 1:-1], z[2:, 2:]
+    dz_dx = ((c + 2 * f + i) - (a + 2 * d + g)) / (8 * dx)
+    dz_dy = ((g + 2 * h + i) - (a + 2 * b + c)) / (8 * dy)
+    slope, azimuth = np.full(z.shape, np.nan), np.full(z.shape, np.nan)
+    slope[1:-1, 1:-1] = np.degrees(np.arctan(np.hypot(dz_dx, dz_dy)))
+    with np.errstate(invalid="ignore"):
+        azimuth[1:-1, 1:-1] = np.where((dz_dx == 0) & (dz_dy == 0), np.nan,
+                                       np.degrees(np.arctan2(-dz_dx, -dz_dy)) % 360.0)
+    return slope, azimuth
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_the_compiled_horn_matches_numpy_on_a_rough_dem_chunked_or_not_in_its_own_dtype(dtype):
+    """The kernel against NumPy's arithmetic at 1e-12 on a rough DEM with nodata cells; a float32 DEM,
+    read as it is (each elevation taken as float64), gives exactly the slope of the same DEM as float64,
+    in memory and chunked on Dask."""
+    rng = np.random.default_rng(11)
+    dem = (_plane(0.3, -0.2, n=40) + xr.DataArray(rng.normal(0, 2, (40, 40)), dims=("y", "x"))).astype(dtype)
+    dem[7, 9] = np.nan
+    dem = dem.rio.write_crs(CRS)
+    slope, azimuth = _numpy_horn(dem.values.astype(float), 5.0, -5.0)
+    for got in (rg.slope_and_azimuth(dem), rg.slope_and_azimuth(dem.chunk({"x": 13, "y": 9})).compute()):
+        np.testing.assert_allclose(got["slope_deg"], slope, rtol=1e-12, atol=0)
+        np.testing.assert_allclose(got["dip_azimuth_deg"], azimuth, rtol=1e-12, atol=0)
+        np.testing.assert_array_equal(got["slope_deg"], rg.slope_and_azimuth(dem.astype(float))["slope_deg"])
+        assert got["slope_deg"].dtype == np.float64 and np.isnan(got["slope_deg"].values[7, 10])
+
+
 def test_geotiff_and_esri_ascii_read_with_their_grid_crs_and_nodata(tmp_path):
     dem = _plane(0.2, 0.1, n=6)
     dem[2, 3] = -9999.0
@@ -165,6 +198,33 @@ def test_every_interval_of_a_table_meets_a_tenth_of_the_bound_at_fresh_exact_run
         np.testing.assert_array_equal(values[:-1], exact(knots[:-1]))  # the knots' values are exact runs there
 
 
+def test_the_median_of_a_suite_is_numpys_whatever_the_order_kept_from_the_last_cell():
+    """The median's selection (the smallest half sorted, the permutation kept from cell to cell) equals
+    np.median bit for bit, even and odd counts, with ties, zeros, negatives and reordered suites."""
+    import numba
+
+    from blockdae.regional._tables import median_of
+
+    @numba.njit
+    def medians(cells):
+        n = cells.shape[1]
+        order, values, out = np.arange(n), np.empty(n), np.empty(cells.shape[0])
+        for i in range(cells.shape[0]):
+            out[i] = median_of(cells[i], order, values)
+        return out
+
+    rng = np.random.default_rng(2)
+    for n in (1, 2, 3, 7, 20, 21):
+        cells = np.abs(rng.normal(0, 0.1, (400, n)))
+        cells[50:100] = np.sort(cells[50:100], axis=1)[:, ::-1]  # reversed: the head refilled
+        cells[100:150] = np.round(cells[100:150], 1)  # ties, zeros among them
+        cells[150:200, : n // 2 + 1] = 0.0  # more than half at 0
+        cells[200:220] -= 0.05  # negatives
+        cells[220:240] = 0.0
+        got = medians(cells)
+        np.testing.assert_array_equal(got, np.median(cells, axis=1))
+
+
 def _terrain(n, seed=0):
     rng = np.random.default_rng(seed)
     x = 500000 + 10.0 * np.arange(n)
@@ -202,6 +262,35 @@ def test_the_map_keeps_every_category_and_matches_the_exact_method(tables):
     assert table.rio.crs.to_epsg() == 32611 and table["median_displacement_m"].attrs["units"] == "m"
     jibson = bd.empirical.jibson_2007(table["ky_g"].values[stable], 0.45).median_m
     np.testing.assert_allclose(table["jibson_2007_median_m"].values[stable], jibson, rtol=1e-14)
+
+
+def test_a_map_of_float32_rasters_is_the_map_of_the_same_values_as_float64(tables):
+    """The compiled kernels read float32 rasters as they are (no float64 copies): every output equals
+    that of the rasters converted to float64 first, bit for bit, in memory and chunked on Dask."""
+    dem = _terrain(45).astype(np.float32).rio.write_crs(CRS)
+    zones = (xr.where(dem["x"] > float(dem["x"][20]), 2.0, 1.0) + 0 * dem.fillna(0)).astype(np.float32)
+    pga = (0.3 + 0.2 * np.cos(dem["y"] / 90.0) + 0 * dem.fillna(0)).astype(np.float32)
+    pga[5, 5] = np.nan
+    thickness = (1.7 + 0.9 * np.sin(dem["x"] / 70.0) ** 2 + 0 * dem.fillna(0)).astype(np.float32)
+    table = {"zone": [1, 2], "cohesion_kpa": [4.1, 12.3], "friction_deg": [28.3, 34.1],
+             "unit_weight_kn_m3": [18.7, 20.1]}
+    names = ["slope_deg", "factor_of_safety", "ky_g", "category", "median_displacement_m", "exceedance"]
+
+    def the_map(convert, chunks):
+        given = [a.astype(float) if convert else a for a in (dem, zones, pga, thickness)]
+        given = [a.chunk({"x": 16, "y": 20}) if chunks else a for a in given]
+        strength = rg.strength_from_zones(given[1].rio.write_crs(CRS), table)
+        return rg.displacement_map(given[0].rio.write_crs(CRS), strength, None, given[2], thickness_m=given[3],
+                                   saturated_fraction=0.1, thresholds_m=(0.01, 0.1), regressions=False,
+                                   tables=tables)[names].compute()
+
+    expected = the_map(True, False)
+    assert np.count_nonzero(expected["median_displacement_m"].values > 0) > 100
+    for chunks in (False, True):
+        got = the_map(False, chunks)
+        for name in names:
+            assert got[name].dtype == expected[name].dtype
+            np.testing.assert_array_equal(got[name].values, expected[name].values)
 
 
 def _slopes(slope_deg):

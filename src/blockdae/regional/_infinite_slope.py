@@ -82,16 +82,26 @@ def factor_of_safety(sin_a, tan_a, tan_phi, cohesion_kpa, unit_weight_kn_m3, thi
 def _cells(alpha, c, phi, gamma, t, m, gamma_w, fs, ky, category):
     """FS, ky and category of every cell (2-D arrays, written in place); returns the index
     in :data:`_RANGES` of the first input out of range (the caller raises), or -1."""
+    last_phi, tan_phi = np.nan, np.nan
     for i in np.ndindex(alpha.shape):
-        fs[i], ky[i], category[i], bad = cell(alpha[i], c[i], phi[i], gamma[i], t[i], m[i], gamma_w)
+        if phi[i] != last_phi:  # a zone's cells share φ': its tangent is computed once
+            last_phi, tan_phi = phi[i], friction_tangent(phi[i])
+        fs[i], ky[i], category[i], bad = cell(alpha[i], c[i], phi[i], tan_phi, gamma[i], t[i], m[i], gamma_w)
         if bad >= 0:
             return bad
     return -1
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def cell(a, c, p, gamma, t, m, gamma_w):
-    """(FS [-], ky [g], category, the index in :data:`_RANGES` of an input out of range or -1) of one cell."""
+def friction_tangent(p):
+    """tan φ' of the friction angle ``p`` [deg] (NaN where p is NaN)."""
+    return np.tan(np.radians(p))
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def cell(a, c, p, tan_phi, gamma, t, m, gamma_w):
+    """(FS [-], ky [g], category, the index in :data:`_RANGES` of an input out of range or -1) of one cell;
+    ``tan_phi``: :func:`friction_tangent` of ``p`` (computed once by the caller for the cells that share p)."""
     if a != a or c != c or p != p or gamma != gamma or t != t or m != m:
         return np.nan, np.nan, NODATA, -1
     if not (0.0 <= a < 90.0):
@@ -109,7 +119,7 @@ def cell(a, c, p, gamma, t, m, gamma_w):
     if a == 0.0:
         return np.inf, np.nan, FLAT, -1
     ar = np.radians(a)
-    f, k = factor_of_safety(np.sin(ar), np.tan(ar), np.tan(np.radians(p)), c, gamma, t, m, gamma_w)
+    f, k = factor_of_safety(np.sin(ar), np.tan(ar), tan_phi, c, gamma, t, m, gamma_w)
     if f >= 1.0:
         return f, k, STABLE, -1
     return f, np.nan, UNSTABLE, -1

@@ -11,10 +11,10 @@ import numba
 import numpy as np
 
 from . import _infinite_slope, _tables
-from ._infinite_slope import CATEGORIES, FLAT, NODATA, STABLE, WATER_UNIT_WEIGHT, cell, infinite_slope
+from ._infinite_slope import CATEGORIES, FLAT, NODATA, STABLE, WATER_UNIT_WEIGHT, cell, friction_tangent, infinite_slope
 from ._pairs import ProjectedPairs, RecordPair
 from ._tables import DisplacementTables, cell_displacements, median_of, statistics_of
-from ._terrain import _crs, _with_crs, slope_and_azimuth
+from ._terrain import _crs, _floats, _with_crs, slope_and_azimuth
 
 #: the largest PGA accepted [g]: above it the values are likely in m/s² or %g
 MAX_PGA_G = 2.0
@@ -47,29 +47,33 @@ def strength_from_zones(zones, table):
         raise ValueError(f"the zone table repeats a zone: {sorted(codes)}")
     order = np.argsort(codes)
     codes = codes[order]
-    columns = {name: frame[name].to_numpy(dtype=float)[order] for name in _STRENGTH}
+    columns = np.array([frame[name].to_numpy(dtype=float)[order] for name in _STRENGTH])
 
-    def lookup(z, name):
-        out = np.empty(z.shape)
-        unknown = _zone_lookup(np.ascontiguousarray(z, dtype=float).reshape(-1), codes, columns[name], out.reshape(-1))
+    def lookup(z):
+        z = _floats(z)
+        out = tuple(np.empty(z.shape) for _ in _STRENGTH)  # apart: a block's arrays stay under malloc's mmap size
+        unknown = _zone_lookup(z.reshape(-1), codes, columns, tuple(field.reshape(-1) for field in out))
         if unknown == unknown:
             raise ValueError(f"zone {unknown:g} of the raster is not in the zone table (zones {codes.tolist()})")
         return out
 
     units = {"cohesion_kpa": "kPa", "friction_deg": "deg", "unit_weight_kn_m3": "kN/m3"}
-    fields = {name: xr.apply_ufunc(lookup, zones.astype(float), kwargs={"name": name}, dask="parallelized",
-                                   output_dtypes=[float]).assign_attrs(units=units[name]) for name in _STRENGTH}
+    looked_up = xr.apply_ufunc(lookup, zones, dask="parallelized", output_core_dims=[[]] * len(_STRENGTH),
+                               output_dtypes=[float] * len(_STRENGTH))
+    fields = {name: field.assign_attrs(units=units[name]) for name, field in zip(_STRENGTH, looked_up)}
     return _with_crs(xr.Dataset(fields), zones)
 
 
 @numba.njit(cache=True, nogil=True)
 def _zone_lookup(zones, codes, values, out):
-    """``values`` of each cell's zone among the sorted ``codes`` into ``out`` (NaN where the zone
-    is NaN); returns the first zone not among the codes, or NaN."""
+    """``values[k, j]`` of each cell's zone ``codes[j]`` among the sorted ``codes`` into ``out[k][cell]``
+    (NaN where the zone is NaN; zones float32 or float64, compared as float64); returns the first zone
+    not among the codes, or NaN."""
     for i in range(zones.size):
-        z = zones[i]
+        z = float(zones[i])
         if z != z:
-            out[i] = np.nan
+            for k in range(values.shape[0]):
+                out[k][i] = np.nan
             continue
         lo, hi = 0, codes.size  # bisection: the first code >= z
         while lo < hi:
@@ -80,7 +84,8 @@ def _zone_lookup(zones, codes, values, out):
                 hi = mid
         if lo == codes.size or codes[lo] != z:
             return z
-        out[i] = values[lo]
+        for k in range(values.shape[0]):
+            out[k][i] = values[k, lo]
     return np.nan
 
 
@@ -242,11 +247,12 @@ def _cells(slope, cohesion, friction, unit_weight, thickness, saturated, pga, az
         fs, ky, category, median, exceed = _fused(inputs, tables, thresholds)
         shape = category.shape
         if per_record or regressions:
-            flat, pga = (category == FLAT).ravel(), np.broadcast_to(pga, shape).ravel()
+            flat, pga = (category == FLAT).ravel(), np.broadcast_to(np.asarray(pga, dtype=float), shape).ravel()
             ky_stable = np.where(category == STABLE, ky, np.nan).ravel()
         d = tables.displacement(ky_stable, pga) if per_record else None
     else:
-        _check_pga_values(np.asarray(pga))
+        pga = np.asarray(pga, dtype=float)
+        _check_pga_values(pga)
         fs, ky, category = infinite_slope(*inputs[:-1])
         shape = category.shape
         pga = np.broadcast_to(pga, shape)
@@ -277,7 +283,7 @@ def _fused(inputs, tables, thresholds):
     shape = np.broadcast_shapes(*(np.shape(v) for v in inputs))
     if len(shape) != 2:
         raise ValueError(f"a map's block is 2-D (y, x), got the shape {shape}")
-    fields = [np.broadcast_to(np.asarray(v, dtype=float), shape) for v in inputs]
+    fields = [np.broadcast_to(_floats(v), shape) for v in inputs]
     fs, ky, median = np.empty(shape), np.empty(shape), np.empty(shape)
     category = np.empty(shape, dtype=np.int8)
     exceed = np.empty((thresholds.size,) + shape)
@@ -304,24 +310,28 @@ def _map_kernel():
 
     def kernel(slope, cohesion, friction, unit_weight, thickness, saturated, pga, gamma_w, pieces, index, per_log,
                tops, r_min, thresholds, fs, ky, category, median, exceed, low):
-        """Every cell of a block (2-D arrays, outputs written in place): FS, ky and category, then
-        for a stable cell each member's D from its table, the median and the exceedance counts
-        (NaN on nodata and statically unstable cells, 0 on flat ones). Returns (the index of an
-        input out of range, 6 for the PGA, or -1; the number of cells with ky/PGA < r_min, listed
-        by flat index in ``low``: their D is left to the exact engine)."""
+        """Every cell of a block (2-D arrays of float32 or float64, each value taken as float64;
+        outputs written in place): FS, ky and category, then for a stable cell each member's D
+        from its table, the median and the exceedance counts (NaN on nodata and statically
+        unstable cells, 0 on flat ones). Returns (the index of an input out of range, 6 for the
+        PGA, or -1; the number of cells with ky/PGA < r_min, listed by flat index in ``low``:
+        their D is left to the exact engine)."""
         fingerprint  # noqa: B018 -- numba keys its disk cache by the closure's contents
         n = pieces.shape[0]
         buffer, values, order = np.empty(n), np.empty(n), np.arange(n)
         n_low = 0
         columns = slope.shape[1]
         top = tops.max()  # ky/PGA at or above it: D = 0 for every member
+        last_phi, tan_phi = np.nan, np.nan
         for i in range(slope.shape[0]):
             for j in range(columns):
-                p = pga[i, j]
+                p, phi = float(pga[i, j]), float(friction[i, j])
                 if not (p != p or 0.0 <= p <= MAX_PGA_G):
                     return 6, n_low
-                f, k, c, bad = cell(slope[i, j], cohesion[i, j], friction[i, j], unit_weight[i, j], thickness[i, j],
-                                    saturated[i, j], gamma_w)
+                if phi != last_phi:  # a zone's cells share φ': its tangent is computed once
+                    last_phi, tan_phi = phi, friction_tangent(phi)
+                f, k, c, bad = cell(float(slope[i, j]), float(cohesion[i, j]), phi, tan_phi, float(unit_weight[i, j]),
+                                    float(thickness[i, j]), float(saturated[i, j]), gamma_w)
                 if bad >= 0:
                     return bad, n_low
                 if p != p:
@@ -329,10 +339,12 @@ def _map_kernel():
                 fs[i, j], ky[i, j], category[i, j] = f, k, c
                 if c == FLAT or (c == STABLE and k >= top * p):
                     median[i, j] = 0.0
-                    exceed[:, i, j] = 0.0
+                    for t in range(thresholds.size):
+                        exceed[t, i, j] = 0.0
                 elif c != STABLE:
                     median[i, j] = np.nan
-                    exceed[:, i, j] = np.nan
+                    for t in range(thresholds.size):
+                        exceed[t, i, j] = np.nan
                 elif k < r_min * p:
                     low[n_low] = i * columns + j
                     n_low += 1
@@ -340,9 +352,9 @@ def _map_kernel():
                     cell_displacements(pieces, index, per_log, tops, r_min, k, p, buffer)
                     for t in range(thresholds.size):
                         above = 0
-                        for m in range(buffer.size):
+                        for m in range(n):
                             above += buffer[m] > thresholds[t]
-                        exceed[t, i, j] = above / buffer.size
+                        exceed[t, i, j] = above / n
                     median[i, j] = median_of(buffer, order, values)
         return -1, n_low
 

@@ -392,14 +392,12 @@ def cell_displacements(pieces, index, per_log, tops, r_min, ky, pga, buffer):
         buffer[:] = 0.0
         return
     r = ky / pga
-    part = -1  # found at the first member that slides: one logarithm per cell
+    part = min(int(math.log(r / r_min) * per_log), index.shape[0] - 1)  # one logarithm per cell
     for m in range(pieces.shape[0]):
         if r >= tops[m]:
             buffer[m] = 0.0
-            continue
-        if part < 0:
-            part = min(int(math.log(r / r_min) * per_log), index.shape[0] - 1)
-        buffer[m] = pga * _unit(pieces, index, m, part, r)
+        else:
+            buffer[m] = pga * _unit(pieces, index, m, part, r)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -431,9 +429,11 @@ def _statistics(pieces, index, per_log, tops, r_min, ky, pga, exact_low, where_l
 
 @numba.njit(cache=True, nogil=True, inline="always")
 def median_of(buffer, order, values):
-    """The median of ``buffer`` (n,): 0 where more than half of it is 0 and none below; else
-    sorted into ``values`` (n,) starting from the permutation ``order`` (int, n) of the last
-    call, updated: a neighbouring cell's members come nearly in order."""
+    """The median of ``buffer`` (n,), the mean of its two middle values for an even n: 0 where
+    more than half of it is 0 and none below; else its n // 2 + 1 smallest values sorted into
+    the head of ``values`` (n,), starting from the permutation ``order`` (int, n) of the last
+    call, updated: a neighbouring cell's members come nearly in order, and a value above the
+    head's largest costs one comparison."""
     n = buffer.size
     zeros, negative = 0, False
     for m in range(n):
@@ -443,9 +443,16 @@ def median_of(buffer, order, values):
         return 0.0
     for t in range(n):
         values[t] = buffer[order[t]]
-    for a in range(1, n):  # insertion sort: a few tens of members, nearly in order
+    head = n // 2 + 1
+    for a in range(1, n):  # insertion into the sorted head
         v, o = values[a], order[a]
-        b = a - 1
+        if a < head:
+            b = a - 1
+        elif v < values[head - 1]:  # the head's largest leaves it for a's place
+            values[a], order[a] = values[head - 1], order[head - 1]
+            b = head - 2
+        else:
+            continue
         while b >= 0 and values[b] > v:
             values[b + 1] = values[b]
             order[b + 1] = order[b]

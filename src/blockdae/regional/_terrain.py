@@ -39,10 +39,15 @@ def slope_and_azimuth(dem):
     dx, dy = cell_size(dem)
     data = dem.data
     if hasattr(data, "map_overlap"):
-        stacked = [data.astype(float).map_overlap(_horn, depth=1, boundary=np.nan, dx=dx, dy=dy, which=which,
-                                                  dtype=float, meta=np.array((), dtype=float)) for which in (0, 1)]
+        import dask.array as da
+
+        floats = data if data.dtype in _FLOATS else data.astype(float)
+        # each block with one cell of its neighbours (NaN past the raster's edges) gives its own cells
+        overlapped = da.overlap.overlap(floats, depth=1, boundary=np.nan)
+        stacked = [overlapped.map_blocks(_horn_of_block, dx=dx, dy=dy, which=which, chunks=data.chunks, dtype=float,
+                                         meta=np.array((), dtype=float)) for which in (0, 1)]
     else:
-        stacked = [_horn(np.asarray(data, dtype=float), dx, dy, which) for which in (0, 1)]
+        stacked = [_horn(np.asarray(data), dx, dy, which) for which in (0, 1)]
     coords = {k: dem.coords[k] for k in dem.coords if k in dem.dims or k == "spatial_ref"}
     out = xr.Dataset({"slope_deg": (dem.dims, stacked[0], {"units": "deg", "long_name": "slope (Horn 1981)"}),
                       "dip_azimuth_deg": (dem.dims, stacked[1], {
@@ -84,25 +89,46 @@ def _horn(z, dx, dy, which):
     cells of ``z`` (rows along y, columns along x, spacings dx, dy [m], signed), NaN on
     the border; shaped as z."""
     out = np.full(z.shape, np.nan)
-    _horn_cells(np.ascontiguousarray(z, dtype=float), float(dx), float(dy), which, out)
+    out[1:-1, 1:-1] = _horn_of_block(z, dx, dy, which)
+    return out
+
+
+def _horn_of_block(z, dx, dy, which):
+    """:func:`_horn` of the interior cells of ``z`` alone (a block with one cell of overlap on
+    every side): shape (rows - 2, columns - 2)."""
+    out = np.empty((z.shape[0] - 2, z.shape[1] - 2))
+    _horn_cells(np.ascontiguousarray(_floats(z)), float(dx), float(dy), which, out)
     return out
 
 
 @numba.njit(cache=True, nogil=True)
 def _horn_cells(z, dx, dy, which, out):
+    """Horn's slope or dip azimuth of z's interior cells into ``out`` (shaped as z less its
+    border); z float32 or float64, each elevation taken as float64."""
     for r in range(1, z.shape[0] - 1):
         for k in range(1, z.shape[1] - 1):
-            a, b, c = z[r - 1, k - 1], z[r - 1, k], z[r - 1, k + 1]
-            d, f = z[r, k - 1], z[r, k + 1]
-            g, h, i = z[r + 1, k - 1], z[r + 1, k], z[r + 1, k + 1]
+            a, b, c = float(z[r - 1, k - 1]), float(z[r - 1, k]), float(z[r - 1, k + 1])
+            d, f = float(z[r, k - 1]), float(z[r, k + 1])
+            g, h, i = float(z[r + 1, k - 1]), float(z[r + 1, k]), float(z[r + 1, k + 1])
             dz_dx = ((c + 2 * f + i) - (a + 2 * d + g)) / (8 * dx)
             dz_dy = ((g + 2 * h + i) - (a + 2 * b + c)) / (8 * dy)
             if which == 0:
-                out[r, k] = np.degrees(np.arctan(np.hypot(dz_dx, dz_dy)))
+                out[r - 1, k - 1] = np.degrees(np.arctan(np.hypot(dz_dx, dz_dy)))
             elif dz_dx == 0 and dz_dy == 0:
-                out[r, k] = np.nan
+                out[r - 1, k - 1] = np.nan
             else:
-                out[r, k] = np.degrees(np.arctan2(-dz_dx, -dz_dy)) % 360.0
+                out[r - 1, k - 1] = np.degrees(np.arctan2(-dz_dx, -dz_dy)) % 360.0
+
+
+#: the dtypes that the compiled kernels read as they are (each value taken as float64)
+_FLOATS = (np.dtype(np.float32), np.dtype(np.float64))
+
+
+def _floats(values):
+    """``values`` as a float32 or float64 array, as given where it is one of them (no copy),
+    else converted to float64."""
+    values = np.asarray(values)
+    return values if values.dtype in _FLOATS else values.astype(float)
 
 
 def _crs(array):
