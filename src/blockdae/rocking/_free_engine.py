@@ -17,8 +17,8 @@ from ._free_model import RATE_FLOOR, X
 
 #: the engine's name in the compile notice, and its compile time on one core [s]
 _ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 60
-#: knot rows first allocated
-_FIRST_ROWS = 1024
+#: knot rows first allocated, event rows
+_FIRST_ROWS, _FIRST_EVENTS = 1024, 256
 
 
 class _Knots:
@@ -49,7 +49,7 @@ def engine_parameters(model) -> np.ndarray:
     p = model.frequency
     return np.array([model.b, model.h, model.mu, model.friction_kinetic, model.g, model.R, model.alpha,
                      model.slenderness_ratio, model.output_step(), RATE_FLOOR * p * model.alpha,
-                     RATE_FLOOR * p * model.R])
+                     RATE_FLOOR * p * model.R, model.zeno_arc])
 
 
 class FreeCompiledEngine(_OneSetEngine):
@@ -66,7 +66,8 @@ class FreeCompiledEngine(_OneSetEngine):
         driver = EventRun(model, 2, backend.max_events_at_one_instant, backend.event_resolution,
                           (backend.rtol, backend.atol))
         cnt = np.zeros(compiled.N_COUNTERS, dtype=np.int64)
-        fl = np.array([0.0, 0.0, 0.0, math.nan])
+        fl = np.array([0.0, 0.0, 0.0, math.nan, math.nan, backend.event_resolution])
+        cnt[compiled.C_CAP] = backend.max_events_at_one_instant
         driver.knots = _Knots(cnt, 2 * len(T0) + _FIRST_ROWS)
         driver.knots.add(driver.t, driver.y, driver.mode, driver.y, driver.y)
         y = driver.y.copy()
@@ -101,8 +102,13 @@ class FreeCompiledEngine(_OneSetEngine):
         T0, H, CF = pieces
         model, current = driver.model, -1
         tail = cnt[compiled.C_TAIL] != 0
+        taken = np.empty((_FIRST_EVENTS, compiled.EVENT_WIDTH))
         while True:
-            driver.knots.rows, stop, index = run(T0, H, CF, params, options, cnt, fl, y, driver.knots.rows)
+            cnt[compiled.C_RUN], cnt[compiled.C_MAX_RUN] = driver.run_length, driver.max_run
+            fl[compiled.F_LAST_EVENT] = driver.events[-1].t if driver.events else math.nan
+            driver.knots.rows, taken, stop, index = run(T0, H, CF, params, options, cnt, fl, y, driver.knots.rows,
+                                                        taken)
+            _log_taken(driver, taken, cnt)
             if stop == compiled.DONE:
                 return
             k = int(cnt[compiled.C_PIECE])
@@ -147,3 +153,14 @@ class FreeCompiledEngine(_OneSetEngine):
             y[:] = driver.y
             cnt[compiled.C_MODE] = int(driver.mode)
             cnt[compiled.C_RESTARTED] = int(driver.restarted)
+
+
+def _log_taken(driver, taken, cnt):
+    """The events the kernel took (rows of ``taken``: t, mode before, mode after, state) as
+    the driver's records, in order; the driver's count of events at one instant."""
+    model = driver.model
+    for row in taken[:cnt[compiled.C_NE]]:
+        driver.events.append(model.event(float(row[0]), model.modes(int(row[1])), model.modes(int(row[2])),
+                                         row[compiled.EVENT_WIDTH - compiled.N:]))
+    cnt[compiled.C_NE] = 0
+    driver.run_length, driver.max_run = int(cnt[compiled.C_RUN]), int(cnt[compiled.C_MAX_RUN])
