@@ -81,8 +81,9 @@ DONE, GUARD, ENTRY, RESTART, INCONSISTENT, BOUND, STEP_TOO_SMALL = range(7)
 KNOT_WIDTH = 2 + 3 * N
 _Y, _MODE_COL, _RIGHT, _LEFT = 1, 1 + N, 2 + N, 2 + 2 * N
 #: event rows (the events the kernel takes itself): t, mode before, mode after, y (8) as
-#: the driver's ``log_event`` gets them
-EVENT_WIDTH = 3 + N
+#: the driver's ``log_event`` gets them, the state entered (8) (both the centroid's: the
+#: kernel takes events of rocking and impact modes only)
+EVENT_WIDTH = 3 + 2 * N
 #: FreeMode's instant mode of a sticking impact on corner +b (its sign the corner), the
 #: settling mode
 IMPACT_STICK, SETTLE = 10, 5
@@ -328,9 +329,9 @@ def _difference_rates(mode, index, t, y, pe, p, V):
     return (3 * g0 - 4 * g1 + g2) / (2 * h), (g0 - 2 * g1 + g2) / h**2
 
 
-def _log_event(t, before, after, y, cnt, fl, eb):
+def _log_event(t, before, after, y, entered, cnt, fl, eb):
     """The driver's ``log_event``'s count of events at one instant and its record (the
-    state ``y`` before the entry); the event buffer, grown where full."""
+    state ``y`` before the entry, ``entered`` after it); the event buffer, grown where full."""
     last = fl[F_LAST_EVENT]
     same_instant = not math.isnan(last) and abs(t - last) <= fl[F_RESOLUTION]
     cnt[C_RUN] = cnt[C_RUN] + 1 if same_instant else 1
@@ -340,7 +341,7 @@ def _log_event(t, before, after, y, cnt, fl, eb):
     eb = _push(eb, n, EVENT_WIDTH)
     eb[n, 0], eb[n, 1], eb[n, 2] = t, before, after
     for i in range(N):
-        eb[n, 3 + i] = y[i]
+        eb[n, 3 + i], eb[n, 3 + N + i] = y[i], entered[i]
     cnt[C_NE] = n + 1
     return eb
 
@@ -397,12 +398,12 @@ def _take_event(mode, index, t, y, pe, p, cnt, fl, kb, eb, V):
         instant = IMPACT_STICK * c
         _flow(mode, t, on, pe, p, rate)
         kb = add_knot(kb, cnt, t, on, mode, rate, rate)
-        eb = _log_event(t, mode, instant, on, cnt, fl, eb)
+        eb = _log_event(t, mode, instant, on, jumped, cnt, fl, eb)
         for i in range(N):
             rate[i] = 0.0
         kb = add_knot(kb, cnt, t, jumped, instant, rate, rate)
         kb = add_knot(kb, cnt, t, jumped, instant, rate, rate)
-        eb = _log_event(t, instant, after, jumped, cnt, fl, eb)
+        eb = _log_event(t, instant, after, jumped, entered, cnt, fl, eb)
     else:  # the apex: theta' = 0 on the guard, falling back
         _pivot(s, y, y[THETA], 0.0 * y[THETA_RATE], p, on)
         after = rules.mode_after_rocking_guard(kind, s, index, on[THETA], 0.0, 0.0, 0.0, p[_ALPHA], p[_ZENO_ARC])
@@ -419,7 +420,7 @@ def _take_event(mode, index, t, y, pe, p, cnt, fl, kb, eb, V):
                     return kb, eb, False
         _flow(mode, t, on, pe, p, rate)
         kb = add_knot(kb, cnt, t, on, mode, rate, rate)
-        eb = _log_event(t, mode, after, on, cnt, fl, eb)
+        eb = _log_event(t, mode, after, on, entered, cnt, fl, eb)
     for i in range(N):
         work[i] = 0.0
         y[i] = entered[i]

@@ -13,7 +13,9 @@ from ..core import EventRun, HermiteDense, notice_numba
 from ..core.contract import SCALAR
 from . import _free_compiled as compiled
 from ._engine import _OneSetEngine, _final_row
-from ._free_model import RATE_FLOOR, X
+from ._free_model import BASE_WORK, RATE_FLOOR, X
+from ._free_modes import FreeMode
+from ._free_solution import FreeEvent
 
 #: the engine's name in the compile notice, and its compile time on one core [s]
 _ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 60
@@ -156,11 +158,12 @@ class FreeCompiledEngine(_OneSetEngine):
 
 
 def _log_taken(driver, taken, cnt):
-    """The events the kernel took (rows of ``taken``: t, mode before, mode after, state) as
-    the driver's records, in order; the driver's count of events at one instant."""
-    model = driver.model
-    for row in taken[:cnt[compiled.C_NE]]:
-        driver.events.append(model.event(float(row[0]), model.modes(int(row[1])), model.modes(int(row[2])),
-                                         row[compiled.EVENT_WIDTH - compiled.N:]))
+    """The events the kernel took (rows of ``taken``: t, mode before, mode after, the states
+    before and after) as the driver's records (the model's ``event``, whose states these
+    are), in order; the driver's count of events at one instant."""
+    n = compiled.N
+    for row in taken[:cnt[compiled.C_NE]].tolist():
+        driver.events.append(FreeEvent.make(row[0], FreeMode(int(row[1])), FreeMode(int(row[2])), row[3:3 + BASE_WORK],
+                                            row[3 + n:3 + n + BASE_WORK]))
     cnt[compiled.C_NE] = 0
     driver.run_length, driver.max_run = int(cnt[compiled.C_RUN]), int(cnt[compiled.C_MAX_RUN])
