@@ -2,11 +2,14 @@
 compiled with numba, on records and on sine pieces, horizontal and vertical.
 
 The kernel runs the hybrid driver's loop (:mod:`blockdae.core._driver`) over the pieces of
-the base's motion and hands back to Python (:mod:`._free_engine`) only where the model's
-decisions are needed, which the driver's own event code then takes, unchanged: a guard
-root located (the mode after it, the state on its guard and on entry: the impacts, the
-landings, the slips), a block at rest whose piece starts a motion, and a mode entered with
-a guard at or below zero (whether it is left at once).
+the base's motion. It takes the commonest events itself, as the driver would with the
+model's rules (:func:`_take_event`: the apex of a rocking arc, and a sticking impact after
+which the block rocks on about the corner struck), and hands back to Python
+(:mod:`._free_engine`) where any other decision is needed, which the driver's own event
+code then takes, unchanged: any other guard root located (the mode after it, the state on
+its guard and on entry: the landings, the slips, the Zeno tails), a block at rest whose
+piece starts a motion, and a mode entered with a guard at or below zero (whether it is
+left at once).
 
 Per mode:
 
@@ -84,9 +87,8 @@ _Y, _MODE_COL, _RIGHT, _LEFT = 1, 1 + N, 2 + N, 2 + 2 * N
 #: the driver's ``log_event`` gets them, the state entered (8) (both the centroid's: the
 #: kernel takes events of rocking and impact modes only)
 EVENT_WIDTH = 3 + 2 * N
-#: FreeMode's instant mode of a sticking impact on corner +b (its sign the corner), the
-#: settling mode
-IMPACT_STICK, SETTLE = 10, 5
+#: FreeMode's instant mode of a sticking impact on corner +b (its sign the corner)
+IMPACT_STICK = 10
 #: guards per mode, +inf where a mode has fewer
 N_GUARDS = 5
 _INF = math.inf
@@ -548,7 +550,7 @@ def _advance(T0, H, CF, p, opt, cnt, fl, y, kb, eb, B):
 def _buffers():
     """Work arrays: K (16, 8) of the steps' stages, F (7, 8) of a dense output, and rows
     (8,) of V: a stage's state, the step's start, its end, the state at a root, the error
-    scale, a rate, and eight for the events taken in the kernel."""
+    scale, a rate, and eight for the events taken in the kernel (:func:`_take_event`)."""
     return np.empty((_dop853.N_STAGES_EXTENDED, N)), np.empty((7, N)), np.empty((14, N))
 
 
@@ -556,7 +558,7 @@ def _run(T0, H, CF, params, options, cnt, fl, y, kb, eb):
     """Advance from where ``cnt``, ``fl`` and ``y`` stand over the pieces (t0 (n,), h (n,)
     [s], CF (n, 2, 5): (p0, p1, s, w, phi) of a_x and a_z), ``params``
     (:data:`PARAM_FIELDS`), ``options`` (:data:`OPTION_FIELDS`), knots in ``kb`` (k, 26),
-    the events taken in the kernel in ``eb`` (k, 11): (knots, events, what it stopped at,
+    the events taken in the kernel in ``eb`` (k, 19): (knots, events, what it stopped at,
     guard index)."""
     p = (params[0], params[1], params[2], params[3], params[4], params[5], params[6], params[7], params[8],
          params[9], params[10], params[11])

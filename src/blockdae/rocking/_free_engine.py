@@ -1,6 +1,7 @@
 """The complete free-standing block's compiled engine (``backend="compiled"``): the kernel
-of :mod:`._free_compiled` integrates the modes and locates their guards; at each event the
-hybrid driver's own code (:class:`blockdae.core.EventRun`) takes the model's decisions
+of :mod:`._free_compiled` integrates the modes, locates their guards and takes the apexes
+and the sticking impacts of a rocking block with the model's rules; at every other event
+the hybrid driver's own code (:class:`blockdae.core.EventRun`) takes the model's decisions
 (the mode after a guard, the states on the guard and on entry, a motion started from rest,
 a guard left at once, chatter, the checks), so that the events, their kinds and the
 solution are those of every other backend."""
@@ -158,12 +159,12 @@ class FreeCompiledEngine(_OneSetEngine):
 
 
 def _log_taken(driver, taken, cnt):
-    """The events the kernel took (rows of ``taken``: t, mode before, mode after, the states
-    before and after) as the driver's records (the model's ``event``, whose states these
-    are), in order; the driver's count of events at one instant."""
-    n = compiled.N
+    """The events the kernel took (rows of ``taken``: t, mode before, mode after, the
+    centroid's states before and after) as the model's ``event`` records them, in order,
+    after the driver's; the driver's count of events at one instant."""
+    after = 3 + compiled.N
     for row in taken[:cnt[compiled.C_NE]].tolist():
-        driver.events.append(FreeEvent.make(row[0], FreeMode(int(row[1])), FreeMode(int(row[2])), row[3:3 + BASE_WORK],
-                                            row[3 + n:3 + n + BASE_WORK]))
+        driver.events.append(FreeEvent.make(row[0], FreeMode(int(row[1])), FreeMode(int(row[2])),
+                                            row[3:3 + BASE_WORK], row[after:after + BASE_WORK]))
     cnt[compiled.C_NE] = 0
     driver.run_length, driver.max_run = int(cnt[compiled.C_RUN]), int(cnt[compiled.C_MAX_RUN])

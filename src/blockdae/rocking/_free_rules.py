@@ -14,7 +14,7 @@ import math
 from . import _rules as rules
 from . import _slide_rock_laws as laws
 
-X, Z, THETA, X_RATE, Z_RATE, THETA_RATE, WORKS = range(7)
+X, Z, THETA, X_RATE, Z_RATE, THETA_RATE, BASE_WORK, FRICTION_WORK = range(8)
 #: guards of each mode kind (|mode|): rest, slide, rock out/in/beyond, settle, overturned,
 #: slide-rock (2), flight, and the instant modes (10-13)
 GUARD_COUNTS = (3, 2, 4, 4, 4, 4, 1, 5, 5, 3, 1, 1, 1, 1)
@@ -68,7 +68,7 @@ def pivot_state(s, y, theta, rate, R, alpha, xp):
     u = y[X] + R * xp.sin(s * alpha - y[THETA])
     phi = s * alpha - theta
     return (u - R * xp.sin(phi), R * xp.cos(phi), theta, R * xp.cos(phi) * rate, R * xp.sin(phi) * rate, rate,
-            y[WORKS], y[WORKS + 1])
+            y[BASE_WORK], y[FRICTION_WORK])
 
 
 def settles(c, rate, ax, ge, R, alpha, zeno_arc, xp):
