@@ -15,13 +15,16 @@ from ..core.contract import SCALAR
 from . import _free_compiled as compiled
 from ._engine import _OneSetEngine, _final_row
 from ._free_model import BASE_WORK, RATE_FLOOR, X
-from ._free_modes import FreeMode
+from ._free_modes import FreeMode, event_kind
 from ._free_solution import FreeEvent
 
 #: the engine's name in the compile notice, and its compile time on one core [s]
 _ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 60
 #: knot rows first allocated, event rows
 _FIRST_ROWS, _FIRST_EVENTS = 1024, 256
+#: the modes by value, the kinds of the mode changes met so far (what ``FreeEvent.make``
+#: computes, for the thousands of events of a record that the kernel takes)
+_MODES, _KINDS = {int(m): m for m in FreeMode}, {}
 
 
 class _Knots:
@@ -164,7 +167,9 @@ def _log_taken(driver, taken, cnt):
     after the driver's; the driver's count of events at one instant."""
     after = 3 + compiled.N
     for row in taken[:cnt[compiled.C_NE]].tolist():
-        driver.events.append(FreeEvent.make(row[0], FreeMode(int(row[1])), FreeMode(int(row[2])),
-                                            row[3:3 + BASE_WORK], row[after:after + BASE_WORK]))
+        change = _MODES[int(row[1])], _MODES[int(row[2])]
+        kind = _KINDS.get(change) or _KINDS.setdefault(change, event_kind(*change))
+        driver.events.append(FreeEvent(row[0], *change, kind, tuple(row[3:3 + BASE_WORK]),
+                                       tuple(row[after:after + BASE_WORK])))
     cnt[compiled.C_NE] = 0
     driver.run_length, driver.max_run = int(cnt[compiled.C_RUN]), int(cnt[compiled.C_MAX_RUN])
