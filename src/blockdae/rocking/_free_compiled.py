@@ -92,6 +92,7 @@ IMPACT_STICK = 10
 #: guards per mode, +inf where a mode has fewer
 N_GUARDS = 5
 _INF = math.inf
+_NO_GUARDS = (_INF, _INF, _INF, _INF, _INF)
 
 
 def _side(mode):
@@ -220,14 +221,15 @@ def _dense_maximum(args, lo, hi):
     return a if fa >= fb else b
 
 
-def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt):
+def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt, start):
     """The first guard root in (t, t_new] of the step just taken from (t, y) (its stages in
-    ``K``): (time, index), or (nan, -1); a guard that goes from > 0 to <= 0 over the step,
+    ``K``, the guards at its start ``start``): (time, index, the guards at its end), index
+    -1 where there is none; a guard that goes from > 0 to <= 0 over the step,
     located on its dense output. A guard that starts at zero (the mode entered on it: the
     arc of a slide-rock from its impact) and ends below is located from its highest point on
     the step where that is above zero, as CVODE looks past a root function that starts at
     zero."""
-    start, end = _guards(mode, t, y, pe, p), _guards(mode, t_new, y_new, pe, p)
+    end = _guards(mode, t_new, y_new, pe, p)
     dense = False
     best, index = _INF, -1
     for j in range(N_GUARDS):
@@ -246,7 +248,7 @@ def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt):
         root = events.first_nonpositive(_dense_guard, args, lo, hi)
         if root < best:
             best, index = root, j
-    return (best, index) if index >= 0 else (math.nan, -1)
+    return (best, index, end) if index >= 0 else (math.nan, -1, end)
 
 
 def _error_scale(y, y_new, rtol, atol, out):
@@ -255,10 +257,11 @@ def _error_scale(y, y_new, rtol, atol, out):
     return out
 
 
-def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl):
+def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl, rate_known, guards_known, start):
     """Integrate ``mode`` from (t, y) to ``stop`` [s] or to its first guard root before it:
-    (time, state, guard index or -1); ``cnt[C_STEPS]`` < 0 where a step fell below rounding.
-    The step to try is kept in ``fl[F_H]``."""
+    (time, state, guard index or -1, -2 where a step fell below rounding). The step to try
+    is kept in ``fl[F_H]``. ``rate_known``: dy/dt at (t, y) is in ``B``'s rate row already;
+    ``guards_known``: the guards there are ``start``."""
     K, F, V = B
     work, y_cur, y_new, z, scale = V[0], V[1], V[2], V[3], V[4]
     args = (mode, pe, p)
@@ -266,8 +269,14 @@ def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl):
     h = fl[F_H]
     for i in range(N):
         y_cur[i] = y[i]
-    _rhs(t, y_cur, args, K[0])
-    cnt[C_RHS] += 1
+    if rate_known:
+        for i in range(N):
+            K[0, i] = V[5, i]
+    else:
+        _rhs(t, y_cur, args, K[0])
+        cnt[C_RHS] += 1
+    if not guards_known:
+        start = _guards(mode, t, y_cur, pe, p)
     if h <= 0:
         h = _initial_step(args, t, y_cur, stop - t, rtol, atol, K, work)
         cnt[C_RHS] += 1
@@ -293,7 +302,7 @@ def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl):
             continue
         cnt[C_STEPS] += 1
         t_new = stop if last else t + hh
-        root, index = _first_root(t, y_cur, t_new, y_new, hh, mode, pe, p, K, F, work, cnt)
+        root, index, start = _first_root(t, y_cur, t_new, y_new, hh, mode, pe, p, K, F, work, cnt, start)
         if index >= 0:
             _step(args, t, y_cur, root - t, K, z, work)  # the state at the root, on the flow
             cnt[C_RHS] += 12
@@ -475,8 +484,9 @@ def _advance(T0, H, CF, p, opt, cnt, fl, y, kb, eb, B):
         k = cnt[C_PIECE]
         pe = _piece_at(T0, H, CF, k) if not tail else _piece(T0[k], _INF, CF[k], (0.0, 0.0))
         end = T0[k + 1] if k + 1 < n else (fl[F_END] if tail else T0[k] + H[k])
+        rate_known = False  # dy/dt at (t, y) in rate
         if cnt[C_ENTERED] == 0:  # enter_piece
-            cnt[C_ENTERED], cnt[C_RESTARTED] = 1, 1
+            cnt[C_ENTERED], cnt[C_RESTARTED], rate_known = 1, 1, True
             _flow(cnt[C_MODE], fl[F_T], y, pe, p, rate)
             for i in range(N):
                 kb[cnt[C_NK] - 1, _RIGHT + i] = rate[i]
@@ -493,7 +503,7 @@ def _advance(T0, H, CF, p, opt, cnt, fl, y, kb, eb, B):
             if math.isnan(fl[F_END]):
                 return kb, eb, BOUND, -1
             end = fl[F_END]
-        turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p, rate)
+        turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p, V[14])
         while fl[F_T] < end:
             mode, t = cnt[C_MODE], fl[F_T]
             if tail and _is_static(mode):
@@ -512,18 +522,19 @@ def _advance(T0, H, CF, p, opt, cnt, fl, y, kb, eb, B):
                     break
                 fl[F_T] = root
                 return kb, eb, GUARD, index
+            guards_known, values = False, _NO_GUARDS
             if cnt[C_RESTARTED]:
                 values = _guards(mode, t, y, pe, p)
                 for j in range(N_GUARDS):
                     if values[j] <= 0:
                         return kb, eb, RESTART, -1
-                cnt[C_RESTARTED] = 0
+                cnt[C_RESTARTED], guards_known = 0, True
             target = end if math.isnan(turn) or turn <= t else turn
             if events.too_short(t, target):
-                fl[F_T], cnt[C_RESTARTED] = target, 1
+                fl[F_T], cnt[C_RESTARTED], rate_known = target, 1, False
                 continue
             t_out = min(target, t + _output_step(pe, p))
-            t_new, z, root = _flow_to(t, y, t_out, mode, pe, p, opt, B, cnt, fl)
+            t_new, z, root = _flow_to(t, y, t_out, mode, pe, p, opt, B, cnt, fl, rate_known, guards_known, values)
             if root == -2:
                 return kb, eb, STEP_TOO_SMALL, -1
             if root >= 0 and t_new >= end:  # left to the next piece's right-hand limits
@@ -538,10 +549,12 @@ def _advance(T0, H, CF, p, opt, cnt, fl, y, kb, eb, B):
                 kb, eb, taken = _take_event(mode, root, t_new, y, pe, p, cnt, fl, kb, eb, V)
                 if not taken:
                     return kb, eb, GUARD, root
-                turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p, rate)
+                turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p, V[14])
+                rate_known = True  # the mode entered's dy/dt (_take_event)
                 continue
             _flow(mode, t_new, y, pe, p, rate)
             kb = add_knot(kb, cnt, t_new, y, mode, rate, rate)
+            rate_known = True
         cnt[C_PIECE] = k + 1
         cnt[C_ENTERED] = 0
     return kb, eb, DONE, -1
@@ -550,8 +563,9 @@ def _advance(T0, H, CF, p, opt, cnt, fl, y, kb, eb, B):
 def _buffers():
     """Work arrays: K (16, 8) of the steps' stages, F (7, 8) of a dense output, and rows
     (8,) of V: a stage's state, the step's start, its end, the state at a root, the error
-    scale, a rate, and eight for the events taken in the kernel (:func:`_take_event`)."""
-    return np.empty((_dop853.N_STAGES_EXTENDED, N)), np.empty((7, N)), np.empty((14, N))
+    scale, a rate, eight for the events taken in the kernel (:func:`_take_event`) and the
+    turning point's."""
+    return np.empty((_dop853.N_STAGES_EXTENDED, N)), np.empty((7, N)), np.empty((15, N))
 
 
 def _run(T0, H, CF, params, options, cnt, fl, y, kb, eb):
