@@ -34,9 +34,17 @@ class _Knots:
         self.rows, self.counters = np.empty((rows, compiled.KNOT_WIDTH)), counters
 
     def add(self, t, y, mode_after, rate_left, rate_right):
-        self.rows = compiled.add_knot(self.rows, self.counters, float(t), np.asarray(y, dtype=float),
-                                      int(mode_after), np.asarray(rate_left, dtype=float),
-                                      np.asarray(rate_right, dtype=float))
+        """:func:`._free_compiled.add_knot` in NumPy (its rows, the buffer doubled when full)."""
+        n = self.counters[compiled.C_NK]
+        if n == len(self.rows):
+            self.rows = np.concatenate([self.rows, np.empty_like(self.rows)])
+        row = self.rows[n]
+        row[0], row[compiled._MODE_COL] = t, int(mode_after)
+        row[compiled._Y:compiled._MODE_COL], row[compiled._RIGHT:compiled._LEFT] = y, rate_right
+        row[compiled._LEFT:] = 0.0
+        if n > 0:
+            self.rows[n - 1, compiled._LEFT:] = rate_left
+        self.counters[compiled.C_NK] = n + 1
 
     def set_right_rate(self, rate_right):
         n = self.counters[compiled.C_NK] - 1
