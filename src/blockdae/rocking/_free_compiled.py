@@ -141,18 +141,21 @@ def _guards(mode, t, y, pe, p):
 
 def _turn_value(args, t):
     """(x'' sliding, theta'' rocking at the frozen state, whether the mode has it) (the
-    model's ``turn_rate``)."""
-    mode, y, pe, p, work = args
+    model's ``turn_rate``); dy/dt at ``t_known`` is ``known`` already."""
+    mode, y, pe, p, work, t_known, known = args
     kind = abs(mode)
     if kind == SLIDE or _rocks(kind):
-        _flow(mode, t, y, pe, p, work)
-        return (work[X_RATE] if kind == SLIDE else work[THETA_RATE]), True
+        rate = known if t == t_known else work
+        if t != t_known:
+            _flow(mode, t, y, pe, p, work)
+        return (rate[X_RATE] if kind == SLIDE else rate[THETA_RATE]), True
     return 0.0, False
 
 
-def _next_turn(mode, t, y, end, pe, p, work):
-    """Where the turn rate changes sign in (t, end), else nan (the driver's ``turning_point``)."""
-    return events.turning_point(_turn_value, (mode, y, pe, p, work), t, end)
+def _next_turn(mode, t, y, end, pe, p, work, rate_known, rate):
+    """Where the turn rate changes sign in (t, end), else nan (the driver's ``turning_point``);
+    ``rate_known``: dy/dt at (t, y) is ``rate`` already."""
+    return events.turning_point(_turn_value, (mode, y, pe, p, work, t if rate_known else math.nan, rate), t, end)
 
 
 def _static_guards(args, t):
@@ -503,7 +506,7 @@ def _advance(T0, H, CF, p, opt, cnt, fl, y, kb, eb, B):
             if math.isnan(fl[F_END]):
                 return kb, eb, BOUND, -1
             end = fl[F_END]
-        turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p, V[14])
+        turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p, V[14], rate_known, rate)
         while fl[F_T] < end:
             mode, t = cnt[C_MODE], fl[F_T]
             if tail and _is_static(mode):
@@ -549,8 +552,8 @@ def _advance(T0, H, CF, p, opt, cnt, fl, y, kb, eb, B):
                 kb, eb, taken = _take_event(mode, root, t_new, y, pe, p, cnt, fl, kb, eb, V)
                 if not taken:
                     return kb, eb, GUARD, root
-                turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p, V[14])
                 rate_known = True  # the mode entered's dy/dt (_take_event)
+                turn = _next_turn(cnt[C_MODE], fl[F_T], y, end, pe, p, V[14], rate_known, rate)
                 continue
             _flow(mode, t_new, y, pe, p, rate)
             kb = add_knot(kb, cnt, t_new, y, mode, rate, rate)
