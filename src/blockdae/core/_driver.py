@@ -205,6 +205,10 @@ class Progress:
 class _Run:
     """State of one run: time, state, mode, knots and events."""
 
+    #: every mode's ``flow`` and ``guards`` checked for shape before the run (else each
+    #: where the run enters it)
+    checks_modes_at_start = True
+
     def __init__(self, model, n_components, integrator_factory, max_events_at_one_instant, event_resolution,
                  velocity_tolerance, trace=None):
         self.model, self.resolution, self.trace = model, event_resolution, trace
@@ -220,8 +224,9 @@ class _Run:
                                      f"one value per state, shape ({self.n_states},)")
         self.t = 0.0
         self.checked_modes, self.entry_pending, self.entry_tolerance = set(), True, 0.0
-        for mode in model.modes:  # before the integrator sizes its buffers from them
-            self.check_shapes(mode, self.y, self.piece_excitation, at_start=True)
+        if self.checks_modes_at_start:  # before the integrator sizes its buffers from them
+            for mode in model.modes:
+                self.check_shapes(mode, self.y, self.piece_excitation, at_start=True)
         self.integrator = integrator_factory(model, self.flow_excitation)
         self.events, self.run_length, self.max_run = [], 0, 0
         self.restarted = True
@@ -509,7 +514,10 @@ class EventRun(_Run):
     that integrates the modes and locates the guards itself (a compiled one), then hands
     the run each event as the driver's loop would: ``on_guard``, ``guard_left_at_once``,
     ``log_event`` with ``t``, ``y``, ``mode`` and ``v_max`` set, the current piece in
-    ``piece_excitation`` and ``flow_excitation``."""
+    ``piece_excitation`` and ``flow_excitation``. The engine sizes nothing from the model's
+    hooks: a mode's are checked where the driver's code enters it."""
+
+    checks_modes_at_start = False
 
     def __init__(self, model, n_components, max_events_at_one_instant, event_resolution, velocity_tolerance):
         super().__init__(model, n_components, lambda *_: _Outside(), max_events_at_one_instant, event_resolution,

@@ -1,6 +1,7 @@
 """The complete free-standing block's compiled engine (``backend="compiled"``): the kernel
-of :mod:`._free_compiled` integrates the modes and locates their guards; at each event the
-hybrid driver's own code (:class:`blockdae.core.EventRun`) takes the model's decisions
+of :mod:`._free_compiled` integrates the modes, locates their guards and takes the apexes
+and the sticking impacts of a rocking block with the model's rules; at every other event
+the hybrid driver's own code (:class:`blockdae.core.EventRun`) takes the model's decisions
 (the mode after a guard, the states on the guard and on entry, a motion started from rest,
 a guard left at once, chatter, the checks), so that the events, their kinds and the
 solution are those of every other backend."""
@@ -13,12 +14,17 @@ from ..core import EventRun, HermiteDense, notice_numba
 from ..core.contract import SCALAR
 from . import _free_compiled as compiled
 from ._engine import _OneSetEngine, _final_row
-from ._free_model import RATE_FLOOR, X
+from ._free_model import BASE_WORK, RATE_FLOOR, X
+from ._free_modes import FreeMode, event_kind
+from ._free_solution import FreeEvent
 
 #: the engine's name in the compile notice, and its compile time on one core [s]
 _ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 60
-#: knot rows first allocated
-_FIRST_ROWS = 1024
+#: knot rows first allocated, event rows
+_FIRST_ROWS, _FIRST_EVENTS = 1024, 256
+#: the modes by value, the kinds of the mode changes met so far (what ``FreeEvent.make``
+#: computes, for the thousands of events of a record that the kernel takes)
+_MODES, _KINDS = {int(m): m for m in FreeMode}, {}
 
 
 class _Knots:
@@ -28,9 +34,17 @@ class _Knots:
         self.rows, self.counters = np.empty((rows, compiled.KNOT_WIDTH)), counters
 
     def add(self, t, y, mode_after, rate_left, rate_right):
-        self.rows = compiled.add_knot(self.rows, self.counters, float(t), np.asarray(y, dtype=float),
-                                      int(mode_after), np.asarray(rate_left, dtype=float),
-                                      np.asarray(rate_right, dtype=float))
+        """:func:`._free_compiled.add_knot` in NumPy (its rows, the buffer doubled when full)."""
+        n = self.counters[compiled.C_NK]
+        if n == len(self.rows):
+            self.rows = np.concatenate([self.rows, np.empty_like(self.rows)])
+        row = self.rows[n]
+        row[0], row[compiled._MODE_COL] = t, int(mode_after)
+        row[compiled._Y:compiled._MODE_COL], row[compiled._RIGHT:compiled._LEFT] = y, rate_right
+        row[compiled._LEFT:] = 0.0
+        if n > 0:
+            self.rows[n - 1, compiled._LEFT:] = rate_left
+        self.counters[compiled.C_NK] = n + 1
 
     def set_right_rate(self, rate_right):
         n = self.counters[compiled.C_NK] - 1
@@ -49,7 +63,7 @@ def engine_parameters(model) -> np.ndarray:
     p = model.frequency
     return np.array([model.b, model.h, model.mu, model.friction_kinetic, model.g, model.R, model.alpha,
                      model.slenderness_ratio, model.output_step(), RATE_FLOOR * p * model.alpha,
-                     RATE_FLOOR * p * model.R])
+                     RATE_FLOOR * p * model.R, model.zeno_arc])
 
 
 class FreeCompiledEngine(_OneSetEngine):
@@ -66,7 +80,8 @@ class FreeCompiledEngine(_OneSetEngine):
         driver = EventRun(model, 2, backend.max_events_at_one_instant, backend.event_resolution,
                           (backend.rtol, backend.atol))
         cnt = np.zeros(compiled.N_COUNTERS, dtype=np.int64)
-        fl = np.array([0.0, 0.0, 0.0, math.nan])
+        fl = np.array([0.0, 0.0, 0.0, math.nan, math.nan, backend.event_resolution])
+        cnt[compiled.C_CAP] = backend.max_events_at_one_instant
         driver.knots = _Knots(cnt, 2 * len(T0) + _FIRST_ROWS)
         driver.knots.add(driver.t, driver.y, driver.mode, driver.y, driver.y)
         y = driver.y.copy()
@@ -101,8 +116,13 @@ class FreeCompiledEngine(_OneSetEngine):
         T0, H, CF = pieces
         model, current = driver.model, -1
         tail = cnt[compiled.C_TAIL] != 0
+        taken = np.empty((_FIRST_EVENTS, compiled.EVENT_WIDTH))
         while True:
-            driver.knots.rows, stop, index = run(T0, H, CF, params, options, cnt, fl, y, driver.knots.rows)
+            cnt[compiled.C_RUN], cnt[compiled.C_MAX_RUN] = driver.run_length, driver.max_run
+            fl[compiled.F_LAST_EVENT] = driver.events[-1].t if driver.events else math.nan
+            driver.knots.rows, taken, stop, index = run(T0, H, CF, params, options, cnt, fl, y, driver.knots.rows,
+                                                        taken)
+            _log_taken(driver, taken, cnt)
             if stop == compiled.DONE:
                 return
             k = int(cnt[compiled.C_PIECE])
@@ -147,3 +167,17 @@ class FreeCompiledEngine(_OneSetEngine):
             y[:] = driver.y
             cnt[compiled.C_MODE] = int(driver.mode)
             cnt[compiled.C_RESTARTED] = int(driver.restarted)
+
+
+def _log_taken(driver, taken, cnt):
+    """The events the kernel took (rows of ``taken``: t, mode before, mode after, the
+    centroid's states before and after) as the model's ``event`` records them, in order,
+    after the driver's; the driver's count of events at one instant."""
+    after = 3 + compiled.N
+    for row in taken[:cnt[compiled.C_NE]].tolist():
+        change = _MODES[int(row[1])], _MODES[int(row[2])]
+        kind = _KINDS.get(change) or _KINDS.setdefault(change, event_kind(*change))
+        driver.events.append(FreeEvent(row[0], *change, kind, tuple(row[3:3 + BASE_WORK]),
+                                       tuple(row[after:after + BASE_WORK])))
+    cnt[compiled.C_NE] = 0
+    driver.run_length, driver.max_run = int(cnt[compiled.C_RUN]), int(cnt[compiled.C_MAX_RUN])

@@ -439,8 +439,9 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
     def _settles(self, c, t, y, excitation):
         """Whether the arc on corner ``c`` that a sticking impact starts with theta' in ``y`` is
         shorter than ``zeno_arc`` and both corners restore: the Zeno tail is summed."""
-        ahead, behind = self.deceleration(c, t, excitation), self.deceleration(-c, t, excitation)
-        return ahead > 0 and behind > 0 and 2 * abs(y[THETA_RATE]) / ahead < self.zeno_arc
+        ax, ge, _, _ = self._base(t, excitation)
+        alpha, radius = self._geometry(SCALAR)
+        return free_rules.settles(c, y[THETA_RATE], ax, ge, radius, alpha, self.zeno_arc, SCALAR)
 
     def _chatters(self, c, sigma, y, ax, ge):
         """Whether a slide-rock arc on corner ``c`` slipping toward ``sigma`` that an impact
@@ -458,10 +459,7 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
         """``y`` on the sticking pivot ``s`` (kept where it is) at (theta, theta'): the centroid's
         x, z and rates from the rotation alone."""
         alpha, radius = self._geometry(xp)
-        u = y[X] + radius * xp.sin(s * alpha - y[THETA])
-        phi = s * alpha - theta
-        return xp.stack([u - radius * xp.sin(phi), radius * xp.cos(phi), theta, radius * xp.cos(phi) * rate,
-                         radius * xp.sin(phi) * rate, rate, y[BASE_WORK], y[FRICTION_WORK]])
+        return xp.stack(free_rules.pivot_state(s, y, theta, rate, radius, alpha, xp))
 
     def _slide_rock_state(self, s, u, theta, rate, slip, y, xp=SCALAR):
         """A slide-rock's state on pivot ``s`` at u [m] slipping at u' = ``slip`` [m/s], at

@@ -14,7 +14,7 @@ import math
 from . import _rules as rules
 from . import _slide_rock_laws as laws
 
-X, Z, THETA, X_RATE, Z_RATE, THETA_RATE = range(6)
+X, Z, THETA, X_RATE, Z_RATE, THETA_RATE, BASE_WORK, FRICTION_WORK = range(8)
 #: guards of each mode kind (|mode|): rest, slide, rock out/in/beyond, settle, overturned,
 #: slide-rock (2), flight, and the instant modes (10-13)
 GUARD_COUNTS = (3, 2, 4, 4, 4, 4, 1, 5, 5, 3, 1, 1, 1, 1)
@@ -60,6 +60,24 @@ def flow_values(mode, y, ax, ge, g, b, h, R, alpha, mu_k, xp):
         behind = s * laws.rock_acceleration(-s, 0.0, ax, ge, R, alpha, xp)
         return zero, zero, zero, zero, zero, zero + rules.settle_rate(s, ahead, behind, r), zero, zero
     return zero, zero, zero, zero, zero, zero, zero, zero
+
+
+def pivot_state(s, y, theta, rate, R, alpha, xp):
+    """``y`` on the sticking pivot ``s`` (kept where it is) at (theta [rad], theta' [rad/s]):
+    the centroid's x, z and rates from the rotation alone (8 values)."""
+    u = y[X] + R * xp.sin(s * alpha - y[THETA])
+    phi = s * alpha - theta
+    return (u - R * xp.sin(phi), R * xp.cos(phi), theta, R * xp.cos(phi) * rate, R * xp.sin(phi) * rate, rate,
+            y[BASE_WORK], y[FRICTION_WORK])
+
+
+def settles(c, rate, ax, ge, R, alpha, zeno_arc, xp):
+    """Whether the arc on corner ``c`` that a sticking impact starts with theta' = ``rate``
+    [rad/s] is shorter than ``zeno_arc`` [s] and both corners restore (their decelerations
+    at theta = 0 positive): the Zeno tail is summed."""
+    ahead = -c * laws.rock_acceleration(c, 0.0, ax, ge, R, alpha, xp)
+    behind = c * laws.rock_acceleration(-c, 0.0, ax, ge, R, alpha, xp)
+    return ahead > 0 and behind > 0 and 2 * abs(rate) / ahead < zeno_arc
 
 
 def guard_values(mode, t, y, ax, ge, b, h, R, alpha, mu, mu_k, xp):
