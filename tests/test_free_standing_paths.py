@@ -16,7 +16,7 @@ from blockdae.rocking import FreeMode, FreeStandingBlock, PainleveWarning
 from test_free_standing import kinds, run  # the run with its energy balance checked
 
 G = bd.STANDARD_GRAVITY
-BACKENDS = ("cvode", "ida")
+BACKENDS = ("compiled", "cvode", "ida")
 mpmath.mp.dps = 40
 
 

@@ -19,7 +19,7 @@ from ._free_modes import FreeMode, event_kind
 from ._free_solution import FreeEvent
 
 #: the engine's name in the compile notice, and its compile time on one core [s]
-_ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 60
+_ENGINE, _COMPILE_SECONDS = "the compiled free-standing engine", 15
 #: knot rows first allocated, event rows
 _FIRST_ROWS, _FIRST_EVENTS = 1024, 256
 #: the modes by value, the kinds of the mode changes met so far (what ``FreeEvent.make``
