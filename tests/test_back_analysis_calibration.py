@@ -6,13 +6,14 @@ posterior computed from it. Where the posterior is right, the rank of the truth 
 time.
 
 NUTS runs on 120 truths: its programs are compiled for the first analysis (about 10 s)
-and run again for each other (an observed D and its prior make the arguments of one
-compiled program), about 1.5 s each. The calibration of the Laplace approximation (150
+and run again for each other (the observed D is an argument of the compiled programs),
+about 0.4 s each. The calibration of the Laplace approximation (150
 truths, 0.5 s each) holds where its normal in ln ky holds: a surveyed displacement
 (sigma_ln 0.05). Where one observation leaves ky wide (sigma_ln 0.2) the true
 posterior's longer tail toward low ky moves the Laplace draws up by about 0.1-0.3
 posterior sd (against quadrature at ky 0.05-0.3 g), and 200 truths see it (KS p = 0.0007):
-there the calibration runs NUTS. RUNTIME"""
+there the calibration runs NUTS. Runtime: about 1 min of wall time for NUTS (120
+truths), 1.5 min for the Laplace approximation, on 2 cores at load 2 to 3."""
 
 import warnings
 
