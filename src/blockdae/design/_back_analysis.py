@@ -455,6 +455,13 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
             logarithm there, ``chains * draws`` independent draws).
         seed: the random seed.
 
+    The JAX programs (the maximum a posteriori's, NUTS's start, warm-up and draws) are
+    compiled once per set-up (the model and its fixed parameters, the records and PGAs,
+    the kinds of observation and of prior, the counts of chains, draws and warm-up) and
+    kept for the process (the 16 set-ups used last): the observed values and the priors'
+    parameters are their arguments, so that another analysis of the set-up runs without
+    compiling, with the draws a fresh one gives for the seed.
+
     Returns:
         a :class:`BackAnalysis` (a :class:`SlopesBackAnalysis` for an
         :class:`InfiniteSlope`), both with the same summary, figures and
