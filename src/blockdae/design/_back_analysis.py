@@ -205,7 +205,7 @@ class SetUp:
         return self._programs[role]
 
 
-#: the set-ups analysed last (key -> SetUp), the oldest dropped beyond _SET_UPS
+#: the set-ups analysed last (key -> SetUp), the oldest dropped beyond _SET_UPS_KEPT
 _SET_UPS = {}
 _SET_UPS_KEPT = 16
 
