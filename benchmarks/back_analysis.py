@@ -23,6 +23,11 @@ and the effective samples per 1,000 evaluations of the log posterior in the kept
 (NUTS: its leapfrog steps, each the value and gradient), the samplers' cost without their
 fixed costs.
 
+Each case runs twice: a first analysis, then one of the same set-up with another observed
+D (another truth), where NUTS runs the programs the first compiled (the observed values
+and the priors are their arguments) and the random walk's compile is left out of its
+time too; the bars are judged on the first analyses (every compile counted).
+
 Bars: case 1 reaches 1,000 effective samples within 10 s of wall time; in case 2 NUTS
 gives at least 10 times the effective samples per second of random-walk Metropolis.
 Exit status 1 when a bar fails.
@@ -55,6 +60,8 @@ STRENGTH_PRIORS = {"c_kPa": design.LogNormal(median=6.0, sigma_ln=0.5),
                    "phi_deg": design.Truncated(design.Normal(32.0, 3.0), low=15.0, high=45.0)}
 TRUTH = {"c_kPa": 8.0, "phi_deg": 30.0, "t_north_m": 3.0, "t_south_m": 2.0}
 CHAINS = 4
+#: the truths of the repeated analyses (ky [g]; c' [kPa], phi' [deg], t [m])
+AGAIN = {"ky": 0.14, "four parameters": {"c_kPa": 7.0, "phi_deg": 31.0, "t_north_m": 3.2, "t_south_m": 1.9}}
 ESS_BAR, SECONDS_BAR, RATIO_BAR = 1000.0, 10.0, 10.0
 
 
@@ -157,8 +164,8 @@ def rwm_run(log_posterior, names, begin, steps, pilot):
             "per_draw": 1.0, "iterations": f"{pilot} pilot + {steps}", "acceptance": acceptance}
 
 
-def one_parameter(record):
-    d = float(design.Rigid().displacements(record, PGA, {"ky": np.array([KY_TRUE])})[0])
+def one_parameter(record, ky_true=KY_TRUE):
+    d = float(design.Rigid().displacements(record, PGA, {"ky": np.array([ky_true])})[0])
     observation = design.Observation(record, sigma_ln=SIGMA_LN, displacement_m=d, pga_g=PGA)
     nuts, result = nuts_run(observation, design.Rigid(), KY_PRIOR, 1000, 400)
     log_p = design.log_posterior(observation, design.Rigid(), KY_PRIOR)
@@ -166,15 +173,20 @@ def one_parameter(record):
     return nuts, rwm
 
 
-def four_parameters(record):
-    _, ky = SLOPES.yield_accelerations(TRUTH)
+def four_parameters(record, truth=TRUTH):
+    _, ky = SLOPES.yield_accelerations(truth)
     observations = {name: design.Observation(record, sigma_ln=SIGMA_LN, pga_g=PGA, displacement_m=float(
         design.Rigid().displacements(record, PGA, {"ky": np.array([ky[name]])})[0])) for name in ky}
     nuts, _ = nuts_run(observations, SLOPES, STRENGTH_PRIORS, 500, 500)
     names = list(nuts["draws"])
-    begin = np.array([[TRUTH[n] for n in names]] * CHAINS) * (1 + 0.01 * np.arange(CHAINS)[:, None])
+    begin = np.array([[truth[n] for n in names]] * CHAINS) * (1 + 0.01 * np.arange(CHAINS)[:, None])
     rwm = rwm_run(design.log_posterior(observations, SLOPES, STRENGTH_PRIORS), names, begin, 8000, 1500)
     return nuts, rwm
+
+
+def compiled_before(run):
+    """``run`` timed without its JAX compiling (the random walk's, in a repeated analysis)."""
+    return run | {"wall": run["wall"] - run["compile"], "compile": 0.0}
 
 
 def summarised(run):
@@ -202,6 +214,10 @@ def main():
           f"{CHAINS} chains per sampler; CPU = the process's CPU seconds over all its threads; load average "
           f"{os.getloadavg()[0]:.1f} at the start")
     cases = {"ky": one_parameter(record), "four parameters": four_parameters(record)}
+    nuts, rwm = one_parameter(record, ky_true=AGAIN["ky"])
+    cases["ky, again"] = nuts, compiled_before(rwm)
+    nuts, rwm = four_parameters(record, truth=AGAIN["four parameters"])
+    cases["four parameters, again"] = nuts, compiled_before(rwm)
     labels = ("NUTS (exact gradient)", "random-walk Metropolis")
     rows, timing, ratios, agree = [], [], {}, True
     for case, runs in cases.items():
@@ -227,7 +243,8 @@ def main():
           "evaluations per draw: NUTS's mean leapfrog steps (the log posterior and its gradient, one engine call "
           "per motion for all chains), one for random-walk Metropolis; per 1,000 evaluations: of the kept draws; "
           f"random-walk acceptance {cases['ky'][1]['acceptance']:.0%} (ky), "
-          f"{cases['four parameters'][1]['acceptance']:.0%} (four parameters)")
+          f"{cases['four parameters'][1]['acceptance']:.0%} (four parameters); again: another observed D of the "
+          "same set-up, NUTS running the programs the first analysis compiled, the random walk's compile left out")
     nuts = cases["ky"][0]
     ess_ky = ess_and_mcse(nuts["draws"]["ky"])[0]
     per_bar = ess_ky / nuts["wall"] * SECONDS_BAR  # effective samples per SECONDS_BAR of wall time
@@ -237,6 +254,8 @@ def main():
         (f"ky: NUTS / random-walk ESS per second {ratios['ky']:.2f} x", True, "reported"),
         (f"four parameters: NUTS / random-walk ESS per second (smallest over the parameters) "
          f"{ratios['four parameters']:.2f} x", ratios["four parameters"] >= RATIO_BAR, f">= {RATIO_BAR:g} x"),
+        (f"again, the set-up compiled: NUTS / random-walk ESS per second {ratios['ky, again']:.2f} x (ky), "
+         f"{ratios['four parameters, again']:.2f} x (four parameters)", True, "reported"),
         ("posterior means agree within 5 combined Monte Carlo standard errors", agree, "required"),
     ]
     failures = []

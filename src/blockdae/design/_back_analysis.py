@@ -163,17 +163,66 @@ def check_counts(chains, draws, warmup, method="nuts"):
             raise ValueError(f"{field}={value!r} must be a whole number >= {least[field]}{why}")
 
 
-def _log_likelihood(obs, d):
-    """ln p(obs | D = ``d`` [m]) up to a constant, in JAX."""
+def _log_likelihood(kind, log_value, sigma_ln, d):
+    """ln p(an observation | D = ``d`` [m]) up to a constant, in JAX: the observation's
+    ``kind`` ("displacement", "more_than" or "less_than"), the logarithm of its value [ln m]
+    and its sigma_ln [-]."""
     import jax.numpy as jnp
     from jax.scipy.special import log_ndtr
 
     safe = jnp.log(jnp.where(d > 0, d, 1.0))
     log_d = jnp.where(d > 0, safe, -jnp.inf)
-    z = (log_d - math.log(obs.value_m)) / obs.sigma_ln
-    if obs.kind == "displacement":
+    z = (log_d - log_value) / sigma_ln
+    if kind == "displacement":
         return jnp.where(d > 0, -0.5 * jnp.where(d > 0, z, 0.0) ** 2, -jnp.inf)
-    return log_ndtr(z if obs.kind == "more_than" else -z)
+    return log_ndtr(z if kind == "more_than" else -z)
+
+
+def observed_values(observations):
+    """The values a compiled log likelihood takes of ``observations`` (in order): ``log_value``
+    [ln m] and ``sigma_ln`` [-], arrays; what they are (their kinds, records and PGAs) is
+    part of the set-up the program is compiled for."""
+    return {"log_value": np.array([math.log(o.value_m) for o in observations]),
+            "sigma_ln": np.array([o.sigma_ln for o in observations])}
+
+
+class SetUp:
+    """One set-up of a back-analysis (the model, its fixed parameters, the records and
+    PGAs, the kinds of observation and prior) and its JAX programs, each compiled once:
+    another analysis of the same set-up with other observed values or prior parameters
+    (passed to the programs as arguments) reuses them. ``log_likelihood(values, data)``:
+    the observations' joint log likelihood, a JAX function of the parameters' values
+    (name -> a scalar) and the observed values (:func:`observed_values`)."""
+
+    def __init__(self, log_likelihood):
+        self.log_likelihood = log_likelihood
+        self._programs = {}
+
+    def program(self, role, build):
+        """The jitted program ``build()`` makes for ``role`` (a hashable name), made once."""
+        if role not in self._programs:
+            self._programs[role] = build()
+        return self._programs[role]
+
+
+#: the set-ups analysed last (key -> SetUp), the oldest dropped beyond _SET_UPS_KEPT
+_SET_UPS = {}
+_SET_UPS_KEPT = 16
+
+
+def set_up(key, make_log_likelihood):
+    """The :class:`SetUp` of ``key`` (a hashable description of the set-up), made with
+    ``make_log_likelihood()`` the first time and kept for the next analyses."""
+    try:
+        found = _SET_UPS.pop(key)
+    except KeyError:
+        found = SetUp(make_log_likelihood())
+    except TypeError:  # a set-up that does not hash (a model of one's own): compiled afresh
+        return SetUp(make_log_likelihood())
+    _SET_UPS[key] = found
+    while len(_SET_UPS) > _SET_UPS_KEPT:
+        _SET_UPS.pop(next(iter(_SET_UPS)))
+    return found
 
 
 def log_posterior(observations, model, priors):
@@ -193,24 +242,37 @@ def log_posterior(observations, model, priors):
 
 
 def _log_posterior(observations, parameter):
+    setup, data = _set_up(observations, parameter)
     density = _numpyro_prior(parameter.prior)
-    log_likelihood = _log_likelihoods(observations, parameter)
-    return lambda value: density.log_prob(value) + log_likelihood(value)
+    return lambda value: density.log_prob(value) + setup.log_likelihood({parameter.name: value}, data)
 
 
-def _log_likelihoods(observations, parameter):
-    """The observations' joint log likelihood as a JAX function of the parameter's value."""
+def _set_up(observations, parameter):
+    """(the :class:`SetUp` of one parameter's back-analysis from ``observations``, their
+    observed values)."""
+    groups = by_motion(range(len(observations)), key=lambda i: observations[i])
+    kinds = tuple((record, pga_g, tuple(observations[i].kind for i in seen)) for (record, pga_g), seen
+                  in groups.items())
+    key = ("parameter", parameter.model, parameter.name, tuple(sorted(parameter.fixed.items())), kinds,
+           tuple(map(tuple, groups.values())))
+    return set_up(key, lambda: _log_likelihoods(groups, observations, parameter)), observed_values(observations)
+
+
+def _log_likelihoods(groups, observations, parameter):
+    """The observations' joint log likelihood as a JAX function of the parameter's value
+    (name -> a scalar) and their observed values (:func:`observed_values`); ``groups``:
+    (record, pga_g) -> the indices of the observations under that motion."""
     import jax.numpy as jnp
 
-    groups = by_motion(observations)
     functions = [parameter.displacement_function(record, pga_g) for record, pga_g in groups]
+    kinds = [observations[i].kind for i in range(len(observations))]
 
-    def log_likelihood(value):
-        value = jnp.maximum(value, 1e-12)  # the models' parameters > 0; the prior's density is 0 below
+    def log_likelihood(values, data):
+        value = jnp.maximum(values[parameter.name], 1e-12)  # the models' parameters > 0; the prior's density is 0 below
         total = 0.0
         for seen, f in zip(groups.values(), functions):
             d = f(value)  # one model call for the observations under one motion
-            total += sum(_log_likelihood(obs, d) for obs in seen)
+            total += sum(_log_likelihood(kinds[i], data["log_value"][i], data["sigma_ln"][i], d) for i in seen)
         return total
 
     return log_likelihood
@@ -317,28 +379,32 @@ class BackAnalysis(Posterior):
         return table
 
 
-def _maximum(log_p, prior, name):
+def _maximum(setup, data, prior, name):
     """The maximum a posteriori value of the parameter ``name`` and the Laplace standard
     deviation of its logarithm: the best of 66 prior quantiles (1e-6, 64 evenly spread,
     1 - 1e-6; one batched model call per observation), then scipy's L-BFGS-B in u = ln p
     on the model's gradient between its neighbours; the curvature at the maximum by
-    central differences of that gradient."""
+    central differences of that gradient. ``setup``: the analysis's :class:`SetUp`,
+    ``data`` its observed values."""
     import jax
     from scipy import optimize
 
-    def minus_log_density(u):  # of ln p
-        return -log_p(jax.numpy.exp(u)) - u
+    density = _numpyro_prior(prior)
 
-    value_only = jax.jit(minus_log_density)
+    def minus_log_density(u, density, data):  # of ln p
+        value = jax.numpy.exp(u)
+        return -density.log_prob(value) - setup.log_likelihood({name: value}, data) - u
 
-    f = jax.jit(jax.value_and_grad(minus_log_density))
+    value_only = setup.program("minus log density", lambda: jax.jit(minus_log_density))
+    f = setup.program("its gradient", lambda: jax.jit(jax.value_and_grad(minus_log_density)))
+    on_grid = setup.program("on a grid", lambda: jax.jit(jax.vmap(minus_log_density, (0, None, None))))
 
     def objective(u):
-        value, grad = f(float(u[0]))
+        value, grad = f(float(u[0]), density, data)
         return float(value), np.array([float(grad)])
 
     grid = np.log(_prior_quantiles(prior))
-    values = np.asarray(jax.jit(jax.vmap(minus_log_density))(grid), dtype=float)
+    values = np.asarray(on_grid(grid, density, data), dtype=float)
     if not np.isfinite(values).any():
         raise ValueError(f"the posterior of {name} is zero at every prior quantile from 1e-6 to 1 - 1e-6: check the "
                          "observations against the prior")
@@ -346,7 +412,7 @@ def _maximum(log_p, prior, name):
     bounds = []
     for neighbour in (max(best - 1, 0), min(best + 1, len(grid) - 1)):
         edge = grid[neighbour]
-        while not np.isfinite(float(value_only(edge))):  # halve the way toward the best point
+        while not np.isfinite(float(value_only(edge, density, data))):  # halve the way toward the best point
             edge = 0.5 * (edge + grid[best])
         bounds.append(edge)
     found = optimize.minimize(objective, [grid[best]], jac=True, method="L-BFGS-B", bounds=[tuple(bounds)],
@@ -389,6 +455,13 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
             logarithm there, ``chains * draws`` independent draws).
         seed: the random seed.
 
+    The JAX programs (the maximum a posteriori's, NUTS's start, warm-up and draws) are
+    compiled once per set-up (the model and its fixed parameters, the records and PGAs,
+    the kinds of observation and of prior, the counts of chains, draws and warm-up) and
+    kept for the process (the 16 set-ups used last): the observed values and the priors'
+    parameters are their arguments, so that another analysis of the set-up runs without
+    compiling, with the draws a fresh one gives for the seed.
+
     Returns:
         a :class:`BackAnalysis` (a :class:`SlopesBackAnalysis` for an
         :class:`InfiniteSlope`), both with the same summary, figures and
@@ -414,16 +487,14 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
     _check_reachable(parameter, observations)
     prior, name = parameter.prior, parameter.name
     with jax_context():  # float64 on this thread only
-        log_p = _log_posterior(observations, parameter)
-        at_map, sd_ln = _maximum(log_p, prior, name)
+        setup, data = _set_up(observations, parameter)
+        at_map, sd_ln = _maximum(setup, data, prior, name)
         if method == "laplace":
             value = _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed)
             diagnostics, stats = pd.DataFrame(), pd.DataFrame()
         else:
             starts = {name: _laplace_draws(parameter, at_map, sd_ln, chains, 1, seed)[:, 0]}
-            log_likelihood = _log_likelihoods(observations, parameter)
-            drawn, diagnostics, stats = nuts(lambda values: log_likelihood(values[name]), {name: prior}, starts,
-                                             draws, warmup, seed)
+            drawn, diagnostics, stats = nuts(setup, data, {name: prior}, starts, draws, warmup, seed)
             value = drawn[name]
     samples = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains),
                             parameter.column: value.reshape(-1)})
@@ -443,13 +514,16 @@ def _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed):
     return value
 
 
-def nuts(log_likelihood, priors, starts, draws, warmup, seed, stacklevel=3):
+def nuts(setup, data, priors, starts, draws, warmup, seed, stacklevel=3):
     """NumPyro's No-U-Turn sampler on the vector of the parameters ``priors`` names
     (name -> a :mod:`blockdae.design` distribution), each mapped to the real line
     (NumPyro's ``biject_to`` of its support, the Jacobian in the potential), a dense mass
-    matrix adapted in warm-up; ``log_likelihood`` a JAX function of the values (name ->
-    a scalar, each in its unit); one chain from each of ``starts`` (name -> shape
-    (chains,)), the chains vectorised (one model call per step for all of them).
+    matrix adapted in warm-up; the log likelihood ``setup``'s (a :class:`SetUp`) of the
+    observed values ``data``; one chain from each of ``starts`` (name -> shape
+    (chains,)), the chains vectorised (one model call per step for all of them). The
+    sampler (start, warm-up and draws) is one program, compiled once per set-up, names,
+    counts of chains, warm-up and draws, and kinds of prior: the observed values and the
+    priors' parameters are its arguments.
 
     Returns:
         (the draws, name -> shape (chains, draws); per parameter ArviZ's R-hat, bulk and
@@ -460,35 +534,21 @@ def nuts(log_likelihood, priors, starts, draws, warmup, seed, stacklevel=3):
         warnings.warn's, the user's call it names)."""
     import jax
     from numpyro.distributions.transforms import biject_to
-    from numpyro.infer import MCMC, NUTS
 
     with warnings.catch_warnings():  # ArviZ's notice of its coming refactor, at import
         warnings.simplefilter("ignore", FutureWarning)
         import arviz
 
+    names = list(priors)
     densities = {name: _numpyro_prior(prior) for name, prior in priors.items()}
-    transforms = {name: biject_to(d.support) for name, d in densities.items()}
-    names = list(densities)
     chains = len(next(iter(starts.values())))
-
-    def constrained(z):
-        return {name: transforms[name](z[i]) for i, name in enumerate(names)}
-
-    def potential(z):  # -ln p of the unconstrained parameters (the transforms' Jacobians included)
-        values = constrained(z)
-        log_p = sum(densities[n].log_prob(values[n]) + transforms[n].log_abs_det_jacobian(z[i], values[n])
-                    for i, n in enumerate(names))
-        return -(log_p + log_likelihood(values))
-
-    mcmc = MCMC(NUTS(potential_fn=potential, dense_mass=True), num_warmup=warmup, num_samples=draws,
-                num_chains=chains, chain_method="vectorized", progress_bar=False)
-    init = jax.numpy.stack([transforms[n].inv(jax.numpy.asarray(starts[n])) for n in names], axis=-1)
-    mcmc.run(jax.random.PRNGKey(seed), init_params=init, extra_fields=tuple(_NUTS_STATS))
-    z = np.asarray(mcmc.get_samples(group_by_chain=True), dtype=float)
-    samples = {n: np.asarray(v, dtype=float) for n, v in jax.vmap(jax.vmap(constrained))(z).items()}
-    fields = mcmc.get_extra_fields(group_by_chain=True)
+    init = jax.numpy.stack([biject_to(densities[n].support).inv(jax.numpy.asarray(starts[n])) for n in names], axis=-1)
+    sampler = setup.program(("nuts", tuple(names), chains, draws, warmup),
+                            lambda: _nuts_program(setup.log_likelihood, names, chains, draws, warmup))
+    values, fields = sampler(jax.random.PRNGKey(seed), init, densities, data)
+    samples = {n: np.asarray(v, dtype=float) for n, v in values.items()}
     stats = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains)}
-                         | {name: np.asarray(fields[field]).reshape(-1) for field, name in _NUTS_STATS.items()})
+                         | {name: np.asarray(fields[name]).reshape(-1) for name in _NUTS_STATS.values()})
     stats["lp"] = -stats["lp"]  # NumPyro's potential energy: minus the log density (in the sampler's space)
     divergences = int(stats["diverging"].sum())
     diagnostics = pd.DataFrame([{"parameter": name, "r_hat": float(arviz.rhat(x)) if chains > 1 else np.nan,
@@ -502,3 +562,54 @@ def nuts(log_likelihood, priors, starts, draws, warmup, seed, stacklevel=3):
                       f"{divergences} divergent transitions; run more draws or warmup", ConvergenceWarning,
                       stacklevel=stacklevel)
     return samples, diagnostics, stats
+
+
+def _nuts_program(log_likelihood, names, chains, draws, warmup):
+    """NUTS (NumPyro's ``hmc`` kernels, its default adaptation, a dense mass matrix) as one
+    jitted function of (a PRNG key, the chains' unconstrained starts (chains, d), the
+    priors (name -> a NumPyro distribution), the observed values) -> (name -> the
+    constrained draws (chains, draws), the statistics of each draw (their names in
+    ArviZ's sample_stats -> (chains, draws)))."""
+    import jax
+    from numpyro.distributions.transforms import biject_to
+    from numpyro.infer.hmc import hmc
+
+    def constrained(z, densities):
+        return {n: biject_to(densities[n].support)(z[..., i]) for i, n in enumerate(names)}
+
+    def potential_of(densities, data):
+        def potential(z):  # -ln p of the unconstrained parameters (the transforms' Jacobians included)
+            values = constrained(z, densities)
+            log_p = sum(densities[n].log_prob(values[n])
+                        + biject_to(densities[n].support).log_abs_det_jacobian(z[i], values[n])
+                        for i, n in enumerate(names))
+            return -(log_p + log_likelihood(values, data))
+
+        return potential
+
+    init_kernel, sample_kernel = hmc(potential_fn_gen=potential_of, algo="NUTS")
+
+    def chain(key, start, densities, data):
+        args = (densities, data)
+        state = init_kernel(start, warmup, dense_mass=True, model_args=args, rng_key=key)
+
+        def step(state, _):
+            state = sample_kernel(state, model_args=args)
+            return state, (state.z, {name: _field(state, field) for field, name in _NUTS_STATS.items()})
+
+        state, _ = jax.lax.scan(step, state, None, length=warmup)
+        _, (z, fields) = jax.lax.scan(step, state, None, length=draws)
+        return z, fields
+
+    def run(key, starts, densities, data):
+        z, fields = jax.vmap(chain, (0, 0, None, None))(jax.random.split(key, chains), starts, densities, data)
+        return constrained(z, densities), fields
+
+    return jax.jit(run)
+
+
+def _field(state, dotted):
+    """The field of NumPyro's HMC state a dotted name names (``adapt_state.step_size``)."""
+    for part in dotted.split("."):
+        state = getattr(state, part)
+    return state

@@ -2,7 +2,8 @@
 the others held at given values, and the model's D [m] as a function of it, in NumPy
 and in JAX (differentiable through the model's own dD/dp: :meth:`DesignModel.gradient`,
 called back from JAX with ``jax.pure_callback`` inside a ``jax.custom_jvp``, its float64
-values passed as their bits so that JAX's float64 is needed only on the calling thread)."""
+arguments and values passed as their bits so that JAX's float64 is needed only on the
+calling thread)."""
 
 import dataclasses
 
@@ -81,8 +82,10 @@ class InferredParameter:
                 raise ValueError("the model's D is passed to JAX in float64, and JAX is in float32 here: evaluate "
                                  "the log posterior inside `with jax.enable_x64(True):`")
             bits = jax.ShapeDtypeStruct(jnp.shape(value) + (2,), jnp.uint32)
-            out = jax.pure_callback(lambda v: _as_bits(self.displacements(record, pga_g, v, derivative)),
-                                    (bits, bits) if derivative else bits, value, vmap_method="broadcast_all")
+            out = jax.pure_callback(lambda v: _as_bits(self.displacements(record, pga_g, _from_bits(v), derivative)),
+                                    (bits, bits) if derivative else bits,
+                                    jax.lax.bitcast_convert_type(jnp.asarray(value, jnp.float64), jnp.uint32),
+                                    vmap_method="broadcast_all")
             return jax.tree.map(lambda b: jax.lax.bitcast_convert_type(b, jnp.float64), out)
 
         @jax.custom_jvp
@@ -95,6 +98,13 @@ class InferredParameter:
             return d, slope * tangents[0]
 
         return displacement
+
+
+def _from_bits(bits):
+    """float64 values from their bits (uint32 pairs along a last axis): the parameter's
+    values, passed to the callback as bits, so that an XLA thread does not cast them to
+    float32."""
+    return np.ascontiguousarray(bits, dtype=np.uint32).view(np.float64)[..., 0]
 
 
 def _as_bits(arrays):

@@ -21,7 +21,7 @@ from ..core import jax_context
 from ..excitation import Record
 from ..regional import WATER_UNIT_WEIGHT, factor_of_safety
 from ._back_analysis import (Observation, by_motion, _log_likelihood as _observation_log_likelihood, _numpyro_prior,
-                             check_counts, nuts)
+                             check_counts, nuts, observed_values, set_up)
 from ._distributions import DISTRIBUTIONS
 from ._inferred import InferredParameter
 from ._models import Rigid
@@ -162,18 +162,34 @@ def _checked(observations, slopes, priors):
     return by_slope, fixed, uncertain
 
 
-def _log_likelihood(observations, slopes, fixed):
+def _set_up(observations, slopes, fixed):
+    """(the :class:`SetUp` of the slopes' back-analysis from ``observations`` (slope name
+    -> its observations), its data: the observed values (:func:`observed_values`) and the
+    known parameters (``fixed``, name -> a number))."""
+    listed = [(name, o) for name, seen in observations.items() for o in seen]
+    groups = by_motion(range(len(listed)), key=lambda i: listed[i][1])
+    geometry = tuple((name, s.slope_deg, s.unit_weight_kn_m3, s.saturated_fraction, s.water_unit_weight_kn_m3,
+                      "prior" if isinstance(s.thickness_m, DISTRIBUTIONS) else s.thickness_m)
+                     for name, s in slopes.slopes.items())
+    seen = tuple((record, pga_g, tuple((listed[i][0], listed[i][1].kind) for i in members))
+                 for (record, pga_g), members in groups.items())
+    key = ("slopes", slopes.model, geometry, seen, tuple(sorted(fixed)))
+    data = observed_values([o for _, o in listed]) | {"fixed": {name: float(v) for name, v in fixed.items()}}
+    return set_up(key, lambda: _log_likelihood(listed, groups, slopes)), data
+
+
+def _log_likelihood(listed, groups, slopes):
     """The observations' joint log likelihood as a JAX function of the uncertain
-    parameters (name -> a scalar): -inf where a slope's FS <= 1 or a value lies outside
-    the formula's domain."""
+    parameters (name -> a scalar) and the data (:func:`_set_up`'s): -inf where a slope's
+    FS <= 1 or a value lies outside the formula's domain. ``listed``: (slope name,
+    observation) of each observation, ``groups``: (record, pga_g) -> their indices."""
     import jax.numpy as jnp
 
     rigid = InferredParameter(slopes.model, "ky", None, {})  # a slope's D [m] as a function of its ky [g]
-    groups = by_motion([(name, o) for name, seen in observations.items() for o in seen], key=lambda item: item[1])
     functions = [rigid.displacement_function(record, pga_g) for record, pga_g in groups]
 
-    def log_likelihood(values):
-        values = dict(fixed) | dict(values)
+    def log_likelihood(values, data):
+        values = dict(data["fixed"]) | dict(values)
         inside = (values["c_kPa"] >= 0) & (values["phi_deg"] > 0) & (values["phi_deg"] < 90)
         for name in slopes.slopes:
             inside &= jnp.asarray(values.get(slopes.thickness_names[name], 1.0)) > 0
@@ -182,10 +198,11 @@ def _log_likelihood(observations, slopes, fixed):
         stands = {name: ky[name] > 0 for name in slopes.slopes}  # FS > 1
         at = {name: jnp.where(stands[name], ky[name], 1.0) for name in slopes.slopes}  # any ky > 0: masked below
         total = 0.0
-        for seen, f in zip(groups.values(), functions):
-            d = f(jnp.stack([at[name] for name, _ in seen]))  # one engine call for the slopes under one motion
-            total += sum(jnp.where(stands[name], _observation_log_likelihood(o, d[i]), -jnp.inf)
-                         for i, (name, o) in enumerate(seen))
+        for members, f in zip(groups.values(), functions):
+            d = f(jnp.stack([at[listed[i][0]] for i in members]))  # one engine call for the slopes under one motion
+            total += sum(jnp.where(stands[listed[i][0]], _observation_log_likelihood(
+                listed[i][1].kind, data["log_value"][i], data["sigma_ln"][i], d[j]), -jnp.inf)
+                for j, i in enumerate(members))
         return jnp.where(inside, total, -jnp.inf)
 
     return log_likelihood
@@ -195,19 +212,21 @@ def _log_likelihood(observations, slopes, fixed):
 _SAFE = {"c_kPa": 0.0, "phi_deg": 30.0}
 
 
-def _log_prior(uncertain):
-    """The uncertain parameters' joint log prior density as a JAX function (name -> a scalar)."""
+def _log_prior(values, densities, medians):
+    """The uncertain parameters' joint log prior density in JAX (``values``, ``densities``
+    (NumPyro distributions) and ``medians``: name -> each's): -inf outside a prior's
+    support (its density evaluated at the median there)."""
     import jax.numpy as jnp
 
-    densities = {name: _numpyro_prior(prior) for name, prior in uncertain.items()}
-    medians = {name: float(prior.ppf(0.5)) for name, prior in uncertain.items()}
+    inside = {name: d.support(values[name]) for name, d in densities.items()}
+    return sum(jnp.where(inside[n], d.log_prob(jnp.where(inside[n], values[n], medians[n])), -jnp.inf)
+               for n, d in densities.items())
 
-    def log_prior(values):  # -inf outside a prior's support (its density evaluated at the median there)
-        inside = {name: d.support(values[name]) for name, d in densities.items()}
-        return sum(jnp.where(inside[n], d.log_prob(jnp.where(inside[n], values[n], medians[n])), -jnp.inf)
-                   for n, d in densities.items())
 
-    return log_prior
+def _prior_arguments(uncertain):
+    """(name -> the NumPyro distribution, name -> the median) of each uncertain parameter."""
+    return ({name: _numpyro_prior(prior) for name, prior in uncertain.items()},
+            {name: float(prior.ppf(0.5)) for name, prior in uncertain.items()})
 
 
 def log_posterior(observations, slopes, priors):
@@ -217,21 +236,21 @@ def log_posterior(observations, slopes, priors):
     through the infinite slope's formula and the engine's dD/dky. Evaluate it with JAX in
     float64 (inside ``jax.enable_x64(True)``)."""
     observations, fixed, uncertain = _checked(observations, slopes, priors)
-    return _vector_function(_log_likelihood(observations, slopes, fixed), _log_prior(uncertain), list(uncertain))
+    setup, data = _set_up(observations, slopes, fixed)
+    densities, medians = _prior_arguments(uncertain)
+    names = list(uncertain)
+
+    def log_p(theta):
+        values = {name: theta[i] for i, name in enumerate(names)}
+        return _log_prior(values, densities, medians) + setup.log_likelihood(values, data)
+
+    return log_p
 
 
 def parameter_names(slopes, priors) -> list:
     """The names of the uncertain parameters, in the order of :func:`log_posterior`'s θ."""
     given = dict(priors) | {slopes.thickness_names[n]: s.thickness_m for n, s in slopes.slopes.items()}
     return [name for name, value in given.items() if isinstance(value, DISTRIBUTIONS)]
-
-
-def _vector_function(log_likelihood, log_prior, names):
-    def log_p(theta):
-        values = {name: theta[i] for i, name in enumerate(names)}
-        return log_prior(values) + log_likelihood(values)
-
-    return log_p
 
 
 @dataclasses.dataclass
@@ -310,10 +329,9 @@ def slopes_back_analysis(observations, slopes, priors, *, chains=4, draws=500, w
     observations, fixed, uncertain = _checked(observations, slopes, priors)
     names = list(uncertain)
     with jax_context():  # float64 on this thread only
-        log_likelihood = _log_likelihood(observations, slopes, fixed)
-        log_prior = _log_prior(uncertain)
-        starts = _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains, seed)
-        samples, diagnostics, stats = nuts(log_likelihood, uncertain, starts, draws, warmup, seed, stacklevel=5)
+        setup, data = _set_up(observations, slopes, fixed)
+        starts = _starting_points(setup, data, uncertain, slopes, fixed, chains, seed)
+        samples, diagnostics, stats = nuts(setup, data, uncertain, starts, draws, warmup, seed, stacklevel=5)
     table = {"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains)}
     table |= {name: samples[name].reshape(-1) for name in names}
     fs, ky = slopes.yield_accelerations(fixed | {name: table[name] for name in names})
@@ -324,16 +342,21 @@ def slopes_back_analysis(observations, slopes, priors, *, chains=4, draws=500, w
                               uncertain, stats)
 
 
-def _starting_points(log_likelihood, log_prior, uncertain, slopes, fixed, chains, seed):
+def _starting_points(setup, data, uncertain, slopes, fixed, chains, seed):
     """The ``chains`` most probable of :data:`_START_DRAWS` prior draws (name -> shape
     (chains,)); ValueError where none has a positive posterior density (each slope's
     share of draws with FS <= 1 named)."""
     import jax
 
+    def log_p(values, densities, medians, data):
+        return _log_prior(values, densities, medians) + setup.log_likelihood(values, data)
+
     rng = np.random.default_rng(seed)
     draws = {name: np.asarray(prior.ppf(rng.uniform(size=_START_DRAWS)), dtype=float)
              for name, prior in uncertain.items()}
-    values = np.asarray(jax.jit(jax.vmap(lambda v: log_prior(v) + log_likelihood(v)))(draws), dtype=float)
+    on_draws = setup.program(("on prior draws", tuple(uncertain)),
+                             lambda: jax.jit(jax.vmap(log_p, (0, None, None, None))))
+    values = np.asarray(on_draws(draws, *_prior_arguments(uncertain), data), dtype=float)
     finite = np.isfinite(values)
     if finite.sum() < 1:
         fs, _ = slopes.yield_accelerations(fixed | draws)
