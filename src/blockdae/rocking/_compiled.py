@@ -65,7 +65,8 @@ FINISHED, CHATTER, INCONSISTENT, STEP_TOO_SMALL, NO_REST, NEVER_RESTS, FLIGHT = 
 #: the flight guard's index (g_e falling through zero) in every mode that has one
 _FLIGHT_GUARD = 3
 #: counters (int64): knots, events, events at the current instant, most at one instant,
-#: status, steps, rejected steps, right-hand-side calls, mode, restarted
+#: status, steps, rejected steps, right-hand-side calls (in this order: the DOP853 flow's
+#: counts), mode, restarted
 C_NK, C_NE, C_RUN, C_MAX_RUN, C_STATUS, C_STEPS, C_REJECTED, C_RHS, C_MODE, C_RESTARTED = range(10)
 #: floats: time [s], largest |theta'| [rad/s], last event [s], step to try [s]
 F_T, F_VMAX, F_LAST, F_H = range(4)
@@ -302,11 +303,13 @@ def _dense_minimum(F, y, t, hh, mode, index, pe, p, work):
 _step, _initial_step, _dense_coefficients = _dop853.for_flow(_rhs)
 
 
-def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt):
+def _first_root(root_args, carry, t, y, t_new, y_new, hh, K):
     """The first guard root in (t, t_new] of the step just taken from (t, y) (its stages
-    in ``K``, the flow at its ends in rows 0 and 12): (time, index), or (nan, -1). The own
+    in ``K``, the flow at its ends in rows 0 and 12; root_args: (mode, pe, p, F, work,
+    cnt); ``carry`` handed on as it is): (time, index, carry), or (nan, -1, carry). The own
     guards of a rocking or settling mode are functions of the state, located on the dense
     output; the others (SETTLE's onsets, g_e) of time alone, monotone on a piece."""
+    mode, pe, p, F, work, cnt = root_args
     kind, s = abs(mode), _side(mode)
     start, end = _guards(mode, t, (y[0], y[1]), pe, p), _guards(mode, t_new, (y_new[0], y_new[1]), pe, p)
     dense = False
@@ -341,13 +344,10 @@ def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt):
             root = events.first_nonpositive(_guard_value, ((mode, (y[0], y[1]), pe, p), j), t, upper)
         if root < best:
             best, index = root, j
-    return (best, index) if index >= 0 else (math.nan, -1)
+    return (best, index, carry) if index >= 0 else (math.nan, -1, carry)
 
 
-def _error_scale(y, y_new, rtol, atol, out):
-    for i in range(y.shape[0]):
-        out[i] = atol + rtol * max(abs(y[i]), abs(y_new[i]))
-    return out
+_integrate = _dop853.to_first_root(_step, _initial_step, _first_root)
 
 
 def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl):
@@ -356,48 +356,16 @@ def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl):
     K, F, V = B
     work, y_cur, y_new, z, scale = V[0], V[1], V[2], V[3], V[4]
     args = (mode, pe, p)
-    rtol, atol = opt[0], opt[1]
-    h = fl[F_H]
     y_cur[0], y_cur[1] = y[0], y[1]
     _rhs(t, y_cur, args, K[0])
     cnt[C_RHS] += 1
-    if h <= 0:
-        h = _initial_step(args, t, y_cur, stop - t, rtol, atol, K, work)
-        cnt[C_RHS] += 1
-    rejected = False
-    while t < stop:
-        rest = stop - t
-        last = h >= rest
-        hh = rest if last else h
-        if not last and hh <= events.ULPS * 2.220446049250313e-16 * max(1.0, abs(t)):
-            cnt[C_STATUS] = STEP_TOO_SMALL
-            break
-        _step(args, t, y_cur, hh, K, y_new, work)
-        cnt[C_RHS] += 12
-        err = _dop853.error_norm(K, hh, _error_scale(y_cur, y_new, rtol, atol, scale))
-        accepted = err <= 1.0
-        h_next = hh * _dop853.factor(err, accepted)
-        if accepted and rejected:
-            h_next = min(h_next, hh)
-        rejected = not accepted
-        if rejected:
-            h = h_next
-            cnt[C_REJECTED] += 1
-            continue
-        cnt[C_STEPS] += 1
-        t_new = stop if last else t + hh
-        root, index = _first_root(t, y_cur, t_new, y_new, hh, mode, pe, p, K, F, work, cnt)
-        if index >= 0:
-            _step(args, t, y_cur, root - t, K, z, work)  # the state at the root, on the flow
-            cnt[C_RHS] += 12
-            fl[F_H] = h
-            return root, z, index
-        h = max(h, h_next) if last else h_next
-        t = t_new
-        y_cur[0], y_cur[1] = y_new[0], y_new[1]
-        K[0, 0], K[0, 1] = K[_dop853.N_STAGES, 0], K[_dop853.N_STAGES, 1]
+    t, z, index, h = _integrate(args, (mode, pe, p, F, work, cnt), 0.0, t, y_cur, stop, fl[F_H], opt[0], opt[1], K,
+                                y_new, z, work, scale, cnt[C_STEPS:C_RHS + 1])
     fl[F_H] = h
-    return t, y_cur, -1
+    if index == -2:
+        cnt[C_STATUS] = STEP_TOO_SMALL
+        index = -1
+    return t, z, index
 
 
 # ---- the loop: the driver's, on floats ---------------------------------------------------

@@ -66,7 +66,7 @@ _B, _H, _MU, _MUK, _G, _R, _ALPHA, _LAM, _STEP, _THETA_FLOOR, _SPEED_FLOOR, _ZEN
 #: entries of ``options``: rtol [-], atol [the states' units]
 OPTION_FIELDS = ("rtol", "atol")
 #: counters (int64): the piece, the mode, restarted (0/1), the piece entered (0/1), knots,
-#: steps, rejected steps, right-hand-side calls, running after the excitation (0/1), the
+#: steps, rejected steps, right-hand-side calls (in this order: the DOP853 flow's counts), running after the excitation (0/1), the
 #: events taken in the kernel (rows of its event buffer), the driver's run of events at one
 #: instant, its longest run, its cap (max_events_at_one_instant)
 C_PIECE, C_MODE, C_RESTARTED, C_ENTERED, C_NK, C_STEPS, C_REJECTED, C_RHS, C_TAIL, C_NE, C_RUN, C_MAX_RUN, C_CAP = \
@@ -224,14 +224,15 @@ def _dense_maximum(args, lo, hi):
     return a if fa >= fb else b
 
 
-def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt, start):
+def _first_root(root_args, start, t, y, t_new, y_new, hh, K):
     """The first guard root in (t, t_new] of the step just taken from (t, y) (its stages in
-    ``K``, the guards at its start ``start``): (time, index, the guards at its end), index
-    -1 where there is none; a guard that goes from > 0 to <= 0 over the step,
-    located on its dense output. A guard that starts at zero (the mode entered on it: the
+    ``K``, the guards at its start ``start``; root_args: (mode, pe, p, F, work, cnt)):
+    (time, index, the guards at its end), index -1 and time nan where there is none; a
+    guard that goes from > 0 to <= 0 over the step, located on its dense output. A guard that starts at zero (the mode entered on it: the
     arc of a slide-rock from its impact) and ends below is located from its highest point on
     the step where that is above zero, as CVODE looks past a root function that starts at
     zero."""
+    mode, pe, p, F, work, cnt = root_args
     end = _guards(mode, t_new, y_new, pe, p)
     dense = False
     best, index = _INF, -1
@@ -254,10 +255,7 @@ def _first_root(t, y, t_new, y_new, hh, mode, pe, p, K, F, work, cnt, start):
     return (best, index, end) if index >= 0 else (math.nan, -1, end)
 
 
-def _error_scale(y, y_new, rtol, atol, out):
-    for i in range(N):
-        out[i] = atol + rtol * max(abs(y[i]), abs(y_new[i]))
-    return out
+_integrate = _dop853.to_first_root(_step, _initial_step, _first_root)
 
 
 def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl, rate_known, guards_known, start):
@@ -268,8 +266,6 @@ def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl, rate_known, guards_known,
     K, F, V = B
     work, y_cur, y_new, z, scale = V[0], V[1], V[2], V[3], V[4]
     args = (mode, pe, p)
-    rtol, atol = opt[0], opt[1]
-    h = fl[F_H]
     for i in range(N):
         y_cur[i] = y[i]
     if rate_known:
@@ -280,44 +276,10 @@ def _flow_to(t, y, stop, mode, pe, p, opt, B, cnt, fl, rate_known, guards_known,
         cnt[C_RHS] += 1
     if not guards_known:
         start = _guards(mode, t, y_cur, pe, p)
-    if h <= 0:
-        h = _initial_step(args, t, y_cur, stop - t, rtol, atol, K, work)
-        cnt[C_RHS] += 1
-    rejected = False
-    while t < stop:
-        rest = stop - t
-        last = h >= rest
-        hh = rest if last else h
-        if not last and hh <= events.ULPS * 2.220446049250313e-16 * max(1.0, abs(t)):
-            fl[F_H] = h
-            return t, y_cur, -2
-        _step(args, t, y_cur, hh, K, y_new, work)
-        cnt[C_RHS] += 12
-        err = _dop853.error_norm(K, hh, _error_scale(y_cur, y_new, rtol, atol, scale))
-        accepted = err <= 1.0
-        h_next = hh * _dop853.factor(err, accepted)
-        if accepted and rejected:
-            h_next = min(h_next, hh)
-        rejected = not accepted
-        if rejected:
-            h = h_next
-            cnt[C_REJECTED] += 1
-            continue
-        cnt[C_STEPS] += 1
-        t_new = stop if last else t + hh
-        root, index, start = _first_root(t, y_cur, t_new, y_new, hh, mode, pe, p, K, F, work, cnt, start)
-        if index >= 0:
-            _step(args, t, y_cur, root - t, K, z, work)  # the state at the root, on the flow
-            cnt[C_RHS] += 12
-            fl[F_H] = h
-            return root, z, index
-        h = max(h, h_next) if last else h_next
-        t = t_new
-        for i in range(N):
-            y_cur[i] = y_new[i]
-            K[0, i] = K[_dop853.N_STAGES, i]
+    t, z, index, h = _integrate(args, (mode, pe, p, F, work, cnt), start, t, y_cur, stop, fl[F_H], opt[0], opt[1], K,
+                                y_new, z, work, scale, cnt[C_STEPS:C_RHS + 1])
     fl[F_H] = h
-    return t, y_cur, -1
+    return t, z, index
 
 
 # ---- the driver's commonest events, taken in the kernel -------------------------------------

@@ -15,6 +15,8 @@ import numpy as np
 from numba.extending import register_jitable
 from scipy.integrate._ivp import dop853_coefficients as _c
 
+from ..core import events
+
 N_STAGES = _c.N_STAGES  # 12
 A = np.ascontiguousarray(_c.A[:N_STAGES, :N_STAGES])
 B = np.ascontiguousarray(_c.B)
@@ -47,6 +49,15 @@ def error_norm(K, h, scale):
     if e5 == 0.0 and e3 == 0.0:
         return 0.0
     return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)
+
+
+@register_jitable
+def error_scale(y, y_new, rtol, atol, out):
+    """SciPy's error scale atol + rtol max(|y|, |y_new|) of each component into ``out``
+    (n,), returned."""
+    for i in range(y.shape[0]):
+        out[i] = atol + rtol * max(abs(y[i]), abs(y_new[i]))
+    return out
 
 
 @register_jitable
@@ -150,3 +161,61 @@ def for_flow(fun):
                 F[3 + r, i] = h * acc
 
     return step, initial_step, dense_coefficients
+
+
+#: the entries of a flow's ``counts`` (int64): accepted steps, rejected steps, right-hand-side calls
+STEPS, REJECTED, RHS = 0, 1, 2
+
+
+def to_first_root(step, initial_step, first_root):
+    """``flow(args, root_args, carry, t, y, stop, h, rtol, atol, K, y_new, z, work, scale,
+    counts)``: SciPy's adaptive DOP853 steps (:func:`for_flow`'s ``step`` and
+    ``initial_step``) from (t, y) to ``stop`` [s] or to the first root the compiled
+    ``first_root(root_args, carry, t, y, t_new, y_new, h, K) -> (time, index, carry)``
+    finds on a step accepted from (t, y) to (t_new, y_new) (index -1: none; ``carry``:
+    what it hands on to the next step, e.g. the guards at its end). Returns (time, state,
+    index, the step to try next [s]): index -1 at ``stop``, -2 where a step fell below
+    rounding (then ``y`` where it stopped); the state at a root is a step of the method to
+    it, in ``z``. ``y`` (n,) is advanced in place; K[0] must hold fun(t, y); ``h`` <= 0:
+    Hairer's first step; ``counts`` (3,) (:data:`STEPS`, :data:`REJECTED`, :data:`RHS`)
+    is added to."""
+
+    @register_jitable
+    def flow(args, root_args, carry, t, y, stop, h, rtol, atol, K, y_new, z, work, scale, counts):
+        if h <= 0:
+            h = initial_step(args, t, y, stop - t, rtol, atol, K, work)
+            counts[RHS] += 1
+        rejected = False
+        while t < stop:
+            rest = stop - t
+            last = h >= rest
+            hh = rest if last else h
+            if not last and hh <= events.ULPS * 2.220446049250313e-16 * max(1.0, abs(t)):
+                return t, y, -2, h
+            step(args, t, y, hh, K, y_new, work)
+            counts[RHS] += 12
+            err = error_norm(K, hh, error_scale(y, y_new, rtol, atol, scale))
+            accepted = err <= 1.0
+            h_next = hh * factor(err, accepted)
+            if accepted and rejected:
+                h_next = min(h_next, hh)
+            rejected = not accepted
+            if rejected:
+                h = h_next
+                counts[REJECTED] += 1
+                continue
+            counts[STEPS] += 1
+            t_new = stop if last else t + hh
+            root, index, carry = first_root(root_args, carry, t, y, t_new, y_new, hh, K)
+            if index >= 0:
+                step(args, t, y, root - t, K, z, work)  # the state at the root, on the flow
+                counts[RHS] += 12
+                return root, z, index, h
+            h = max(h, h_next) if last else h_next
+            t = t_new
+            for i in range(y.shape[0]):
+                y[i] = y_new[i]
+                K[0, i] = K[N_STAGES, i]
+        return t, y, -1, h
+
+    return flow
