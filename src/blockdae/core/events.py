@@ -10,7 +10,8 @@ compiles where an engine calls them (``register_jitable``) and Python calls as t
 * :func:`turning_point`: where a monotone rate leaves its sign (the driver splits a piece
   there so that the guards are monotone on both parts).
 * :func:`static_root`: the first guard root of a static mode (guards of time alone);
-  :func:`left_at_once`: the guard a flow leaves as it starts.
+  :func:`left_at_once`: the guard a flow leaves as it starts; :func:`of_time`: a compiled
+  engine's guards as the functions of time these take.
 * :func:`velocity_error`, :func:`stop_uncertainty`: how far a located stop may lie from
   the true one, which decides whether a stop slides on; :func:`too_short`: an interval
   not worth a step.
@@ -172,6 +173,24 @@ def left_at_once(values, rates, args, resolution):
             if falls(rate, curvature, resolution):
                 return index
     return -1
+
+
+def of_time(guards):
+    """A compiled engine's ``guards(mode, t, y, pe, p)`` (a tuple) as functions of time for
+    :func:`static_root` and :func:`first_nonpositive`: (``values(args, t)``, all of them,
+    ``value((args, i), t)``, guard i), args = (mode, y, pe, p)."""
+
+    @register_jitable
+    def values(args, t):
+        mode, y, pe, p = args
+        return guards(mode, t, y, pe, p)
+
+    @register_jitable
+    def value(pair, t):
+        args, index = pair
+        return values(args, t)[index]
+
+    return values, value
 
 
 @register_jitable

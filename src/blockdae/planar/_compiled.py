@@ -182,16 +182,7 @@ def _turn_rate(mode, t, y, pe, p):
 
 
 # ---- root finding in time --------------------------------------------------------
-def _guard_values(args, t):
-    """The guards at ``t`` (args: (mode, y, pe, p))."""
-    mode, y, pe, p = args
-    return _guards(mode, t, y, pe, p)
-
-
-def _guard_value(pair, t):
-    """Guard i at ``t`` (pair: ((mode, y, pe, p), i))."""
-    args, index = pair
-    return _guard_values(args, t)[index]
+_guard_values, _guard_value = events.of_time(_guards)
 
 
 def _turning_point(mode, t, y, end, pe, p):

@@ -244,14 +244,7 @@ def _contradicts(mode, y, p, opt, v_max):
 
 
 # ---- roots ------------------------------------------------------------------------------
-def _guard_values(args, t):
-    mode, y, pe, p = args
-    return _guards(mode, t, y, pe, p)
-
-
-def _guard_value(pair, t):
-    args, index = pair
-    return _guard_values(args, t)[index]
+_guard_values, _guard_value = events.of_time(_guards)
 
 
 def _turn_value(args, t):

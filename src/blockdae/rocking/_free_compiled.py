@@ -158,14 +158,7 @@ def _next_turn(mode, t, y, end, pe, p, work, rate_known, rate):
     return events.turning_point(_turn_value, (mode, y, pe, p, work, t if rate_known else math.nan, rate), t, end)
 
 
-def _static_guards(args, t):
-    mode, y, pe, p = args
-    return _guards(mode, t, y, pe, p)
-
-
-def _static_guard(pair, t):
-    args, index = pair
-    return _static_guards(args, t)[index]
+_static_guards, _static_guard = events.of_time(_guards)
 
 
 def _dense_guard(args, t_mid):
