@@ -1,5 +1,6 @@
 """Helpers shared by the benchmark scripts: records, timing, tables."""
 
+import argparse
 import importlib.resources
 import pathlib
 import statistics
@@ -33,6 +34,15 @@ def sample_records(quick=False) -> list[bd.Record]:
     if quick:
         records = sorted(records, key=lambda r: r.acceleration_samples.size)[:2]
     return records
+
+
+def sample_record_arguments(description, argv=None):
+    """The arguments of a benchmark over :func:`sample_records`: --quick (the two shortest
+    records) and --repeat (warm repetitions per timing, their median)."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--quick", action="store_true", help="the two shortest records (smoke run)")
+    parser.add_argument("--repeat", type=int, default=3, help="warm repetitions (median) per timing")
+    return parser.parse_args(argv)
 
 
 def timed(action, repeat):

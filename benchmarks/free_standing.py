@@ -16,14 +16,13 @@ printed over its scale (each bounded by 1e-9 in tests/test_free_standing.py).
     python benchmarks/free_standing.py [--quick] [--repeat N]
 """
 
-import argparse
 import collections
 import time
 
 import numpy as np
 
 import blockdae as bd
-from _common import G, print_table, sample_records, timed, verdict
+from _common import G, print_table, sample_record_arguments, sample_records, timed, verdict
 
 BLOCK = bd.rocking.FreeStandingBlock(b=0.2, h=0.8, mu=0.3)
 PEAK = 0.5 * G  # [m/s²]
@@ -38,10 +37,7 @@ def _counts(solution):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="the two shortest records (smoke run)")
-    parser.add_argument("--repeat", type=int, default=3, help="warm repetitions (median) per timing")
-    args = parser.parse_args(argv)
+    args = sample_record_arguments(__doc__.splitlines()[0], argv)
     records = sample_records(args.quick)
     start = time.perf_counter()
     bd.simulate(BLOCK, bd.Record(np.zeros(3), 0.01, units="m/s2"))  # compiles, or loads numba's disk cache

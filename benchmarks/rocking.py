@@ -20,12 +20,11 @@ differently.
     python benchmarks/rocking.py [--quick] [--repeat N]
 """
 
-import argparse
 
 import numpy as np
 
 import blockdae as bd
-from _common import G, print_table, sample_records, timed, verdict
+from _common import G, print_table, sample_record_arguments, sample_records, timed, verdict
 
 BLOCK = bd.RockingBlock(b=0.2, h=0.8, mu=0.6)
 PEAK = 0.4 * G  # [m/s²]
@@ -74,10 +73,7 @@ def compare(block, backend, records, args):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="the two shortest records (smoke run)")
-    parser.add_argument("--repeat", type=int, default=3, help="warm repetitions (median) per timing")
-    args = parser.parse_args(argv)
+    args = sample_record_arguments(__doc__.splitlines()[0], argv)
     records = sample_records(args.quick)
     # most records rock the block past its contact limits: the times include locating them
     # (every backend alike: bd.simulate lists them on the solution)
