@@ -66,9 +66,10 @@ _B, _H, _MU, _MUK, _G, _R, _ALPHA, _LAM, _STEP, _THETA_FLOOR, _SPEED_FLOOR, _ZEN
 #: entries of ``options``: rtol [-], atol [the states' units]
 OPTION_FIELDS = ("rtol", "atol")
 #: counters (int64): the piece, the mode, restarted (0/1), the piece entered (0/1), knots,
-#: steps, rejected steps, right-hand-side calls (in this order: the DOP853 flow's counts), running after the excitation (0/1), the
-#: events taken in the kernel (rows of its event buffer), the driver's run of events at one
-#: instant, its longest run, its cap (max_events_at_one_instant)
+#: steps, rejected steps, right-hand-side calls (in this order: the DOP853 flow's counts),
+#: running after the excitation (0/1), the events taken in the kernel (rows of its event
+#: buffer), the driver's run of events at one instant, its longest run, its cap
+#: (max_events_at_one_instant)
 C_PIECE, C_MODE, C_RESTARTED, C_ENTERED, C_NK, C_STEPS, C_REJECTED, C_RHS, C_TAIL, C_NE, C_RUN, C_MAX_RUN, C_CAP = \
     range(13)
 N_COUNTERS = 13
@@ -221,10 +222,10 @@ def _first_root(root_args, start, t, y, t_new, y_new, hh, K):
     """The first guard root in (t, t_new] of the step just taken from (t, y) (its stages in
     ``K``, the guards at its start ``start``; root_args: (mode, pe, p, F, work, cnt)):
     (time, index, the guards at its end), index -1 and time nan where there is none; a
-    guard that goes from > 0 to <= 0 over the step, located on its dense output. A guard that starts at zero (the mode entered on it: the
-    arc of a slide-rock from its impact) and ends below is located from its highest point on
-    the step where that is above zero, as CVODE looks past a root function that starts at
-    zero."""
+    guard that goes from > 0 to <= 0 over the step, located on its dense output. A guard
+    that starts at zero (the mode entered on it: the arc of a slide-rock from its impact)
+    and ends below is located from its highest point on the step where that is above zero,
+    as CVODE looks past a root function that starts at zero."""
     mode, pe, p, F, work, cnt = root_args
     end = _guards(mode, t_new, y_new, pe, p)
     dense = False

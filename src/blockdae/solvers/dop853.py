@@ -6,7 +6,9 @@ not copied; the step, the error norm, the step-size controller and the dense out
 follow ``scipy.integrate.DOP853`` line by line, as plain functions that numba compiles
 where a compiled engine calls them (``register_jitable``). The right-hand side is a
 compiled function ``fun(t, y, args, out)`` writing dy/dt (:func:`for_flow` closes the steps over
-it, which keeps numba's disk cache usable), so nothing here knows a model.
+it, which keeps numba's disk cache usable), so nothing here knows a model;
+:func:`to_first_root` runs the adaptive steps to the first root that an engine's own
+compiled root finder locates on an accepted step.
 """
 
 import math
