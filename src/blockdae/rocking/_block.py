@@ -12,8 +12,12 @@ import numpy as np
 from ..core import set_batch_fields, set_real_fields
 from ..core.contract import BatchedModel
 from ..excitation import AbstractExcitation, BaseMotion, Pieces
+from ._modes import BEYOND, IN, OUT
 
 
+#: a rotation rate below RATE_FLOOR p alpha [rad/s] (a slip below RATE_FLOOR p R [m/s]) is
+#: no contradiction of its mode
+RATE_FLOOR = 1e-10
 #: the fields of both blocks
 SHARED_FIELDS = ("b", "h", "mu", "mu_kinetic", "theta0", "zeno_arc", "g")
 #: the options of Housner's block alone (``contact="housner"``)
@@ -105,6 +109,18 @@ class BlockBase(BatchedModel):
     def friction_kinetic(self):
         """Kinetic friction coefficient [-] (mu unless given)."""
         return self.mu if self.mu_kinetic is None else self.mu_kinetic
+
+    def rotation_contradiction(self, kind, s, theta_rate, velocity_error):
+        """A rocking rotation (|mode| ``kind``, side ``s``) whose rate ``theta_rate``
+        [rad/s] points against its mode beyond the velocity error and beyond 1e-10 p alpha
+        [rad/s] (an apex that grazes zero where a(t) turns at a sample dips below it by the
+        integrator's error): its message, else None."""
+        velocity_error = max(velocity_error, RATE_FLOOR * self.frequency * self.alpha)
+        if kind in (OUT, BEYOND) and s * theta_rate < -velocity_error:
+            return f"theta' = {theta_rate:+.6g} rad/s points toward the base"
+        if kind == IN and s * theta_rate > velocity_error:
+            return f"theta' = {theta_rate:+.6g} rad/s points away from the base"
+        return None
 
     def replace(self, **changes):
         """A copy with some parameters changed (validated again); ``contact=`` another

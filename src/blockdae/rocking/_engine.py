@@ -12,8 +12,8 @@ from ..core import AbstractBackend, HermiteDense, notice_numba
 from ..core.contract import SCALAR
 from ..excitation import evaluate
 from . import _compiled as compiled
+from ._block import RATE_FLOOR
 from ._kernel import KNOT_COLUMNS, kernel
-from ._model import RATE_FLOOR
 from ._modes import RockingMode
 
 #: knot rows first allocated per piece of a(t) (the log grows if a run needs more)

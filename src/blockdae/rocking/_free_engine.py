@@ -13,8 +13,9 @@ import numpy as np
 from ..core import EventRun, HermiteDense, notice_numba
 from ..core.contract import SCALAR
 from . import _free_compiled as compiled
+from ._block import RATE_FLOOR
 from ._engine import _OneSetEngine, _final_row
-from ._free_model import BASE_WORK, RATE_FLOOR, X
+from ._free_model import BASE_WORK, X
 from ._free_modes import FreeMode, event_kind
 from ._free_solution import FreeEvent
 

@@ -34,7 +34,7 @@ from ..units import STANDARD_GRAVITY
 from . import _free_rules as free_rules
 from . import _rules as rules
 from . import _slide_rock_laws as laws
-from ._block import HOUSNER_OPTIONS, BlockBase, model_of
+from ._block import HOUSNER_OPTIONS, RATE_FLOOR, BlockBase, model_of
 from ._derivatives import FreeStandingDerivatives
 from ._free_modes import (BEYOND, IN, INSTANT, OUT, OVERTURNED, SETTLE, SLIDE_ROCK_KINDS, FreeMode, kind_of,
                           rock_mode, side, slide_rock_mode, slip_direction)
@@ -42,9 +42,6 @@ from ._free_solution import FreeEvent, FreeStandingSolution
 
 X, Z, THETA, X_RATE, Z_RATE, THETA_RATE, BASE_WORK, FRICTION_WORK = range(8)
 _ROCK = (OUT, IN, BEYOND)
-#: a rotation rate below RATE_FLOOR p alpha [rad/s] (a slip below RATE_FLOOR p R [m/s]) is
-#: no contradiction of its mode
-RATE_FLOOR = 1e-10
 #: a force guard below -JUMP_FLOOR g [-] is past zero (a jump of a(t)), not at a located root
 JUMP_FLOOR = 1e-9
 #: a corner of a flying block that reaches the base at a speed below GRAZE_SPEED times the
@@ -652,12 +649,7 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
             return f"x' = {y[X_RATE]:+.6g} m/s points against the slide"
         if kind in SLIDE_ROCK_KINDS and slip_direction(mode) * y[X_RATE] < -speed_error:
             return f"the pivot's slip u' = {y[X_RATE]:+.6g} m/s points against its mode"
-        velocity_error = max(velocity_error, RATE_FLOOR * self.frequency * self.alpha)
-        if kind in (OUT, BEYOND) and s * y[THETA_RATE] < -velocity_error:
-            return f"theta' = {y[THETA_RATE]:+.6g} rad/s points toward the base"
-        if kind == IN and s * y[THETA_RATE] > velocity_error:
-            return f"theta' = {y[THETA_RATE]:+.6g} rad/s points away from the base"
-        return None
+        return self.rotation_contradiction(kind, s, y[THETA_RATE], velocity_error)
 
     def speed(self, y):
         """max(|x'|, |z'|, R |theta'|) [m/s]."""

@@ -10,6 +10,8 @@ that the rocking rules (:mod:`._rules`) run on them unchanged; SLIDE_ROCK (s, si
 
 import enum
 
+from ._modes import BEYOND, IN, OUT, OVERTURNED, SETTLE
+
 
 class FreeMode(enum.IntEnum):
     """Mode of a :class:`~blockdae.rocking.FreeStandingBlock`."""
@@ -44,7 +46,6 @@ class FreeMode(enum.IntEnum):
         return self.name
 
 
-OUT, IN, BEYOND, SETTLE, OVERTURNED = 2, 3, 4, 5, 6
 SLIDE_ROCK_KINDS = (7, 8)
 IMPACT_KINDS = (10, 11, 12)
 #: the instant modes: an impact's or a landing's velocity jump, the release from a tilt

@@ -35,13 +35,10 @@ from ..sliding import relative_acceleration, rest_mode, slip_constant, stop_mode
 from ..units import STANDARD_GRAVITY
 from . import _rules as rules
 from ._block import BlockBase
-from ._modes import RockingMode, event_kind, rock_mode, side
+from ._modes import BEYOND, IN, OUT, OVERTURNED, SETTLE, RockingMode, event_kind, rock_mode, side
 from ._solution import ContactLimit, RockingEvent, RockingSolution
 
 _Q, _RATE = range(2)
-_OUT, _IN, _BEYOND, _SETTLE, _OVERTURNED = 2, 3, 4, 5, 6
-#: a rotation rate below RATE_FLOOR p alpha [rad/s] is no contradiction of its mode
-RATE_FLOOR = 1e-10
 
 
 def housner_restitution(alpha: float) -> float:
@@ -275,9 +272,9 @@ class RockingBlock(DifferentiableModel, BlockBase):
         if kind == 1:
             ax, ge, _, _ = self._base(t, excitation)
             return xp.stack([y[_RATE], relative_acceleration(mode, ax, 0.0, self.friction_kinetic, ge, xp)])
-        if kind in (_OUT, _IN, _BEYOND):
+        if kind in (OUT, IN, BEYOND):
             return xp.stack([y[_RATE], self.angular_acceleration(s, y[_Q], t, excitation, xp)])
-        if kind == _SETTLE:
+        if kind == SETTLE:
             return xp.stack([zero, zero + self._settle_rate(s, t, excitation, xp)])
         return xp.stack([zero, zero])
 
@@ -296,11 +293,11 @@ class RockingBlock(DifferentiableModel, BlockBase):
             return xp.stack([limit - ax, limit + ax, ge])
         if kind == 1:
             return xp.stack([mode * y[_RATE], ge])
-        if kind in (_OUT, _IN, _BEYOND):
+        if kind in (OUT, IN, BEYOND):
             own = list(rules.rocking_guards(kind, s, y[_Q], y[_RATE], xp.arctan2(self.b, self.h)))
             contact = list(self.contact_margins(s, y[_Q], y[_RATE], t, excitation, xp)) if self.strict else []
             return xp.stack([*own, *contact, ge])
-        if kind == _SETTLE:
+        if kind == SETTLE:
             limit = self._threshold(xp) * ge
             return xp.stack([s * y[_RATE], limit - ax, limit + ax, ge])
         if mode == RockingMode.RELEASE:
@@ -317,18 +314,18 @@ class RockingBlock(DifferentiableModel, BlockBase):
         """The mode a block at rest takes toward ``direction`` (+1, -1; 0: rest)."""
         if direction == 0:
             return RockingMode.REST
-        return RockingMode(direction) if self.slides else rock_mode(_OUT, direction)
+        return RockingMode(direction) if self.slides else rock_mode(OUT, direction)
 
     def _is_flight_guard(self, mode, guard_index, t, y, excitation):
         """Whether guard ``guard_index`` of ``mode`` is g_e (the last one, at rest, sliding
         and rocking)."""
         kind = abs(int(mode))
-        return (kind != _OVERTURNED and mode != RockingMode.RELEASE
+        return (kind != OVERTURNED and mode != RockingMode.RELEASE
                 and guard_index == len(self.guards(mode, t, y, excitation, SCALAR)) - 1)
 
     def _is_contact_guard(self, mode, guard_index):
         """Whether guard ``guard_index`` of ``mode`` is a contact limit (rocking, strict)."""
-        return self.strict and abs(int(mode)) in (_OUT, _IN, _BEYOND) and guard_index in (2, 3)
+        return self.strict and abs(int(mode)) in (OUT, IN, BEYOND) and guard_index in (2, 3)
 
     def _contact_error(self, s, t, y, excitation, lifts):
         force, normal = self.contact_force(s, y[_Q], y[_RATE], t, excitation, SCALAR)
@@ -363,8 +360,8 @@ class RockingBlock(DifferentiableModel, BlockBase):
                                              True, True, SCALAR, time_tol)))
         if mode == RockingMode.RELEASE:
             return self._after_apex(1 if self.theta0 > 0 else -1, self.theta0, t, excitation)
-        if kind in (_OUT, _IN, _BEYOND, _SETTLE):
-            impact = kind == _IN and guard_index == 0
+        if kind in (OUT, IN, BEYOND, SETTLE):
+            impact = kind == IN and guard_index == 0
             ahead, behind = (self.deceleration(-s, t, excitation), self.deceleration(s, t, excitation)) if impact \
                 else (0.0, 0.0)
             after = rules.mode_after_rocking_guard(kind, s, guard_index, y[_Q], self.r * y[_RATE], ahead, behind,
@@ -383,32 +380,32 @@ class RockingBlock(DifferentiableModel, BlockBase):
             return xp.stack([0.0 * q + self.theta0, 0.0 * rate])
         if kind == 1:
             return xp.stack([q, 0.0 * rate]) if guard_index == 0 else y
-        if kind in (_OUT, _BEYOND):
+        if kind in (OUT, BEYOND):
             if guard_index == 0:
                 return xp.stack([q, 0.0 * rate])
             if guard_index == 1:
-                edge = math.pi / 2 if kind == _BEYOND else xp.arctan2(self.b, self.h)
+                edge = math.pi / 2 if kind == BEYOND else xp.arctan2(self.b, self.h)
                 return xp.stack([0.0 * q + s * edge, rate])
             return y
-        if kind == _IN:
+        if kind == IN:
             if guard_index == 0:
                 return xp.stack([0.0 * q, rate])
             return xp.stack([q, 0.0 * rate]) if guard_index == 1 else y
-        if kind == _SETTLE and guard_index < 3:
+        if kind == SETTLE and guard_index < 3:
             return xp.stack([0.0 * q, 0.0 * rate])
         return y
 
     def state_on_entry(self, before, after, t, y, excitation, xp=np):
         """An impact multiplies theta' by r; an overturned block lies still at theta = s pi/2."""
-        if abs(int(before)) == _IN and side(after) == -side(before):
+        if abs(int(before)) == IN and side(after) == -side(before):
             return xp.stack([y[_Q], self._geometry(xp)[3] * y[_RATE]])
-        if abs(int(after)) == _OVERTURNED:
+        if abs(int(after)) == OVERTURNED:
             return xp.stack([0.0 * y[_Q] + side(after) * 0.5 * math.pi, 0.0 * y[_RATE]])
         return y
 
     # ---- what the hybrid driver asks ------------------------------------------------
     def is_static(self, mode):
-        return mode == RockingMode.REST or abs(int(mode)) == _OVERTURNED
+        return mode == RockingMode.REST or abs(int(mode)) == OVERTURNED
 
     def at_rest(self, mode, y):
         return mode == RockingMode.REST or (abs(int(mode)) == 1 and y[_RATE] == 0)
@@ -426,7 +423,7 @@ class RockingBlock(DifferentiableModel, BlockBase):
         (monotone in t on a piece: a_x and a_z are), so that the integrator stops where
         theta' may turn and no step hides an apex and its return."""
         kind = abs(int(mode))
-        if kind == 1 or kind in (_OUT, _IN, _BEYOND):
+        if kind == 1 or kind in (OUT, IN, BEYOND):
             return self.flow(mode, t, y, excitation, xp)[_RATE]
         return None
 
@@ -436,19 +433,19 @@ class RockingBlock(DifferentiableModel, BlockBase):
         ax, ge, ax_rate, az_rate = self._base(t, excitation)
         if mode == RockingMode.RELEASE:
             return -1.0, 0.0
-        if kind == _OVERTURNED:
+        if kind == OVERTURNED:
             return 0.0, 0.0
         if self._is_flight_guard(mode, guard_index, t, y, excitation):
             return az_rate, 0.0
         if self._is_contact_guard(mode, guard_index):
             return self._contact_rate(s, guard_index - 2, t, y, excitation), 0.0
-        if mode == RockingMode.REST or (kind == _SETTLE and guard_index > 0):
-            coefficient = self.rocking_threshold if kind == _SETTLE else min(self.mu, self.rocking_threshold)
+        if mode == RockingMode.REST or (kind == SETTLE and guard_index > 0):
+            coefficient = self.rocking_threshold if kind == SETTLE else min(self.mu, self.rocking_threshold)
             sign = -1.0 if guard_index in (0, 1) and (mode == RockingMode.REST) == (guard_index == 0) else 1.0
             return coefficient * az_rate + sign * ax_rate, 0.0
         if kind == 1:
             return mode * self.flow(mode, t, y, excitation, SCALAR)[_RATE], -mode * ax_rate
-        if kind == _SETTLE:
+        if kind == SETTLE:
             return s * self._settle_rate(s, t, excitation), 0.0
         accel = self.angular_acceleration(s, y[_Q], t, excitation, SCALAR)
         jerk = self.angular_jerk(s, y[_Q], y[_RATE], t, excitation)
@@ -458,7 +455,7 @@ class RockingBlock(DifferentiableModel, BlockBase):
         """d/dt of contact margin ``index`` [m/s³] along the flow, by central differences
         over 1e-7 s."""
         step = 1e-7
-        rate = np.array(self.flow(rock_mode(_OUT, s), t, y, excitation, SCALAR))
+        rate = np.array(self.flow(rock_mode(OUT, s), t, y, excitation, SCALAR))
         ahead, behind = np.asarray(y) + step * rate, np.asarray(y) - step * rate
         value = lambda when, state: self.contact_margins(s, state[_Q], state[_RATE], when, excitation, SCALAR)[index]
         return (value(t + step, ahead) - value(t - step, behind)) / (2 * step)
@@ -470,12 +467,7 @@ class RockingBlock(DifferentiableModel, BlockBase):
         kind, s = abs(int(mode)), side(mode)
         if kind == 1 and mode * y[_RATE] < -velocity_error:
             return f"u' = {y[_RATE]:+.6g} m/s points against the slide"
-        velocity_error = max(velocity_error, RATE_FLOOR * self.frequency * self.alpha)
-        if kind in (_OUT, _BEYOND) and s * y[_RATE] < -velocity_error:
-            return f"theta' = {y[_RATE]:+.6g} rad/s points toward the base"
-        if kind == _IN and s * y[_RATE] > velocity_error:
-            return f"theta' = {y[_RATE]:+.6g} rad/s points away from the base"
-        return None
+        return self.rotation_contradiction(kind, s, y[_RATE], velocity_error)
 
     def speed(self, y):
         return abs(float(y[_RATE]))

@@ -31,6 +31,9 @@ class RockingMode(enum.IntEnum):
         return self.name
 
 
+#: |mode| of rocking away from the base, falling back, beyond alpha, the Zeno tail and
+#: overturned: the same numbers in both blocks' modes (and :class:`~._free_modes.FreeMode`)
+OUT, IN, BEYOND, SETTLE, OVERTURNED = 2, 3, 4, 5, 6
 SLIDES = (RockingMode.SLIDE_POS, RockingMode.SLIDE_NEG)
 
 
