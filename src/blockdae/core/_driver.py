@@ -323,10 +323,15 @@ class _Run:
         self.knots.set_right_rate(self.rate(self.mode, self.t, self.y))
         self.restarted = True
         if self.model.at_rest(self.mode, self.y):
-            rest = self.to_mode(self.model.mode_at_rest(t0, self.piece_excitation, SCALAR, y=self.y), "mode_at_rest")
-            if rest != self.mode:
-                self.y, self.entry_tolerance = self.model.rest_state(self.y), 0.0
-                self.log_event(float(t0), rest)
+            self.retake_rest(t0)
+
+    def retake_rest(self, t0):
+        """A block at rest takes the mode the right-hand limits of the piece that starts at
+        ``t0`` [s] give (an event where that mode is another)."""
+        rest = self.to_mode(self.model.mode_at_rest(t0, self.piece_excitation, SCALAR, y=self.y), "mode_at_rest")
+        if rest != self.mode:
+            self.y, self.entry_tolerance = self.model.rest_state(self.y), 0.0
+            self.log_event(float(t0), rest)
 
     def piece(self, t0, end, h, coefficients):
         """Integrate over one piece [t0, end] [s] of the excitation, of local length ``h`` [s]."""

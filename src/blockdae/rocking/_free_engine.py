@@ -11,7 +11,6 @@ import math
 import numpy as np
 
 from ..core import EventRun, HermiteDense, notice_numba
-from ..core.contract import SCALAR
 from . import _free_compiled as compiled
 from ._block import RATE_FLOOR
 from ._engine import _OneSetEngine, _final_row
@@ -139,12 +138,8 @@ class FreeCompiledEngine(_OneSetEngine):
             driver.restarted = False
             if stop == compiled.GUARD:
                 driver.on_guard(index)
-            elif stop == compiled.ENTRY:  # the driver's enter_piece
-                rest = driver.to_mode(model.mode_at_rest(float(T0[k]), driver.piece_excitation, SCALAR, y=driver.y),
-                                      "mode_at_rest")
-                if rest != driver.mode:
-                    driver.y, driver.entry_tolerance = model.rest_state(driver.y), 0.0
-                    driver.log_event(float(T0[k]), rest)
+            elif stop == compiled.ENTRY:  # a block at rest entering a piece that may start a motion
+                driver.retake_rest(float(T0[k]))
                 driver.restarted = True
             elif stop == compiled.RESTART:  # the driver's guard_left_at_once
                 before = driver.mode
