@@ -56,8 +56,7 @@ def flow_values(mode, y, ax, ge, g, b, h, R, alpha, mu_k, xp):
         return y[X_RATE], y[Z_RATE], rate, -ax - r_cx * rate**2, -ge - r_cz * rate**2, zero, power, zero
     if kind == 5:
         r = 1.0 - 1.5 * xp.sin(alpha) ** 2
-        ahead = -s * laws.rock_acceleration(s, 0.0, ax, ge, R, alpha, xp)
-        behind = s * laws.rock_acceleration(-s, 0.0, ax, ge, R, alpha, xp)
+        ahead, behind = restoring_decelerations(s, ax, ge, R, alpha, xp)
         return zero, zero, zero, zero, zero, zero + rules.settle_rate(s, ahead, behind, r), zero, zero
     return zero, zero, zero, zero, zero, zero, zero, zero
 
@@ -71,12 +70,18 @@ def pivot_state(s, y, theta, rate, R, alpha, xp):
             y[BASE_WORK], y[FRICTION_WORK])
 
 
+def restoring_decelerations(c, ax, ge, R, alpha, xp):
+    """The decelerations [rad/s²] at theta = 0 of rocking on corner ``c`` (ahead) and on
+    the other corner (behind): both positive where gravity brings the block back."""
+    return (-c * laws.rock_acceleration(c, 0.0, ax, ge, R, alpha, xp),
+            c * laws.rock_acceleration(-c, 0.0, ax, ge, R, alpha, xp))
+
+
 def settles(c, rate, ax, ge, R, alpha, zeno_arc, xp):
     """Whether the arc on corner ``c`` that a sticking impact starts with theta' = ``rate``
     [rad/s] is shorter than ``zeno_arc`` [s] and both corners restore (their decelerations
     at theta = 0 positive): the Zeno tail is summed."""
-    ahead = -c * laws.rock_acceleration(c, 0.0, ax, ge, R, alpha, xp)
-    behind = c * laws.rock_acceleration(-c, 0.0, ax, ge, R, alpha, xp)
+    ahead, behind = restoring_decelerations(c, ax, ge, R, alpha, xp)
     return ahead > 0 and behind > 0 and 2 * abs(rate) / ahead < zeno_arc
 
 
