@@ -1,5 +1,5 @@
 """Back-analysis: the posterior of one or several parameters of a design model (the rigid
-block's ky [g], the flexible mass's ky and vs, the plane's mu and mu_kinetic, ...) given
+block's ky [g], the flexible mass's ky and vs, the plane's mu and its pull bias_x, ...) given
 observed displacements, each D [m] seen with a log-normal measurement error (or a bound
 on it), under a record scaled to a PGA.
 
@@ -232,7 +232,7 @@ def log_posterior(observations, model, priors):
     distribution: the priors' log densities plus each observation's log likelihood, as a
     JAX function of their values, each in its unit: of a scalar where one parameter is
     inferred, of the 1-D array of the parameters in the order ``priors`` gives them
-    where several are (e.g. ``[mu, mu_kinetic]``). Its gradient (``jax.grad``) follows the
+    where several are (e.g. ``[mu, bias_x]``). Its gradient (``jax.grad``) follows the
     model's dD/dp (:meth:`DesignModel.gradient`). Evaluate it with JAX in float64
     (inside ``jax.enable_x64(True)``).
 
@@ -435,7 +435,7 @@ class BackAnalysis(Posterior):
 def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws=500, warmup=500, seed=0):
     """The posterior of one or several parameters of a design model (a slope's yield
     acceleration ky [g], a flexible mass's ky and vs [m/s], a plane's friction
-    coefficients mu and mu_kinetic [-], ...), or of the strength shared by slopes
+    coefficient mu and pull bias_x [-], ...), or of the strength shared by slopes
     (:class:`InfiniteSlope`: c' [kPa], φ' [deg], thicknesses [m]), given observed
     displacements.
 
