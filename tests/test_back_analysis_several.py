@@ -188,7 +188,9 @@ def test_nuts_matches_the_quadrature_within_monte_carlo_error(record):
     quadrature's (1601 points a side, its own error below 1e-5 relative:
     test_the_quadrature_is_converged), its 5 % and 95 % quantiles within 4 of theirs
     (sqrt(q (1 - q) / ESS) / density, the density from a kernel estimate of the draws);
-    the chains mixed (no ConvergenceWarning)."""
+    the chains mixed (no ConvergenceWarning). Measured: the means within 0.22 and 0.18
+    standard errors, the quantiles within 0.55, 0.84 (ky) and 0.37, 1.37 (scale); bulk
+    ESS 1881 and 1762, R-hat 1.0001."""
     import warnings
 
     with warnings.catch_warnings():
