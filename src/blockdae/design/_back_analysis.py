@@ -23,6 +23,7 @@ import pandas as pd
 from ..core import jax_context
 from ..excitation import Record
 from ._distributions import LogNormal, Normal, Uniform
+from ._importance import resampled
 from ._inferred import InferredParameter, inferred_parameter, support
 from ._models import DesignModel
 from ._posterior import Posterior
@@ -379,6 +380,27 @@ class BackAnalysis(Posterior):
         return table
 
 
+def _minus_log_density(setup, name):
+    """-ln p(u | observations) of u = ln p, the parameter ``name``'s logarithm, up to a
+    constant (the Jacobian of u included): a JAX function of (u, the prior as a NumPyro
+    distribution, the observed values)."""
+    import jax
+
+    def minus_log_density(u, density, data):
+        value = jax.numpy.exp(u)
+        return -density.log_prob(value) - setup.log_likelihood({name: value}, data) - u
+
+    return minus_log_density
+
+
+def _on_grid(setup, name):
+    """:func:`_minus_log_density` at an array of u, compiled once per set-up: one batched
+    model call per motion."""
+    import jax
+
+    return setup.program("on a grid", lambda: jax.jit(jax.vmap(_minus_log_density(setup, name), (0, None, None))))
+
+
 def _maximum(setup, data, prior, name):
     """The maximum a posteriori value of the parameter ``name`` and the Laplace standard
     deviation of its logarithm: the best of 66 prior quantiles (1e-6, 64 evenly spread,
@@ -390,14 +412,10 @@ def _maximum(setup, data, prior, name):
     from scipy import optimize
 
     density = _numpyro_prior(prior)
-
-    def minus_log_density(u, density, data):  # of ln p
-        value = jax.numpy.exp(u)
-        return -density.log_prob(value) - setup.log_likelihood({name: value}, data) - u
-
+    minus_log_density = _minus_log_density(setup, name)
     value_only = setup.program("minus log density", lambda: jax.jit(minus_log_density))
     f = setup.program("its gradient", lambda: jax.jit(jax.value_and_grad(minus_log_density)))
-    on_grid = setup.program("on a grid", lambda: jax.jit(jax.vmap(minus_log_density, (0, None, None))))
+    on_grid = _on_grid(setup, name)
 
     def objective(u):
         value, grad = f(float(u[0]), density, data)
@@ -491,7 +509,8 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
         at_map, sd_ln = _maximum(setup, data, prior, name)
         if method == "laplace":
             value = _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed)
-            diagnostics, stats = pd.DataFrame(), pd.DataFrame()
+            value, diagnostics = _importance_corrected(setup, data, parameter, at_map, sd_ln, value, seed)
+            stats = pd.DataFrame()
         else:
             starts = {name: _laplace_draws(parameter, at_map, sd_ln, chains, 1, seed)[:, 0]}
             drawn, diagnostics, stats = nuts(setup, data, {name: prior}, starts, draws, warmup, seed)
@@ -512,6 +531,27 @@ def _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed):
         warnings.warn(f"the Laplace approximation of {parameter.name} reaches beyond the prior's support [{low}, "
                       f"{high}] {parameter.unit}; use method='nuts'", ConvergenceWarning, stacklevel=3)
     return value
+
+
+def _importance_corrected(setup, data, parameter, at_map, sd_ln, value, seed):
+    """The Laplace draws ``value`` [the parameter's unit] (shape (chains, draws)) resampled
+    by their Pareto-smoothed importance weights toward the exact posterior (the normal in
+    u = ln p against the posterior of u, at all draws in one batched model call per
+    motion), and their diagnostics (``parameter``, ``pareto_k``, ``ess_importance``): a
+    :class:`ConvergenceWarning` where k̂ exceeds the limit for their number."""
+    name, (low, high) = parameter.name, support(parameter.prior)
+    u = np.log(value.reshape(-1, 1))
+    log_proposal = -0.5 * ((u[:, 0] - math.log(at_map)) / sd_ln) ** 2
+    log_target = -np.asarray(_on_grid(setup, name)(u[:, 0], _numpyro_prior(parameter.prior), data), dtype=float)
+    log_target[(value.reshape(-1) <= low) | (value.reshape(-1) >= high)] = -np.inf
+    found = resampled(u, log_proposal, log_target, np.random.default_rng((seed, 1)))
+    if not found.pareto_k <= found.limit:  # Vehtari et al. 2024: beyond 0.7 more draws would not do
+        more = " (or more draws)" if not 0.7 < found.pareto_k < math.inf else ""
+        warnings.warn(f"the Laplace approximation of {name}, weighted toward its posterior, is unreliable: Pareto "
+                      f"k̂ = {found.pareto_k:.2f}, above {found.limit:.2f}, the limit for {len(u)} draws (Vehtari et "
+                      f"al. 2024); use method='nuts'{more}", ConvergenceWarning, stacklevel=3)
+    diagnostics = pd.DataFrame([{"parameter": name, "pareto_k": found.pareto_k, "ess_importance": found.ess}])
+    return np.exp(found.draws[:, 0]).reshape(value.shape), diagnostics
 
 
 def nuts(setup, data, priors, starts, draws, warmup, seed, stacklevel=3):
