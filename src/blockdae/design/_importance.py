@@ -26,12 +26,14 @@ class Resampled:
     """Draws resampled by their Pareto-smoothed importance weights.
 
     Attributes:
-        draws: the resampled draws, shape (n, d), in random order, each with equal weight.
+        draws: the resampled draws, shape (size, d), in random order, each with equal
+            weight.
         pareto_k: the shape k̂ [-] of the generalized Pareto distribution fitted to the
             largest weights (inf where too few weights were positive to fit it).
         ess: the importance sampling's effective sample size, 1 / Σ w² of the smoothed
             weights normalised to sum 1 [draws].
-        limit: the largest k̂ that is reliable for n draws (:func:`pareto_k_limit`).
+        limit: the largest k̂ that is reliable for the n draws weighted
+            (:func:`pareto_k_limit`).
     """
 
     draws: np.ndarray
@@ -40,15 +42,16 @@ class Resampled:
     limit: float
 
 
-def resampled(draws, log_proposal, log_target, rng):
-    """``draws`` of a proposal (shape (n, d)) reweighted toward a target and resampled by
-    their Pareto-smoothed weights (systematic resampling, then shuffled).
+def resampled(draws, log_proposal, log_target, size, rng):
+    """``draws`` of a proposal (shape (n, d)) reweighted toward a target and ``size`` of
+    them resampled by their Pareto-smoothed weights (systematic resampling, then shuffled).
 
     Args:
         draws: the proposal's draws, shape (n, d).
-        log_proposal: the proposal's log density at each draw, shape (n,).
+        log_proposal: the proposal's log density at each draw, shape (n,), up to a constant.
         log_target: the target's log density at each draw, shape (n,), up to a constant
             (-inf, or nan, where it is zero: such a draw gets no weight).
+        size: how many draws to resample.
         rng: a NumPy random generator.
 
     Returns:
@@ -67,7 +70,7 @@ def resampled(draws, log_proposal, log_target, rng):
     smoothed, pareto_k = arviz.psislw(log_weights, reff=1.0)  # independent draws
     weights = np.exp(smoothed - np.max(smoothed))
     weights /= weights.sum()
-    positions = (rng.uniform() + np.arange(n)) / n
+    positions = (rng.uniform() + np.arange(size)) / size
     chosen = np.minimum(np.searchsorted(np.cumsum(weights), positions), n - 1)
     return Resampled(draws[rng.permutation(chosen)], float(pareto_k), float(1.0 / np.sum(weights ** 2)),
                      pareto_k_limit(n))
