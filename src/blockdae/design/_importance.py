@@ -16,8 +16,9 @@ import numpy as np
 def pareto_k_limit(n):
     """The largest Pareto k̂ at which ``n`` weighted draws give reliable estimates:
     min(1 - 1 / log10 n, 0.7) (Vehtari et al. 2024: above it the estimates' error falls
-    too slowly with n to be trusted; above 0.7 it would take impractically many draws). 0.5 at 100 draws, 0.67 at 1000, 0.7 from 2155 on; -inf below 10 draws,
-    too few to tell."""
+    too slowly with n to be trusted; above 0.7 it would take impractically many draws):
+    0.5 at 100 draws, 0.67 at 1000, 0.7 from 2155 on; -inf below 10 draws, too few to
+    tell."""
     return min(1.0 - 1.0 / math.log10(n), 0.7) if n >= 10 else -math.inf
 
 
