@@ -1,5 +1,7 @@
 """Smoke runs of the benchmark scripts with --quick, so that they never rot."""
 
+import re
+
 import pytest
 
 from conftest import load_benchmark
@@ -177,3 +179,18 @@ def test_free_standing_quick(monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "compiled [ms]" in out and "cvode [ms]" in out and out.count("bar ") == 2
     assert "on 2 of 2 records" in out and "smoke run, not a measurement" in out
+
+
+@pytest.mark.slow
+def test_laplace_importance_quick(monkeypatch, capsys):
+    """The Laplace back-analysis against quadrature (sigma_ln 0.2, 4000 draws): the normal
+    alone more than 0.2 posterior sd off in its 5 % and 95 % quantiles, the draws returned
+    within 0.1 sd."""
+    pytest.importorskip("numpyro")
+    assert load_benchmark("laplace_importance", monkeypatch).main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    row = next(line for line in out.splitlines() if line.lstrip().startswith("D, sigma_ln 0.2"))
+    errors = [float(cell) for cell in re.findall(r"([+-]\d\.\d{3})", row)]
+    normal, drawn = errors[2::2], errors[3::2]  # q05, q95
+    assert all(e > 0.2 for e in normal) and all(abs(e) < 0.1 for e in drawn), row
+    assert "smoke run, not a measurement" in out

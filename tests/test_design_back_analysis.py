@@ -130,8 +130,10 @@ def test_nuts_agrees_with_quadrature_and_laplace_within_monte_carlo_error(record
     posterior mass outside is below 1e-12, the trapezoid error far below the Monte Carlo
     one). NUTS (4 chains) matches its mean, 5 % and 95 % quantiles within 4 Monte Carlo
     standard errors (sd / sqrt(ESS); for a quantile sqrt(q (1 - q) / ESS) / density).
-    The Laplace approximation (normal in ln ky at the maximum) is an approximation: its
-    mean lies within 0.25 posterior sd of the quadrature's (measured 0.18 sd here)."""
+    The Laplace approximation's draws (a normal in ln ky at the maximum, 0.18 posterior sd
+    high in its mean here, weighted toward the posterior and resampled) match its mean
+    within 4 Monte Carlo standard errors, sd sqrt(1 / ESS + 1 / n) (ESS the importance
+    sampling's, n the draws; measured 0.16)."""
     from scipy import integrate, stats
 
     d = observed(record, KY_TRUE)
@@ -157,7 +159,8 @@ def test_nuts_agrees_with_quadrature_and_laplace_within_monte_carlo_error(record
         exact = np.interp(q, cdf, grid)
         error = math.sqrt(q * (1 - q) / ess) / np.interp(exact, grid, density)
         assert abs(np.quantile(ky, q) - exact) < 4 * error, q
-    assert abs(laplace.samples.ky_g.mean() - mean) < 0.25 * sd
+    relative = math.sqrt(1 / laplace.diagnostics.ess_importance.iloc[0] + 1 / len(laplace.samples))
+    assert abs(laplace.samples.ky_g.mean() - mean) < 4 * sd * relative
     assert nuts.diagnostics.r_hat.iloc[0] < 1.05
 
 

@@ -81,6 +81,19 @@ def add_design_parser(sub):
     p.set_defaults(command=_design)
 
 
+def design_model(kind, method, reference_strain, args):
+    """The design model of --model ``kind`` ("rigid", "flexible" or "planar"), with the
+    command's --polarity (where it has one) and --g; a flexible mass's slip equations
+    ``method`` and equivalent-linear ``reference_strain`` (None: none)."""
+    options = {"polarity": getattr(args, "polarity", "normal"), "g": args.g}
+    if kind == "rigid":
+        return checked(lambda: Rigid(**options), "")
+    if kind == "planar":
+        return checked(lambda: Planar(**options), "")
+    return checked(lambda: Flexible(method=method, equivalent_linear=reference_strain is not None,
+                                    reference_strain=reference_strain, **options), "")
+
+
 def _design(args) -> int:
     paths = [p for arg in args.records for p in (folder_files(arg, args) if arg.is_dir() else [arg])]
     stems = [path.stem for path in paths]
@@ -89,14 +102,7 @@ def _design(args) -> int:
                          "each record is labelled by its file name")
     records = {path.stem: read(path, args) for path in paths}
     parameters = dict(args.param)
-    if args.model == "rigid":
-        model = checked(lambda: Rigid(polarity=args.polarity, g=args.g), "")
-    elif args.model == "planar":
-        model = checked(lambda: Planar(polarity=args.polarity, g=args.g), "")
-    else:
-        model = checked(lambda: Flexible(method=args.method, equivalent_linear=args.reference_strain is not None,
-                                         reference_strain=args.reference_strain, polarity=args.polarity, g=args.g),
-                        "")
+    model = design_model(args.model, args.method, args.reference_strain, args)
     start = time.perf_counter()
     result = checked(lambda: exceedance(records, model, parameters, pga=args.pga, threshold=args.threshold,
                                         sampling=args.sampling, seed=args.seed, rse=args.rse,

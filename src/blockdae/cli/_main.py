@@ -26,6 +26,7 @@ from ._common import (UsageError, checked, clean, describe_gravity, describe_rec
                       print_run_end, report_failures, save_figure, set_argument, units_out_argument, write_csv)
 from ._planar import is_planar, read_motion_argument, run_planar, x_record
 from ._app import add_app_parser
+from ._back_analysis import add_back_analysis_parser
 from ._design import add_design_parser
 from ._flexible import add_flexible_parser
 from ._hazard import add_hazard_parsers
@@ -98,8 +99,8 @@ def _parser():
                              "(default: $BLOCKDAE_CACHE_DIR or ~/.cache/blockdae/jax)")
     parser.add_argument("--no-cache", action="store_true", help="compile afresh, keep no cache")
     sub = parser.add_subparsers(required=True,
-                                metavar="{run,newmark,flexible,spectrum,two-point,upthrow,rocking,examples,batch,study,design,"
-                                        "fragility,hazard,info,app}")
+                                metavar="{run,newmark,flexible,spectrum,two-point,upthrow,rocking,examples,batch,study,"
+                                        "design,back-analysis,fragility,hazard,map,info,app}")
 
     run = sub.add_parser("run", help="slide a block under one accelerogram file (signed u), a block on a "
                                      "plane under two or three components (u_x, u_y), or any model (--model)")
@@ -194,6 +195,7 @@ def _parser():
     add_study_parser(sub)
     add_hazard_parsers(sub)
     add_design_parser(sub)
+    add_back_analysis_parser(sub)
     add_map_parser(sub)
     add_info_parser(sub)
     add_app_parser(sub)

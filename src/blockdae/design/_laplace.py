@@ -63,6 +63,11 @@ class Laplace:
         z = np.random.default_rng(seed).standard_normal((n, len(self.names)))
         return self.mean + z @ self.factor.T
 
+    def log_density(self, u):
+        """ln of the normal's density at ``u`` (shape (n, d)), up to a constant, shape (n,)."""
+        z = np.linalg.solve(self.factor, (np.asarray(u, dtype=float) - self.mean).T)
+        return -0.5 * np.sum(z ** 2, axis=0)
+
 
 def laplace_approximation(maximum, hessian) -> Laplace:
     """The :class:`Laplace` approximation at ``maximum`` (name -> the maximum a posteriori
@@ -115,6 +120,28 @@ class Search:
         return self.points[np.resize(order, k)]
 
 
+def _minus_log_density(setup, names):
+    """-ln posterior of u = ln p (the parameters ``names``, in that order), up to a
+    constant, the Jacobian of p = exp(u) included: a JAX function of (u (d,), the priors
+    as NumPyro distributions (name -> distribution), the observed values)."""
+    import jax
+
+    def minus_log_density(u, densities, data):
+        values = {name: jax.numpy.exp(u[i]) for i, name in enumerate(names)}
+        return (-sum(densities[name].log_prob(values[name]) for name in names)
+                - setup.log_likelihood(values, data) - jax.numpy.sum(u))
+
+    return minus_log_density
+
+
+def minus_log_posterior_on_points(setup, names):
+    """:func:`_minus_log_density` at many points u, shape (m, d) -> (m,): compiled once per
+    set-up, one batched model call per motion."""
+    import jax
+
+    return setup.program("on points", lambda: jax.jit(jax.vmap(_minus_log_density(setup, names), (0, None, None))))
+
+
 def maximum_a_posteriori(setup, data, priors) -> Search:
     """The maximum a posteriori of the parameters ``priors`` names (name -> a
     :mod:`blockdae.design` distribution) in u = ln p, and the Hessian of -ln posterior in
@@ -134,15 +161,10 @@ def maximum_a_posteriori(setup, data, priors) -> Search:
 
     names = list(priors)
     densities = {name: numpyro_prior(prior) for name, prior in priors.items()}
-
-    def minus_log_density(u, densities, data):  # of u = ln p, the Jacobian of p = exp(u) included
-        values = {name: jax.numpy.exp(u[i]) for i, name in enumerate(names)}
-        return (-sum(densities[name].log_prob(values[name]) for name in names)
-                - setup.log_likelihood(values, data) - jax.numpy.sum(u))
-
+    minus_log_density = _minus_log_density(setup, names)
     value_only = setup.program("minus log density", lambda: jax.jit(minus_log_density))
     f = setup.program("its gradient", lambda: jax.jit(jax.value_and_grad(minus_log_density)))
-    on_points = setup.program("on points", lambda: jax.jit(jax.vmap(minus_log_density, (0, None, None))))
+    on_points = minus_log_posterior_on_points(setup, names)
 
     if len(names) == 1:
         points = np.log(prior_quantiles(priors[names[0]]))[:, None]

@@ -431,7 +431,7 @@ class FreeStandingBlock(FreeStandingDerivatives, BlockBase):
         base about that corner turns back (<= 0: the demand holds it out)."""
         ax, ge, _, _ = self._base(t, excitation)
         alpha, radius = self._geometry(xp)
-        return -s * laws.rock_acceleration(s, 0.0, ax, ge, radius, alpha, xp)
+        return free_rules.restoring_decelerations(s, ax, ge, radius, alpha, xp)[0]
 
     def _settles(self, c, t, y, excitation):
         """Whether the arc on corner ``c`` that a sticking impact starts with theta' in ``y`` is
