@@ -231,7 +231,7 @@ def test_a_result_of_several_parameters_has_their_tables_and_figures(laplace, re
     assert laplace.inferred == [("ky", "ky_g", "g"), ("scale", "scale_m", "m")]
     summary = laplace.summary()
     assert list(summary.parameter) == ["ky", "scale"] and list(summary.unit) == ["g", "m"]
-    assert set(laplace.map_values) == {"ky", "scale"} and laplace.diagnostics.empty
+    assert set(laplace.map_values) == {"ky", "scale"} and list(laplace.diagnostics.parameter) == ["ky", "scale"]
     future = laplace.predict(record, pga_g=0.4)
     assert list(future.columns) == ["chain", "draw", "ky_g", "scale_m", "D_m"]
     np.testing.assert_allclose(future.D_m, future.scale_m * (0.4 / future.ky_g - 1.0) ** 2, rtol=1e-12)
