@@ -1,20 +1,22 @@
-"""Back-analysis: the posterior of a parameter of a design model (the rigid block's ky
-[g], the flexible mass's ky or vs, the plane's mu, ...) given observed displacements, each
-D [m] seen with a log-normal measurement error (or a bound on it), under a record scaled
-to a PGA.
+"""Back-analysis: the posterior of one or several parameters of a design model (the rigid
+block's ky [g], the flexible mass's ky and vs, the plane's mu and its pull bias_x, ...) given
+observed displacements, each D [m] seen with a log-normal measurement error (or a bound
+on it), under a record scaled to a PGA.
 
 The log posterior is written in JAX; the model's D and its own dD/dp (the rigid block's
 exact dD/dky, the flexible mass's and the plane's through the located events of their JAX
 twins: :meth:`DesignModel.gradient`) come through a ``jax.pure_callback`` wrapped in a
 ``jax.custom_jvp`` (:mod:`._inferred`), so that gradient-based samplers (NumPyro's No-U-Turn
-sampler) and the maximum a posteriori use the model's derivative; the Laplace
-approximation's draws are weighted toward the exact posterior (:mod:`._importance`). One
-NUTS (:func:`nuts`, on the vector of the parameters mapped to the real line) serves this
-one-parameter back-analysis and that of several (:mod:`._infinite_slope_model`); their
-results share :class:`._back_analysis_result.Posterior`. JAX, NumPyro and ArviZ (the
-``inference`` extra) are imported on first use."""
+sampler) and the maximum a posteriori (:mod:`._laplace`) use the model's derivative; the
+Laplace approximation's draws are weighted toward the exact posterior (:mod:`._importance`).
+One NUTS (:func:`nuts`, on the vector of the parameters mapped to the real line) serves a
+design model's back-analysis and the shared strength of slopes
+(:mod:`._infinite_slope_model`); their results share
+:class:`._back_analysis_result.Posterior`. JAX, NumPyro and ArviZ (the ``inference``
+extra) are imported on first use."""
 
 import dataclasses
+import itertools
 import math
 import warnings
 
@@ -23,14 +25,15 @@ import pandas as pd
 
 from ..core import jax_context
 from ..excitation import Record
-from ._distributions import LogNormal, Normal, Uniform
+from ._inferred import InferredParameters, inferred_parameters, numpyro_prior, support
 from ._importance import resampled
-from ._inferred import InferredParameter, inferred_parameter, support
+from ._laplace import (NotPeaked, REACH_QUANTILES, laplace_approximation, maximum_a_posteriori,
+                       minus_log_posterior_on_points, prior_quantiles)
 from ._models import DesignModel
 from ._posterior import Posterior
 
-#: the extreme prior quantiles searched for the maximum and for what D an observation may be
-_REACH_QUANTILES = (1e-6, 1.0 - 1e-6)
+#: the most parameters whose every corner of the priors' quantiles 1e-6 and 1 - 1e-6 the reach check runs
+_CORNERS_MOST = 10
 #: how many measurement sigmas an observation may lie beyond the reachable D [-]
 _REACH_SIGMAS = 4.0
 #: R-hat above which, and bulk effective sample size per chain below which, a warning is raised
@@ -105,59 +108,59 @@ class Observation:
         return float(getattr(self, self.kind + "_m"))
 
 
-def _numpyro_prior(prior):
-    """The NumPyro distribution of a :mod:`blockdae.design` distribution."""
-    import numpyro.distributions as dist
-
-    if isinstance(prior, LogNormal):
-        return dist.LogNormal(math.log(prior.median), prior.sigma_ln)
-    if isinstance(prior, Normal):
-        return dist.Normal(prior.mean, prior.std)
-    if isinstance(prior, Uniform):
-        return dist.Uniform(prior.low, prior.high)
-    low, high = support(prior)
-    parent = prior.distribution
-    if isinstance(parent, Uniform):
-        return dist.Uniform(low, high)
-    if isinstance(parent, LogNormal):  # exp of a truncated normal of ln X
-        log_bounds = {"low": math.log(low) if low > 0 else None, "high": math.log(high) if high < math.inf else None}
-        return dist.TransformedDistribution(
-            dist.TruncatedNormal(math.log(parent.median), parent.sigma_ln, **log_bounds),
-            dist.transforms.ExpTransform())
-    return dist.TruncatedNormal(parent.mean, parent.std, low=None if low == -math.inf else low,
-                                high=None if high == math.inf else high)
+def _reach_points(parameters):
+    """The sets of the parameters' values the reach of the priors is checked at (name ->
+    shape (m,)): one parameter's 66 prior quantiles (1e-6, 64 evenly spread, 1 - 1e-6);
+    for several, each one's 66 with the others at their medians, and every corner of the
+    priors' quantiles 1e-6 and 1 - 1e-6 (up to ten parameters)."""
+    priors = parameters.priors
+    if len(priors) == 1:
+        return {name: prior_quantiles(prior) for name, prior in priors.items()}
+    medians = {name: float(prior.ppf(0.5)) for name, prior in priors.items()}
+    points = [medians | {name: value} for name, prior in priors.items() for value in prior_quantiles(prior)]
+    if len(priors) <= _CORNERS_MOST:
+        extremes = [np.asarray(prior.ppf(np.array(REACH_QUANTILES)), dtype=float) for prior in priors.values()]
+        points += [dict(zip(priors, corner)) for corner in itertools.product(*extremes)]
+    return {name: np.array([point[name] for point in points]) for name in priors}
 
 
-def _prior_quantiles(prior):
-    """66 quantiles of ``prior``: 1e-6, 64 evenly spread, 1 - 1e-6."""
-    quantiles = np.concatenate([[_REACH_QUANTILES[0]], (np.arange(64) + 0.5) / 64, [_REACH_QUANTILES[1]]])
-    return np.asarray(prior.ppf(quantiles), dtype=float)
+def _check_reachable(parameters, observations):
+    """Raise where an observation lies beyond the D [m] the priors' values of the
+    parameters give (:func:`_reach_points`; one model call per observation)."""
+    points = _reach_points(parameters)
+    names, units = parameters.names, parameters.units
+    several = len(names) > 1
 
+    def at(i):
+        return ", ".join(f"{name} = {points[name][i]:.4g} {units[name]}" for name in names)
 
-def _check_reachable(parameter, observations):
-    """Raise where an observation lies beyond the D [m] the prior's values of the parameter
-    give (its quantiles from 1e-6 to 1 - 1e-6; one model call per observation)."""
-    grid = _prior_quantiles(parameter.prior)
-    name, unit = parameter.name, parameter.unit
+    over = ("over the priors' quantiles from 1e-6 to 1 - 1e-6 of each parameter (the others at their medians) and "
+            "their corners" if several else "over the prior's quantiles from 1e-6 to 1 - 1e-6")
+    reach = "priors reach" if several else "prior reaches"
+    widen = f"widen the priors of {', '.join(names)}" if several else f"widen the prior of {names[0]}"
     for obs in observations:
         try:
-            d = parameter.displacements(obs.record, obs.pga_g, grid)
+            d = parameters.displacements(obs.record, obs.pga_g, points)
         except ValueError as error:
-            raise ValueError(f"the {parameter.model.kind} model refuses a value of {name} the prior gives (its "
-                             f"quantiles from 1e-6 to 1 - 1e-6 span {grid[0]:.4g} to {grid[-1]:.4g} {unit}): {error}; "
-                             "truncate the prior (design.Truncated(..., low=..., high=...))") from error
+            if several:
+                raise ValueError(f"the {parameters.model.kind} model refuses a set of values of {', '.join(names)} "
+                                 f"the priors give ({over}): {error}; truncate the priors (design.Truncated(..., "
+                                 "low=..., high=...))") from error
+            grid = points[names[0]]
+            raise ValueError(f"the {parameters.model.kind} model refuses a value of {names[0]} the prior gives (its "
+                             f"quantiles from 1e-6 to 1 - 1e-6 span {grid[0]:.4g} to {grid[-1]:.4g} "
+                             f"{units[names[0]]}): {error}; truncate the prior (design.Truncated(..., low=..., "
+                             "high=...))") from error
         largest, smallest = int(np.argmax(d)), int(np.argmin(d))
         margin = math.exp(_REACH_SIGMAS * obs.sigma_ln)
         if obs.kind != "less_than" and obs.value_m > d[largest] * margin:
-            raise ValueError(f"observation {obs.name!r}: {obs.kind}_m={obs.value_m!r} m lies beyond what the prior "
-                             f"reaches: D = {d[largest]:.4g} m at most (at {name} = {grid[largest]:.4g} {unit}, over "
-                             f"the prior's quantiles from 1e-6 to 1 - 1e-6), more than {_REACH_SIGMAS:g} sigma_ln "
-                             f"below; widen the prior of {name} or check the observation")
+            raise ValueError(f"observation {obs.name!r}: {obs.kind}_m={obs.value_m!r} m lies beyond what the "
+                             f"{reach}: D = {d[largest]:.4g} m at most (at {at(largest)}, "
+                             f"{over}), more than {_REACH_SIGMAS:g} sigma_ln below; {widen} or check the observation")
         if obs.kind != "more_than" and obs.value_m * margin < d[smallest]:
-            raise ValueError(f"observation {obs.name!r}: {obs.kind}_m={obs.value_m!r} m lies below what the prior "
-                             f"reaches: D = {d[smallest]:.4g} m at least (at {name} = {grid[smallest]:.4g} {unit}, "
-                             f"over the prior's quantiles from 1e-6 to 1 - 1e-6), more than {_REACH_SIGMAS:g} "
-                             f"sigma_ln above; widen the prior of {name} or check the observation")
+            raise ValueError(f"observation {obs.name!r}: {obs.kind}_m={obs.value_m!r} m lies below what the "
+                             f"{reach}: D = {d[smallest]:.4g} m at least (at {at(smallest)}, "
+                             f"{over}), more than {_REACH_SIGMAS:g} sigma_ln above; {widen} or check the observation")
 
 
 def check_counts(chains, draws, warmup, method="nuts"):
@@ -233,10 +236,12 @@ def set_up(key, make_log_likelihood):
 
 
 def log_posterior(observations, model, priors):
-    """ln p(p | observations) up to a constant of the parameter p ``priors`` gives a
-    distribution, as a JAX function of its value (a scalar, in its unit): the prior's log
-    density plus each observation's log likelihood; its gradient (``jax.grad``) follows
-    the model's dD/dp (:meth:`DesignModel.gradient`). Evaluate it with JAX in float64
+    """ln p(p | observations) up to a constant of the parameters ``priors`` gives a
+    distribution: the priors' log densities plus each observation's log likelihood, as a
+    JAX function of their values, each in its unit: of a scalar where one parameter is
+    inferred, of the 1-D array of the parameters in the order ``priors`` gives them
+    where several are (e.g. ``[mu, bias_x]``). Its gradient (``jax.grad``) follows the
+    model's dD/dp (:meth:`DesignModel.gradient`). Evaluate it with JAX in float64
     (inside ``jax.enable_x64(True)``).
 
     For an :class:`InfiniteSlope` (``observations`` slope name -> observations), a JAX
@@ -244,41 +249,51 @@ def log_posterior(observations, model, priors):
     then each t_<slope>_m [m] with a prior, in that order)."""
     if hasattr(model, "log_posterior"):  # a parameterisation of its own (design.InfiniteSlope)
         return model.log_posterior(observations, priors)
-    observations, parameter = _checked(observations, model, priors)
-    return _log_posterior(observations, parameter)
+    observations, parameters = _checked(observations, model, priors)
+    return _log_posterior(observations, parameters)
 
 
-def _log_posterior(observations, parameter):
-    setup, data = _set_up(observations, parameter)
-    density = _numpyro_prior(parameter.prior)
-    return lambda value: density.log_prob(value) + setup.log_likelihood({parameter.name: value}, data)
+def _log_posterior(observations, parameters):
+    setup, data = _set_up(observations, parameters)
+    names = parameters.names
+    densities = {name: numpyro_prior(prior) for name, prior in parameters.priors.items()}
+    if len(names) == 1:
+        (name, density), = densities.items()
+        return lambda value: density.log_prob(value) + setup.log_likelihood({name: value}, data)
+
+    def log_p(theta):
+        values = {name: theta[i] for i, name in enumerate(names)}
+        return sum(densities[name].log_prob(values[name]) for name in names) + setup.log_likelihood(values, data)
+
+    return log_p
 
 
-def _set_up(observations, parameter):
-    """(the :class:`SetUp` of one parameter's back-analysis from ``observations``, their
-    observed values)."""
+def _set_up(observations, parameters):
+    """(the :class:`SetUp` of the back-analysis of ``parameters`` from ``observations``,
+    their observed values)."""
     groups = by_motion(range(len(observations)), key=lambda i: observations[i])
     kinds = tuple((record, pga_g, tuple(observations[i].kind for i in seen)) for (record, pga_g), seen
                   in groups.items())
-    key = ("parameter", parameter.model, parameter.name, tuple(sorted(parameter.fixed.items())), kinds,
+    key = ("parameters", parameters.model, parameters.names, tuple(sorted(parameters.fixed.items())), kinds,
            tuple(map(tuple, groups.values())))
-    return set_up(key, lambda: _log_likelihoods(groups, observations, parameter)), observed_values(observations)
+    return set_up(key, lambda: _log_likelihoods(groups, observations, parameters)), observed_values(observations)
 
 
-def _log_likelihoods(groups, observations, parameter):
-    """The observations' joint log likelihood as a JAX function of the parameter's value
+def _log_likelihoods(groups, observations, parameters):
+    """The observations' joint log likelihood as a JAX function of the parameters' values
     (name -> a scalar) and their observed values (:func:`observed_values`); ``groups``:
     (record, pga_g) -> the indices of the observations under that motion."""
     import jax.numpy as jnp
 
-    functions = [parameter.displacement_function(record, pga_g) for record, pga_g in groups]
+    functions = [parameters.displacement_function(record, pga_g) for record, pga_g in groups]
     kinds = [observations[i].kind for i in range(len(observations))]
 
     def log_likelihood(values, data):
-        value = jnp.maximum(values[parameter.name], 1e-12)  # the models' parameters > 0; the prior's density is 0 below
+        # the models' parameters > 0; the priors' densities are 0 below
+        arguments = [jnp.maximum(values[name], 1e-12) for name in parameters.names]
         total = 0.0
         for seen, f in zip(groups.values(), functions):
-            d = f(value)  # one model call for the observations under one motion
+            d = f(*arguments)  # one model call for the observations under one motion
             total += sum(_log_likelihood(kinds[i], data["log_value"][i], data["sigma_ln"][i], d) for i in seen)
         return total
 
@@ -305,41 +320,46 @@ def _checked(observations, model, priors):
     names = [o.name for o in observations]
     if len(set(names)) != len(names):
         raise ValueError(f"the observations' names must differ (give each a name=), got {names}")
-    return observations, inferred_parameter(model, priors)
+    return observations, inferred_parameters(model, priors)
 
 
 @dataclasses.dataclass
 class BackAnalysis(Posterior):
-    """The posterior of one parameter of a design model given the observations (its
-    summary, predictive table, ``InferenceData`` and figures: :class:`Posterior`).
+    """The posterior of one or several parameters of a design model given the
+    observations (its summary, predictive table, ``InferenceData`` and figures:
+    :class:`Posterior`).
 
     Attributes:
-        samples: the posterior draws, a table (``chain``, ``draw``, the parameter's
-            column: ``ky_g``, ``vs_m_s``, the plane's ``mu``, ...).
-        parameter: the parameter's name (``"ky"``, ``"mu"``, ...).
-        unit: its unit (the model's).
-        map_value: the maximum a posteriori value [its unit].
-        laplace_sd: the standard deviation [its unit] of the Laplace approximation at the
-            maximum (in the parameter's logarithm, mapped back to first order).
+        samples: the posterior draws, a table (``chain``, ``draw``, a column per
+            parameter inferred, in the order of ``priors``: ``ky_g``, ``vs_m_s``, the
+            plane's ``mu``, ...).
+        map_values: the maximum a posteriori (name -> its value [its unit]).
+        laplace_covariance: the covariance of the Laplace approximation at the maximum, a
+            normal in u = ln p: a table with a row and a column per parameter [-] (of the
+            parameters' natural logarithms, each taken in its unit: a variance of 0.01
+            is a standard deviation of about 10 % of the value); None where the
+            approximation does not hold (NUTS then starts from the best of the points
+            the search for the maximum tried).
         diagnostics: a table, one row per parameter: NUTS's ``r_hat``, ``ess_bulk``,
             ``ess_tail`` and ``divergences``, or the Laplace approximation's ``pareto_k``
             (k̂ [-] of its importance weights: reliable up to 0.7) and ``ess_importance``
-            (the weighted draws' effective sample size).
+            (the weighted draws' effective sample size), the same for every parameter.
         method: "nuts" or "laplace".
         observations: the observations analysed (:class:`Observation`).
         model: the design model they were analysed with.
         fixed: the values of the model's other parameters (name -> number).
-        priors: the parameter's prior (name -> distribution).
+        priors: each parameter's prior (name -> distribution).
         sample_stats: NUTS's statistics of each draw (``chain``, ``draw``, ``diverging``,
             ``acceptance_rate`` [-], ``n_steps``, ``step_size``, ``energy``, ``lp``), a
             table; empty for the Laplace approximation.
+
+    Where one parameter is inferred, ``parameter`` (its name), ``unit``, ``column``,
+    ``map_value`` and ``laplace_sd`` give it alone.
     """
 
     samples: pd.DataFrame
-    parameter: str
-    unit: str
-    map_value: float
-    laplace_sd: float
+    map_values: dict = dataclasses.field()  # no default: Posterior's empty one is for results without a maximum
+    laplace_covariance: pd.DataFrame | None
     diagnostics: pd.DataFrame
     method: str
     observations: list
@@ -349,26 +369,59 @@ class BackAnalysis(Posterior):
     sample_stats: pd.DataFrame
 
     def __repr__(self):
-        s = self.summary().iloc[0]
-        unit = "" if self.unit == "-" else f" {self.unit}"
+        parts = []
+        for _, s in self.summary().iterrows():
+            unit = "" if s.unit == "-" else f" {s.unit}"
+            parts.append(f"{s.parameter} median {s['median']:.4g}{unit}, 90 % interval {s.q05:.4g}-{s.q95:.4g}{unit}")
         return (f"BackAnalysis(method={self.method!r}, {len(self.samples)} draws, {len(self.observations)} "
-                f"observations, {self.parameter} median {s['median']:.4g}{unit}, 90 % interval "
-                f"{s.q05:.4g}-{s.q95:.4g}{unit})")
+                f"observations, {'; '.join(parts)})")
 
     @property
-    def column(self) -> str:
-        """The parameter's column in :attr:`samples`."""
-        return self.samples.columns[-1]
+    def _parameters(self) -> InferredParameters:
+        return InferredParameters(self.model, dict.fromkeys(self.priors), self.fixed)
 
     @property
     def inferred(self) -> list:
-        """[(name, column, unit)] of the parameter."""
-        return [(self.parameter, self.column, self.unit)]
+        """[(name, column, unit)] of each parameter inferred."""
+        parameters = self._parameters
+        return [(name, parameters.columns[name], parameters.units[name]) for name in parameters.names]
+
+    def _one(self, attribute):
+        """The name of the one parameter inferred; AttributeError where there are several."""
+        if len(self.priors) > 1:
+            raise AttributeError(f"{attribute} names one parameter, and this posterior is of {len(self.priors)}: "
+                                 f"{', '.join(self.priors)}; read inferred, map_values and laplace_covariance")
+        return next(iter(self.priors))
 
     @property
-    def map_values(self) -> dict:
-        """{name: the maximum a posteriori value [its unit]}."""
-        return {self.parameter: self.map_value}
+    def parameter(self) -> str:
+        """The name of the one parameter inferred (``"ky"``, ``"mu"``, ...)."""
+        return self._one("parameter")
+
+    @property
+    def unit(self) -> str:
+        """Its unit (the model's)."""
+        return self._parameters.units[self._one("unit")]
+
+    @property
+    def column(self) -> str:
+        """Its column in :attr:`samples`."""
+        return self._parameters.columns[self._one("column")]
+
+    @property
+    def map_value(self) -> float:
+        """Its maximum a posteriori value [its unit]."""
+        return self.map_values[self._one("map_value")]
+
+    @property
+    def laplace_sd(self) -> float | None:
+        """The standard deviation [its unit] of the Laplace approximation at the maximum
+        (in the parameter's logarithm, mapped back to first order); None where the
+        approximation does not hold."""
+        name = self._one("laplace_sd")
+        if self.laplace_covariance is None:
+            return None
+        return self.map_values[name] * math.sqrt(self.laplace_covariance.loc[name, name])
 
     def observed(self) -> list:
         """(observation, (record, pga_g)) of each observation."""
@@ -377,91 +430,29 @@ class BackAnalysis(Posterior):
     def predict(self, record, pga_g=None) -> pd.DataFrame:
         """The posterior predictive D [m] of the slope under ``record`` scaled to ``pga_g``
         [g] (None: as given): one row per posterior draw (``chain``, ``draw``, the
-        parameter's column, ``D_m``), the model's D without measurement error."""
+        parameters' columns, ``D_m``), the model's D without measurement error."""
         if not isinstance(record, Record):
             raise ValueError(f"record must be a blockdae.Record, got {type(record).__name__}")
         if pga_g is not None:
             _positive("pga_g", pga_g)
         table = self.samples.copy()
-        parameter = InferredParameter(self.model, self.parameter, None, self.fixed)
-        table["D_m"] = parameter.displacements(record, pga_g, table[self.column].to_numpy())
+        parameters = self._parameters
+        values = {name: table[column].to_numpy() for name, column in parameters.columns.items()}
+        table["D_m"] = parameters.displacements(record, pga_g, values)
         return table
 
 
-def _minus_log_density(setup, name):
-    """-ln p(u | observations) of u = ln p, the parameter ``name``'s logarithm, up to a
-    constant (the Jacobian of u included): a JAX function of (u, the prior as a NumPyro
-    distribution, the observed values)."""
-    import jax
-
-    def minus_log_density(u, density, data):
-        value = jax.numpy.exp(u)
-        return -density.log_prob(value) - setup.log_likelihood({name: value}, data) - u
-
-    return minus_log_density
-
-
-def _on_grid(setup, name):
-    """:func:`_minus_log_density` at an array of u, compiled once per set-up: one batched
-    model call per motion."""
-    import jax
-
-    return setup.program("on a grid", lambda: jax.jit(jax.vmap(_minus_log_density(setup, name), (0, None, None))))
-
-
-def _maximum(setup, data, prior, name):
-    """The maximum a posteriori value of the parameter ``name`` and the Laplace standard
-    deviation of its logarithm: the best of 66 prior quantiles (1e-6, 64 evenly spread,
-    1 - 1e-6; one batched model call per observation), then scipy's L-BFGS-B in u = ln p
-    on the model's gradient between its neighbours; the curvature at the maximum by
-    central differences of that gradient. ``setup``: the analysis's :class:`SetUp`,
-    ``data`` its observed values."""
-    import jax
-    from scipy import optimize
-
-    density = _numpyro_prior(prior)
-    minus_log_density = _minus_log_density(setup, name)
-    value_only = setup.program("minus log density", lambda: jax.jit(minus_log_density))
-    f = setup.program("its gradient", lambda: jax.jit(jax.value_and_grad(minus_log_density)))
-    on_grid = _on_grid(setup, name)
-
-    def objective(u):
-        value, grad = f(float(u[0]), density, data)
-        return float(value), np.array([float(grad)])
-
-    grid = np.log(_prior_quantiles(prior))
-    values = np.asarray(on_grid(grid, density, data), dtype=float)
-    if not np.isfinite(values).any():
-        raise ValueError(f"the posterior of {name} is zero at every prior quantile from 1e-6 to 1 - 1e-6: check the "
-                         "observations against the prior")
-    best = int(np.nanargmin(np.where(np.isfinite(values), values, np.inf)))
-    bounds = []
-    for neighbour in (max(best - 1, 0), min(best + 1, len(grid) - 1)):
-        edge = grid[neighbour]
-        while not np.isfinite(float(value_only(edge, density, data))):  # halve the way toward the best point
-            edge = 0.5 * (edge + grid[best])
-        bounds.append(edge)
-    found = optimize.minimize(objective, [grid[best]], jac=True, method="L-BFGS-B", bounds=[tuple(bounds)],
-                              options={"ftol": 1e-15, "gtol": 1e-10})
-    u = float(found.x[0])
-    h = 1e-4
-    curvature = (objective([u + h])[1][0] - objective([u - h])[1][0]) / (2 * h)
-    if not curvature > 0:
-        raise ValueError(f"the posterior of ln {name} is not peaked at its maximum (curvature {curvature:.3g}): the "
-                         "Laplace approximation does not hold; use method='nuts'")
-    return math.exp(u), 1.0 / math.sqrt(curvature)
-
-
 def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws=500, warmup=500, seed=0):
-    """The posterior of one parameter of a design model (a slope's yield acceleration ky
-    [g], a flexible mass's vs [m/s], a plane's friction coefficient mu [-], ...), or of
-    the strength shared by slopes (:class:`InfiniteSlope`: c' [kPa], φ' [deg], thicknesses
-    [m]), given observed displacements.
+    """The posterior of one or several parameters of a design model (a slope's yield
+    acceleration ky [g], a flexible mass's ky and vs [m/s], a plane's friction
+    coefficient mu and pull bias_x [-], ...), or of the strength shared by slopes
+    (:class:`InfiniteSlope`: c' [kPa], φ' [deg], thicknesses [m]), given observed
+    displacements.
 
     Args:
         observations: a :class:`Observation` or a sequence of them (each a record, its
             PGA, and a displacement or a bound [m] with its log-normal error).
-        model: a design model that differentiates D by the parameter inferred
+        model: a design model that differentiates D by the parameters inferred
             (:attr:`DesignModel.differentiable`): :class:`Rigid` (ky, the exact dD/dky of
             the compiled engine's located episodes), :class:`Flexible` (ky, height, vs, damping; not
             with the equivalent-linear iteration), :class:`Planar` (mu, mu_kinetic,
@@ -470,18 +461,24 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
             sharing c' and φ' (then ``observations`` is a dict slope name ->
             observations, ``priors`` ``{"c_kPa": ..., "phi_deg": ...}`` (a distribution,
             or a number where known), each slope's thickness t [m] in its
-            :class:`Slope`, NUTS only: several parameters at once).
+            :class:`Slope`, NUTS only).
         priors: name -> a distribution (:class:`LogNormal`, :class:`Uniform`, or a
-            :class:`Truncated` one; positive values) for the one parameter inferred, a
+            :class:`Truncated` one; positive values) for each parameter inferred, a
             number [its unit] for each other parameter the model needs (e.g.
-            ``{"ky": design.LogNormal(0.1, 0.5), "height": 20.0, "vs": 300.0}``).
+            ``{"ky": design.LogNormal(0.1, 0.5), "height": 20.0, "vs": 300.0}``, or
+            ``{"ky": design.LogNormal(0.1, 0.5), "height": 20.0, "vs":
+            design.LogNormal(300.0, 0.3)}`` for ky and vs at once). Several distributions
+            give their joint posterior, the priors independent; the draws' columns and
+            :func:`log_posterior`'s vector follow the order of ``priors``.
         method: "nuts" (NumPyro's No-U-Turn sampler on the model's gradient, ``chains``
-            chains run together, each ``warmup`` then ``draws`` iterations) or "laplace"
-            (the maximum a posteriori with a normal approximation of the parameter's
-            logarithm there; its draws, ``chains * draws`` and at least 4000, weighted
-            toward the exact posterior by Pareto-smoothed importance sampling (Vehtari
-            et al. 2024), the model run at each, and ``chains * draws`` of them
-            resampled by their weights).
+            chains run together, each ``warmup`` then ``draws`` iterations, started from
+            draws of the Laplace approximation) or "laplace" (the maximum a posteriori
+            with a multivariate normal approximation of the parameters' logarithms there,
+            its covariance the inverse of the Hessian of -ln posterior by central
+            differences of the exact gradient; its draws, ``chains * draws`` and at least
+            4000, weighted toward the exact posterior by Pareto-smoothed importance
+            sampling (Vehtari et al. 2024), the model run at each, and ``chains * draws``
+            of them resampled by their weights).
         seed: the random seed.
 
     The JAX programs (the maximum a posteriori's, NUTS's start, warm-up and draws) are
@@ -494,80 +491,97 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
     Returns:
         a :class:`BackAnalysis` (a :class:`SlopesBackAnalysis` for an
         :class:`InfiniteSlope`), both with the same summary, figures and
-        ``to_inference_data``. A :class:`ConvergenceWarning` is raised where R-hat
-        exceeds 1.01, the bulk effective sample size is below 100 per chain, or NUTS
-        made divergent transitions; for the Laplace approximation, where the Pareto k̂
-        of its importance weights exceeds min(1 - 1/log10 S, 0.7) for S weighted draws
-        (0.7 from 2155 draws on).
+        ``to_inference_data``: a column of draws per parameter, ``map_values`` and
+        ``laplace_covariance`` (in the parameters' logarithms). A
+        :class:`ConvergenceWarning` is raised where R-hat exceeds 1.01, the bulk
+        effective sample size is below 100 per chain, NUTS made divergent transitions,
+        or one of NUTS's starts (drawn from the Laplace approximation) lies beyond a
+        prior's support; for the Laplace approximation, where the Pareto k̂ of its
+        importance weights exceeds min(1 - 1/log10 S, 0.7) for S weighted draws (0.7
+        from 2155 draws on).
 
     Raises:
-        ValueError: an observation beyond what the prior can give (D more than 4
-            sigma_ln above the largest D over the prior's quantiles from 1e-6 to
-            1 - 1e-6, or below the smallest), a prior giving values <= 0 a probability,
-            a parameter the model lacks, a required one missing, not one distribution,
-            a parameter the model does not differentiate D by (NUTS and the Laplace
-            approximation both need dD/dp).
+        ValueError: an observation beyond what the priors can give (D more than 4
+            sigma_ln above the largest D over the priors' quantiles from 1e-6 to
+            1 - 1e-6, or below the smallest; for several parameters, each one's
+            quantiles with the others at their medians, and the corners), a prior
+            giving values <= 0 a probability, a parameter the model lacks, a required
+            one missing, no distribution, a parameter the model does not differentiate
+            D by (NUTS and the Laplace approximation both need dD/dp), or (the Laplace
+            approximation) a posterior not peaked at its maximum (the Hessian in the
+            parameters' logarithms not positive definite: a ridge the observations and
+            priors leave flat).
     """
     if hasattr(model, "sample_posterior"):  # a parameterisation that samples itself (design.InfiniteSlope)
         return model.sample_posterior(observations, priors, method=method, chains=chains, draws=draws, warmup=warmup,
                                       seed=seed)
-    observations, parameter = _checked(observations, model, priors)
+    observations, parameters = _checked(observations, model, priors)
     if method not in ("nuts", "laplace"):
         raise ValueError(f"method={method!r} is unknown; choose 'nuts' or 'laplace'")
     check_counts(chains, draws, warmup, method)
-    _check_reachable(parameter, observations)
-    prior, name = parameter.prior, parameter.name
+    _check_reachable(parameters, observations)
+    names = parameters.names
     with jax_context():  # float64 on this thread only
-        setup, data = _set_up(observations, parameter)
-        at_map, sd_ln = _maximum(setup, data, prior, name)
+        setup, data = _set_up(observations, parameters)
+        search = maximum_a_posteriori(setup, data, parameters.priors)
+        maximum = {name: math.exp(u) for name, u in zip(names, search.u)}
+        try:
+            laplace = laplace_approximation(maximum, search.hessian)
+        except NotPeaked:
+            if method == "laplace":
+                raise
+            laplace = None
         if method == "laplace":
-            with warnings.catch_warnings():  # a draw beyond the prior's support gets no weight
-                warnings.simplefilter("ignore", ConvergenceWarning)
-                normal = _laplace_draws(parameter, at_map, sd_ln, 1, max(chains * draws, IMPORTANCE_DRAWS), seed)[0]
-            value, diagnostics = _importance_corrected(setup, data, parameter, at_map, sd_ln, normal, chains * draws,
-                                                       seed)
+            u = laplace.draws(max(chains * draws, IMPORTANCE_DRAWS), seed)
+            values, diagnostics = _importance_corrected(setup, data, parameters, laplace, u, chains * draws, seed)
             stats = pd.DataFrame()
         else:
-            starts = {name: _laplace_draws(parameter, at_map, sd_ln, chains, 1, seed)[:, 0]}
-            drawn, diagnostics, stats = nuts(setup, data, {name: prior}, starts, draws, warmup, seed)
-            value = drawn[name]
-    samples = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains),
-                            parameter.column: value.reshape(-1)})
-    return BackAnalysis(samples, name, parameter.unit, at_map, at_map * sd_ln, diagnostics, method, observations,
-                        model, parameter.fixed, {name: prior}, stats)
+            u = search.best_points(chains) if laplace is None else laplace.draws(chains, seed)
+            starts = _in_support(parameters, np.exp(u))
+            drawn, diagnostics, stats = nuts(setup, data, parameters.priors,
+                                             {name: starts[:, i] for i, name in enumerate(names)}, draws, warmup, seed)
+            values = np.stack([drawn[name].reshape(-1) for name in names], axis=-1)
+    samples = pd.DataFrame({"chain": np.repeat(np.arange(chains), draws), "draw": np.tile(np.arange(draws), chains)}
+                           | {parameters.columns[name]: values[:, i] for i, name in enumerate(names)})
+    covariance = None if laplace is None else pd.DataFrame(laplace.covariance, index=list(names), columns=list(names))
+    return BackAnalysis(samples, maximum, covariance, diagnostics, method, observations, model, parameters.fixed,
+                        dict(parameters.priors), stats)
 
 
-def _laplace_draws(parameter, at_map, sd_ln, chains, draws, seed):
-    """The parameter's exp(N(ln ``at_map``, sd_ln²)) [its unit], shape (chains, draws); a
-    warning where a draw lies beyond the prior's support."""
-    low, high = support(parameter.prior)
-    rng = np.random.default_rng(seed)
-    value = np.exp(math.log(at_map) + sd_ln * rng.standard_normal((chains, draws)))
-    if value.min() <= low or value.max() >= high:
-        warnings.warn(f"the Laplace approximation of {parameter.name} reaches beyond the prior's support [{low}, "
-                      f"{high}] {parameter.unit}; use method='nuts'", ConvergenceWarning, stacklevel=3)
-    return value
+def _in_support(parameters, values):
+    """``values`` (the Laplace approximation's draws, shape (n, d) [each parameter's
+    unit]), with a :class:`ConvergenceWarning` naming each parameter a draw of which lies
+    beyond its prior's support."""
+    for i, (name, prior) in enumerate(parameters.priors.items()):
+        low, high = support(prior)
+        if values[:, i].min() <= low or values[:, i].max() >= high:
+            warnings.warn(f"the Laplace approximation of {name} reaches beyond the prior's support [{low}, {high}] "
+                          f"{parameters.units[name]}; use method='nuts'", ConvergenceWarning, stacklevel=3)
+    return values
 
 
-def _importance_corrected(setup, data, parameter, at_map, sd_ln, normal, size, seed):
-    """``size`` draws [the parameter's unit] resampled from the Laplace approximation's
-    draws ``normal`` (shape (n,)) by their Pareto-smoothed importance weights toward the
-    exact posterior (the normal in u = ln p against the posterior of u, at all n draws in
-    one batched model call per motion), and their diagnostics (``parameter``,
-    ``pareto_k``, ``ess_importance``): a :class:`ConvergenceWarning` where k̂ exceeds the
-    limit for n draws."""
-    name, (low, high) = parameter.name, support(parameter.prior)
-    u = np.log(normal)[:, None]
-    log_proposal = -0.5 * ((u[:, 0] - math.log(at_map)) / sd_ln) ** 2
-    log_target = -np.asarray(_on_grid(setup, name)(u[:, 0], _numpyro_prior(parameter.prior), data), dtype=float)
-    log_target[(normal <= low) | (normal >= high)] = -np.inf
-    found = resampled(u, log_proposal, log_target, size, np.random.default_rng((seed, 1)))
+def _importance_corrected(setup, data, parameters, laplace, u, size, seed):
+    """``size`` draws (shape (size, d) [each parameter's unit]) resampled from the Laplace
+    approximation's draws ``u`` (of u = ln p, shape (n, d)) by their Pareto-smoothed
+    importance weights toward the exact posterior (at all n draws in one batched model
+    call per motion; a draw beyond a prior's support gets no weight), and their
+    diagnostics (``parameter``, ``pareto_k``, ``ess_importance``, the same for every
+    parameter: the weights are the draws'): a :class:`ConvergenceWarning` where k̂ exceeds
+    the limit for n draws."""
+    names = parameters.names
+    densities = {name: numpyro_prior(prior) for name, prior in parameters.priors.items()}
+    log_target = -np.asarray(minus_log_posterior_on_points(setup, names)(u, densities, data), dtype=float)
+    for i, prior in enumerate(parameters.priors.values()):
+        low, high = support(prior)
+        log_target[(np.exp(u[:, i]) <= low) | (np.exp(u[:, i]) >= high)] = -np.inf
+    found = resampled(u, laplace.log_density(u), log_target, size, np.random.default_rng((seed, 1)))
     if not found.pareto_k <= found.limit:
-        warnings.warn(f"the Laplace approximation of {name}, weighted toward its posterior, is unreliable: Pareto "
-                      f"k̂ = {found.pareto_k:.2f}, above {found.limit:.2f}, the limit for {len(u)} draws (Vehtari et "
-                      "al. 2024); use method='nuts'", ConvergenceWarning, stacklevel=3)
-    diagnostics = pd.DataFrame([{"parameter": name, "pareto_k": found.pareto_k, "ess_importance": found.ess}])
-    return np.exp(found.draws[:, 0]), diagnostics
+        warnings.warn(f"the Laplace approximation of {', '.join(names)}, weighted toward its posterior, is unreliable: "
+                      f"Pareto k̂ = {found.pareto_k:.2f}, above {found.limit:.2f}, the limit for {len(u)} draws "
+                      "(Vehtari et al. 2024); use method='nuts'", ConvergenceWarning, stacklevel=3)
+    diagnostics = pd.DataFrame([{"parameter": name, "pareto_k": found.pareto_k, "ess_importance": found.ess}
+                                for name in names])
+    return np.exp(found.draws), diagnostics
 
 
 def nuts(setup, data, priors, starts, draws, warmup, seed, stacklevel=3):
@@ -596,7 +610,7 @@ def nuts(setup, data, priors, starts, draws, warmup, seed, stacklevel=3):
         import arviz
 
     names = list(priors)
-    densities = {name: _numpyro_prior(prior) for name, prior in priors.items()}
+    densities = {name: numpyro_prior(prior) for name, prior in priors.items()}
     chains = len(next(iter(starts.values())))
     init = jax.numpy.stack([biject_to(densities[n].support).inv(jax.numpy.asarray(starts[n])) for n in names], axis=-1)
     sampler = setup.program(("nuts", tuple(names), chains, draws, warmup),

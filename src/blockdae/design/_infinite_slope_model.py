@@ -20,10 +20,10 @@ import pandas as pd
 from ..core import jax_context
 from ..excitation import Record
 from ..regional import WATER_UNIT_WEIGHT, factor_of_safety
-from ._back_analysis import (Observation, by_motion, _log_likelihood as _observation_log_likelihood, _numpyro_prior,
+from ._back_analysis import (Observation, by_motion, _log_likelihood as _observation_log_likelihood,
                              check_counts, nuts, observed_values, set_up)
 from ._distributions import DISTRIBUTIONS
-from ._inferred import InferredParameter
+from ._inferred import InferredParameters, numpyro_prior
 from ._models import Rigid
 from ._posterior import Posterior
 
@@ -185,7 +185,7 @@ def _log_likelihood(listed, groups, slopes):
     observation) of each observation, ``groups``: (record, pga_g) -> their indices."""
     import jax.numpy as jnp
 
-    rigid = InferredParameter(slopes.model, "ky", None, {})  # a slope's D [m] as a function of its ky [g]
+    rigid = InferredParameters(slopes.model, {"ky": None}, {})  # a slope's D [m] as a function of its ky [g]
     functions = [rigid.displacement_function(record, pga_g) for record, pga_g in groups]
 
     def log_likelihood(values, data):
@@ -225,7 +225,7 @@ def _log_prior(values, densities, medians):
 
 def _prior_arguments(uncertain):
     """(name -> the NumPyro distribution, name -> the median) of each uncertain parameter."""
-    return ({name: _numpyro_prior(prior) for name, prior in uncertain.items()},
+    return ({name: numpyro_prior(prior) for name, prior in uncertain.items()},
             {name: float(prior.ppf(0.5)) for name, prior in uncertain.items()})
 
 
@@ -313,8 +313,8 @@ class SlopesBackAnalysis(Posterior):
         if pga_g is not None:
             _number("pga_g", pga_g, 0.0, math.inf)
         table = self.samples[["chain", "draw", *self.priors, f"ky_{slope}_g"]].copy()
-        rigid = InferredParameter(self.slopes.model, "ky", None, {})
-        table["D_m"] = rigid.displacements(record, pga_g, table[f"ky_{slope}_g"].to_numpy())
+        rigid = InferredParameters(self.slopes.model, {"ky": None}, {})
+        table["D_m"] = rigid.displacements(record, pga_g, {"ky": table[f"ky_{slope}_g"].to_numpy()})
         return table
 
 
