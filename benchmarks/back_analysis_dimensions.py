@@ -201,7 +201,7 @@ def one_unit(record, n, draws, warmup, steps, pilot):
     nuts |= {"calls": TimedRigid.calls, "engine": TimedRigid.seconds}
     n_steps = result.sample_stats.pivot(index="draw", columns="chain", values="n_steps").to_numpy()
     nuts["waiting"] = n_steps.max(axis=1).sum() / n_steps.mean(axis=1).sum()
-    names = list(nuts["draws"])
+    names = list(priors)  # the order of log_posterior's vector
     begin = np.array([[truth[name] for name in names]] * CHAINS) * (1 + 0.01 * np.arange(CHAINS)[:, None])
     log_posterior = design.log_posterior(observations, slopes, STRENGTH_PRIORS)
     TimedRigid.reset()
