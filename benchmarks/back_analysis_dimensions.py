@@ -15,11 +15,12 @@ chain). Priors of c' and phi' those of back_analysis.py.
 Each sampler timed whole, as in back_analysis.py (NUTS: 500 warm-up + 500 draws per
 chain, 4 chains run together, every JAX compile in its call; the random walk: its
 compile, pilot and steps: 8,000 steps after a 1,500-step pilot, or 500 d steps after a
-10 d²-step pilot where these are more, enough for it to learn the d x d covariance),
-effective samples per second with every compile counted and without JAX's compiling (the compile seconds its monitoring events report, taken off).
-The rigid block is timed and counted inside each run (a ``design.Rigid`` whose
-``displacements`` adds up its calls and seconds), so that each run's time splits into
-the engine and the rest (for NUTS: JAX's callback, NumPyro's tree building).
+10 d²-step pilot where these are more, enough for it to learn the d x d covariance);
+effective samples per second with every compile counted and without JAX's compiling
+(the seconds its monitoring events report, taken off). The rigid block is timed and
+counted inside each run (a ``design.Rigid`` whose ``displacements`` adds up its calls
+and seconds), so that each run's time splits into the engine and the rest (for NUTS:
+JAX's callback, NumPyro's tree building, its chains waiting for the longest tree).
 
 The ceiling: NUTS (NumPyro's, the same settings: dense mass, its default adaptation, 4
 chains vectorised, 500 + 500) and the same random walk (same tuning and steps) on an
@@ -27,12 +28,13 @@ exactly Gaussian target with the covariance of NUTS's posterior draws in the spa
 sampler samples (NUTS: each parameter mapped to the real line, ln c', ln t, the logit
 of phi' in its prior's bounds; the random walk: the parameters as they are), its log
 density free: the effective samples per 1,000 evaluations each gets when the posterior
-is as easy as it can be. Multiplied by the cost of one evaluation (value and gradient
-for NUTS, inside its compiled loop; the value for the random walk, called from its
-loop; 4 chains, the engine included, each timed alone), it bounds NUTS / random-walk
-effective samples per second from above.
+is as easy as it can be. Multiplied by the ratio of the costs of one evaluation for the
+4 chains, engine included (the random walk's value over NUTS's value and gradient),
+timed alone (NUTS's in a compiled loop, the walk's a compiled call from Python) or in
+the runs (compile out, over the engine calls), it bounds NUTS / random-walk effective
+samples per second from above.
 
-    python benchmarks/back_analysis_dimensions.py           # about 3 minutes on 2 cores
+    python benchmarks/back_analysis_dimensions.py           # about 5 minutes on 2 shared cores
     python benchmarks/back_analysis_dimensions.py --quick   # a smoke run: 2 and 3 slopes, short chains
 """
 
@@ -206,7 +208,7 @@ def one_unit(record, n, draws, warmup, steps, pilot):
     log_posterior = design.log_posterior(observations, slopes, STRENGTH_PRIORS)
     TimedRigid.reset()
     rwm = rwm_run(log_posterior, names, begin, steps, pilot)
-    rwm |= {"calls": TimedRigid.calls, "engine": TimedRigid.seconds, "waiting": 1.0}
+    rwm |= {"calls": TimedRigid.calls, "engine": TimedRigid.seconds}
     at = np.stack([rwm["draws"][name][:, -1] for name in names], axis=-1)
     costs = evaluation_costs(log_posterior, at, 200)
     gaussian = ceiling(nuts["draws"], names, priors, steps, pilot, draws, warmup)
@@ -253,16 +255,17 @@ def main(argv=None):
     for n, case in cases.items():
         for label, run in (("NUTS", case["nuts"]), ("random walk", case["rwm"])):
             ess, per_second, compiled, per_thousand = run["rates"] = rates(run)
-            rows.append((str(n), str(case["d"]), label, run["iterations"], f"{run['wall']:.1f}", f"{run['compile']:.1f}",
-                         f"{run['engine']:.1f}", f"{run['calls']:,}", f"{ess:.0f}", f"{per_second:.1f}",
-                         f"{compiled:.1f}", f"{run['per_draw']:.1f}", f"{per_thousand:.1f}"))
+            rows.append((str(n), str(case["d"]), label, run["iterations"], f"{run['wall']:.1f}",
+                         f"{run['compile']:.1f}", f"{run['engine']:.1f}", f"{run['calls']:,}", f"{ess:.0f}",
+                         f"{per_second:.1f}", f"{compiled:.1f}", f"{run['per_draw']:.1f}", f"{per_thousand:.1f}"))
         nuts, rwm = case["nuts"], case["rwm"]
         gauss_nuts, gauss_rwm = case["gaussian"]
         gradient_alone, value_alone = case["costs"]
         case["ratios"] = [nuts["rates"][i] / rwm["rates"][i] for i in (1, 2, 3)]
         # seconds per evaluation (one chain's) in the runs, compile out: NUTS's engine calls
         # are its vectorised leapfrog steps, each waiting for the chains' longest tree
-        nuts_call, rwm_call = (nuts["wall"] - nuts["compile"]) / nuts["calls"], (rwm["wall"] - rwm["compile"]) / rwm["calls"]
+        nuts_call = (nuts["wall"] - nuts["compile"]) / nuts["calls"]
+        rwm_call = (rwm["wall"] - rwm["compile"]) / rwm["calls"]
         in_runs = rwm_call / (nuts_call * nuts["waiting"])
         per_evaluation = gauss_nuts / gauss_rwm
         case["bounds"] = per_evaluation * value_alone / gradient_alone, per_evaluation * in_runs
@@ -271,7 +274,8 @@ def main(argv=None):
                        *(f"{b:.1f}" for b in case["bounds"])))
         profile.append((str(case["d"]), f"{nuts['calls']:,}", f"{nuts['waiting']:.2f}", f"{1e3 * nuts_call:.2f}",
                         f"{1e3 * nuts['engine'] / nuts['calls']:.2f}", f"{1e3 * gradient_alone:.2f}",
-                        f"{1e3 * rwm_call:.2f}", f"{1e3 * rwm['engine'] / rwm['calls']:.2f}", f"{1e3 * value_alone:.2f}"))
+                        f"{1e3 * rwm_call:.2f}", f"{1e3 * rwm['engine'] / rwm['calls']:.2f}",
+                        f"{1e3 * value_alone:.2f}"))
     print_table(("slopes", "parameters d", "sampler", "iterations per chain", "wall [s]", "JAX compile [s]",
                  "engine [s]", "engine calls", "least bulk ESS [-]", "ESS per wall s [1/s]",
                  "ESS per wall s, compile out [1/s]", "evaluations per draw [-]", "ESS per 1,000 evaluations [-]"),
@@ -283,7 +287,7 @@ def main(argv=None):
                  "Gaussian: NUTS ESS per 1,000 ev. [-]", "walk [-]", "NUTS / walk [-]",
                  "cost walk / NUTS, alone [-]", "in the runs [-]", "bound, alone [-]", "bound, in the runs [-]"),
                 ratios)
-    print("Gaussian: the same samplers on N(mean, the covariance of their posterior draws), each in its own space; "
+    print("Gaussian: the same samplers on N(mean, the covariance of NUTS's posterior draws), each in its own space; "
           "cost walk / NUTS: seconds of one evaluation, the value against the value and gradient, engine included, "
           "timed alone or in the runs (compile out; NUTS's tree building and its chains waiting for the longest "
           "tree included); bound: the Gaussian's NUTS / walk per evaluation times that cost ratio\n")
