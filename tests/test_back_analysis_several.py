@@ -184,13 +184,8 @@ def test_the_log_posterior_is_a_function_of_the_vector_and_its_gradient_is_exact
         values = [float(log_p(theta)) for theta in points]
         reference = [float(log_density_in_u(np.log(theta))) - float(np.log(theta).sum()) for theta in points]
         assert values[0] - values[1] == pytest.approx(reference[0] - reference[1], abs=1e-9)
-        for theta in points:
-            grad = np.asarray(jax.grad(log_p)(theta))
-            for i in range(2):
-                h = 1e-6 * theta[i]
-                step = h * np.eye(2)[i]
-                central = (float(log_p(theta + step)) - float(log_p(theta - step))) / (2 * h)
-                assert grad[i] == pytest.approx(central, rel=1e-6), (theta, i)
+    for theta in points:
+        _gradient_matches_central_differences(log_p, theta)
 
 
 @pytest.mark.slow
@@ -356,12 +351,7 @@ def test_the_plane_s_mu_and_bias_by_laplace(record):
         seen.append(design.Observation(record, sigma_ln=0.1, displacement_m=d, pga_g=pga, name=f"PGA {pga} g"))
     log_p = design.log_posterior(seen, model, PLANE)
     theta = np.array([0.14, 0.055])
-    with jax.enable_x64(True):
-        grad = np.asarray(jax.grad(log_p)(theta))
-        for i in range(2):
-            step = 1e-6 * theta[i] * np.eye(2)[i]
-            central = (float(log_p(theta + step)) - float(log_p(theta - step))) / (2 * step[i])
-            assert grad[i] == pytest.approx(central, rel=1e-6), i
+    _gradient_matches_central_differences(log_p, theta)
     result = design.back_analysis(seen, model, PLANE, method="laplace", chains=1, draws=400)
     u = np.log([result.map_values[name] for name in PLANE])
 
@@ -386,17 +376,23 @@ def test_the_flexible_mass_s_ky_and_vs_gradient_matches_central_differences(reco
     call of the JAX twin gives dD/dky and dD/dvs, and the log posterior's gradient equals
     central differences of the log posterior (relative step 1e-6) within 1e-6 relative
     (measured 3.3e-11 for ky, 9.9e-10 for vs)."""
-    import jax
-
     model = design.Flexible(method="decoupled")
     priors = {"ky": design.LogNormal(0.1, 0.3), "height": 10.0, "vs": design.LogNormal(250.0, 0.3), "vr": 800.0}
     d = float(model.displacements(record, 0.3, {"ky": np.array([0.1]), "height": 10.0, "vs": np.array([250.0]),
                                                 "vr": 800.0})[0])
     log_p = design.log_posterior(design.Observation(record, sigma_ln=0.2, displacement_m=d, pga_g=0.3), model, priors)
     theta = np.array([0.09, 270.0])
+    _gradient_matches_central_differences(log_p, theta)
+
+
+def _gradient_matches_central_differences(log_p, theta):
+    """jax.grad of ``log_p`` at ``theta`` equals its central differences (relative step
+    1e-6) within 1e-6 relative, each component."""
+    import jax
+
     with jax.enable_x64(True):
         grad = np.asarray(jax.grad(log_p)(theta))
-        for i in range(2):
-            step = 1e-6 * theta[i] * np.eye(2)[i]
+        for i in range(len(theta)):
+            step = 1e-6 * theta[i] * np.eye(len(theta))[i]
             central = (float(log_p(theta + step)) - float(log_p(theta - step))) / (2 * step[i])
             assert grad[i] == pytest.approx(central, rel=1e-6), i

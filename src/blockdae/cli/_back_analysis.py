@@ -13,7 +13,7 @@ import numpy as np
 from ..design import ConvergenceWarning, Observation, back_analysis
 from ..units import STANDARD_GRAVITY
 from ._common import UsageError, checked, positive, read, record_arguments, save_figure, warning_line
-from ._design import design_model, parameter
+from ._design import design_model, model_arguments
 
 #: the kinds of --seen: the prefix -> Observation's keyword
 SEEN_KINDS = {"more:": "more_than_m", "less:": "less_than_m"}
@@ -53,13 +53,8 @@ def add_back_analysis_parser(sub):
     p.add_argument("--pga", type=positive("--pga"), action="append", default=None, metavar="PGA_G",
                    help="the PGA [g] each record is scaled to: once for all, or once per record in their order "
                         "(default: as recorded)")
-    p.add_argument("--model", choices=("rigid", "flexible", "planar"), default="rigid",
-                   help="rigid block (parameter ky), flexible sliding mass (ky, height, vs, vr, damping) or block on "
-                        "a plane (mu, mu_kinetic, bias_x, bias_y; D its final sliding distance |u|)")
-    p.add_argument("--param", type=parameter, action="append", required=True, metavar="NAME=SPEC",
-                   help="the prior of a parameter inferred (lognormal:MEAN:COV, normal:MEAN:STD, uniform:LOW:HIGH) "
-                        "or the value of one held (height=25) (ky [g], height [m], vs and vr [m/s], damping, mu, "
-                        "bias_x [-]); repeat it")
+    model_arguments(p, "the prior of a parameter inferred (lognormal:MEAN:COV, normal:MEAN:STD, uniform:LOW:HIGH) "
+                       "or the value of one held (height=25)")
     p.add_argument("--polarity", choices=("normal", "inverse", "larger"), default="normal",
                    help="D of each record as given (default: downslope is the record's positive direction), "
                         "inverted, or the larger of the two")

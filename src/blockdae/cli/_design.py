@@ -36,19 +36,24 @@ def parameter(text):
                                          f"{kinds} ({err})") from None
 
 
+def model_arguments(p, param_help):
+    """--model (the design model) and --param (``param_help`` says what a NAME=SPEC is;
+    the parameters' names and units follow it)."""
+    p.add_argument("--model", choices=("rigid", "flexible", "planar"), default="rigid",
+                   help="rigid block (parameter ky), flexible sliding mass (ky, height, vs, vr, damping) or block on "
+                        "a plane (mu, mu_kinetic, bias_x, bias_y; D its final sliding distance |u|)")
+    p.add_argument("--param", type=parameter, action="append", required=True, metavar="NAME=SPEC",
+                   help=f"{param_help} (ky [g], height [m], vs and vr [m/s], damping, mu, bias_x [-]); repeat it")
+
+
 def add_design_parser(sub):
     """The ``design`` subcommand."""
     p = sub.add_parser("design", help="P(D > d) of a slope with uncertain ky, vs, ... over records at a target PGA "
                                       "(Monte Carlo, Latin hypercube or Sobol), and the mean ky a design needs")
     p.add_argument("records", type=pathlib.Path, nargs="+", metavar="RECORD",
                    help="accelerogram files or folders of them (ground acceleration along the slope)")
-    p.add_argument("--model", choices=("rigid", "flexible", "planar"), default="rigid",
-                   help="rigid block (parameter ky), flexible sliding mass (ky, height, vs, vr, damping) or block on "
-                        "a plane (mu, mu_kinetic, bias_x, bias_y; D its final sliding distance |u|)")
-    p.add_argument("--param", type=parameter, action="append", required=True, metavar="NAME=SPEC",
-                   help="a parameter, a number (height=25) or a distribution: lognormal:MEAN:COV, normal:MEAN:STD, "
-                        "uniform:LOW:HIGH (ky [g], height [m], vs and vr [m/s], damping, mu, bias_x [-]); "
-                        "repeat it")
+    model_arguments(p, "a parameter, a number (height=25) or a distribution: lognormal:MEAN:COV, normal:MEAN:STD, "
+                       "uniform:LOW:HIGH")
     p.add_argument("--pga", type=positive("--pga"), default=None, metavar="PGA_G",
                    help="target PGA [g] every record is scaled to (default: as given)")
     p.add_argument("--threshold", type=positive("--threshold"), required=True, metavar="D_M",
