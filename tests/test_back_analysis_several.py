@@ -396,3 +396,23 @@ def _gradient_matches_central_differences(log_p, theta):
             step = 1e-6 * theta[i] * np.eye(len(theta))[i]
             central = (float(log_p(theta + step)) - float(log_p(theta - step))) / (2 * step[i])
             assert grad[i] == pytest.approx(central, rel=1e-6), i
+
+
+def test_nuts_starts_inside_the_priors_where_the_laplace_draws_reach_beyond(record):
+    """A uniform prior on ky ending just above the posterior's maximum: the Laplace
+    approximation's draws for the chains' starts reach beyond it (checked here on the same
+    seed), and those chains start at the maximum instead; the draws stay in the support
+    with no warning of it."""
+    import warnings
+
+    priors = {"ky": design.Uniform(0.08, 0.1215), "scale": PRIORS["scale"]}
+    laplace = design.back_analysis(observations(record), Scaled(), priors, method="laplace", chains=4, draws=1)
+    factor = np.linalg.inv(np.linalg.cholesky(np.linalg.inv(laplace.laplace_covariance.to_numpy()))).T
+    mean = np.log([laplace.map_values[name] for name in priors])
+    starts = np.exp(mean + np.random.default_rng(0).standard_normal((4, 2)) @ factor.T)  # as back_analysis draws them
+    assert (starts[:, 0] >= 0.1215).any()
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        result = design.back_analysis(observations(record), Scaled(), priors, chains=4, draws=200, warmup=200)
+    assert not [w for w in seen if "support" in str(w.message)]
+    assert result.samples.ky_g.between(0.08, 0.1215).all() and np.isfinite(result.samples.scale_m).all()

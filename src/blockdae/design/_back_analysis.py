@@ -494,9 +494,8 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
         ``to_inference_data``: a column of draws per parameter, ``map_values`` and
         ``laplace_covariance`` (in the parameters' logarithms). A
         :class:`ConvergenceWarning` is raised where R-hat exceeds 1.01, the bulk
-        effective sample size is below 100 per chain, NUTS made divergent transitions,
-        or one of NUTS's starts (drawn from the Laplace approximation) lies beyond a
-        prior's support; for the Laplace approximation, where the Pareto k̂ of its
+        effective sample size is below 100 per chain, or NUTS made divergent
+        transitions; for the Laplace approximation, where the Pareto k̂ of its
         importance weights exceeds min(1 - 1/log10 S, 0.7) for S weighted draws (0.7
         from 2155 draws on).
 
@@ -537,7 +536,7 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
             stats = pd.DataFrame()
         else:
             u = search.best_points(chains) if laplace is None else laplace.draws(chains, seed)
-            starts = _in_support(parameters, np.exp(u))
+            starts = _starts_in_support(parameters, np.exp(u), search.u)
             drawn, diagnostics, stats = nuts(setup, data, parameters.priors,
                                              {name: starts[:, i] for i, name in enumerate(names)}, draws, warmup, seed)
             values = np.stack([drawn[name].reshape(-1) for name in names], axis=-1)
@@ -548,16 +547,17 @@ def back_analysis(observations, model, priors, *, method="nuts", chains=4, draws
                         dict(parameters.priors), stats)
 
 
-def _in_support(parameters, values):
-    """``values`` (the Laplace approximation's draws, shape (n, d) [each parameter's
-    unit]), with a :class:`ConvergenceWarning` naming each parameter a draw of which lies
-    beyond its prior's support."""
-    for i, (name, prior) in enumerate(parameters.priors.items()):
+def _starts_in_support(parameters, values, at_maximum):
+    """NUTS's starting points: ``values`` (draws of the Laplace approximation, or the
+    search's best points, shape (chains, d) [each parameter's unit]), each draw that
+    lies beyond a prior's support replaced by the maximum a posteriori (``at_maximum``,
+    in u = ln p, found within the priors' quantiles from 1e-6 to 1 - 1e-6): a chain
+    starts where the posterior density is above 0."""
+    outside = np.zeros(len(values), dtype=bool)
+    for i, prior in enumerate(parameters.priors.values()):
         low, high = support(prior)
-        if values[:, i].min() <= low or values[:, i].max() >= high:
-            warnings.warn(f"the Laplace approximation of {name} reaches beyond the prior's support [{low}, {high}] "
-                          f"{parameters.units[name]}; use method='nuts'", ConvergenceWarning, stacklevel=3)
-    return values
+        outside |= (values[:, i] <= low) | (values[:, i] >= high)
+    return np.where(outside[:, None], np.exp(at_maximum), values)
 
 
 def _importance_corrected(setup, data, parameters, laplace, u, size, seed):
